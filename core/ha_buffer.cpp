@@ -1,0 +1,235 @@
+#include "habuffer/ha_buffer.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <variant>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "habuffer/hash_kernel.h"
+#include "habuffer/slot_storage.h"
+#include "habuffer/tile_binning.h"
+
+namespace habuffer {
+namespace {
+
+KernelParams make_params(const BufferConfig& c, const MaxAgeTable& m) {
+  KernelParams p;
+  p.age_bits = c.age_bits;
+  p.payload_bits = c.layout == Layout::L64 ? 32 : 0;
+  p.screen = c.screen;
+  p.table = c.table_or_screen();
+  p.block = c.block;
+  p.max_age_cells_x = m.cells().x;
+  p.iter_limit = c.iter_limit;
+  p.cull_tau = c.early_cull_tau;
+  return p;
+}
+
+std::uint32_t resolve_threads(std::uint32_t threads) {
+  return threads != 0 ? threads : static_cast<std::uint32_t>(tbb::info::default_concurrency());
+}
+
+void check_on_screen(std::span<const Fragment> fragments, Extent screen) {
+  for (std::size_t i = 0; i < fragments.size(); ++i) {
+    const Fragment& f = fragments[i];
+    if (f.x >= screen.x || f.y >= screen.y)
+      throw std::out_of_range("fragment " + std::to_string(i) + " at pixel (" + std::to_string(f.x) + "," +
+                              std::to_string(f.y) + ") lies outside screen " + screen.str());
+  }
+}
+
+// One cache line per work unit's counters, so threads never share one.
+struct alignas(64) PaddedCounters {
+  Counters c;
+};
+
+}  // namespace
+
+struct HaBuffer::Impl {
+  BufferConfig config;
+  RecordLayout layout;
+  OffsetSequence offsets;
+  MaxAgeTable max_age;
+  KernelParams params;
+  std::variant<SlotStorage<std::uint64_t>, SlotStorage<std::uint32_t>> storage;
+
+  Impl(const BufferConfig& c, OffsetSequence o)
+      : config(c), layout(c.record_layout()), offsets(std::move(o)), max_age(c.screen, c.block) {
+    config.table = c.table_or_screen();
+    params = make_params(config, max_age);
+    if (layout.layout() == Layout::L64)
+      storage = SlotStorage<std::uint64_t>(config.table.area());
+    else
+      storage = SlotStorage<std::uint32_t>(config.table.area());
+  }
+
+  template <bool Concurrent, class F>
+  decltype(auto) with_kernel(F&& f) {
+    return std::visit(
+        [&](auto& s) {
+          using Word = std::remove_pointer_t<decltype(s.data())>;
+          HashKernel<Word, Concurrent> k(params, offsets.values().data(), s.data(), max_age.data());
+          return f(k);
+        },
+        storage);
+  }
+  template <class F>
+  decltype(auto) with_kernel(F&& f) const {
+    return const_cast<Impl*>(this)->with_kernel<false>(std::forward<F>(f));
+  }
+
+  template <class Kernel>
+  static void insert_range(Kernel& k, std::span<const Fragment> frags, Counters& counters) {
+    for (const Fragment& f : frags) counters.count(k.ha_insert(glm::uvec2(f.x, f.y), f.depth, f.rgba));
+  }
+
+  Counters insert_binned(std::span<const Fragment> frags, const InsertOptions& options, std::uint32_t threads) {
+    const TileBins bins = bin_by_tile(frags, config.screen, options.tile, threads);
+    const std::uint64_t target = std::max<std::uint64_t>(1024, frags.size() / (std::uint64_t{threads} * 16));
+    const std::vector<std::uint32_t> cuts = split_tiles(bins, target);
+    std::vector<PaddedCounters> unit_counters(cuts.size() - 1);
+    auto unit = [&](std::size_t u) {
+      return std::span<const Fragment>(bins.fragments)
+          .subspan(bins.tile_begin[cuts[u]], bins.tile_begin[cuts[u + 1]] - bins.tile_begin[cuts[u]]);
+    };
+    if (threads == 1) {
+      with_kernel<false>([&](auto& k) {
+        for (std::size_t u = 0; u + 1 < cuts.size(); ++u) insert_range(k, unit(u), unit_counters[u].c);
+      });
+    } else {
+      with_kernel<true>([&](auto& k) {
+        // simple_partitioner: the range is halved recursively, so threads start
+        // on tiles far apart on screen, hence on far-apart table regions.
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, cuts.size() - 1, 1),
+            [&](const tbb::blocked_range<std::size_t>& r) {
+              auto kernel = k;  // the kernel is a few words of parameters and pointers
+              for (std::size_t u = r.begin(); u != r.end(); ++u) insert_range(kernel, unit(u), unit_counters[u].c);
+            },
+            tbb::simple_partitioner());
+      });
+    }
+    Counters total;
+    for (const auto& u : unit_counters) total += u.c;
+    return total;
+  }
+};
+
+HaBuffer::HaBuffer(const BufferConfig& config, OffsetSequence offsets) {
+  config.validate();
+  const Extent table = config.table_or_screen();
+  if (offsets.table() != table)
+    throw std::invalid_argument("offsets were made for table " + offsets.table().str() + ", not " + table.str());
+  const std::uint32_t amax = config.record_layout().max_age();
+  if (offsets.size() != amax)
+    throw std::invalid_argument("need " + std::to_string(amax) + " offsets (one per age), got " +
+                                std::to_string(offsets.size()));
+  impl_ = std::make_unique<Impl>(config, std::move(offsets));
+}
+
+HaBuffer::~HaBuffer() = default;
+HaBuffer::HaBuffer(HaBuffer&&) noexcept = default;
+HaBuffer& HaBuffer::operator=(HaBuffer&&) noexcept = default;
+
+const BufferConfig& HaBuffer::config() const { return impl_->config; }
+const RecordLayout& HaBuffer::record_layout() const { return impl_->layout; }
+const OffsetSequence& HaBuffer::offsets() const { return impl_->offsets; }
+Extent HaBuffer::screen() const { return impl_->config.screen; }
+Extent HaBuffer::table() const { return impl_->config.table; }
+const MaxAgeTable& HaBuffer::max_age() const { return impl_->max_age; }
+
+Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
+  check_on_screen(fragments, impl_->config.screen);
+  const std::uint32_t threads = resolve_threads(options.threads);
+  const bool binned = options.order == InsertOptions::Order::Binned ||
+                      (options.order == InsertOptions::Order::Auto && threads > 1);
+  if (!binned) {
+    if (threads > 1) throw std::invalid_argument("input-order insertion runs on one thread only");
+    Counters counters;
+    impl_->with_kernel<false>([&](auto& k) { Impl::insert_range(k, fragments, counters); });
+    return counters;
+  }
+  tbb::task_arena arena(static_cast<int>(threads));
+  return arena.execute([&] { return impl_->insert_binned(fragments, options, threads); });
+}
+
+std::uint32_t HaBuffer::insert_one(const Fragment& f) {
+  check_on_screen({&f, 1}, impl_->config.screen);
+  return impl_->with_kernel<false>([&](auto& k) { return k.ha_insert(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+}
+
+std::uint64_t HaBuffer::clear() {
+  impl_->max_age.clear();
+  return std::visit([](auto& s) { return s.clear_and_count(); }, impl_->storage);
+}
+
+std::uint64_t HaBuffer::count_stored() const {
+  return std::visit(
+      [](const auto& s) {
+        std::uint64_t n = 0;
+        for (auto r : s.slots()) n += r != 0;
+        return n;
+      },
+      impl_->storage);
+}
+
+std::uint64_t HaBuffer::slot_count() const { return impl_->config.table.area(); }
+
+std::uint64_t HaBuffer::slot(std::uint64_t s) const {
+  if (s >= slot_count()) throw std::out_of_range("slot " + std::to_string(s) + " outside the table");
+  return std::visit([&](const auto& st) { return std::uint64_t{st.data()[s]}; }, impl_->storage);
+}
+
+void HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  out.clear();
+  impl_->with_kernel([&](auto& k) {
+    const glm::uvec2 p(x, y);
+    const std::uint32_t amax = k.ha_load_max_age(k.ha_cell(p));
+    for (std::uint32_t a = 1; a <= amax; ++a) {
+      const auto r = k.ha_load_slot(k.ha_slot(k.ha_probe(p, a)));
+      const std::uint32_t v = k.ha_visit(r, a);
+      if (v == HA_VISIT_STOP) break;
+      if (v == HA_VISIT_EMIT) out.push_back({a, k.ha_code(r), k.ha_data(r)});
+    }
+  });
+}
+
+glm::vec4 HaBuffer::composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const {
+  return impl_->with_kernel([&](auto& k) { return k.ha_composite(glm::uvec2(x, y), background); });
+}
+
+std::vector<glm::vec4> HaBuffer::composite_image(glm::vec3 background, std::uint32_t threads) const {
+  const Extent v = screen();
+  std::vector<glm::vec4> image(v.area());
+  tbb::task_arena arena(static_cast<int>(resolve_threads(threads)));
+  arena.execute([&] {
+    tbb::parallel_for(std::uint32_t{0}, v.y, [&](std::uint32_t y) {
+      impl_->with_kernel([&](auto& k) {
+        for (std::uint32_t x = 0; x < v.x; ++x)
+          image[x + std::size_t{y} * v.x] = k.ha_composite(glm::uvec2(x, y), background);
+      });
+    });
+  });
+  return image;
+}
+
+std::vector<std::uint64_t> HaBuffer::age_histogram() const {
+  std::vector<std::uint64_t> hist(impl_->layout.max_age() + 1, 0);
+  impl_->with_kernel([&](auto& k) {
+    const auto* slots = k.slots();
+    for (std::uint64_t s = 0; s < slot_count(); ++s)
+      if (slots[s] != 0) ++hist[k.ha_age(slots[s])];
+  });
+  return hist;
+}
+
+std::uint64_t HaBuffer::memory_bytes() const {
+  const std::uint64_t table = std::visit([](const auto& s) { return s.bytes(); }, impl_->storage);
+  return table + impl_->max_age.bytes() + impl_->offsets.size() * sizeof(glm::uvec2);
+}
+
+}  // namespace habuffer

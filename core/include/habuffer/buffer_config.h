@@ -1,0 +1,28 @@
+// Everything that fixes one HA-buffer besides its offsets.
+#pragma once
+
+#include <cstdint>
+
+#include "habuffer/extent.h"
+#include "habuffer/record_layout.h"
+#include "../../shared/ha_constants.h"
+
+namespace habuffer {
+
+struct BufferConfig {
+  Extent screen;
+  Extent table;  // zero: the screen size
+  Layout layout = Layout::L64;
+  std::uint32_t age_bits = HA_DEFAULT_AGE_BITS;
+  std::uint32_t block = HA_DEFAULT_BLOCK;
+  std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT;
+  float early_cull_tau = 0.0f;  // 0: off; else in (0, 1], L64 only
+
+  [[nodiscard]] Extent table_or_screen() const { return table.area() == 0 ? screen : table; }
+  [[nodiscard]] RecordLayout record_layout() const { return {layout, age_bits}; }
+  // Throws std::invalid_argument with a message naming the field and values
+  // (geometry rule of SPEC 1, age bits, block, cull threshold, size limits).
+  void validate() const;
+};
+
+}  // namespace habuffer

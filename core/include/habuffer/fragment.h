@@ -1,0 +1,39 @@
+// Fragments (SPEC 1) and the six counters of SPEC invariant 1.
+#pragma once
+
+#include <cstdint>
+
+namespace habuffer {
+
+// One rasterized fragment: pixel, normalized depth t (0 = nearest) and 32 bits
+// of data (R<<24 | G<<16 | B<<8 | A, straight alpha, for colour).
+struct Fragment {
+  std::uint32_t x = 0;
+  std::uint32_t y = 0;
+  float depth = 0.0f;
+  std::uint32_t rgba = 0;
+  friend bool operator==(const Fragment&, const Fragment&) = default;
+};
+
+// Every insert call ends in exactly one outcome; `stored` follows from the
+// others, and equals the table's non-empty slot count.
+struct Counters {
+  std::uint64_t fragments = 0;
+  std::uint64_t invalid = 0;
+  std::uint64_t duplicates = 0;
+  std::uint64_t culled = 0;
+  std::uint64_t failed_age = 0;
+  std::uint64_t failed_iter = 0;
+
+  [[nodiscard]] std::uint64_t failures() const { return failed_age + failed_iter; }
+  [[nodiscard]] std::uint64_t stored() const {
+    return fragments - invalid - duplicates - culled - failed_age - failed_iter;
+  }
+  // Counts one insert outcome (an HA_* constant of ha_constants.h).
+  void count(std::uint32_t outcome);
+
+  Counters& operator+=(const Counters& o);
+  friend bool operator==(const Counters&, const Counters&) = default;
+};
+
+}  // namespace habuffer

@@ -1,0 +1,20 @@
+// The C++ side of the shared GLSL sources in core/shared/: the types and
+// builtins a .glsl file expects, provided at class scope so that a class
+// template can #include a shared file and turn its functions into members.
+#pragma once
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "../../shared/ha_constants.h"
+
+#define HA_GLSL_CLASS_PRELUDE                                              \
+  using uint = std::uint32_t;                                              \
+  using uvec2 = glm::uvec2;                                                \
+  using vec3 = glm::vec3;                                                  \
+  using vec4 = glm::vec4;                                                  \
+  static float ha_floor(float x) { return std::floor(x); }                 \
+  static uint ha_float_bits(float x) { return std::bit_cast<uint>(x); }

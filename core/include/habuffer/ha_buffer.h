@@ -1,0 +1,84 @@
+// The HA-buffer on the CPU: table T, max-age table M and offsets O of one
+// configuration, with concurrent insertion (SPEC 6), traversal and
+// compositing (SPEC 7) and clear-with-count (SPEC 8).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "habuffer/buffer_config.h"
+#include "habuffer/fragment.h"
+#include "habuffer/max_age_table.h"
+#include "habuffer/offset_sequence.h"
+
+namespace habuffer {
+
+struct InsertOptions {
+  std::uint32_t threads = 1;  // 0: every hardware thread
+  std::uint32_t tile = 64;    // screen tile side used to split work between threads (power of two)
+  // Input: insert in the given order (one thread only). Binned: group by
+  // screen tile first. Auto: Input for one thread, Binned for several.
+  enum class Order { Auto, Input, Binned } order = Order::Auto;
+};
+
+// One record of a pixel's list, front to back.
+struct ListEntry {
+  std::uint32_t age = 0;
+  std::uint32_t code = 0;
+  std::uint32_t data = 0;
+  friend bool operator==(const ListEntry&, const ListEntry&) = default;
+};
+
+class HaBuffer {
+ public:
+  // Validates the configuration (BufferConfig::validate) and that the offsets
+  // were made for this table with one offset per age (AMAX of them).
+  HaBuffer(const BufferConfig& config, OffsetSequence offsets);
+  ~HaBuffer();
+  HaBuffer(HaBuffer&&) noexcept;
+  HaBuffer& operator=(HaBuffer&&) noexcept;
+
+  [[nodiscard]] const BufferConfig& config() const;
+  [[nodiscard]] const RecordLayout& record_layout() const;
+  [[nodiscard]] const OffsetSequence& offsets() const;
+  [[nodiscard]] Extent screen() const;
+  [[nodiscard]] Extent table() const;
+
+  // Inserts a batch; throws std::out_of_range (naming the index and pixel) if
+  // any fragment lies off the screen, before inserting anything.
+  Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {});
+  // Inserts one fragment and returns its HA_* outcome. Not thread-safe
+  // against other calls on this buffer.
+  std::uint32_t insert_one(const Fragment& fragment);
+
+  // Zeroes T and M; returns the number of records T held.
+  std::uint64_t clear();
+  [[nodiscard]] std::uint64_t count_stored() const;
+  [[nodiscard]] std::uint64_t slot_count() const;
+  // Slot s as an unsigned integer (L32 records in the low 32 bits).
+  [[nodiscard]] std::uint64_t slot(std::uint64_t s) const;
+  [[nodiscard]] const MaxAgeTable& max_age() const;
+
+  // Pixel (x, y)'s list, nearest first, by traversal (SPEC 7).
+  void list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const;
+  // Front-to-back float32 compositing of pixel (x, y) over `background`.
+  [[nodiscard]] glm::vec4 composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const;
+  // The whole screen, row-major.
+  [[nodiscard]] std::vector<glm::vec4> composite_image(glm::vec3 background, std::uint32_t threads = 0) const;
+
+  // Stored records per age: result[a] for a = 0..AMAX (result[0] is 0).
+  [[nodiscard]] std::vector<std::uint64_t> age_histogram() const;
+  // Bytes of T, M and O.
+  [[nodiscard]] std::uint64_t memory_bytes() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace habuffer

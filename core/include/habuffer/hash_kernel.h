@@ -1,0 +1,114 @@
+// The coherent Robin Hood hash on the CPU: the shared GLSL sources of
+// core/shared/ compiled as member functions of this class template, with the
+// storage and atomics a GLSL shader would get from its buffers.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "habuffer/extent.h"
+#include "habuffer/glsl_env.h"
+
+namespace habuffer {
+
+// Everything a kernel reads besides its buffers: the GLSL "uniforms".
+struct KernelParams {
+  std::uint32_t age_bits = HA_DEFAULT_AGE_BITS;
+  std::uint32_t payload_bits = 32;  // 32 for L64, 0 for L32
+  Extent screen;
+  Extent table;
+  std::uint32_t block = HA_DEFAULT_BLOCK;
+  std::uint32_t max_age_cells_x = 0;
+  std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT;
+  float cull_tau = 0.0f;  // 0: early cull off
+};
+
+// Word: std::uint64_t (L64) or std::uint32_t (L32). Concurrent: slots and
+// max-age cells are updated with atomics (several inserters at once); the
+// serial form uses plain loads and stores and must own the table alone.
+template <class Word, bool Concurrent>
+class HashKernel {
+ public:
+  HA_GLSL_CLASS_PRELUDE
+  using ha_word = Word;
+  using ha_index = std::uint64_t;
+
+  HashKernel(const KernelParams& params, const glm::uvec2* offsets, Word* table, std::uint32_t* max_age)
+      : ha_age_bits(params.age_bits),
+        ha_payload_bits(params.payload_bits),
+        ha_table_size(params.table.x, params.table.y),
+        ha_screen_size(params.screen.x, params.screen.y),
+        ha_block(params.block),
+        ha_max_age_cells_x(params.max_age_cells_x),
+        ha_iter_limit(params.iter_limit),
+        ha_cull_tau(params.cull_tau),
+        offsets_(offsets),
+        table_(table),
+        max_age_(max_age) {}
+
+  // --- the environment the shared GLSL expects -----------------------------
+  static constexpr uint ha_word_bits = sizeof(Word) * 8;
+  uint ha_age_bits;
+  uint ha_payload_bits;
+  uvec2 ha_table_size;
+  uvec2 ha_screen_size;
+  uint ha_block;
+  uint ha_max_age_cells_x;
+  uint ha_iter_limit;
+  float ha_cull_tau;
+
+  uvec2 ha_offset(uint i) const { return offsets_[i]; }
+
+  // atomicMax on a slot: returns the old value, leaves max(old, r). Each
+  // failed strong exchange observed a strictly larger value, so the loop ends
+  // after at most as many rounds as other threads raised this very slot.
+  Word ha_atomic_max_slot(ha_index s, Word r) {
+    if constexpr (Concurrent) {
+      std::atomic_ref<Word> slot(table_[s]);
+      Word cur = slot.load(std::memory_order_relaxed);
+      while (cur < r && !slot.compare_exchange_strong(cur, r, std::memory_order_relaxed)) {
+      }
+      return cur;
+    } else {
+      Word cur = table_[s];
+      if (cur < r) table_[s] = r;
+      return cur;
+    }
+  }
+
+  void ha_atomic_max_age(uint cell, uint age) {
+    if constexpr (Concurrent) {
+      std::atomic_ref<std::uint32_t> m(max_age_[cell]);
+      std::uint32_t cur = m.load(std::memory_order_relaxed);
+      while (cur < age && !m.compare_exchange_strong(cur, age, std::memory_order_relaxed)) {
+      }
+    } else {
+      if (max_age_[cell] < age) max_age_[cell] = age;
+    }
+  }
+
+  Word ha_load_slot(ha_index s) const {
+    if constexpr (Concurrent) return std::atomic_ref<Word>(table_[s]).load(std::memory_order_relaxed);
+    return table_[s];
+  }
+
+  uint ha_load_max_age(uint cell) const {
+    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(max_age_[cell]).load(std::memory_order_relaxed);
+    return max_age_[cell];
+  }
+
+  [[nodiscard]] const Word* slots() const { return table_; }
+
+  // --- the shared algorithm -------------------------------------------------
+#include "../../shared/ha_record.glsl"
+#include "../../shared/ha_probe.glsl"
+#include "../../shared/ha_insert.glsl"
+#include "../../shared/ha_traverse.glsl"
+
+ private:
+  const glm::uvec2* offsets_;
+  Word* table_;
+  std::uint32_t* max_age_;
+};
+
+}  // namespace habuffer

@@ -1,0 +1,44 @@
+// The hash table's slots: one zero-initialized, page-aligned anonymous
+// mapping. Pages are committed on first touch, so a table of more than 2^32
+// slots can exist (and be indexed) while only the touched pages cost memory.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace habuffer {
+
+template <class Word>
+class SlotStorage {
+ public:
+  SlotStorage() = default;
+  explicit SlotStorage(std::uint64_t slots);
+  ~SlotStorage();
+  SlotStorage(SlotStorage&& o) noexcept;
+  SlotStorage& operator=(SlotStorage&& o) noexcept;
+  SlotStorage(const SlotStorage&) = delete;
+  SlotStorage& operator=(const SlotStorage&) = delete;
+
+  [[nodiscard]] Word* data() { return data_; }
+  [[nodiscard]] const Word* data() const { return data_; }
+  [[nodiscard]] std::uint64_t size() const { return slots_; }
+  [[nodiscard]] std::uint64_t bytes() const { return slots_ * sizeof(Word); }
+  [[nodiscard]] std::span<const Word> slots() const { return {data_, static_cast<std::size_t>(slots_)}; }
+
+  // Zeroes every slot; returns how many were non-empty (the CPU counterpart
+  // of the GL clear pass under an occlusion query).
+  std::uint64_t clear_and_count();
+  void clear();
+
+ private:
+  void release();
+  Word* data_ = nullptr;
+  std::uint64_t slots_ = 0;
+  std::size_t mapped_ = 0;
+};
+
+extern template class SlotStorage<std::uint64_t>;
+extern template class SlotStorage<std::uint32_t>;
+
+}  // namespace habuffer

@@ -1,0 +1,36 @@
+// Constants shared verbatim by the C++ path and the GLSL path.
+// Only preprocessor definitions live here, so the file is valid C++ and GLSL.
+#ifndef HA_CONSTANTS_H
+#define HA_CONSTANTS_H
+
+// Outcome of one insert call (SPEC 6, invariant 1): exactly one per call.
+#define HA_STORED 0u
+#define HA_DUPLICATE 1u
+#define HA_CULLED 2u
+#define HA_FAILED_AGE 3u
+#define HA_FAILED_ITER 4u
+#define HA_INVALID 5u
+#define HA_OUTCOME_COUNT 6u
+
+// Traversal step results (SPEC 7).
+#define HA_VISIT_STOP 0u
+#define HA_VISIT_SKIP 1u
+#define HA_VISIT_EMIT 2u
+
+// Record layouts (SPEC 2).
+#define HA_LAYOUT_64 64u
+#define HA_LAYOUT_32 32u
+#define HA_MIN_AGE_BITS 4u
+#define HA_MAX_AGE_BITS 12u
+#define HA_DEFAULT_AGE_BITS 8u
+
+// Defaults of SPEC 5, 6 and 8.
+#define HA_DEFAULT_BLOCK 8u
+#define HA_DEFAULT_ITER_LIMIT 65536u
+
+// IEEE-754 binary32 bit patterns used by the depth-validity test: a float is
+// in [0, 1] exactly when its bits are in [0, 0x3F800000] or it is -0.
+#define HA_FLOAT_ONE_BITS 0x3F800000u
+#define HA_FLOAT_NEG_ZERO_BITS 0x80000000u
+
+#endif

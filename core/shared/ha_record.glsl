@@ -1,0 +1,46 @@
+// Record packing of SPEC 2, written once for both paths.
+// Host environment provides: type ha_word (uint or uint64_t), uint ha_age_bits,
+// uint ha_word_bits (32 or 64), uint ha_payload_bits (32 for L64, 0 for L32),
+// and ha_floor / ha_float_bits as the GLSL builtins floor / floatBitsToUint.
+
+uint ha_age_shift() { return ha_word_bits - ha_age_bits; }
+uint ha_depth_bits() { return 32u - ha_age_bits; }
+uint ha_max_age() { return (1u << ha_age_bits) - 1u; }
+uint ha_max_code() { return uint((ha_word(1) << ha_depth_bits()) - ha_word(1)); }
+
+ha_word ha_pack(uint age, uint code, uint data) {
+  return (ha_word(age) << ha_age_shift()) | (ha_word(code) << ha_payload_bits) |
+         ha_word(ha_payload_bits == 0u ? 0u : data);
+}
+
+uint ha_age(ha_word r) { return uint(r >> ha_age_shift()); }
+
+uint ha_code(ha_word r) {
+  return uint((r >> ha_payload_bits) & ha_word(ha_max_code()));
+}
+
+// The payload of an L64 record; L32 records have none.
+uint ha_data(ha_word r) { return ha_payload_bits == 0u ? 0u : uint(r & ha_word(0xFFFFFFFFu)); }
+
+ha_word ha_with_age(ha_word r, uint age) {
+  ha_word low = (ha_word(1) << ha_age_shift()) - ha_word(1);
+  return (r & low) | (ha_word(age) << ha_age_shift());
+}
+
+// Opacity of an L64 colour record (alpha in the low byte), as a float in [0,1].
+float ha_alpha(ha_word r) { return float(ha_data(r) & 255u) * (1.0f / 255.0f); }
+
+// Depth validity by bit pattern rather than isnan(): shader compilers may
+// assume NaN never happens, but integer compares are always honoured.
+bool ha_depth_valid(float t) {
+  uint bits = ha_float_bits(t);
+  return bits <= HA_FLOAT_ONE_BITS || bits == HA_FLOAT_NEG_ZERO_BITS;
+}
+
+// code(t) = (2^D - 1) - min(2^D - 1, floor(t * 2^D)); t * 2^D is exact in
+// float32 (a power-of-two scale), so both paths get the same integer.
+uint ha_depth_code(float t) {
+  float scaled = ha_floor(t * float(1u << ha_depth_bits()));
+  uint q = uint(scaled);
+  return ha_max_code() - (q > ha_max_code() ? ha_max_code() : q);
+}

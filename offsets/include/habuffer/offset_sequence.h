@@ -1,0 +1,58 @@
+// The per-age offsets O[0..AMAX-1] of SPEC 3, shared by every pixel.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "habuffer/extent.h"
+
+namespace habuffer {
+
+enum class OffsetGenerator { Random, Farthest, List };
+
+class OffsetSequence {
+ public:
+  // `count` offsets (AMAX) for table `table`: pairwise distinct when the table
+  // has at least `count` slots, else the table's slots repeated cyclically.
+  static OffsetSequence random(Extent table, std::uint32_t count, std::uint64_t seed);
+  // Greedy max-min toroidal distance: each offset as far as possible from all
+  // earlier ones (ties: smallest slot index). The seed picks the first offset.
+  static OffsetSequence farthest(Extent table, std::uint32_t count, std::uint64_t seed);
+  // Explicit offsets (an offsets file). Throws std::invalid_argument naming the
+  // offending row when an offset lies outside the table, offsets that must be
+  // distinct repeat, or fewer than min(count, table slots) rows are given.
+  static OffsetSequence from_list(Extent table, std::uint32_t count, std::span<const glm::uvec2> rows);
+  static OffsetSequence make(OffsetGenerator gen, Extent table, std::uint32_t count, std::uint64_t seed);
+
+  [[nodiscard]] std::span<const glm::uvec2> values() const { return values_; }
+  [[nodiscard]] const glm::uvec2& operator[](std::size_t i) const { return values_[i]; }
+  [[nodiscard]] std::size_t size() const { return values_.size(); }
+  [[nodiscard]] Extent table() const { return table_; }
+  [[nodiscard]] OffsetGenerator generator() const { return generator_; }
+
+ private:
+  OffsetSequence(Extent table, OffsetGenerator gen, std::vector<glm::uvec2> distinct, std::uint32_t count);
+
+  Extent table_;
+  OffsetGenerator generator_;
+  std::vector<glm::uvec2> values_;
+};
+
+// Largest table (in slots) the exact farthest-point generator accepts: its
+// distance field holds 4 bytes per slot.
+inline constexpr std::uint64_t kFarthestMaxSlots = std::uint64_t{1} << 28;
+
+// Squared toroidal distance between two cells of `table`.
+std::uint64_t toroidal_distance2(glm::uvec2 a, glm::uvec2 b, Extent table);
+
+// Minimum pairwise toroidal distance among the first k offsets, for every
+// k = 2..n (result[k-2]); O(n^2).
+std::vector<double> min_pairwise_distances(std::span<const glm::uvec2> offsets, Extent table);
+
+std::string to_string(OffsetGenerator gen);
+
+}  // namespace habuffer
