@@ -24,6 +24,7 @@ import sys
 import tempfile
 import time
 
+sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import ha_model  # noqa: E402
 from ha_model import HAModel, f32  # noqa: E402
@@ -307,10 +308,17 @@ def read_outputs(d, tag):
     return out
 
 
+def _show(name, row):
+    if name == "table":
+        return "(%d, 0x%x)" % row
+    return "(%s)" % ", ".join(str(v) for v in row)
+
+
 def _first_diff(name, got, want):
     for i, (g, w) in enumerate(zip(got, want)):
         if g != w:
-            return "%s row %d: habuffer %s, model %s" % (name, i + 1, g, w)
+            return "%s row %d: habuffer %s, model %s" % (
+                name, i + 1, _show(name, g), _show(name, w))
     if len(got) != len(want):
         return "%s: habuffer %d rows, model %d rows" % (
             name, len(got), len(want))

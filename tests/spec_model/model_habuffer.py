@@ -13,7 +13,9 @@ import json
 import os
 import sys
 
+sys.dont_write_bytecode = True
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import ha_model  # noqa: E402
 from ha_model import HAModel  # noqa: E402
 
 
@@ -64,10 +66,16 @@ def main():
                           parse_rgba(r[3])))
         except (ValueError, IndexError):
             die("%s:%d: bad field" % (getattr(a, "in"), ln))
+    if bug == "code":
+        # depth coded from the double instead of the float32 value
+        def code64(t, age_bits):
+            D = 32 - age_bits
+            if t != t or t < 0.0 or t > 1.0:
+                return None
+            return (1 << D) - 1 - min((1 << D) - 1, int(t * (1 << D)))
+        ha_model.depth_code = code64
     m = HAModel(V, H, a.layout, a.age_bits, offs, a.block)
     for x, y, t, c in frags:
-        if bug == "code" and t == 0.5:
-            t = 0.49
         m.add_fragment(x, y, t, c)
     if bug == "order" and a.threads == 2:
         # pretend the parallel run lost a race: swap two stored records

@@ -1,0 +1,72 @@
+#include "cli_args.h"
+
+#include <charconv>
+#include <cmath>
+
+namespace habuffer::cli {
+
+Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& valued,
+           const std::set<std::string>& flags) {
+  for (std::size_t i = 0; i < argv.size(); ++i) {
+    const std::string& a = argv[i];
+    if (a.rfind("--", 0) != 0) throw UsageError("unexpected argument '" + a + "'");
+    const std::string name = a.substr(2);
+    if (flags.count(name) != 0) {
+      if (!flags_.insert(name).second) throw UsageError("option --" + name + " given twice");
+    } else if (valued.count(name) != 0) {
+      if (i + 1 >= argv.size()) throw UsageError("option --" + name + " needs a value");
+      if (!values_.emplace(name, argv[++i]).second) throw UsageError("option --" + name + " given twice");
+    } else {
+      throw UsageError("unknown option '" + a + "'");
+    }
+  }
+}
+
+std::string Args::str(const std::string& name, const std::string& fallback) const {
+  auto it = values_.find(name);
+  return it == values_.end() ? fallback : it->second;
+}
+
+std::string Args::required(const std::string& name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw UsageError("option --" + name + " is required");
+  return it->second;
+}
+
+std::uint64_t Args::u64(const std::string& name, std::uint64_t fallback, std::uint64_t min, std::uint64_t max) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) return fallback;
+  const std::string& s = it->second;
+  std::uint64_t v = 0;
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size())
+    throw UsageError("option --" + name + ": '" + s + "' is not a non-negative integer");
+  if (v < min || v > max)
+    throw UsageError("option --" + name + ": " + s + " outside " + std::to_string(min) + ".." + std::to_string(max));
+  return v;
+}
+
+std::uint32_t Args::u32(const std::string& name, std::uint32_t fallback, std::uint32_t min, std::uint32_t max) const {
+  return static_cast<std::uint32_t>(u64(name, fallback, min, max));
+}
+
+double Args::real(const std::string& name, double fallback) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) return fallback;
+  const std::string& s = it->second;
+  double v = 0;
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
+    throw UsageError("option --" + name + ": '" + s + "' is not a finite number");
+  return v;
+}
+
+std::optional<Extent> Args::extent(const std::string& name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) return std::nullopt;
+  auto e = parse_extent(it->second);
+  if (!e) throw UsageError("option --" + name + ": '" + it->second + "' is not a size WxH with positive sides");
+  return e;
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,44 @@
+// Command-line options of one subcommand: "--name value" pairs and "--flag"
+// switches, checked against what the subcommand accepts.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "habuffer/extent.h"
+
+namespace habuffer::cli {
+
+// Wrong use of the command line (exit code 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Args {
+ public:
+  // valued: options that take a value; flags: switches. Throws UsageError on
+  // an unknown option, a missing value or a repeated option.
+  Args(const std::vector<std::string>& argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
+
+  [[nodiscard]] bool has(const std::string& name) const { return values_.count(name) != 0 || flags_.count(name) != 0; }
+  [[nodiscard]] std::string str(const std::string& name, const std::string& fallback) const;
+  [[nodiscard]] std::string required(const std::string& name) const;
+  [[nodiscard]] std::uint64_t u64(const std::string& name, std::uint64_t fallback, std::uint64_t min = 0,
+                                  std::uint64_t max = UINT64_MAX) const;
+  [[nodiscard]] std::uint32_t u32(const std::string& name, std::uint32_t fallback, std::uint32_t min = 0,
+                                  std::uint32_t max = UINT32_MAX) const;
+  [[nodiscard]] double real(const std::string& name, double fallback) const;
+  [[nodiscard]] std::optional<Extent> extent(const std::string& name) const;
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::set<std::string> flags_;
+};
+
+}  // namespace habuffer::cli

@@ -1,0 +1,68 @@
+// habuffer build-lists: fragment CSV in, per-pixel sorted lists out.
+#include <chrono>
+#include <cstdio>
+
+#include "commands.h"
+#include "habuffer/interchange.h"
+#include "hash_options.h"
+#include "report_json.h"
+
+namespace habuffer::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: habuffer build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [--table WxH] [--layout 64|32]\n"
+    "         [--age-bits N] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--block B] [--threads N]\n"
+    "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
+    "         [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
+    "  --threads 0 uses every hardware thread. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n";
+
+}  // namespace
+
+int run_build_lists(const std::vector<std::string>& argv) {
+  if (argv.size() == 1 && argv[0] == "--help") {
+    std::fputs(kHelp, stdout);
+    return 0;
+  }
+  auto valued = hash_valued_options();
+  valued.insert({"in", "out", "stats", "dump-table", "dump-max-age"});
+  const Args args(argv, valued, hash_flag_options());
+  const std::string in = args.required("in");
+  const std::string out = args.required("out");
+  const HashOptions options = parse_hash_options(args);
+
+  const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
+  const auto t0 = std::chrono::steady_clock::now();
+  BuildResult result = build(options.config, options.offsets, fragments, options.insert, options.policy,
+                             options.max_attempts);
+  const auto t1 = std::chrono::steady_clock::now();
+  const BuildTiming timing{std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                           resolved_threads(options.insert.threads)};
+
+  write_lists(out, result.buffer);
+  if (args.has("dump-table")) write_table(args.required("dump-table"), result.buffer);
+  if (args.has("dump-max-age")) write_max_age(args.required("dump-max-age"), result.buffer);
+  const BuildReport report = summarize(result.buffer, result.counters);
+  if (args.has("stats")) {
+    JsonWriter json;
+    json.begin_object();
+    json.field("in", in);
+    write_build_stats(json, options, result, report, timing);
+    json.end_object();
+    json.save(args.required("stats"));
+  }
+  if (report.stored != report.counters.stored())
+    throw std::logic_error("accounting broken: table holds " + std::to_string(report.stored) +
+                           " records, counters say " + std::to_string(report.counters.stored()));
+  if (options.lossless && !result.lossless()) {
+    std::fprintf(stderr,
+                 "habuffer build-lists: lossless mode: %llu fragments still failed after %zu attempts "
+                 "(last table %s, AMAX %u); a pixel with more than AMAX distinct fragments needs more --age-bits\n",
+                 static_cast<unsigned long long>(result.counters.failures()), result.attempts.size(),
+                 result.buffer.table().str().c_str(), options.config.record_layout().max_age());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace habuffer::cli

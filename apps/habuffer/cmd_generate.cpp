@@ -1,0 +1,46 @@
+// habuffer generate: a synthetic fragment stream as CSV.
+#include <cmath>
+#include <cstdio>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "habuffer/fragment_streams.h"
+#include "habuffer/interchange.h"
+
+namespace habuffer::cli {
+
+int run_generate(const std::vector<std::string>& argv) {
+  if (argv.size() == 1 && argv[0] == "--help") {
+    std::puts(
+        "usage: habuffer generate --screen WxH --out FRAGS.csv [--stream coherent|random]\n"
+        "         (--fragments N | --load L [--table WxH]) [--seed N] [--min-side S] [--max-side S]\n"
+        "  --load L: as many fragments as fill L of the table's slots (default table: the screen).");
+    return 0;
+  }
+  const Args args(argv, {"screen", "out", "stream", "fragments", "load", "table", "seed", "min-side", "max-side"}, {});
+  const auto screen = args.extent("screen");
+  if (!screen) throw UsageError("option --screen is required");
+  const std::string out = args.required("out");
+  StreamOptions o;
+  try {
+    o.kind = parse_stream_kind(args.str("stream", "coherent"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("option --stream: ") + e.what());
+  }
+  o.seed = args.u64("seed", 1);
+  o.min_side = args.u32("min-side", o.min_side, 1);
+  o.max_side = args.u32("max-side", o.max_side, o.min_side);
+  if (args.has("fragments") == args.has("load")) throw UsageError("give exactly one of --fragments and --load");
+  if (args.has("fragments")) {
+    o.count = args.u64("fragments", 0, 0, std::uint64_t{1} << 34);
+  } else {
+    const double load = args.real("load", 0.0);
+    if (!(load > 0.0 && load <= 4.0)) throw UsageError("option --load: must be in (0, 4]");
+    const Extent table = args.extent("table").value_or(*screen);
+    o.count = static_cast<std::uint64_t>(std::llround(load * static_cast<double>(table.area())));
+  }
+  write_fragments(out, make_stream(*screen, o));
+  return 0;
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,69 @@
+#include "hash_options.h"
+
+#include <tbb/info.h>
+
+#include "habuffer/interchange.h"
+
+namespace habuffer::cli {
+
+const std::set<std::string>& hash_valued_options() {
+  static const std::set<std::string> names{"screen", "table", "layout", "age-bits", "offsets", "seed", "block",
+                                           "threads", "early-cull", "iter-limit", "max-attempts"};
+  return names;
+}
+
+const std::set<std::string>& hash_flag_options() {
+  static const std::set<std::string> names{"lossless"};
+  return names;
+}
+
+std::uint32_t resolved_threads(std::uint32_t requested) {
+  return requested != 0 ? requested : static_cast<std::uint32_t>(tbb::info::default_concurrency());
+}
+
+HashOptions parse_hash_options(const Args& args) {
+  HashOptions o;
+  BufferConfig& c = o.config;
+  const auto screen = args.extent("screen");
+  if (!screen) throw UsageError("option --screen is required");
+  c.screen = *screen;
+  c.table = args.extent("table").value_or(c.screen);
+  const std::string layout = args.str("layout", "64");
+  if (layout != "64" && layout != "32") throw UsageError("option --layout: '" + layout + "' is not 64 or 32");
+  c.layout = layout == "64" ? Layout::L64 : Layout::L32;
+  c.age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, HA_MIN_AGE_BITS, HA_MAX_AGE_BITS);
+  c.block = args.u32("block", HA_DEFAULT_BLOCK, 1, 1u << 16);
+  c.iter_limit = args.u32("iter-limit", HA_DEFAULT_ITER_LIMIT, 1);
+  if (args.has("early-cull")) {
+    const double tau = args.real("early-cull", 0.0);
+    if (!(tau > 0.0 && tau <= 1.0)) throw UsageError("option --early-cull: threshold must be in (0, 1]");
+    c.early_cull_tau = static_cast<float>(tau);
+  }
+  try {
+    c.validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  o.insert.threads = args.u32("threads", 1, 0, 1024);
+  o.lossless = args.has("lossless");
+  o.max_attempts = o.lossless ? args.u32("max-attempts", 16, 1, 1000) : 1;
+  if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");
+
+  o.offsets_name = args.str("offsets", "random");
+  o.offsets.seed = args.u64("seed", 1);
+  if (o.offsets_name == "random") {
+    o.offsets.generator = OffsetGenerator::Random;
+  } else if (o.offsets_name == "farthest") {
+    o.offsets.generator = OffsetGenerator::Farthest;
+    if (c.table.area() > kFarthestMaxSlots)
+      throw UsageError("--offsets farthest: table " + c.table.str() + " has more than 2^28 slots");
+  } else {
+    o.offsets.generator = OffsetGenerator::List;
+    o.offsets.list = read_offset_rows(o.offsets_name);
+    // Validate now so the error names the file before any work is done.
+    (void)read_offsets(o.offsets_name, c.table, c.record_layout().max_age());
+  }
+  return o;
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,36 @@
+// The options every command that builds an HA-buffer shares (--screen,
+// --table, --layout, --age-bits, --offsets, --seed, --block, --threads,
+// --early-cull, --iter-limit, --lossless, --max-attempts), turned into the
+// library's configuration.
+#pragma once
+
+#include <set>
+#include <string>
+
+#include "cli_args.h"
+#include "habuffer/lossless_build.h"
+
+namespace habuffer::cli {
+
+struct HashOptions {
+  BufferConfig config;
+  OffsetSource offsets;
+  std::string offsets_name;  // random, farthest or the file path
+  InsertOptions insert;
+  ResizePolicy policy;
+  std::uint32_t max_attempts = 1;  // > 1 in lossless mode
+  bool lossless = false;
+};
+
+// Names to add to a command's accepted options.
+const std::set<std::string>& hash_valued_options();
+const std::set<std::string>& hash_flag_options();
+
+// --threads 0 means every hardware thread: the count that actually runs.
+std::uint32_t resolved_threads(std::uint32_t requested);
+
+// Throws UsageError for bad values or conflicting sizes, DataError for a bad
+// offsets file. `screen` is required.
+HashOptions parse_hash_options(const Args& args);
+
+}  // namespace habuffer::cli

@@ -1,0 +1,56 @@
+// habuffer: command-line front end of the HA-buffer library.
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "habuffer/csv.h"
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: habuffer COMMAND [OPTIONS]\n"
+    "commands:\n"
+    "  build-lists  build per-pixel sorted lists from a fragment CSV (SPEC 10)\n"
+    "  generate     write a synthetic fragment stream CSV\n"
+    "  offsets      write an offsets CSV (random or farthest) and its quality\n"
+    "  demo         build lists for a generated stream and print its stats\n"
+    "  info         version, build type and available paths\n"
+    "Run 'habuffer COMMAND --help' for a command's options.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace habuffer;
+  const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
+      {"build-lists", cli::run_build_lists}, {"generate", cli::run_generate}, {"offsets", cli::run_offsets},
+      {"demo", cli::run_demo},               {"info", cli::run_info}};
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  const std::string name = argv[1];
+  const auto it = commands.find(name);
+  if (it == commands.end()) {
+    std::fprintf(stderr, "habuffer: unknown command '%s'\n%s", name.c_str(), kUsage);
+    return 2;
+  }
+  try {
+    return it->second(std::vector<std::string>(argv + 2, argv + argc));
+  } catch (const cli::UsageError& e) {
+    std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), e.what());
+    return 2;
+  } catch (const DataError& e) {
+    std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "habuffer %s: out of memory\n", name.c_str());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), e.what());
+    return 1;
+  }
+}

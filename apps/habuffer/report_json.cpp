@@ -1,0 +1,40 @@
+#include "report_json.h"
+
+namespace habuffer::cli {
+namespace {
+
+void extent(JsonWriter& json, std::string_view key, Extent e) {
+  json.key(key).begin_array().value(e.x).value(e.y).end_array();
+}
+
+}  // namespace
+
+void write_build_stats(JsonWriter& json, const HashOptions& options, const BuildResult& result,
+                       const BuildReport& report, const BuildTiming& timing) {
+  const Counters& c = report.counters;
+  json.field("path", "cpu").field("layout", to_string(options.config.layout));
+  json.field("age_bits", options.config.age_bits).field("block", options.config.block);
+  extent(json, "screen", options.config.screen);
+  extent(json, "table", result.buffer.table());
+  json.field("offsets", options.offsets_name).field("seed", options.offsets.seed);
+  json.field("early_cull", static_cast<double>(options.config.early_cull_tau));
+  json.field("fragments", c.fragments).field("stored", report.stored).field("duplicates", c.duplicates);
+  json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
+  json.field("failed_iter", c.failed_iter).field("load_factor", report.load_factor);
+  json.field("max_age", report.max_age).field("mean_age", report.mean_age);
+  json.key("age_histogram").begin_array();
+  for (auto n : report.age_histogram) json.value(n);
+  json.end_array();
+  json.field("memory_bytes", report.memory_bytes).field("build_ms", timing.build_ms);
+  json.field("fragments_per_second", timing.build_ms > 0 ? static_cast<double>(c.fragments) / timing.build_ms * 1e3 : 0.0);
+  json.field("threads", timing.threads).field("lossless", options.lossless);
+  json.key("attempts").begin_array();
+  for (const auto& a : result.attempts) {
+    json.begin_object();
+    extent(json, "table", a.table);
+    json.field("failed_age", a.counters.failed_age).field("failed_iter", a.counters.failed_iter).end_object();
+  }
+  json.end_array();
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,21 @@
+// Stats JSON of one build (keys of the core issue), for every command that builds.
+#pragma once
+
+#include <string>
+
+#include "habuffer/build_report.h"
+#include "habuffer/json_writer.h"
+#include "hash_options.h"
+
+namespace habuffer::cli {
+
+struct BuildTiming {
+  double build_ms = 0.0;  // insertion of all attempts, including tile binning
+  std::uint32_t threads = 1;
+};
+
+// Writes the body of the stats object (the caller opens and closes it).
+void write_build_stats(JsonWriter& json, const HashOptions& options, const BuildResult& result,
+                       const BuildReport& report, const BuildTiming& timing);
+
+}  // namespace habuffer::cli

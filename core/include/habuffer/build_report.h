@@ -1,0 +1,25 @@
+// The numbers that describe one build: counters (SPEC invariant 1), load,
+// ages and memory. The CLI writes them as stats JSON.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "habuffer/ha_buffer.h"
+
+namespace habuffer {
+
+struct BuildReport {
+  Counters counters;
+  std::uint64_t stored = 0;        // non-empty slots, measured on the table
+  double load_factor = 0.0;        // stored / table slots
+  std::uint32_t max_age = 0;       // largest age of a stored record
+  double mean_age = 0.0;           // over stored records
+  std::vector<std::uint64_t> age_histogram;  // [a] = stored records of age a, a = 0..max_age
+  std::uint32_t max_age_table_max = 0;       // largest cell of M
+  std::uint64_t memory_bytes = 0;
+};
+
+BuildReport summarize(const HaBuffer& buffer, const Counters& counters);
+
+}  // namespace habuffer

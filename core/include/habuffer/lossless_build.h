@@ -1,0 +1,45 @@
+// Lossless mode (SPEC 8, ours): a build that reports any failure is gathered
+// again into a grown table, a bounded number of times, so no fragment is ever
+// lost silently: either every fragment is accounted for without failure, or
+// the result says how many attempts failed and why.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "habuffer/ha_buffer.h"
+#include "habuffer/resize_policy.h"
+
+namespace habuffer {
+
+// Where the offsets of each attempt come from: a generator regenerated for
+// every table size (SPEC 8), or a fixed list, which stays valid for any
+// larger table since its offsets lie inside the first one.
+struct OffsetSource {
+  OffsetGenerator generator = OffsetGenerator::Random;
+  std::uint64_t seed = 1;
+  std::vector<glm::uvec2> list;  // used when generator == List
+
+  [[nodiscard]] OffsetSequence make(Extent table, std::uint32_t count) const;
+};
+
+struct BuildAttempt {
+  Extent table;
+  Counters counters;
+};
+
+struct BuildResult {
+  HaBuffer buffer;
+  Counters counters;                  // of the final attempt
+  std::vector<BuildAttempt> attempts;  // every attempt, in order
+  [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
+};
+
+// One build (max_attempts = 1), or lossless mode: on failure grow the table by
+// `policy` and gather the whole stream again, at most `max_attempts` times.
+BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::span<const Fragment> fragments,
+                  const InsertOptions& options, const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
+
+}  // namespace habuffer

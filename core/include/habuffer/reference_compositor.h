@@ -1,0 +1,20 @@
+// The exact reference of SPEC 7: every valid fragment of a pixel, fully
+// sorted by unquantized depth (nearest first, ties by larger data first),
+// composited front to back in double precision, with no cull and no loss.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "habuffer/extent.h"
+#include "habuffer/fragment.h"
+
+namespace habuffer {
+
+std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
+                                            glm::dvec3 background);
+
+}  // namespace habuffer

@@ -1,0 +1,27 @@
+// Adaptive table sizing of SPEC 8: grow the area by `step` above `grow_at`
+// load, shrink it by `step` below `shrink_at`, never below the screen.
+#pragma once
+
+#include <cstdint>
+
+#include "habuffer/extent.h"
+
+namespace habuffer {
+
+struct ResizePolicy {
+  double grow_at = 0.80;
+  double shrink_at = 0.30;
+  double step = 0.25;
+
+  // Throws std::invalid_argument unless 0 <= shrink_at < grow_at <= 1 and 0 < step < 1.
+  void validate() const;
+
+  // The table for the next frame, given this frame's stored-record count.
+  [[nodiscard]] Extent next(Extent table, Extent screen, std::uint64_t stored) const;
+  // Area times (1 + step), aspect ratio kept, sides rounded up.
+  [[nodiscard]] Extent grown(Extent table) const;
+  // Area times (1 - step), aspect ratio kept, sides rounded up, at least the screen.
+  [[nodiscard]] Extent shrunk(Extent table, Extent screen) const;
+};
+
+}  // namespace habuffer

@@ -1,0 +1,44 @@
+#include "habuffer/reference_compositor.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "habuffer/record_layout.h"
+
+namespace habuffer {
+
+std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
+                                            glm::dvec3 background) {
+  // Counting sort by pixel, then a full sort within each pixel.
+  std::vector<std::uint64_t> begin(screen.area() + 1, 0);
+  for (const Fragment& f : fragments) {
+    if (f.x >= screen.x || f.y >= screen.y) throw std::out_of_range("fragment outside screen " + screen.str());
+    if (RecordLayout::depth_valid(f.depth)) ++begin[f.x + std::uint64_t{f.y} * screen.x + 1];
+  }
+  for (std::size_t i = 1; i < begin.size(); ++i) begin[i] += begin[i - 1];
+  std::vector<Fragment> sorted(begin.back());
+  std::vector<std::uint64_t> next(begin.begin(), begin.end() - 1);
+  for (const Fragment& f : fragments)
+    if (RecordLayout::depth_valid(f.depth)) sorted[next[f.x + std::uint64_t{f.y} * screen.x]++] = f;
+
+  std::vector<glm::dvec4> image(screen.area());
+  for (std::uint64_t p = 0; p < screen.area(); ++p) {
+    auto first = sorted.begin() + static_cast<std::ptrdiff_t>(begin[p]);
+    auto last = sorted.begin() + static_cast<std::ptrdiff_t>(begin[p + 1]);
+    std::sort(first, last, [](const Fragment& a, const Fragment& b) {
+      return a.depth < b.depth || (a.depth == b.depth && a.rgba > b.rgba);
+    });
+    glm::dvec4 c(0.0);
+    for (auto it = first; it != last; ++it) {
+      const std::uint32_t d = it->rgba;
+      const glm::dvec3 rgb(d >> 24, (d >> 16) & 255u, (d >> 8) & 255u);
+      const double a = (d & 255u) / 255.0;
+      const double w = (1.0 - c.a) * a;
+      c = glm::dvec4(glm::dvec3(c) + w * (rgb / 255.0), c.a + w);
+    }
+    image[p] = glm::dvec4(glm::dvec3(c) + (1.0 - c.a) * background, c.a);
+  }
+  return image;
+}
+
+}  // namespace habuffer

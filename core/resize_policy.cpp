@@ -1,0 +1,50 @@
+#include "habuffer/resize_policy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace habuffer {
+namespace {
+
+Extent scaled(Extent table, double area_factor) {
+  const double s = std::sqrt(area_factor);
+  auto side = [&](std::uint32_t v) {
+    const double r = std::ceil(static_cast<double>(v) * s);
+    if (r > static_cast<double>(1u << 31)) throw std::length_error("table side would exceed 2^31 slots");
+    return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(r));
+  };
+  return {side(table.x), side(table.y)};
+}
+
+}  // namespace
+
+void ResizePolicy::validate() const {
+  if (!(shrink_at >= 0.0 && shrink_at < grow_at && grow_at <= 1.0))
+    throw std::invalid_argument("resize thresholds need 0 <= shrink_at (" + std::to_string(shrink_at) +
+                                ") < grow_at (" + std::to_string(grow_at) + ") <= 1");
+  if (!(step > 0.0 && step < 1.0))
+    throw std::invalid_argument("resize step " + std::to_string(step) + " outside (0, 1)");
+}
+
+Extent ResizePolicy::grown(Extent table) const {
+  Extent g = scaled(table, 1.0 + step);
+  // Rounding up keeps growth strict even for a 1x1 table.
+  if (g.area() <= table.area()) g.x = table.x + 1;
+  return g;
+}
+
+Extent ResizePolicy::shrunk(Extent table, Extent screen) const {
+  const Extent s = scaled(table, 1.0 - step);
+  return {std::max(s.x, screen.x), std::max(s.y, screen.y)};
+}
+
+Extent ResizePolicy::next(Extent table, Extent screen, std::uint64_t stored) const {
+  const double load = static_cast<double>(stored) / static_cast<double>(table.area());
+  if (load > grow_at) return grown(table);
+  if (load < shrink_at) return shrunk(table, screen);
+  return table;
+}
+
+}  // namespace habuffer

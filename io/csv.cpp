@@ -1,0 +1,183 @@
+#include "habuffer/csv.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace habuffer {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+void split(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
+  for (;;) {
+    const auto comma = line.find(',');
+    fields.push_back(trim(line.substr(0, comma)));
+    if (comma == std::string_view::npos) return;
+    line.remove_prefix(comma + 1);
+  }
+}
+
+std::string quoted(std::string_view s) {
+  std::string q(1, '\'');
+  q.append(s);
+  q.push_back('\'');
+  return q;
+}
+
+// from_chars<float> reports both overflow and underflow as out of range.
+// Underflow rounds to a signed zero (a valid depth 0), overflow to a signed
+// infinity (an invalid depth), as strtof would round them.
+float out_of_float_range(std::string_view text) {
+  const bool negative = text.front() == '-';
+  double d = 0.0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), d);
+  bool tiny = false;
+  if (ec == std::errc()) {
+    tiny = std::fabs(d) < 1.0;
+  } else {
+    const auto e = text.find_first_of("eE");
+    tiny = e != std::string_view::npos && e + 1 < text.size() && text[e + 1] == '-';
+  }
+  if (tiny) return negative ? -0.0f : 0.0f;
+  return negative ? -INFINITY : INFINITY;
+}
+
+}  // namespace
+
+CsvReader::CsvReader(std::string path) : path_(std::move(path)) {
+  std::ifstream in(path_, std::ios::binary);
+  if (!in) throw DataError(path_ + ": cannot open for reading: " + std::strerror(errno));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  text_ = std::move(ss).str();
+}
+
+bool CsvReader::next_line(std::string_view& line) {
+  while (pos_ < text_.size()) {
+    auto end = text_.find('\n', pos_);
+    if (end == std::string::npos) end = text_.size();
+    line = trim(std::string_view(text_).substr(pos_, end - pos_));
+    pos_ = end + 1;
+    ++line_;
+    if (!line.empty()) return true;
+  }
+  return false;
+}
+
+void CsvReader::expect_header(const std::vector<std::string_view>& header) {
+  std::string want;
+  for (auto h : header) {
+    if (!want.empty()) want.push_back(',');
+    want.append(h);
+  }
+  std::string_view line;
+  if (!next_line(line)) throw DataError(path_ + ": empty file, expected header '" + want + "'");
+  std::vector<std::string_view> fields;
+  split(line, fields);
+  if (fields != header)
+    throw DataError(path_ + ":" + std::to_string(line_) + ": header is '" + std::string(line) + "', expected '" +
+                    want + "'");
+  columns_ = header.size();
+}
+
+bool CsvReader::next(std::vector<std::string_view>& fields) {
+  std::string_view line;
+  if (!next_line(line)) return false;
+  split(line, fields);
+  if (fields.size() != columns_)
+    throw DataError(path_ + ":" + std::to_string(line_) + ": " + std::to_string(fields.size()) + " fields, expected " +
+                    std::to_string(columns_));
+  return true;
+}
+
+void CsvReader::fail(std::string_view field, const std::string& what) const {
+  throw DataError(path_ + ":" + std::to_string(line_) + ": field " + std::string(field) + ": " + what);
+}
+
+std::uint32_t CsvReader::u32(std::string_view text, std::string_view field) const {
+  std::uint32_t v = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
+    fail(field, quoted(text) + " is not an unsigned integer");
+  if (ec == std::errc::result_out_of_range) fail(field, quoted(text) + " does not fit in 32 bits");
+  return v;
+}
+
+std::uint32_t CsvReader::u32_dec_or_hex(std::string_view text, std::string_view field) const {
+  if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
+    std::uint32_t v = 0;
+    const std::string_view digits = text.substr(2);
+    auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v, 16);
+    if (ec == std::errc::invalid_argument || end != digits.data() + digits.size())
+      fail(field, quoted(text) + " is not a hexadecimal integer");
+    if (ec == std::errc::result_out_of_range) fail(field, quoted(text) + " does not fit in 32 bits");
+    return v;
+  }
+  return u32(text, field);
+}
+
+float CsvReader::f32(std::string_view text, std::string_view field) const {
+  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
+  float v = 0.0f;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
+    fail(field, quoted(text) + " is not a number");
+  if (ec == std::errc::result_out_of_range) return out_of_float_range(text);
+  return v;
+}
+
+CsvWriter::CsvWriter(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+  if (file_ == nullptr) throw DataError(path + ": cannot open for writing: " + std::strerror(errno));
+  buffer_.reserve(1 << 20);
+}
+
+CsvWriter::~CsvWriter() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+void CsvWriter::flush() {
+  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
+    throw DataError(path_ + ": write failed: " + std::strerror(errno));
+  buffer_.clear();
+}
+
+CsvWriter& CsvWriter::text(std::string_view s) {
+  buffer_.append(s);
+  if (buffer_.size() >= (1 << 20)) flush();
+  return *this;
+}
+
+CsvWriter& CsvWriter::u64(std::uint64_t v) {
+  char tmp[24];
+  auto [end, ec] = std::to_chars(tmp, tmp + sizeof tmp, v);
+  (void)ec;
+  return text(std::string_view(tmp, static_cast<std::size_t>(end - tmp)));
+}
+
+CsvWriter& CsvWriter::hex(std::uint64_t v, int digits) {
+  char tmp[24];
+  auto [end, ec] = std::to_chars(tmp, tmp + sizeof tmp, v, 16);
+  (void)ec;
+  const auto n = static_cast<int>(end - tmp);
+  text("0x");
+  for (int i = n; i < digits; ++i) text("0");
+  return text(std::string_view(tmp, static_cast<std::size_t>(n)));
+}
+
+void CsvWriter::close() {
+  flush();
+  const bool bad = std::fclose(file_) != 0;
+  file_ = nullptr;
+  if (bad) throw DataError(path_ + ": close failed: " + std::strerror(errno));
+}
+
+}  // namespace habuffer

@@ -1,0 +1,77 @@
+// Line-oriented CSV reading and fast CSV writing for the interchange files of
+// SPEC 10. Every reading error names the file, the line and the field.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace habuffer {
+
+// Bad data in an input file (the CLI exits 1 on it).
+class DataError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class CsvReader {
+ public:
+  // Reads the whole file; throws DataError if it cannot be opened.
+  explicit CsvReader(std::string path);
+
+  // Checks the first line equals `header` (fields separated by commas,
+  // surrounding spaces ignored); throws DataError naming both otherwise.
+  void expect_header(const std::vector<std::string_view>& header);
+  // Next non-empty data line split into fields; false at end of file. Throws
+  // DataError when the line has a different number of fields than the header.
+  bool next(std::vector<std::string_view>& fields);
+
+  [[nodiscard]] std::uint64_t line() const { return line_; }
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+  // Field parsers: throw DataError "FILE:LINE: field NAME: ..." on bad text.
+  [[nodiscard]] std::uint32_t u32(std::string_view text, std::string_view field) const;
+  // Decimal or 0x-prefixed hexadecimal unsigned 32-bit integer.
+  [[nodiscard]] std::uint32_t u32_dec_or_hex(std::string_view text, std::string_view field) const;
+  // A decimal float rounded once to float32 (nan and inf are accepted: they
+  // are data the hash counts as invalid, not syntax errors).
+  [[nodiscard]] float f32(std::string_view text, std::string_view field) const;
+  [[noreturn]] void fail(std::string_view field, const std::string& what) const;
+
+ private:
+  bool next_line(std::string_view& line);
+  std::string path_;
+  std::string text_;
+  std::size_t pos_ = 0;
+  std::uint64_t line_ = 0;
+  std::size_t columns_ = 0;
+};
+
+// Buffered writer with integer formatting through std::to_chars.
+class CsvWriter {
+ public:
+  // Throws DataError if the file cannot be created.
+  explicit CsvWriter(const std::string& path);
+  ~CsvWriter();
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+
+  CsvWriter& text(std::string_view s);
+  CsvWriter& u64(std::uint64_t v);
+  CsvWriter& hex(std::uint64_t v, int digits);  // 0x + zero-padded lowercase
+  CsvWriter& comma() { return text(","); }
+  CsvWriter& endl() { return text("\n"); }
+  // Flushes and closes; throws DataError on a write error.
+  void close();
+
+ private:
+  void flush();
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  std::string buffer_;
+};
+
+}  // namespace habuffer

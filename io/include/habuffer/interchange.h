@@ -1,0 +1,37 @@
+// The interchange files of SPEC 10 and of the CLI: fragment streams, offsets,
+// per-pixel lists, table and max-age dumps.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "habuffer/csv.h"
+#include "habuffer/fragment.h"
+#include "habuffer/ha_buffer.h"
+#include "habuffer/offset_sequence.h"
+
+namespace habuffer {
+
+// Header x,y,depth,rgba. Throws DataError naming file, line and field for
+// bad syntax or a pixel outside `screen`.
+std::vector<Fragment> read_fragments(const std::string& path, Extent screen);
+void write_fragments(const std::string& path, std::span<const Fragment> fragments);
+
+// Header ox,oy, one row per age from age 1.
+std::vector<glm::uvec2> read_offset_rows(const std::string& path);
+// read_offset_rows, validated for `table` and `count` ages (OffsetSequence::
+// from_list); errors are DataError naming the file.
+OffsetSequence read_offsets(const std::string& path, Extent table, std::uint32_t count);
+void write_offsets(const std::string& path, const OffsetSequence& offsets);
+
+// Header x,y,rank,code,rgba: every pixel's list, pixels row-major.
+void write_lists(const std::string& path, const HaBuffer& buffer);
+// Header slot,record: non-empty slots ascending, record in 0x hex (16 or 8 digits).
+void write_table(const std::string& path, const HaBuffer& buffer);
+// Header cx,cy,max_age: every cell, row-major.
+void write_max_age(const std::string& path, const HaBuffer& buffer);
+
+}  // namespace habuffer

@@ -1,0 +1,39 @@
+// Synthetic fragment streams, deterministic from their seed: the inputs of
+// benchmarks, property tests and the demo (real scenes come from the GL path).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "habuffer/extent.h"
+#include "habuffer/fragment.h"
+
+namespace habuffer {
+
+enum class StreamKind {
+  Random,    // uniform random pixels, depths and colours: no coherence at all
+  Coherent,  // rasterization-like: triangles and quads emitted primitive by primitive, in scanline order
+};
+
+struct StreamOptions {
+  StreamKind kind = StreamKind::Coherent;
+  std::uint64_t count = 0;         // fragments
+  std::uint64_t seed = 1;
+  std::uint32_t min_side = 4;      // coherent: primitive bounding-box side range, pixels
+  std::uint32_t max_side = 64;
+  std::uint32_t alpha_min = 64;    // alpha byte range of colours, inclusive
+  std::uint32_t alpha_max = 192;
+};
+
+std::vector<Fragment> make_stream(Extent screen, const StreamOptions& options);
+
+// The table (screen aspect ratio, sides rounded up, at least the screen) that
+// `fragments` records fill to about `load`.
+Extent table_for_load(Extent screen, std::uint64_t fragments, double load);
+
+// "random" or "coherent"; throws std::invalid_argument otherwise.
+StreamKind parse_stream_kind(const std::string& name);
+std::string to_string(StreamKind kind);
+
+}  // namespace habuffer
