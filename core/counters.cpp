@@ -17,6 +17,15 @@ void Counters::count(std::uint32_t outcome) {
   }
 }
 
+void Counters::add_tally(const std::uint64_t* tally) {
+  for (std::uint32_t o = 0; o < HA_OUTCOME_COUNT; ++o) fragments += tally[o];
+  duplicates += tally[HA_DUPLICATE];
+  culled += tally[HA_CULLED];
+  failed_age += tally[HA_FAILED_AGE];
+  failed_iter += tally[HA_FAILED_ITER];
+  invalid += tally[HA_INVALID];
+}
+
 Counters& Counters::operator+=(const Counters& o) {
   fragments += o.fragments;
   invalid += o.invalid;

@@ -5,13 +5,12 @@
 #include <string>
 #include <variant>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "habuffer/hash_kernel.h"
 #include "habuffer/slot_storage.h"
-#include "habuffer/tile_binning.h"
+#include "habuffer/owner_computes.h"
 
 namespace habuffer {
 namespace {
@@ -84,37 +83,38 @@ struct HaBuffer::Impl {
 
   template <class Kernel>
   static void insert_range(Kernel& k, std::span<const Fragment> frags, Counters& counters) {
-    for (const Fragment& f : frags) counters.count(k.ha_insert(glm::uvec2(f.x, f.y), f.depth, f.rgba));
+    // Outcomes are tallied in a local array: counters in memory could alias
+    // the table's words and force a store per fragment.
+    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
+    for (const Fragment& f : frags) ++tally[k.ha_insert(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
+    counters.add_tally(tally);
   }
 
-  Counters insert_binned(std::span<const Fragment> frags, const InsertOptions& options, std::uint32_t threads) {
-    const TileBins bins = bin_by_tile(frags, config.screen, options.tile, threads);
-    const std::uint64_t target = std::max<std::uint64_t>(1024, frags.size() / (std::uint64_t{threads} * 16));
-    const std::vector<std::uint32_t> cuts = split_tiles(bins, target);
-    std::vector<PaddedCounters> unit_counters(cuts.size() - 1);
-    auto unit = [&](std::size_t u) {
-      return std::span<const Fragment>(bins.fragments)
-          .subspan(bins.tile_begin[cuts[u]], bins.tile_begin[cuts[u + 1]] - bins.tile_begin[cuts[u]]);
-    };
-    if (threads == 1) {
-      with_kernel<false>([&](auto& k) {
-        for (std::size_t u = 0; u + 1 < cuts.size(); ++u) insert_range(k, unit(u), unit_counters[u].c);
-      });
-    } else {
-      with_kernel<true>([&](auto& k) {
-        // simple_partitioner: the range is halved recursively, so threads start
-        // on tiles far apart on screen, hence on far-apart table regions.
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, cuts.size() - 1, 1),
-            [&](const tbb::blocked_range<std::size_t>& r) {
-              auto kernel = k;  // the kernel is a few words of parameters and pointers
-              for (std::size_t u = r.begin(); u != r.end(); ++u) insert_range(kernel, unit(u), unit_counters[u].c);
-            },
-            tbb::simple_partitioner());
-      });
-    }
+  Counters insert_owner_computes(std::span<const Fragment> frags, const InsertOptions& options,
+                                 std::uint32_t threads) {
+    return std::visit(
+        [&](auto& st) {
+          return habuffer::insert_owner_computes(params, offsets.values().data(), st.data(), max_age, frags,
+                                                 OwnerComputesOptions{threads, options.band_rows});
+        },
+        storage);
+  }
+
+  // Contiguous slices of the stream, one per thread, all sharing the table.
+  Counters insert_atomic(std::span<const Fragment> frags, std::uint32_t threads) {
+    std::vector<PaddedCounters> slice_counters(threads);
+    with_kernel<true>([&](auto& k) {
+      tbb::parallel_for(
+          std::uint32_t{0}, threads,
+          [&](std::uint32_t t) {
+            auto kernel = k;
+            const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
+            insert_range(kernel, frags.subspan(begin, end - begin), slice_counters[t].c);
+          },
+          tbb::static_partitioner());
+    });
     Counters total;
-    for (const auto& u : unit_counters) total += u.c;
+    for (const auto& c : slice_counters) total += c.c;
     return total;
   }
 };
@@ -145,16 +145,20 @@ const MaxAgeTable& HaBuffer::max_age() const { return impl_->max_age; }
 Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, impl_->config.screen);
   const std::uint32_t threads = resolve_threads(options.threads);
-  const bool binned = options.order == InsertOptions::Order::Binned ||
-                      (options.order == InsertOptions::Order::Auto && threads > 1);
-  if (!binned) {
-    if (threads > 1) throw std::invalid_argument("input-order insertion runs on one thread only");
+  InsertMode mode = options.mode;
+  if (mode == InsertMode::Auto) mode = threads == 1 ? InsertMode::Serial : InsertMode::OwnerComputes;
+  if (mode == InsertMode::Serial) {
+    if (threads != 1) throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
     Counters counters;
     impl_->with_kernel<false>([&](auto& k) { Impl::insert_range(k, fragments, counters); });
     return counters;
   }
+  if (options.band_rows == 0) throw std::invalid_argument("band_rows must be at least 1");
   tbb::task_arena arena(static_cast<int>(threads));
-  return arena.execute([&] { return impl_->insert_binned(fragments, options, threads); });
+  return arena.execute([&] {
+    return mode == InsertMode::Atomic ? impl_->insert_atomic(fragments, threads)
+                                      : impl_->insert_owner_computes(fragments, options, threads);
+  });
 }
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {

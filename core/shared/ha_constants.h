@@ -11,6 +11,8 @@
 #define HA_FAILED_ITER 4u
 #define HA_INVALID 5u
 #define HA_OUTCOME_COUNT 6u
+// Not an outcome: the insert call goes on (ha_insert_step).
+#define HA_PENDING 6u
 
 // Traversal step results (SPEC 7).
 #define HA_VISIT_STOP 0u

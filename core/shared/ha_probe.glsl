@@ -1,6 +1,6 @@
 // Coherent probing of SPEC 3-5, written once for both paths.
 // Host environment provides: uvec2 ha_table_size (H), uvec2 ha_screen_size (V),
-// uint ha_block (B), uint ha_max_age_cells_x, uvec2 ha_offset(uint i) (O[i],
+// uint ha_div_block(uint v) (v / B for the max-age block B), uint ha_max_age_cells_x, uvec2 ha_offset(uint i) (O[i],
 // already cyclic for tables smaller than AMAX), and the slot index type
 // ha_index (uint64_t on the CPU path).
 
@@ -26,4 +26,4 @@ uvec2 ha_owner(uvec2 h, uint age) {
 ha_index ha_slot(uvec2 h) { return ha_index(h.x) + ha_index(h.y) * ha_index(ha_table_size.x); }
 
 // Max-age cell of pixel p (SPEC 5), row-major.
-uint ha_cell(uvec2 p) { return (p.x / ha_block) + (p.y / ha_block) * ha_max_age_cells_x; }
+uint ha_cell(uvec2 p) { return ha_div_block(p.x) + ha_div_block(p.y) * ha_max_age_cells_x; }

@@ -31,6 +31,8 @@ struct Counters {
   }
   // Counts one insert outcome (an HA_* constant of ha_constants.h).
   void count(std::uint32_t outcome);
+  // Adds per-outcome totals, indexed by HA_* outcome (HA_OUTCOME_COUNT entries).
+  void add_tally(const std::uint64_t* tally);
 
   Counters& operator+=(const Counters& o);
   friend bool operator==(const Counters&, const Counters&) = default;

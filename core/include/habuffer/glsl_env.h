@@ -11,6 +11,9 @@
 
 #include "../../shared/ha_constants.h"
 
+// GLSL's inout parameters are C++ references.
+#define HA_INOUT(T) T&
+
 #define HA_GLSL_CLASS_PRELUDE                                              \
   using uint = std::uint32_t;                                              \
   using uvec2 = glm::uvec2;                                                \

@@ -18,12 +18,17 @@
 
 namespace habuffer {
 
+enum class InsertMode {
+  Auto,           // Serial for one thread, OwnerComputes for several
+  Serial,         // one thread, input order, plain loads and stores
+  OwnerComputes,  // table rows dealt out to threads, records handed over between them (owner_computes.h)
+  Atomic,         // the GPU's model: threads split the stream and share every slot through atomicMax
+};
+
 struct InsertOptions {
   std::uint32_t threads = 1;  // 0: every hardware thread
-  std::uint32_t tile = 64;    // screen tile side used to split work between threads (power of two)
-  // Input: insert in the given order (one thread only). Binned: group by
-  // screen tile first. Auto: Input for one thread, Binned for several.
-  enum class Order { Auto, Input, Binned } order = Order::Auto;
+  InsertMode mode = InsertMode::Auto;
+  std::uint32_t band_rows = 16;  // OwnerComputes: table rows per band
 };
 
 // One record of a pixel's list, front to back.

@@ -8,6 +8,7 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/glsl_env.h"
+#include "habuffer/fast_divisor.h"
 
 namespace habuffer {
 
@@ -42,6 +43,7 @@ class HashKernel {
         ha_max_age_cells_x(params.max_age_cells_x),
         ha_iter_limit(params.iter_limit),
         ha_cull_tau(params.cull_tau),
+        block_(params.block),
         offsets_(offsets),
         table_(table),
         max_age_(max_age) {}
@@ -58,6 +60,9 @@ class HashKernel {
   float ha_cull_tau;
 
   uvec2 ha_offset(uint i) const { return offsets_[i]; }
+
+  // v / B by multiplication: a hardware divide per placement costs more than the probe.
+  uint ha_div_block(uint v) const { return block_.div(v); }
 
   // atomicMax on a slot: returns the old value, leaves max(old, r). Each
   // failed strong exchange observed a strictly larger value, so the loop ends
@@ -106,6 +111,7 @@ class HashKernel {
 #include "../../shared/ha_traverse.glsl"
 
  private:
+  FastDivisor block_;
   const glm::uvec2* offsets_;
   Word* table_;
   std::uint32_t* max_age_;

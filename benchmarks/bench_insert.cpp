@@ -1,0 +1,109 @@
+// Insertion throughput vs load factor and threads, against the floor of one
+// atomic add per fragment. items_per_second = fragments per second.
+#include <atomic>
+
+#include <benchmark/benchmark.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "bench_common.h"
+
+namespace habuffer::bench {
+namespace {
+
+void run_insert(benchmark::State& state, StreamKind kind, Layout layout) {
+  const double load = static_cast<double>(state.range(0)) / 100.0;
+  InsertOptions options;
+  options.threads = static_cast<std::uint32_t>(state.range(1));
+  const auto& frags = stream(kind);
+  HaBuffer buffer = buffer_for_load(kScreen, frags.size(), load, layout);
+  Counters counters;
+  for (auto _ : state) {
+    state.PauseTiming();
+    buffer.clear();
+    state.ResumeTiming();
+    counters = buffer.insert(frags, options);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
+  state.counters["load"] = static_cast<double>(counters.stored()) / static_cast<double>(buffer.slot_count());
+  state.counters["failed"] = static_cast<double>(counters.failures());
+}
+
+void BM_InsertCoherent(benchmark::State& s) { run_insert(s, StreamKind::Coherent, Layout::L64); }
+void BM_InsertRandom(benchmark::State& s) { run_insert(s, StreamKind::Random, Layout::L64); }
+void BM_InsertCoherentL32(benchmark::State& s) { run_insert(s, StreamKind::Coherent, Layout::L32); }
+
+void load_thread_args(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"load", "threads"});
+  for (int load : {10, 30, 50, 70, 80, 90, 95})
+    for (int threads : {1, 2}) b->Args({load, threads});
+  b->UseRealTime()->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_InsertCoherent)->Apply(load_thread_args);
+BENCHMARK(BM_InsertRandom)->Apply(load_thread_args);
+BENCHMARK(BM_InsertCoherentL32)->Apply(load_thread_args);
+
+// The floor: one relaxed atomic add per fragment into a per-pixel counter,
+// the least any A-buffer build must do, on the same stream and with the same
+// split of work between threads as insertion.
+void BM_CountFloor(benchmark::State& state) {
+  const auto threads = static_cast<std::uint32_t>(state.range(0));
+  const auto& frags = stream(StreamKind::Coherent);
+  std::vector<std::uint32_t> counts(kScreen.area());
+  auto count_range = [&](const std::vector<Fragment>& range) {
+    for (const Fragment& f : range)
+      std::atomic_ref<std::uint32_t>(counts[f.x + std::size_t{f.y} * kScreen.x]).fetch_add(1, std::memory_order_relaxed);
+  };
+  tbb::task_arena arena(static_cast<int>(threads));
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::fill(counts.begin(), counts.end(), 0u);
+    state.ResumeTiming();
+    if (threads == 1) {
+      count_range(frags);
+    } else {
+      // Same split as owner-computes insertion: each thread scans the whole
+      // stream and counts the pixels of its interleaved bands of rows.
+      arena.execute([&] {
+        tbb::parallel_for(
+            std::uint32_t{0}, threads,
+            [&](std::uint32_t t) {
+              for (const Fragment& f : frags)
+                if ((f.y / 16) % threads == t)
+                  std::atomic_ref<std::uint32_t>(counts[f.x + std::size_t{f.y} * kScreen.x])
+                      .fetch_add(1, std::memory_order_relaxed);
+            },
+            tbb::static_partitioner());
+      });
+    }
+    benchmark::DoNotOptimize(counts.data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
+}
+BENCHMARK(BM_CountFloor)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// 10^8 fragments on the CPU path (4096x4096 screen, load 0.5): 1.6 GB of
+// stream and 1.6 GB of table. Run it explicitly with
+// --benchmark_filter=BM_Insert100M.
+void BM_Insert100M(benchmark::State& state) {
+  const Extent screen{4096, 4096};
+  const auto& frags = stream(StreamKind::Coherent, screen, 100'000'000);
+  HaBuffer buffer = buffer_for_load(screen, frags.size(), 0.5);
+  InsertOptions options;
+  options.threads = static_cast<std::uint32_t>(state.range(0));
+  Counters counters;
+  for (auto _ : state) {
+    state.PauseTiming();
+    buffer.clear();
+    state.ResumeTiming();
+    counters = buffer.insert(frags, options);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
+  state.counters["failed"] = static_cast<double>(counters.failures());
+  state.counters["max_age"] = buffer.max_age().max();
+}
+BENCHMARK(BM_Insert100M)->ArgName("threads")->Arg(1)->Arg(2)->Iterations(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace habuffer::bench
