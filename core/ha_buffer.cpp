@@ -5,12 +5,12 @@
 #include <string>
 #include <variant>
 
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "habuffer/hash_kernel.h"
 #include "habuffer/slot_storage.h"
 #include "habuffer/owner_computes.h"
+#include "habuffer/parallel.h"
 
 namespace habuffer {
 namespace {
@@ -104,14 +104,11 @@ struct HaBuffer::Impl {
   Counters insert_atomic(std::span<const Fragment> frags, std::uint32_t threads) {
     std::vector<PaddedCounters> slice_counters(threads);
     with_kernel<true>([&](auto& k) {
-      tbb::parallel_for(
-          std::uint32_t{0}, threads,
-          [&](std::uint32_t t) {
-            auto kernel = k;
-            const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
-            insert_range(kernel, frags.subspan(begin, end - begin), slice_counters[t].c);
-          },
-          tbb::static_partitioner());
+      fork_join(threads, [&](std::uint32_t t) {
+        auto kernel = k;
+        const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
+        insert_range(kernel, frags.subspan(begin, end - begin), slice_counters[t].c);
+      });
     });
     Counters total;
     for (const auto& c : slice_counters) total += c.c;
@@ -209,12 +206,14 @@ glm::vec4 HaBuffer::composite(std::uint32_t x, std::uint32_t y, glm::vec3 backgr
 std::vector<glm::vec4> HaBuffer::composite_image(glm::vec3 background, std::uint32_t threads) const {
   const Extent v = screen();
   std::vector<glm::vec4> image(v.area());
-  tbb::task_arena arena(static_cast<int>(resolve_threads(threads)));
+  const std::uint32_t parts = resolve_threads(threads);
+  tbb::task_arena arena(static_cast<int>(parts));
   arena.execute([&] {
-    tbb::parallel_for(std::uint32_t{0}, v.y, [&](std::uint32_t y) {
+    fork_join(parts, [&](std::uint32_t part) {
       impl_->with_kernel([&](auto& k) {
-        for (std::uint32_t x = 0; x < v.x; ++x)
-          image[x + std::size_t{y} * v.x] = k.ha_composite(glm::uvec2(x, y), background);
+        for (std::uint32_t y = v.y * part / parts; y < v.y * (part + 1) / parts; ++y)
+          for (std::uint32_t x = 0; x < v.x; ++x)
+            image[x + std::size_t{y} * v.x] = k.ha_composite(glm::uvec2(x, y), background);
       });
     });
   });

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include <tbb/parallel_for.h>
+#include "habuffer/parallel.h"
 
 namespace habuffer {
 namespace {
@@ -53,13 +53,10 @@ class OwnerComputes {
 
   template <class F>
   void for_each_owner(F&& f) {
-    tbb::parallel_for(
-        std::uint32_t{0}, options_.owners,
-        [&](std::uint32_t t) {
-          Kernel k(params_, offsets_, table_, owners_[t].max_age.data());
-          f(t, k);
-        },
-        tbb::static_partitioner());
+    fork_join(options_.owners, [&](std::uint32_t t) {
+      Kernel k(params_, offsets_, table_, owners_[t].max_age.data());
+      f(t, k);
+    });
   }
 
   // Out of line and by value, so the carried record never has its address
@@ -132,8 +129,10 @@ class OwnerComputes {
   void merge_max_age() {
     std::uint32_t* m = max_age_.data();
     const std::size_t cells = max_age_.ages().size();
-    tbb::parallel_for(std::size_t{0}, cells, [&](std::size_t c) {
-      for (const Owner& o : owners_) m[c] = std::max(m[c], o.max_age[c]);
+    const std::uint32_t parts = options_.owners;
+    fork_join(parts, [&](std::uint32_t part) {
+      for (std::size_t c = cells * part / parts; c < cells * (part + 1) / parts; ++c)
+        for (const Owner& o : owners_) m[c] = std::max(m[c], o.max_age[c]);
     });
   }
 

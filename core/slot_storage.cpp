@@ -11,6 +11,9 @@
 #include <utility>
 
 namespace habuffer {
+namespace {
+constexpr std::size_t kPopulateLimit = std::size_t{4} << 30;
+}  // namespace
 
 template <class Word>
 SlotStorage<Word>::SlotStorage(std::uint64_t slots) : slots_(slots) {
@@ -18,7 +21,11 @@ SlotStorage<Word>::SlotStorage(std::uint64_t slots) : slots_(slots) {
   if (slots > (std::uint64_t{1} << 48) / sizeof(Word))
     throw std::length_error("hash table of " + std::to_string(slots) + " slots exceeds the address space");
   mapped_ = static_cast<std::size_t>(slots * sizeof(Word));
-  void* p = mmap(nullptr, mapped_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  // Tables up to kPopulateLimit are committed up front, so page faults are
+  // paid at allocation and not inside (parallel) insertion, where faulting
+  // threads contend for the process's memory map; larger ones commit lazily.
+  const int populate = mapped_ <= kPopulateLimit ? MAP_POPULATE : MAP_NORESERVE;
+  void* p = mmap(nullptr, mapped_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | populate, -1, 0);
   if (p == MAP_FAILED)
     throw std::runtime_error("cannot map a hash table of " + std::to_string(mapped_) + " bytes: " + std::strerror(errno));
   data_ = static_cast<Word*>(p);

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   const std::string name = argv[1];
   const auto it = commands.find(name);
   if (it == commands.end()) {
-    std::fprintf(stderr, "habuffer: unknown command '%s'\n%s", name.c_str(), kUsage);
+    std::fprintf(stderr, "habuffer: unknown command '%s' (run 'habuffer --help' for the list)\n", name.c_str());
     return 2;
   }
   try {

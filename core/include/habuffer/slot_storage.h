@@ -1,6 +1,7 @@
 // The hash table's slots: one zero-initialized, page-aligned anonymous
-// mapping. Pages are committed on first touch, so a table of more than 2^32
-// slots can exist (and be indexed) while only the touched pages cost memory.
+// mapping. Up to 4 GiB it is committed at once; beyond, pages are committed
+// on first touch, so a table of more than 2^32 slots can exist (and be
+// indexed) while only the touched pages cost memory.
 #pragma once
 
 #include <cstddef>

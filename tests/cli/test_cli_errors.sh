@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# CLI contract: bad usage exits 2, bad data exits 1, each with one clear line
+# on stderr naming what was wrong; good input exits 0 and writes its files.
+set -u
+bin=$1
+dir=$2
+rm -rf "$dir" && mkdir -p "$dir" && cd "$dir" || exit 1
+pass=0
+fail=0
+
+# expect CODE NEEDLE -- ARGS...
+expect() {
+  local code=$1 needle=$2
+  shift 3
+  "$bin" "$@" >out.txt 2>err.txt
+  local got=$?
+  local lines
+  lines=$(wc -l <err.txt)
+  local bad=0
+  if [[ $code -eq 0 ]]; then
+    [[ $got -eq 0 ]] || bad=1
+  elif [[ $got -ne $code || $lines -ne 1 ]] || ! grep -qF -- "$needle" err.txt; then
+    bad=1
+  fi
+  if [[ $bad -ne 0 ]]; then
+    echo "FAIL: habuffer $* -> exit $got (want $code), stderr:"
+    cat err.txt
+    echo "  (wanted one line containing: $needle)"
+    fail=$((fail + 1))
+  else
+    pass=$((pass + 1))
+  fi
+}
+
+printf 'x,y,depth,rgba\n0,0,0.5,0xFF0000FF\n1,0,0.25,255\n1,0,0.75,0x00FF0080\n' >good.csv
+printf 'x,y,depth,rgba\n0,0,0.5,1\n0,5,0.5,1\n' >offscreen.csv
+printf 'x,y,depth,rgba\n0,0,half,1\n' >baddepth.csv
+printf 'ox,oy\n0,0\n1,0\n' >short_offsets.csv
+printf 'ox,oy\n0,0\n0,0\n1,0\n1,1\n2,0\n2,1\n2,2\n0,2\n1,2\n3,0\n3,1\n3,2\n3,3\n0,3\n1,3\n' >dup_offsets.csv
+
+expect 0 "" -- build-lists --in good.csv --out lists.csv --screen 2x2 --stats s.json --dump-table t.csv --dump-max-age m.csv
+expect 2 "unknown command 'frobnicate'" -- frobnicate
+expect 2 "option --out is required" -- build-lists --in good.csv --screen 2x2
+expect 2 "option --screen: '2by2' is not a size WxH" -- build-lists --in good.csv --out l.csv --screen 2by2
+expect 2 "table 2x1 is smaller than screen 2x2" -- build-lists --in good.csv --out l.csv --screen 2x2 --table 2x1
+expect 2 "option --age-bits: 13 outside 4..12" -- build-lists --in good.csv --out l.csv --screen 2x2 --age-bits 13
+expect 2 "option --layout: '48' is not 64 or 32" -- build-lists --in good.csv --out l.csv --screen 2x2 --layout 48
+expect 2 "unknown option '--bogus'" -- build-lists --in good.csv --out l.csv --screen 2x2 --bogus 1
+expect 2 "threshold must be in (0, 1]" -- build-lists --in good.csv --out l.csv --screen 2x2 --early-cull 1.5
+expect 2 "early cull needs the L64 layout" -- build-lists --in good.csv --out l.csv --screen 2x2 --layout 32 --early-cull 0.5
+expect 1 "missing.csv: cannot open for reading" -- build-lists --in missing.csv --out l.csv --screen 2x2
+expect 1 "offscreen.csv:3: field y: 5 outside screen 2x2" -- build-lists --in offscreen.csv --out l.csv --screen 2x2
+expect 1 "baddepth.csv:2: field depth: 'half' is not a number" -- build-lists --in baddepth.csv --out l.csv --screen 2x2
+expect 1 "short_offsets.csv: offsets: 2 rows given, 15 needed" -- build-lists --in good.csv --out l.csv --screen 2x2 --table 4x4 --age-bits 4 --offsets short_offsets.csv
+expect 1 "dup_offsets.csv: offsets row 2 (age 2): duplicate offset (0,0)" -- build-lists --in good.csv --out l.csv --screen 2x2 --table 4x4 --age-bits 4 --offsets dup_offsets.csv
+expect 1 "cannot open for writing" -- build-lists --in good.csv --out /nonexistent/dir/l.csv --screen 2x2
+expect 2 "give exactly one of --fragments and --load" -- generate --screen 4x4 --out f.csv
+expect 2 "more than 2^28 slots" -- offsets --table 20000x20000 --generator farthest
+
+# Good runs write what they promise.
+if [[ "$(head -1 lists.csv)" != "x,y,rank,code,rgba" || $(wc -l <lists.csv) -ne 4 ]]; then
+  echo "FAIL: lists.csv"; cat lists.csv; fail=$((fail + 1)); else pass=$((pass + 1)); fi
+for key in fragments stored duplicates culled invalid failed_age failed_iter load_factor max_age mean_age \
+  age_histogram memory_bytes build_ms threads path layout age_bits table screen; do
+  if ! grep -q "\"$key\":" s.json; then echo "FAIL: stats key $key missing"; fail=$((fail + 1)); else pass=$((pass + 1)); fi
+done
+expect 0 "" -- build-lists --in good.csv --out l2.csv --screen 2x2 --table 3x3 --lossless --threads 2 --offsets farthest
+expect 0 "" -- generate --screen 32x32 --load 0.5 --out gen.csv --stream random
+expect 0 "" -- offsets --table 64x64 --generator farthest --out o.csv --quality q.csv
+expect 0 "" -- info
+
+echo "cli: $pass passed, $fail failed"
+[[ $fail -eq 0 ]]

@@ -1,0 +1,112 @@
+// SPEC 6 early cull and SPEC invariant 5.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "habuffer/reference_compositor.h"
+#include "test_support.h"
+
+namespace habuffer {
+namespace {
+
+HaBuffer cull_buffer(Extent screen, Extent table, float tau, std::uint64_t seed = 1) {
+  BufferConfig c = test::config(screen, table);
+  c.early_cull_tau = tau;
+  return test::make_buffer(c, seed);
+}
+
+std::uint32_t rgba(std::uint32_t alpha) { return 0x80808000u | alpha; }
+
+TEST(EarlyCull, OpaqueFrontFragmentCullsWhatLiesBehindInEitherOrder) {
+  for (bool front_first : {true, false}) {
+    HaBuffer b = cull_buffer({4, 4}, {8, 8}, 0.5f);
+    const Fragment front{1, 1, 0.2f, rgba(255)}, back{1, 1, 0.7f, rgba(255)};
+    Counters n;
+    n.count(b.insert_one(front_first ? front : back));
+    n.count(b.insert_one(front_first ? back : front));
+    EXPECT_EQ(n.culled, 1u) << (front_first ? "front first" : "back first");
+    std::vector<ListEntry> list;
+    b.list(1, 1, list);
+    ASSERT_EQ(list.size(), 1u);
+    EXPECT_EQ(list[0].code, b.record_layout().depth_code(0.2f));
+    EXPECT_EQ(b.count_stored(), n.stored());
+  }
+}
+
+TEST(EarlyCull, ThresholdOneAndOpacityZeroNeverCull) {
+  const auto f = test::stream({32, 32}, StreamKind::Coherent, 3000, 4);
+  HaBuffer one = cull_buffer({32, 32}, {48, 48}, 1.0f);
+  EXPECT_EQ(one.insert(f).culled, 0u);
+  auto transparent = f;
+  for (auto& x : transparent) x.rgba &= 0xFFFFFF00u;
+  HaBuffer zero = cull_buffer({32, 32}, {48, 48}, 0.01f);
+  EXPECT_EQ(zero.insert(transparent).culled, 0u);
+}
+
+// Every fragment whose exactly accumulated opacity in front stays at or
+// below tau survives, whatever the insertion order and thread count.
+TEST(EarlyCull, NeverDropsAFragmentInFrontOfOpacityAtMostTauParallelToo) {
+  const Extent screen{24, 24};
+  for (float tau : {0.3f, 0.9f, 0.99f})
+    for (std::uint64_t seed = 1; seed <= 4; ++seed)
+      for (std::uint32_t threads : {1u, 2u}) {
+        SCOPED_TRACE("tau " + std::to_string(tau) + " seed " + std::to_string(seed) + " threads " +
+                     std::to_string(threads));
+        StreamOptions o;
+        o.count = 4000;  // about 7 per pixel
+        o.seed = seed;
+        o.alpha_min = 20;
+        o.alpha_max = 255;
+        const auto f = make_stream(screen, o);
+        HaBuffer b = cull_buffer(screen, {96, 96}, tau, seed);  // load under 0.45
+        InsertOptions io;
+        io.threads = threads;
+        const Counters n = b.insert(test::shuffled(f, seed), io);
+        ASSERT_EQ(n.failures(), 0u);
+        EXPECT_EQ(b.count_stored(), n.stored());
+        const auto exact = test::exact_lists(f, b.record_layout());
+        const auto kept = test::traversed_lists(b);
+        for (const auto& [p, list] : exact) {
+          double acc = 0.0;
+          const auto it = kept.find(p);
+          for (const ListEntry& e : list) {
+            if (acc > tau - 1e-6) break;
+            ASSERT_TRUE(it != kept.end() && std::find(it->second.begin(), it->second.end(), e) != it->second.end())
+                << "pixel (" << p.first << "," << p.second << ") lost a fragment with opacity " << acc
+                << " in front";
+            acc += (1.0 - acc) * ((e.data & 255u) / 255.0);
+          }
+        }
+      }
+}
+
+// Invariant 5: the culled image differs from the exact reference by at most
+// (1 - tau) per channel (plus float32 rounding; depths here sit on a 2^-20
+// grid so quantization cannot reorder them).
+TEST(EarlyCull, ImageErrorAgainstExactReferenceIsBoundedByOneMinusTau) {
+  const Extent screen{32, 32};
+  SplitMix64 rng(11);
+  std::vector<Fragment> f;
+  for (int i = 0; i < 12000; ++i) {
+    const auto x = static_cast<std::uint32_t>(rng.below(screen.x)), y = static_cast<std::uint32_t>(rng.below(screen.y));
+    const float t = static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f;
+    f.push_back({x, y, t, static_cast<std::uint32_t>(rng.next() & 0xFFFFFF00u) | static_cast<std::uint32_t>(64 + rng.below(192))});
+  }
+  const glm::dvec3 bg(0.2, 0.5, 0.9);
+  const auto reference = reference_composite(f, screen, bg);
+  for (float tau : {0.5f, 0.9f, 0.99f}) {
+    HaBuffer b = cull_buffer(screen, {160, 160}, tau);  // load under 0.5
+    const Counters n = b.insert(f);
+    ASSERT_EQ(n.failures(), 0u);
+    EXPECT_GT(n.culled, 0u);
+    const auto image = b.composite_image(glm::vec3(bg), 1);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < image.size(); ++i)
+      for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(double(image[i][ch]) - reference[i][ch]));
+    EXPECT_LE(worst, (1.0 - tau) + 1e-4) << "tau " << tau;
+  }
+}
+
+}  // namespace
+}  // namespace habuffer

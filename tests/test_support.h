@@ -1,0 +1,83 @@
+// Helpers shared by the test files: buffers, streams and the exact per-pixel
+// lists that SPEC invariant 3 compares against.
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <vector>
+
+#include "habuffer/fragment_streams.h"
+#include "habuffer/ha_buffer.h"
+#include "habuffer/random.h"
+
+namespace habuffer::test {
+
+inline BufferConfig config(Extent screen, Extent table, Layout layout = Layout::L64, std::uint32_t age_bits = 8,
+                           std::uint32_t block = 8) {
+  BufferConfig c;
+  c.screen = screen;
+  c.table = table;
+  c.layout = layout;
+  c.age_bits = age_bits;
+  c.block = block;
+  return c;
+}
+
+inline HaBuffer make_buffer(const BufferConfig& c, std::uint64_t seed = 1,
+                            OffsetGenerator gen = OffsetGenerator::Random) {
+  return HaBuffer(c, OffsetSequence::make(gen, c.table_or_screen(), c.record_layout().max_age(), seed));
+}
+
+// Exact expected lists: per pixel, the distinct (code, data) pairs of its
+// valid fragments, nearest first (record order: code then data, descending).
+using ExactLists = std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<ListEntry>>;
+
+inline ExactLists exact_lists(const std::vector<Fragment>& frags, const RecordLayout& layout) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::set<std::pair<std::uint32_t, std::uint32_t>>> sets;
+  for (const Fragment& f : frags)
+    if (RecordLayout::depth_valid(f.depth))
+      sets[{f.x, f.y}].insert({layout.depth_code(f.depth), layout.has_data() ? f.rgba : 0u});
+  ExactLists out;
+  for (const auto& [p, s] : sets) {
+    auto& v = out[p];
+    for (auto it = s.rbegin(); it != s.rend(); ++it) v.push_back({0, it->first, it->second});
+  }
+  return out;
+}
+
+// Lists read back by traversal, ages dropped so they compare with exact_lists.
+inline ExactLists traversed_lists(const HaBuffer& b) {
+  ExactLists out;
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < b.screen().y; ++y)
+    for (std::uint32_t x = 0; x < b.screen().x; ++x) {
+      b.list(x, y, list);
+      if (list.empty()) continue;
+      auto& v = out[{x, y}];
+      for (ListEntry e : list) v.push_back({0, e.code, e.data});
+    }
+  return out;
+}
+
+inline std::vector<std::uint64_t> table_words(const HaBuffer& b) {
+  std::vector<std::uint64_t> t(b.slot_count());
+  for (std::uint64_t s = 0; s < t.size(); ++s) t[s] = b.slot(s);
+  return t;
+}
+
+inline std::vector<Fragment> shuffled(std::vector<Fragment> v, std::uint64_t seed) {
+  SplitMix64 rng(seed);
+  for (std::size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[rng.below(i)]);
+  return v;
+}
+
+inline std::vector<Fragment> stream(Extent screen, StreamKind kind, std::uint64_t count, std::uint64_t seed) {
+  StreamOptions o;
+  o.kind = kind;
+  o.count = count;
+  o.seed = seed;
+  return make_stream(screen, o);
+}
+
+}  // namespace habuffer::test
