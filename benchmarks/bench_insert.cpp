@@ -11,10 +11,11 @@
 namespace habuffer::bench {
 namespace {
 
-void run_insert(benchmark::State& state, StreamKind kind, Layout layout) {
+void run_insert(benchmark::State& state, StreamKind kind, Layout layout, InsertMode mode = InsertMode::Auto) {
   const double load = static_cast<double>(state.range(0)) / 100.0;
   InsertOptions options;
   options.threads = static_cast<std::uint32_t>(state.range(1));
+  options.mode = mode;
   const auto& frags = stream(kind);
   HaBuffer buffer = buffer_for_load(kScreen, frags.size(), load, layout);
   Counters counters;
@@ -41,6 +42,13 @@ void load_thread_args(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_InsertCoherent)->Apply(load_thread_args);
+
+// The naive alternative to owner-computes: threads split the stream and share
+// every slot through atomicMax, as GPU threads do.
+void BM_InsertCoherentAtomic(benchmark::State& s) { run_insert(s, StreamKind::Coherent, Layout::L64, InsertMode::Atomic); }
+BENCHMARK(BM_InsertCoherentAtomic)->Apply(load_thread_args);
+void BM_InsertRandomAtomic(benchmark::State& s) { run_insert(s, StreamKind::Random, Layout::L64, InsertMode::Atomic); }
+BENCHMARK(BM_InsertRandomAtomic)->Apply(load_thread_args);
 BENCHMARK(BM_InsertRandom)->Apply(load_thread_args);
 BENCHMARK(BM_InsertCoherentL32)->Apply(load_thread_args);
 

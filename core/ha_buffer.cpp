@@ -143,7 +143,7 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
   check_on_screen(fragments, impl_->config.screen);
   const std::uint32_t threads = resolve_threads(options.threads);
   InsertMode mode = options.mode;
-  if (mode == InsertMode::Auto) mode = threads == 1 ? InsertMode::Serial : InsertMode::OwnerComputes;
+  if (mode == InsertMode::Auto) mode = threads == 1 ? InsertMode::Serial : InsertMode::Atomic;
   if (mode == InsertMode::Serial) {
     if (threads != 1) throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
     Counters counters;

@@ -8,7 +8,8 @@ namespace habuffer::cli {
 
 const std::set<std::string>& hash_valued_options() {
   static const std::set<std::string> names{"screen", "table", "layout", "age-bits", "offsets", "seed", "block",
-                                           "threads", "early-cull", "iter-limit", "max-attempts"};
+                                           "threads", "early-cull", "iter-limit", "max-attempts",
+                                           "insert-mode"};
   return names;
 }
 
@@ -45,6 +46,19 @@ HashOptions parse_hash_options(const Args& args) {
     throw UsageError(e.what());
   }
   o.insert.threads = args.u32("threads", 1, 0, 1024);
+  const std::string mode = args.str("insert-mode", "auto");
+  if (mode == "auto") {
+    o.insert.mode = InsertMode::Auto;
+  } else if (mode == "serial") {
+    o.insert.mode = InsertMode::Serial;
+    if (o.insert.threads != 1) throw UsageError("--insert-mode serial runs on one thread: give --threads 1");
+  } else if (mode == "atomic") {
+    o.insert.mode = InsertMode::Atomic;
+  } else if (mode == "owner") {
+    o.insert.mode = InsertMode::OwnerComputes;
+  } else {
+    throw UsageError("option --insert-mode: '" + mode + "' is not auto, serial, atomic or owner");
+  }
   o.lossless = args.has("lossless");
   o.max_attempts = o.lossless ? args.u32("max-attempts", 16, 1, 1000) : 1;
   if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");

@@ -65,6 +65,9 @@ for key in fragments stored duplicates culled invalid failed_age failed_iter loa
   if ! grep -q "\"$key\":" s.json; then echo "FAIL: stats key $key missing"; fail=$((fail + 1)); else pass=$((pass + 1)); fi
 done
 expect 0 "" -- build-lists --in good.csv --out l2.csv --screen 2x2 --table 3x3 --lossless --threads 2 --offsets farthest
+expect 0 "" -- build-lists --in good.csv --out l3.csv --screen 2x2 --threads 2 --insert-mode owner
+cmp -s lists.csv l3.csv && pass=$((pass + 1)) || { echo "FAIL: owner-computes lists differ"; fail=$((fail + 1)); }
+expect 2 "option --insert-mode: 'magic' is not auto" -- build-lists --in good.csv --out l.csv --screen 2x2 --insert-mode magic
 expect 0 "" -- generate --screen 32x32 --load 0.5 --out gen.csv --stream random
 expect 0 "" -- offsets --table 64x64 --generator farthest --out o.csv --quality q.csv
 expect 0 "" -- info

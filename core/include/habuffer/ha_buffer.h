@@ -18,11 +18,13 @@
 
 namespace habuffer {
 
+// Every mode builds the same table (SPEC 9); they differ in speed only.
+// docs/performance.md compares them.
 enum class InsertMode {
-  Auto,           // Serial for one thread, OwnerComputes for several
+  Auto,           // Serial for one thread, Atomic for several (fastest measured)
   Serial,         // one thread, input order, plain loads and stores
-  OwnerComputes,  // table rows dealt out to threads, records handed over between them (owner_computes.h)
   Atomic,         // the GPU's model: threads split the stream and share every slot through atomicMax
+  OwnerComputes,  // no atomics: table rows dealt out to threads, records handed over (owner_computes.h)
 };
 
 struct InsertOptions {
