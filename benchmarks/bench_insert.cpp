@@ -11,13 +11,10 @@
 namespace habuffer::bench {
 namespace {
 
-void run_insert(benchmark::State& state, StreamKind kind, Layout layout, InsertMode mode = InsertMode::Auto) {
-  const double load = static_cast<double>(state.range(0)) / 100.0;
-  InsertOptions options;
-  options.threads = static_cast<std::uint32_t>(state.range(1));
-  options.mode = mode;
-  const auto& frags = stream(kind);
-  HaBuffer buffer = buffer_for_load(kScreen, frags.size(), load, layout);
+// Times insert() into a cleared buffer, once per iteration, and reports load,
+// failures and the largest age.
+void time_inserts(benchmark::State& state, HaBuffer& buffer, const std::vector<Fragment>& frags,
+                  const InsertOptions& options) {
   Counters counters;
   for (auto _ : state) {
     state.PauseTiming();
@@ -28,6 +25,17 @@ void run_insert(benchmark::State& state, StreamKind kind, Layout layout, InsertM
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
   state.counters["load"] = static_cast<double>(counters.stored()) / static_cast<double>(buffer.slot_count());
   state.counters["failed"] = static_cast<double>(counters.failures());
+  state.counters["max_age"] = buffer.max_age().max();
+}
+
+void run_insert(benchmark::State& state, StreamKind kind, Layout layout, InsertMode mode = InsertMode::Auto) {
+  const double load = static_cast<double>(state.range(0)) / 100.0;
+  InsertOptions options;
+  options.threads = static_cast<std::uint32_t>(state.range(1));
+  options.mode = mode;
+  const auto& frags = stream(kind);
+  HaBuffer buffer = buffer_for_load(kScreen, frags.size(), load, layout);
+  time_inserts(state, buffer, frags, options);
 }
 
 void BM_InsertCoherent(benchmark::State& s) { run_insert(s, StreamKind::Coherent, Layout::L64); }
@@ -54,7 +62,7 @@ BENCHMARK(BM_InsertCoherentL32)->Apply(load_thread_args);
 
 // The floor: one relaxed atomic add per fragment into a per-pixel counter,
 // the least any A-buffer build must do, on the same stream and with the same
-// split of work between threads as insertion.
+// split of work between threads as the default insertion.
 void BM_CountFloor(benchmark::State& state) {
   const auto threads = static_cast<std::uint32_t>(state.range(0));
   const auto& frags = stream(StreamKind::Coherent);
@@ -71,16 +79,15 @@ void BM_CountFloor(benchmark::State& state) {
     if (threads == 1) {
       count_range(frags);
     } else {
-      // Same split as owner-computes insertion: each thread scans the whole
-      // stream and counts the pixels of its interleaved bands of rows.
+      // Same split as the default parallel insertion: contiguous slices.
       arena.execute([&] {
         tbb::parallel_for(
             std::uint32_t{0}, threads,
             [&](std::uint32_t t) {
-              for (const Fragment& f : frags)
-                if ((f.y / 16) % threads == t)
-                  std::atomic_ref<std::uint32_t>(counts[f.x + std::size_t{f.y} * kScreen.x])
-                      .fetch_add(1, std::memory_order_relaxed);
+              const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
+              for (std::size_t i = begin; i < end; ++i)
+                std::atomic_ref<std::uint32_t>(counts[frags[i].x + std::size_t{frags[i].y} * kScreen.x])
+                    .fetch_add(1, std::memory_order_relaxed);
             },
             tbb::static_partitioner());
       });
@@ -100,16 +107,7 @@ void BM_Insert100M(benchmark::State& state) {
   HaBuffer buffer = buffer_for_load(screen, frags.size(), 0.5);
   InsertOptions options;
   options.threads = static_cast<std::uint32_t>(state.range(0));
-  Counters counters;
-  for (auto _ : state) {
-    state.PauseTiming();
-    buffer.clear();
-    state.ResumeTiming();
-    counters = buffer.insert(frags, options);
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
-  state.counters["failed"] = static_cast<double>(counters.failures());
-  state.counters["max_age"] = buffer.max_age().max();
+  time_inserts(state, buffer, frags, options);
 }
 BENCHMARK(BM_Insert100M)->ArgName("threads")->Arg(1)->Arg(2)->Iterations(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
