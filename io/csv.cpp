@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -54,6 +55,8 @@ float out_of_float_range(std::string_view text) {
 }  // namespace
 
 CsvReader::CsvReader(std::string path) : path_(std::move(path)) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path_, ec)) throw DataError(path_ + ": is a directory, not a CSV file");
   std::ifstream in(path_, std::ios::binary);
   if (!in) throw DataError(path_ + ": cannot open for reading: " + std::strerror(errno));
   std::ostringstream ss;

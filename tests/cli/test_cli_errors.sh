@@ -48,6 +48,7 @@ expect 2 "option --layout: '48' is not 64 or 32" -- build-lists --in good.csv --
 expect 2 "unknown option '--bogus'" -- build-lists --in good.csv --out l.csv --screen 2x2 --bogus 1
 expect 2 "threshold must be in (0, 1]" -- build-lists --in good.csv --out l.csv --screen 2x2 --early-cull 1.5
 expect 2 "early cull needs the L64 layout" -- build-lists --in good.csv --out l.csv --screen 2x2 --layout 32 --early-cull 0.5
+expect 1 "is a directory, not a CSV file" -- build-lists --in . --out l.csv --screen 2x2
 expect 1 "missing.csv: cannot open for reading" -- build-lists --in missing.csv --out l.csv --screen 2x2
 expect 1 "offscreen.csv:3: field y: 5 outside screen 2x2" -- build-lists --in offscreen.csv --out l.csv --screen 2x2
 expect 1 "baddepth.csv:2: field depth: 'half' is not a number" -- build-lists --in baddepth.csv --out l.csv --screen 2x2
