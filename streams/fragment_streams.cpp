@@ -46,19 +46,50 @@ void emit_primitive(Extent screen, const StreamOptions& o, SplitMix64& rng, std:
   }
 }
 
+void emit_stacked(Extent screen, const StreamOptions& o, SplitMix64& rng, std::vector<Fragment>& out) {
+  const std::uint32_t w = std::min(o.quad_side, screen.x), h = std::min(o.quad_side, screen.y);
+  const double cx = (screen.x - w) / 2.0, cy = (screen.y - h) / 2.0;
+  while (out.size() < o.count) {
+    // Uniform position, pulled towards the centre by (1 - spread).
+    const double ux = static_cast<double>(rng.below(screen.x - w + 1));
+    const double uy = static_cast<double>(rng.below(screen.y - h + 1));
+    const auto x0 = static_cast<std::uint32_t>(std::lround(cx + (ux - cx) * o.spread));
+    const auto y0 = static_cast<std::uint32_t>(std::lround(cy + (uy - cy) * o.spread));
+    const float z = rng.unit_float();
+    const std::uint32_t colour = random_colour(rng, o);
+    for (std::uint32_t j = 0; j < h && out.size() < o.count; ++j)
+      for (std::uint32_t i = 0; i < w && out.size() < o.count; ++i) out.push_back({x0 + i, y0 + j, z, colour});
+  }
+}
+
+void emit_hot(Extent screen, const StreamOptions& o, SplitMix64& rng, std::vector<Fragment>& out) {
+  const std::uint64_t hot_total = std::min<std::uint64_t>(o.count, std::uint64_t{o.hot_pixels} * o.hot_depth);
+  for (std::uint32_t k = 0; out.size() < hot_total; ++k) {
+    const auto x = static_cast<std::uint32_t>(rng.below(screen.x)), y = static_cast<std::uint32_t>(rng.below(screen.y));
+    for (std::uint32_t d = 0; d < o.hot_depth && out.size() < hot_total; ++d)
+      out.push_back({x, y, rng.unit_float(), random_colour(rng, o)});
+  }
+  emit_random(screen, o, rng, out);
+}
+
 }  // namespace
 
 std::vector<Fragment> make_stream(Extent screen, const StreamOptions& o) {
   if (screen.area() == 0) throw std::invalid_argument("stream screen is empty");
   if (o.min_side == 0 || o.min_side > o.max_side) throw std::invalid_argument("stream primitive sides need 1 <= min <= max");
   if (o.alpha_min > o.alpha_max || o.alpha_max > 255) throw std::invalid_argument("stream alpha needs min <= max <= 255");
+  if (!(o.spread >= 0.0 && o.spread <= 1.0)) throw std::invalid_argument("stream spread must be in [0, 1]");
+  if (o.quad_side == 0) throw std::invalid_argument("stacked quads need a positive side");
   SplitMix64 rng(o.seed ^ 0x3C6EF372FE94F82Bull);
   std::vector<Fragment> out;
   out.reserve(o.count);
-  if (o.kind == StreamKind::Random) {
-    emit_random(screen, o, rng, out);
-  } else {
-    while (out.size() < o.count) emit_primitive(screen, o, rng, out);
+  switch (o.kind) {
+    case StreamKind::Random: emit_random(screen, o, rng, out); break;
+    case StreamKind::Coherent:
+      while (out.size() < o.count) emit_primitive(screen, o, rng, out);
+      break;
+    case StreamKind::Stacked: emit_stacked(screen, o, rng, out); break;
+    case StreamKind::Hot: emit_hot(screen, o, rng, out); break;
   }
   return out;
 }
@@ -75,9 +106,19 @@ Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
 StreamKind parse_stream_kind(const std::string& name) {
   if (name == "random") return StreamKind::Random;
   if (name == "coherent") return StreamKind::Coherent;
-  throw std::invalid_argument("unknown stream '" + name + "' (expected random or coherent)");
+  if (name == "stacked") return StreamKind::Stacked;
+  if (name == "hot") return StreamKind::Hot;
+  throw std::invalid_argument("unknown stream '" + name + "' (expected random, coherent, stacked or hot)");
 }
 
-std::string to_string(StreamKind kind) { return kind == StreamKind::Random ? "random" : "coherent"; }
+std::string to_string(StreamKind kind) {
+  switch (kind) {
+    case StreamKind::Random: return "random";
+    case StreamKind::Coherent: return "coherent";
+    case StreamKind::Stacked: return "stacked";
+    case StreamKind::Hot: return "hot";
+  }
+  return "?";
+}
 
 }  // namespace habuffer

@@ -12,5 +12,6 @@ int run_generate(const std::vector<std::string>& args);
 int run_offsets(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
+int run_stats(const std::vector<std::string>& args);
 
 }  // namespace habuffer::cli

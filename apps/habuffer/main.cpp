@@ -17,6 +17,7 @@ constexpr const char* kUsage =
     "  build-lists  build per-pixel sorted lists from a fragment CSV (SPEC 10)\n"
     "  generate     write a synthetic fragment stream CSV\n"
     "  offsets      write an offsets CSV (random or farthest) and its quality\n"
+    "  stats        experiments on age vs load (probing, policy, offsets) with confidence intervals\n"
     "  demo         build lists for a generated stream and print its stats\n"
     "  info         version, build type and available paths\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
@@ -27,7 +28,7 @@ int main(int argc, char** argv) {
   using namespace habuffer;
   const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
       {"build-lists", cli::run_build_lists}, {"generate", cli::run_generate}, {"offsets", cli::run_offsets},
-      {"demo", cli::run_demo},               {"info", cli::run_info}};
+      {"demo", cli::run_demo},               {"info", cli::run_info},         {"stats", cli::run_stats}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

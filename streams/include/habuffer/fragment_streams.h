@@ -14,6 +14,8 @@ namespace habuffer {
 enum class StreamKind {
   Random,    // uniform random pixels, depths and colours: no coherence at all
   Coherent,  // rasterization-like: triangles and quads emitted primitive by primitive, in scanline order
+  Stacked,   // the HA-buffer paper's Fig. 8: same-size quads at random depths, pulled together by `spread`
+  Hot,       // uniform random pixels plus a few hot pixels of very high depth complexity
 };
 
 struct StreamOptions {
@@ -24,6 +26,10 @@ struct StreamOptions {
   std::uint32_t max_side = 64;
   std::uint32_t alpha_min = 64;    // alpha byte range of colours, inclusive
   std::uint32_t alpha_max = 192;
+  std::uint32_t quad_side = 32;    // stacked: side of every quad
+  double spread = 1.0;             // stacked: 1 = quads anywhere, 0 = all exactly stacked at the centre
+  std::uint32_t hot_pixels = 16;   // hot: how many hot pixels
+  std::uint32_t hot_depth = 200;   // hot: fragments per hot pixel
 };
 
 std::vector<Fragment> make_stream(Extent screen, const StreamOptions& options);
@@ -32,7 +38,7 @@ std::vector<Fragment> make_stream(Extent screen, const StreamOptions& options);
 // `fragments` records fill to about `load`.
 Extent table_for_load(Extent screen, std::uint64_t fragments, double load);
 
-// "random" or "coherent"; throws std::invalid_argument otherwise.
+// "random", "coherent", "stacked" or "hot"; throws std::invalid_argument otherwise.
 StreamKind parse_stream_kind(const std::string& name);
 std::string to_string(StreamKind kind);
 

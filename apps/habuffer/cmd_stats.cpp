@@ -1,0 +1,144 @@
+// habuffer stats: experiments on age vs load over the CPU-path model.
+#include <cstdio>
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "habuffer/age_experiment.h"
+#include "habuffer/csv.h"
+#include "habuffer/json_writer.h"
+
+namespace habuffer::cli {
+namespace {
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
+  return out;
+}
+
+template <class T>
+std::vector<T> choices(const Args& args, const std::string& name, const std::string& fallback,
+                       const std::vector<std::pair<std::string, T>>& named) {
+  std::vector<T> out;
+  for (const std::string& item : split_list(args.str(name, fallback))) {
+    bool found = false;
+    for (const auto& [key, value] : named)
+      if (item == key || item == "all") {
+        if (std::find(out.begin(), out.end(), value) == out.end()) out.push_back(value);
+        found = true;
+      }
+    if (!found) throw UsageError("option --" + name + ": unknown value '" + item + "'");
+  }
+  return out;
+}
+
+void write_csv(const std::string& path, const std::vector<ExperimentRow>& rows) {
+  CsvWriter out(path);
+  out.text("variant,load,stored_load,trials,mean_age,mean_age_ci95,age_variance,p50,p90,p99,max_age,rank_bound,"
+           "excess,excess_ci95,mean_probes,max_probes,traversal_probes,wasted_traversal_probes,failures\n");
+  char buf[512];
+  for (const auto& r : rows) {
+    std::snprintf(buf, sizeof buf, "%s,%g,%.6f,%u,%.6f,%.6f,%.6f,%u,%u,%u,%u,%.6f,%.6f,%.6f,%.6f,%u,%.6f,%.6f,%llu\n",
+                  r.variant.name().c_str(), r.load, r.stored_load, r.trials, r.mean_age, r.mean_age_ci95,
+                  r.age_variance, r.p50, r.p90, r.p99, r.max_age, r.rank_bound, r.excess, r.excess_ci95,
+                  r.mean_probes, r.max_probes, r.traversal_probes, r.wasted_traversal_probes,
+                  static_cast<unsigned long long>(r.failures));
+    out.text(buf);
+  }
+  out.close();
+}
+
+void write_json(const std::string& path, const ExperimentConfig& c, const std::vector<ExperimentRow>& rows) {
+  JsonWriter j;
+  j.begin_object().key("screen").begin_array().value(c.screen.x).value(c.screen.y).end_array();
+  const Extent table = c.table.area() == 0 ? c.screen : c.table;
+  j.key("table").begin_array().value(table.x).value(table.y).end_array();
+  j.field("stream", to_string(c.stream.kind)).field("trials", c.trials).field("seed", c.seed);
+  j.field("age_bits", c.age_bits).field("block", c.block).key("rows").begin_array();
+  for (const auto& r : rows) {
+    j.begin_object().field("variant", r.variant.name()).field("load", r.load).field("stored_load", r.stored_load);
+    j.field("trials", r.trials).field("mean_age", r.mean_age).field("mean_age_ci95", r.mean_age_ci95);
+    j.field("age_variance", r.age_variance).field("p50", r.p50).field("p90", r.p90).field("p99", r.p99);
+    j.field("max_age", r.max_age).field("rank_bound", r.rank_bound).field("excess", r.excess);
+    j.field("excess_ci95", r.excess_ci95).field("mean_probes", r.mean_probes).field("max_probes", r.max_probes);
+    j.field("traversal_probes", r.traversal_probes).field("wasted_traversal_probes", r.wasted_traversal_probes);
+    j.field("failures", r.failures).end_object();
+  }
+  j.end_array().end_object();
+  j.save(path);
+}
+
+}  // namespace
+
+int run_stats(const std::vector<std::string>& argv) {
+  if (argv.size() == 1 && argv[0] == "--help") {
+    std::puts(
+        "usage: habuffer stats [--screen WxH (128x128)] [--table WxH (screen)] [--loads L1,L2,... (0.5,0.8,0.9)]\n"
+        "         [--trials N (5)] [--seed S] [--stream random|coherent|stacked|hot] [--spread S]\n"
+        "         [--probing coherent,independent|all] [--policy robinhood,fcfs|all] [--offsets random,farthest|all]\n"
+        "         [--age-bits N] [--block B] [--out FILE.json|FILE.csv]\n"
+        "  Fragments per trial = load x table slots; every variant sees the same streams.");
+    return 0;
+  }
+  const Args args(argv, {"screen", "table", "loads", "trials", "seed", "stream", "spread", "probing", "policy",
+                         "offsets", "age-bits", "block", "out"},
+                  {});
+  ExperimentConfig c;
+  c.screen = args.extent("screen").value_or(Extent{128, 128});
+  c.table = args.extent("table").value_or(c.screen);
+  if (c.table.x < c.screen.x || c.table.y < c.screen.y)
+    throw UsageError("table " + c.table.str() + " is smaller than screen " + c.screen.str());
+  c.loads.clear();
+  for (const std::string& l : split_list(args.str("loads", "0.5,0.8,0.9"))) {
+    char* end = nullptr;
+    const double v = std::strtod(l.c_str(), &end);
+    if (l.empty() || *end != '\0' || !(v > 0.0 && v <= 4.0)) throw UsageError("option --loads: '" + l + "' is not a load in (0, 4]");
+    c.loads.push_back(v);
+  }
+  c.trials = args.u32("trials", 5, 1, 100000);
+  c.seed = args.u64("seed", 1);
+  try {
+    c.stream.kind = parse_stream_kind(args.str("stream", "random"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("option --stream: ") + e.what());
+  }
+  c.stream.spread = args.real("spread", 1.0);
+  if (!(c.stream.spread >= 0.0 && c.stream.spread <= 1.0)) throw UsageError("option --spread: must be in [0, 1]");
+  c.age_bits = args.u32("age-bits", 8, 4, 12);
+  c.block = args.u32("block", 8, 1, 1u << 16);
+  c.stream.hot_depth = (1u << c.age_bits) - 1;
+  const auto probings = choices<Probing>(args, "probing", "coherent,independent",
+                                         {{"coherent", Probing::Coherent}, {"independent", Probing::Independent}});
+  const auto policies =
+      choices<Policy>(args, "policy", "robinhood", {{"robinhood", Policy::RobinHood}, {"fcfs", Policy::Fcfs}});
+  const auto offsets = choices<OffsetGenerator>(
+      args, "offsets", "random", {{"random", OffsetGenerator::Random}, {"farthest", OffsetGenerator::Farthest}});
+  c.variants.clear();
+  for (auto pr : probings)
+    for (auto po : policies)
+      for (auto of : offsets)
+        if (pr == Probing::Coherent || of == offsets.front()) c.variants.push_back({pr, po, of});  // offsets only matter when coherent
+
+  const auto rows = run_age_experiment(c);
+  std::printf("%-32s %6s %7s %16s %8s %4s %4s %4s %6s %8s %8s %7s %8s\n", "variant", "load", "stored", "mean age (95%)",
+              "var", "p50", "p99", "max", "bound", "excess", "probes", "trav", "failed");
+  for (const auto& r : rows)
+    std::printf("%-32s %6.2f %7.3f %8.3f +- %5.3f %8.3f %4u %4u %4u %6.3f %8.3f %8.3f %7.3f %8llu\n",
+                r.variant.name().c_str(), r.load, r.stored_load, r.mean_age, r.mean_age_ci95, r.age_variance, r.p50,
+                r.p99, r.max_age, r.rank_bound, r.excess, r.mean_probes, r.traversal_probes,
+                static_cast<unsigned long long>(r.failures));
+  if (args.has("out")) {
+    const std::string out = args.required("out");
+    if (out.size() > 4 && out.substr(out.size() - 4) == ".csv")
+      write_csv(out, rows);
+    else
+      write_json(out, c, rows);
+  }
+  return 0;
+}
+
+}  // namespace habuffer::cli

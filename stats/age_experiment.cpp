@@ -1,0 +1,157 @@
+#include "habuffer/age_experiment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "habuffer/record_layout.h"
+
+namespace habuffer {
+namespace {
+
+struct Moments {
+  double n = 0, sum = 0, sum2 = 0;
+  void add(double v) {
+    n += 1;
+    sum += v;
+    sum2 += v * v;
+  }
+  [[nodiscard]] double mean() const { return n > 0 ? sum / n : 0.0; }
+  [[nodiscard]] double variance() const { return n > 1 ? (sum2 - sum * sum / n) / (n - 1) : 0.0; }
+  [[nodiscard]] double ci95() const {
+    return n > 1 ? student_t95(static_cast<std::uint32_t>(n) - 1) * std::sqrt(variance() / n) : 0.0;
+  }
+};
+
+// The rank bound of one stream: mean over distinct records of their rank in
+// their pixel's list (records are distinct by pixel and depth code).
+double rank_bound(const std::vector<Fragment>& frags, const RecordLayout& layout) {
+  std::set<std::pair<std::uint64_t, std::uint32_t>> distinct;
+  for (const Fragment& f : frags)
+    if (RecordLayout::depth_valid(f.depth))
+      distinct.insert({f.x + (std::uint64_t{f.y} << 32), layout.depth_code(f.depth)});
+  std::map<std::uint64_t, std::uint64_t> per_pixel;
+  for (const auto& d : distinct) ++per_pixel[d.first];
+  double ranks = 0.0;
+  for (const auto& [p, k] : per_pixel) ranks += static_cast<double>(k) * static_cast<double>(k + 1) / 2.0;
+  return distinct.empty() ? 0.0 : ranks / static_cast<double>(distinct.size());
+}
+
+std::uint32_t percentile(const std::vector<std::uint64_t>& hist, double q) {
+  std::uint64_t total = 0;
+  for (auto n : hist) total += n;
+  if (total == 0) return 0;
+  const auto target = static_cast<std::uint64_t>(std::ceil(q * static_cast<double>(total)));
+  std::uint64_t seen = 0;
+  for (std::uint32_t a = 0; a < hist.size(); ++a) {
+    seen += hist[a];
+    if (seen >= std::max<std::uint64_t>(target, 1)) return a;
+  }
+  return static_cast<std::uint32_t>(hist.size() - 1);
+}
+
+}  // namespace
+
+std::string Variant::name() const {
+  return std::string(probing == Probing::Coherent ? "coherent" : "independent") + "/" +
+         (policy == Policy::RobinHood ? "robinhood" : "fcfs") + "/" + to_string(offsets);
+}
+
+double student_t95(std::uint32_t df) {
+  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228,
+                                 2.201,  2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101, 2.093, 2.086,
+                                 2.080,  2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042};
+  if (df == 0) return INFINITY;
+  if (df <= 30) return table[df - 1];
+  return 1.960 + 2.4 / static_cast<double>(df);  // within 0.002 of the exact quantile beyond 30
+}
+
+std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
+  if (c.trials == 0) throw std::invalid_argument("at least one trial is needed");
+  const Extent table = c.table.area() == 0 ? c.screen : c.table;
+  const RecordLayout layout(Layout::L32, c.age_bits);
+  std::vector<ExperimentRow> rows;
+  for (double load : c.loads) {
+    if (!(load > 0.0)) throw std::invalid_argument("loads must be positive");
+    struct Acc {
+      Moments age, excess, stored_load;
+      std::vector<std::uint64_t> hist;
+      std::uint64_t calls = 0, probes = 0, traversal = 0, wasted = 0, pixels = 0, failures = 0;
+      std::uint32_t max_probes = 0;
+      double bound = 0.0;
+    };
+    std::vector<Acc> acc(c.variants.size());
+    for (std::uint32_t t = 0; t < c.trials; ++t) {
+      StreamOptions so = c.stream;
+      so.count = static_cast<std::uint64_t>(std::llround(load * static_cast<double>(table.area())));
+      so.seed = c.seed * 1000003 + t;
+      const std::vector<Fragment> frags = make_stream(c.screen, so);
+      const double bound = rank_bound(frags, layout);
+      for (std::size_t v = 0; v < c.variants.size(); ++v) {
+        SimulatorConfig sc{c.screen, table, c.age_bits, c.block, c.variants[v].probing, c.variants[v].policy,
+                           so.seed * 31 + 7, c.variants[v].offsets};
+        ProbeSimulator sim(sc);
+        sim.insert(frags);
+        const SimulatorTotals tot = sim.totals();
+        Acc& a = acc[v];
+        std::uint64_t stored = 0, weighted = 0;
+        for (std::uint32_t g = 1; g < tot.age_histogram.size(); ++g) {
+          stored += tot.age_histogram[g];
+          weighted += std::uint64_t{g} * tot.age_histogram[g];
+        }
+        const double mean = stored ? static_cast<double>(weighted) / static_cast<double>(stored) : 0.0;
+        a.age.add(mean);
+        a.excess.add(mean - bound);
+        a.bound += bound / c.trials;
+        a.stored_load.add(static_cast<double>(stored) / static_cast<double>(table.area()));
+        if (a.hist.size() < tot.age_histogram.size()) a.hist.resize(tot.age_histogram.size(), 0);
+        for (std::size_t g = 0; g < tot.age_histogram.size(); ++g) a.hist[g] += tot.age_histogram[g];
+        a.calls += tot.counters.fragments - tot.counters.invalid;
+        a.probes += tot.probes;
+        a.max_probes = std::max(a.max_probes, tot.max_probes);
+        a.traversal += tot.traversal_probes;
+        a.wasted += tot.wasted_traversal_probes;
+        a.pixels += tot.pixels;
+        a.failures += tot.counters.failures();
+      }
+    }
+    for (std::size_t v = 0; v < c.variants.size(); ++v) {
+      const Acc& a = acc[v];
+      ExperimentRow r;
+      r.variant = c.variants[v];
+      r.load = load;
+      r.stored_load = a.stored_load.mean();
+      r.trials = c.trials;
+      r.mean_age = a.age.mean();
+      r.mean_age_ci95 = a.age.ci95();
+     
+      double n = 0, s1 = 0, s2 = 0;
+      for (std::size_t g = 1; g < a.hist.size(); ++g) {
+        const double k = static_cast<double>(a.hist[g]);
+        n += k;
+        s1 += k * static_cast<double>(g);
+        s2 += k * static_cast<double>(g) * static_cast<double>(g);
+      }
+      r.age_variance = n > 1 ? (s2 - s1 * s1 / n) / (n - 1) : 0.0;
+      r.p50 = percentile(a.hist, 0.50);
+      r.p90 = percentile(a.hist, 0.90);
+      r.p99 = percentile(a.hist, 0.99);
+      for (std::size_t g = 0; g < a.hist.size(); ++g)
+        if (a.hist[g] != 0) r.max_age = static_cast<std::uint32_t>(g);
+      r.rank_bound = a.bound;
+      r.excess = a.excess.mean();
+      r.excess_ci95 = a.excess.ci95();
+      r.mean_probes = a.calls ? static_cast<double>(a.probes) / static_cast<double>(a.calls) : 0.0;
+      r.max_probes = a.max_probes;
+      r.traversal_probes = static_cast<double>(a.traversal) / static_cast<double>(a.pixels);
+      r.wasted_traversal_probes = static_cast<double>(a.wasted) / static_cast<double>(a.pixels);
+      r.failures = a.failures;
+      rows.push_back(r);
+    }
+  }
+  return rows;
+}
+
+}  // namespace habuffer

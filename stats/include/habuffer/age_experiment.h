@@ -1,0 +1,58 @@
+// Experiments on age vs load: every variant (probing, policy, offsets) runs
+// on the same streams, trial by trial, and each (variant, load) gets its age
+// statistics with a 95% confidence interval over trials.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "habuffer/fragment_streams.h"
+#include "habuffer/probe_simulator.h"
+
+namespace habuffer {
+
+struct Variant {
+  Probing probing = Probing::Coherent;
+  Policy policy = Policy::RobinHood;
+  OffsetGenerator offsets = OffsetGenerator::Random;
+  [[nodiscard]] std::string name() const;  // e.g. "coherent/robinhood/random"
+};
+
+struct ExperimentConfig {
+  Extent screen{128, 128};
+  Extent table;                 // zero: the screen
+  std::vector<double> loads{0.5, 0.8, 0.9};  // fragments = load * table slots
+  std::uint32_t trials = 5;
+  std::uint64_t seed = 1;
+  StreamOptions stream;         // kind and shape; count and seed are set per trial
+  std::vector<Variant> variants{Variant{}};
+  std::uint32_t age_bits = 8;
+  std::uint32_t block = 8;
+};
+
+struct ExperimentRow {
+  Variant variant;
+  double load = 0.0;             // target load
+  double stored_load = 0.0;      // mean measured load (stored / slots)
+  std::uint32_t trials = 0;
+  double mean_age = 0.0;         // mean over trials of each trial's mean age of stored records
+  double mean_age_ci95 = 0.0;    // half-width, Student t over trials
+  double age_variance = 0.0;     // of all stored records' ages, pooled over trials
+  std::uint32_t p50 = 0, p90 = 0, p99 = 0, max_age = 0;
+  double rank_bound = 0.0;       // least possible mean age: a pixel's k-th record has age >= k
+  double excess_ci95 = 0.0;      // half-width of mean_age - rank_bound over trials
+  double excess = 0.0;           // mean over trials of (mean age - rank bound)
+  double mean_probes = 0.0;      // per insert call
+  std::uint32_t max_probes = 0;
+  double traversal_probes = 0.0;         // per screen pixel
+  double wasted_traversal_probes = 0.0;  // per screen pixel, read after its last record
+  std::uint64_t failures = 0;            // failed_age + failed_iter over all trials
+};
+
+std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& config);
+
+// Two-sided 95% Student t quantile for `df` degrees of freedom.
+double student_t95(std::uint32_t df);
+
+}  // namespace habuffer
