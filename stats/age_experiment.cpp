@@ -76,7 +76,7 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
   for (double load : c.loads) {
     if (!(load > 0.0)) throw std::invalid_argument("loads must be positive");
     struct Acc {
-      Moments age, excess, stored_load;
+      Moments age, excess, stored_load, max_age;
       std::vector<std::uint64_t> hist;
       std::uint64_t calls = 0, probes = 0, traversal = 0, wasted = 0, pixels = 0, failures = 0;
       std::uint32_t max_probes = 0;
@@ -103,6 +103,10 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
         }
         const double mean = stored ? static_cast<double>(weighted) / static_cast<double>(stored) : 0.0;
         a.age.add(mean);
+        std::uint32_t trial_max = 0;
+        for (std::uint32_t g = 1; g < tot.age_histogram.size(); ++g)
+          if (tot.age_histogram[g] != 0) trial_max = g;
+        a.max_age.add(trial_max);
         a.excess.add(mean - bound);
         a.bound += bound / c.trials;
         a.stored_load.add(static_cast<double>(stored) / static_cast<double>(table.area()));
@@ -140,6 +144,8 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
       r.p99 = percentile(a.hist, 0.99);
       for (std::size_t g = 0; g < a.hist.size(); ++g)
         if (a.hist[g] != 0) r.max_age = static_cast<std::uint32_t>(g);
+      r.mean_max_age = a.max_age.mean();
+      r.mean_max_age_ci95 = a.max_age.ci95();
       r.rank_bound = a.bound;
       r.excess = a.excess.mean();
       r.excess_ci95 = a.excess.ci95();

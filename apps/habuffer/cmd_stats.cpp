@@ -38,13 +38,13 @@ std::vector<T> choices(const Args& args, const std::string& name, const std::str
 
 void write_csv(const std::string& path, const std::vector<ExperimentRow>& rows) {
   CsvWriter out(path);
-  out.text("variant,load,stored_load,trials,mean_age,mean_age_ci95,age_variance,p50,p90,p99,max_age,rank_bound,"
+  out.text("variant,load,stored_load,trials,mean_age,mean_age_ci95,age_variance,p50,p90,p99,max_age,mean_max_age,rank_bound,"
            "excess,excess_ci95,mean_probes,max_probes,traversal_probes,wasted_traversal_probes,failures\n");
   char buf[512];
   for (const auto& r : rows) {
-    std::snprintf(buf, sizeof buf, "%s,%g,%.6f,%u,%.6f,%.6f,%.6f,%u,%u,%u,%u,%.6f,%.6f,%.6f,%.6f,%u,%.6f,%.6f,%llu\n",
+    std::snprintf(buf, sizeof buf, "%s,%g,%.6f,%u,%.6f,%.6f,%.6f,%u,%u,%u,%u,%.4f,%.6f,%.6f,%.6f,%.6f,%u,%.6f,%.6f,%llu\n",
                   r.variant.name().c_str(), r.load, r.stored_load, r.trials, r.mean_age, r.mean_age_ci95,
-                  r.age_variance, r.p50, r.p90, r.p99, r.max_age, r.rank_bound, r.excess, r.excess_ci95,
+                  r.age_variance, r.p50, r.p90, r.p99, r.max_age, r.mean_max_age, r.rank_bound, r.excess, r.excess_ci95,
                   r.mean_probes, r.max_probes, r.traversal_probes, r.wasted_traversal_probes,
                   static_cast<unsigned long long>(r.failures));
     out.text(buf);
@@ -63,7 +63,8 @@ void write_json(const std::string& path, const ExperimentConfig& c, const std::v
     j.begin_object().field("variant", r.variant.name()).field("load", r.load).field("stored_load", r.stored_load);
     j.field("trials", r.trials).field("mean_age", r.mean_age).field("mean_age_ci95", r.mean_age_ci95);
     j.field("age_variance", r.age_variance).field("p50", r.p50).field("p90", r.p90).field("p99", r.p99);
-    j.field("max_age", r.max_age).field("rank_bound", r.rank_bound).field("excess", r.excess);
+    j.field("max_age", r.max_age).field("mean_max_age", r.mean_max_age).field("mean_max_age_ci95", r.mean_max_age_ci95);
+    j.field("rank_bound", r.rank_bound).field("excess", r.excess);
     j.field("excess_ci95", r.excess_ci95).field("mean_probes", r.mean_probes).field("max_probes", r.max_probes);
     j.field("traversal_probes", r.traversal_probes).field("wasted_traversal_probes", r.wasted_traversal_probes);
     j.field("failures", r.failures).end_object();

@@ -25,7 +25,7 @@ struct ExperimentConfig {
   std::vector<double> loads{0.5, 0.8, 0.9};  // fragments = load * table slots
   std::uint32_t trials = 5;
   std::uint64_t seed = 1;
-  StreamOptions stream;         // kind and shape; count and seed are set per trial
+  StreamOptions stream{.kind = StreamKind::Random};  // kind and shape; count and seed are set per trial
   std::vector<Variant> variants{Variant{}};
   std::uint32_t age_bits = 8;
   std::uint32_t block = 8;
@@ -40,6 +40,8 @@ struct ExperimentRow {
   double mean_age_ci95 = 0.0;    // half-width, Student t over trials
   double age_variance = 0.0;     // of all stored records' ages, pooled over trials
   std::uint32_t p50 = 0, p90 = 0, p99 = 0, max_age = 0;
+  double mean_max_age = 0.0;     // mean over trials of each trial's largest age
+  double mean_max_age_ci95 = 0.0;
   double rank_bound = 0.0;       // least possible mean age: a pixel's k-th record has age >= k
   double excess_ci95 = 0.0;      // half-width of mean_age - rank_bound over trials
   double excess = 0.0;           // mean over trials of (mean age - rank bound)
