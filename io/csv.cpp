@@ -64,6 +64,13 @@ CsvReader::CsvReader(std::string path) : path_(std::move(path)) {
   text_ = std::move(ss).str();
 }
 
+CsvReader CsvReader::from_text(std::string name, std::string text) {
+  CsvReader r;
+  r.path_ = std::move(name);
+  r.text_ = std::move(text);
+  return r;
+}
+
 bool CsvReader::next_line(std::string_view& line) {
   while (pos_ < text_.size()) {
     auto end = text_.find('\n', pos_);

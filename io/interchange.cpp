@@ -6,6 +6,10 @@ namespace habuffer {
 
 std::vector<Fragment> read_fragments(const std::string& path, Extent screen) {
   CsvReader in(path);
+  return parse_fragments(in, screen);
+}
+
+std::vector<Fragment> parse_fragments(CsvReader& in, Extent screen) {
   in.expect_header({"x", "y", "depth", "rgba"});
   std::vector<Fragment> out;
   std::vector<std::string_view> f;
@@ -34,6 +38,10 @@ void write_fragments(const std::string& path, std::span<const Fragment> fragment
 
 std::vector<glm::uvec2> read_offset_rows(const std::string& path) {
   CsvReader in(path);
+  return parse_offset_rows(in);
+}
+
+std::vector<glm::uvec2> parse_offset_rows(CsvReader& in) {
   in.expect_header({"ox", "oy"});
   std::vector<glm::uvec2> rows;
   std::vector<std::string_view> f;

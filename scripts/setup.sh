@@ -7,6 +7,7 @@ packages=(
   cmake ninja-build g++ python3
   libtbb-dev libglm-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

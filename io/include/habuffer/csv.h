@@ -21,6 +21,8 @@ class CsvReader {
  public:
   // Reads the whole file; throws DataError if it cannot be opened.
   explicit CsvReader(std::string path);
+  // Reads `text` as if it were the file `name` (tests and fuzzers).
+  static CsvReader from_text(std::string name, std::string text);
 
   // Checks the first line equals `header` (fields separated by commas,
   // surrounding spaces ignored); throws DataError naming both otherwise.
@@ -42,6 +44,7 @@ class CsvReader {
   [[noreturn]] void fail(std::string_view field, const std::string& what) const;
 
  private:
+  CsvReader() = default;
   bool next_line(std::string_view& line);
   std::string path_;
   std::string text_;

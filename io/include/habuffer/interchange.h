@@ -18,10 +18,12 @@ namespace habuffer {
 // Header x,y,depth,rgba. Throws DataError naming file, line and field for
 // bad syntax or a pixel outside `screen`.
 std::vector<Fragment> read_fragments(const std::string& path, Extent screen);
+std::vector<Fragment> parse_fragments(CsvReader& in, Extent screen);
 void write_fragments(const std::string& path, std::span<const Fragment> fragments);
 
 // Header ox,oy, one row per age from age 1.
 std::vector<glm::uvec2> read_offset_rows(const std::string& path);
+std::vector<glm::uvec2> parse_offset_rows(CsvReader& in);
 // read_offset_rows, validated for `table` and `count` ages (OffsetSequence::
 // from_list); errors are DataError naming the file.
 OffsetSequence read_offsets(const std::string& path, Extent table, std::uint32_t count);
