@@ -72,6 +72,12 @@ expect 2 "option --insert-mode: 'magic' is not auto" -- build-lists --in good.cs
 expect 0 "" -- generate --screen 32x32 --load 0.5 --out gen.csv --stream random
 expect 0 "" -- offsets --table 64x64 --generator farthest --out o.csv --quality q.csv
 expect 0 "" -- info
+expect 0 "" -- stats --screen 32x32 --trials 2 --loads 0.5,0.9 --probing all --policy all --out st.csv
+if [[ "$(head -1 st.csv | cut -d, -f1-6)" != "variant,load,stored_load,trials,mean_age,mean_age_ci95" || $(wc -l <st.csv) -ne 9 ]]; then
+  echo "FAIL: stats csv"; head -3 st.csv; fail=$((fail + 1)); else pass=$((pass + 1)); fi
+expect 2 "option --loads: 'x' is not a load in (0, 4]" -- stats --loads 0.5,x
+expect 2 "option --probing: unknown value 'linear'" -- stats --probing linear
+expect 2 "table 16x16 is smaller than screen 32x32" -- stats --screen 32x32 --table 16x16
 
 echo "cli: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]
