@@ -8,6 +8,7 @@ packages=(
   libtbb-dev libglm-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
+  pkg-config libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
 )
 
 missing=()

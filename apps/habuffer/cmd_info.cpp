@@ -6,6 +6,9 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "habuffer/gl/egl_context.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_info.h"
 
 namespace habuffer::cli {
 
@@ -22,7 +25,23 @@ int run_info(const std::vector<std::string>& argv) {
   std::printf("paths:\n");
   std::printf("  cpu: available (oneTBB %d.%d, %d hardware threads; layouts L64 and L32; age bits 4..12)\n",
               TBB_VERSION_MAJOR, TBB_VERSION_MINOR, tbb::info::default_concurrency());
-  std::printf("  gl: not in this build (the GPU path is a later issue)\n");
+  try {
+    const gl::EglContext context;
+    const gl::GlInfo info = gl::query_gl_info();
+    std::printf("  gl: available through %s\n", context.description().c_str());
+    std::printf("    GL_VENDOR %s, GL_RENDERER %s\n    GL_VERSION %s, GLSL %s\n", info.vendor.c_str(),
+                info.renderer.c_str(), info.version.c_str(), info.glsl_version.c_str());
+    std::printf("    64-bit shader types (GL_ARB_gpu_shader_int64): %s; 64-bit atomics (GL_NV_shader_atomic_int64): %s\n",
+                info.int64_types ? "yes" : "no", info.atomic_int64 ? "yes" : "no");
+    std::printf("    limits: SSBO %lld MiB, framebuffer %dx%d, compute work groups x %d\n", info.max_ssbo_bytes >> 20,
+                info.max_framebuffer_width, info.max_framebuffer_height, info.max_compute_work_groups_x);
+    std::string modes;
+    for (gl::AtomicMode m : gl::runnable_atomic_modes(info)) modes += (modes.empty() ? "" : ", ") + gl::to_string(m);
+    std::printf("    atomic modes runnable: %s; chosen: L32 -> native32, L64 -> %s\n", modes.c_str(),
+                info.atomic_int64 ? "native64 (not implemented yet)" : "emulated64 (not implemented yet)");
+  } catch (const gl::GlError& e) {
+    std::printf("  gl: unavailable: %s\n", e.what());
+  }
   return 0;
 }
 

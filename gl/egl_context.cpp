@@ -1,0 +1,81 @@
+#include "habuffer/gl/egl_context.h"
+
+#include <epoxy/egl.h>
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "habuffer/gl/gl_error.h"
+
+namespace habuffer::gl {
+namespace {
+
+std::string egl_error(const char* what) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%s failed (EGL error 0x%04x)", what, eglGetError());
+  return buf;
+}
+
+std::optional<int> device_from_env() {
+  const char* v = std::getenv("HABUFFER_EGL_DEVICE");
+  if (v == nullptr || *v == '\0') return std::nullopt;
+  char* end = nullptr;
+  const long i = std::strtol(v, &end, 10);
+  if (*end != '\0' || i < 0) throw GlError(std::string("HABUFFER_EGL_DEVICE='") + v + "' is not a device index");
+  return static_cast<int>(i);
+}
+
+}  // namespace
+
+EglContext::EglContext(std::optional<int> device) {
+  if (!device) device = device_from_env();
+  EGLDisplay display = EGL_NO_DISPLAY;
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
+    EGLDeviceEXT devices[16];
+    EGLint count = 0;
+    if (eglQueryDevicesEXT(16, devices, &count) && count > 0) {
+      const int index = device.value_or(0);
+      if (index >= count)
+        throw GlError("EGL device " + std::to_string(index) + " requested, only " + std::to_string(count) + " present");
+      display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[index], nullptr);
+      description_ = "EGL device " + std::to_string(index) + " of " + std::to_string(count) + " (EGL_EXT_platform_device)";
+    }
+  }
+  if (display == EGL_NO_DISPLAY && epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
+    display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    description_ = "Mesa surfaceless (EGL_MESA_platform_surfaceless)";
+  }
+  if (display == EGL_NO_DISPLAY)
+    throw GlError("no headless EGL display: neither EGL_EXT_platform_device nor EGL_MESA_platform_surfaceless works");
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(display, &major, &minor)) throw GlError(egl_error("eglInitialize"));
+  display_ = display;
+  if (!eglBindAPI(EGL_OPENGL_API)) throw GlError(egl_error("eglBindAPI(OpenGL)"));
+  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+#ifndef NDEBUG
+                               EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE,
+#endif
+                               EGL_NONE};
+  context_ = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+  if (context_ == EGL_NO_CONTEXT) {
+    context_ = nullptr;
+    eglTerminate(display);
+    throw GlError(egl_error("creating an OpenGL 4.5 core context"));
+  }
+  make_current();
+}
+
+void EglContext::make_current() {
+  if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) throw GlError(egl_error("eglMakeCurrent"));
+}
+
+EglContext::~EglContext() {
+  if (display_ == nullptr) return;
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (context_ != nullptr) eglDestroyContext(display_, context_);
+  eglTerminate(display_);
+}
+
+}  // namespace habuffer::gl

@@ -1,0 +1,49 @@
+#include "habuffer/gl/gl_info.h"
+
+#include <epoxy/gl.h>
+
+namespace habuffer::gl {
+namespace {
+
+std::string gl_string(GLenum name) {
+  const auto* s = reinterpret_cast<const char*>(glGetString(name));
+  return s != nullptr ? s : "";
+}
+
+}  // namespace
+
+std::string to_string(AtomicMode mode) {
+  switch (mode) {
+    case AtomicMode::Native32: return "native32";
+    case AtomicMode::Native64: return "native64";
+    case AtomicMode::Emulated64: return "emulated64";
+  }
+  return "?";
+}
+
+GlInfo query_gl_info() {
+  GlInfo i;
+  i.vendor = gl_string(GL_VENDOR);
+  i.renderer = gl_string(GL_RENDERER);
+  i.version = gl_string(GL_VERSION);
+  i.glsl_version = gl_string(GL_SHADING_LANGUAGE_VERSION);
+  i.int64_types = epoxy_has_gl_extension("GL_ARB_gpu_shader_int64");
+  i.atomic_int64 = epoxy_has_gl_extension("GL_NV_shader_atomic_int64");
+  i.khr_debug = epoxy_has_gl_extension("GL_KHR_debug") || epoxy_gl_version() >= 43;
+  i.occlusion_query2 = epoxy_has_gl_extension("GL_ARB_occlusion_query2") || epoxy_gl_version() >= 33;
+  GLint64 ssbo = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &ssbo);
+  i.max_ssbo_bytes = ssbo;
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &i.max_framebuffer_width);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &i.max_framebuffer_height);
+  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &i.max_compute_work_groups_x);
+  return i;
+}
+
+std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info) {
+  std::vector<AtomicMode> modes{AtomicMode::Native32};
+  if (info.atomic_int64 && info.int64_types) modes.push_back(AtomicMode::Native64);
+  return modes;
+}
+
+}  // namespace habuffer::gl

@@ -1,0 +1,35 @@
+// What the current GL context offers the GPU path, and which atomic modes of
+// the HA-buffer it can run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace habuffer::gl {
+
+enum class AtomicMode {
+  Native32,    // L32 records, atomicMax on uint
+  Native64,    // L64 records, atomicMax on uint64_t (GL_NV_shader_atomic_int64)
+  Emulated64,  // L64 records on drivers without 64-bit atomics (per-slot lock from 32-bit atomics)
+};
+
+std::string to_string(AtomicMode mode);
+
+struct GlInfo {
+  std::string vendor, renderer, version, glsl_version;
+  bool int64_types = false;    // GL_ARB_gpu_shader_int64
+  bool atomic_int64 = false;   // GL_NV_shader_atomic_int64
+  bool khr_debug = false;
+  bool occlusion_query2 = false;
+  long long max_ssbo_bytes = 0;
+  int max_framebuffer_width = 0, max_framebuffer_height = 0;
+  int max_compute_work_groups_x = 0;
+};
+
+// Needs a current OpenGL 4.5 core context.
+GlInfo query_gl_info();
+
+// Modes this build can run on this context, in order of preference.
+std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info);
+
+}  // namespace habuffer::gl

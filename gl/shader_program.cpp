@@ -1,0 +1,80 @@
+#include "habuffer/gl/shader_program.h"
+
+#include <epoxy/gl.h>
+
+#include <utility>
+
+#include "habuffer/gl/gl_error.h"
+
+namespace habuffer::gl {
+namespace {
+
+std::string shader_log(GLuint shader) {
+  GLint length = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+  glGetShaderInfoLog(shader, length, nullptr, log.data());
+  return log.c_str();
+}
+
+std::string program_log(GLuint program) {
+  GLint length = 0;
+  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+  std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+  glGetProgramInfoLog(program, length, nullptr, log.data());
+  return log.c_str();
+}
+
+}  // namespace
+
+ShaderProgram ShaderProgram::compute(const std::string& source, const std::string& name) {
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    const std::string log = shader_log(shader);
+    glDeleteShader(shader);
+    throw GlError(name + " does not compile: " + log);
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glLinkProgram(program);
+  glDeleteShader(shader);
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = program_log(program);
+    glDeleteProgram(program);
+    throw GlError(name + " does not link: " + log);
+  }
+  return ShaderProgram(program);
+}
+
+ShaderProgram::~ShaderProgram() {
+  if (id_ != 0) glDeleteProgram(id_);
+}
+ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
+  if (this != &o) {
+    if (id_ != 0) glDeleteProgram(id_);
+    id_ = std::exchange(o.id_, 0);
+  }
+  return *this;
+}
+
+void ShaderProgram::set(const char* name, unsigned value) const {
+  const GLint loc = glGetUniformLocation(id_, name);
+  if (loc >= 0) glProgramUniform1ui(id_, loc, value);
+}
+void ShaderProgram::set(const char* name, unsigned x, unsigned y) const {
+  const GLint loc = glGetUniformLocation(id_, name);
+  if (loc >= 0) glProgramUniform2ui(id_, loc, x, y);
+}
+void ShaderProgram::set(const char* name, float value) const {
+  const GLint loc = glGetUniformLocation(id_, name);
+  if (loc >= 0) glProgramUniform1f(id_, loc, value);
+}
+
+}  // namespace habuffer::gl
