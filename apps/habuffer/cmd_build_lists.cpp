@@ -3,6 +3,9 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "habuffer/gl/compute_inserter.h"
+#include "habuffer/gl/egl_context.h"
+#include "habuffer/gl/gl_error.h"
 #include "habuffer/interchange.h"
 #include "hash_options.h"
 #include "report_json.h"
@@ -14,9 +17,27 @@ constexpr const char* kHelp =
     "usage: habuffer build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [--table WxH] [--layout 64|32]\n"
     "         [--age-bits N] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--block B] [--threads N]\n"
     "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
-    "         [--insert-mode auto|serial|atomic|owner]\n"
+    "         [--insert-mode auto|serial|atomic|owner] [--path cpu|gl]\n"
     "         [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
     "  --threads 0 uses every hardware thread; every insert mode builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n";
+
+// The GPU path: a headless context, compute insertion, and the read-back
+// imported into a CPU-side buffer so lists and dumps are written the same way.
+BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments) {
+  std::optional<gl::EglContext> context;
+  try {
+    context.emplace();
+  } catch (const gl::GlError& e) {
+    throw DataError(std::string("--path gl: no usable OpenGL: ") + e.what());
+  }
+  const BufferConfig& c = options.config;
+  OffsetSequence offsets = options.offsets.make(c.table, c.record_layout().max_age());
+  gl::ComputeInserter gpu(c, offsets, gl::AtomicMode::Native32);
+  const Counters counters = gpu.insert(fragments);
+  HaBuffer buffer(c, std::move(offsets));
+  buffer.import_state(gpu.read_table(), gpu.read_max_age());
+  return BuildResult{std::move(buffer), counters, {BuildAttempt{c.table, counters}}};
+}
 
 }  // namespace
 
@@ -34,8 +55,9 @@ int run_build_lists(const std::vector<std::string>& argv) {
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
   const auto t0 = std::chrono::steady_clock::now();
-  BuildResult result = build(options.config, options.offsets, fragments, options.insert, options.policy,
-                             options.max_attempts);
+  BuildResult result = options.gl ? build_on_gl(options, fragments)
+                                  : build(options.config, options.offsets, fragments, options.insert, options.policy,
+                                          options.max_attempts);
   const auto t1 = std::chrono::steady_clock::now();
   const BuildTiming timing{std::chrono::duration<double, std::milli>(t1 - t0).count(),
                            resolved_threads(options.insert.threads)};

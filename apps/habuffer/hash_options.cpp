@@ -9,7 +9,7 @@ namespace habuffer::cli {
 const std::set<std::string>& hash_valued_options() {
   static const std::set<std::string> names{"screen", "table", "layout", "age-bits", "offsets", "seed", "block",
                                            "threads", "early-cull", "iter-limit", "max-attempts",
-                                           "insert-mode"};
+                                           "insert-mode", "path"};
   return names;
 }
 
@@ -62,6 +62,13 @@ HashOptions parse_hash_options(const Args& args) {
   o.lossless = args.has("lossless");
   o.max_attempts = o.lossless ? args.u32("max-attempts", 16, 1, 1000) : 1;
   if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");
+
+  const std::string path = args.str("path", "cpu");
+  if (path != "cpu" && path != "gl") throw UsageError("option --path: '" + path + "' is not cpu or gl");
+  o.gl = path == "gl";
+  if (o.gl && c.layout != Layout::L32)
+    throw UsageError("--path gl runs --layout 32 only so far (the 64-bit atomic modes are not implemented yet)");
+  if (o.gl && o.lossless) throw UsageError("--path gl does not support --lossless yet");
 
   o.offsets_name = args.str("offsets", "random");
   o.offsets.seed = args.u64("seed", 1);

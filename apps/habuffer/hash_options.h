@@ -20,6 +20,7 @@ struct HashOptions {
   ResizePolicy policy;
   std::uint32_t max_attempts = 1;  // > 1 in lossless mode
   bool lossless = false;
+  bool gl = false;  // --path gl
 };
 
 // Names to add to a command's accepted options.

@@ -12,7 +12,7 @@ void extent(JsonWriter& json, std::string_view key, Extent e) {
 void write_build_stats(JsonWriter& json, const HashOptions& options, const BuildResult& result,
                        const BuildReport& report, const BuildTiming& timing) {
   const Counters& c = report.counters;
-  json.field("path", "cpu").field("layout", to_string(options.config.layout));
+  json.field("path", options.gl ? "gl" : "cpu").field("layout", to_string(options.config.layout));
   json.field("age_bits", options.config.age_bits).field("block", options.config.block);
   extent(json, "screen", options.config.screen);
   extent(json, "table", result.buffer.table());
