@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
 
@@ -87,6 +88,7 @@ ComputeInserter::ComputeInserter(const BufferConfig& config, const OffsetSequenc
   p.set("ha_max_age_cells_x", (config_.screen.x + config_.block - 1) / config_.block);
   p.set("ha_iter_limit", config_.iter_limit);
   p.set("ha_cull_tau", config_.early_cull_tau);
+  check_gl_errors("creating the compute inserter");
 }
 
 ComputeInserter::~ComputeInserter() {
@@ -115,6 +117,7 @@ Counters ComputeInserter::insert(std::span<const Fragment> fragments) {
   glDispatchCompute(groups, 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   const auto c = read(counters_, 8);
+  check_gl_errors("compute insertion");
   Counters counters;
   const std::uint64_t tally[HA_OUTCOME_COUNT] = {c[0], c[1], c[2], c[3], c[4], c[5]};
   counters.add_tally(tally);

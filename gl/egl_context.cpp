@@ -1,11 +1,13 @@
 #include "habuffer/gl/egl_context.h"
 
 #include <epoxy/egl.h>
+#include <epoxy/gl.h>
 
 #include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
 
 namespace habuffer::gl {
@@ -65,6 +67,7 @@ EglContext::EglContext(std::optional<int> device) {
     throw GlError(egl_error("creating an OpenGL 4.5 core context"));
   }
   make_current();
+  if (epoxy_has_gl_extension("GL_KHR_debug") || epoxy_gl_version() >= 43) install_debug_output();
 }
 
 void EglContext::make_current() {

@@ -4,6 +4,7 @@
 
 #include <utility>
 
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
 
 namespace habuffer::gl {
@@ -37,6 +38,7 @@ ShaderProgram ShaderProgram::compute(const std::string& source, const std::strin
   if (!ok) {
     const std::string log = shader_log(shader);
     glDeleteShader(shader);
+    discard_gl_errors();  // the log says it all
     throw GlError(name + " does not compile: " + log);
   }
   const GLuint program = glCreateProgram();
@@ -47,6 +49,7 @@ ShaderProgram ShaderProgram::compute(const std::string& source, const std::strin
   if (!ok) {
     const std::string log = program_log(program);
     glDeleteProgram(program);
+    discard_gl_errors();
     throw GlError(name + " does not link: " + log);
   }
   return ShaderProgram(program);

@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include "habuffer/gl/compute_inserter.h"
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
@@ -40,6 +41,19 @@ TEST(Gl, ShaderErrorsCarryTheCompileLog) {
     EXPECT_NE(what.find("broken shader does not compile"), std::string::npos) << what;
     EXPECT_NE(what.find("no_such_function"), std::string::npos) << what;
   }
+}
+
+TEST(Gl, KhrDebugErrorsOfOurContextBecomeExceptions) {
+  context();
+  std::vector<std::string> logged;
+  gl::set_log_sink([&](const std::string& m) { logged.push_back(m); });
+  gl::set_throw_on_gl_error(true);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 100000, 0);  // binding index far beyond the limit: GL_INVALID_VALUE
+  EXPECT_THROW(gl::check_gl_errors("binding test"), gl::GlError);
+  EXPECT_FALSE(logged.empty());
+  EXPECT_NO_THROW(gl::check_gl_errors("nothing pending"));
+  gl::set_throw_on_gl_error(false);
+  gl::set_log_sink(nullptr);
 }
 
 TEST(Gl, SharedGlslCompilesForTheRunnableModes) {
