@@ -10,7 +10,7 @@
 namespace habuffer::bench {
 namespace {
 
-void BM_GlInsertNative32(benchmark::State& state) {
+void run_gl_insert(benchmark::State& state, gl::AtomicMode mode, Layout layout) {
   static gl::EglContext context;
   context.make_current();
   const double load = static_cast<double>(state.range(0)) / 100.0;
@@ -19,8 +19,8 @@ void BM_GlInsertNative32(benchmark::State& state) {
   BufferConfig c;
   c.screen = screen;
   c.table = table_for_load(screen, frags.size(), load);
-  c.layout = Layout::L32;
-  gl::ComputeInserter gpu(c, OffsetSequence::random(c.table, c.record_layout().max_age(), 7), gl::AtomicMode::Native32);
+  c.layout = layout;
+  gl::ComputeInserter gpu(c, OffsetSequence::random(c.table, c.record_layout().max_age(), 7), mode);
   Counters n;
   for (auto _ : state) {
     state.PauseTiming();
@@ -31,6 +31,9 @@ void BM_GlInsertNative32(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
   state.counters["failed"] = static_cast<double>(n.failures());
 }
+void BM_GlInsertNative32(benchmark::State& s) { run_gl_insert(s, gl::AtomicMode::Native32, Layout::L32); }
+void BM_GlInsertEmulated64(benchmark::State& s) { run_gl_insert(s, gl::AtomicMode::Emulated64, Layout::L64); }
+BENCHMARK(BM_GlInsertEmulated64)->ArgName("load")->Arg(10)->Arg(50)->Arg(80)->Arg(95)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GlInsertNative32)->ArgName("load")->Arg(10)->Arg(50)->Arg(80)->Arg(95)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "habuffer/ha_buffer.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -185,13 +186,21 @@ std::uint64_t HaBuffer::slot(std::uint64_t s) const {
   return std::visit([&](const auto& st) { return std::uint64_t{st.data()[s]}; }, impl_->storage);
 }
 
-void HaBuffer::import_state(std::span<const std::uint32_t> table_words, std::span<const std::uint32_t> max_ages) {
-  if (impl_->layout.layout() != Layout::L32) throw std::invalid_argument("32-bit words import into an L32 buffer only");
+void HaBuffer::import_state(std::span<const std::uint64_t> table_words, std::span<const std::uint32_t> max_ages) {
   if (table_words.size() != slot_count() || max_ages.size() != impl_->max_age.ages().size())
     throw std::invalid_argument("imported state has " + std::to_string(table_words.size()) + " slots and " +
                                 std::to_string(max_ages.size()) + " max-age cells, the buffer " +
                                 std::to_string(slot_count()) + " and " + std::to_string(impl_->max_age.ages().size()));
-  std::visit([&](auto& st) { std::copy(table_words.begin(), table_words.end(), st.data()); }, impl_->storage);
+  std::visit(
+      [&](auto& st) {
+        using Word = std::remove_pointer_t<decltype(st.data())>;
+        for (std::size_t s = 0; s < table_words.size(); ++s) {
+          if (table_words[s] > std::numeric_limits<Word>::max())
+            throw std::invalid_argument("imported slot " + std::to_string(s) + " does not fit the L32 layout");
+          st.data()[s] = static_cast<Word>(table_words[s]);
+        }
+      },
+      impl_->storage);
   std::copy(max_ages.begin(), max_ages.end(), impl_->max_age.data());
 }
 

@@ -12,7 +12,7 @@
 namespace habuffer::gl {
 namespace {
 
-constexpr GLuint kBindings = 5;  // table, max age, offsets, fragments, counters
+constexpr GLuint kBindings = 6;  // table, max age, offsets, fragments, counters, locks
 
 // Saves the program and shader-storage bindings we use; restores them on exit.
 class StateGuard {
@@ -71,11 +71,18 @@ ComputeInserter::ComputeInserter(const BufferConfig& config, const OffsetSequenc
   config_.table = config.table_or_screen();
   if (mode == AtomicMode::Native32 && config_.layout != Layout::L32)
     throw GlError("atomic mode native32 holds L32 records only");
+  if (mode != AtomicMode::Native32 && config_.layout != Layout::L64)
+    throw GlError("atomic mode " + to_string(mode) + " holds L64 records only");
   if (config_.table.area() > UINT32_MAX) throw GlError("the GPU path indexes at most 2^32 - 1 slots, table " + config_.table.str());
   const std::uint32_t amax = config_.record_layout().max_age();
   if (offsets.table() != config_.table || offsets.size() != amax) throw GlError("offsets do not match the table and age bits");
   cells_ = ((config_.screen.x + config_.block - 1) / config_.block) * ((config_.screen.y + config_.block - 1) / config_.block);
-  table_ = make_buffer(static_cast<GLsizeiptr>(config_.table.area() * 4), nullptr);
+  word_bytes_ = config_.record_layout().word_bytes();
+  table_ = make_buffer(static_cast<GLsizeiptr>(config_.table.area() * word_bytes_), nullptr);
+  if (mode == AtomicMode::Emulated64) {
+    locks_ = make_buffer(static_cast<GLsizeiptr>(config_.table.area() * 4), nullptr);
+    zero(locks_);  // every critical section leaves its lock at 0 again
+  }
   max_age_ = make_buffer(static_cast<GLsizeiptr>(cells_) * 4, nullptr);
   offsets_ = make_buffer(static_cast<GLsizeiptr>(offsets.size() * sizeof(glm::uvec2)), offsets.values().data());
   counters_ = make_buffer(8 * 4, nullptr);
@@ -92,8 +99,8 @@ ComputeInserter::ComputeInserter(const BufferConfig& config, const OffsetSequenc
 }
 
 ComputeInserter::~ComputeInserter() {
-  const GLuint buffers[] = {table_, max_age_, offsets_, fragments_, counters_};
-  glDeleteBuffers(5, buffers);
+  const GLuint buffers[] = {table_, max_age_, offsets_, fragments_, counters_, locks_};
+  glDeleteBuffers(6, buffers);
 }
 
 void ComputeInserter::clear() {
@@ -110,8 +117,9 @@ Counters ComputeInserter::insert(std::span<const Fragment> fragments) {
   fragments_ = make_buffer(static_cast<GLsizeiptr>(fragments.size_bytes()), fragments.data());
   zero(counters_);
   glUseProgram(program_.id());
-  const GLuint buffers[] = {table_, max_age_, offsets_, fragments_, counters_};
-  for (GLuint i = 0; i < kBindings; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
+  const GLuint buffers[] = {table_, max_age_, offsets_, fragments_, counters_, locks_};
+  for (GLuint i = 0; i < kBindings; ++i)
+    if (buffers[i] != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
   program_.set("ha_fragment_count", static_cast<unsigned>(fragments.size()));
   const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((fragments.size() + 63) / 64, 1, 65535));
   glDispatchCompute(groups, 1, 1);
@@ -125,7 +133,17 @@ Counters ComputeInserter::insert(std::span<const Fragment> fragments) {
   return counters;
 }
 
-std::vector<std::uint32_t> ComputeInserter::read_table() const { return read(table_, config_.table.area()); }
+std::vector<std::uint64_t> ComputeInserter::read_table() const {
+  const std::uint64_t slots = config_.table.area();
+  std::vector<std::uint64_t> out(slots);
+  if (word_bytes_ == 8) {
+    glGetNamedBufferSubData(table_, 0, static_cast<GLsizeiptr>(slots * 8), out.data());
+  } else {
+    const auto words = read(table_, slots);
+    std::copy(words.begin(), words.end(), out.begin());
+  }
+  return out;
+}
 std::vector<std::uint32_t> ComputeInserter::read_max_age() const { return read(max_age_, cells_); }
 
 }  // namespace habuffer::gl

@@ -42,7 +42,7 @@ GlInfo query_gl_info() {
 
 std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info) {
   std::vector<AtomicMode> modes{AtomicMode::Native32};
-  if (info.atomic_int64 && info.int64_types) modes.push_back(AtomicMode::Native64);
+  if (info.int64_types) modes.push_back(AtomicMode::Emulated64);
   return modes;
 }
 

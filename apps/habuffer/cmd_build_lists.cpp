@@ -32,7 +32,11 @@ BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fr
   }
   const BufferConfig& c = options.config;
   OffsetSequence offsets = options.offsets.make(c.table, c.record_layout().max_age());
-  gl::ComputeInserter gpu(c, offsets, gl::AtomicMode::Native32);
+  // L32: native 32-bit atomics; L64: the 32-bit-lock emulation (native64 is not implemented yet).
+  const gl::AtomicMode mode = c.layout == Layout::L32 ? gl::AtomicMode::Native32 : gl::AtomicMode::Emulated64;
+  if (mode == gl::AtomicMode::Emulated64 && !gl::query_gl_info().int64_types)
+    throw DataError("--path gl --layout 64: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  gl::ComputeInserter gpu(c, offsets, mode);
   const Counters counters = gpu.insert(fragments);
   HaBuffer buffer(c, std::move(offsets));
   buffer.import_state(gpu.read_table(), gpu.read_max_age());

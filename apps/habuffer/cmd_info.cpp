@@ -38,7 +38,7 @@ int run_info(const std::vector<std::string>& argv) {
     std::string modes;
     for (gl::AtomicMode m : gl::runnable_atomic_modes(info)) modes += (modes.empty() ? "" : ", ") + gl::to_string(m);
     std::printf("    atomic modes runnable: %s; chosen: L32 -> native32, L64 -> %s\n", modes.c_str(),
-                info.atomic_int64 ? "native64 (not implemented yet)" : "emulated64 (not implemented yet)");
+                info.int64_types ? "emulated64 (native64 is not implemented yet)" : "none (no 64-bit shader types)");
   } catch (const gl::GlError& e) {
     std::printf("  gl: unavailable: %s\n", e.what());
   }

@@ -66,8 +66,6 @@ HashOptions parse_hash_options(const Args& args) {
   const std::string path = args.str("path", "cpu");
   if (path != "cpu" && path != "gl") throw UsageError("option --path: '" + path + "' is not cpu or gl");
   o.gl = path == "gl";
-  if (o.gl && c.layout != Layout::L32)
-    throw UsageError("--path gl runs --layout 32 only so far (the 64-bit atomic modes are not implemented yet)");
   if (o.gl && o.lossless) throw UsageError("--path gl does not support --lossless yet");
 
   o.offsets_name = args.str("offsets", "random");

@@ -5,6 +5,8 @@
 //
 // Host environment provides, besides ha_record.glsl and ha_probe.glsl:
 // ha_word ha_atomic_max_slot(ha_index s, ha_word r) (returns the old value),
+// bool ha_atomic_gave_up() (an emulated atomic hit its spin bound: the call
+// fails as failed_iter; always false where atomics are native),
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
 // ha_cull_tau (0 = early cull off), and HA_INOUT(T) (GLSL: inout T; C++: T&).
 
@@ -41,6 +43,7 @@ uint ha_insert_limit(HaCarry c) {
 uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
   c.iter += 1u;
   ha_word old = ha_atomic_max_slot(ha_slot(h), c.r);
+  if (ha_atomic_gave_up()) return HA_FAILED_ITER;
   if (old == c.r) return HA_DUPLICATE;
   bool cull = ha_cull_tau > 0.0f;
   if (old < c.r) {

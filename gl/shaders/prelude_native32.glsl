@@ -23,6 +23,7 @@ layout(std430, binding = 2) readonly buffer HaOffsets { uvec2 ha_offsets[]; };
 uvec2 ha_offset(uint i) { return ha_offsets[i]; }
 uint ha_div_block(uint v) { return v / ha_block; }
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) { return atomicMax(ha_table[s], r); }
+bool ha_atomic_gave_up() { return false; }
 void ha_atomic_max_age(uint cell, uint age) { atomicMax(ha_max_ages[cell], age); }
 ha_word ha_load_slot(ha_index s) { return ha_table[s]; }
 uint ha_load_max_age(uint cell) { return ha_max_ages[cell]; }

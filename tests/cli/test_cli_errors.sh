@@ -76,12 +76,13 @@ ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- info
 grep -q "gl: available through" out.txt && pass=$((pass + 1)) || { echo "FAIL: info has no GL path"; cat out.txt; fail=$((fail + 1)); }
 # --path gl and --path cpu write identical lists, table and max-age dumps
 # (L32, native32), on streams of several shapes and table sizes.
-for cfg in "48x32 48x32 4 coherent 0.8" "40x40 61x47 8 random 0.7" "64x16 64x16 6 random 0.9"; do
-  read -r screen table bits kind load <<<"$cfg"
+for cfg in "48x32 48x32 4 coherent 0.8 32" "40x40 61x47 8 random 0.7 32" "64x16 64x16 6 random 0.9 32" \
+  "48x32 48x32 4 coherent 0.8 64" "40x40 61x47 8 random 0.7 64"; do
+  read -r screen table bits kind load layout <<<"$cfg"
   "$bin" generate --screen "$screen" --table "$table" --load "$load" --stream "$kind" --seed 3 --out gen_$screen.csv
   for path in cpu gl; do
     ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- build-lists --in gen_$screen.csv --out l_$path.csv --screen "$screen" \
-      --table "$table" --layout 32 --age-bits "$bits" --seed 5 --threads 2 --path $path --dump-table t_$path.csv \
+      --table "$table" --layout "$layout" --age-bits "$bits" --seed 5 --threads 2 --path $path --dump-table t_$path.csv \
       --dump-max-age m_$path.csv --stats s_$path.json
   done
   if cmp -s l_cpu.csv l_gl.csv && cmp -s t_cpu.csv t_gl.csv && cmp -s m_cpu.csv m_gl.csv && [[ $(wc -l <t_gl.csv) -gt 10 ]]; then
@@ -91,7 +92,6 @@ for cfg in "48x32 48x32 4 coherent 0.8" "40x40 61x47 8 random 0.7" "64x16 64x16 
   fi
 done
 grep -q '"path":"gl"' s_gl.json && pass=$((pass + 1)) || { echo "FAIL: gl stats path"; fail=$((fail + 1)); }
-expect 2 "--path gl runs --layout 32 only so far" -- build-lists --in good.csv --out l.csv --screen 2x2 --path gl
 expect 2 "option --path: 'gpu' is not cpu or gl" -- build-lists --in good.csv --out l.csv --screen 2x2 --path gpu
 expect 0 "" -- stats --screen 32x32 --trials 2 --loads 0.5,0.9 --probing all --policy all --out st.csv
 if [[ "$(head -1 st.csv | cut -d, -f1-6)" != "variant,load,stored_load,trials,mean_age,mean_age_ci95" || $(wc -l <st.csv) -ne 9 ]]; then

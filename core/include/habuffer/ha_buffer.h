@@ -73,9 +73,9 @@ class HaBuffer {
 
   // Replaces T and M with state built elsewhere (the GPU path's read-back),
   // so traversal, compositing and the dumps work on it. Throws
-  // std::invalid_argument when the sizes differ from this buffer's or the
-  // buffer is not L32 (the GPU's 64-bit modes are not implemented yet).
-  void import_state(std::span<const std::uint32_t> table_words, std::span<const std::uint32_t> max_ages);
+  // std::invalid_argument when the sizes differ from this buffer's or an L32
+  // buffer is given a word above 32 bits.
+  void import_state(std::span<const std::uint64_t> table_words, std::span<const std::uint32_t> max_ages);
 
   // Pixel (x, y)'s list, nearest first, by traversal (SPEC 7).
   void list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const;

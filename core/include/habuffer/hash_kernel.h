@@ -81,6 +81,9 @@ class HashKernel {
     }
   }
 
+  // CPU atomics never give up (the compare-exchange loop is lock-free).
+  static bool ha_atomic_gave_up() { return false; }
+
   void ha_atomic_max_age(uint cell, uint age) {
     if constexpr (Concurrent) {
       std::atomic_ref<std::uint32_t> m(max_age_[cell]);

@@ -2,7 +2,7 @@
 // offsets in shader storage buffers, and a compute shader (the shared GLSL
 // insert) that inserts a fragment stream held in a buffer. Needs a current
 // OpenGL 4.5 core context; restores the GL state it touches (current program
-// and shader-storage bindings 0-4) after every call.
+// and shader-storage bindings 0-5) after every call.
 #pragma once
 
 #include <cstdint>
@@ -29,14 +29,16 @@ class ComputeInserter {
   // Inserts into the current table (clear() first for a new frame).
   Counters insert(std::span<const Fragment> fragments);
   void clear();
-  [[nodiscard]] std::vector<std::uint32_t> read_table() const;
+  // Slots widened to 64 bits (L32 records in the low half).
+  [[nodiscard]] std::vector<std::uint64_t> read_table() const;
   [[nodiscard]] std::vector<std::uint32_t> read_max_age() const;
 
  private:
   BufferConfig config_;
   std::uint32_t cells_ = 0;
   ShaderProgram program_;
-  unsigned table_ = 0, max_age_ = 0, offsets_ = 0, fragments_ = 0, counters_ = 0;
+  std::uint32_t word_bytes_ = 4;
+  unsigned table_ = 0, max_age_ = 0, offsets_ = 0, fragments_ = 0, counters_ = 0, locks_ = 0;
 };
 
 }  // namespace habuffer::gl

@@ -14,6 +14,7 @@ extern const char* const kHaProbe;
 extern const char* const kHaInsert;
 extern const char* const kHaTraverse;
 extern const char* const kPreludeNative32;
+extern const char* const kPreludeEmulated64;
 extern const char* const kInsertStreamCompute;
 
 // #version line, the atomic mode's prelude, then constants, record, probe,
