@@ -20,7 +20,6 @@ KernelParams make_params(const BufferConfig& c, const MaxAgeTable& m) {
   KernelParams p;
   p.age_bits = c.age_bits;
   p.payload_bits = c.layout == Layout::L64 ? 32 : 0;
-  p.screen = c.screen;
   p.table = c.table_or_screen();
   p.block = c.block;
   p.max_age_cells_x = m.cells().x;
@@ -170,13 +169,7 @@ std::uint64_t HaBuffer::clear() {
 }
 
 std::uint64_t HaBuffer::count_stored() const {
-  return std::visit(
-      [](const auto& s) {
-        std::uint64_t n = 0;
-        for (auto r : s.slots()) n += r != 0;
-        return n;
-      },
-      impl_->storage);
+  return std::visit([](const auto& s) { return s.count_nonempty(); }, impl_->storage);
 }
 
 std::uint64_t HaBuffer::slot_count() const { return impl_->config.table.area(); }

@@ -41,17 +41,17 @@ std::uint64_t RecordLayout::pack(std::uint32_t age, std::uint32_t code, std::uin
   return with_codec(layout_, age_bits_, [&](auto c) { return std::uint64_t{c.ha_pack(age, code, data)}; });
 }
 std::uint32_t RecordLayout::age(std::uint64_t r) const {
-  return with_codec(layout_, age_bits_, [&](auto c) { return c.ha_age(static_cast<decltype(c.ha_pack(0, 0, 0))>(r)); });
+  return with_codec(layout_, age_bits_, [&](auto c) { return c.ha_age(static_cast<typename decltype(c)::ha_word>(r)); });
 }
 std::uint32_t RecordLayout::code(std::uint64_t r) const {
-  return with_codec(layout_, age_bits_, [&](auto c) { return c.ha_code(static_cast<decltype(c.ha_pack(0, 0, 0))>(r)); });
+  return with_codec(layout_, age_bits_, [&](auto c) { return c.ha_code(static_cast<typename decltype(c)::ha_word>(r)); });
 }
 std::uint32_t RecordLayout::data(std::uint64_t r) const {
-  return with_codec(layout_, age_bits_, [&](auto c) { return c.ha_data(static_cast<decltype(c.ha_pack(0, 0, 0))>(r)); });
+  return with_codec(layout_, age_bits_, [&](auto c) { return c.ha_data(static_cast<typename decltype(c)::ha_word>(r)); });
 }
 std::uint64_t RecordLayout::with_age(std::uint64_t r, std::uint32_t age) const {
   return with_codec(layout_, age_bits_, [&](auto c) {
-    return std::uint64_t{c.ha_with_age(static_cast<decltype(c.ha_pack(0, 0, 0))>(r), age)};
+    return std::uint64_t{c.ha_with_age(static_cast<typename decltype(c)::ha_word>(r), age)};
   });
 }
 bool RecordLayout::depth_valid(float t) { return RecordCodec<std::uint64_t>(HA_DEFAULT_AGE_BITS).ha_depth_valid(t); }

@@ -60,9 +60,15 @@ SlotStorage<Word>& SlotStorage<Word>::operator=(SlotStorage&& o) noexcept {
 }
 
 template <class Word>
-std::uint64_t SlotStorage<Word>::clear_and_count() {
+std::uint64_t SlotStorage<Word>::count_nonempty() const {
   std::uint64_t n = 0;
   for (std::uint64_t i = 0; i < slots_; ++i) n += data_[i] != 0;
+  return n;
+}
+
+template <class Word>
+std::uint64_t SlotStorage<Word>::clear_and_count() {
+  const std::uint64_t n = count_nonempty();
   clear();
   return n;
 }

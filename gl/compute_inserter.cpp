@@ -90,7 +90,6 @@ ComputeInserter::ComputeInserter(const BufferConfig& config, const OffsetSequenc
   const ShaderProgram& p = program_;
   p.set("ha_age_bits", config_.age_bits);
   p.set("ha_table_size", config_.table.x, config_.table.y);
-  p.set("ha_screen_size", config_.screen.x, config_.screen.y);
   p.set("ha_block", config_.block);
   p.set("ha_max_age_cells_x", (config_.screen.x + config_.block - 1) / config_.block);
   p.set("ha_iter_limit", config_.iter_limit);

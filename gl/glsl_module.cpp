@@ -9,7 +9,7 @@ std::string ha_module(AtomicMode mode) {
   if (mode == AtomicMode::Native64) throw GlError("atomic mode native64 is not implemented yet");
   const char* prelude = mode == AtomicMode::Native32 ? kPreludeNative32 : kPreludeEmulated64;
   std::string s = "#version 450 core\n";
-  for (const char* part : {prelude, kHaConstants, kHaRecord, kHaProbe, kHaInsert, kHaTraverse}) {
+  for (const char* part : {prelude, kPreludeCommon, kHaConstants, kHaRecord, kHaProbe, kHaInsert, kHaTraverse}) {
     s += part;
     s += '\n';
   }

@@ -82,7 +82,6 @@ TEST(Extremes, AgeBitsTwelveAndDepthBitsTwentyAtTheirLimits) {
 // records beyond slot 2^32.
 TEST(Extremes, SlotIndicesBeyondTwoToTheThirtyTwo) {
   KernelParams p;
-  p.screen = {65600, 65600};
   p.table = {65600, 65600};
   p.max_age_cells_x = 8200;
   const glm::uvec2 offsets[1] = {{65599, 65599}};

@@ -1,9 +1,16 @@
 #include "cli_args.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 
 namespace habuffer::cli {
+
+bool print_help(const std::vector<std::string>& argv, const char* usage) {
+  if (argv.size() != 1 || argv[0] != "--help") return false;
+  std::fputs(usage, stdout);
+  return true;
+}
 
 Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& valued,
            const std::set<std::string>& flags) {

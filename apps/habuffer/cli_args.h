@@ -20,6 +20,9 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Prints `usage` and returns true when the only argument is --help.
+bool print_help(const std::vector<std::string>& argv, const char* usage);
+
 class Args {
  public:
   // valued: options that take a value; flags: switches. Throws UsageError on

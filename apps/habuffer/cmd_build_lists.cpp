@@ -46,10 +46,7 @@ BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fr
 }  // namespace
 
 int run_build_lists(const std::vector<std::string>& argv) {
-  if (argv.size() == 1 && argv[0] == "--help") {
-    std::fputs(kHelp, stdout);
-    return 0;
-  }
+  if (print_help(argv, kHelp)) return 0;
   auto valued = hash_valued_options();
   valued.insert({"in", "out", "stats", "dump-table", "dump-max-age"});
   const Args args(argv, valued, hash_flag_options());

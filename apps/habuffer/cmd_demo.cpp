@@ -28,13 +28,11 @@ bool same_tables(const HaBuffer& a, const HaBuffer& b) {
 }  // namespace
 
 int run_demo(const std::vector<std::string>& argv) {
-  if (argv.size() == 1 && argv[0] == "--help") {
-    std::puts(
+  if (print_help(argv,
         "usage: habuffer demo [--screen WxH (1024x1024)] [--stream coherent|random] [--fragments N (screen area)]\n"
         "         [--load L (0.5)] [--seed N] [--threads N (0: all)] [--stats STATS.json] [--lists LISTS.csv]\n"
-        "         and the hash options of build-lists (--layout, --age-bits, --offsets, --block, ...)");
+        "         and the hash options of build-lists (--layout, --age-bits, --offsets, --block, ...)\n"))
     return 0;
-  }
   auto valued = hash_valued_options();
   valued.insert({"stream", "fragments", "load", "stats", "lists"});
   std::vector<std::string> with_defaults = argv;

@@ -10,13 +10,11 @@
 namespace habuffer::cli {
 
 int run_generate(const std::vector<std::string>& argv) {
-  if (argv.size() == 1 && argv[0] == "--help") {
-    std::puts(
+  if (print_help(argv,
         "usage: habuffer generate --screen WxH --out FRAGS.csv [--stream coherent|random]\n"
         "         (--fragments N | --load L [--table WxH]) [--seed N] [--min-side S] [--max-side S]\n"
-        "  --load L: as many fragments as fill L of the table's slots (default table: the screen).");
+        "  --load L: as many fragments as fill L of the table's slots (default table: the screen).\n"))
     return 0;
-  }
   const Args args(argv, {"screen", "out", "stream", "fragments", "load", "table", "seed", "min-side", "max-side"}, {});
   const auto screen = args.extent("screen");
   if (!screen) throw UsageError("option --screen is required");

@@ -13,11 +13,8 @@
 namespace habuffer::cli {
 
 int run_info(const std::vector<std::string>& argv) {
-  const Args args(argv, {}, {"help"});
-  if (args.has("help")) {
-    std::puts("usage: habuffer info");
-    return 0;
-  }
+  if (print_help(argv, "usage: habuffer info\n")) return 0;
+  const Args args(argv, {}, {});
   std::printf("habuffer %s\n", HABUFFER_VERSION);
   std::printf("build type: %s%s%s\n", HABUFFER_BUILD_TYPE, *HABUFFER_SANITIZE_NAME ? ", sanitizers: " : "",
               HABUFFER_SANITIZE_NAME);

@@ -10,13 +10,11 @@
 namespace habuffer::cli {
 
 int run_offsets(const std::vector<std::string>& argv) {
-  if (argv.size() == 1 && argv[0] == "--help") {
-    std::puts(
+  if (print_help(argv,
         "usage: habuffer offsets --table WxH [--generator random|farthest] [--seed N] [--age-bits N | --count N]\n"
         "         [--out OFFSETS.csv] [--quality QUALITY.csv]\n"
-        "  Prints the generation time. --quality writes k,min_distance for the first k offsets, k = 2..count.");
+        "  Prints the generation time. --quality writes k,min_distance for the first k offsets, k = 2..count.\n"))
     return 0;
-  }
   const Args args(argv, {"table", "generator", "seed", "age-bits", "count", "out", "quality"}, {});
   const auto table = args.extent("table");
   if (!table) throw UsageError("option --table is required");

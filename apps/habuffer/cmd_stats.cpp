@@ -76,15 +76,13 @@ void write_json(const std::string& path, const ExperimentConfig& c, const std::v
 }  // namespace
 
 int run_stats(const std::vector<std::string>& argv) {
-  if (argv.size() == 1 && argv[0] == "--help") {
-    std::puts(
+  if (print_help(argv,
         "usage: habuffer stats [--screen WxH (128x128)] [--table WxH (screen)] [--loads L1,L2,... (0.5,0.8,0.9)]\n"
         "         [--trials N (5)] [--seed S] [--stream random|coherent|stacked|hot] [--spread S]\n"
         "         [--probing coherent,independent|all] [--policy robinhood,fcfs|all] [--offsets random,farthest|all]\n"
         "         [--age-bits N] [--block B] [--out FILE.json|FILE.csv]\n"
-        "  Fragments per trial = load x table slots; every variant sees the same streams.");
+        "  Fragments per trial = load x table slots; every variant sees the same streams.\n"))
     return 0;
-  }
   const Args args(argv, {"screen", "table", "loads", "trials", "seed", "stream", "spread", "probing", "policy",
                          "offsets", "age-bits", "block", "out"},
                   {});

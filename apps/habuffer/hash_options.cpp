@@ -80,7 +80,11 @@ HashOptions parse_hash_options(const Args& args) {
     o.offsets.generator = OffsetGenerator::List;
     o.offsets.list = read_offset_rows(o.offsets_name);
     // Validate now so the error names the file before any work is done.
-    (void)read_offsets(o.offsets_name, c.table, c.record_layout().max_age());
+    try {
+      (void)o.offsets.make(c.table, c.record_layout().max_age());
+    } catch (const std::invalid_argument& e) {
+      throw DataError(o.offsets_name + ": " + e.what());
+    }
   }
   return o;
 }

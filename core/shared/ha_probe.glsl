@@ -1,5 +1,5 @@
 // Coherent probing of SPEC 3-5, written once for both paths.
-// Host environment provides: uvec2 ha_table_size (H), uvec2 ha_screen_size (V),
+// Host environment provides: uvec2 ha_table_size (H),
 // uint ha_div_block(uint v) (v / B for the max-age block B), uint ha_max_age_cells_x, uvec2 ha_offset(uint i) (O[i],
 // already cyclic for tables smaller than AMAX), and the slot index type
 // ha_index (uint64_t on the CPU path).

@@ -16,7 +16,6 @@ namespace habuffer {
 struct KernelParams {
   std::uint32_t age_bits = HA_DEFAULT_AGE_BITS;
   std::uint32_t payload_bits = 32;  // 32 for L64, 0 for L32
-  Extent screen;
   Extent table;
   std::uint32_t block = HA_DEFAULT_BLOCK;
   std::uint32_t max_age_cells_x = 0;
@@ -38,7 +37,6 @@ class HashKernel {
       : ha_age_bits(params.age_bits),
         ha_payload_bits(params.payload_bits),
         ha_table_size(params.table.x, params.table.y),
-        ha_screen_size(params.screen.x, params.screen.y),
         ha_block(params.block),
         ha_max_age_cells_x(params.max_age_cells_x),
         ha_iter_limit(params.iter_limit),
@@ -53,7 +51,6 @@ class HashKernel {
   uint ha_age_bits;
   uint ha_payload_bits;
   uvec2 ha_table_size;
-  uvec2 ha_screen_size;
   uint ha_block;
   uint ha_max_age_cells_x;
   uint ha_iter_limit;

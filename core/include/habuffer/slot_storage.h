@@ -30,6 +30,7 @@ class SlotStorage {
   // Zeroes every slot; returns how many were non-empty (the CPU counterpart
   // of the GL clear pass under an occlusion query).
   std::uint64_t clear_and_count();
+  [[nodiscard]] std::uint64_t count_nonempty() const;
   void clear();
 
  private:

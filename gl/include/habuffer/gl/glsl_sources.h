@@ -13,11 +13,12 @@ extern const char* const kHaRecord;
 extern const char* const kHaProbe;
 extern const char* const kHaInsert;
 extern const char* const kHaTraverse;
+extern const char* const kPreludeCommon;
 extern const char* const kPreludeNative32;
 extern const char* const kPreludeEmulated64;
 extern const char* const kInsertStreamCompute;
 
-// #version line, the atomic mode's prelude, then constants, record, probe,
+// #version line, the atomic mode's prelude, the common prelude, then constants, record, probe,
 // insert and traversal: the module a host shader (or our entries) appends to.
 std::string ha_module(AtomicMode mode);
 
