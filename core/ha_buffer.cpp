@@ -86,7 +86,7 @@ struct HaBuffer::Impl {
     // Outcomes are tallied in a local array: counters in memory could alias
     // the table's words and force a store per fragment.
     std::uint64_t tally[HA_OUTCOME_COUNT] = {};
-    for (const Fragment& f : frags) ++tally[k.ha_insert(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
+    for (const Fragment& f : frags) ++tally[k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
     counters.add_tally(tally);
   }
 
@@ -160,7 +160,7 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {
   check_on_screen({&f, 1}, impl_->config.screen);
-  return impl_->with_kernel<false>([&](auto& k) { return k.ha_insert(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+  return impl_->with_kernel<false>([&](auto& k) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
 }
 
 std::uint64_t HaBuffer::clear() {

@@ -42,8 +42,16 @@ GlInfo query_gl_info() {
 
 std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info) {
   std::vector<AtomicMode> modes{AtomicMode::Native32};
+  if (info.int64_types && info.atomic_int64) modes.push_back(AtomicMode::Native64);
   if (info.int64_types) modes.push_back(AtomicMode::Emulated64);
   return modes;
+}
+
+std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout) {
+  if (layout == Layout::L32) return AtomicMode::Native32;
+  if (info.int64_types && info.atomic_int64) return AtomicMode::Native64;
+  if (info.int64_types) return AtomicMode::Emulated64;
+  return std::nullopt;
 }
 
 }  // namespace habuffer::gl

@@ -1,21 +1,87 @@
 #include <string>
 
+#include <epoxy/gl.h>
+
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
 
 namespace habuffer::gl {
+namespace {
 
-std::string ha_module(AtomicMode mode) {
-  if (mode == AtomicMode::Native64) throw GlError("atomic mode native64 is not implemented yet");
-  const char* prelude = mode == AtomicMode::Native32 ? kPreludeNative32 : kPreludeEmulated64;
+const char* mode_extensions(AtomicMode mode) {
+  switch (mode) {
+    case AtomicMode::Native32: return "";
+    case AtomicMode::Native64:
+      return "#extension GL_ARB_gpu_shader_int64 : require\n#extension GL_NV_shader_atomic_int64 : require\n";
+    case AtomicMode::Emulated64: return "#extension GL_ARB_gpu_shader_int64 : require\n";
+  }
+  return "";
+}
+
+const char* mode_prelude(AtomicMode mode) {
+  switch (mode) {
+    case AtomicMode::Native32: return kPreludeNative32;
+    case AtomicMode::Native64: return kPreludeNative64;
+    case AtomicMode::Emulated64: return kPreludeEmulated64;
+  }
+  return kPreludeNative32;
+}
+
+}  // namespace
+
+void GlBindings::validate() const {
+  const auto points = storage_points();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t j = i + 1; j < points.size(); ++j)
+      if (points[i] == points[j])
+        throw GlError("shader-storage binding point " + std::to_string(points[i]) + " is used twice");
+  GLint max_storage = 0, max_uniform = 0;
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &max_storage);
+  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &max_uniform);
+  for (unsigned p : points)
+    if (p >= static_cast<unsigned>(max_storage))
+      throw GlError("shader-storage binding point " + std::to_string(p) + " is beyond this context's " +
+                    std::to_string(max_storage) + " points");
+  if (params >= static_cast<unsigned>(max_uniform))
+    throw GlError("uniform-buffer binding point " + std::to_string(params) + " is beyond this context's " +
+                  std::to_string(max_uniform) + " points");
+}
+
+std::string GlBindings::glsl_defines() const {
+  std::string s;
+  const auto define = [&](const char* name, unsigned v) {
+    s += "#define HA_BINDING_";
+    s += name;
+    s += ' ' + std::to_string(v) + '\n';
+  };
+  define("TABLE", table);
+  define("MAX_AGE", max_age);
+  define("OFFSETS", offsets);
+  define("COUNTERS", counters);
+  define("LOCKS", locks);
+  define("CAPTURE", capture);
+  define("STREAM", stream);
+  define("PARAMS", params);
+  return s;
+}
+
+std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header) {
   std::string s = "#version 450 core\n";
-  for (const char* part : {prelude, kPreludeCommon, kHaConstants, kHaRecord, kHaProbe, kHaInsert, kHaTraverse}) {
+  s += mode_extensions(mode);
+  s += header;
+  if (!header.empty() && header.back() != '\n') s += '\n';
+  if (stage == ShaderStage::Fragment) s += "#define HA_STAGE_FRAGMENT\n";
+  s += bindings.glsl_defines();
+  for (const char* part : {kHaConstants, kPreludeCommon, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaTraverse,
+                           kHaEntry}) {
     s += part;
     s += '\n';
   }
   return s;
 }
 
-std::string insert_stream_compute(AtomicMode mode) { return ha_module(mode) + kInsertStreamCompute; }
+std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings) {
+  return ha_module(mode, bindings, ShaderStage::Compute) + kInsertStreamCompute;
+}
 
 }  // namespace habuffer::gl

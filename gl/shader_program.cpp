@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <initializer_list>
 #include <utility>
 
 #include "habuffer/gl/debug_output.h"
@@ -28,8 +29,11 @@ std::string program_log(GLuint program) {
 
 }  // namespace
 
-ShaderProgram ShaderProgram::compute(const std::string& source, const std::string& name) {
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+namespace {
+
+// Compiles one stage; throws with the log (the program is not made).
+GLuint compile(GLenum stage, const std::string& source, const std::string& name) {
+  const GLuint shader = glCreateShader(stage);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);
@@ -41,10 +45,15 @@ ShaderProgram ShaderProgram::compute(const std::string& source, const std::strin
     discard_gl_errors();  // the log says it all
     throw GlError(name + " does not compile: " + log);
   }
+  return shader;
+}
+
+GLuint link(std::initializer_list<GLuint> shaders, const std::string& name) {
   const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
+  for (GLuint s : shaders) glAttachShader(program, s);
   glLinkProgram(program);
-  glDeleteShader(shader);
+  for (GLuint s : shaders) glDeleteShader(s);
+  GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
     const std::string log = program_log(program);
@@ -52,7 +61,25 @@ ShaderProgram ShaderProgram::compute(const std::string& source, const std::strin
     discard_gl_errors();
     throw GlError(name + " does not link: " + log);
   }
-  return ShaderProgram(program);
+  return program;
+}
+
+}  // namespace
+
+ShaderProgram ShaderProgram::compute(const std::string& source, const std::string& name) {
+  return ShaderProgram(link({compile(GL_COMPUTE_SHADER, source, name)}, name));
+}
+
+ShaderProgram ShaderProgram::graphics(const std::string& vertex, const std::string& fragment, const std::string& name) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex, name + " (vertex)");
+  GLuint fs = 0;
+  try {
+    fs = compile(GL_FRAGMENT_SHADER, fragment, name + " (fragment)");
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  return ShaderProgram(link({vs, fs}, name));
 }
 
 ShaderProgram::~ShaderProgram() {
@@ -78,6 +105,15 @@ void ShaderProgram::set(const char* name, unsigned x, unsigned y) const {
 void ShaderProgram::set(const char* name, float value) const {
   const GLint loc = glGetUniformLocation(id_, name);
   if (loc >= 0) glProgramUniform1f(id_, loc, value);
+}
+
+}  // namespace habuffer::gl
+
+namespace habuffer::gl {
+
+void ShaderProgram::set(const char* name, float x, float y, float z) const {
+  const GLint loc = glGetUniformLocation(id_, name);
+  if (loc >= 0) glProgramUniform3f(id_, loc, x, y, z);
 }
 
 }  // namespace habuffer::gl

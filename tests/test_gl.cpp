@@ -1,28 +1,22 @@
 // The GPU path on the machine's OpenGL (Mesa llvmpipe here): headless
-// context, shader error reporting, state restoration, and the shared GLSL
-// insert building the CPU path's table bit for bit.
+// context, shader error reporting, the module for every runnable mode, and
+// the shared GLSL insert building the CPU path's table bit for bit.
 #include <gtest/gtest.h>
 
 #include <epoxy/gl.h>
 
-#include "habuffer/gl/compute_inserter.h"
+#include "gl_test_support.h"
 #include "habuffer/gl/debug_output.h"
-#include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
-#include "test_support.h"
 
 namespace habuffer {
 namespace {
 
-gl::EglContext& context() {
-  static gl::EglContext ctx;  // one per process: llvmpipe contexts are costly
-  ctx.make_current();
-  return ctx;
-}
+using test::gl_context;
 
 TEST(Gl, HeadlessContextIsOpenGl45CoreWithNative32) {
-  context();
+  gl_context();
   const gl::GlInfo info = gl::query_gl_info();
   EXPECT_NE(info.version.find("4.5"), std::string::npos) << info.version;
   const auto modes = gl::runnable_atomic_modes(info);
@@ -31,7 +25,7 @@ TEST(Gl, HeadlessContextIsOpenGl45CoreWithNative32) {
 }
 
 TEST(Gl, ShaderErrorsCarryTheCompileLog) {
-  context();
+  gl_context();
   try {
     gl::ShaderProgram::compute("#version 450\nlayout(local_size_x = 1) in;\nvoid main() { no_such_function(); }\n",
                                "broken shader");
@@ -44,7 +38,7 @@ TEST(Gl, ShaderErrorsCarryTheCompileLog) {
 }
 
 TEST(Gl, KhrDebugErrorsOfOurContextBecomeExceptions) {
-  context();
+  gl_context();
   std::vector<std::string> logged;
   gl::set_log_sink([&](const std::string& m) { logged.push_back(m); });
   gl::set_throw_on_gl_error(true);
@@ -57,39 +51,49 @@ TEST(Gl, KhrDebugErrorsOfOurContextBecomeExceptions) {
 }
 
 TEST(Gl, SharedGlslCompilesForTheRunnableModes) {
-  context();
+  gl_context();
+  gl::GlBindings moved;  // host-chosen points
+  moved.table = 9;
+  moved.max_age = 3;
+  moved.offsets = 11;
+  moved.counters = 12;
+  moved.locks = 13;
+  moved.capture = 14;
+  moved.stream = 15;
+  moved.params = 5;
+  EXPECT_NO_THROW(moved.validate());
   for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info()))
-    EXPECT_NO_THROW(gl::ShaderProgram::compute(gl::insert_stream_compute(mode), "insert " + gl::to_string(mode)));
+    for (const gl::GlBindings& b : {gl::GlBindings{}, moved}) {
+      EXPECT_NO_THROW(gl::ShaderProgram::compute(gl::insert_stream_compute(mode, b), "insert " + gl::to_string(mode)));
+      const std::string module = gl::ha_module(mode, b, gl::ShaderStage::Fragment);
+      EXPECT_NE(module.find("#define HA_BINDING_TABLE " + std::to_string(b.table) + "\n"), std::string::npos);
+    }
 }
 
-TEST(Gl, ComputeInsertRestoresTheHostsProgramAndBufferBindings) {
-  context();
-  GLuint host_buffer = 0;
-  glCreateBuffers(1, &host_buffer);
-  glNamedBufferData(host_buffer, 256, nullptr, GL_STATIC_DRAW);
-  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, host_buffer, 64, 128);
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, host_buffer);
-  auto host_program = gl::ShaderProgram::compute("#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n", "host");
-  glUseProgram(host_program.id());
-  {
-    const BufferConfig c = test::config({8, 8}, {8, 8}, Layout::L32, 6);
-    gl::ComputeInserter gpu(c, OffsetSequence::random(c.table, 63, 1), gl::AtomicMode::Native32);
-    gpu.insert(test::stream({8, 8}, StreamKind::Random, 40, 1));
+TEST(Gl, BindingPointsAreCheckedAgainstEachOtherAndTheLimits) {
+  gl_context();
+  gl::GlBindings twice;
+  twice.capture = twice.table;
+  EXPECT_THROW(twice.validate(), gl::GlError);
+  gl::GlBindings far;
+  far.stream = 1u << 20;
+  try {
+    far.validate();
+    FAIL() << "accepted binding point 2^20";
+  } catch (const gl::GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("1048576"), std::string::npos) << e.what();
   }
-  GLint program = 0, bound = 0, generic = 0;
-  GLint64 start = 0, size = 0;
-  glGetIntegerv(GL_CURRENT_PROGRAM, &program);
-  glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 2, &bound);
-  glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, 2, &start);
-  glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 2, &size);
-  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &generic);
-  EXPECT_EQ(static_cast<GLuint>(program), host_program.id());
-  EXPECT_EQ(static_cast<GLuint>(bound), host_buffer);
-  EXPECT_EQ(start, 64);
-  EXPECT_EQ(size, 128);
-  EXPECT_EQ(static_cast<GLuint>(generic), host_buffer);
-  glUseProgram(0);
-  glDeleteBuffers(1, &host_buffer);
+}
+
+TEST(Gl, ModesRefuseLayoutsTheyCannotHold) {
+  gl_context();
+  const BufferConfig l64 = test::config({8, 8}, {8, 8}, Layout::L64, 6);
+  const BufferConfig l32 = test::config({8, 8}, {8, 8}, Layout::L32, 6);
+  EXPECT_THROW(gl::GlHaBuffer(l64, test::random_offsets(1), gl::AtomicMode::Native32), gl::GlError);
+  EXPECT_THROW(gl::GlHaBuffer(l32, test::random_offsets(1), gl::AtomicMode::Emulated64), gl::GlError);
+  if (!gl::query_gl_info().atomic_int64) {
+    EXPECT_THROW(gl::GlHaBuffer(l64, test::random_offsets(1), gl::AtomicMode::Native64), gl::GlError);
+  }
 }
 
 // SPEC 9 across paths: the GPU's compute insertion and the CPU path build
@@ -98,7 +102,7 @@ TEST(Gl, ComputeInsertRestoresTheHostsProgramAndBufferBindings) {
 // emulated64 with L64); several sizes including a table exactly the screen,
 // age bits 4 and 8.
 TEST(Gl, EveryAtomicModeBuildsTheCpuTableBitForBit) {
-  context();
+  gl_context();
   for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info())) {
     const Layout layout = mode == gl::AtomicMode::Native32 ? Layout::L32 : Layout::L64;
     SCOPED_TRACE(gl::to_string(mode));
@@ -114,13 +118,12 @@ TEST(Gl, EveryAtomicModeBuildsTheCpuTableBitForBit) {
                           Case{{16, 48}, {16, 48}, 4, StreamKind::Coherent, 1.1}}) {
       SCOPED_TRACE(k.screen.str() + " in " + k.table.str());
       const BufferConfig c = test::config(k.screen, k.table, layout, k.age_bits, 8);
-      const auto offsets = OffsetSequence::random(k.table, c.record_layout().max_age(), 9);
       auto f = test::stream(k.screen, k.kind, static_cast<std::uint64_t>(k.load * static_cast<double>(k.table.area())), 4);
       f[f.size() / 3].depth = std::numeric_limits<float>::quiet_NaN();
-      HaBuffer cpu(c, offsets);
+      gl::GlHaBuffer gpu(c, test::random_offsets(9), mode);
+      HaBuffer cpu(c, gpu.offsets());
       const Counters nc = cpu.insert(f);
-      gl::ComputeInserter gpu(c, offsets, mode);
-      const Counters ng = gpu.insert(f);
+      const Counters ng = gl::ComputeInserter(gpu).insert(f).counters;
       ASSERT_EQ(nc.failed_iter + ng.failed_iter, 0u);
       const auto table = gpu.read_table();
       for (std::uint64_t s = 0; s < cpu.slot_count(); ++s) ASSERT_EQ(table[s], cpu.slot(s)) << "slot " << s;
@@ -133,11 +136,40 @@ TEST(Gl, EveryAtomicModeBuildsTheCpuTableBitForBit) {
         EXPECT_EQ(ng, nc);
       }
       // The comparison bites: other offsets give another table.
-      gl::ComputeInserter other(c, OffsetSequence::random(k.table, c.record_layout().max_age(), 10), mode);
-      other.insert(f);
+      gl::GlHaBuffer other(c, test::random_offsets(10), mode);
+      gl::ComputeInserter(other).insert(f);
       EXPECT_NE(other.read_table(), table);
     }
   }
+}
+
+// emulated64's lock is bounded: with one attempt allowed, lanes that find a
+// slot locked by another lane give up as failed_iter, and every fragment is
+// still counted exactly once (SPEC invariant 1). With the default bound the
+// same hot stream builds the CPU table.
+TEST(Gl, Emulated64LockGivesUpAsFailedIterAndKeepsAccounting) {
+  gl_context();
+  const auto modes = gl::runnable_atomic_modes(gl::query_gl_info());
+  if (std::find(modes.begin(), modes.end(), gl::AtomicMode::Emulated64) == modes.end())
+    GTEST_SKIP() << "no 64-bit shader types";
+  const BufferConfig c = test::config({16, 16}, {32, 32}, Layout::L64, 8);
+  std::vector<Fragment> f;
+  // 16 pixels, 16 depths each, 8 times over: consecutive fragments (lanes of
+  // one SIMD group) share a pixel, so they contend for its age-1 slot.
+  for (std::uint32_t i = 0; i < 2048; ++i)
+    f.push_back({(i / 16) % 16, 3, static_cast<float>(i % 16 + 1) / 32.0f, 0x80808000u + i % 16});
+  gl::GlFrameOptions tight;
+  tight.lock_spin_limit = 1;
+  gl::GlHaBuffer gpu(c, test::random_offsets(3), gl::AtomicMode::Emulated64, tight);
+  const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
+  EXPECT_GT(r.counters.failed_iter, 0u);
+  EXPECT_EQ(r.counters.fragments, f.size());
+  EXPECT_EQ(gpu.count_stored(), r.counters.stored());
+
+  gl::GlHaBuffer relaxed(c, test::random_offsets(3), gl::AtomicMode::Emulated64);
+  const gl::FrameReport ok = gl::ComputeInserter(relaxed).insert(f);
+  EXPECT_EQ(ok.counters.failed_iter, 0u);
+  EXPECT_EQ(relaxed.read_table(), test::table_words(test::cpu_twin(relaxed, f)));
 }
 
 }  // namespace

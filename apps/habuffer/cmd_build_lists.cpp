@@ -6,6 +6,7 @@
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_ha_buffer.h"
 #include "habuffer/interchange.h"
 #include "hash_options.h"
 #include "report_json.h"
@@ -21,8 +22,9 @@ constexpr const char* kHelp =
     "         [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
     "  --threads 0 uses every hardware thread; every insert mode builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n";
 
-// The GPU path: a headless context, compute insertion, and the read-back
-// imported into a CPU-side buffer so lists and dumps are written the same way.
+// The GPU path: a headless context, one frame of compute insertion (lossless
+// mode regathers on the GPU), and the read-back imported into a CPU-side
+// buffer so lists and dumps are written the same way.
 BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments) {
   std::optional<gl::EglContext> context;
   try {
@@ -31,16 +33,17 @@ BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fr
     throw DataError(std::string("--path gl: no usable OpenGL: ") + e.what());
   }
   const BufferConfig& c = options.config;
-  OffsetSequence offsets = options.offsets.make(c.table, c.record_layout().max_age());
-  // L32: native 32-bit atomics; L64: the 32-bit-lock emulation (native64 is not implemented yet).
-  const gl::AtomicMode mode = c.layout == Layout::L32 ? gl::AtomicMode::Native32 : gl::AtomicMode::Emulated64;
-  if (mode == gl::AtomicMode::Emulated64 && !gl::query_gl_info().int64_types)
-    throw DataError("--path gl --layout 64: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
-  gl::ComputeInserter gpu(c, offsets, mode);
-  const Counters counters = gpu.insert(fragments);
-  HaBuffer buffer(c, std::move(offsets));
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), c.layout);
+  if (!mode) throw DataError("--path gl --layout 64: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  gl::GlFrameOptions frame_options;
+  frame_options.policy = options.policy;
+  frame_options.max_attempts = options.max_attempts;
+  gl::GlHaBuffer gpu(c, options.offsets, *mode, frame_options);
+  gl::ComputeInserter inserter(gpu);
+  gl::FrameReport report = inserter.insert(fragments);
+  HaBuffer buffer(gpu.config(), gpu.offsets());
   buffer.import_state(gpu.read_table(), gpu.read_max_age());
-  return BuildResult{std::move(buffer), counters, {BuildAttempt{c.table, counters}}};
+  return BuildResult{std::move(buffer), report.counters, std::move(report.attempts)};
 }
 
 }  // namespace

@@ -34,8 +34,9 @@ int run_info(const std::vector<std::string>& argv) {
                 info.max_framebuffer_width, info.max_framebuffer_height, info.max_compute_work_groups_x);
     std::string modes;
     for (gl::AtomicMode m : gl::runnable_atomic_modes(info)) modes += (modes.empty() ? "" : ", ") + gl::to_string(m);
+    const auto l64 = gl::chosen_atomic_mode(info, Layout::L64);
     std::printf("    atomic modes runnable: %s; chosen: L32 -> native32, L64 -> %s\n", modes.c_str(),
-                info.int64_types ? "emulated64 (native64 is not implemented yet)" : "none (no 64-bit shader types)");
+                l64 ? gl::to_string(*l64).c_str() : "none (no 64-bit shader types)");
   } catch (const gl::GlError& e) {
     std::printf("  gl: unavailable: %s\n", e.what());
   }

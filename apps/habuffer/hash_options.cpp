@@ -34,7 +34,7 @@ HashOptions parse_hash_options(const Args& args) {
   c.layout = layout == "64" ? Layout::L64 : Layout::L32;
   c.age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, HA_MIN_AGE_BITS, HA_MAX_AGE_BITS);
   c.block = args.u32("block", HA_DEFAULT_BLOCK, 1, 1u << 16);
-  c.iter_limit = args.u32("iter-limit", HA_DEFAULT_ITER_LIMIT, 1);
+  c.iter_limit = args.u32("iter-limit", HA_DEFAULT_ITER_LIMIT, 1, HA_MAX_ITER_LIMIT);
   if (args.has("early-cull")) {
     const double tau = args.real("early-cull", 0.0);
     if (!(tau > 0.0 && tau <= 1.0)) throw UsageError("option --early-cull: threshold must be in (0, 1]");
@@ -66,7 +66,6 @@ HashOptions parse_hash_options(const Args& args) {
   const std::string path = args.str("path", "cpu");
   if (path != "cpu" && path != "gl") throw UsageError("option --path: '" + path + "' is not cpu or gl");
   o.gl = path == "gl";
-  if (o.gl && o.lossless) throw UsageError("--path gl does not support --lossless yet");
 
   o.offsets_name = args.str("offsets", "random");
   o.offsets.seed = args.u64("seed", 1);

@@ -29,6 +29,22 @@
 // Defaults of SPEC 5, 6 and 8.
 #define HA_DEFAULT_BLOCK 8u
 #define HA_DEFAULT_ITER_LIMIT 65536u
+// Insert calls probe in chunks (ha_insert_code): at most HA_PROBE_CHUNK *
+// HA_PROBE_CHUNKS probe steps (each loop below 65536), hence the largest
+// iteration limit.
+#define HA_PROBE_CHUNK 4096u
+#define HA_PROBE_CHUNKS 65535u
+#define HA_MAX_ITER_LIMIT 268431359u
+
+// GPU path: outcome tallies live HA_COUNTER_STRIDE words apart (one cache
+// line each), so the per-fragment counting atomics of different outcomes do
+// not contend; a capture buffer starts with HA_CAPTURE_HEADER_WORDS words
+// (the append count, then padding to 16 bytes) before its fragments; an
+// emulated 64-bit atomic tries a contended slot lock this many times before
+// the insert call gives up as failed_iter (65535: llvmpipe ends longer loops).
+#define HA_COUNTER_STRIDE 16u
+#define HA_CAPTURE_HEADER_WORDS 4u
+#define HA_DEFAULT_LOCK_SPIN_LIMIT 65535u
 
 // IEEE-754 binary32 bit patterns used by the depth-validity test: a float is
 // in [0, 1] exactly when its bits are in [0, 0x3F800000] or it is -0.

@@ -1,6 +1,6 @@
 // Insertion of SPEC 6 (coherent Robin Hood hashing with atomicMax), written
 // once for both paths, as a step function over the record being carried, so
-// a host may run the steps in a loop (ha_insert) or hand a pending record to
+// a host may run the steps in a loop (ha_insert_fragment) or hand a pending record to
 // whichever thread owns its next slot (the CPU path's owner-computes mode).
 //
 // Host environment provides, besides ha_record.glsl and ha_probe.glsl:
@@ -74,14 +74,22 @@ uint ha_insert_step(HA_INOUT(HaCarry) c) {
   return ha_insert_step_at(c, ha_probe(c.p, c.a));
 }
 
+// The probes run in chunks of HA_PROBE_CHUNK inside an outer loop because
+// some drivers (Mesa llvmpipe) end any single loop after 65535 iterations,
+// which would cut an insert call short of the default iteration limit. The
+// last line is defensive: a call ended by anything else still fails as
+// failed_iter instead of leaving an outcome uncounted.
 uint ha_insert_code(uvec2 p, uint code, uint data) {
   HaCarry c = ha_carry_begin(p, code, data);
   uint outcome = HA_PENDING;
-  while (outcome == HA_PENDING) outcome = ha_insert_step(c);
-  return outcome;
+  for (uint chunk = 0u; outcome == HA_PENDING && chunk < HA_PROBE_CHUNKS; ++chunk)
+    for (uint i = 0u; outcome == HA_PENDING && i < HA_PROBE_CHUNK; ++i) outcome = ha_insert_step(c);
+  return outcome == HA_PENDING ? HA_FAILED_ITER : outcome;
 }
 
-uint ha_insert(uvec2 p, float t, uint data) {
+// The whole insert call of one fragment (the GL entry ha_insert adds counting
+// and capture around it).
+uint ha_insert_fragment(uvec2 p, float t, uint data) {
   if (!ha_depth_valid(t)) return HA_INVALID;
   return ha_insert_code(p, ha_depth_code(t), data);
 }

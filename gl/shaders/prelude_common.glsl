@@ -1,15 +1,23 @@
-// The part of the GLSL environment every atomic mode shares: the uniforms
-// and buffers hash_kernel.h provides as members on the C++ path. A mode's
-// prelude (word type, slot storage, slot atomics) comes first.
-uniform uint ha_age_bits;
-uniform uvec2 ha_table_size;
-uniform uint ha_block;
-uniform uint ha_max_age_cells_x;
-uniform uint ha_iter_limit;
-uniform float ha_cull_tau;
+// The part of the GLSL environment every atomic mode shares: the parameters
+// hash_kernel.h holds as members on the C++ path (here one uniform block, so
+// a host shader needs no uniforms of ours, only our buffers bound), the
+// max-age table and the offsets. The HA_BINDING_* points are #defined before
+// this file by the module assembly (GlBindings), so hosts choose them.
+layout(std140, binding = HA_BINDING_PARAMS) uniform HaParams {
+  uvec2 ha_table_size;
+  uint ha_age_bits;
+  uint ha_block;
+  uint ha_max_age_cells_x;
+  uint ha_iter_limit;
+  float ha_cull_tau;
+  uint ha_lock_spin_limit;
+  uvec2 ha_screen_size;
+  uint ha_capture_capacity;  // fragments the capture buffer holds; 0: capture off
+  uint ha_params_pad;
+};
 
-layout(std430, binding = 1) buffer HaMaxAge { uint ha_max_ages[]; };
-layout(std430, binding = 2) readonly buffer HaOffsets { uvec2 ha_offsets[]; };
+layout(std430, binding = HA_BINDING_MAX_AGE) buffer HaMaxAge { uint ha_max_ages[]; };
+layout(std430, binding = HA_BINDING_OFFSETS) readonly buffer HaOffsets { uvec2 ha_offsets[]; };
 
 uvec2 ha_offset(uint i) { return ha_offsets[i]; }
 uint ha_div_block(uint v) { return v / ha_block; }

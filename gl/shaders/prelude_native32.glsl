@@ -8,8 +8,9 @@
 const uint ha_word_bits = 32u;
 const uint ha_payload_bits = 0u;
 
-layout(std430, binding = 0) buffer HaTable { uint ha_table[]; };
+layout(std430, binding = HA_BINDING_TABLE) buffer HaTable { uint ha_table[]; };
 
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) { return atomicMax(ha_table[s], r); }
 bool ha_atomic_gave_up() { return false; }
 ha_word ha_load_slot(ha_index s) { return ha_table[s]; }
+void ha_store_slot(ha_index s, ha_word r) { ha_table[s] = r; }

@@ -91,6 +91,19 @@ for cfg in "48x32 48x32 4 coherent 0.8 32" "40x40 61x47 8 random 0.7 32" "64x16 
     echo "FAIL: --path gl and --path cpu differ for $cfg"; fail=$((fail + 1))
   fi
 done
+# Lossless mode regathers on the GPU into the same grown tables as on the CPU.
+"$bin" generate --screen 32x32 --load 1.2 --stream random --seed 4 --out gen_lossless.csv
+for path in cpu gl; do
+  ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- build-lists --in gen_lossless.csv --out ll_$path.csv --screen 32x32 \
+    --age-bits 4 --lossless --path $path --dump-table tl_$path.csv --stats sl_$path.json
+done
+if cmp -s ll_cpu.csv ll_gl.csv && cmp -s tl_cpu.csv tl_gl.csv && grep -q '"attempts":\[{' sl_gl.json &&
+  [[ $(grep -o '"table":' sl_gl.json | wc -l) -gt 2 ]]; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: --path gl --lossless differs from cpu"; fail=$((fail + 1))
+fi
+expect 2 "option --iter-limit" -- build-lists --in good.csv --out l.csv --screen 2x2 --iter-limit 300000000
 grep -q '"path":"gl"' s_gl.json && pass=$((pass + 1)) || { echo "FAIL: gl stats path"; fail=$((fail + 1)); }
 expect 2 "option --path: 'gpu' is not cpu or gl" -- build-lists --in good.csv --out l.csv --screen 2x2 --path gpu
 expect 0 "" -- stats --screen 32x32 --trials 2 --loads 0.5,0.9 --probing all --policy all --out st.csv

@@ -1,44 +1,38 @@
-// The GPU path's compute entry: the HA-buffer's table, max-age table and
-// offsets in shader storage buffers, and a compute shader (the shared GLSL
-// insert) that inserts a fragment stream held in a buffer. Needs a current
-// OpenGL 4.5 core context; restores the GL state it touches (current program
-// and shader-storage bindings 0-5) after every call.
+// The GPU path's compute entry: a compute shader that inserts a fragment
+// stream held in a buffer through the same ha_insert host fragment shaders
+// call (tests, sweeps and `build-lists --path gl` use it).
 #pragma once
 
-#include <cstdint>
 #include <span>
-#include <vector>
 
-#include "habuffer/buffer_config.h"
 #include "habuffer/fragment.h"
-#include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/gl_ha_buffer.h"
 #include "habuffer/gl/shader_program.h"
-#include "habuffer/offset_sequence.h"
 
 namespace habuffer::gl {
 
 class ComputeInserter {
  public:
-  // Throws GlError for a layout the mode cannot hold or a table too large for
-  // 32-bit slot indices, and on shader errors (with the log).
-  ComputeInserter(const BufferConfig& config, const OffsetSequence& offsets, AtomicMode mode);
+  // Compiles the entry for `buffer`'s atomic mode and binding points (throws
+  // GlError with the log on shader errors). `buffer` must outlive this.
+  explicit ComputeInserter(GlHaBuffer& buffer);
   ~ComputeInserter();
   ComputeInserter(const ComputeInserter&) = delete;
   ComputeInserter& operator=(const ComputeInserter&) = delete;
 
-  // Inserts into the current table (clear() first for a new frame).
-  Counters insert(std::span<const Fragment> fragments);
-  void clear();
-  // Slots widened to 64 bits (L32 records in the low half).
-  [[nodiscard]] std::vector<std::uint64_t> read_table() const;
-  [[nodiscard]] std::vector<std::uint32_t> read_max_age() const;
+  // Uploads the stream (kept for later dispatches). Throws GlError naming the
+  // first fragment outside the screen, as the CPU path does.
+  void upload(std::span<const Fragment> fragments);
+  // Inserts the uploaded stream; call inside GlHaBuffer::frame's gather.
+  void dispatch() const;
+  // One frame whose gather is the stream: upload, then buffer.frame(dispatch).
+  FrameReport insert(std::span<const Fragment> fragments);
 
  private:
-  BufferConfig config_;
-  std::uint32_t cells_ = 0;
+  GlHaBuffer& buffer_;
   ShaderProgram program_;
-  std::uint32_t word_bytes_ = 4;
-  unsigned table_ = 0, max_age_ = 0, offsets_ = 0, fragments_ = 0, counters_ = 0, locks_ = 0;
+  unsigned stream_ = 0;
+  std::size_t count_ = 0;
 };
 
 }  // namespace habuffer::gl

@@ -2,8 +2,11 @@
 // the HA-buffer it can run.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "habuffer/record_layout.h"
 
 namespace habuffer::gl {
 
@@ -31,5 +34,9 @@ GlInfo query_gl_info();
 
 // Modes this build can run on this context, in order of preference.
 std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info);
+
+// The mode the library runs a layout in: L32 native32; L64 native64 where the
+// driver has 64-bit atomics, else emulated64; none without 64-bit types.
+std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout);
 
 }  // namespace habuffer::gl

@@ -1,9 +1,11 @@
-// The shared algorithm as GLSL text (generated from core/shared/ at build
-// time) and the assembly of complete shaders from it.
+// The shared algorithm as GLSL text (embedded from core/shared/ and
+// gl/shaders/ at build time) and the assembly of complete shaders from it.
 #pragma once
 
 #include <string>
+#include <string_view>
 
+#include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_info.h"
 
 namespace habuffer::gl {
@@ -15,14 +17,25 @@ extern const char* const kHaInsert;
 extern const char* const kHaTraverse;
 extern const char* const kPreludeCommon;
 extern const char* const kPreludeNative32;
+extern const char* const kPreludeNative64;
 extern const char* const kPreludeEmulated64;
+extern const char* const kHaEntry;
 extern const char* const kInsertStreamCompute;
+extern const char* const kFullScreenVertex;
+extern const char* const kClearPassFragment;
+extern const char* const kResolveFragment;
 
-// #version line, the atomic mode's prelude, the common prelude, then constants, record, probe,
-// insert and traversal: the module a host shader (or our entries) appends to.
-std::string ha_module(AtomicMode mode);
+enum class ShaderStage { Compute, Fragment };
+
+// The HA-buffer module a shader appends its own code to: the #version line,
+// the extensions the atomic mode needs, `header` (the host's own #extension
+// lines and defines, which must precede any code), the binding points, the
+// parameters block and buffers, the shared constants, record, probe, insert
+// and traversal, and the entry ha_insert(uvec2 pixel, float depth, uint rgba)
+// (and ha_insert(uvec2 pixel, float depth) for L32). Do not repeat #version.
+std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header = {});
 
 // The compute shader that inserts a fragment stream held in a buffer.
-std::string insert_stream_compute(AtomicMode mode);
+std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});
 
 }  // namespace habuffer::gl

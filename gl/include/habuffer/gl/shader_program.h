@@ -10,6 +10,7 @@ class ShaderProgram {
  public:
   // `name` labels errors ("insert compute shader: 0:12(3): error: ...").
   static ShaderProgram compute(const std::string& source, const std::string& name);
+  static ShaderProgram graphics(const std::string& vertex, const std::string& fragment, const std::string& name);
   ~ShaderProgram();
   ShaderProgram(ShaderProgram&& o) noexcept;
   ShaderProgram& operator=(ShaderProgram&& o) noexcept;
@@ -21,6 +22,7 @@ class ShaderProgram {
   void set(const char* name, unsigned value) const;
   void set(const char* name, unsigned x, unsigned y) const;
   void set(const char* name, float value) const;
+  void set(const char* name, float x, float y, float z) const;
 
  private:
   explicit ShaderProgram(unsigned id) : id_(id) {}

@@ -1,0 +1,38 @@
+// The paper's clear pass: a quad per tile of the table on an attachment-less
+// framebuffer, one fragment per slot; fragments of empty slots are discarded
+// and the others zero their slot, so a GL_SAMPLES_PASSED query counts the
+// stored records at almost no cost. Tables beyond the framebuffer limits
+// (16384² on llvmpipe) are cleared in tiles under the same query.
+#pragma once
+
+#include <cstdint>
+
+#include "gpu_timer.h"
+#include "habuffer/extent.h"
+#include "habuffer/gl/shader_program.h"
+
+namespace habuffer::gl {
+
+class ClearPass {
+ public:
+  // `module`: the HA-buffer module (fragment stage) the pass appends to.
+  explicit ClearPass(const std::string& module);
+  ~ClearPass();
+  ClearPass(const ClearPass&) = delete;
+  ClearPass& operator=(const ClearPass&) = delete;
+
+  struct Result {
+    std::uint64_t stored = 0;
+    double ms = 0.0;
+  };
+  // Needs the buffers bound and the caller's state guard; `tile` 0: the limits.
+  // writes false: count only.
+  Result run(Extent table, std::uint32_t tile, bool writes);
+
+ private:
+  ShaderProgram program_;
+  GpuTimer timer_;
+  unsigned framebuffer_ = 0, vertex_array_ = 0, query_ = 0;
+};
+
+}  // namespace habuffer::gl

@@ -1,0 +1,320 @@
+#include "habuffer/gl/gl_ha_buffer.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "clear_pass.h"
+#include "gl_state_guard.h"
+#include "gpu_timer.h"
+#include "habuffer/gl/debug_output.h"
+#include "habuffer/gl/gl_error.h"
+#include "resolve_pass.h"
+
+namespace habuffer::gl {
+namespace {
+
+// The HaParams uniform block of prelude_common.glsl, std140.
+struct GlParams {
+  std::uint32_t table[2];
+  std::uint32_t age_bits;
+  std::uint32_t block;
+  std::uint32_t max_age_cells_x;
+  std::uint32_t iter_limit;
+  float cull_tau;
+  std::uint32_t lock_spin_limit;
+  std::uint32_t screen[2];
+  std::uint32_t capture_capacity;
+  std::uint32_t pad;
+};
+static_assert(sizeof(GlParams) == 48);
+
+constexpr std::uint64_t kCounterWords = HA_OUTCOME_COUNT * HA_COUNTER_STRIDE;
+constexpr std::uint64_t kCaptureHeaderBytes = HA_CAPTURE_HEADER_WORDS * 4;
+static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
+
+GLuint make_buffer(std::uint64_t bytes, const void* data = nullptr) {
+  GLuint b = 0;
+  glCreateBuffers(1, &b);
+  glNamedBufferData(b, static_cast<GLsizeiptr>(std::max<std::uint64_t>(bytes, 4)), data, GL_DYNAMIC_DRAW);
+  return b;
+}
+
+void zero(GLuint buffer) {
+  const GLuint z = 0;
+  glClearNamedBufferData(buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
+}
+
+void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {
+  const GLuint z = 0;
+  glClearNamedBufferSubData(buffer, GL_R32UI, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                            GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
+}
+
+std::vector<std::uint32_t> read_words(GLuint buffer, std::uint64_t words) {
+  std::vector<std::uint32_t> out(words);
+  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(words * 4), out.data());
+  return out;
+}
+
+void delete_buffer(GLuint& b) {
+  if (b != 0) glDeleteBuffers(1, &b);
+  b = 0;
+}
+
+std::uint64_t max_storage_bytes() {
+  GLint64 bytes = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
+  return static_cast<std::uint64_t>(bytes);
+}
+
+BufferConfig validated(BufferConfig c) {
+  c.validate();
+  c.table = c.table_or_screen();
+  return c;
+}
+
+}  // namespace
+
+struct GlHaBuffer::Gpu {
+  GLuint table = 0, locks = 0, max_age = 0, offsets = 0, counters = 0, capture = 0, params = 0;
+  std::unique_ptr<ClearPass> clear;
+  std::unique_ptr<ResolvePass> resolve;
+  GpuTimer gather_timer;
+  ~Gpu() {
+    for (GLuint* b : {&table, &locks, &max_age, &offsets, &counters, &capture, &params}) delete_buffer(*b);
+  }
+};
+
+GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlFrameOptions& options,
+                       const GlBindings& bindings)
+    : config_(validated(config)),
+      source_(std::move(offsets)),
+      offsets_(source_.make(config_.table, config_.record_layout().max_age())),
+      mode_(mode),
+      options_(options),
+      bindings_(bindings),
+      gpu_(std::make_unique<Gpu>()) {
+  options_.policy.validate();
+  if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
+  if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
+  if (mode == AtomicMode::Native32 && config_.layout != Layout::L32)
+    throw GlError("atomic mode native32 holds L32 records only");
+  if (mode != AtomicMode::Native32 && config_.layout != Layout::L64)
+    throw GlError("atomic mode " + to_string(mode) + " holds L64 records only");
+  const GlInfo info = query_gl_info();
+  if (mode != AtomicMode::Native32 && !info.int64_types)
+    throw GlError("atomic mode " + to_string(mode) + " needs 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  if (mode == AtomicMode::Native64 && !info.atomic_int64)
+    throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
+  bindings_.validate();
+  const std::uint32_t cells_x = (config_.screen.x + config_.block - 1) / config_.block;
+  cells_ = cells_x * ((config_.screen.y + config_.block - 1) / config_.block);
+  gpu_->max_age = make_buffer(std::uint64_t{cells_} * 4);
+  gpu_->counters = make_buffer(kCounterWords * 4);
+  gpu_->params = make_buffer(sizeof(GlParams));
+  gpu_->capture = make_buffer(kCaptureHeaderBytes);
+  if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
+  allocate_table(config_.table, false);
+  reset_frame_state();
+  check_gl_errors("creating the GPU HA-buffer");
+}
+
+GlHaBuffer::~GlHaBuffer() = default;
+
+std::string GlHaBuffer::module_source(ShaderStage stage, std::string_view header) const {
+  return ha_module(mode_, bindings_, stage, header);
+}
+
+void GlHaBuffer::allocate_table(Extent table, bool new_offsets) {
+  const std::uint64_t slots = table.area();
+  if (slots > UINT32_MAX) throw GlError("the GPU path indexes at most 2^32 - 1 slots, table " + table.str());
+  const std::uint64_t bytes = slots * config_.record_layout().word_bytes();
+  if (bytes > max_storage_bytes())
+    throw GlError("table " + table.str() + " needs " + std::to_string(bytes) + " bytes, this OpenGL allows " +
+                  std::to_string(max_storage_bytes()) + " per shader-storage buffer");
+  config_.table = table;
+  if (new_offsets) offsets_ = source_.make(table, config_.record_layout().max_age());
+  delete_buffer(gpu_->table);
+  delete_buffer(gpu_->locks);
+  delete_buffer(gpu_->offsets);
+  gpu_->table = make_buffer(bytes);
+  zero(gpu_->table);
+  if (mode_ == AtomicMode::Emulated64) {
+    gpu_->locks = make_buffer(slots * 4);
+    zero(gpu_->locks);  // every critical section leaves its lock at 0 again
+  }
+  gpu_->offsets = make_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
+  holds_frame_ = false;
+  write_params();
+}
+
+void GlHaBuffer::write_params() const {
+  GlParams p{};
+  p.table[0] = config_.table.x;
+  p.table[1] = config_.table.y;
+  p.age_bits = config_.age_bits;
+  p.block = config_.block;
+  p.max_age_cells_x = (config_.screen.x + config_.block - 1) / config_.block;
+  p.iter_limit = config_.iter_limit;
+  p.cull_tau = config_.early_cull_tau;
+  p.lock_spin_limit = options_.lock_spin_limit;
+  p.screen[0] = config_.screen.x;
+  p.screen[1] = config_.screen.y;
+  p.capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
+  glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
+}
+
+void GlHaBuffer::grow_capture(std::uint64_t needed) {
+  const std::uint64_t limit = std::min<std::uint64_t>((max_storage_bytes() - kCaptureHeaderBytes) / sizeof(Fragment),
+                                                      UINT32_MAX);
+  if (needed > limit)
+    throw GlError("capture of " + std::to_string(needed) + " fragments exceeds this OpenGL's " + std::to_string(limit) +
+                  " per shader-storage buffer");
+  capture_capacity_ = std::min(limit, std::max(needed, capture_capacity_ * 2));
+  delete_buffer(gpu_->capture);
+  gpu_->capture = make_buffer(kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment));
+  write_params();
+}
+
+void GlHaBuffer::reset_frame_state() const {
+  zero(gpu_->max_age);
+  zero(gpu_->counters);
+  zero_range(gpu_->capture, 0, kCaptureHeaderBytes);
+}
+
+void GlHaBuffer::bind() const {
+  const std::array<std::pair<unsigned, GLuint>, 6> storage{{{bindings_.table, gpu_->table},
+                                                            {bindings_.max_age, gpu_->max_age},
+                                                            {bindings_.offsets, gpu_->offsets},
+                                                            {bindings_.counters, gpu_->counters},
+                                                            {bindings_.locks, gpu_->locks},
+                                                            {bindings_.capture, gpu_->capture}}};
+  for (const auto& [point, buffer] : storage)
+    if (buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buffer);
+  glBindBufferBase(GL_UNIFORM_BUFFER, bindings_.params, gpu_->params);
+}
+
+std::uint64_t GlHaBuffer::clear_pass(bool writes, double* ms) {
+  if (!gpu_->clear) gpu_->clear = std::make_unique<ClearPass>(module_source(ShaderStage::Fragment));
+  bind();
+  const ClearPass::Result r = gpu_->clear->run(config_.table, options_.clear_tile, writes);
+  if (ms != nullptr) *ms = r.ms;
+  check_gl_errors("the clear pass");
+  return r.stored;
+}
+
+std::uint64_t GlHaBuffer::count_stored() {
+  const GlStateGuard guard(bindings_);
+  return clear_pass(false, nullptr);
+}
+
+FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
+  const GlStateGuard guard(bindings_);
+  FrameReport report;
+  report.index = frames_++;
+  if (holds_frame_) {
+    const std::uint64_t stored = clear_pass(true, &report.clear_ms);
+    report.previous_stored = stored;
+    holds_frame_ = false;
+    if (options_.adaptive) {
+      const Extent next = options_.policy.next(config_.table, config_.screen, stored);
+      if (next != config_.table) {
+        allocate_table(next);
+        report.resized = true;
+      }
+    }
+  }
+  for (;;) {
+    reset_frame_state();
+    bind();
+    gpu_->gather_timer.begin();
+    gather();
+    gpu_->gather_timer.end();
+    // Resolve, read-backs and the next clear see every insert.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+    holds_frame_ = true;
+    report.gather_ms = gpu_->gather_timer.milliseconds();
+    report.counters = read_counters();
+    check_gl_errors("the gather pass");
+    if (options_.capture) {
+      report.captured = read_capture_count();
+      if (report.captured > capture_capacity_) {
+        // A gather is deterministic in what it rasterizes, so one regather suffices;
+        // two would mean the host's gather is not repeatable.
+        if (report.capture_regathers > 0)
+          throw GlError("capture overflowed twice: the gather produced " + std::to_string(report.captured) +
+                        " fragments after fitting a capture of " + std::to_string(capture_capacity_));
+        grow_capture(report.captured);
+        zero(gpu_->table);
+        ++report.capture_regathers;
+        continue;
+      }
+    }
+    report.attempts.push_back({config_.table, report.counters});
+    if (report.counters.failures() == 0 || report.attempts.size() >= options_.max_attempts) break;
+    allocate_table(options_.policy.grown(config_.table));  // lossless mode: the same frame, a larger table
+  }
+  report.table = config_.table;
+  return report;
+}
+
+double GlHaBuffer::resolve(glm::vec3 background) {
+  const GlStateGuard guard(bindings_);
+  if (!gpu_->resolve) gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
+  bind();
+  const double ms = gpu_->resolve->run(config_.screen, background);
+  check_gl_errors("the resolve pass");
+  return ms;
+}
+
+Counters GlHaBuffer::read_counters() const {
+  const auto words = read_words(gpu_->counters, kCounterWords);
+  std::uint64_t tally[HA_OUTCOME_COUNT];
+  for (std::uint32_t o = 0; o < HA_OUTCOME_COUNT; ++o) tally[o] = words[o * HA_COUNTER_STRIDE];
+  Counters c;
+  c.add_tally(tally);
+  return c;
+}
+
+std::uint64_t GlHaBuffer::read_capture_count() const {
+  std::uint32_t count = 0;
+  glGetNamedBufferSubData(gpu_->capture, 0, 4, &count);
+  return count;
+}
+
+std::vector<std::uint64_t> GlHaBuffer::read_table() const {
+  const std::uint64_t slots = config_.table.area();
+  std::vector<std::uint64_t> out(slots);
+  if (config_.record_layout().word_bytes() == 8) {
+    glGetNamedBufferSubData(gpu_->table, 0, static_cast<GLsizeiptr>(slots * 8), out.data());
+  } else {
+    const auto words = read_words(gpu_->table, slots);
+    std::copy(words.begin(), words.end(), out.begin());
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> GlHaBuffer::read_max_age() const { return read_words(gpu_->max_age, cells_); }
+
+std::vector<Fragment> GlHaBuffer::read_capture() const {
+  const std::uint64_t n = std::min(read_capture_count(), capture_capacity_);
+  std::vector<Fragment> out(n);
+  if (n > 0)
+    glGetNamedBufferSubData(gpu_->capture, static_cast<GLintptr>(kCaptureHeaderBytes),
+                            static_cast<GLsizeiptr>(n * sizeof(Fragment)), out.data());
+  return out;
+}
+
+std::uint64_t GlHaBuffer::memory_bytes() const {
+  const std::uint64_t slots = config_.table.area();
+  std::uint64_t bytes = slots * config_.record_layout().word_bytes() + std::uint64_t{cells_} * 4 +
+                        offsets_.size() * sizeof(glm::uvec2) + kCounterWords * 4 + sizeof(GlParams);
+  if (mode_ == AtomicMode::Emulated64) bytes += slots * 4;
+  if (capture_capacity_ > 0) bytes += kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment);
+  return bytes;
+}
+
+}  // namespace habuffer::gl

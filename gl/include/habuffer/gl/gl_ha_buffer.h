@@ -1,0 +1,131 @@
+// The HA-buffer on the GPU: its table, max-age table and offsets in shader
+// storage buffers, and the paper's per-frame machinery around a host's gather
+// pass: the clear pass that counts the previous frame's records under an
+// occlusion query, adaptive sizing of SPEC 8 from that count (one frame of
+// latency, offsets regenerated for every new size), the in-frame outcome
+// tallies, lossless regathering, the capture mode, the resolve pass, and
+// GPU timers. Works in whatever OpenGL 4.5 core context is current (it never
+// creates or assumes one) and restores the GL state it touches.
+//
+// Host use: compile fragment shaders from module_source(ShaderStage::Fragment)
+// followed by code that calls ha_insert(pixel, depth, rgba); each frame call
+// frame([&] { draw the scene }) and then resolve(background) into the bound
+// framebuffer.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "habuffer/buffer_config.h"
+#include "habuffer/fragment.h"
+#include "habuffer/gl/gl_bindings.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/glsl_sources.h"
+#include "habuffer/lossless_build.h"
+#include "habuffer/offset_sequence.h"
+#include "habuffer/resize_policy.h"
+
+namespace habuffer::gl {
+
+struct GlFrameOptions {
+  bool adaptive = false;  // resize by `policy` from the previous frame's count (SPEC 8)
+  ResizePolicy policy;    // also the growth step of lossless mode
+  std::uint32_t max_attempts = 1;  // above 1: lossless mode, gather again into a grown table on failure
+  std::uint32_t lock_spin_limit = HA_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before failed_iter
+  bool capture = false;                 // append every incoming fragment (read_capture())
+  std::uint64_t capture_capacity = 1u << 20;  // first capacity; grows (and the frame regathers) on overflow
+  std::uint32_t clear_tile = 0;  // side of the clear pass's tiles; 0: the framebuffer limits
+};
+
+struct FrameReport {
+  std::uint64_t index = 0;  // frames since construction
+  Extent table;             // the table this frame was gathered into
+  bool resized = false;     // adaptive sizing changed the table before the gather
+  // The previous frame's stored-record count from the clear pass's occlusion
+  // query (none on the first frame), which drove the adaptive decision.
+  std::optional<std::uint64_t> previous_stored;
+  Counters counters;                   // of the final gather
+  std::vector<BuildAttempt> attempts;  // every gather of lossless mode, in order
+  std::uint32_t capture_regathers = 0;  // gathers repeated because the capture buffer overflowed
+  std::uint64_t captured = 0;           // fragments in the capture buffer
+  double clear_ms = 0.0;   // GPU time of the clear pass (GL_TIME_ELAPSED)
+  double gather_ms = 0.0;  // GPU time of the final gather
+  [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
+};
+
+class GlHaBuffer {
+ public:
+  // Throws std::invalid_argument for a bad config, GlError when the mode cannot
+  // hold the layout, the context lacks what the mode needs, or a buffer would
+  // exceed the context's limits (the message names the sizes).
+  GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlFrameOptions& options = {},
+             const GlBindings& bindings = {});
+  ~GlHaBuffer();
+  GlHaBuffer(const GlHaBuffer&) = delete;
+  GlHaBuffer& operator=(const GlHaBuffer&) = delete;
+
+  [[nodiscard]] const BufferConfig& config() const { return config_; }  // config().table: the current table
+  [[nodiscard]] Extent table() const { return config_.table; }
+  [[nodiscard]] AtomicMode mode() const { return mode_; }
+  [[nodiscard]] const GlBindings& bindings() const { return bindings_; }
+  [[nodiscard]] const OffsetSequence& offsets() const { return offsets_; }
+  [[nodiscard]] const GlFrameOptions& options() const { return options_; }
+
+  // The GLSL module for this buffer's atomic mode and binding points.
+  [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
+
+  // Binds our buffers to their points (frame() does this around the gather;
+  // a host binding them itself restores its own state afterwards).
+  void bind() const;
+
+  // One frame around `gather`, which draws or dispatches shaders calling
+  // ha_insert with our buffers bound.
+  FrameReport frame(const std::function<void()>& gather);
+
+  // Composites every screen pixel over `background` into the framebuffer
+  // bound at the call, at viewport (0, 0, screen). Returns GPU milliseconds.
+  double resolve(glm::vec3 background);
+
+  // Runs the counting pass without clearing: the records in the table, by
+  // occlusion query.
+  std::uint64_t count_stored();
+
+  // Slots widened to 64 bits (L32 records in the low half), row-major.
+  [[nodiscard]] std::vector<std::uint64_t> read_table() const;
+  [[nodiscard]] std::vector<std::uint32_t> read_max_age() const;
+  // The fragments the last frame captured, in arrival order.
+  [[nodiscard]] std::vector<Fragment> read_capture() const;
+  [[nodiscard]] std::uint64_t memory_bytes() const;
+
+ private:
+  struct Gpu;
+  // Fresh zeroed table (and locks); offsets regenerated for it unless new_offsets is false.
+  void allocate_table(Extent table, bool new_offsets = true);
+  void write_params() const;
+  void reset_frame_state() const;
+  void grow_capture(std::uint64_t needed);
+  std::uint64_t clear_pass(bool writes, double* ms);
+  [[nodiscard]] Counters read_counters() const;
+  [[nodiscard]] std::uint64_t read_capture_count() const;
+
+  BufferConfig config_;
+  OffsetSource source_;
+  OffsetSequence offsets_;
+  AtomicMode mode_;
+  GlFrameOptions options_;
+  GlBindings bindings_;
+  std::uint32_t cells_ = 0;
+  std::uint64_t capture_capacity_ = 0;
+  std::uint64_t frames_ = 0;
+  bool holds_frame_ = false;  // the table holds a gathered frame the next clear pass must count
+  std::unique_ptr<Gpu> gpu_;
+};
+
+}  // namespace habuffer::gl

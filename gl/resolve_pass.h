@@ -1,0 +1,30 @@
+// The resolve pass (SPEC 7 on the GPU): one full-screen triangle whose
+// fragment shader walks each pixel's records front to back and composites
+// them over the background into the bound framebuffer.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "gpu_timer.h"
+#include "habuffer/extent.h"
+#include "habuffer/gl/shader_program.h"
+
+namespace habuffer::gl {
+
+class ResolvePass {
+ public:
+  explicit ResolvePass(const std::string& module);
+  ~ResolvePass();
+  ResolvePass(const ResolvePass&) = delete;
+  ResolvePass& operator=(const ResolvePass&) = delete;
+
+  // Needs the buffers bound and the caller's state guard. Returns GPU ms.
+  double run(Extent screen, glm::vec3 background);
+
+ private:
+  ShaderProgram program_;
+  GpuTimer timer_;
+  unsigned vertex_array_ = 0;
+};
+
+}  // namespace habuffer::gl
