@@ -23,7 +23,7 @@ ClearPass::~ClearPass() {
   glDeleteFramebuffers(1, &framebuffer_);
 }
 
-ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes) {
+ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, bool finish) {
   GLint max_w = 0, max_h = 0, viewport[2] = {};
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_w);
   glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_h);
@@ -41,7 +41,7 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes) 
   glBindVertexArray(vertex_array_);
   glUseProgram(program_.id());
   program_.set("ha_clear_writes", writes ? 1u : 0u);
-  timer_.begin();
+  const PassClock clock(timer_);
   glBeginQuery(GL_SAMPLES_PASSED, query_);
   for (std::uint32_t y = 0; y < table.y; y += th) {
     for (std::uint32_t x = 0; x < table.x; x += tw) {
@@ -51,12 +51,12 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes) 
     }
   }
   glEndQuery(GL_SAMPLES_PASSED);
-  timer_.end();
   // Later passes and read-backs see the zeroed slots.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  const auto [wall, gpu] = clock.stop(finish);
   GLuint64 passed = 0;
   glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &passed);
-  return {passed, timer_.milliseconds()};
+  return {passed, wall, gpu};
 }
 
 }  // namespace habuffer::gl

@@ -23,11 +23,11 @@ class ClearPass {
 
   struct Result {
     std::uint64_t stored = 0;
-    double ms = 0.0;
+    double wall_ms = 0.0, gpu_ms = 0.0;
   };
   // Needs the buffers bound and the caller's state guard; `tile` 0: the limits.
-  // writes false: count only.
-  Result run(Extent table, std::uint32_t tile, bool writes);
+  // writes false: count only. finish: wait for the pass before stopping the clock.
+  Result run(Extent table, std::uint32_t tile, bool writes, bool finish);
 
  private:
   ShaderProgram program_;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <stdexcept>
+#include <tuple>
 
 #include "clear_pass.h"
 #include "gl_state_guard.h"
@@ -197,11 +198,11 @@ void GlHaBuffer::bind() const {
   glBindBufferBase(GL_UNIFORM_BUFFER, bindings_.params, gpu_->params);
 }
 
-std::uint64_t GlHaBuffer::clear_pass(bool writes, double* ms) {
+std::uint64_t GlHaBuffer::clear_pass(bool writes, PassTiming* timing) {
   if (!gpu_->clear) gpu_->clear = std::make_unique<ClearPass>(module_source(ShaderStage::Fragment));
   bind();
-  const ClearPass::Result r = gpu_->clear->run(config_.table, options_.clear_tile, writes);
-  if (ms != nullptr) *ms = r.ms;
+  const ClearPass::Result r = gpu_->clear->run(config_.table, options_.clear_tile, writes, options_.finish_timing);
+  if (timing != nullptr) *timing = {r.wall_ms, r.gpu_ms};
   check_gl_errors("the clear pass");
   return r.stored;
 }
@@ -216,7 +217,7 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
   FrameReport report;
   report.index = frames_++;
   if (holds_frame_) {
-    const std::uint64_t stored = clear_pass(true, &report.clear_ms);
+    const std::uint64_t stored = clear_pass(true, &report.clear);
     report.previous_stored = stored;
     holds_frame_ = false;
     if (options_.adaptive) {
@@ -230,13 +231,12 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
   for (;;) {
     reset_frame_state();
     bind();
-    gpu_->gather_timer.begin();
+    const PassClock clock(gpu_->gather_timer);
     gather();
-    gpu_->gather_timer.end();
     // Resolve, read-backs and the next clear see every insert.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+    std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
     holds_frame_ = true;
-    report.gather_ms = gpu_->gather_timer.milliseconds();
     report.counters = read_counters();
     check_gl_errors("the gather pass");
     if (options_.capture) {
@@ -261,13 +261,13 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
   return report;
 }
 
-double GlHaBuffer::resolve(glm::vec3 background) {
+PassTiming GlHaBuffer::resolve(glm::vec3 background) {
   const GlStateGuard guard(bindings_);
   if (!gpu_->resolve) gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
   bind();
-  const double ms = gpu_->resolve->run(config_.screen, background);
+  const auto [wall, gpu] = gpu_->resolve->run(config_.screen, background, options_.finish_timing);
   check_gl_errors("the resolve pass");
-  return ms;
+  return {wall, gpu};
 }
 
 Counters GlHaBuffer::read_counters() const {

@@ -4,6 +4,9 @@
 
 #include <epoxy/gl.h>
 
+#include <chrono>
+#include <utility>
+
 namespace habuffer::gl {
 
 class GpuTimer {
@@ -24,6 +27,23 @@ class GpuTimer {
 
  private:
   GLuint query_ = 0;
+};
+
+// Wall clock and GPU timer around one pass.
+class PassClock {
+ public:
+  explicit PassClock(const GpuTimer& timer) : timer_(timer), start_(std::chrono::steady_clock::now()) { timer_.begin(); }
+  // Ends the pass (waiting for it with glFinish when `finish`): {wall ms, GPU ms}.
+  [[nodiscard]] std::pair<double, double> stop(bool finish) const {
+    timer_.end();
+    if (finish) glFinish();
+    const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+    return {wall, timer_.milliseconds()};
+  }
+
+ private:
+  const GpuTimer& timer_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 }  // namespace habuffer::gl

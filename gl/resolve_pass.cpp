@@ -15,16 +15,15 @@ ResolvePass::ResolvePass(const std::string& module)
 
 ResolvePass::~ResolvePass() { glDeleteVertexArrays(1, &vertex_array_); }
 
-double ResolvePass::run(Extent screen, glm::vec3 background) {
+std::pair<double, double> ResolvePass::run(Extent screen, glm::vec3 background, bool finish) {
   GlStateGuard::prepare_full_screen_pass();
   glBindVertexArray(vertex_array_);
   glUseProgram(program_.id());
   program_.set("ha_background", background.x, background.y, background.z);
   glViewport(0, 0, static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
-  timer_.begin();
+  const PassClock clock(timer_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  timer_.end();
-  return timer_.milliseconds();
+  return clock.stop(finish);
 }
 
 }  // namespace habuffer::gl

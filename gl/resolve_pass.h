@@ -3,6 +3,8 @@
 // them over the background into the bound framebuffer.
 #pragma once
 
+#include <utility>
+
 #include <glm/vec3.hpp>
 
 #include "gpu_timer.h"
@@ -18,8 +20,8 @@ class ResolvePass {
   ResolvePass(const ResolvePass&) = delete;
   ResolvePass& operator=(const ResolvePass&) = delete;
 
-  // Needs the buffers bound and the caller's state guard. Returns GPU ms.
-  double run(Extent screen, glm::vec3 background);
+  // Needs the buffers bound and the caller's state guard. Returns {wall ms, GPU ms}.
+  std::pair<double, double> run(Extent screen, glm::vec3 background, bool finish);
 
  private:
   ShaderProgram program_;

@@ -5,6 +5,8 @@
 
 #include <epoxy/gl.h>
 
+#include <chrono>
+
 #include "gl_test_support.h"
 #include "habuffer/lossless_build.h"
 
@@ -37,7 +39,13 @@ TEST(GlFrame, ClearPassOcclusionCountIsExactAndEmptiesTheTable) {
       EXPECT_EQ(first.counters.stored(), exact);
       EXPECT_EQ(gpu.count_stored(), exact);  // counting only: the table stays
       EXPECT_EQ(gpu.count_stored(), exact);
+      const auto t0 = std::chrono::steady_clock::now();
       const gl::FrameReport empty = gpu.frame([] {});
+      const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      // Pass clocks: positive and within the frame's wall-clock time.
+      EXPECT_GT(empty.clear.wall_ms, 0.0);
+      EXPECT_LE(empty.clear.wall_ms + empty.gather.wall_ms, wall_ms);
+      EXPECT_GE(empty.clear.gpu_ms, 0.0);
       ASSERT_TRUE(empty.previous_stored.has_value());
       EXPECT_EQ(*empty.previous_stored, exact);
       EXPECT_EQ(empty.counters.fragments, 0u);
