@@ -25,7 +25,9 @@ constexpr const char* kHelp =
 // The GPU path: a headless context, one frame of compute insertion (lossless
 // mode regathers on the GPU), and the read-back imported into a CPU-side
 // buffer so lists and dumps are written the same way.
-BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments) {
+// Sets timing.build_ms to the insertion alone (upload, every gather, counters),
+// without the context's creation and the shader compilation.
+BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
   std::optional<gl::EglContext> context;
   try {
     context.emplace();
@@ -33,14 +35,19 @@ BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fr
     throw DataError(std::string("--path gl: no usable OpenGL: ") + e.what());
   }
   const BufferConfig& c = options.config;
-  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), c.layout);
+  const gl::GlInfo info = gl::query_gl_info();
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(info, c.layout);
   if (!mode) throw DataError("--path gl --layout 64: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
   gl::GlFrameOptions frame_options;
   frame_options.policy = options.policy;
   frame_options.max_attempts = options.max_attempts;
   gl::GlHaBuffer gpu(c, options.offsets, *mode, frame_options);
   gl::ComputeInserter inserter(gpu);
+  const auto t0 = std::chrono::steady_clock::now();
   gl::FrameReport report = inserter.insert(fragments);
+  timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  timing.gl_atomic_mode = gl::to_string(*mode);
+  timing.gl_renderer = info.renderer;
   HaBuffer buffer(gpu.config(), gpu.offsets());
   buffer.import_state(gpu.read_table(), gpu.read_max_age());
   return BuildResult{std::move(buffer), report.counters, std::move(report.attempts)};
@@ -58,13 +65,16 @@ int run_build_lists(const std::vector<std::string>& argv) {
   const HashOptions options = parse_hash_options(args);
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
-  const auto t0 = std::chrono::steady_clock::now();
-  BuildResult result = options.gl ? build_on_gl(options, fragments)
-                                  : build(options.config, options.offsets, fragments, options.insert, options.policy,
-                                          options.max_attempts);
-  const auto t1 = std::chrono::steady_clock::now();
-  const BuildTiming timing{std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                           resolved_threads(options.insert.threads)};
+  BuildTiming timing{0.0, resolved_threads(options.insert.threads), {}, {}};
+  std::optional<BuildResult> built;
+  if (options.gl) {
+    built.emplace(build_on_gl(options, fragments, timing));
+  } else {
+    const auto t0 = std::chrono::steady_clock::now();
+    built.emplace(build(options.config, options.offsets, fragments, options.insert, options.policy, options.max_attempts));
+    timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  BuildResult& result = *built;
 
   write_lists(out, result.buffer);
   if (args.has("dump-table")) write_table(args.required("dump-table"), result.buffer);

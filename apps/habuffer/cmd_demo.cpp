@@ -91,7 +91,7 @@ int run_demo(const std::vector<std::string>& argv) {
   if (args.has("stats")) {
     JsonWriter json;
     json.begin_object().field("stream", to_string(so.kind));
-    write_build_stats(json, options, *many, report, BuildTiming{ms_many, threads});
+    write_build_stats(json, options, *many, report, BuildTiming{ms_many, threads, {}, {}});
     json.field("serial_build_ms", ms_one).field("parallel_identical", identical).end_object();
     json.save(args.required("stats"));
   }

@@ -1,4 +1,5 @@
 // habuffer info: what this build is and which paths it offers.
+#include <algorithm>
 #include <cstdio>
 
 #include <tbb/info.h>
@@ -32,6 +33,9 @@ int run_info(const std::vector<std::string>& argv) {
                 info.int64_types ? "yes" : "no", info.atomic_int64 ? "yes" : "no");
     std::printf("    limits: SSBO %lld MiB, framebuffer %dx%d, compute work groups x %d\n", info.max_ssbo_bytes >> 20,
                 info.max_framebuffer_width, info.max_framebuffer_height, info.max_compute_work_groups_x);
+    const long long max_slots = std::min<long long>(info.max_ssbo_bytes, 0xFFFFFFFFll * 4);
+    std::printf("    largest table: L64 %lld slots, L32 %lld slots (one shader-storage buffer, 32-bit slot indices)\n",
+                std::min<long long>(max_slots / 8, 0xFFFFFFFFll), std::min<long long>(max_slots / 4, 0xFFFFFFFFll));
     std::string modes;
     for (gl::AtomicMode m : gl::runnable_atomic_modes(info)) modes += (modes.empty() ? "" : ", ") + gl::to_string(m);
     const auto l64 = gl::chosen_atomic_mode(info, Layout::L64);

@@ -12,6 +12,8 @@ namespace habuffer::cli {
 struct BuildTiming {
   double build_ms = 0.0;  // insertion of all attempts, including tile binning
   std::uint32_t threads = 1;
+  std::string gl_atomic_mode;  // --path gl: the mode that ran, and the renderer
+  std::string gl_renderer;
 };
 
 // Writes the body of the stats object (the caller opens and closes it).

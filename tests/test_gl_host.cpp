@@ -1,0 +1,145 @@
+// Host-context use: a context made with raw EGL calls, as a host app would,
+// not by the library; the library works in it and leaves its state alone.
+#include <gtest/gtest.h>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include "gl_test_support.h"
+
+namespace habuffer {
+namespace {
+
+// A headless OpenGL 4.5 core context made current on this thread, with
+// Mesa's surfaceless platform (the device platform when that is missing).
+class HostContext {
+ public:
+  HostContext() {
+    display_ = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display_ == EGL_NO_DISPLAY) {
+      EGLDeviceEXT device = nullptr;
+      EGLint n = 0;
+      if (eglQueryDevicesEXT(1, &device, &n) && n > 0)
+        display_ = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+    }
+    EXPECT_NE(display_, EGL_NO_DISPLAY);
+    EXPECT_TRUE(eglInitialize(display_, nullptr, nullptr));
+    eglBindAPI(EGL_OPENGL_API);
+    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+    EXPECT_NE(context_, EGL_NO_CONTEXT);
+    EXPECT_TRUE(eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_));
+  }
+  ~HostContext() {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display_, context_);
+  }
+  HostContext(const HostContext&) = delete;
+  HostContext& operator=(const HostContext&) = delete;
+
+ private:
+  EGLDisplay display_ = EGL_NO_DISPLAY;
+  EGLContext context_ = EGL_NO_CONTEXT;
+};
+
+struct HostState {
+  GLint program, vertex_array, draw_framebuffer, viewport[4], polygon_mode[2];
+  GLboolean blend, depth, cull, scissor;
+  GLint storage[7], storage_generic, uniform0, uniform_generic;
+  GLint64 start2, size2;
+  bool operator==(const HostState& o) const {
+    return program == o.program && vertex_array == o.vertex_array && draw_framebuffer == o.draw_framebuffer &&
+           std::equal(viewport, viewport + 4, o.viewport) && polygon_mode[0] == o.polygon_mode[0] &&
+           blend == o.blend && depth == o.depth && cull == o.cull && scissor == o.scissor &&
+           std::equal(storage, storage + 7, o.storage) && storage_generic == o.storage_generic &&
+           uniform0 == o.uniform0 && uniform_generic == o.uniform_generic && start2 == o.start2 && size2 == o.size2;
+  }
+};
+
+HostState host_state() {
+  HostState s{};
+  glGetIntegerv(GL_CURRENT_PROGRAM, &s.program);
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &s.vertex_array);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s.draw_framebuffer);
+  glGetIntegerv(GL_VIEWPORT, s.viewport);
+  glGetIntegerv(GL_POLYGON_MODE, s.polygon_mode);
+  s.blend = glIsEnabled(GL_BLEND);
+  s.depth = glIsEnabled(GL_DEPTH_TEST);
+  s.cull = glIsEnabled(GL_CULL_FACE);
+  s.scissor = glIsEnabled(GL_SCISSOR_TEST);
+  for (GLuint i = 0; i < 7; ++i) glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &s.storage[i]);
+  glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, 2, &s.start2);
+  glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 2, &s.size2);
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &s.storage_generic);
+  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, 0, &s.uniform0);
+  glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &s.uniform_generic);
+  return s;
+}
+
+// Host-context use: in a context the host made itself, the host's program,
+// vertex array, framebuffer, viewport, capabilities, polygon mode and buffer
+// bindings at our very binding points are unchanged by frames (gather and
+// clear pass), counting and resolve; no debug callback is installed.
+TEST(GlHost, EveryPassRestoresTheStateOfTheHostsOwnContext) {
+  HostContext host;
+  GLuint buffers[2], framebuffer = 0, renderbuffer = 0, vertex_array = 0;
+  glCreateBuffers(2, buffers);
+  glNamedBufferData(buffers[0], 256, nullptr, GL_STATIC_DRAW);
+  glNamedBufferData(buffers[1], 256, nullptr, GL_STATIC_DRAW);
+  glCreateRenderbuffers(1, &renderbuffer);
+  glNamedRenderbufferStorage(renderbuffer, GL_RGBA8, 24, 24);
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer);
+  glCreateVertexArrays(1, &vertex_array);
+  auto host_program = gl::ShaderProgram::compute("#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n", "host");
+  glUseProgram(host_program.id());
+  glBindVertexArray(vertex_array);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  glViewport(3, 4, 5, 6);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  glEnable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  glEnable(GL_SCISSOR_TEST);
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, buffers[0], 64, 128);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[1]);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers[1]);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers[0]);
+  glBindBuffer(GL_UNIFORM_BUFFER, buffers[0]);
+  const HostState before = host_state();
+  {
+    const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+    const BufferConfig c = test::config({24, 24}, {30, 30}, test::layout_of(mode), 6);
+    gl::GlFrameOptions o;
+    o.adaptive = true;
+    o.capture = true;
+    gl::GlHaBuffer gpu(c, test::random_offsets(1), mode, o);
+    gl::ComputeInserter inserter(gpu);
+    const auto f = test::stream(c.screen, StreamKind::Coherent, 500, 1);
+    inserter.insert(f);
+    EXPECT_TRUE(host_state() == before);
+    inserter.insert(f);  // with the clear pass
+    EXPECT_TRUE(host_state() == before);
+    gpu.count_stored();
+    EXPECT_TRUE(host_state() == before);
+    gpu.resolve({0.5f, 0.5f, 0.5f});
+    EXPECT_TRUE(host_state() == before);
+  }
+  EXPECT_TRUE(host_state() == before);
+  GLvoid* callback = nullptr;
+  glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &callback);
+  EXPECT_EQ(callback, nullptr);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  for (GLenum cap : {GL_BLEND, GL_DEPTH_TEST, GL_CULL_FACE, GL_SCISSOR_TEST}) glDisable(cap);
+  glUseProgram(0);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glDeleteVertexArrays(1, &vertex_array);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteRenderbuffers(1, &renderbuffer);
+  glDeleteBuffers(2, buffers);
+}
+
+}  // namespace
+}  // namespace habuffer
