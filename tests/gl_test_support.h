@@ -2,6 +2,8 @@
 // CPU-side twin of a GPU buffer.
 #pragma once
 
+#include <epoxy/gl.h>
+
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_ha_buffer.h"
@@ -29,6 +31,26 @@ inline HaBuffer cpu_twin(const gl::GlHaBuffer& gpu, std::span<const Fragment> fr
   HaBuffer cpu(gpu.config(), gpu.offsets());
   cpu.insert(fragments);
   return cpu;
+}
+
+// The resolve pass into an RGBA32F texture, read back row-major.
+inline std::vector<glm::vec4> resolve_to_image(gl::GlHaBuffer& gpu, glm::vec3 background) {
+  const Extent screen = gpu.config().screen;
+  GLuint texture = 0, framebuffer = 0;
+  GLint previous = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, GL_RGBA32F, static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  gpu.resolve(background);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous));
+  std::vector<glm::vec4> image(screen.area());
+  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.size() * sizeof(glm::vec4)), image.data());
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteTextures(1, &texture);
+  return image;
 }
 
 }  // namespace habuffer::test

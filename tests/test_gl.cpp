@@ -9,6 +9,7 @@
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
+#include "habuffer/reference_compositor.h"
 
 namespace habuffer {
 namespace {
@@ -140,6 +141,40 @@ TEST(Gl, EveryAtomicModeBuildsTheCpuTableBitForBit) {
       gl::ComputeInserter(other).insert(f);
       EXPECT_NE(other.read_table(), table);
     }
+  }
+}
+
+// Invariant 5 on the GPU: with early cull at tau, the resolved image differs
+// from the exact reference by at most (1 - tau) per channel, whatever order
+// the GPU inserted in; every fragment is accounted for.
+TEST(Gl, EarlyCullImageErrorIsBoundedByOneMinusTau) {
+  gl_context();
+  const auto l64 = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
+  if (!l64) GTEST_SKIP() << "no 64-bit shader types";
+  const Extent screen{32, 32};
+  SplitMix64 rng(11);
+  std::vector<Fragment> f;
+  for (int i = 0; i < 12000; ++i) {
+    const auto x = static_cast<std::uint32_t>(rng.below(screen.x)), y = static_cast<std::uint32_t>(rng.below(screen.y));
+    const float t = static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f;  // on the 2^-20 grid: no reordering
+    f.push_back({x, y, t, static_cast<std::uint32_t>(rng.next() & 0xFFFFFF00u) | static_cast<std::uint32_t>(64 + rng.below(192))});
+  }
+  const glm::dvec3 bg(0.2, 0.5, 0.9);
+  const auto reference = reference_composite(f, screen, bg);
+  for (float tau : {0.5f, 0.99f}) {
+    BufferConfig c = test::config(screen, {160, 160}, Layout::L64, 8);
+    c.early_cull_tau = tau;
+    gl::GlHaBuffer gpu(c, test::random_offsets(1), *l64);
+    const Counters n = gl::ComputeInserter(gpu).insert(f).counters;
+    ASSERT_EQ(n.failures(), 0u);
+    EXPECT_GT(n.culled, 0u);
+    EXPECT_EQ(n.fragments, f.size());
+    EXPECT_EQ(gpu.count_stored(), n.stored());
+    const auto image = test::resolve_to_image(gpu, glm::vec3(bg));
+    double worst = 0.0;
+    for (std::size_t i = 0; i < image.size(); ++i)
+      for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(double(image[i][ch]) - reference[i][ch]));
+    EXPECT_LE(worst, (1.0 - tau) + 1e-4) << "tau " << tau;
   }
 }
 

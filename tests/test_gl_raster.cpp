@@ -130,21 +130,13 @@ TEST(GlRaster, ResolvePassCompositesWhatTheCpuPathComposites) {
                                                    "host gather");
   const gl::FrameReport r = gpu.frame([&] { draw_scene(program, screen); });
   ASSERT_EQ(r.counters.failures(), 0u);
-  GLuint texture = 0, framebuffer = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, GL_RGBA32F, static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
-  glCreateFramebuffers(1, &framebuffer);
-  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
   const glm::vec3 background{0.25f, 0.5f, 0.75f};
   const auto t0 = std::chrono::steady_clock::now();
   const gl::PassTiming timing = gpu.resolve(background);
   const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_GT(timing.wall_ms, 0.0);
   EXPECT_LE(timing.wall_ms, wall);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  std::vector<glm::vec4> image(screen.area());
-  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.size() * sizeof(glm::vec4)), image.data());
+  const std::vector<glm::vec4> image = test::resolve_to_image(gpu, background);
   const HaBuffer cpu = test::cpu_twin(gpu, gpu.read_capture());
   const std::vector<glm::vec4> expected = cpu.composite_image(background);
   float worst = 0.0f;
@@ -155,8 +147,6 @@ TEST(GlRaster, ResolvePassCompositesWhatTheCpuPathComposites) {
   }
   EXPECT_LE(worst, 1e-6f);
   EXPECT_GT(covered, screen.area() / 2);
-  glDeleteFramebuffers(1, &framebuffer);
-  glDeleteTextures(1, &texture);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 usage: python3 crosscheck.py --habuffer PATH/TO/habuffer [--cases N]
                              [--seed S] [--workdir DIR] [--case K] [--keep]
+                             [--gl-every N]
 
 For every case a seeded random configuration and fragment stream are written
 to the work directory, `habuffer build-lists` is run twice (file order, and
@@ -218,9 +219,9 @@ def write_case(case, d):
 # Running and parsing
 # ---------------------------------------------------------------------------
 
-def habuffer_cmd(exe, case, d, tag, infile, threads):
+def habuffer_cmd(exe, case, d, tag, infile, threads, path="cpu"):
     p = lambda name: os.path.join(d, name)  # noqa: E731
-    return [exe, "build-lists",
+    return [exe, "build-lists", "--path", path,
             "--in", p(infile),
             "--out", p("lists%s.csv" % tag),
             "--screen", "%dx%d" % (case["Vx"], case["Vy"]),
@@ -343,10 +344,12 @@ def check_internal(o, tag):
 # One case
 # ---------------------------------------------------------------------------
 
-def run_case(exe, case, d, timeout):
+def run_case(exe, case, d, timeout, gl=False):
+    """gl: the second (shuffled) run goes through the GPU path."""
     write_case(case, d)
     cmd1 = habuffer_cmd(exe, case, d, "", "frags.csv", case["threads"])
-    cmd2 = habuffer_cmd(exe, case, d, "_shuffled", "frags_shuffled.csv", 2)
+    cmd2 = habuffer_cmd(exe, case, d, "_shuffled", "frags_shuffled.csv", 2,
+                        "gl" if gl else "cpu")
     errs = []
     try:
         run_habuffer(cmd1, timeout)
@@ -452,6 +455,9 @@ def main(argv=None):
     ap.add_argument("--habuffer", required=True,
                     help="path to the habuffer executable")
     ap.add_argument("--cases", type=int, default=60)
+    ap.add_argument("--gl-every", type=int, default=0,
+                    help="every Nth case runs its shuffled build with "
+                         "--path gl (0: never)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--case", type=int, action="append",
                     help="run only this case index (repeatable)")
@@ -485,7 +491,8 @@ def main(argv=None):
         if os.path.isdir(d):
             shutil.rmtree(d)
         os.makedirs(d)
-        errs, cmd, ms = run_case(exe, case, d, args.timeout)
+        gl = args.gl_every > 0 and i % args.gl_every == args.gl_every - 1
+        errs, cmd, ms = run_case(exe, case, d, args.timeout, gl)
         if errs:
             failed += 1
             repro = "python3 %s --habuffer %s --seed %d --case %d " \
