@@ -57,9 +57,9 @@ void run_gl_insert(benchmark::State& state, gl::AtomicMode mode, Layout layout) 
 void BM_GlInsertNative32(benchmark::State& s) { run_gl_insert(s, gl::AtomicMode::Native32, Layout::L32); }
 void BM_GlInsertNative64(benchmark::State& s) { run_gl_insert(s, gl::AtomicMode::Native64, Layout::L64); }
 void BM_GlInsertEmulated64(benchmark::State& s) { run_gl_insert(s, gl::AtomicMode::Emulated64, Layout::L64); }
-BENCHMARK(BM_GlInsertNative32)->ArgName("load")->Arg(10)->Arg(50)->Arg(80)->Arg(95)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_GlInsertNative64)->ArgName("load")->Arg(10)->Arg(50)->Arg(80)->Arg(95)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_GlInsertEmulated64)->ArgName("load")->Arg(10)->Arg(50)->Arg(80)->Arg(95)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GlInsertNative32)->ArgName("load")->Arg(10)->Arg(30)->Arg(50)->Arg(70)->Arg(80)->Arg(90)->Arg(95)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GlInsertNative64)->ArgName("load")->Arg(10)->Arg(30)->Arg(50)->Arg(70)->Arg(80)->Arg(90)->Arg(95)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GlInsertEmulated64)->ArgName("load")->Arg(10)->Arg(30)->Arg(50)->Arg(70)->Arg(80)->Arg(90)->Arg(95)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace habuffer::bench
