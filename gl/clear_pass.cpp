@@ -41,12 +41,12 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   glBindVertexArray(vertex_array_);
   glUseProgram(program_.id());
   program_.set("ha_clear_writes", writes ? 1u : 0u);
-  const PassClock clock(timer_);
+  PassClock clock(timer_);
   glBeginQuery(GL_SAMPLES_PASSED, query_);
   for (std::uint32_t y = 0; y < table.y; y += th) {
     for (std::uint32_t x = 0; x < table.x; x += tw) {
       program_.set("ha_tile_origin", x, y);
-      glViewport(0, 0, static_cast<GLsizei>(std::min(tw, table.x - x)), static_cast<GLsizei>(std::min(th, table.y - y)));
+      GlStateGuard::set_viewport(static_cast<GLsizei>(std::min(tw, table.x - x)), static_cast<GLsizei>(std::min(th, table.y - y)));
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
@@ -54,9 +54,7 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   // Later passes and read-backs see the zeroed slots.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   const auto [wall, gpu] = clock.stop(finish);
-  GLuint64 passed = 0;
-  glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &passed);
-  return {passed, wall, gpu};
+  return {query_result(query_), wall, gpu};
 }
 
 }  // namespace habuffer::gl

@@ -9,13 +9,17 @@
 
 namespace habuffer::gl {
 
-ComputeInserter::ComputeInserter(GlHaBuffer& buffer)
+ComputeInserter::ComputeInserter(GlHaBuffer& buffer, std::size_t max_chunk)
     : buffer_(buffer),
       program_(ShaderProgram::compute(buffer.module_source(ShaderStage::Compute) + kInsertStreamCompute,
-                                      "insert compute shader")) {}
+                                      "insert compute shader")),
+      max_chunk_(max_chunk) {}
 
-ComputeInserter::~ComputeInserter() {
-  if (stream_ != 0) glDeleteBuffers(1, &stream_);
+ComputeInserter::~ComputeInserter() { release(); }
+
+void ComputeInserter::release() {
+  for (const Chunk& c : chunks_) glDeleteBuffers(1, &c.buffer);
+  chunks_.clear();
 }
 
 void ComputeInserter::upload(std::span<const Fragment> fragments) {
@@ -24,20 +28,44 @@ void ComputeInserter::upload(std::span<const Fragment> fragments) {
     if (fragments[i].x >= screen.x || fragments[i].y >= screen.y)
       throw GlError("fragment " + std::to_string(i) + " at (" + std::to_string(fragments[i].x) + ", " +
                     std::to_string(fragments[i].y) + ") lies outside screen " + screen.str());
-  if (fragments.size() > UINT32_MAX) throw GlError("the compute entry takes at most 2^32 - 1 fragments per stream");
-  if (stream_ != 0) glDeleteBuffers(1, &stream_);
-  glCreateBuffers(1, &stream_);
-  glNamedBufferData(stream_, static_cast<GLsizeiptr>(std::max<std::size_t>(fragments.size_bytes(), 16)),
-                    fragments.data(), GL_STATIC_DRAW);
-  count_ = fragments.size();
+  release();
+  // Streams beyond one shader-storage buffer (128 MiB, 8 M fragments on
+  // llvmpipe) go in several, dispatched one after the other.
+  GLint64 max_bytes = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_bytes);
+  std::size_t per_chunk =
+      std::min<std::size_t>(static_cast<std::size_t>(max_bytes) / sizeof(Fragment), std::size_t{1} << 26);
+  if (max_chunk_ > 0) per_chunk = std::min(per_chunk, max_chunk_);
+  for (std::size_t first = 0; first < fragments.size() || first == 0; first += per_chunk) {
+    const std::size_t n = std::min(per_chunk, fragments.size() - first);
+    Chunk c{0, n};
+    glCreateBuffers(1, &c.buffer);
+    chunks_.push_back(c);
+    const std::size_t bytes = std::max<std::size_t>(n * sizeof(Fragment), 16);
+    glNamedBufferData(c.buffer, static_cast<GLsizeiptr>(bytes), n > 0 ? fragments.data() + first : nullptr,
+                      GL_STATIC_DRAW);
+    GLint64 got = 0;
+    glGetNamedBufferParameteri64v(c.buffer, GL_BUFFER_SIZE, &got);
+    if (static_cast<std::size_t>(got) != bytes)
+      throw GlError("OpenGL could not allocate " + std::to_string(bytes) + " bytes for the fragment stream");
+    if (fragments.empty()) break;
+  }
 }
 
 void ComputeInserter::dispatch() const {
   glUseProgram(program_.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, buffer_.bindings().stream, stream_);
-  program_.set("ha_stream_count", static_cast<unsigned>(count_));
-  const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((count_ + 63) / 64, 1, 65535));
-  glDispatchCompute(groups, 1, 1);
+  for (const Chunk& c : chunks_) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, buffer_.bindings().stream, c.buffer);
+    program_.set("ha_stream_count", static_cast<unsigned>(c.count));
+    const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((c.count + 63) / 64, 1, 65535));
+    glDispatchCompute(groups, 1, 1);
+  }
+}
+
+std::size_t ComputeInserter::uploaded() const {
+  std::size_t n = 0;
+  for (const Chunk& c : chunks_) n += c.count;
+  return n;
 }
 
 FrameReport ComputeInserter::insert(std::span<const Fragment> fragments) {

@@ -32,14 +32,24 @@ struct GlParams {
 };
 static_assert(sizeof(GlParams) == 48);
 
-constexpr std::uint64_t kCounterWords = HA_OUTCOME_COUNT * HA_COUNTER_STRIDE;
+constexpr std::uint64_t kCounterWords = HA_GPU_COUNTER_COUNT * HA_COUNTER_STRIDE;
 constexpr std::uint64_t kCaptureHeaderBytes = HA_CAPTURE_HEADER_WORDS * 4;
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
 
+// A buffer of `bytes`, checked: a failed allocation (GL_OUT_OF_MEMORY in a
+// host context whose errors we must not consume) leaves a short buffer that
+// shaders would silently read past.
 GLuint make_buffer(std::uint64_t bytes, const void* data = nullptr) {
+  const std::uint64_t size = std::max<std::uint64_t>(bytes, 4);
   GLuint b = 0;
   glCreateBuffers(1, &b);
-  glNamedBufferData(b, static_cast<GLsizeiptr>(std::max<std::uint64_t>(bytes, 4)), data, GL_DYNAMIC_DRAW);
+  glNamedBufferData(b, static_cast<GLsizeiptr>(size), data, GL_DYNAMIC_DRAW);
+  GLint64 got = 0;
+  glGetNamedBufferParameteri64v(b, GL_BUFFER_SIZE, &got);
+  if (static_cast<std::uint64_t>(got) != size) {
+    glDeleteBuffers(1, &b);
+    throw GlError("OpenGL could not allocate a buffer of " + std::to_string(size) + " bytes");
+  }
   return b;
 }
 
@@ -111,8 +121,16 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
   if (mode == AtomicMode::Native64 && !info.atomic_int64)
     throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
   bindings_.validate();
-  const std::uint32_t cells_x = (config_.screen.x + config_.block - 1) / config_.block;
-  cells_ = cells_x * ((config_.screen.y + config_.block - 1) / config_.block);
+  GLint viewport[2] = {};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  if (config_.screen.x > static_cast<std::uint32_t>(viewport[0]) || config_.screen.y > static_cast<std::uint32_t>(viewport[1]))
+    throw GlError("screen " + config_.screen.str() + " exceeds this OpenGL's largest viewport " +
+                  std::to_string(viewport[0]) + "x" + std::to_string(viewport[1]));
+  const std::uint64_t cells = std::uint64_t{(config_.screen.x - 1) / config_.block + 1} *
+                              std::uint64_t{(config_.screen.y - 1) / config_.block + 1};
+  if (cells > UINT32_MAX) throw GlError("max-age table of " + std::to_string(cells) + " cells is too large");
+  cells_ = static_cast<std::uint32_t>(cells);
+  if (const std::string why = table_limit(config_.table); !why.empty()) throw GlError(why);
   gpu_->max_age = make_buffer(std::uint64_t{cells_} * 4);
   gpu_->counters = make_buffer(kCounterWords * 4);
   gpu_->params = make_buffer(sizeof(GlParams));
@@ -129,13 +147,20 @@ std::string GlHaBuffer::module_source(ShaderStage stage, std::string_view header
   return ha_module(mode_, bindings_, stage, header);
 }
 
-void GlHaBuffer::allocate_table(Extent table, bool new_offsets) {
+std::string GlHaBuffer::table_limit(Extent table) const {
   const std::uint64_t slots = table.area();
-  if (slots > UINT32_MAX) throw GlError("the GPU path indexes at most 2^32 - 1 slots, table " + table.str());
+  if (slots > UINT32_MAX) return "the GPU path indexes at most 2^32 - 1 slots, table " + table.str();
   const std::uint64_t bytes = slots * config_.record_layout().word_bytes();
   if (bytes > max_storage_bytes())
-    throw GlError("table " + table.str() + " needs " + std::to_string(bytes) + " bytes, this OpenGL allows " +
-                  std::to_string(max_storage_bytes()) + " per shader-storage buffer");
+    return "table " + table.str() + " needs " + std::to_string(bytes) + " bytes, this OpenGL allows " +
+           std::to_string(max_storage_bytes()) + " per shader-storage buffer";
+  return {};
+}
+
+void GlHaBuffer::allocate_table(Extent table, bool new_offsets) {
+  if (const std::string why = table_limit(table); !why.empty()) throw GlError(why);
+  const std::uint64_t slots = table.area();
+  const std::uint64_t bytes = slots * config_.record_layout().word_bytes();
   config_.table = table;
   if (new_offsets) offsets_ = source_.make(table, config_.record_layout().max_age());
   delete_buffer(gpu_->table);
@@ -158,7 +183,7 @@ void GlHaBuffer::write_params() const {
   p.table[1] = config_.table.y;
   p.age_bits = config_.age_bits;
   p.block = config_.block;
-  p.max_age_cells_x = (config_.screen.x + config_.block - 1) / config_.block;
+  p.max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
   p.iter_limit = config_.iter_limit;
   p.cull_tau = config_.early_cull_tau;
   p.lock_spin_limit = options_.lock_spin_limit;
@@ -217,48 +242,70 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
   FrameReport report;
   report.index = frames_++;
   if (holds_frame_) {
-    const std::uint64_t stored = clear_pass(true, &report.clear);
-    report.previous_stored = stored;
+    {
+      const GlStateGuard clear_guard(bindings_);  // the gather gets the host's state back
+      report.previous_stored = clear_pass(true, &report.clear);
+    }
     holds_frame_ = false;
     if (options_.adaptive) {
-      const Extent next = options_.policy.next(config_.table, config_.screen, stored);
+      const Extent next = options_.policy.next(config_.table, config_.screen, *report.previous_stored);
       if (next != config_.table) {
-        allocate_table(next);
-        report.resized = true;
+        if (table_limit(next).empty()) {
+          allocate_table(next);
+          report.resized = true;
+        } else {
+          report.resize_limited = true;  // keep the largest table this context holds
+        }
       }
     }
   }
   for (;;) {
-    reset_frame_state();
+    run_gather(gather, report);
+    if (options_.capture && report.captured > capture_capacity_) {
+      // A gather is deterministic in what it rasterizes, so one regather suffices;
+      // two would mean the host's gather is not repeatable.
+      if (report.capture_regathers > 0)
+        throw GlError("capture overflowed twice: the gather produced " + std::to_string(report.captured) +
+                      " fragments after fitting a capture of " + std::to_string(capture_capacity_));
+      grow_capture(report.captured);
+      zero(gpu_->table);
+      ++report.capture_regathers;
+      continue;
+    }
+    report.attempts.push_back({config_.table, report.counters});
+    if (report.counters.failures() == 0 || report.attempts.size() >= options_.max_attempts) break;
+    // Lossless mode: the same frame again. Failures of the table need a larger
+    // one; lock give-ups alone (contention, not load) retry the same table.
+    if (report.counters.failures() > report.lock_give_ups) {
+      const Extent grown = options_.policy.grown(config_.table);
+      if (!table_limit(grown).empty()) {
+        report.growth_limited = true;
+        break;
+      }
+      allocate_table(grown);
+    } else {
+      zero(gpu_->table);
+    }
+  }
+  report.table = config_.table;
+  return report;
+}
+
+void GlHaBuffer::run_gather(const std::function<void()>& gather, FrameReport& report) {
+  reset_frame_state();
+  holds_frame_ = true;  // even if the gather throws halfway, the next frame clears what it inserted
+  {
+    const GlStateGuard attempt_guard(bindings_);
     bind();
-    const PassClock clock(gpu_->gather_timer);
+    PassClock clock(gpu_->gather_timer);
     gather();
     // Resolve, read-backs and the next clear see every insert.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
-    holds_frame_ = true;
-    report.counters = read_counters();
-    check_gl_errors("the gather pass");
-    if (options_.capture) {
-      report.captured = read_capture_count();
-      if (report.captured > capture_capacity_) {
-        // A gather is deterministic in what it rasterizes, so one regather suffices;
-        // two would mean the host's gather is not repeatable.
-        if (report.capture_regathers > 0)
-          throw GlError("capture overflowed twice: the gather produced " + std::to_string(report.captured) +
-                        " fragments after fitting a capture of " + std::to_string(capture_capacity_));
-        grow_capture(report.captured);
-        zero(gpu_->table);
-        ++report.capture_regathers;
-        continue;
-      }
-    }
-    report.attempts.push_back({config_.table, report.counters});
-    if (report.counters.failures() == 0 || report.attempts.size() >= options_.max_attempts) break;
-    allocate_table(options_.policy.grown(config_.table));  // lossless mode: the same frame, a larger table
   }
-  report.table = config_.table;
-  return report;
+  std::tie(report.counters, report.lock_give_ups) = read_counters();
+  if (options_.capture) report.captured = read_capture_count();
+  check_gl_errors("the gather pass");
 }
 
 PassTiming GlHaBuffer::resolve(glm::vec3 background) {
@@ -270,13 +317,13 @@ PassTiming GlHaBuffer::resolve(glm::vec3 background) {
   return {wall, gpu};
 }
 
-Counters GlHaBuffer::read_counters() const {
+std::pair<Counters, std::uint64_t> GlHaBuffer::read_counters() const {
   const auto words = read_words(gpu_->counters, kCounterWords);
   std::uint64_t tally[HA_OUTCOME_COUNT];
   for (std::uint32_t o = 0; o < HA_OUTCOME_COUNT; ++o) tally[o] = words[o * HA_COUNTER_STRIDE];
   Counters c;
   c.add_tally(tally);
-  return c;
+  return {c, words[HA_COUNTER_LOCK_GIVE_UPS * HA_COUNTER_STRIDE]};
 }
 
 std::uint64_t GlHaBuffer::read_capture_count() const {

@@ -1,25 +1,59 @@
 #include "gl_state_guard.h"
 
 namespace habuffer::gl {
+namespace {
 
-const std::array<GLenum, 6>& GlStateGuard::pass_capabilities() {
-  static const std::array<GLenum, 6> caps{GL_BLEND,        GL_DEPTH_TEST,   GL_STENCIL_TEST,
-                                          GL_CULL_FACE,    GL_SCISSOR_TEST, GL_RASTERIZER_DISCARD};
+GLint limit(GLenum name) {
+  GLint v = 0;
+  glGetIntegerv(name, &v);
+  return v;
+}
+
+// Every capability a pass switches off, with the index GL keeps it per.
+std::vector<std::pair<GLenum, GLint>> pass_capabilities() {
+  std::vector<std::pair<GLenum, GLint>> caps{
+      {GL_DEPTH_TEST, -1}, {GL_STENCIL_TEST, -1}, {GL_CULL_FACE, -1}, {GL_RASTERIZER_DISCARD, -1}};
+  for (GLint i = 0; i < limit(GL_MAX_DRAW_BUFFERS); ++i) caps.emplace_back(GL_BLEND, i);
+  for (GLint i = 0; i < limit(GL_MAX_VIEWPORTS); ++i) caps.emplace_back(GL_SCISSOR_TEST, i);
+  for (GLint i = 0; i < limit(GL_MAX_CLIP_DISTANCES); ++i) caps.emplace_back(GL_CLIP_DISTANCE0 + i, -1);
   return caps;
 }
 
+void set_capability(GLenum cap, GLint index, bool enabled) {
+  if (index < 0)
+    (enabled ? glEnable : glDisable)(cap);
+  else
+    (enabled ? glEnablei : glDisablei)(cap, static_cast<GLuint>(index));
+}
+
+}  // namespace
+
 void GlStateGuard::prepare_full_screen_pass() {
-  for (GLenum cap : pass_capabilities()) glDisable(cap);
+  for (const auto& [cap, index] : pass_capabilities()) set_capability(cap, index, false);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glBindBuffer(GL_QUERY_BUFFER, 0);
+}
+
+void GlStateGuard::set_viewport(GLsizei width, GLsizei height) {
+  glViewportIndexedf(0, 0.0f, 0.0f, static_cast<GLfloat>(width), static_cast<GLfloat>(height));
+}
+
+GLuint64 query_result(GLuint query) {
+  glBindBuffer(GL_QUERY_BUFFER, 0);
+  GLuint64 v = 0;
+  glGetQueryObjectui64v(query, GL_QUERY_RESULT, &v);
+  return v;
 }
 
 GlStateGuard::GlStateGuard(const GlBindings& bindings) {
   glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
   glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vertex_array_);
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
-  glGetIntegerv(GL_VIEWPORT, viewport_);
+  glGetIntegerv(GL_QUERY_BUFFER_BINDING, &query_buffer_);
+  glGetFloati_v(GL_VIEWPORT, 0, viewport_);
   glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
-  for (std::size_t i = 0; i < enabled_.size(); ++i) enabled_[i] = glIsEnabled(pass_capabilities()[i]);
+  for (const auto& [cap, index] : pass_capabilities())
+    capabilities_.push_back({cap, index, index < 0 ? glIsEnabled(cap) : glIsEnabledi(cap, static_cast<GLuint>(index))});
   for (unsigned p : bindings.storage_points()) indexed_.push_back({GL_SHADER_STORAGE_BUFFER, p});
   indexed_.push_back({GL_UNIFORM_BUFFER, bindings.params});
   for (IndexedBuffer& b : indexed_) {
@@ -36,10 +70,10 @@ GlStateGuard::~GlStateGuard() {
   glUseProgram(static_cast<GLuint>(program_));
   glBindVertexArray(static_cast<GLuint>(vertex_array_));
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw_framebuffer_));
-  glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  glBindBuffer(GL_QUERY_BUFFER, static_cast<GLuint>(query_buffer_));
+  glViewportIndexedfv(0, viewport_);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
-  for (std::size_t i = 0; i < enabled_.size(); ++i)
-    (enabled_[i] != GL_FALSE ? glEnable : glDisable)(pass_capabilities()[i]);
+  for (const Capability& c : capabilities_) set_capability(c.cap, c.index, c.enabled != GL_FALSE);
   for (const IndexedBuffer& b : indexed_) {
     if (b.size > 0)
       glBindBufferRange(b.target, b.index, static_cast<GLuint>(b.buffer), b.start, b.size);

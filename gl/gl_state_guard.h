@@ -1,7 +1,9 @@
 // Saves the GL state the library's passes touch and restores it on scope
 // exit, so a host app's context is left as it was: current program, vertex
-// array, draw framebuffer, viewport, polygon mode, the capabilities a
-// full-screen pass must switch off, and the buffer bindings at our points.
+// array, draw framebuffer, viewport 0, polygon mode, the capabilities a
+// full-screen pass must switch off (per draw buffer and per viewport where GL
+// keeps them so, and the clip distances), the query-buffer binding, and the
+// buffer bindings at our points.
 #pragma once
 
 #include <array>
@@ -20,10 +22,12 @@ class GlStateGuard {
   GlStateGuard(const GlStateGuard&) = delete;
   GlStateGuard& operator=(const GlStateGuard&) = delete;
 
-  // The capabilities full-screen passes disable (GL_BLEND, GL_DEPTH_TEST, ...).
-  static const std::array<GLenum, 6>& pass_capabilities();
-  // Disables them and sets polygon mode to fill (restored by the destructor).
+  // Disables what would alter a full-screen pass (blend, depth, stencil,
+  // cull, scissor, rasterizer discard, clip distances), sets polygon mode to
+  // fill, and unbinds the query buffer so query results come back to memory.
   static void prepare_full_screen_pass();
+  // Viewport 0 only (glViewport would reset every viewport of the host's array).
+  static void set_viewport(GLsizei width, GLsizei height);
 
  private:
   struct IndexedBuffer {
@@ -32,12 +36,21 @@ class GlStateGuard {
     GLint buffer = 0;
     GLint64 start = 0, size = 0;
   };
-  GLint program_ = 0, vertex_array_ = 0, draw_framebuffer_ = 0;
-  GLint viewport_[4] = {};
+  struct Capability {
+    GLenum cap;
+    GLint index;  // -1: not indexed
+    GLboolean enabled;
+  };
+  GLint program_ = 0, vertex_array_ = 0, draw_framebuffer_ = 0, query_buffer_ = 0;
+  GLfloat viewport_[4] = {};
   GLint polygon_mode_[2] = {};
-  std::array<GLboolean, 6> enabled_{};
+  std::vector<Capability> capabilities_;
   std::vector<IndexedBuffer> indexed_;
   GLint storage_generic_ = 0, uniform_generic_ = 0;
 };
+
+// Reads a query's 64-bit result into memory whatever GL_QUERY_BUFFER the
+// host bound (call inside a GlStateGuard, which restores that binding).
+GLuint64 query_result(GLuint query);
 
 }  // namespace habuffer::gl

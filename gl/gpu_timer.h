@@ -4,6 +4,8 @@
 
 #include <epoxy/gl.h>
 
+#include "gl_state_guard.h"
+
 #include <chrono>
 #include <utility>
 
@@ -18,23 +20,26 @@ class GpuTimer {
 
   void begin() const { glBeginQuery(GL_TIME_ELAPSED, query_); }
   void end() const { glEndQuery(GL_TIME_ELAPSED); }
-  // Waits for the result.
-  [[nodiscard]] double milliseconds() const {
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
-    return static_cast<double>(ns) * 1e-6;
-  }
+  // Waits for the result (inside a GlStateGuard: see query_result).
+  [[nodiscard]] double milliseconds() const { return static_cast<double>(query_result(query_)) * 1e-6; }
 
  private:
   GLuint query_ = 0;
 };
 
-// Wall clock and GPU timer around one pass.
+// Wall clock and GPU timer around one pass; the query is ended on every
+// path, so a pass that throws leaves no query active.
 class PassClock {
  public:
   explicit PassClock(const GpuTimer& timer) : timer_(timer), start_(std::chrono::steady_clock::now()) { timer_.begin(); }
+  ~PassClock() {
+    if (running_) timer_.end();
+  }
+  PassClock(const PassClock&) = delete;
+  PassClock& operator=(const PassClock&) = delete;
   // Ends the pass (waiting for it with glFinish when `finish`): {wall ms, GPU ms}.
-  [[nodiscard]] std::pair<double, double> stop(bool finish) const {
+  [[nodiscard]] std::pair<double, double> stop(bool finish) {
+    running_ = false;
     timer_.end();
     if (finish) glFinish();
     const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
@@ -44,6 +49,7 @@ class PassClock {
  private:
   const GpuTimer& timer_;
   std::chrono::steady_clock::time_point start_;
+  bool running_ = true;
 };
 
 }  // namespace habuffer::gl

@@ -20,8 +20,8 @@ std::pair<double, double> ResolvePass::run(Extent screen, glm::vec3 background, 
   glBindVertexArray(vertex_array_);
   glUseProgram(program_.id());
   program_.set("ha_background", background.x, background.y, background.z);
-  glViewport(0, 0, static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
-  const PassClock clock(timer_);
+  GlStateGuard::set_viewport(static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
+  PassClock clock(timer_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   return clock.stop(finish);
 }

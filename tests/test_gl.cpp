@@ -136,6 +136,11 @@ TEST(Gl, EveryAtomicModeBuildsTheCpuTableBitForBit) {
         EXPECT_EQ(gpu.read_max_age(), cpu.max_age().ages());
         EXPECT_EQ(ng, nc);
       }
+      // A stream uploaded in many buffers builds the same table.
+      gl::GlHaBuffer chunked(c, test::random_offsets(9), mode);
+      gl::ComputeInserter in_parts(chunked, 97);
+      EXPECT_EQ(in_parts.insert(f).counters.fragments, f.size());
+      EXPECT_EQ(chunked.read_table(), table);
       // The comparison bites: other offsets give another table.
       gl::GlHaBuffer other(c, test::random_offsets(10), mode);
       gl::ComputeInserter(other).insert(f);

@@ -9,6 +9,8 @@
 #include "gl_test_support.h"
 #include "habuffer/lossless_build.h"
 
+#include <stdexcept>
+
 namespace habuffer {
 namespace {
 
@@ -126,6 +128,55 @@ TEST(GlFrame, LosslessModeRegathersIntoTheCpuPathsTablesAndLosesNothing) {
     EXPECT_EQ(gpu.read_max_age(), cpu.buffer.max_age().ages());
     EXPECT_EQ(r.counters, cpu.counters);
   }
+}
+
+// A gather that throws halfway leaves no query active and the records it
+// inserted are still counted and cleared by the next frame.
+TEST(GlFrame, AGatherThatThrowsLeavesNoQueryOpenAndIsClearedNextFrame) {
+  gl_context();
+  const gl::AtomicMode mode = modes().front();
+  const BufferConfig c = test::config({32, 32}, {40, 40}, test::layout_of(mode), 8);
+  gl::GlHaBuffer gpu(c, test::random_offsets(3), mode);
+  gl::ComputeInserter inserter(gpu);
+  const auto f = test::stream(c.screen, StreamKind::Random, 600, 5);
+  inserter.upload(f);
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  EXPECT_THROW(gpu.frame([&] {
+    inserter.dispatch();
+    throw std::runtime_error("host gather failed");
+  }),
+               std::runtime_error);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const std::uint64_t exact = test::cpu_twin(gpu, f).count_stored();
+  const gl::FrameReport next = gpu.frame([] {});
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  ASSERT_TRUE(next.previous_stored.has_value());
+  EXPECT_EQ(*next.previous_stored, exact);
+  EXPECT_EQ(gpu.count_stored(), 0u);
+}
+
+// Lossless mode tells lock contention from a full table: give-ups of the
+// emulated atomic are gathered again into the same table, never a larger one.
+TEST(GlFrame, LosslessModeRetriesLockGiveUpsWithoutGrowingTheTable) {
+  gl_context();
+  const auto all = modes();
+  if (std::find(all.begin(), all.end(), gl::AtomicMode::Emulated64) == all.end()) GTEST_SKIP() << "no emulated64";
+  const BufferConfig c = test::config({16, 16}, {32, 32}, Layout::L64, 8);
+  std::vector<Fragment> f;
+  for (std::uint32_t i = 0; i < 2048; ++i)  // neighbours share a pixel: they contend
+    f.push_back({(i / 16) % 16, 3, static_cast<float>(i % 16 + 1) / 32.0f, 0x80808000u + i % 16});
+  gl::GlFrameOptions o;
+  o.lock_spin_limit = 1;
+  o.max_attempts = 4;
+  gl::GlHaBuffer gpu(c, test::random_offsets(3), gl::AtomicMode::Emulated64, o);
+  const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
+  ASSERT_GT(r.attempts.front().counters.failed_iter, 0u);
+  EXPECT_GT(r.attempts.size(), 1u);
+  for (const BuildAttempt& a : r.attempts) EXPECT_EQ(a.table, c.table);
+  EXPECT_EQ(r.table, c.table);
+  EXPECT_EQ(r.counters.failed_iter, r.lock_give_ups);
+  EXPECT_EQ(r.counters.failed_age, 0u);
 }
 
 }  // namespace

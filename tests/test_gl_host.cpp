@@ -45,13 +45,17 @@ class HostContext {
 
 struct HostState {
   GLint program, vertex_array, draw_framebuffer, viewport[4], polygon_mode[2];
-  GLboolean blend, depth, cull, scissor;
+  GLboolean blend, depth, cull, scissor, stencil, discard, blend1, scissor1, clip0;
+  GLfloat viewport1[4];
+  GLint query_buffer;
   GLint storage[7], storage_generic, uniform0, uniform_generic;
   GLint64 start2, size2;
   bool operator==(const HostState& o) const {
     return program == o.program && vertex_array == o.vertex_array && draw_framebuffer == o.draw_framebuffer &&
            std::equal(viewport, viewport + 4, o.viewport) && polygon_mode[0] == o.polygon_mode[0] &&
-           blend == o.blend && depth == o.depth && cull == o.cull && scissor == o.scissor &&
+           blend == o.blend && depth == o.depth && cull == o.cull && scissor == o.scissor && stencil == o.stencil &&
+           discard == o.discard && blend1 == o.blend1 && scissor1 == o.scissor1 && clip0 == o.clip0 &&
+           std::equal(viewport1, viewport1 + 4, o.viewport1) && query_buffer == o.query_buffer &&
            std::equal(storage, storage + 7, o.storage) && storage_generic == o.storage_generic &&
            uniform0 == o.uniform0 && uniform_generic == o.uniform_generic && start2 == o.start2 && size2 == o.size2;
   }
@@ -68,6 +72,13 @@ HostState host_state() {
   s.depth = glIsEnabled(GL_DEPTH_TEST);
   s.cull = glIsEnabled(GL_CULL_FACE);
   s.scissor = glIsEnabled(GL_SCISSOR_TEST);
+  s.stencil = glIsEnabled(GL_STENCIL_TEST);
+  s.discard = glIsEnabled(GL_RASTERIZER_DISCARD);
+  s.blend1 = glIsEnabledi(GL_BLEND, 1);
+  s.scissor1 = glIsEnabledi(GL_SCISSOR_TEST, 1);
+  s.clip0 = glIsEnabled(GL_CLIP_DISTANCE0);
+  glGetFloati_v(GL_VIEWPORT, 1, s.viewport1);
+  glGetIntegerv(GL_QUERY_BUFFER_BINDING, &s.query_buffer);
   for (GLuint i = 0; i < 7; ++i) glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &s.storage[i]);
   glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, 2, &s.start2);
   glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, 2, &s.size2);
@@ -102,6 +113,13 @@ TEST(GlHost, EveryPassRestoresTheStateOfTheHostsOwnContext) {
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
   glEnable(GL_SCISSOR_TEST);
+  glDisablei(GL_SCISSOR_TEST, 1);  // per-viewport state differs between indices
+  glEnablei(GL_BLEND, 1);
+  glDisablei(GL_BLEND, 0);
+  glEnable(GL_STENCIL_TEST);
+  glEnable(GL_CLIP_DISTANCE0);
+  glViewportIndexedf(1, 7.0f, 8.0f, 9.0f, 10.0f);
+  glBindBuffer(GL_QUERY_BUFFER, buffers[1]);  // query results would land in this buffer
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, buffers[0], 64, 128);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[1]);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers[1]);
@@ -119,8 +137,17 @@ TEST(GlHost, EveryPassRestoresTheStateOfTheHostsOwnContext) {
     const auto f = test::stream(c.screen, StreamKind::Coherent, 500, 1);
     inserter.insert(f);
     EXPECT_TRUE(host_state() == before);
-    inserter.insert(f);  // with the clear pass
+    const gl::FrameReport second = inserter.insert(f);  // with the clear pass
     EXPECT_TRUE(host_state() == before);
+    ASSERT_TRUE(second.previous_stored.has_value());
+    EXPECT_EQ(*second.previous_stored, second.counters.stored());  // the query result came back to memory
+    // The gather runs in the host's state, not the clear pass's.
+    HostState seen{};
+    gpu.frame([&] { seen = host_state(); });
+    EXPECT_EQ(seen.draw_framebuffer, before.draw_framebuffer);
+    EXPECT_TRUE(std::equal(seen.viewport, seen.viewport + 4, before.viewport));
+    EXPECT_EQ(seen.depth, before.depth);
+    EXPECT_EQ(seen.vertex_array, before.vertex_array);
     gpu.count_stored();
     EXPECT_TRUE(host_state() == before);
     gpu.resolve({0.5f, 0.5f, 0.5f});
@@ -131,7 +158,9 @@ TEST(GlHost, EveryPassRestoresTheStateOfTheHostsOwnContext) {
   glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &callback);
   EXPECT_EQ(callback, nullptr);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  for (GLenum cap : {GL_BLEND, GL_DEPTH_TEST, GL_CULL_FACE, GL_SCISSOR_TEST}) glDisable(cap);
+  for (GLenum cap : {GL_BLEND, GL_DEPTH_TEST, GL_CULL_FACE, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_CLIP_DISTANCE0})
+    glDisable(cap);
+  glBindBuffer(GL_QUERY_BUFFER, 0);
   glUseProgram(0);
   glBindVertexArray(0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

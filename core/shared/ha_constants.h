@@ -43,6 +43,10 @@
 // emulated 64-bit atomic tries a contended slot lock this many times before
 // the insert call gives up as failed_iter (65535: llvmpipe ends longer loops).
 #define HA_COUNTER_STRIDE 16u
+// GPU counters after the six outcomes: insert calls that failed because an
+// emulated atomic gave up on a contended lock (also counted as failed_iter).
+#define HA_COUNTER_LOCK_GIVE_UPS 6u
+#define HA_GPU_COUNTER_COUNT 7u
 #define HA_CAPTURE_HEADER_WORDS 4u
 #define HA_DEFAULT_LOCK_SPIN_LIMIT 65535u
 

@@ -25,15 +25,20 @@ void ha_capture(uvec2 pixel, float depth, uint rgba) {
 }
 
 // Inserts one fragment and counts its outcome. A pixel outside the screen
-// cannot be inserted (its max-age cell does not exist) and counts as invalid.
+// cannot be inserted (its max-age cell does not exist): it counts as invalid
+// and is not captured (a replay could not insert it either).
 uint ha_insert(uvec2 pixel, float depth, uint rgba) {
 #ifdef HA_STAGE_FRAGMENT
   // Helper invocations' stores and atomics have no effect: skip the work.
   if (gl_HelperInvocation) return HA_INVALID;
 #endif
-  if (ha_capture_capacity > 0u) ha_capture(pixel, depth, rgba);
   uint outcome = HA_INVALID;
-  if (all(lessThan(pixel, ha_screen_size))) outcome = ha_insert_fragment(pixel, depth, rgba);
+  if (all(lessThan(pixel, ha_screen_size))) {
+    if (ha_capture_capacity > 0u) ha_capture(pixel, depth, rgba);
+    ha_begin_call();
+    outcome = ha_insert_fragment(pixel, depth, rgba);
+    if (ha_call_gave_up()) atomicAdd(ha_counters[HA_COUNTER_LOCK_GIVE_UPS * HA_COUNTER_STRIDE], 1u);
+  }
   atomicAdd(ha_counters[outcome * HA_COUNTER_STRIDE], 1u);
   return outcome;
 }

@@ -21,6 +21,11 @@ bool ha_atomic_gave_up() {
   ha_gave_up = false;
   return gave_up;
 }
+// Whether the current insert call gave up on a lock (the entry counts those
+// apart, so lossless mode gathers them again without growing the table).
+bool ha_call_lock_gave_up = false;
+void ha_begin_call() { ha_call_lock_gave_up = false; }
+bool ha_call_gave_up() { return ha_call_lock_gave_up; }
 
 // The lock is taken and released inside one iteration of the loop, so lanes
 // of one SIMD group that contend for the same slot cannot deadlock: the lane
@@ -38,6 +43,7 @@ ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
     }
   }
   ha_gave_up = true;
+  ha_call_lock_gave_up = true;
   return ha_word(0);
 }
 ha_word ha_load_slot(ha_index s) { return ha_table[s]; }

@@ -14,5 +14,7 @@ layout(std430, binding = HA_BINDING_TABLE) buffer HaTable { uint64_t ha_table[];
 
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) { return atomicMax(ha_table[s], r); }
 bool ha_atomic_gave_up() { return false; }
+void ha_begin_call() {}
+bool ha_call_gave_up() { return false; }
 ha_word ha_load_slot(ha_index s) { return ha_table[s]; }
 void ha_store_slot(ha_index s, ha_word r) { ha_table[s] = r; }

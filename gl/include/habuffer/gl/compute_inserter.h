@@ -4,6 +4,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "habuffer/fragment.h"
 #include "habuffer/gl/gl_ha_buffer.h"
@@ -15,14 +16,18 @@ class ComputeInserter {
  public:
   // Compiles the entry for `buffer`'s atomic mode and binding points (throws
   // GlError with the log on shader errors). `buffer` must outlive this.
-  explicit ComputeInserter(GlHaBuffer& buffer);
+  // max_chunk: fragments per stream buffer (0: as many as one shader-storage
+  // buffer holds).
+  explicit ComputeInserter(GlHaBuffer& buffer, std::size_t max_chunk = 0);
   ~ComputeInserter();
   ComputeInserter(const ComputeInserter&) = delete;
   ComputeInserter& operator=(const ComputeInserter&) = delete;
 
-  // Uploads the stream (kept for later dispatches). Throws GlError naming the
-  // first fragment outside the screen, as the CPU path does.
+  // Uploads the stream (kept for later dispatches), in several buffers when
+  // it exceeds one. Throws GlError naming the first fragment outside the
+  // screen, as the CPU path does.
   void upload(std::span<const Fragment> fragments);
+  [[nodiscard]] std::size_t uploaded() const;
   // Inserts the uploaded stream; call inside GlHaBuffer::frame's gather.
   void dispatch() const;
   // One frame whose gather is the stream: upload, then buffer.frame(dispatch).
@@ -31,8 +36,13 @@ class ComputeInserter {
  private:
   GlHaBuffer& buffer_;
   ShaderProgram program_;
-  unsigned stream_ = 0;
-  std::size_t count_ = 0;
+  struct Chunk {
+    unsigned buffer;
+    std::size_t count;
+  };
+  void release();
+  std::vector<Chunk> chunks_;
+  std::size_t max_chunk_ = 0;
 };
 
 }  // namespace habuffer::gl

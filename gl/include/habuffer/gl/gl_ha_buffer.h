@@ -63,6 +63,9 @@ struct FrameReport {
   std::optional<std::uint64_t> previous_stored;
   Counters counters;                   // of the final gather
   std::vector<BuildAttempt> attempts;  // every gather of lossless mode, in order
+  std::uint64_t lock_give_ups = 0;  // emulated64: failed_iter from contended locks, not from the table
+  bool resize_limited = false;      // adaptive sizing wanted a table beyond this context's limits
+  bool growth_limited = false;      // lossless mode stopped: the next table would exceed the limits
   std::uint32_t capture_regathers = 0;  // gathers repeated because the capture buffer overflowed
   std::uint64_t captured = 0;           // fragments in the capture buffer
   PassTiming clear;   // the clear pass (zero on the first frame)
@@ -96,7 +99,8 @@ class GlHaBuffer {
   void bind() const;
 
   // One frame around `gather`, which draws or dispatches shaders calling
-  // ha_insert with our buffers bound.
+  // ha_insert with our buffers bound, in the GL state the host had when it
+  // called frame() (restored before every gather and after the frame).
   FrameReport frame(const std::function<void()>& gather);
 
   // Composites every screen pixel over `background` into the framebuffer
@@ -122,7 +126,11 @@ class GlHaBuffer {
   void reset_frame_state() const;
   void grow_capture(std::uint64_t needed);
   std::uint64_t clear_pass(bool writes, PassTiming* timing);
-  [[nodiscard]] Counters read_counters() const;
+  // The six outcome tallies, and the lock give-ups.
+  [[nodiscard]] std::pair<Counters, std::uint64_t> read_counters() const;
+  // Why `table` cannot be allocated here (slot indices, buffer size), or empty.
+  [[nodiscard]] std::string table_limit(Extent table) const;
+  void run_gather(const std::function<void()>& gather, FrameReport& report);
   [[nodiscard]] std::uint64_t read_capture_count() const;
 
   BufferConfig config_;
