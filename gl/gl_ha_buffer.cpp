@@ -310,6 +310,13 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, FrameReport& re
 
 PassTiming GlHaBuffer::resolve(glm::vec3 background) {
   const GlStateGuard guard(bindings_);
+  const GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    GLint bound = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    throw GlError("resolve: the bound draw framebuffer " + std::to_string(bound) +
+                  " is not complete (status 0x" + std::to_string(status) + "); bind one with a colour attachment");
+  }
   if (!gpu_->resolve) gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
   bind();
   const auto [wall, gpu] = gpu_->resolve->run(config_.screen, background, options_.finish_timing);

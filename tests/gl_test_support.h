@@ -34,7 +34,8 @@ inline HaBuffer cpu_twin(const gl::GlHaBuffer& gpu, std::span<const Fragment> fr
 }
 
 // The resolve pass into an RGBA32F texture, read back row-major.
-inline std::vector<glm::vec4> resolve_to_image(gl::GlHaBuffer& gpu, glm::vec3 background) {
+inline std::vector<glm::vec4> resolve_to_image(gl::GlHaBuffer& gpu, glm::vec3 background,
+                                               gl::PassTiming* timing = nullptr) {
   const Extent screen = gpu.config().screen;
   GLuint texture = 0, framebuffer = 0;
   GLint previous = 0;
@@ -44,7 +45,8 @@ inline std::vector<glm::vec4> resolve_to_image(gl::GlHaBuffer& gpu, glm::vec3 ba
   glCreateFramebuffers(1, &framebuffer);
   glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
-  gpu.resolve(background);
+  const gl::PassTiming t = gpu.resolve(background);
+  if (timing != nullptr) *timing = t;
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(previous));
   std::vector<glm::vec4> image(screen.area());
   glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.size() * sizeof(glm::vec4)), image.data());

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "gl_test_support.h"
+#include "habuffer/gl/gl_error.h"
 
 namespace habuffer {
 namespace {
@@ -130,13 +131,14 @@ TEST(GlRaster, ResolvePassCompositesWhatTheCpuPathComposites) {
                                                    "host gather");
   const gl::FrameReport r = gpu.frame([&] { draw_scene(program, screen); });
   ASSERT_EQ(r.counters.failures(), 0u);
+  EXPECT_THROW(gpu.resolve({0, 0, 0}), gl::GlError);  // framebuffer 0 of a surfaceless context: nothing to draw to
   const glm::vec3 background{0.25f, 0.5f, 0.75f};
+  gl::PassTiming timing;
   const auto t0 = std::chrono::steady_clock::now();
-  const gl::PassTiming timing = gpu.resolve(background);
+  const std::vector<glm::vec4> image = test::resolve_to_image(gpu, background, &timing);
   const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_GT(timing.wall_ms, 0.0);
   EXPECT_LE(timing.wall_ms, wall);
-  const std::vector<glm::vec4> image = test::resolve_to_image(gpu, background);
   const HaBuffer cpu = test::cpu_twin(gpu, gpu.read_capture());
   const std::vector<glm::vec4> expected = cpu.composite_image(background);
   float worst = 0.0f;
