@@ -216,6 +216,18 @@ glm::vec4 HaBuffer::composite(std::uint32_t x, std::uint32_t y, glm::vec3 backgr
 }
 
 std::vector<glm::vec4> HaBuffer::composite_image(glm::vec3 background, std::uint32_t threads) const {
+  return composite_rows(threads, [&](std::uint64_t) { return background; });
+}
+
+std::vector<glm::vec4> HaBuffer::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+  if (backgrounds.size() != screen().area())
+    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
+                                screen().str());
+  return composite_rows(threads, [&](std::uint64_t p) { return backgrounds[p]; });
+}
+
+template <class Background>
+std::vector<glm::vec4> HaBuffer::composite_rows(std::uint32_t threads, Background background) const {
   const Extent v = screen();
   std::vector<glm::vec4> image(v.area());
   const std::uint32_t parts = resolve_threads(threads);
@@ -224,8 +236,10 @@ std::vector<glm::vec4> HaBuffer::composite_image(glm::vec3 background, std::uint
     fork_join(parts, [&](std::uint32_t part) {
       impl_->with_kernel([&](auto& k) {
         for (std::uint32_t y = v.y * part / parts; y < v.y * (part + 1) / parts; ++y)
-          for (std::uint32_t x = 0; x < v.x; ++x)
-            image[x + std::size_t{y} * v.x] = k.ha_composite(glm::uvec2(x, y), background);
+          for (std::uint32_t x = 0; x < v.x; ++x) {
+            const std::uint64_t p = x + std::uint64_t{y} * v.x;
+            image[p] = k.ha_composite(glm::uvec2(x, y), background(p));
+          }
       });
     });
   });

@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 #include "habuffer/record_layout.h"
 
 namespace habuffer {
 
-std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
-                                            glm::dvec3 background) {
+namespace {
+
+template <class Background>
+std::vector<glm::dvec4> composite_sorted(std::span<const Fragment> fragments, Extent screen, Background background) {
   // Counting sort by pixel, then a full sort within each pixel.
   std::vector<std::uint64_t> begin(screen.area() + 1, 0);
   for (const Fragment& f : fragments) {
@@ -36,9 +39,24 @@ std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments,
       const double w = (1.0 - c.a) * a;
       c = glm::dvec4(glm::dvec3(c) + w * (rgb / 255.0), c.a + w);
     }
-    image[p] = glm::dvec4(glm::dvec3(c) + (1.0 - c.a) * background, c.a);
+    image[p] = glm::dvec4(glm::dvec3(c) + (1.0 - c.a) * background(p), c.a);
   }
   return image;
+}
+
+}  // namespace
+
+std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
+                                            glm::dvec3 background) {
+  return composite_sorted(fragments, screen, [&](std::uint64_t) { return background; });
+}
+
+std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
+                                            std::span<const glm::vec3> backgrounds) {
+  if (backgrounds.size() != screen.area())
+    throw std::invalid_argument("reference_composite: " + std::to_string(backgrounds.size()) +
+                                " backgrounds for screen " + screen.str());
+  return composite_sorted(fragments, screen, [&](std::uint64_t p) { return glm::dvec3(backgrounds[p]); });
 }
 
 }  // namespace habuffer

@@ -28,7 +28,7 @@ struct GlParams {
   std::uint32_t lock_spin_limit;
   std::uint32_t screen[2];
   std::uint32_t capture_capacity;
-  std::uint32_t pad;
+  std::uint32_t capture_only;
 };
 static_assert(sizeof(GlParams) == 48);
 
@@ -111,6 +111,7 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
   options_.policy.validate();
   if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
+  if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
   if (mode == AtomicMode::Native32 && config_.layout != Layout::L32)
     throw GlError("atomic mode native32 holds L32 records only");
   if (mode != AtomicMode::Native32 && config_.layout != Layout::L64)
@@ -190,6 +191,7 @@ void GlHaBuffer::write_params() const {
   p.screen[0] = config_.screen.x;
   p.screen[1] = config_.screen.y;
   p.capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
+  p.capture_only = options_.capture_only ? 1u : 0u;
   glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
 }
 
@@ -308,7 +310,7 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, FrameReport& re
   check_gl_errors("the gather pass");
 }
 
-PassTiming GlHaBuffer::resolve(glm::vec3 background) {
+PassTiming GlHaBuffer::resolve(glm::vec3 background, unsigned background_texture) {
   const GlStateGuard guard(bindings_);
   const GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -319,7 +321,7 @@ PassTiming GlHaBuffer::resolve(glm::vec3 background) {
   }
   if (!gpu_->resolve) gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
   bind();
-  const auto [wall, gpu] = gpu_->resolve->run(config_.screen, background, options_.finish_timing);
+  const auto [wall, gpu] = gpu_->resolve->run(config_.screen, background, background_texture, options_.finish_timing);
   check_gl_errors("the resolve pass");
   return {wall, gpu};
 }

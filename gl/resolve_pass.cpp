@@ -15,15 +15,26 @@ ResolvePass::ResolvePass(const std::string& module)
 
 ResolvePass::~ResolvePass() { glDeleteVertexArrays(1, &vertex_array_); }
 
-std::pair<double, double> ResolvePass::run(Extent screen, glm::vec3 background, bool finish) {
+std::pair<double, double> ResolvePass::run(Extent screen, glm::vec3 background, unsigned background_texture,
+                                           bool finish) {
   GlStateGuard::prepare_full_screen_pass();
   glBindVertexArray(vertex_array_);
   glUseProgram(program_.id());
   program_.set("ha_background", background.x, background.y, background.z);
+  program_.set("ha_background_from_image", background_texture != 0 ? 1u : 0u);
+  // Texture unit 0 is the host's: keep its binding and the active unit.
+  GLint active = 0, unit0 = 0;
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+  glActiveTexture(GL_TEXTURE0);
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit0);
+  if (background_texture != 0) glBindTextureUnit(0, background_texture);
   GlStateGuard::set_viewport(static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
   PassClock clock(timer_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  return clock.stop(finish);
+  const auto times = clock.stop(finish);
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(unit0));
+  glActiveTexture(static_cast<GLenum>(active));
+  return times;
 }
 
 }  // namespace habuffer::gl

@@ -21,7 +21,8 @@ class ResolvePass {
   ResolvePass& operator=(const ResolvePass&) = delete;
 
   // Needs the buffers bound and the caller's state guard. Returns {wall ms, GPU ms}.
-  std::pair<double, double> run(Extent screen, glm::vec3 background, bool finish);
+  // background_texture: 0 for the uniform background, else a 2D texture read per pixel.
+  std::pair<double, double> run(Extent screen, glm::vec3 background, unsigned background_texture, bool finish);
 
  private:
   ShaderProgram program_;

@@ -35,6 +35,7 @@ uint ha_insert(uvec2 pixel, float depth, uint rgba) {
   uint outcome = HA_INVALID;
   if (all(lessThan(pixel, ha_screen_size))) {
     if (ha_capture_capacity > 0u) ha_capture(pixel, depth, rgba);
+    if (ha_capture_only != 0u) return HA_INVALID;
     ha_begin_call();
     outcome = ha_insert_fragment(pixel, depth, rgba);
     if (ha_call_gave_up()) atomicAdd(ha_counters[HA_COUNTER_LOCK_GIVE_UPS * HA_COUNTER_STRIDE], 1u);

@@ -13,7 +13,7 @@ layout(std140, binding = HA_BINDING_PARAMS) uniform HaParams {
   uint ha_lock_spin_limit;
   uvec2 ha_screen_size;
   uint ha_capture_capacity;  // fragments the capture buffer holds; 0: capture off
-  uint ha_params_pad;
+  uint ha_capture_only;  // 1: capture, insert nothing, count nothing
 };
 
 layout(std430, binding = HA_BINDING_MAX_AGE) buffer HaMaxAge { uint ha_max_ages[]; };

@@ -83,6 +83,9 @@ class HaBuffer {
   [[nodiscard]] glm::vec4 composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const;
   // The whole screen, row-major.
   [[nodiscard]] std::vector<glm::vec4> composite_image(glm::vec3 background, std::uint32_t threads = 0) const;
+  // Each pixel over its own background (row-major, screen area entries).
+  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+                                                       std::uint32_t threads = 0) const;
 
   // Stored records per age: result[a] for a = 0..AMAX (result[0] is 0).
   [[nodiscard]] std::vector<std::uint64_t> age_histogram() const;
@@ -90,6 +93,8 @@ class HaBuffer {
   [[nodiscard]] std::uint64_t memory_bytes() const;
 
  private:
+  template <class Background>
+  std::vector<glm::vec4> composite_rows(std::uint32_t threads, Background background) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -16,5 +16,8 @@ namespace habuffer {
 
 std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
                                             glm::dvec3 background);
+// Each pixel over its own background (row-major, screen.area() entries).
+std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
+                                            std::span<const glm::vec3> backgrounds);
 
 }  // namespace habuffer

@@ -40,6 +40,7 @@ struct GlFrameOptions {
   std::uint32_t max_attempts = 1;  // above 1: lossless mode, gather again into a grown table on failure
   std::uint32_t lock_spin_limit = HA_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before failed_iter
   bool capture = false;                 // append every incoming fragment (read_capture())
+  bool capture_only = false;            // capture without inserting (the CPU path replays the capture)
   std::uint64_t capture_capacity = 1u << 20;  // first capacity; grows (and the frame regathers) on overflow
   std::uint32_t clear_tile = 0;  // side of the clear pass's tiles; 0: the framebuffer limits
   bool finish_timing = true;     // glFinish after each pass so wall_ms is the pass's whole time
@@ -104,8 +105,9 @@ class GlHaBuffer {
   FrameReport frame(const std::function<void()>& gather);
 
   // Composites every screen pixel over `background` into the framebuffer
-  // bound at the call, at viewport (0, 0, screen).
-  PassTiming resolve(glm::vec3 background);
+  // bound at the call, at viewport (0, 0, screen). With a background texture
+  // (2D, at least the screen), each pixel's background is its texel instead.
+  PassTiming resolve(glm::vec3 background, unsigned background_texture = 0);
 
   // Runs the counting pass without clearing: the records in the table, by
   // occlusion query.

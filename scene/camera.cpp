@@ -1,0 +1,63 @@
+#include "habuffer/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace habuffer {
+namespace {
+
+constexpr float kMargin = 1.02f;  // near and far a little outside the bounding sphere
+
+glm::vec3 orbit_direction(float yaw_deg, float pitch_deg) {
+  const float yaw = glm::radians(yaw_deg), pitch = glm::radians(pitch_deg);
+  return {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
+}
+
+Camera orthographic(float half, const CameraParams& params, Extent screen) {
+  const float aspect = static_cast<float>(screen.x) / static_cast<float>(screen.y);
+  const glm::vec3 eye = orbit_direction(params.yaw, params.pitch) * (2.0f * half);
+  const glm::vec3 up = std::abs(params.pitch) > 89.0f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+  Camera c;
+  c.view = glm::lookAt(eye, glm::vec3(0.0f), up);
+  c.near_plane = half;  // the scene spans z in [-half, half] around the origin
+  c.far_plane = 3.0f * half;
+  const float hx = aspect >= 1.0f ? half * aspect : half, hy = aspect >= 1.0f ? half : half / aspect;
+  c.projection = glm::ortho(-hx, hx, -hy, hy, c.near_plane, c.far_plane);
+  return c;
+}
+
+Camera perspective(const Bounds& b, const CameraParams& params, Extent screen) {
+  const float aspect = static_cast<float>(screen.x) / static_cast<float>(screen.y);
+  const float r = std::max(b.radius(), 1e-6f);
+  // The fov is the narrower side's: the bounding sphere fits both sides.
+  const float half_narrow = glm::radians(params.fov) * 0.5f;
+  const float distance = r / std::sin(half_narrow) * kMargin;
+  const float fovy = aspect >= 1.0f ? 2.0f * half_narrow : 2.0f * std::atan(std::tan(half_narrow) / aspect);
+  const glm::vec3 eye = b.centre() + orbit_direction(params.yaw, params.pitch) * distance;
+  const glm::vec3 up = std::abs(params.pitch) > 89.0f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+  Camera c;
+  c.view = glm::lookAt(eye, b.centre(), up);
+  c.near_plane = std::max(distance - r * kMargin, distance * 1e-3f);
+  c.far_plane = distance + r * kMargin;
+  c.projection = glm::perspective(fovy, aspect, c.near_plane, c.far_plane);
+  return c;
+}
+
+}  // namespace
+
+Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen) {
+  if (!(params.fov > 1.0f && params.fov < 179.0f))
+    throw SceneError("--fov " + std::to_string(params.fov) + " is not in (1, 179) degrees");
+  if (!std::isfinite(params.yaw) || !(std::abs(params.pitch) <= 90.0f))
+    throw SceneError("--pitch " + std::to_string(params.pitch) + " is not in [-90, 90] degrees");
+  if (screen.area() == 0) throw SceneError("screen " + screen.str() + " has no pixels");
+  const Bounds b = scene.bounds();
+  if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices");
+  if (scene.orthographic_half) return orthographic(*scene.orthographic_half, params, screen);
+  return perspective(b, params, screen);
+}
+
+}  // namespace habuffer

@@ -1,0 +1,51 @@
+// A scene for `habuffer render`: triangle meshes, each drawn in one constant
+// colour and opacity (flat shaded), and how the camera should see it.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace habuffer {
+
+// Scenes that cannot be made (unknown name, unreadable file, no triangles).
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> indices;  // three per triangle
+  glm::vec3 colour{0.8f};
+  float opacity = 0.5f;  // 1: opaque, drawn with the depth test and never inserted
+};
+
+struct Bounds {
+  glm::vec3 lo{std::numeric_limits<float>::max()};
+  glm::vec3 hi{std::numeric_limits<float>::lowest()};
+  void add(glm::vec3 p);
+  [[nodiscard]] bool empty() const { return lo.x > hi.x; }
+  [[nodiscard]] glm::vec3 centre() const { return (lo + hi) * 0.5f; }
+  [[nodiscard]] float radius() const;  // of the bounding sphere around centre()
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;  // drawn in this order (the planes scene's --order)
+  // Orthographic scenes (quads, planes) are seen along -z through the square
+  // [-half, half]^2 around the origin; others are framed in perspective.
+  std::optional<float> orthographic_half;
+  float default_yaw = 30.0f, default_pitch = 20.0f;  // degrees
+
+  [[nodiscard]] Bounds bounds() const;
+  [[nodiscard]] std::uint64_t triangle_count() const;
+};
+
+}  // namespace habuffer

@@ -1,0 +1,30 @@
+#include "habuffer/scene.h"
+
+#include <cmath>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+namespace habuffer {
+
+void Bounds::add(glm::vec3 p) {
+  lo = glm::min(lo, p);
+  hi = glm::max(hi, p);
+}
+
+float Bounds::radius() const { return empty() ? 0.0f : glm::length(hi - lo) * 0.5f; }
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  for (const Mesh& m : meshes)
+    for (const glm::vec3& p : m.positions) b.add(p);
+  return b;
+}
+
+std::uint64_t Scene::triangle_count() const {
+  std::uint64_t n = 0;
+  for (const Mesh& m : meshes) n += m.indices.size() / 3;
+  return n;
+}
+
+}  // namespace habuffer
