@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev
   pkg-config libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
-  libassimp-dev assimp-testmodels libopenimageio-dev fonts-dejavu-core
+  libassimp-dev assimp-testmodels libopenimageio-dev
 )
 
 missing=()
