@@ -29,8 +29,10 @@ struct GlParams {
   std::uint32_t screen[2];
   std::uint32_t capture_capacity;
   std::uint32_t capture_only;
+  std::uint32_t count_writes;
+  std::uint32_t pad[3];
 };
-static_assert(sizeof(GlParams) == 48);
+static_assert(sizeof(GlParams) == 64);
 
 constexpr std::uint64_t kCounterWords = HA_GPU_COUNTER_COUNT * HA_COUNTER_STRIDE;
 constexpr std::uint64_t kCaptureHeaderBytes = HA_CAPTURE_HEADER_WORDS * 4;
@@ -192,6 +194,7 @@ void GlHaBuffer::write_params() const {
   p.screen[1] = config_.screen.y;
   p.capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
   p.capture_only = options_.capture_only ? 1u : 0u;
+  p.count_writes = options_.count_writes ? 1u : 0u;
   glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
 }
 
@@ -232,6 +235,13 @@ std::uint64_t GlHaBuffer::clear_pass(bool writes, PassTiming* timing) {
   if (timing != nullptr) *timing = {r.wall_ms, r.gpu_ms};
   check_gl_errors("the clear pass");
   return r.stored;
+}
+
+void GlHaBuffer::resize(Extent table) {
+  BufferConfig c = config_;
+  c.table = table;
+  c.validate();
+  if (table != config_.table) allocate_table(table);
 }
 
 std::uint64_t GlHaBuffer::count_stored() {
@@ -305,7 +315,7 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, FrameReport& re
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
   }
-  std::tie(report.counters, report.lock_give_ups) = read_counters();
+  std::tie(report.counters, report.lock_give_ups, report.slot_writes) = read_counters();
   if (options_.capture) report.captured = read_capture_count();
   check_gl_errors("the gather pass");
 }
@@ -326,13 +336,13 @@ PassTiming GlHaBuffer::resolve(glm::vec3 background, unsigned background_texture
   return {wall, gpu};
 }
 
-std::pair<Counters, std::uint64_t> GlHaBuffer::read_counters() const {
+std::tuple<Counters, std::uint64_t, std::uint64_t> GlHaBuffer::read_counters() const {
   const auto words = read_words(gpu_->counters, kCounterWords);
   std::uint64_t tally[HA_OUTCOME_COUNT];
   for (std::uint32_t o = 0; o < HA_OUTCOME_COUNT; ++o) tally[o] = words[o * HA_COUNTER_STRIDE];
   Counters c;
   c.add_tally(tally);
-  return {c, words[HA_COUNTER_LOCK_GIVE_UPS * HA_COUNTER_STRIDE]};
+  return {c, words[HA_COUNTER_LOCK_GIVE_UPS * HA_COUNTER_STRIDE], words[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE]};
 }
 
 std::uint64_t GlHaBuffer::read_capture_count() const {

@@ -29,9 +29,9 @@ Camera orthographic(float half, const CameraParams& params, Extent screen) {
   return c;
 }
 
-Camera perspective(const Bounds& b, const CameraParams& params, Extent screen) {
+Camera perspective(const Bounds& b, float radius, const CameraParams& params, Extent screen) {
   const float aspect = static_cast<float>(screen.x) / static_cast<float>(screen.y);
-  const float r = std::max(b.radius(), 1e-6f);
+  const float r = std::max(radius, 1e-6f);
   // The fov is the narrower side's: the bounding sphere fits both sides.
   const float half_narrow = glm::radians(params.fov) * 0.5f;
   const float distance = r / std::sin(half_narrow) * kMargin;
@@ -57,7 +57,7 @@ Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen
   const Bounds b = scene.bounds();
   if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices");
   if (scene.orthographic_half) return orthographic(*scene.orthographic_half, params, screen);
-  return perspective(b, params, screen);
+  return perspective(b, scene.radius_around(b.centre()), params, screen);
 }
 
 }  // namespace habuffer

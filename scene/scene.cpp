@@ -1,5 +1,6 @@
 #include "habuffer/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/common.hpp>
@@ -19,6 +20,13 @@ Bounds Scene::bounds() const {
   for (const Mesh& m : meshes)
     for (const glm::vec3& p : m.positions) b.add(p);
   return b;
+}
+
+float Scene::radius_around(glm::vec3 centre) const {
+  float r2 = 0.0f;
+  for (const Mesh& m : meshes)
+    for (const glm::vec3& p : m.positions) r2 = std::max(r2, glm::dot(p - centre, p - centre));
+  return std::sqrt(r2);
 }
 
 std::uint64_t Scene::triangle_count() const {

@@ -51,6 +51,8 @@ Scene make_scene(const std::string& name_or_path, const SceneOptions& o) {
   if (name_or_path == "quads") return make_quads(or_default(o.count, 64), o.spread, o.seed, o.opacity);
   if (name_or_path == "planes") return make_planes(or_default(o.count, 16), o.order, o.opacity);
   if (std::filesystem::exists(name_or_path)) return load_mesh_file(name_or_path, o.opacity);
+  if (name_or_path.find_first_of("/.") != std::string::npos)
+    throw SceneError("mesh file '" + name_or_path + "' does not exist");
   std::string names;
   for (const std::string& n : scene_names()) names += (names.empty() ? "" : ", ") + n;
   throw SceneError("unknown scene '" + name_or_path + "': neither a scene name (" + names + ") nor an existing mesh file");

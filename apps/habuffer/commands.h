@@ -13,5 +13,7 @@ int run_offsets(const std::vector<std::string>& args);
 int run_demo(const std::vector<std::string>& args);
 int run_info(const std::vector<std::string>& args);
 int run_stats(const std::vector<std::string>& args);
+int run_render(const std::vector<std::string>& args);
+int run_compare(const std::vector<std::string>& args);
 
 }  // namespace habuffer::cli

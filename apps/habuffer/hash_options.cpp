@@ -22,13 +22,10 @@ std::uint32_t resolved_threads(std::uint32_t requested) {
   return requested != 0 ? requested : static_cast<std::uint32_t>(tbb::info::default_concurrency());
 }
 
-HashOptions parse_hash_options(const Args& args) {
-  HashOptions o;
-  BufferConfig& c = o.config;
-  const auto screen = args.extent("screen");
-  if (!screen) throw UsageError("option --screen is required");
-  c.screen = *screen;
-  c.table = args.extent("table").value_or(c.screen);
+BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) {
+  BufferConfig c;
+  c.screen = screen;
+  c.table = table;
   const std::string layout = args.str("layout", "64");
   if (layout != "64" && layout != "32") throw UsageError("option --layout: '" + layout + "' is not 64 or 32");
   c.layout = layout == "64" ? Layout::L64 : Layout::L32;
@@ -45,6 +42,15 @@ HashOptions parse_hash_options(const Args& args) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  return c;
+}
+
+HashOptions parse_hash_options(const Args& args) {
+  HashOptions o;
+  const auto screen = args.extent("screen");
+  if (!screen) throw UsageError("option --screen is required");
+  o.config = parse_buffer_config(args, *screen, args.extent("table").value_or(*screen));
+  const BufferConfig& c = o.config;
   o.insert.threads = args.u32("threads", 1, 0, 1024);
   const std::string mode = args.str("insert-mode", "auto");
   if (mode == "auto") {
@@ -68,24 +74,31 @@ HashOptions parse_hash_options(const Args& args) {
   o.gl = path == "gl";
 
   o.offsets_name = args.str("offsets", "random");
-  o.offsets.seed = args.u64("seed", 1);
-  if (o.offsets_name == "random") {
-    o.offsets.generator = OffsetGenerator::Random;
-  } else if (o.offsets_name == "farthest") {
-    o.offsets.generator = OffsetGenerator::Farthest;
-    if (c.table.area() > kFarthestMaxSlots)
-      throw UsageError("--offsets farthest: table " + c.table.str() + " has more than 2^28 slots");
+  o.offsets = parse_offset_source(args, c);
+  return o;
+}
+
+OffsetSource parse_offset_source(const Args& args, const BufferConfig& c) {
+  OffsetSource s;
+  const std::string name = args.str("offsets", "random");
+  s.seed = args.u64("seed", 1);
+  if (name == "random") {
+    s.generator = OffsetGenerator::Random;
+  } else if (name == "farthest") {
+    s.generator = OffsetGenerator::Farthest;
+    if (c.table_or_screen().area() > kFarthestMaxSlots)
+      throw UsageError("--offsets farthest: table " + c.table_or_screen().str() + " has more than 2^28 slots");
   } else {
-    o.offsets.generator = OffsetGenerator::List;
-    o.offsets.list = read_offset_rows(o.offsets_name);
+    s.generator = OffsetGenerator::List;
+    s.list = read_offset_rows(name);
     // Validate now so the error names the file before any work is done.
     try {
-      (void)o.offsets.make(c.table, c.record_layout().max_age());
+      (void)s.make(c.table_or_screen(), c.record_layout().max_age());
     } catch (const std::invalid_argument& e) {
-      throw DataError(o.offsets_name + ": " + e.what());
+      throw DataError(name + ": " + e.what());
     }
   }
-  return o;
+  return s;
 }
 
 }  // namespace habuffer::cli

@@ -34,4 +34,10 @@ std::uint32_t resolved_threads(std::uint32_t requested);
 // offsets file. `screen` is required.
 HashOptions parse_hash_options(const Args& args);
 
+// The parts other commands share: --layout, --age-bits, --block,
+// --iter-limit, --early-cull for a screen and table (zero table: auto);
+// --offsets and --seed.
+BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table);
+OffsetSource parse_offset_source(const Args& args, const BufferConfig& config);
+
 }  // namespace habuffer::cli

@@ -14,6 +14,8 @@ namespace {
 constexpr const char* kUsage =
     "usage: habuffer COMMAND [OPTIONS]\n"
     "commands:\n"
+    "  render       render a scene headless through the HA-buffer: image, stats, heat maps, reference\n"
+    "  compare      RMSE, PSNR and largest channel error of two images\n"
     "  build-lists  build per-pixel sorted lists from a fragment CSV (SPEC 10)\n"
     "  generate     write a synthetic fragment stream CSV\n"
     "  offsets      write an offsets CSV (random or farthest) and its quality\n"
@@ -28,7 +30,8 @@ int main(int argc, char** argv) {
   using namespace habuffer;
   const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
       {"build-lists", cli::run_build_lists}, {"generate", cli::run_generate}, {"offsets", cli::run_offsets},
-      {"demo", cli::run_demo},               {"info", cli::run_info},         {"stats", cli::run_stats}};
+      {"demo", cli::run_demo},               {"info", cli::run_info},         {"stats", cli::run_stats},
+      {"render", cli::run_render},           {"compare", cli::run_compare}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

@@ -46,7 +46,10 @@
 // GPU counters after the six outcomes: insert calls that failed because an
 // emulated atomic gave up on a contended lock (also counted as failed_iter).
 #define HA_COUNTER_LOCK_GIVE_UPS 6u
-#define HA_GPU_COUNTER_COUNT 7u
+// ... and, when asked for, the slot writes: atomicMax calls that raised a
+// slot, including records later evicted (the work an insertion order costs).
+#define HA_COUNTER_SLOT_WRITES 7u
+#define HA_GPU_COUNTER_COUNT 8u
 #define HA_CAPTURE_HEADER_WORDS 4u
 #define HA_DEFAULT_LOCK_SPIN_LIMIT 65535u
 

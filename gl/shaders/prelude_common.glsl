@@ -14,7 +14,14 @@ layout(std140, binding = HA_BINDING_PARAMS) uniform HaParams {
   uvec2 ha_screen_size;
   uint ha_capture_capacity;  // fragments the capture buffer holds; 0: capture off
   uint ha_capture_only;  // 1: capture, insert nothing, count nothing
+  uint ha_count_writes;  // 1: count slot writes (HA_COUNTER_SLOT_WRITES)
+  uint ha_params_pad0;
+  uint ha_params_pad1;
+  uint ha_params_pad2;
 };
+
+// Slot writes of the current insert call (the atomics raise it).
+uint ha_call_writes = 0u;
 
 layout(std430, binding = HA_BINDING_MAX_AGE) buffer HaMaxAge { uint ha_max_ages[]; };
 layout(std430, binding = HA_BINDING_OFFSETS) readonly buffer HaOffsets { uvec2 ha_offsets[]; };

@@ -36,7 +36,10 @@ ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
     if (atomicCompSwap(ha_locks[s], 0u, 1u) == 0u) {
       memoryBarrierBuffer();
       ha_word old = ha_table[s];
-      if (old < r) ha_table[s] = r;
+      if (old < r) {
+        ha_table[s] = r;
+        ha_call_writes += 1u;
+      }
       memoryBarrierBuffer();
       atomicExchange(ha_locks[s], 0u);
       return old;

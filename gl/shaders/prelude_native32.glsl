@@ -10,7 +10,11 @@ const uint ha_payload_bits = 0u;
 
 layout(std430, binding = HA_BINDING_TABLE) buffer HaTable { uint ha_table[]; };
 
-ha_word ha_atomic_max_slot(ha_index s, ha_word r) { return atomicMax(ha_table[s], r); }
+ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
+  ha_word old = atomicMax(ha_table[s], r);
+  if (old < r) ha_call_writes += 1u;
+  return old;
+}
 bool ha_atomic_gave_up() { return false; }
 void ha_begin_call() {}
 bool ha_call_gave_up() { return false; }

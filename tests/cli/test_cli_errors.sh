@@ -106,6 +106,30 @@ fi
 expect 2 "option --iter-limit" -- build-lists --in good.csv --out l.csv --screen 2x2 --iter-limit 300000000
 grep -q '"path":"gl"' s_gl.json && pass=$((pass + 1)) || { echo "FAIL: gl stats path"; fail=$((fail + 1)); }
 expect 2 "option --path: 'gpu' is not cpu or gl" -- build-lists --in good.csv --out l.csv --screen 2x2 --path gpu
+# render: a real scene's image, stats and heat maps; one clear line for bad input.
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene engine --size 96x64 --out r_engine.png --stats r_engine.json \
+  --heatmap depth:r_depth.png,age:r_age.png,culled:r_culled.png --reference r_ref.png --frames 2
+for key in '"gather_ms"' '"resolve_ms"' '"frame_ms"' '"memory_bytes"' '"load_factor"' '"table"' '"max_age"' \
+  '"max_depth_complexity"' '"frames":\[{' '"psnr"'; do
+  grep -q "$key" r_engine.json && pass=$((pass + 1)) || { echo "FAIL: render stats lack $key"; fail=$((fail + 1)); }
+done
+for f in r_engine.png r_depth.png r_age.png r_culled.png r_ref.png; do
+  [[ -s $f ]] && pass=$((pass + 1)) || { echo "FAIL: render did not write $f"; fail=$((fail + 1)); }
+done
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene engine --size 96x64 --path cpu --out r_cpu.png --frames 2
+expect 0 "" -- compare r_engine.png r_cpu.png
+grep -q "psnr inf" out.txt && pass=$((pass + 1)) || { echo "FAIL: gl and cpu render images differ"; cat out.txt; fail=$((fail + 1)); }
+"$bin" generate --screen 40x30 --load 0.5 --stream random --out r_frags.csv
+expect 0 "" -- render --fragments r_frags.csv --size 40x30 --out r_frags.png --stats r_frags.json
+expect 1 "unknown scene 'teapotx'" -- render --scene teapotx --out x.png
+expect 1 "mesh file 'nowhere/teapot.obj' does not exist" -- render --scene nowhere/teapot.obj --out x.png
+printf 'not a mesh\n' >garbage.obj
+expect 1 "mesh file 'garbage.obj'" -- render --scene garbage.obj --out x.png
+expect 2 "option --size: '0x64'" -- render --scene quads --size 0x64 --out x.png
+ASAN_OPTIONS=detect_leaks=0 expect 1 "exceeds this OpenGL's largest viewport" -- render --scene quads --size 40000x64 --out x.png
+expect 2 "option --heatmap: 'depth'" -- render --scene quads --heatmap depth --out x.png
+expect 2 "give exactly one of --scene and --fragments" -- render --out x.png
+expect 1 "images differ in size" -- compare r_engine.png r_frags.png
 expect 0 "" -- stats --screen 32x32 --trials 2 --loads 0.5,0.9 --probing all --policy all --out st.csv
 if [[ "$(head -1 st.csv | cut -d, -f1-6)" != "variant,load,stored_load,trials,mean_age,mean_age_ci95" || $(wc -l <st.csv) -ne 9 ]]; then
   echo "FAIL: stats csv"; head -3 st.csv; fail=$((fail + 1)); else pass=$((pass + 1)); fi

@@ -45,6 +45,9 @@ struct Scene {
   float default_yaw = 30.0f, default_pitch = 20.0f;  // degrees
 
   [[nodiscard]] Bounds bounds() const;
+  // Radius of the smallest sphere around `centre` holding every vertex
+  // (tighter than the box's half diagonal, which frames round scenes loosely).
+  [[nodiscard]] float radius_around(glm::vec3 centre) const;
   [[nodiscard]] std::uint64_t triangle_count() const;
 };
 

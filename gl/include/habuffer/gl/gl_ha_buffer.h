@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -43,7 +44,8 @@ struct GlFrameOptions {
   bool capture_only = false;            // capture without inserting (the CPU path replays the capture)
   std::uint64_t capture_capacity = 1u << 20;  // first capacity; grows (and the frame regathers) on overflow
   std::uint32_t clear_tile = 0;  // side of the clear pass's tiles; 0: the framebuffer limits
-  bool finish_timing = true;     // glFinish after each pass so wall_ms is the pass's whole time
+  bool finish_timing = true;
+  bool count_writes = false;     // tally slot writes (FrameReport::slot_writes): one more atomic per insert     // glFinish after each pass so wall_ms is the pass's whole time
 };
 
 // Time of one pass: wall clock from submission to completion (glFinish when
@@ -64,7 +66,8 @@ struct FrameReport {
   std::optional<std::uint64_t> previous_stored;
   Counters counters;                   // of the final gather
   std::vector<BuildAttempt> attempts;  // every gather of lossless mode, in order
-  std::uint64_t lock_give_ups = 0;  // emulated64: failed_iter from contended locks, not from the table
+  std::uint64_t lock_give_ups = 0;
+  std::uint64_t slot_writes = 0;    // with count_writes: slot raises, evicted records included  // emulated64: failed_iter from contended locks, not from the table
   bool resize_limited = false;      // adaptive sizing wanted a table beyond this context's limits
   bool growth_limited = false;      // lossless mode stopped: the next table would exceed the limits
   std::uint32_t capture_regathers = 0;  // gathers repeated because the capture buffer overflowed
@@ -94,6 +97,11 @@ class GlHaBuffer {
 
   // The GLSL module for this buffer's atomic mode and binding points.
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
+
+  // Sets the table for the next frame (at least the screen; offsets
+  // regenerated), e.g. from a host's own estimate before the first frame.
+  // Throws std::invalid_argument or GlError (beyond the context's limits).
+  void resize(Extent table);
 
   // Binds our buffers to their points (frame() does this around the gather;
   // a host binding them itself restores its own state afterwards).
@@ -128,8 +136,8 @@ class GlHaBuffer {
   void reset_frame_state() const;
   void grow_capture(std::uint64_t needed);
   std::uint64_t clear_pass(bool writes, PassTiming* timing);
-  // The six outcome tallies, and the lock give-ups.
-  [[nodiscard]] std::pair<Counters, std::uint64_t> read_counters() const;
+  // The six outcome tallies, the lock give-ups and the slot writes.
+  [[nodiscard]] std::tuple<Counters, std::uint64_t, std::uint64_t> read_counters() const;
   // Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
   void run_gather(const std::function<void()>& gather, FrameReport& report);

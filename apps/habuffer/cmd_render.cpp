@@ -1,0 +1,203 @@
+// habuffer render: a real scene (or a recorded stream) through the HA-buffer,
+// headless: the image, its stats, heat maps and the exact reference.
+#include <cstdio>
+#include <optional>
+#include <sstream>
+
+#include "commands.h"
+#include "habuffer/gl/egl_context.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/interchange.h"
+#include "habuffer/json_writer.h"
+#include "habuffer/reference_compositor.h"
+#include "habuffer/render/heatmap.h"
+#include "habuffer/render/render_job.h"
+#include "habuffer/scene_catalog.h"
+#include "hash_options.h"
+#include "render_report.h"
+
+namespace habuffer::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: habuffer render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json]\n"
+    "         [--size WxH] [--path gl|cpu] [--layout 64|32] [--opacity A] [--early-cull TAU]\n"
+    "         [--table WxH|auto] [--lossless [--max-attempts N]] [--frames N] [--yaw DEG] [--pitch DEG] [--fov DEG]\n"
+    "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE]\n"
+    "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
+    "         [--count N] [--spread S] [--order front|back] [--scene-seed N] [--quiet]\n"
+    "  scenes: engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file.\n"
+    "  --size defaults to 1024x1024; --table auto (default) starts at the screen, grows at once when a\n"
+    "  frame fails and adapts between frames (SPEC 8). Images: PNG, or EXR/HDR/TIFF (float) by extension.\n"
+    "  Exit codes: 0 ok, 1 bad data (scene, file, GL limits), 2 bad usage.\n";
+
+glm::vec3 parse_background(const std::string& text) {
+  glm::vec3 c(1.0f);
+  std::istringstream in(text);
+  char comma = 0;
+  if (!(in >> c.r >> comma >> c.g >> comma >> c.b) || !in.eof() || glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
+      glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+    throw UsageError("option --background: '" + text + "' is not R,G,B with each in [0, 1]");
+  return c;
+}
+
+struct HeatmapRequest {
+  std::string kind, path;
+};
+
+std::vector<HeatmapRequest> parse_heatmaps(const std::string& text) {
+  std::vector<HeatmapRequest> out;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    const auto colon = item.find(':');
+    const std::string kind = item.substr(0, colon);
+    if (colon == std::string::npos || colon + 1 == item.size() || (kind != "depth" && kind != "age" && kind != "culled"))
+      throw UsageError("option --heatmap: '" + item + "' is not depth:IMAGE, age:IMAGE or culled:IMAGE");
+    out.push_back({kind, item.substr(colon + 1)});
+  }
+  return out;
+}
+
+SceneOptions parse_scene_options(const Args& args) {
+  SceneOptions o;
+  o.opacity = static_cast<float>(args.real("opacity", 0.5));
+  o.seed = args.u64("scene-seed", 1);
+  o.count = args.u32("count", 0, 1, 1u << 20);
+  o.spread = static_cast<float>(args.real("spread", 1.0));
+  const std::string order = args.str("order", "back");
+  if (order != "front" && order != "back") throw UsageError("option --order: '" + order + "' is not front or back");
+  o.order = order == "front" ? PlaneOrder::FrontToBack : PlaneOrder::BackToFront;
+  return o;
+}
+
+RenderSettings parse_settings(const Args& args) {
+  RenderSettings s;
+  const Extent size = args.extent("size").value_or(Extent{1024, 1024});
+  if (size.area() == 0) throw UsageError("option --size: " + size.str() + " has no pixels");
+  const std::string table = args.str("table", "auto");
+  const Extent t = table == "auto" ? Extent{0, 0} : args.extent("table").value();
+  s.config = parse_buffer_config(args, size, t);
+  s.offsets = parse_offset_source(args, s.config);
+  const std::string path = args.str("path", "gl");
+  if (path != "gl" && path != "cpu") throw UsageError("option --path: '" + path + "' is not gl or cpu");
+  s.path = path == "gl" ? RenderPath::Gl : RenderPath::Cpu;
+  s.lossless = args.has("lossless");
+  if (!s.lossless && args.has("max-attempts") && table != "auto")
+    throw UsageError("option --max-attempts needs --lossless or --table auto");
+  s.max_attempts = args.u32("max-attempts", 16, 1, 1000);
+  s.frames = args.u32("frames", 1, 1, 100000);
+  s.threads = args.u32("threads", 0, 0, 1024);
+  s.background = args.has("background") ? parse_background(args.required("background")) : glm::vec3(1.0f);
+  return s;
+}
+
+void apply_camera(const Args& args, const Scene& scene, RenderSettings& s) {
+  s.camera.yaw = static_cast<float>(args.real("yaw", scene.default_yaw));
+  s.camera.pitch = static_cast<float>(args.real("pitch", scene.default_pitch));
+  s.camera.fov = static_cast<float>(args.real("fov", 45.0));
+}
+
+RenderResult render_with_gl(const Args& args, RenderSettings& s, SceneDescription& described) {
+  const Scene scene = make_scene(args.required("scene"), parse_scene_options(args));
+  described = {scene.name, scene.meshes.size(), scene.triangle_count()};
+  apply_camera(args, scene, s);
+  std::optional<gl::EglContext> context;
+  try {
+    context.emplace();
+  } catch (const gl::GlError& e) {
+    throw DataError(std::string("render: no usable OpenGL: ") + e.what());
+  }
+  return render_scene(scene, s);
+}
+
+std::vector<float> as_floats(const std::vector<std::uint32_t>& v) { return {v.begin(), v.end()}; }
+
+// Per pixel, the age of its deepest record (its list length with no gaps).
+std::vector<float> max_age_per_pixel(const HaBuffer& b) {
+  std::vector<float> ages(b.screen().area(), 0.0f);
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < b.screen().y; ++y)
+    for (std::uint32_t x = 0; x < b.screen().x; ++x) {
+      b.list(x, y, list);
+      for (const ListEntry& e : list) ages[x + std::size_t{y} * b.screen().x] = std::max(ages[x + std::size_t{y} * b.screen().x], static_cast<float>(e.age));
+    }
+  return ages;
+}
+
+std::vector<HeatmapOutput> write_heatmaps(const std::vector<HeatmapRequest>& requests, const RenderResult& r, Extent size) {
+  std::vector<HeatmapOutput> out;
+  for (const HeatmapRequest& h : requests) {
+    std::vector<float> values;
+    std::string title;
+    if (h.kind == "depth") {
+      values = as_floats(r.pixel_fragments);
+      title = "fragments per pixel";
+    } else if (h.kind == "age") {
+      values = max_age_per_pixel(*r.buffer);
+      title = "max age per pixel";
+    } else {
+      values = as_floats(r.pixel_culled);
+      title = "culled fragments per pixel";
+    }
+    const HeatmapRange range = write_heatmap(h.path, size, values, title);
+    out.push_back({h.kind, h.path, range.max});
+  }
+  return out;
+}
+
+Image reference_image(const RenderResult& r, Extent size) {
+  const std::vector<glm::dvec4> exact = reference_composite(r.fragments, size, r.backgrounds);
+  Image image{size, std::vector<glm::vec4>(exact.size())};
+  for (std::size_t i = 0; i < exact.size(); ++i) image.pixels[i] = glm::vec4(exact[i]);
+  return image;
+}
+
+}  // namespace
+
+int run_render(const std::vector<std::string>& argv) {
+  if (print_help(argv, kHelp)) return 0;
+  const Args args(argv,
+                  {"scene", "fragments", "size", "path", "layout", "opacity", "early-cull", "table", "max-attempts",
+                   "frames", "yaw", "pitch", "fov", "background", "out", "stats", "heatmap", "reference", "age-bits",
+                   "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed"},
+                  {"lossless", "quiet"});
+  if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
+  if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");
+  RenderSettings s = parse_settings(args);
+  const std::vector<HeatmapRequest> heatmaps = args.has("heatmap") ? parse_heatmaps(args.required("heatmap"))
+                                                                   : std::vector<HeatmapRequest>{};
+  for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
+  s.keep_fragments = args.has("reference");
+  SceneDescription described;
+  RenderResult r;
+  if (args.has("fragments")) {
+    if (s.path == RenderPath::Gl && args.has("path")) throw UsageError("--fragments renders on the CPU path: drop --path gl");
+    s.path = RenderPath::Cpu;
+    const std::vector<Fragment> fragments = read_fragments(args.required("fragments"), s.config.screen);
+    described = {args.required("fragments"), 0, 0};
+    r = render_fragments(fragments, s);
+  } else {
+    r = render_with_gl(args, s, described);
+  }
+  RenderOutputs outputs;
+  if (args.has("out")) {
+    outputs.image = args.required("out");
+    write_image(outputs.image, r.image);
+  }
+  outputs.heatmaps = write_heatmaps(heatmaps, r, s.config.screen);
+  if (args.has("reference")) {
+    outputs.reference = args.required("reference");
+    write_image(outputs.reference, reference_image(r, s.config.screen));
+    if (!outputs.image.empty()) outputs.reference_difference = compare_images(outputs.image, outputs.reference);
+  }
+  const RenderSummary summary = summarize_render(described, s, r, outputs);
+  if (args.has("stats")) {
+    outputs.stats = args.required("stats");
+    write_render_stats(outputs.stats, summary);
+  }
+  if (!args.has("quiet")) print_render_summary(summary, outputs);
+  return 0;
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,110 @@
+#include "render_report.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "habuffer/json_writer.h"
+
+namespace habuffer::cli {
+namespace {
+
+void extent(JsonWriter& json, std::string_view key, Extent e) {
+  json.key(key).begin_array().value(e.x).value(e.y).end_array();
+}
+
+void counters(JsonWriter& json, const Counters& c) {
+  json.field("fragments", c.fragments).field("stored", c.stored()).field("duplicates", c.duplicates);
+  json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
+  json.field("failed_iter", c.failed_iter);
+}
+
+void frame(JsonWriter& json, const FrameStats& f) {
+  json.begin_object().field("index", f.index).field("yaw", static_cast<double>(f.yaw));
+  extent(json, "table", f.table);
+  json.field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
+  counters(json, f.counters);
+  json.field("opaque_rejected", f.opaque_rejected).field("slot_writes", f.slot_writes).field("max_age", f.max_age);
+  json.field("gather_ms", f.gather_ms).field("resolve_ms", f.resolve_ms).field("frame_ms", f.frame_ms);
+  json.end_object();
+}
+
+const char* path_name(RenderPath p) { return p == RenderPath::Gl ? "gl" : "cpu"; }
+
+}  // namespace
+
+RenderSummary summarize_render(const SceneDescription& scene, const RenderSettings& settings, const RenderResult& result,
+                               const RenderOutputs& outputs) {
+  RenderSummary s;
+  s.scene = scene;
+  s.settings = &settings;
+  s.result = &result;
+  s.outputs = &outputs;
+  std::uint64_t total = 0;
+  for (std::uint32_t n : result.pixel_fragments) {
+    s.max_depth_complexity = std::max(s.max_depth_complexity, n);
+    s.covered_pixels += n > 0;
+    total += n;
+  }
+  s.mean_depth_complexity = s.covered_pixels > 0 ? static_cast<double>(total) / static_cast<double>(s.covered_pixels) : 0.0;
+  return s;
+}
+
+void write_render_stats(const std::string& path, const RenderSummary& s) {
+  const RenderSettings& set = *s.settings;
+  const RenderResult& r = *s.result;
+  const FrameStats& last = r.frames.back();
+  JsonWriter json;
+  json.begin_object();
+  json.key("scene").begin_object().field("name", s.scene.name).field("meshes", static_cast<std::uint64_t>(s.scene.meshes));
+  json.field("triangles", s.scene.triangles).end_object();
+  extent(json, "size", set.config.screen);
+  json.field("path", path_name(set.path)).field("device", r.device).field("layout", to_string(set.config.layout));
+  json.field("age_bits", set.config.age_bits).field("block", set.config.block);
+  json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
+  json.field("table_mode", set.config.table.area() == 0 ? "auto" : (set.lossless ? "lossless" : "fixed"));
+  counters(json, last.counters);
+  json.field("opaque_rejected", last.opaque_rejected).field("slot_writes", last.slot_writes);
+  json.field("max_depth_complexity", s.max_depth_complexity).field("mean_depth_complexity", s.mean_depth_complexity);
+  json.field("covered_pixels", s.covered_pixels);
+  extent(json, "table", last.table);
+  json.field("load_factor", last.load_factor).field("max_age", last.max_age);
+  json.field("gather_ms", last.gather_ms).field("resolve_ms", last.resolve_ms).field("frame_ms", last.frame_ms);
+  json.field("memory_bytes", r.memory_bytes).field("growth_limited", r.growth_limited);
+  json.key("heatmaps").begin_array();
+  for (const HeatmapOutput& h : s.outputs->heatmaps)
+    json.begin_object().field("kind", h.kind).field("path", h.path).field("max", h.max).end_object();
+  json.end_array();
+  if (s.outputs->reference_difference) {
+    const ImageDifference& d = *s.outputs->reference_difference;
+    json.key("reference").begin_object().field("path", s.outputs->reference).field("psnr", d.psnr);
+    json.field("rmse", d.rmse).field("max_error", d.max_error).end_object();
+  }
+  json.key("frames").begin_array();
+  for (const FrameStats& f : r.frames) frame(json, f);
+  json.end_array();
+  json.end_object();
+  json.save(path);
+}
+
+void print_render_summary(const RenderSummary& s, const RenderOutputs& outputs) {
+  const FrameStats& last = s.result->frames.back();
+  const RenderSettings& set = *s.settings;
+  std::printf("%s %s %s, %s: %.3g M fragments (max depth complexity %u), %.3g M stored, load %.2f of table %s, max age %u\n",
+              s.scene.name.c_str(), set.config.screen.str().c_str(), to_string(set.config.layout).c_str(),
+              s.result->device.c_str(), static_cast<double>(last.counters.fragments) * 1e-6, s.max_depth_complexity,
+              static_cast<double>(last.counters.stored()) * 1e-6, last.load_factor, last.table.str().c_str(), last.max_age);
+  std::printf("gather %.1f ms, resolve %.1f ms, frame %.1f ms; HA-buffer memory %.1f MiB; culled %llu, failed %llu%s\n",
+              last.gather_ms, last.resolve_ms, last.frame_ms, static_cast<double>(s.result->memory_bytes) / (1 << 20),
+              static_cast<unsigned long long>(last.counters.culled),
+              static_cast<unsigned long long>(last.counters.failures()),
+              outputs.reference_difference
+                  ? (", PSNR vs reference " + std::to_string(outputs.reference_difference->psnr) + " dB").c_str()
+                  : "");
+  std::string files;
+  for (const std::string& f : {outputs.image, outputs.stats, outputs.reference})
+    if (!f.empty()) files += (files.empty() ? "" : ", ") + f;
+  for (const HeatmapOutput& h : outputs.heatmaps) files += (files.empty() ? "" : ", ") + h.path;
+  std::printf("wrote %s\n", files.c_str());
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,42 @@
+// Images in and out of `habuffer render` and `habuffer compare`, all through
+// OpenImageIO: PNG (8-bit) by default, EXR, HDR or TIFF (float) by the
+// file's extension.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "habuffer/extent.h"
+
+namespace habuffer {
+
+class ImageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// RGBA in [0, 1], row-major with row 0 at the bottom (OpenGL's order).
+struct Image {
+  Extent size;
+  std::vector<glm::vec4> pixels;
+};
+
+// Writes RGB (the image is already composited over its background), top row
+// first. Throws ImageError naming the file.
+void write_image(const std::string& path, const Image& image);
+// Reads RGB(A) as floats; alpha 1 when the file has none.
+Image read_image(const std::string& path);
+
+struct ImageDifference {
+  double rmse = 0.0, psnr = 0.0, max_error = 0.0;  // over RGB, values in [0, 1]
+  int max_x = 0, max_y = 0, max_channel = 0;       // where the largest error is (top row 0)
+};
+
+// OpenImageIO's comparison of the RGB channels. Throws ImageError when a file
+// cannot be read or the sizes differ (both sizes named).
+ImageDifference compare_images(const std::string& a, const std::string& b);
+
+}  // namespace habuffer

@@ -1,0 +1,79 @@
+// `habuffer render` as a library call: frames of a scene through the
+// HA-buffer on the GPU path, or rasterized by GL (capture mode) and inserted,
+// traversed and composited on the CPU path, or a recorded fragment stream on
+// the CPU path alone; with everything the stats, heat maps and reference need.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "habuffer/buffer_config.h"
+#include "habuffer/camera.h"
+#include "habuffer/ha_buffer.h"
+#include "habuffer/lossless_build.h"
+#include "habuffer/render/image.h"
+#include "habuffer/resize_policy.h"
+#include "habuffer/scene.h"
+
+namespace habuffer {
+
+enum class RenderPath { Gl, Cpu };
+
+struct RenderSettings {
+  RenderPath path = RenderPath::Gl;
+  // Screen, layout, age bits, block, iteration limit, early cull; config.table
+  // zero means auto: start at the screen, grow at once when a frame fails, and
+  // adapt between frames (SPEC 8). A given table is kept unless lossless.
+  BufferConfig config;
+  bool lossless = false;
+  std::uint32_t max_attempts = 16;  // lossless and auto
+  ResizePolicy policy;
+  OffsetSource offsets;
+  std::uint32_t frames = 1;  // the camera orbits 360 degrees over the frames
+  CameraParams camera;
+  glm::vec3 background{1.0f};
+  bool keep_fragments = false;  // capture the last frame's fragments (reference, CPU-side heat maps)
+  bool per_pixel_culled = false;  // CPU path: count culled fragments per pixel (serial insertion)
+  std::uint32_t threads = 0;      // CPU path
+};
+
+struct FrameStats {
+  std::uint32_t index = 0;
+  float yaw = 0.0f;
+  Extent table;
+  bool resized = false;
+  std::uint32_t attempts = 1;
+  Counters counters;
+  std::uint64_t opaque_rejected = 0;
+  std::uint64_t slot_writes = 0;  // GPU path: slot raises, evicted records included (insertion work)
+  std::uint32_t max_age = 0;
+  double load_factor = 0.0;
+  double gather_ms = 0.0, resolve_ms = 0.0, frame_ms = 0.0;
+};
+
+struct RenderResult {
+  Image image;                      // the last frame, composited over the background
+  std::vector<FrameStats> frames;
+  std::vector<std::uint32_t> pixel_fragments;  // last frame, per pixel (row 0 at the bottom)
+  std::vector<std::uint32_t> pixel_culled;     // last frame, per pixel (empty unless counted)
+  std::vector<glm::vec3> backgrounds;          // per pixel: the opaque pass's colour
+  std::vector<Fragment> fragments;             // last frame (when keep_fragments or path cpu)
+  std::optional<HaBuffer> buffer;              // the last frame's table and max-age table
+  std::uint64_t memory_bytes = 0;              // of the HA-buffer (GPU or CPU)
+  std::string device;                          // "gl native32 on llvmpipe ...", "cpu (N threads)"
+  bool growth_limited = false;                 // the context could not hold the table lossless mode wanted
+};
+
+// Needs a current OpenGL 4.5 core context. Throws SceneError, GlError,
+// std::invalid_argument with the reason.
+RenderResult render_scene(const Scene& scene, const RenderSettings& settings);
+
+// A recorded stream on the CPU path, one frame, over the uniform background.
+RenderResult render_fragments(std::span<const Fragment> fragments, const RenderSettings& settings);
+
+}  // namespace habuffer

@@ -1,0 +1,185 @@
+#include "habuffer/render/scene_renderer.h"
+
+#include <epoxy/gl.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "habuffer/gl/gl_error.h"
+#include "render_shaders.h"
+
+namespace habuffer {
+namespace {
+
+constexpr unsigned kPixelFragmentsBinding = 7, kPixelCulledBinding = 8, kRejectedBinding = 9;
+
+std::string gather_source(const gl::GlHaBuffer& buffer) {
+  const gl::GlBindings& b = buffer.bindings();
+  for (unsigned p : b.storage_points())
+    if (p == kPixelFragmentsBinding || p == kPixelCulledBinding || p == kRejectedBinding)
+      throw gl::GlError("the renderer's shader-storage points 7-9 collide with the HA-buffer's");
+  const std::string header = "#define R_BINDING_PIXEL_FRAGMENTS 7\n#define R_BINDING_PIXEL_CULLED 8\n#define R_BINDING_REJECTED 9\n";
+  return buffer.module_source(gl::ShaderStage::Fragment, header) + render::kShading + render::kGatherFragment;
+}
+
+unsigned storage(std::uint64_t bytes) {
+  unsigned b = 0;
+  glCreateBuffers(1, &b);
+  glNamedBufferData(b, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
+  return b;
+}
+
+void zero(unsigned buffer) {
+  const GLuint z = 0;
+  glClearNamedBufferData(buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
+}
+
+std::vector<std::uint32_t> read_words(unsigned buffer, std::size_t n) {
+  std::vector<std::uint32_t> v(n);
+  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(n * 4), v.data());
+  return v;
+}
+
+}  // namespace
+
+SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBuffer& buffer)
+    : screen_(screen),
+      opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex,
+                                                  std::string("#version 450 core\n") + render::kShading +
+                                                      render::kOpaqueFragment,
+                                                  "opaque pass")),
+      gather_program_(gl::ShaderProgram::graphics(render::kSceneVertex, gather_source(buffer), "gather pass")) {
+  for (const Mesh& m : scene.meshes) {
+    GpuMesh g;
+    g.count = static_cast<std::int32_t>(m.indices.size());
+    g.colour = m.colour;
+    g.opacity = m.opacity;
+    glCreateBuffers(1, &g.vertices);
+    glNamedBufferData(g.vertices, static_cast<GLsizeiptr>(m.positions.size() * sizeof(glm::vec3)), m.positions.data(),
+                      GL_STATIC_DRAW);
+    glCreateBuffers(1, &g.indices);
+    glNamedBufferData(g.indices, static_cast<GLsizeiptr>(m.indices.size() * 4), m.indices.data(), GL_STATIC_DRAW);
+    glCreateVertexArrays(1, &g.vertex_array);
+    glVertexArrayVertexBuffer(g.vertex_array, 0, g.vertices, 0, sizeof(glm::vec3));
+    glVertexArrayElementBuffer(g.vertex_array, g.indices);
+    glEnableVertexArrayAttrib(g.vertex_array, 0);
+    glVertexArrayAttribFormat(g.vertex_array, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(g.vertex_array, 0, 0);
+    meshes_.push_back(g);
+  }
+  const auto w = static_cast<GLsizei>(screen.x), h = static_cast<GLsizei>(screen.y);
+  glCreateTextures(GL_TEXTURE_2D, 1, &colour_);
+  glTextureStorage2D(colour_, 1, GL_RGBA32F, w, h);
+  glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
+  glTextureStorage2D(depth_, 1, GL_R32F, w, h);
+  glCreateRenderbuffers(1, &depth_buffer_);
+  glNamedRenderbufferStorage(depth_buffer_, GL_DEPTH_COMPONENT32F, w, h);
+  glCreateFramebuffers(1, &opaque_framebuffer_);
+  glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
+  glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT1, depth_, 0);
+  glNamedFramebufferRenderbuffer(opaque_framebuffer_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer_);
+  const GLenum draw[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(opaque_framebuffer_, 2, draw);
+  if (glCheckNamedFramebufferStatus(opaque_framebuffer_, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw gl::GlError("the opaque pass's framebuffer " + screen.str() + " is not complete");
+  glCreateFramebuffers(1, &gather_framebuffer_);
+  glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
+  glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
+  pixel_fragments_ = storage(screen.area() * 4);
+  pixel_culled_ = storage(screen.area() * 4);
+  rejected_ = storage(4);
+}
+
+SceneRenderer::~SceneRenderer() {
+  for (const GpuMesh& g : meshes_) {
+    glDeleteVertexArrays(1, &g.vertex_array);
+    const GLuint b[] = {g.vertices, g.indices};
+    glDeleteBuffers(2, b);
+  }
+  const GLuint buffers[] = {pixel_fragments_, pixel_culled_, rejected_};
+  glDeleteBuffers(3, buffers);
+  const GLuint framebuffers[] = {opaque_framebuffer_, gather_framebuffer_};
+  glDeleteFramebuffers(2, framebuffers);
+  glDeleteRenderbuffers(1, &depth_buffer_);
+  const GLuint textures[] = {colour_, depth_};
+  glDeleteTextures(2, textures);
+}
+
+void SceneRenderer::draw_meshes(const gl::ShaderProgram& program, const Camera& camera, bool opaque) const {
+  glUseProgram(program.id());
+  glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "r_view"), 1, GL_FALSE,
+                            glm::value_ptr(camera.view));
+  glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "r_projection"), 1, GL_FALSE,
+                            glm::value_ptr(camera.projection));
+  program.set("r_near", camera.near_plane);
+  program.set("r_far", camera.far_plane);
+  for (const GpuMesh& g : meshes_) {
+    if ((g.opacity >= 1.0f) != opaque) continue;
+    program.set("r_colour", g.colour.x, g.colour.y, g.colour.z);
+    program.set("r_opacity", g.opacity);
+    glBindVertexArray(g.vertex_array);
+    glDrawElements(GL_TRIANGLES, g.count, GL_UNSIGNED_INT, nullptr);
+  }
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+void SceneRenderer::draw_opaque(const Camera& camera, glm::vec3 background) {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, opaque_framebuffer_);
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  const float bg[4] = {background.x, background.y, background.z, 1.0f};
+  const float none[4] = {2.0f, 0.0f, 0.0f, 0.0f};  // t beyond every fragment's
+  glClearNamedFramebufferfv(opaque_framebuffer_, GL_COLOR, 0, bg);
+  glClearNamedFramebufferfv(opaque_framebuffer_, GL_COLOR, 1, none);
+  glClearNamedFramebufferfi(opaque_framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  draw_meshes(opaque_program_, camera, true);
+  glDisable(GL_DEPTH_TEST);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void SceneRenderer::gather(const Camera& camera) { run_gather(camera, false); }
+
+std::uint64_t SceneRenderer::count_fragments(const Camera& camera) {
+  run_gather(camera, true);
+  std::uint64_t n = 0;
+  for (std::uint32_t c : read_pixel_fragments()) n += c;
+  return n;
+}
+
+void SceneRenderer::run_gather(const Camera& camera, bool count_only) {
+  gather_program_.set("r_count_only", count_only ? 1u : 0u);
+  zero(pixel_fragments_);
+  zero(pixel_culled_);
+  zero(rejected_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gather_framebuffer_);
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelCulledBinding, pixel_culled_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRejectedBinding, rejected_);
+  glBindTextureUnit(0, depth_);
+  draw_meshes(gather_program_, camera, false);
+  glBindTextureUnit(0, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+std::vector<glm::vec3> SceneRenderer::read_opaque_colour() const {
+  std::vector<glm::vec3> out(screen_.area());
+  glGetTextureImage(colour_, 0, GL_RGB, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(glm::vec3)), out.data());
+  return out;
+}
+
+std::vector<std::uint32_t> SceneRenderer::read_pixel_fragments() const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  return read_words(pixel_fragments_, screen_.area());
+}
+std::vector<std::uint32_t> SceneRenderer::read_pixel_culled() const { return read_words(pixel_culled_, screen_.area()); }
+std::uint64_t SceneRenderer::read_rejected() const { return read_words(rejected_, 1)[0]; }
+
+}  // namespace habuffer

@@ -1,0 +1,28 @@
+// Gather pass: every transparent fragment in front of the opaque surfaces
+// goes through ha_insert; those behind are rejected first and counted. Per
+// pixel, the fragments inserted (depth complexity) and those culled are
+// counted for the heat maps.
+layout(std430, binding = R_BINDING_PIXEL_FRAGMENTS) buffer RPixelFragments { uint r_pixel_fragments[]; };
+layout(std430, binding = R_BINDING_PIXEL_CULLED) buffer RPixelCulled { uint r_pixel_culled[]; };
+layout(std430, binding = R_BINDING_REJECTED) buffer RRejected { uint r_rejected; };
+layout(binding = 0) uniform sampler2D r_opaque_depth;  // t of the nearest opaque surface; 2 where none
+uniform uint r_count_only;  // 1: count the fragments per pixel, insert nothing (sizing the table)
+
+uint r_pack_rgba(vec3 c, float a) {
+  uvec4 b = uvec4(round(clamp(vec4(c, a), 0.0, 1.0) * 255.0));
+  return (b.r << 24u) | (b.g << 16u) | (b.b << 8u) | b.a;
+}
+
+void main() {
+  uvec2 p = uvec2(gl_FragCoord.xy);
+  uint rgba = r_pack_rgba(r_shaded_colour(), r_opacity);  // derivatives before any branch
+  float t = r_depth();
+  if (t >= texelFetch(r_opaque_depth, ivec2(p), 0).r) {
+    atomicAdd(r_rejected, 1u);
+    return;
+  }
+  uint i = p.x + p.y * ha_screen_size.x;
+  atomicAdd(r_pixel_fragments[i], 1u);
+  if (r_count_only != 0u) return;
+  if (ha_insert(p, t, rgba) == HA_CULLED) atomicAdd(r_pixel_culled[i], 1u);
+}
