@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Sets everything up, builds, and runs the main job. Until the render issue
-# lands, that is the CPU path on a generated, rasterization-like stream of
-# 2^20 fragments on a 1024x1024 screen: it builds the sorted lists with one
-# thread and with every thread, checks both tables are bit-identical, and
-# writes its stats to out/demo-stats.json.
+# Sets everything up, builds, and runs the main job: renders the `engine`
+# scene (Debian's assimp-testmodels) headless through the HA-buffer at
+# 1024x1024, writing out/engine.png, its stats (out/engine-stats.json) and
+# its depth-complexity heat map (out/engine-depth.png), and prints a
+# three-line summary. Extra arguments go to `habuffer render`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh release >/dev/null
 mkdir -p out
-./build/bin/habuffer demo --screen 1024x1024 --load 0.5 --stats out/demo-stats.json "$@"
-echo "stats: out/demo-stats.json"
+./build/bin/habuffer render --scene engine --size 1024x1024 --out out/engine.png --stats out/engine-stats.json \
+  --heatmap depth:out/engine-depth.png "$@"
