@@ -57,8 +57,10 @@ void ComputeInserter::dispatch() const {
   for (const Chunk& c : chunks_) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, buffer_.bindings().stream, c.buffer);
     program_.set("ha_stream_count", static_cast<unsigned>(c.count));
-    const auto groups = static_cast<GLuint>(std::clamp<std::size_t>((c.count + 63) / 64, 1, 65535));
-    glDispatchCompute(groups, 1, 1);
+    const std::size_t groups = std::max<std::size_t>((c.count + 63) / 64, 1);
+    const auto gx = static_cast<GLuint>(std::min<std::size_t>(groups, 65535));
+    const auto gy = static_cast<GLuint>((groups + gx - 1) / gx);
+    glDispatchCompute(gx, gy, 1);
   }
 }
 

@@ -170,8 +170,10 @@ TEST(Gl, EarlyCullImageErrorIsBoundedByOneMinusTau) {
     BufferConfig c = test::config(screen, {160, 160}, Layout::L64, 8);
     c.early_cull_tau = tau;
     gl::GlHaBuffer gpu(c, test::random_offsets(1), *l64);
-    const Counters n = gl::ComputeInserter(gpu).insert(f).counters;
-    ASSERT_EQ(n.failures(), 0u);
+    const gl::FrameReport rep = gl::ComputeInserter(gpu).insert(f);
+    const Counters n = rep.counters;
+    ASSERT_EQ(n.failures(), 0u) << "failed_age " << n.failed_age << " failed_iter " << n.failed_iter << " give-ups "
+                                << rep.lock_give_ups;
     EXPECT_GT(n.culled, 0u);
     EXPECT_EQ(n.fragments, f.size());
     EXPECT_EQ(gpu.count_stored(), n.stored());

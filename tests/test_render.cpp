@@ -125,6 +125,24 @@ TEST(Render, EarlyCullErrorAgainstTheReferenceIsBoundedByOneMinusTau) {
   }
 }
 
+// On a mesh with coplanar parts (engine) the image differs from the exact
+// reference already without cull, where 24-bit depth codes tie and order by
+// colour: invariant 5's quantization term. With cull at tau the error stays
+// within (1 - tau) plus that measured term.
+TEST(Render, EarlyCullOnAMeshStaysWithinOneMinusTauPlusTheQuantizationTerm) {
+  RenderSettings s = settings({128, 128});
+  s.keep_fragments = true;
+  const Scene engine = make_scene("engine", {});
+  const double quantization = against_reference(render(engine, s), "engine-q").max_error;
+  EXPECT_LT(quantization, 0.1);
+  for (float tau : {0.9f, 0.99f}) {
+    s.config.early_cull_tau = tau;
+    const RenderResult r = render(engine, s);
+    EXPECT_GT(r.frames[0].counters.culled, 0u);
+    EXPECT_LE(against_reference(r, "engine-cull").max_error, (1.0 - tau) + quantization + 2.0 / 255.0) << tau;
+  }
+}
+
 // The guacamole paper's Fig. 10: submission order changes nothing in the
 // image; with early cull, front-to-back submission writes far fewer records.
 // (The final table holds about the same records in both orders: SPEC 6 culls

@@ -180,6 +180,9 @@ int run_render(const std::vector<std::string>& argv) {
   } else {
     r = render_with_gl(args, s, described);
   }
+  if (s.config.layout == Layout::L32 && args.has("out"))
+    std::fprintf(stderr, "habuffer render: note: L32 records carry no colour; the image shows the opaque parts only, "
+                         "the stats and heat maps show the lists\n");
   RenderOutputs outputs;
   if (args.has("out")) {
     outputs.image = args.required("out");

@@ -29,11 +29,8 @@
 // Defaults of SPEC 5, 6 and 8.
 #define HA_DEFAULT_BLOCK 8u
 #define HA_DEFAULT_ITER_LIMIT 65536u
-// Insert calls probe in chunks (ha_insert_code): at most HA_PROBE_CHUNK *
-// HA_PROBE_CHUNKS probe steps (each loop below 65536), hence the largest
-// iteration limit.
-#define HA_PROBE_CHUNK 4096u
-#define HA_PROBE_CHUNKS 65535u
+// The largest iteration limit: no insert call may probe longer than this
+// (about 2^28 probes) on either path.
 #define HA_MAX_ITER_LIMIT 268431359u
 
 // GPU path: outcome tallies live HA_COUNTER_STRIDE words apart (one cache
@@ -41,7 +38,8 @@
 // not contend; a capture buffer starts with HA_CAPTURE_HEADER_WORDS words
 // (the append count, then padding to 16 bytes) before its fragments; an
 // emulated 64-bit atomic tries a contended slot lock this many times before
-// the insert call gives up as failed_iter (65535: llvmpipe ends longer loops).
+// the insert call gives up as failed_iter (2^24 attempts, a fraction of a
+// second: long enough to outlast a lock holder the OS preempted).
 #define HA_COUNTER_STRIDE 16u
 // GPU counters after the six outcomes: insert calls that failed because an
 // emulated atomic gave up on a contended lock (also counted as failed_iter).
@@ -51,7 +49,7 @@
 #define HA_COUNTER_SLOT_WRITES 7u
 #define HA_GPU_COUNTER_COUNT 8u
 #define HA_CAPTURE_HEADER_WORDS 4u
-#define HA_DEFAULT_LOCK_SPIN_LIMIT 65535u
+#define HA_DEFAULT_LOCK_SPIN_LIMIT 16777216u
 
 // IEEE-754 binary32 bit patterns used by the depth-validity test: a float is
 // in [0, 1] exactly when its bits are in [0, 0x3F800000] or it is -0.

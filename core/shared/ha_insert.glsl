@@ -74,19 +74,14 @@ uint ha_insert_step(HA_INOUT(HaCarry) c) {
   return ha_insert_step_at(c, ha_probe(c.p, c.a));
 }
 
-// The probes run in chunks of HA_PROBE_CHUNK inside an outer loop because
-// some drivers (Mesa llvmpipe) end any single loop after 65535 iterations,
-// which would cut an insert call short of the default iteration limit. The
-// last line is defensive: a call ended by anything else still fails as
-// failed_iter instead of leaving an outcome uncounted.
+// The last line is defensive: a driver may end a long loop early (Mesa
+// llvmpipe gives a shader invocation about 65535 loop iterations in all), and
+// a call ended that way still fails as failed_iter instead of leaving an
+// outcome uncounted.
 uint ha_insert_code(uvec2 p, uint code, uint data) {
   HaCarry c = ha_carry_begin(p, code, data);
   uint outcome = HA_PENDING;
-  for (uint i = 0u; outcome == HA_PENDING && i < HA_PROBE_CHUNK; ++i) outcome = ha_insert_step(c);
-  if (outcome == HA_PENDING) {  // rare: the nested loops cost llvmpipe a third of its speed
-    for (uint chunk = 1u; outcome == HA_PENDING && chunk < HA_PROBE_CHUNKS; ++chunk)
-      for (uint i = 0u; outcome == HA_PENDING && i < HA_PROBE_CHUNK; ++i) outcome = ha_insert_step(c);
-  }
+  while (outcome == HA_PENDING) outcome = ha_insert_step(c);
   return outcome == HA_PENDING ? HA_FAILED_ITER : outcome;
 }
 

@@ -27,23 +27,44 @@ bool ha_call_lock_gave_up = false;
 void ha_begin_call() { ha_call_lock_gave_up = false; }
 bool ha_call_gave_up() { return ha_call_lock_gave_up; }
 
-// The lock is taken and released inside one iteration of the loop, so lanes
-// of one SIMD group that contend for the same slot cannot deadlock: the lane
-// that wins runs its critical section while the others retry. After
-// ha_lock_spin_limit failed attempts the call gives up (failed_iter).
+// One attempt at the slot's lock; on success the max is done and `old` set.
+// The lock is taken and released inside this one call, so lanes of one SIMD
+// group that contend for the same slot cannot deadlock: the lane that wins
+// runs its critical section while the others retry.
+bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
+  if (atomicCompSwap(ha_locks[s], 0u, 1u) != 0u) return false;
+  memoryBarrierBuffer();
+  old = ha_table[s];
+  if (old < r) {
+    ha_table[s] = r;
+    ha_call_writes += 1u;
+  }
+  memoryBarrierBuffer();
+  atomicExchange(ha_locks[s], 0u);
+  return true;
+}
+
+// One attempt while attempts remain (within ha_atomic_max_slot).
+#define HA_LOCK_ATTEMPT                              \
+  if (spin < ha_lock_spin_limit) {                   \
+    if (ha_try_max_slot(s, r, old)) return old;      \
+    ++spin;                                          \
+  }
+
+// Bounded spinning: up to ha_lock_spin_limit attempts, then the insert call
+// gives up (failed_iter). Sixteen attempts per loop iteration because
+// llvmpipe gives a shader invocation about 65535 loop iterations in all
+// (every loop together), and a lock holder the OS preempted (on llvmpipe, a
+// CPU thread) can keep the lock for milliseconds: this way the budget covers
+// about a million attempts.
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
-  for (uint spin = 0u; spin < ha_lock_spin_limit; ++spin) {
-    if (atomicCompSwap(ha_locks[s], 0u, 1u) == 0u) {
-      memoryBarrierBuffer();
-      ha_word old = ha_table[s];
-      if (old < r) {
-        ha_table[s] = r;
-        ha_call_writes += 1u;
-      }
-      memoryBarrierBuffer();
-      atomicExchange(ha_locks[s], 0u);
-      return old;
-    }
+  ha_word old = ha_word(0);
+  uint spin = 0u;
+  while (spin < ha_lock_spin_limit) {
+    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
+    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
+    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
+    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
   }
   ha_gave_up = true;
   ha_call_lock_gave_up = true;
