@@ -25,10 +25,12 @@ constexpr const char* kHelp =
     "         [--table WxH|auto] [--lossless [--max-attempts N]] [--frames N] [--yaw DEG] [--pitch DEG] [--fov DEG]\n"
     "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE]\n"
     "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
-    "         [--count N] [--spread S] [--order front|back] [--scene-seed N] [--quiet]\n"
+    "         [--count N] [--spread S] [--order front|back] [--scene-seed N] [--opaque-meshes I,J,...] [--quiet]\n"
     "  scenes: engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file.\n"
     "  --size defaults to 1024x1024; --table auto (default) starts at the screen, grows at once when a\n"
     "  frame fails and adapts between frames (SPEC 8). Images: PNG, or EXR/HDR/TIFF (float) by extension.\n"
+    "  --opaque-meshes: meshes (indices in file order) drawn opaque with the depth test; transparent\n"
+    "  fragments behind them are rejected before insertion and counted.\n"
     "  Exit codes: 0 ok, 1 bad data (scene, file, GL limits), 2 bad usage.\n";
 
 glm::vec3 parse_background(const std::string& text) {
@@ -98,8 +100,29 @@ void apply_camera(const Args& args, const Scene& scene, RenderSettings& s) {
   s.camera.fov = static_cast<float>(args.real("fov", 45.0));
 }
 
+void make_opaque(const std::string& list, Scene& scene) {
+  std::istringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    unsigned long index = 0;
+    try {
+      index = std::stoul(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || item.empty())
+      throw UsageError("option --opaque-meshes: '" + item + "' is not a mesh index");
+    if (index >= scene.meshes.size())
+      throw UsageError("option --opaque-meshes: mesh " + item + " does not exist (the scene has " +
+                       std::to_string(scene.meshes.size()) + " meshes)");
+    scene.meshes[index].opacity = 1.0f;
+  }
+}
+
 RenderResult render_with_gl(const Args& args, RenderSettings& s, SceneDescription& described) {
-  const Scene scene = make_scene(args.required("scene"), parse_scene_options(args));
+  Scene scene = make_scene(args.required("scene"), parse_scene_options(args));
+  if (args.has("opaque-meshes")) make_opaque(args.required("opaque-meshes"), scene);
   described = {scene.name, scene.meshes.size(), scene.triangle_count()};
   apply_camera(args, scene, s);
   std::optional<gl::EglContext> context;
@@ -160,7 +183,8 @@ int run_render(const std::vector<std::string>& argv) {
   const Args args(argv,
                   {"scene", "fragments", "size", "path", "layout", "opacity", "early-cull", "table", "max-attempts",
                    "frames", "yaw", "pitch", "fov", "background", "out", "stats", "heatmap", "reference", "age-bits",
-                   "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed"},
+                   "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed",
+                   "opaque-meshes"},
                   {"lossless", "quiet"});
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");

@@ -121,6 +121,12 @@ expect 0 "" -- compare r_engine.png r_cpu.png
 grep -q "psnr inf" out.txt && pass=$((pass + 1)) || { echo "FAIL: gl and cpu render images differ"; cat out.txt; fail=$((fail + 1)); }
 "$bin" generate --screen 40x30 --load 0.5 --stream random --out r_frags.csv
 expect 0 "" -- render --fragments r_frags.csv --size 40x30 --out r_frags.png --stats r_frags.json
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene planes --count 6 --opaque-meshes 3 --size 32x32 --out r_planes.exr \
+  --stats r_planes.json
+grep -q '"opaque_rejected":3072' r_planes.json && pass=$((pass + 1)) || { echo "FAIL: opaque plane rejects 3 planes"; fail=$((fail + 1)); }
+expect 0 "" -- compare r_planes.exr r_planes.exr
+expect 2 "option --opaque-meshes: mesh 9 does not exist (the scene has 6 meshes)" -- render --scene planes --count 6 \
+  --opaque-meshes 9 --out x.png
 expect 1 "unknown scene 'teapotx'" -- render --scene teapotx --out x.png
 expect 1 "mesh file 'nowhere/teapot.obj' does not exist" -- render --scene nowhere/teapot.obj --out x.png
 printf 'not a mesh\n' >garbage.obj
