@@ -141,6 +141,9 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
   if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
   allocate_table(config_.table, false);
   reset_frame_state();
+  // Compile the passes now, so the first frame's timings measure the passes, not the compiler.
+  gpu_->clear = std::make_unique<ClearPass>(module_source(ShaderStage::Fragment));
+  gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
   check_gl_errors("creating the GPU HA-buffer");
 }
 

@@ -56,13 +56,21 @@ Extent fit_gpu_table(const gl::GlHaBuffer& ha, Extent wanted) {
 
 gl::GlFrameOptions frame_options(const RenderSettings& s) {
   gl::GlFrameOptions o;
-  o.adaptive = automatic_table(s);
+  const bool gpu = s.path == RenderPath::Gl;  // the CPU path only captures: its GPU table stays unused
+  o.adaptive = gpu && automatic_table(s);
   o.policy = s.policy;
-  o.max_attempts = automatic_table(s) || s.lossless ? s.max_attempts : 1;
-  o.capture = s.keep_fragments || s.path == RenderPath::Cpu;
-  o.capture_only = s.path == RenderPath::Cpu;
-  o.count_writes = true;
+  o.max_attempts = gpu && (automatic_table(s) || s.lossless) ? s.max_attempts : 1;
+  o.capture = s.keep_fragments || !gpu;
+  o.capture_only = !gpu;
+  o.count_writes = gpu;
   return o;
+}
+
+// The GPU buffer's configuration: the CPU path's is screen-sized (it only captures).
+BufferConfig gpu_config(const RenderSettings& s) {
+  BufferConfig c = s.config;
+  if (s.path == RenderPath::Cpu) c.table = c.screen;
+  return c;
 }
 
 // An RGBA32F target for the resolve pass, read back as an Image.
@@ -145,7 +153,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   const gl::GlInfo info = gl::query_gl_info();
   const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(info, s.config.layout);
   if (!mode) throw gl::GlError("--layout 64 needs 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
-  gl::GlHaBuffer ha(s.config, s.offsets, *mode, frame_options(s));
+  gl::GlHaBuffer ha(gpu_config(s), s.offsets, *mode, frame_options(s));
   SceneRenderer renderer(scene, screen, ha);
   ResolveTarget target(screen);
   CpuTableState cpu{s.config.table_or_screen(), std::nullopt};
@@ -160,11 +168,22 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
     params.yaw = fs.yaw;
     const Camera camera = frame_scene(scene, params, screen);
     renderer.draw_opaque(camera, s.background);
-    if (k == 0 && automatic_table(s)) {
-      // Size the first table from a counting pass, so frame 0 need not fail its way up.
-      Extent first = initial_table(s, renderer.count_fragments(camera));
-      cpu.table = first;
-      if (s.path == RenderPath::Gl) ha.resize(fit_gpu_table(ha, first));
+    if (k == 0) {
+      ha.bind();  // the gather shader's uniform block, even though counting inserts nothing
+      const std::uint64_t fragments = renderer.count_fragments(camera);
+      if (fragments > UINT32_MAX)
+        throw gl::GlError("a frame of " + std::to_string(fragments) +
+                          " fragments overflows the GPU path's 32-bit counters: render a smaller view or fewer layers");
+      if (automatic_table(s)) {
+        // Size the first table from the count, so frame 0 need not fail its way up.
+        const Extent first = initial_table(s, fragments);
+        cpu.table = first;
+        if (s.path == RenderPath::Gl) {
+          const Extent fitted = fit_gpu_table(ha, first);
+          result.growth_limited = result.growth_limited || fitted != first;
+          ha.resize(fitted);
+        }
+      }
     }
     const gl::FrameReport report = ha.frame([&] { renderer.gather(camera); });
     fs.opaque_rejected = renderer.read_rejected();
@@ -177,6 +196,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
       fs.attempts = static_cast<std::uint32_t>(report.attempts.size());
       fs.counters = report.counters;
       fs.slot_writes = report.slot_writes;
+      fs.resize_limited = report.resize_limited;
       fs.gather_ms = report.gather.wall_ms;
       fs.max_age = largest(ha.read_max_age());
       result.growth_limited = result.growth_limited || report.growth_limited;
@@ -217,7 +237,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
 RenderResult render_fragments(std::span<const Fragment> fragments, const RenderSettings& s) {
   validate(s);
   RenderResult result;
-  CpuTableState cpu{s.config.table_or_screen(), std::nullopt};
+  CpuTableState cpu{automatic_table(s) ? initial_table(s, fragments.size()) : s.config.table, std::nullopt};
   FrameStats fs;
   const auto t0 = Clock::now();
   BuildResult b = build_on_cpu(s, cpu, fragments, fs);

@@ -84,6 +84,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBu
   glCreateFramebuffers(1, &gather_framebuffer_);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
+  gather_program_.set("r_screen_width", screen.x);
   pixel_fragments_ = storage(screen.area() * 4);
   pixel_culled_ = storage(screen.area() * 4);
   rejected_ = storage(4);

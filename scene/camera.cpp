@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,14 +17,26 @@ glm::vec3 orbit_direction(float yaw_deg, float pitch_deg) {
   return {std::cos(pitch) * std::sin(yaw), std::sin(pitch), std::cos(pitch) * std::cos(yaw)};
 }
 
-Camera orthographic(float half, const CameraParams& params, Extent screen) {
+// The square [-half, half]^2 around the origin, seen from the orbit
+// direction; near and far hug the scene's extent along the view, whatever
+// the orientation, so nothing is clipped in depth and t spans [0, 1].
+Camera orthographic(const Scene& scene, float half, const CameraParams& params, Extent screen) {
   const float aspect = static_cast<float>(screen.x) / static_cast<float>(screen.y);
-  const glm::vec3 eye = orbit_direction(params.yaw, params.pitch) * (2.0f * half);
+  const float r = std::max(scene.radius_around(glm::vec3(0.0f)), half);
+  const glm::vec3 eye = orbit_direction(params.yaw, params.pitch) * (2.0f * r);
   const glm::vec3 up = std::abs(params.pitch) > 89.0f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
   Camera c;
   c.view = glm::lookAt(eye, glm::vec3(0.0f), up);
-  c.near_plane = half;  // the scene spans z in [-half, half] around the origin
-  c.far_plane = 3.0f * half;
+  float lo = std::numeric_limits<float>::max(), hi = 0.0f;
+  for (const Mesh& m : scene.meshes)
+    for (const glm::vec3& p : m.positions) {
+      const float d = -(c.view * glm::vec4(p, 1.0f)).z;
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  const float margin = std::max(hi - lo, 1e-3f) * (kMargin - 1.0f);
+  c.near_plane = std::max(lo - margin, 1e-4f);
+  c.far_plane = hi + margin;
   const float hx = aspect >= 1.0f ? half * aspect : half, hy = aspect >= 1.0f ? half : half / aspect;
   c.projection = glm::ortho(-hx, hx, -hy, hy, c.near_plane, c.far_plane);
   return c;
@@ -51,12 +64,13 @@ Camera perspective(const Bounds& b, float radius, const CameraParams& params, Ex
 Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen) {
   if (!(params.fov > 1.0f && params.fov < 179.0f))
     throw SceneError("--fov " + std::to_string(params.fov) + " is not in (1, 179) degrees");
-  if (!std::isfinite(params.yaw) || !(std::abs(params.pitch) <= 90.0f))
+  if (!std::isfinite(params.yaw)) throw SceneError("--yaw is not a finite angle");
+  if (!(std::abs(params.pitch) <= 90.0f))
     throw SceneError("--pitch " + std::to_string(params.pitch) + " is not in [-90, 90] degrees");
   if (screen.area() == 0) throw SceneError("screen " + screen.str() + " has no pixels");
   const Bounds b = scene.bounds();
   if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices");
-  if (scene.orthographic_half) return orthographic(*scene.orthographic_half, params, screen);
+  if (scene.orthographic_half) return orthographic(scene, *scene.orthographic_half, params, screen);
   return perspective(b, scene.radius_around(b.centre()), params, screen);
 }
 

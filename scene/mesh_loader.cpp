@@ -43,6 +43,10 @@ Mesh convert(const aiScene& s, const aiMesh& m, std::size_t index, float opacity
   for (unsigned f = 0; f < m.mNumFaces; ++f) {
     const aiFace& face = m.mFaces[f];
     if (face.mNumIndices != 3) continue;  // points and lines left by triangulation
+    for (unsigned k = 0; k < 3; ++k)
+      if (face.mIndices[k] >= m.mNumVertices)
+        throw SceneError("mesh '" + out.name + "': face " + std::to_string(f) + " uses vertex " +
+                         std::to_string(face.mIndices[k]) + " of " + std::to_string(m.mNumVertices));
     out.indices.insert(out.indices.end(), face.mIndices, face.mIndices + 3);
   }
   return out;
@@ -54,7 +58,8 @@ Scene load_mesh_file(const std::string& path, float opacity) {
   if (!std::ifstream(path).good()) throw SceneError("mesh file '" + path + "' cannot be opened");
   Assimp::Importer importer;
   const aiScene* s = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                 aiProcess_PreTransformVertices | aiProcess_SortByPType);
+                                                 aiProcess_PreTransformVertices | aiProcess_SortByPType |
+                                                 aiProcess_ValidateDataStructure);
   if (s == nullptr || s->mRootNode == nullptr || (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0)
     throw SceneError("mesh file '" + path + "': " + importer.GetErrorString());
   Scene scene;

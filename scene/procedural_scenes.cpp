@@ -92,7 +92,7 @@ Scene make_hairball(std::uint32_t tubes, std::uint64_t seed, float opacity) {
 }
 
 Scene make_quads(std::uint32_t quads, float spread, std::uint64_t seed, float opacity) {
-  constexpr float kHalf = 0.25f;  // every quad is half the view wide
+  constexpr float kHalf = 0.25f;  // every quad is a quarter of the view wide
   Scene s;
   s.name = "quads";
   s.orthographic_half = 1.0f;
@@ -115,7 +115,8 @@ Scene make_planes(std::uint32_t planes, PlaneOrder order, float opacity) {
     // Plane k at depth rank k from the front (z = +0.9 nearest the camera).
     const std::uint32_t i = order == PlaneOrder::FrontToBack ? k : planes - 1 - k;
     const float z = 0.9f - 1.8f * (static_cast<float>(i) + 0.5f) / static_cast<float>(planes);
-    s.meshes.push_back(quad({0.0f, 0.0f}, 1.5f, z, hue(static_cast<float>(i) / static_cast<float>(planes)), opacity,
+    // Half-side 8: the plane covers the view up to an aspect ratio of 8.
+    s.meshes.push_back(quad({0.0f, 0.0f}, 8.0f, z, hue(static_cast<float>(i) / static_cast<float>(planes)), opacity,
                             "plane " + std::to_string(i)));
   }
   return s;

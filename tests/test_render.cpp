@@ -10,6 +10,7 @@
 
 #include "gl_test_support.h"
 #include "habuffer/reference_compositor.h"
+#include "habuffer/render/heatmap.h"
 #include "habuffer/render/image.h"
 #include "habuffer/render/render_job.h"
 #include "habuffer/scene_catalog.h"
@@ -177,20 +178,97 @@ TEST(Render, OpaquePartsRejectWhatLiesBehindThem) {
   const FrameStats& f = r.frames[0];
   EXPECT_EQ(f.opaque_rejected, 3u * 48u * 48u);  // the three planes behind it
   EXPECT_EQ(f.counters.fragments, 2u * 48u * 48u);
-  EXPECT_NE(r.backgrounds[48 * 24 + 24], glm::vec3(1.0f));
+  // The opaque plane's colour is the background the two planes in front composite over.
+  const glm::vec3 opaque = r.backgrounds[48 * 24 + 24];
+  EXPECT_NE(opaque, glm::vec3(1.0f));
+  const glm::vec4 pixel = r.image.pixels[48 * 24 + 24];
+  const double behind = 1.0 - pixel.a;  // what the transparent layers let through
+  EXPECT_GT(behind, 0.0);
+  for (int c = 0; c < 3; ++c) EXPECT_GE(pixel[c] + 1e-6, behind * opaque[c]);
 }
 
-TEST(Render, OrbitingFramesEachReportTheirTable) {
+// Frames orbit the scene and the automatic table follows SPEC 8 from one
+// frame's count to the next frame's size.
+TEST(Render, OrbitingFramesFollowTheResizePolicyFrameByFrame) {
   RenderSettings s = settings({80, 64});
-  s.frames = 4;
+  s.frames = 6;
+  s.policy.grow_at = 0.6;  // a narrow band, so the orbit's changing counts resize the table
+  s.policy.shrink_at = 0.5;
   const RenderResult r = render(make_scene("engine", {}), s);
-  ASSERT_EQ(r.frames.size(), 4u);
-  for (const FrameStats& f : r.frames) {
+  ASSERT_EQ(r.frames.size(), 6u);
+  bool resized = false;
+  for (std::size_t k = 0; k < r.frames.size(); ++k) {
+    const FrameStats& f = r.frames[k];
+    EXPECT_FLOAT_EQ(f.yaw, 30.0f + 60.0f * static_cast<float>(k));  // from the scene's default yaw
     EXPECT_GE(f.table.x, 80u);
-    EXPECT_GT(f.load_factor, 0.0);
-    EXPECT_LT(f.load_factor, 1.0);
+    EXPECT_GE(f.table.y, 64u);
+    EXPECT_EQ(f.counters.failures(), 0u);
+    if (k == 0 || f.attempts > 1) continue;
+    const FrameStats& prev = r.frames[k - 1];
+    EXPECT_EQ(f.table, s.policy.next(prev.table, {80, 64}, prev.counters.stored())) << "frame " << k;
+    resized |= f.resized;
   }
+  EXPECT_TRUE(resized);
   EXPECT_NE(r.frames[0].counters.fragments, r.frames[1].counters.fragments);  // the camera moved
+}
+
+// Orientation, pinned: geometry at the top left of the view is at the top
+// left of the written image and of its heat map (files are top row first,
+// Image and GL are bottom row first).
+TEST(Render, ImagesAndHeatMapsKeepTheViewsOrientation) {
+  Scene corner;
+  corner.name = "corner";
+  corner.orthographic_half = 1.0f;
+  corner.default_yaw = corner.default_pitch = 0.0f;
+  Mesh q;
+  q.positions = {{-1.0f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}, {-0.5f, 1.0f, 0.0f}, {-1.0f, 1.0f, 0.0f}};  // top left
+  q.indices = {0, 1, 2, 0, 2, 3};
+  q.colour = {1.0f, 0.0f, 0.0f};
+  q.opacity = 0.8f;
+  corner.meshes.push_back(q);
+  const RenderResult r = render(corner, settings({40, 40}));
+  const Extent size{40, 40};
+  EXPECT_GT(r.pixel_fragments[5 + 35 * 40], 0u);  // GL row 35 is near the top
+  EXPECT_EQ(r.pixel_fragments[35 + 5 * 40], 0u);
+  const std::string png = testing::TempDir() + "/corner.png", heat = testing::TempDir() + "/corner-heat.png";
+  write_image(png, r.image);
+  const Image back = read_image(png);  // read_image returns bottom row first again
+  ASSERT_EQ(back.size, size);
+  EXPECT_EQ(quantized(back), quantized(r.image));
+  std::vector<float> counts(r.pixel_fragments.begin(), r.pixel_fragments.end());
+  write_heatmap(heat, size, counts, "fragments");
+  const Image h = read_image(heat);  // 40 wide, 40 + legend tall; the map is at the top
+  const glm::vec4 top_left = h.pixels[5 + std::size_t{h.size.y - 1 - 4} * h.size.x];
+  const glm::vec4 bottom_right = h.pixels[35 + std::size_t{h.size.y - 1 - 35} * h.size.x];
+  EXPECT_GT(top_left.r + top_left.g + top_left.b, 0.5f);
+  EXPECT_LT(bottom_right.r + bottom_right.g + bottom_right.b, 0.05f);
+}
+
+// Rotated orthographic views keep every fragment in t's range.
+TEST(Render, RotatedOrthographicScenesStayInsideNearAndFar) {
+  RenderSettings s = settings({64, 48});
+  s.camera = {35.0f, 25.0f, 45.0f};
+  gl_context();
+  for (const char* name : {"quads", "planes"}) {
+    const RenderResult r = render_scene(make_scene(name, {}), s);
+    EXPECT_EQ(r.frames[0].counters.invalid, 0u) << name;
+    EXPECT_GT(r.frames[0].counters.fragments, 48u * 64u) << name;
+  }
+}
+
+// Opaque meshes and several frames: the GL and CPU paths still agree.
+TEST(Render, GlAndCpuPathsAgreeWithOpaquePartsOverFrames) {
+  Scene scene = make_scene("quads", {});
+  for (std::size_t i = 0; i < scene.meshes.size(); i += 5) scene.meshes[i].opacity = 1.0f;
+  RenderSettings s = settings({72, 60});
+  s.frames = 2;
+  const RenderResult gl = render(scene, s);
+  s.path = RenderPath::Cpu;
+  const RenderResult cpu = render(scene, s);
+  EXPECT_GT(gl.frames[1].opaque_rejected, 0u);
+  EXPECT_EQ(quantized(gl.image), quantized(cpu.image));
+  EXPECT_EQ(gl.frames[1].counters, cpu.frames[1].counters);
+  EXPECT_EQ(gl.frames[1].table, cpu.frames[1].table);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // habuffer render: a real scene (or a recorded stream) through the HA-buffer,
 // headless: the image, its stats, heat maps and the exact reference.
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -64,9 +65,11 @@ std::vector<HeatmapRequest> parse_heatmaps(const std::string& text) {
 SceneOptions parse_scene_options(const Args& args) {
   SceneOptions o;
   o.opacity = static_cast<float>(args.real("opacity", 0.5));
+  if (!(o.opacity > 0.0f && o.opacity <= 1.0f)) throw UsageError("option --opacity: must be in (0, 1]");
   o.seed = args.u64("scene-seed", 1);
   o.count = args.u32("count", 0, 1, 1u << 20);
   o.spread = static_cast<float>(args.real("spread", 1.0));
+  if (!(o.spread >= 0.0f && o.spread <= 1.0f)) throw UsageError("option --spread: must be in [0, 1]");
   const std::string order = args.str("order", "back");
   if (order != "front" && order != "back") throw UsageError("option --order: '" + order + "' is not front or back");
   o.order = order == "front" ? PlaneOrder::FrontToBack : PlaneOrder::BackToFront;
@@ -100,6 +103,15 @@ void apply_camera(const Args& args, const Scene& scene, RenderSettings& s) {
   s.camera.fov = static_cast<float>(args.real("fov", 45.0));
 }
 
+// Before any file is read or context made: camera values out of range are bad usage.
+void check_camera_args(const Args& args) {
+  if (!std::isfinite(static_cast<float>(args.real("yaw", 0.0))))
+    throw UsageError("option --yaw: must be a finite angle in degrees");
+  if (!(std::abs(args.real("pitch", 0.0)) <= 90.0)) throw UsageError("option --pitch: must be in [-90, 90] degrees");
+  const double fov = args.real("fov", 45.0);
+  if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov: must be in (1, 179) degrees");
+}
+
 void make_opaque(const std::string& list, Scene& scene) {
   std::istringstream in(list);
   std::string item;
@@ -121,7 +133,8 @@ void make_opaque(const std::string& list, Scene& scene) {
 }
 
 RenderResult render_with_gl(const Args& args, RenderSettings& s, SceneDescription& described) {
-  Scene scene = make_scene(args.required("scene"), parse_scene_options(args));
+  const SceneOptions options = parse_scene_options(args);
+  Scene scene = make_scene(args.required("scene"), options);
   if (args.has("opaque-meshes")) make_opaque(args.required("opaque-meshes"), scene);
   described = {scene.name, scene.meshes.size(), scene.triangle_count()};
   apply_camera(args, scene, s);
@@ -189,6 +202,7 @@ int run_render(const std::vector<std::string>& argv) {
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");
   RenderSettings s = parse_settings(args);
+  check_camera_args(args);
   const std::vector<HeatmapRequest> heatmaps = args.has("heatmap") ? parse_heatmaps(args.required("heatmap"))
                                                                    : std::vector<HeatmapRequest>{};
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
@@ -197,6 +211,10 @@ int run_render(const std::vector<std::string>& argv) {
   RenderResult r;
   if (args.has("fragments")) {
     if (s.path == RenderPath::Gl && args.has("path")) throw UsageError("--fragments renders on the CPU path: drop --path gl");
+    for (const char* scene_only : {"frames", "yaw", "pitch", "fov", "opacity", "count", "spread", "order", "scene-seed",
+                                   "opaque-meshes"})
+      if (args.has(scene_only))
+        throw UsageError(std::string("option --") + scene_only + " applies to --scene, not to --fragments");
     s.path = RenderPath::Cpu;
     const std::vector<Fragment> fragments = read_fragments(args.required("fragments"), s.config.screen);
     described = {args.required("fragments"), 0, 0};

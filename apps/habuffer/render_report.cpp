@@ -18,12 +18,13 @@ void counters(JsonWriter& json, const Counters& c) {
   json.field("failed_iter", c.failed_iter);
 }
 
-void frame(JsonWriter& json, const FrameStats& f) {
+void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.begin_object().field("index", f.index).field("yaw", static_cast<double>(f.yaw));
   extent(json, "table", f.table);
   json.field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
   counters(json, f.counters);
-  json.field("opaque_rejected", f.opaque_rejected).field("slot_writes", f.slot_writes).field("max_age", f.max_age);
+  json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
+  if (gpu) json.field("slot_writes", f.slot_writes);
   json.field("gather_ms", f.gather_ms).field("resolve_ms", f.resolve_ms).field("frame_ms", f.frame_ms);
   json.end_object();
 }
@@ -63,7 +64,8 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
   json.field("table_mode", set.config.table.area() == 0 ? "auto" : (set.lossless ? "lossless" : "fixed"));
   counters(json, last.counters);
-  json.field("opaque_rejected", last.opaque_rejected).field("slot_writes", last.slot_writes);
+  json.field("opaque_rejected", last.opaque_rejected);
+  if (set.path == RenderPath::Gl) json.field("slot_writes", last.slot_writes);  // counted on the GPU path only
   json.field("max_depth_complexity", s.max_depth_complexity).field("mean_depth_complexity", s.mean_depth_complexity);
   json.field("covered_pixels", s.covered_pixels);
   extent(json, "table", last.table);
@@ -80,7 +82,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
     json.field("rmse", d.rmse).field("max_error", d.max_error).end_object();
   }
   json.key("frames").begin_array();
-  for (const FrameStats& f : r.frames) frame(json, f);
+  for (const FrameStats& f : r.frames) frame(json, f, set.path == RenderPath::Gl);
   json.end_array();
   json.end_object();
   json.save(path);

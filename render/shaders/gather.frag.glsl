@@ -6,7 +6,8 @@ layout(std430, binding = R_BINDING_PIXEL_FRAGMENTS) buffer RPixelFragments { uin
 layout(std430, binding = R_BINDING_PIXEL_CULLED) buffer RPixelCulled { uint r_pixel_culled[]; };
 layout(std430, binding = R_BINDING_REJECTED) buffer RRejected { uint r_rejected; };
 layout(binding = 0) uniform sampler2D r_opaque_depth;  // t of the nearest opaque surface; 2 where none
-uniform uint r_count_only;  // 1: count the fragments per pixel, insert nothing (sizing the table)
+uniform uint r_count_only;
+uniform uint r_screen_width;  // its own: the counting pass runs without the HA-buffer's uniform block  // 1: count the fragments per pixel, insert nothing (sizing the table)
 
 uint r_pack_rgba(vec3 c, float a) {
   uvec4 b = uvec4(round(clamp(vec4(c, a), 0.0, 1.0) * 255.0));
@@ -21,7 +22,7 @@ void main() {
     atomicAdd(r_rejected, 1u);
     return;
   }
-  uint i = p.x + p.y * ha_screen_size.x;
+  uint i = p.x + p.y * r_screen_width;
   atomicAdd(r_pixel_fragments[i], 1u);
   if (r_count_only != 0u) return;
   if (ha_insert(p, t, rgba) == HA_CULLED) atomicAdd(r_pixel_culled[i], 1u);

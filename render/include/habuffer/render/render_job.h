@@ -51,6 +51,7 @@ struct FrameStats {
   Counters counters;
   std::uint64_t opaque_rejected = 0;
   std::uint64_t slot_writes = 0;  // GPU path: slot raises, evicted records included (insertion work)
+  bool resize_limited = false;    // GPU path: adaptive sizing wanted a table the context cannot hold
   std::uint32_t max_age = 0;
   double load_factor = 0.0;
   double gather_ms = 0.0, resolve_ms = 0.0, frame_ms = 0.0;
@@ -66,7 +67,7 @@ struct RenderResult {
   std::optional<HaBuffer> buffer;              // the last frame's table and max-age table
   std::uint64_t memory_bytes = 0;              // of the HA-buffer (GPU or CPU)
   std::string device;                          // "gl native32 on llvmpipe ...", "cpu (N threads)"
-  bool growth_limited = false;                 // the context could not hold the table lossless mode wanted
+  bool growth_limited = false;  // the context could not hold the table the first frame or lossless mode wanted
 };
 
 // Needs a current OpenGL 4.5 core context. Throws SceneError, GlError,
