@@ -72,7 +72,7 @@ std::size_t ComputeInserter::uploaded() const {
 
 FrameReport ComputeInserter::insert(std::span<const Fragment> fragments) {
   upload(fragments);
-  const FrameReport report = buffer_.frame([&] { dispatch(); });
+  const FrameReport report = buffer_.frame([&] { dispatch(); }, [&] { return std::uint64_t{uploaded()}; });
   if (report.counters.fragments != fragments.size())
     throw GlError("the GPU counted " + std::to_string(report.counters.fragments) + " insert calls for " +
                   std::to_string(fragments.size()) + " fragments");

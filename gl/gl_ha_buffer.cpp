@@ -252,7 +252,7 @@ std::uint64_t GlHaBuffer::count_stored() {
   return clear_pass(false, nullptr);
 }
 
-FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
+FrameReport GlHaBuffer::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
   const GlStateGuard guard(bindings_);
   FrameReport report;
   report.index = frames_++;
@@ -275,7 +275,7 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
     }
   }
   for (;;) {
-    run_gather(gather, report);
+    run_gather(gather, calls, report);
     if (options_.capture && report.captured > capture_capacity_) {
       // A gather is deterministic in what it rasterizes, so one regather suffices;
       // two would mean the host's gather is not repeatable.
@@ -287,11 +287,17 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
       ++report.capture_regathers;
       continue;
     }
+    if (report.cut_short > 0 && report.cut_short_retries < options_.cut_short_retries) {
+      zero(gpu_->table);
+      ++report.cut_short_retries;
+      continue;
+    }
     report.attempts.push_back({config_.table, report.counters});
     if (report.counters.failures() == 0 || report.attempts.size() >= options_.max_attempts) break;
     // Lossless mode: the same frame again. Failures of the table need a larger
-    // one; lock give-ups alone (contention, not load) retry the same table.
-    if (report.counters.failures() > report.lock_give_ups) {
+    // one; calls cut short alone (contention or the driver, not load) retry
+    // the same table.
+    if (report.counters.failures() > report.cut_short) {
       const Extent grown = options_.policy.grown(config_.table);
       if (!table_limit(grown).empty()) {
         report.growth_limited = true;
@@ -306,7 +312,8 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather) {
   return report;
 }
 
-void GlHaBuffer::run_gather(const std::function<void()>& gather, FrameReport& report) {
+void GlHaBuffer::run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
+                            FrameReport& report) {
   reset_frame_state();
   holds_frame_ = true;  // even if the gather throws halfway, the next frame clears what it inserted
   {
@@ -318,7 +325,17 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, FrameReport& re
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
   }
-  std::tie(report.counters, report.lock_give_ups, report.slot_writes) = read_counters();
+  std::tie(report.counters, report.cut_short, report.slot_writes) = read_counters();
+  if (calls && !options_.capture_only) {
+    const std::uint64_t made = calls();
+    if (made < report.counters.fragments)
+      throw GlError("the gather counted " + std::to_string(report.counters.fragments) + " insert calls, the host " +
+                    std::to_string(made));
+    const std::uint64_t ended_by_driver = made - report.counters.fragments;
+    report.counters.fragments += ended_by_driver;
+    report.counters.failed_iter += ended_by_driver;
+    report.cut_short += ended_by_driver;
+  }
   if (options_.capture) report.captured = read_capture_count();
   check_gl_errors("the gather pass");
 }
@@ -345,7 +362,7 @@ std::tuple<Counters, std::uint64_t, std::uint64_t> GlHaBuffer::read_counters() c
   for (std::uint32_t o = 0; o < HA_OUTCOME_COUNT; ++o) tally[o] = words[o * HA_COUNTER_STRIDE];
   Counters c;
   c.add_tally(tally);
-  return {c, words[HA_COUNTER_LOCK_GIVE_UPS * HA_COUNTER_STRIDE], words[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE]};
+  return {c, words[HA_COUNTER_CUT_SHORT * HA_COUNTER_STRIDE], words[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE]};
 }
 
 std::uint64_t GlHaBuffer::read_capture_count() const {

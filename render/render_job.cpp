@@ -185,7 +185,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
         }
       }
     }
-    const gl::FrameReport report = ha.frame([&] { renderer.gather(camera); });
+    const gl::FrameReport report = ha.frame([&] { renderer.gather(camera); }, [&] { return renderer.inserted(); });
     fs.opaque_rejected = renderer.read_rejected();
     if (s.path == RenderPath::Gl) {
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer());

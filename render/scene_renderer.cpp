@@ -146,9 +146,7 @@ void SceneRenderer::gather(const Camera& camera) { run_gather(camera, false); }
 
 std::uint64_t SceneRenderer::count_fragments(const Camera& camera) {
   run_gather(camera, true);
-  std::uint64_t n = 0;
-  for (std::uint32_t c : read_pixel_fragments()) n += c;
-  return n;
+  return inserted();
 }
 
 void SceneRenderer::run_gather(const Camera& camera, bool count_only) {
@@ -181,6 +179,12 @@ std::vector<std::uint32_t> SceneRenderer::read_pixel_fragments() const {
   return read_words(pixel_fragments_, screen_.area());
 }
 std::vector<std::uint32_t> SceneRenderer::read_pixel_culled() const { return read_words(pixel_culled_, screen_.area()); }
+std::uint64_t SceneRenderer::inserted() const {
+  std::uint64_t n = 0;
+  for (std::uint32_t c : read_pixel_fragments()) n += c;
+  return n;
+}
+
 std::uint64_t SceneRenderer::read_rejected() const { return read_words(rejected_, 1)[0]; }
 
 }  // namespace habuffer

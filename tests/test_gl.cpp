@@ -173,7 +173,7 @@ TEST(Gl, EarlyCullImageErrorIsBoundedByOneMinusTau) {
     const gl::FrameReport rep = gl::ComputeInserter(gpu).insert(f);
     const Counters n = rep.counters;
     ASSERT_EQ(n.failures(), 0u) << "failed_age " << n.failed_age << " failed_iter " << n.failed_iter << " give-ups "
-                                << rep.lock_give_ups;
+                                << rep.cut_short;
     EXPECT_GT(n.culled, 0u);
     EXPECT_EQ(n.fragments, f.size());
     EXPECT_EQ(gpu.count_stored(), n.stored());

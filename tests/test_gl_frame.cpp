@@ -175,7 +175,7 @@ TEST(GlFrame, LosslessModeRetriesLockGiveUpsWithoutGrowingTheTable) {
   EXPECT_GT(r.attempts.size(), 1u);
   for (const BuildAttempt& a : r.attempts) EXPECT_EQ(a.table, c.table);
   EXPECT_EQ(r.table, c.table);
-  EXPECT_EQ(r.counters.failed_iter, r.lock_give_ups);
+  EXPECT_EQ(r.counters.failed_iter, r.cut_short);
   EXPECT_EQ(r.counters.failed_age, 0u);
 }
 

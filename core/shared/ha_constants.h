@@ -41,9 +41,10 @@
 // the insert call gives up as failed_iter (2^24 attempts, a fraction of a
 // second: long enough to outlast a lock holder the OS preempted).
 #define HA_COUNTER_STRIDE 16u
-// GPU counters after the six outcomes: insert calls that failed because an
-// emulated atomic gave up on a contended lock (also counted as failed_iter).
-#define HA_COUNTER_LOCK_GIVE_UPS 6u
+// GPU counters after the six outcomes: insert calls cut short (also counted
+// as failed_iter) by something other than the table: an emulated atomic that
+// gave up on a contended lock, or the driver's loop budget (llvmpipe).
+#define HA_COUNTER_CUT_SHORT 6u
 // ... and, when asked for, the slot writes: atomicMax calls that raised a
 // slot, including records later evicted (the work an insertion order costs).
 #define HA_COUNTER_SLOT_WRITES 7u

@@ -8,7 +8,9 @@
 // bool ha_atomic_gave_up() (an emulated atomic hit its spin bound: the call
 // fails as failed_iter; always false where atomics are native),
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
-// ha_cull_tau (0 = early cull off), and HA_INOUT(T) (GLSL: inout T; C++: T&).
+// ha_cull_tau (0 = early cull off), void ha_loop_cut() (notes a call the
+// driver's loop budget ended; nothing on the CPU), and HA_INOUT(T) (GLSL:
+// inout T; C++: T&).
 
 // The state of one insert call between probes.
 struct HaCarry {
@@ -82,7 +84,9 @@ uint ha_insert_code(uvec2 p, uint code, uint data) {
   HaCarry c = ha_carry_begin(p, code, data);
   uint outcome = HA_PENDING;
   while (outcome == HA_PENDING) outcome = ha_insert_step(c);
-  return outcome == HA_PENDING ? HA_FAILED_ITER : outcome;
+  if (outcome != HA_PENDING) return outcome;
+  ha_loop_cut();
+  return HA_FAILED_ITER;
 }
 
 // The whole insert call of one fragment (the GL entry ha_insert adds counting

@@ -39,7 +39,7 @@ uint ha_insert(uvec2 pixel, float depth, uint rgba) {
     ha_begin_call();
     ha_call_writes = 0u;
     outcome = ha_insert_fragment(pixel, depth, rgba);
-    if (ha_call_gave_up()) atomicAdd(ha_counters[HA_COUNTER_LOCK_GIVE_UPS * HA_COUNTER_STRIDE], 1u);
+    if (ha_call_cut_short()) atomicAdd(ha_counters[HA_COUNTER_CUT_SHORT * HA_COUNTER_STRIDE], 1u);
     if (ha_count_writes != 0u && ha_call_writes != 0u)
       atomicAdd(ha_counters[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE], ha_call_writes);
   }

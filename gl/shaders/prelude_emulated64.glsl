@@ -21,11 +21,13 @@ bool ha_atomic_gave_up() {
   ha_gave_up = false;
   return gave_up;
 }
-// Whether the current insert call gave up on a lock (the entry counts those
-// apart, so lossless mode gathers them again without growing the table).
-bool ha_call_lock_gave_up = false;
-void ha_begin_call() { ha_call_lock_gave_up = false; }
-bool ha_call_gave_up() { return ha_call_lock_gave_up; }
+// Whether the current insert call was cut short (a lock given up, or the
+// driver's loop budget spent) rather than failed by the table: the entry
+// counts those apart, so lossless mode gathers them again without growing it.
+bool ha_call_cut = false;
+void ha_begin_call() { ha_call_cut = false; }
+bool ha_call_cut_short() { return ha_call_cut; }
+void ha_loop_cut() { ha_call_cut = true; }
 
 // One attempt at the slot's lock; on success the max is done and `old` set.
 // The lock is taken and released inside this one call, so lanes of one SIMD
@@ -44,30 +46,17 @@ bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
   return true;
 }
 
-// One attempt while attempts remain (within ha_atomic_max_slot).
-#define HA_LOCK_ATTEMPT                              \
-  if (spin < ha_lock_spin_limit) {                   \
-    if (ha_try_max_slot(s, r, old)) return old;      \
-    ++spin;                                          \
-  }
-
 // Bounded spinning: up to ha_lock_spin_limit attempts, then the insert call
-// gives up (failed_iter). Sixteen attempts per loop iteration because
-// llvmpipe gives a shader invocation about 65535 loop iterations in all
-// (every loop together), and a lock holder the OS preempted (on llvmpipe, a
-// CPU thread) can keep the lock for milliseconds: this way the budget covers
-// about a million attempts.
+// gives up (failed_iter, and cut short: lossless mode gathers it again into
+// the same table). One attempt per iteration: unrolling the attempts halves
+// llvmpipe's speed, and no unrolling outlasts a lock holder the OS preempted
+// (llvmpipe gives a shader invocation about 65535 loop iterations in all).
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
   ha_word old = ha_word(0);
-  uint spin = 0u;
-  while (spin < ha_lock_spin_limit) {
-    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
-    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
-    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
-    HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT HA_LOCK_ATTEMPT
-  }
+  for (uint spin = 0u; spin < ha_lock_spin_limit; ++spin)
+    if (ha_try_max_slot(s, r, old)) return old;
   ha_gave_up = true;
-  ha_call_lock_gave_up = true;
+  ha_call_cut = true;
   return ha_word(0);
 }
 ha_word ha_load_slot(ha_index s) { return ha_table[s]; }

@@ -80,6 +80,8 @@ class HashKernel {
 
   // CPU atomics never give up (the compare-exchange loop is lock-free).
   static bool ha_atomic_gave_up() { return false; }
+  // C++ loops are not cut short by anything but the iteration limit.
+  static void ha_loop_cut() {}
 
   void ha_atomic_max_age(uint cell, uint age) {
     if constexpr (Concurrent) {

@@ -40,6 +40,10 @@ struct GlFrameOptions {
   ResizePolicy policy;    // also the growth step of lossless mode
   std::uint32_t max_attempts = 1;  // above 1: lossless mode, gather again into a grown table on failure
   std::uint32_t lock_spin_limit = HA_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before failed_iter
+  // Gathers repeated into the same table when calls were cut short (never the
+  // table's fault: contention or the driver's loop budget), before the frame
+  // reports them as failed_iter. Not counted as lossless attempts.
+  std::uint32_t cut_short_retries = 3;
   bool capture = false;                 // append every incoming fragment (read_capture())
   bool capture_only = false;            // capture without inserting (the CPU path replays the capture)
   std::uint64_t capture_capacity = 1u << 20;  // first capacity; grows (and the frame regathers) on overflow
@@ -66,8 +70,11 @@ struct FrameReport {
   std::optional<std::uint64_t> previous_stored;
   Counters counters;                   // of the final gather
   std::vector<BuildAttempt> attempts;  // every gather of lossless mode, in order
-  std::uint64_t lock_give_ups = 0;
-  std::uint64_t slot_writes = 0;    // with count_writes: slot raises, evicted records included  // emulated64: failed_iter from contended locks, not from the table
+  // Insert calls cut short (counted failed_iter) by something other than the
+  // table: an emulated64 lock given up, or the driver's loop budget spent.
+  std::uint64_t cut_short = 0;
+  std::uint64_t slot_writes = 0;    // with count_writes: slot raises, evicted records included
+  std::uint32_t cut_short_retries = 0;  // gathers repeated because calls were cut short
   bool resize_limited = false;      // adaptive sizing wanted a table beyond this context's limits
   bool growth_limited = false;      // lossless mode stopped: the next table would exceed the limits
   std::uint32_t capture_regathers = 0;  // gathers repeated because the capture buffer overflowed
@@ -110,7 +117,11 @@ class GlHaBuffer {
   // One frame around `gather`, which draws or dispatches shaders calling
   // ha_insert with our buffers bound, in the GL state the host had when it
   // called frame() (restored before every gather and after the frame).
-  FrameReport frame(const std::function<void()>& gather);
+  // `calls`, when the host can tell, returns how many ha_insert calls the
+  // gather made: calls a driver ended without an outcome (llvmpipe's loop
+  // budget can stop a SIMD group's lanes) are then counted as failed_iter
+  // and cut short, and retried like the others, so nothing goes uncounted.
+  FrameReport frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls = {});
 
   // Composites every screen pixel over `background` into the framebuffer
   // bound at the call, at viewport (0, 0, screen). With a background texture
@@ -140,7 +151,8 @@ class GlHaBuffer {
   [[nodiscard]] std::tuple<Counters, std::uint64_t, std::uint64_t> read_counters() const;
   // Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
-  void run_gather(const std::function<void()>& gather, FrameReport& report);
+  void run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
+                  FrameReport& report);
   [[nodiscard]] std::uint64_t read_capture_count() const;
 
   BufferConfig config_;

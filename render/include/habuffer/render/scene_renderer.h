@@ -39,6 +39,8 @@ class SceneRenderer {
   [[nodiscard]] std::vector<std::uint32_t> read_pixel_fragments() const;
   [[nodiscard]] std::vector<std::uint32_t> read_pixel_culled() const;
   [[nodiscard]] std::uint64_t read_rejected() const;
+  // ha_insert calls of the last gather (the per-pixel fragment counts summed).
+  [[nodiscard]] std::uint64_t inserted() const;
 
  private:
   struct GpuMesh {
