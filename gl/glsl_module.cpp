@@ -18,14 +18,14 @@ const char* mode_extensions(AtomicMode mode) {
   return "";
 }
 
-const char* mode_prelude(AtomicMode mode) {
-  switch (mode) {
-    case AtomicMode::Native32: return kPreludeNative32;
-    case AtomicMode::Native64: return kPreludeNative64;
-    case AtomicMode::Emulated64: return kPreludeEmulated64;
-  }
-  return kPreludeNative32;
+// The record word of the mode's layout (SPEC 2), as hash_kernel.h's Word.
+const char* word_defines(AtomicMode mode) {
+  if (mode == AtomicMode::Native32)
+    return "#define ha_word uint\nconst uint ha_word_bits = 32u;\nconst uint ha_payload_bits = 0u;\n";
+  return "#define ha_word uint64_t\nconst uint ha_word_bits = 64u;\nconst uint ha_payload_bits = 32u;\n";
 }
+
+const char* mode_prelude(AtomicMode mode) { return mode == AtomicMode::Emulated64 ? kPreludeEmulated64 : kPreludeNative; }
 
 }  // namespace
 
@@ -72,6 +72,7 @@ std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage s
   if (!header.empty() && header.back() != '\n') s += '\n';
   if (stage == ShaderStage::Fragment) s += "#define HA_STAGE_FRAGMENT\n";
   s += bindings.glsl_defines();
+  s += word_defines(mode);
   for (const char* part : {kHaConstants, kPreludeCommon, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaTraverse,
                            kHaEntry}) {
     s += part;

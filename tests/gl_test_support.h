@@ -24,6 +24,20 @@ inline OffsetSource random_offsets(std::uint64_t seed) {
   return s;
 }
 
+// Binding points a host might choose, away from the defaults.
+inline gl::GlBindings host_bindings() {
+  gl::GlBindings b;
+  b.table = 7;
+  b.max_age = 8;
+  b.offsets = 9;
+  b.counters = 10;
+  b.locks = 11;
+  b.capture = 12;
+  b.stream = 13;
+  b.params = 3;
+  return b;
+}
+
 inline Layout layout_of(gl::AtomicMode mode) { return mode == gl::AtomicMode::Native32 ? Layout::L32 : Layout::L64; }
 
 // The CPU path's buffer for the GPU buffer's current table and offsets, fed `fragments`.

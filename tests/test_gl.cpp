@@ -53,15 +53,7 @@ TEST(Gl, KhrDebugErrorsOfOurContextBecomeExceptions) {
 
 TEST(Gl, SharedGlslCompilesForTheRunnableModes) {
   gl_context();
-  gl::GlBindings moved;  // host-chosen points
-  moved.table = 9;
-  moved.max_age = 3;
-  moved.offsets = 11;
-  moved.counters = 12;
-  moved.locks = 13;
-  moved.capture = 14;
-  moved.stream = 15;
-  moved.params = 5;
+  const gl::GlBindings moved = test::host_bindings();
   EXPECT_NO_THROW(moved.validate());
   for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info()))
     for (const gl::GlBindings& b : {gl::GlBindings{}, moved}) {

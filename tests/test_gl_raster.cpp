@@ -38,19 +38,6 @@ flat in uint v_rgba;
 void main() { ha_insert(uvec2(gl_FragCoord.xy), gl_FragCoord.z); }
 )";
 
-gl::GlBindings host_bindings() {
-  gl::GlBindings b;
-  b.table = 7;
-  b.max_age = 8;
-  b.offsets = 9;
-  b.counters = 10;
-  b.locks = 11;
-  b.capture = 12;
-  b.stream = 13;
-  b.params = 3;
-  return b;
-}
-
 // Six overlapping triangles at different depths: several fragments a pixel.
 void draw_scene(const gl::ShaderProgram& program, Extent screen) {
   const float v[18 * 3] = {-0.9f, -0.9f, 0.1f,  0.9f,  -0.8f, 0.5f, 0.0f,  0.9f,  -0.3f,   //
@@ -92,7 +79,7 @@ TEST(GlRaster, CapturedRasterStreamReplaysIntoTheSameTableOnTheCpu) {
     gl::GlFrameOptions o;
     o.capture = true;
     o.capture_capacity = 16;
-    gl::GlHaBuffer gpu(c, test::random_offsets(12), mode, o, host_bindings());
+    gl::GlHaBuffer gpu(c, test::random_offsets(12), mode, o, test::host_bindings());
     const auto program = gl::ShaderProgram::graphics(
         kHostVertex, gpu.module_source(gl::ShaderStage::Fragment) + (mode == gl::AtomicMode::Native32 ? kHostInsertDepth : kHostInsertColour),
         "host gather");
@@ -109,7 +96,7 @@ TEST(GlRaster, CapturedRasterStreamReplaysIntoTheSameTableOnTheCpu) {
     EXPECT_EQ(r.counters.stored(), cpu.count_stored());
     EXPECT_GT(cpu.count_stored(), screen.area());
     // Capture off: the same frame, no capture, the same table.
-    gl::GlHaBuffer plain(c, test::random_offsets(12), mode, {}, host_bindings());
+    gl::GlHaBuffer plain(c, test::random_offsets(12), mode, {}, test::host_bindings());
     plain.frame([&] { draw_scene(program, screen); });
     EXPECT_EQ(plain.read_table(), test::table_words(cpu));
     EXPECT_TRUE(plain.read_capture().empty());

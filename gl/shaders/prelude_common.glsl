@@ -1,4 +1,5 @@
-// The part of the GLSL environment every atomic mode shares: the parameters
+// The part of the GLSL environment every atomic mode shares (the module
+// assembly has defined ha_word, ha_word_bits and ha_payload_bits): the parameters
 // hash_kernel.h holds as members on the C++ path (here one uniform block, so
 // a host shader needs no uniforms of ours, only our buffers bound), the
 // max-age table and the offsets. The HA_BINDING_* points are #defined before
@@ -20,8 +21,21 @@ layout(std140, binding = HA_BINDING_PARAMS) uniform HaParams {
   uint ha_params_pad2;
 };
 
+#define ha_index uint
+#define HA_INOUT(T) inout T
+#define ha_floor floor
+#define ha_float_bits floatBitsToUint
+
 // Slot writes of the current insert call (the atomics raise it).
 uint ha_call_writes = 0u;
+
+// Whether the current insert call was cut short (a lock given up, or the
+// driver's loop budget spent) rather than failed by the table: the entry
+// counts those apart, so lossless mode gathers them again without growing it.
+bool ha_call_cut = false;
+void ha_begin_call() { ha_call_cut = false; }
+bool ha_call_cut_short() { return ha_call_cut; }
+void ha_loop_cut() { ha_call_cut = true; }
 
 layout(std430, binding = HA_BINDING_MAX_AGE) buffer HaMaxAge { uint ha_max_ages[]; };
 layout(std430, binding = HA_BINDING_OFFSETS) readonly buffer HaOffsets { uvec2 ha_offsets[]; };

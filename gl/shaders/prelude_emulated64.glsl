@@ -1,15 +1,7 @@
 // Atomic mode emulated64: L64 records on drivers with 64-bit types but no
 // 64-bit atomics (Mesa llvmpipe); atomicMax on a 64-bit slot is emulated with
-// a per-slot 32-bit lock (the module assembly enables GL_ARB_gpu_shader_int64).
-#define ha_word uint64_t
-#define ha_index uint
-#define HA_INOUT(T) inout T
-#define ha_floor floor
-#define ha_float_bits floatBitsToUint
-
-const uint ha_word_bits = 64u;
-const uint ha_payload_bits = 32u;
-
+// a per-slot 32-bit lock (the module assembly defines ha_word as uint64_t and
+// enables GL_ARB_gpu_shader_int64).
 layout(std430, binding = HA_BINDING_TABLE) coherent buffer HaTable { uint64_t ha_table[]; };
 layout(std430, binding = HA_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
 
@@ -21,13 +13,6 @@ bool ha_atomic_gave_up() {
   ha_gave_up = false;
   return gave_up;
 }
-// Whether the current insert call was cut short (a lock given up, or the
-// driver's loop budget spent) rather than failed by the table: the entry
-// counts those apart, so lossless mode gathers them again without growing it.
-bool ha_call_cut = false;
-void ha_begin_call() { ha_call_cut = false; }
-bool ha_call_cut_short() { return ha_call_cut; }
-void ha_loop_cut() { ha_call_cut = true; }
 
 // One attempt at the slot's lock; on success the max is done and `old` set.
 // The lock is taken and released inside this one call, so lanes of one SIMD

@@ -1,0 +1,13 @@
+// Atomic modes native32 (L32, atomicMax on uint slots) and native64 (L64,
+// atomicMax on uint64_t slots with GL_NV_shader_atomic_int64): the module
+// assembly defines ha_word for the mode and enables its extensions.
+layout(std430, binding = HA_BINDING_TABLE) buffer HaTable { ha_word ha_table[]; };
+
+ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
+  ha_word old = atomicMax(ha_table[s], r);
+  if (old < r) ha_call_writes += 1u;
+  return old;
+}
+bool ha_atomic_gave_up() { return false; }
+ha_word ha_load_slot(ha_index s) { return ha_table[s]; }
+void ha_store_slot(ha_index s, ha_word r) { ha_table[s] = r; }
