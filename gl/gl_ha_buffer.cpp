@@ -232,7 +232,6 @@ void GlHaBuffer::bind() const {
 }
 
 std::uint64_t GlHaBuffer::clear_pass(bool writes, PassTiming* timing) {
-  if (!gpu_->clear) gpu_->clear = std::make_unique<ClearPass>(module_source(ShaderStage::Fragment));
   bind();
   const ClearPass::Result r = gpu_->clear->run(config_.table, options_.clear_tile, writes, options_.finish_timing);
   if (timing != nullptr) *timing = {r.wall_ms, r.gpu_ms};
@@ -349,7 +348,6 @@ PassTiming GlHaBuffer::resolve(glm::vec3 background, unsigned background_texture
     throw GlError("resolve: the bound draw framebuffer " + std::to_string(bound) +
                   " is not complete (status 0x" + std::to_string(status) + "); bind one with a colour attachment");
   }
-  if (!gpu_->resolve) gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
   bind();
   const auto [wall, gpu] = gpu_->resolve->run(config_.screen, background, background_texture, options_.finish_timing);
   check_gl_errors("the resolve pass");

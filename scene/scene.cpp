@@ -13,7 +13,6 @@ void Bounds::add(glm::vec3 p) {
   hi = glm::max(hi, p);
 }
 
-float Bounds::radius() const { return empty() ? 0.0f : glm::length(hi - lo) * 0.5f; }
 
 Bounds Scene::bounds() const {
   Bounds b;

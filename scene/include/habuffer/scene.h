@@ -33,7 +33,6 @@ struct Bounds {
   void add(glm::vec3 p);
   [[nodiscard]] bool empty() const { return lo.x > hi.x; }
   [[nodiscard]] glm::vec3 centre() const { return (lo + hi) * 0.5f; }
-  [[nodiscard]] float radius() const;  // of the bounding sphere around centre()
 };
 
 struct Scene {
