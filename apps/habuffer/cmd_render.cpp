@@ -28,8 +28,9 @@ constexpr const char* kHelp =
     "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
     "         [--count N] [--spread S] [--order front|back] [--scene-seed N] [--opaque-meshes I,J,...] [--quiet]\n"
     "  scenes: engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file.\n"
-    "  --size defaults to 1024x1024; --table auto (default) starts at the screen, grows at once when a\n"
-    "  frame fails and adapts between frames (SPEC 8). Images: PNG, or EXR/HDR/TIFF (float) by extension.\n"
+    "  --size defaults to 1024x1024; --table auto (default) sizes the first table from a counting pass,\n"
+    "  grows at once when a frame fails and adapts between frames (SPEC 8). Images: PNG, or EXR/HDR/TIFF\n"
+    "  (float) by extension.\n"
     "  --opaque-meshes: meshes (indices in file order) drawn opaque with the depth test; transparent\n"
     "  fragments behind them are rejected before insertion and counted.\n"
     "  Exit codes: 0 ok, 1 bad data (scene, file, GL limits), 2 bad usage.\n";
