@@ -27,8 +27,9 @@ enum class RenderPath { Gl, Cpu };
 struct RenderSettings {
   RenderPath path = RenderPath::Gl;
   // Screen, layout, age bits, block, iteration limit, early cull; config.table
-  // zero means auto: start at the screen, grow at once when a frame fails, and
-  // adapt between frames (SPEC 8). A given table is kept unless lossless.
+  // zero means auto: size the first table from a counting pass, grow at once
+  // when a frame fails, and adapt between frames (SPEC 8). A given table is
+  // kept unless lossless.
   BufferConfig config;
   bool lossless = false;
   std::uint32_t max_attempts = 16;  // lossless and auto
