@@ -11,6 +11,7 @@
 #include "gl_state_guard.h"
 #include "gpu_timer.h"
 #include "habuffer/gl/debug_output.h"
+#include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "resolve_pass.h"
 
@@ -38,38 +39,10 @@ constexpr std::uint64_t kCounterWords = HA_GPU_COUNTER_COUNT * HA_COUNTER_STRIDE
 constexpr std::uint64_t kCaptureHeaderBytes = HA_CAPTURE_HEADER_WORDS * 4;
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
 
-// A buffer of `bytes`, checked: a failed allocation (GL_OUT_OF_MEMORY in a
-// host context whose errors we must not consume) leaves a short buffer that
-// shaders would silently read past.
-GLuint make_buffer(std::uint64_t bytes, const void* data = nullptr) {
-  const std::uint64_t size = std::max<std::uint64_t>(bytes, 4);
-  GLuint b = 0;
-  glCreateBuffers(1, &b);
-  glNamedBufferData(b, static_cast<GLsizeiptr>(size), data, GL_DYNAMIC_DRAW);
-  GLint64 got = 0;
-  glGetNamedBufferParameteri64v(b, GL_BUFFER_SIZE, &got);
-  if (static_cast<std::uint64_t>(got) != size) {
-    glDeleteBuffers(1, &b);
-    throw GlError("OpenGL could not allocate a buffer of " + std::to_string(size) + " bytes");
-  }
-  return b;
-}
-
-void zero(GLuint buffer) {
-  const GLuint z = 0;
-  glClearNamedBufferData(buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
-}
-
 void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {
   const GLuint z = 0;
   glClearNamedBufferSubData(buffer, GL_R32UI, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
                             GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
-}
-
-std::vector<std::uint32_t> read_words(GLuint buffer, std::uint64_t words) {
-  std::vector<std::uint32_t> out(words);
-  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(words * 4), out.data());
-  return out;
 }
 
 void delete_buffer(GLuint& b) {
@@ -134,10 +107,10 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
   if (cells > UINT32_MAX) throw GlError("max-age table of " + std::to_string(cells) + " cells is too large");
   cells_ = static_cast<std::uint32_t>(cells);
   if (const std::string why = table_limit(config_.table); !why.empty()) throw GlError(why);
-  gpu_->max_age = make_buffer(std::uint64_t{cells_} * 4);
-  gpu_->counters = make_buffer(kCounterWords * 4);
-  gpu_->params = make_buffer(sizeof(GlParams));
-  gpu_->capture = make_buffer(kCaptureHeaderBytes);
+  gpu_->max_age = create_buffer(std::uint64_t{cells_} * 4);
+  gpu_->counters = create_buffer(kCounterWords * 4);
+  gpu_->params = create_buffer(sizeof(GlParams));
+  gpu_->capture = create_buffer(kCaptureHeaderBytes);
   if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
   allocate_table(config_.table, false);
   reset_frame_state();
@@ -172,13 +145,13 @@ void GlHaBuffer::allocate_table(Extent table, bool new_offsets) {
   delete_buffer(gpu_->table);
   delete_buffer(gpu_->locks);
   delete_buffer(gpu_->offsets);
-  gpu_->table = make_buffer(bytes);
-  zero(gpu_->table);
+  gpu_->table = create_buffer(bytes);
+  zero_buffer(gpu_->table);
   if (mode_ == AtomicMode::Emulated64) {
-    gpu_->locks = make_buffer(slots * 4);
-    zero(gpu_->locks);  // every critical section leaves its lock at 0 again
+    gpu_->locks = create_buffer(slots * 4);
+    zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
   }
-  gpu_->offsets = make_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
+  gpu_->offsets = create_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
   holds_frame_ = false;
   write_params();
 }
@@ -209,13 +182,13 @@ void GlHaBuffer::grow_capture(std::uint64_t needed) {
                   " per shader-storage buffer");
   capture_capacity_ = std::min(limit, std::max(needed, capture_capacity_ * 2));
   delete_buffer(gpu_->capture);
-  gpu_->capture = make_buffer(kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment));
+  gpu_->capture = create_buffer(kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment));
   write_params();
 }
 
 void GlHaBuffer::reset_frame_state() const {
-  zero(gpu_->max_age);
-  zero(gpu_->counters);
+  zero_buffer(gpu_->max_age);
+  zero_buffer(gpu_->counters);
   zero_range(gpu_->capture, 0, kCaptureHeaderBytes);
 }
 
@@ -282,12 +255,12 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather, const std::fu
         throw GlError("capture overflowed twice: the gather produced " + std::to_string(report.captured) +
                       " fragments after fitting a capture of " + std::to_string(capture_capacity_));
       grow_capture(report.captured);
-      zero(gpu_->table);
+      zero_buffer(gpu_->table);
       ++report.capture_regathers;
       continue;
     }
     if (report.cut_short > 0 && report.cut_short_retries < options_.cut_short_retries) {
-      zero(gpu_->table);
+      zero_buffer(gpu_->table);
       ++report.cut_short_retries;
       continue;
     }
@@ -304,7 +277,7 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather, const std::fu
       }
       allocate_table(grown);
     } else {
-      zero(gpu_->table);
+      zero_buffer(gpu_->table);
     }
   }
   report.table = config_.table;

@@ -11,21 +11,19 @@
 namespace habuffer::gl {
 namespace {
 
-std::string shader_log(GLuint shader) {
+// The info log of a shader or a program, read through the matching pair of
+// GL entry points.
+std::string info_log(GLuint object, void(GLAPIENTRY* get_iv)(GLuint, GLenum, GLint*),
+                     void(GLAPIENTRY* get_log)(GLuint, GLsizei, GLsizei*, GLchar*)) {
   GLint length = 0;
-  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  get_iv(object, GL_INFO_LOG_LENGTH, &length);
   std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-  glGetShaderInfoLog(shader, length, nullptr, log.data());
+  get_log(object, length, nullptr, log.data());
   return log.c_str();
 }
 
-std::string program_log(GLuint program) {
-  GLint length = 0;
-  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-  std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-  glGetProgramInfoLog(program, length, nullptr, log.data());
-  return log.c_str();
-}
+std::string shader_log(GLuint shader) { return info_log(shader, glGetShaderiv, glGetShaderInfoLog); }
+std::string program_log(GLuint program) { return info_log(program, glGetProgramiv, glGetProgramInfoLog); }
 
 }  // namespace
 

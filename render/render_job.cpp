@@ -215,8 +215,8 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
     result.frames.push_back(fs);
   }
   result.pixel_fragments = renderer.read_pixel_fragments();
-  result.backgrounds = renderer.read_opaque_colour();
   if (s.path == RenderPath::Gl) {
+    result.backgrounds = renderer.read_opaque_colour();  // the CPU path read them for its last composite
     result.image = target.read();
     result.pixel_culled = renderer.read_pixel_culled();
     if (s.keep_fragments) result.fragments = ha.read_capture();

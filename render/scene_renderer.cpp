@@ -4,6 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "render_shaders.h"
 
@@ -21,24 +22,6 @@ std::string gather_source(const gl::GlHaBuffer& buffer) {
   return buffer.module_source(gl::ShaderStage::Fragment, header) + render::kShading + render::kGatherFragment;
 }
 
-unsigned storage(std::uint64_t bytes) {
-  unsigned b = 0;
-  glCreateBuffers(1, &b);
-  glNamedBufferData(b, static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_DRAW);
-  return b;
-}
-
-void zero(unsigned buffer) {
-  const GLuint z = 0;
-  glClearNamedBufferData(buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
-}
-
-std::vector<std::uint32_t> read_words(unsigned buffer, std::size_t n) {
-  std::vector<std::uint32_t> v(n);
-  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(n * 4), v.data());
-  return v;
-}
-
 }  // namespace
 
 SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBuffer& buffer)
@@ -53,11 +36,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBu
     g.count = static_cast<std::int32_t>(m.indices.size());
     g.colour = m.colour;
     g.opacity = m.opacity;
-    glCreateBuffers(1, &g.vertices);
-    glNamedBufferData(g.vertices, static_cast<GLsizeiptr>(m.positions.size() * sizeof(glm::vec3)), m.positions.data(),
-                      GL_STATIC_DRAW);
-    glCreateBuffers(1, &g.indices);
-    glNamedBufferData(g.indices, static_cast<GLsizeiptr>(m.indices.size() * 4), m.indices.data(), GL_STATIC_DRAW);
+    g.vertices = gl::create_buffer(m.positions.size() * sizeof(glm::vec3), m.positions.data());
+    g.indices = gl::create_buffer(m.indices.size() * 4, m.indices.data());
     glCreateVertexArrays(1, &g.vertex_array);
     glVertexArrayVertexBuffer(g.vertex_array, 0, g.vertices, 0, sizeof(glm::vec3));
     glVertexArrayElementBuffer(g.vertex_array, g.indices);
@@ -85,9 +65,9 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBu
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
   gather_program_.set("r_screen_width", screen.x);
-  pixel_fragments_ = storage(screen.area() * 4);
-  pixel_culled_ = storage(screen.area() * 4);
-  rejected_ = storage(4);
+  pixel_fragments_ = gl::create_buffer(screen.area() * 4);
+  pixel_culled_ = gl::create_buffer(screen.area() * 4);
+  rejected_ = gl::create_buffer(4);
 }
 
 SceneRenderer::~SceneRenderer() {
@@ -151,9 +131,9 @@ std::uint64_t SceneRenderer::count_fragments(const Camera& camera) {
 
 void SceneRenderer::run_gather(const Camera& camera, bool count_only) {
   gather_program_.set("r_count_only", count_only ? 1u : 0u);
-  zero(pixel_fragments_);
-  zero(pixel_culled_);
-  zero(rejected_);
+  gl::zero_buffer(pixel_fragments_);
+  gl::zero_buffer(pixel_culled_);
+  gl::zero_buffer(rejected_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gather_framebuffer_);
   glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
   glDisable(GL_DEPTH_TEST);
@@ -176,15 +156,15 @@ std::vector<glm::vec3> SceneRenderer::read_opaque_colour() const {
 
 std::vector<std::uint32_t> SceneRenderer::read_pixel_fragments() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  return read_words(pixel_fragments_, screen_.area());
+  return gl::read_words(pixel_fragments_, screen_.area());
 }
-std::vector<std::uint32_t> SceneRenderer::read_pixel_culled() const { return read_words(pixel_culled_, screen_.area()); }
+std::vector<std::uint32_t> SceneRenderer::read_pixel_culled() const { return gl::read_words(pixel_culled_, screen_.area()); }
 std::uint64_t SceneRenderer::inserted() const {
   std::uint64_t n = 0;
   for (std::uint32_t c : read_pixel_fragments()) n += c;
   return n;
 }
 
-std::uint64_t SceneRenderer::read_rejected() const { return read_words(rejected_, 1)[0]; }
+std::uint64_t SceneRenderer::read_rejected() const { return gl::read_words(rejected_, 1)[0]; }
 
 }  // namespace habuffer

@@ -4,13 +4,10 @@
 #include <cstdio>
 
 #include "habuffer/json_writer.h"
+#include "report_json.h"
 
 namespace habuffer::cli {
 namespace {
-
-void extent(JsonWriter& json, std::string_view key, Extent e) {
-  json.key(key).begin_array().value(e.x).value(e.y).end_array();
-}
 
 void counters(JsonWriter& json, const Counters& c) {
   json.field("fragments", c.fragments).field("stored", c.stored()).field("duplicates", c.duplicates);
@@ -20,7 +17,7 @@ void counters(JsonWriter& json, const Counters& c) {
 
 void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.begin_object().field("index", f.index).field("yaw", static_cast<double>(f.yaw));
-  extent(json, "table", f.table);
+  write_extent(json, "table", f.table);
   json.field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
   counters(json, f.counters);
   json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
@@ -58,7 +55,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   json.begin_object();
   json.key("scene").begin_object().field("name", s.scene.name).field("meshes", static_cast<std::uint64_t>(s.scene.meshes));
   json.field("triangles", s.scene.triangles).end_object();
-  extent(json, "size", set.config.screen);
+  write_extent(json, "size", set.config.screen);
   json.field("path", path_name(set.path)).field("device", r.device).field("layout", to_string(set.config.layout));
   json.field("age_bits", set.config.age_bits).field("block", set.config.block);
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
@@ -68,7 +65,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   if (set.path == RenderPath::Gl) json.field("slot_writes", last.slot_writes);  // counted on the GPU path only
   json.field("max_depth_complexity", s.max_depth_complexity).field("mean_depth_complexity", s.mean_depth_complexity);
   json.field("covered_pixels", s.covered_pixels);
-  extent(json, "table", last.table);
+  write_extent(json, "table", last.table);
   json.field("load_factor", last.load_factor).field("max_age", last.max_age);
   json.field("gather_ms", last.gather_ms).field("resolve_ms", last.resolve_ms).field("frame_ms", last.frame_ms);
   json.field("memory_bytes", r.memory_bytes).field("growth_limited", r.growth_limited);

@@ -1,21 +1,17 @@
 #include "report_json.h"
 
 namespace habuffer::cli {
-namespace {
-
-void extent(JsonWriter& json, std::string_view key, Extent e) {
+void write_extent(JsonWriter& json, std::string_view key, Extent e) {
   json.key(key).begin_array().value(e.x).value(e.y).end_array();
 }
-
-}  // namespace
 
 void write_build_stats(JsonWriter& json, const HashOptions& options, const BuildResult& result,
                        const BuildReport& report, const BuildTiming& timing) {
   const Counters& c = report.counters;
   json.field("path", options.gl ? "gl" : "cpu").field("layout", to_string(options.config.layout));
   json.field("age_bits", options.config.age_bits).field("block", options.config.block);
-  extent(json, "screen", options.config.screen);
-  extent(json, "table", result.buffer.table());
+  write_extent(json, "screen", options.config.screen);
+  write_extent(json, "table", result.buffer.table());
   json.field("offsets", options.offsets_name).field("seed", options.offsets.seed);
   json.field("early_cull", static_cast<double>(options.config.early_cull_tau));
   json.field("fragments", c.fragments).field("stored", report.stored).field("duplicates", c.duplicates);
@@ -33,7 +29,7 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Build
   json.key("attempts").begin_array();
   for (const auto& a : result.attempts) {
     json.begin_object();
-    extent(json, "table", a.table);
+    write_extent(json, "table", a.table);
     json.field("failed_age", a.counters.failed_age).field("failed_iter", a.counters.failed_iter).end_object();
   }
   json.end_array();

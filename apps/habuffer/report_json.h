@@ -16,6 +16,9 @@ struct BuildTiming {
   std::string gl_renderer;
 };
 
+// "key": [x, y], the stats files' form of a size.
+void write_extent(JsonWriter& json, std::string_view key, Extent e);
+
 // Writes the body of the stats object (the caller opens and closes it).
 void write_build_stats(JsonWriter& json, const HashOptions& options, const BuildResult& result,
                        const BuildReport& report, const BuildTiming& timing);

@@ -1,0 +1,37 @@
+#include "habuffer/gl/gl_buffer.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <string>
+
+#include "habuffer/gl/gl_error.h"
+
+namespace habuffer::gl {
+
+unsigned create_buffer(std::uint64_t bytes, const void* data) {
+  const std::uint64_t size = std::max<std::uint64_t>(bytes, 4);
+  GLuint b = 0;
+  glCreateBuffers(1, &b);
+  glNamedBufferData(b, static_cast<GLsizeiptr>(size), data, GL_DYNAMIC_DRAW);
+  GLint64 got = 0;
+  glGetNamedBufferParameteri64v(b, GL_BUFFER_SIZE, &got);
+  if (static_cast<std::uint64_t>(got) != size) {
+    glDeleteBuffers(1, &b);
+    throw GlError("OpenGL could not allocate a buffer of " + std::to_string(size) + " bytes");
+  }
+  return b;
+}
+
+void zero_buffer(unsigned buffer) {
+  const GLuint z = 0;
+  glClearNamedBufferData(buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
+}
+
+std::vector<std::uint32_t> read_words(unsigned buffer, std::uint64_t words) {
+  std::vector<std::uint32_t> out(words);
+  if (words > 0) glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(words * 4), out.data());
+  return out;
+}
+
+}  // namespace habuffer::gl

@@ -1,0 +1,17 @@
+// Buffer objects as the library uses them: created with their size checked
+// (a failed allocation in a host context would otherwise leave a short buffer
+// that shaders silently read past; the host's errors are not ours to consume
+// with glGetError), zeroed, and read back as 32-bit words.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace habuffer::gl {
+
+// Throws GlError naming the size when OpenGL cannot allocate it.
+unsigned create_buffer(std::uint64_t bytes, const void* data = nullptr);
+void zero_buffer(unsigned buffer);
+std::vector<std::uint32_t> read_words(unsigned buffer, std::uint64_t words);
+
+}  // namespace habuffer::gl
