@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "compute_grid.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
@@ -49,10 +50,7 @@ void ComputeInserter::dispatch() const {
   for (const Chunk& c : chunks_) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, buffer_.bindings().stream, c.buffer);
     program_.set("ha_stream_count", static_cast<unsigned>(c.count));
-    const std::size_t groups = std::max<std::size_t>((c.count + 63) / 64, 1);
-    const auto gx = static_cast<GLuint>(std::min<std::size_t>(groups, 65535));
-    const auto gy = static_cast<GLuint>((groups + gx - 1) / gx);
-    glDispatchCompute(gx, gy, 1);
+    dispatch_grid(c.count, 64);
   }
 }
 

@@ -8,11 +8,13 @@
 #include <tuple>
 
 #include "clear_pass.h"
+#include "compute_grid.h"
 #include "gl_state_guard.h"
 #include "gpu_timer.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/shader_program.h"
 #include "resolve_pass.h"
 
 namespace habuffer::gl {
@@ -31,12 +33,15 @@ struct GlParams {
   std::uint32_t capture_capacity;
   std::uint32_t capture_only;
   std::uint32_t count_writes;
-  std::uint32_t pad[3];
+  std::uint32_t deferred_capacity;
+  std::uint32_t pad[2];
 };
 static_assert(sizeof(GlParams) == 64);
 
 constexpr std::uint64_t kCounterWords = HA_GPU_COUNTER_COUNT * HA_COUNTER_STRIDE;
 constexpr std::uint64_t kCaptureHeaderBytes = HA_CAPTURE_HEADER_WORDS * 4;
+constexpr std::uint64_t kDeferredHeaderBytes = HA_DEFERRED_HEADER_WORDS * 4;
+constexpr std::uint64_t kDeferredCallBytes = 32;  // std430 HaDeferred of ha_entry.glsl
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
 
 void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {
@@ -66,11 +71,14 @@ BufferConfig validated(BufferConfig c) {
 
 struct GlHaBuffer::Gpu {
   GLuint table = 0, locks = 0, max_age = 0, offsets = 0, counters = 0, capture = 0, params = 0;
+  GLuint deferred[2] = {0, 0};  // ping-pong: the calls a round resumes, the calls it defers again
   std::unique_ptr<ClearPass> clear;
   std::unique_ptr<ResolvePass> resolve;
+  std::unique_ptr<ShaderProgram> resume;
   GpuTimer gather_timer;
   ~Gpu() {
-    for (GLuint* b : {&table, &locks, &max_age, &offsets, &counters, &capture, &params}) delete_buffer(*b);
+    for (GLuint* b : {&table, &locks, &max_age, &offsets, &counters, &capture, &params, &deferred[0], &deferred[1]})
+      delete_buffer(*b);
   }
 };
 
@@ -112,11 +120,14 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
   gpu_->params = create_buffer(sizeof(GlParams));
   gpu_->capture = create_buffer(kCaptureHeaderBytes);
   if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
+  grow_deferred(std::max<std::uint64_t>(options_.deferred_capacity, 1));
   allocate_table(config_.table, false);
   reset_frame_state();
   // Compile the passes now, so the first frame's timings measure the passes, not the compiler.
   gpu_->clear = std::make_unique<ClearPass>(module_source(ShaderStage::Fragment));
   gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
+  gpu_->resume = std::make_unique<ShaderProgram>(
+      ShaderProgram::compute(resume_compute(mode_, bindings_), "resume compute shader"));
   check_gl_errors("creating the GPU HA-buffer");
 }
 
@@ -171,6 +182,7 @@ void GlHaBuffer::write_params() const {
   p.capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
   p.capture_only = options_.capture_only ? 1u : 0u;
   p.count_writes = options_.count_writes ? 1u : 0u;
+  p.deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
   glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
 }
 
@@ -186,19 +198,35 @@ void GlHaBuffer::grow_capture(std::uint64_t needed) {
   write_params();
 }
 
+void GlHaBuffer::grow_deferred(std::uint64_t needed) {
+  const std::uint64_t limit = std::min<std::uint64_t>(
+      (max_storage_bytes() - kDeferredHeaderBytes) / kDeferredCallBytes, UINT32_MAX);
+  if (needed > limit)
+    throw GlError(std::to_string(needed) + " insert calls cut short exceed this OpenGL's " + std::to_string(limit) +
+                  " per shader-storage buffer");
+  deferred_capacity_ = std::min(limit, std::max(needed, deferred_capacity_ * 2));
+  for (GLuint& b : gpu_->deferred) {
+    delete_buffer(b);
+    b = create_buffer(kDeferredHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
+  }
+  write_params();
+}
+
 void GlHaBuffer::reset_frame_state() const {
   zero_buffer(gpu_->max_age);
   zero_buffer(gpu_->counters);
   zero_range(gpu_->capture, 0, kCaptureHeaderBytes);
+  zero_range(gpu_->deferred[0], 0, kDeferredHeaderBytes);
 }
 
 void GlHaBuffer::bind() const {
-  const std::array<std::pair<unsigned, GLuint>, 6> storage{{{bindings_.table, gpu_->table},
+  const std::array<std::pair<unsigned, GLuint>, 7> storage{{{bindings_.table, gpu_->table},
                                                             {bindings_.max_age, gpu_->max_age},
                                                             {bindings_.offsets, gpu_->offsets},
                                                             {bindings_.counters, gpu_->counters},
                                                             {bindings_.locks, gpu_->locks},
-                                                            {bindings_.capture, gpu_->capture}}};
+                                                            {bindings_.capture, gpu_->capture},
+                                                            {bindings_.deferred, gpu_->deferred[0]}}};
   for (const auto& [point, buffer] : storage)
     if (buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buffer);
   glBindBufferBase(GL_UNIFORM_BUFFER, bindings_.params, gpu_->params);
@@ -259,6 +287,18 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather, const std::fu
       ++report.capture_regathers;
       continue;
     }
+    if (deferred_overflow_) {
+      // Calls cut short beyond the buffer lost their carried state: gather
+      // again with room for all of them (contention varies between gathers,
+      // so a few tries are allowed).
+      if (report.deferred_regathers >= 8)
+        throw GlError("insert calls cut short overflowed the deferred-call buffer 8 times (capacity " +
+                      std::to_string(deferred_capacity_) + ")");
+      grow_deferred(report.deferred);
+      zero_buffer(gpu_->table);
+      ++report.deferred_regathers;
+      continue;
+    }
     if (report.cut_short > 0 && report.cut_short_retries < options_.cut_short_retries) {
       zero_buffer(gpu_->table);
       ++report.cut_short_retries;
@@ -288,6 +328,7 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, const std::func
                             FrameReport& report) {
   reset_frame_state();
   holds_frame_ = true;  // even if the gather throws halfway, the next frame clears what it inserted
+  std::uint64_t unfinished = 0;
   {
     const GlStateGuard attempt_guard(bindings_);
     bind();
@@ -295,21 +336,62 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, const std::func
     gather();
     // Resolve, read-backs and the next clear see every insert.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+    unfinished = resume_deferred(report);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
   }
-  std::tie(report.counters, report.cut_short, report.slot_writes) = read_counters();
+  std::tie(report.counters, report.slot_writes) = read_counters();
+  if (options_.capture) report.captured = read_capture_count();
+  check_gl_errors("the gather pass");
+  report.cut_short = 0;
+  if (deferred_overflow_) {
+    report.deferred = unfinished;  // frame() grows the buffer to this and gathers again
+    return;
+  }
+  // Calls still cut short after the last round end as failed_iter.
+  report.counters.fragments += unfinished;
+  report.counters.failed_iter += unfinished;
+  report.cut_short += unfinished;
   if (calls && !options_.capture_only) {
     const std::uint64_t made = calls();
     if (made < report.counters.fragments)
       throw GlError("the gather counted " + std::to_string(report.counters.fragments) + " insert calls, the host " +
                     std::to_string(made));
+    // Calls a driver ended without an outcome or a deferral: nothing to resume.
     const std::uint64_t ended_by_driver = made - report.counters.fragments;
     report.counters.fragments += ended_by_driver;
     report.counters.failed_iter += ended_by_driver;
     report.cut_short += ended_by_driver;
   }
-  if (options_.capture) report.captured = read_capture_count();
-  check_gl_errors("the gather pass");
+}
+
+std::uint64_t GlHaBuffer::resume_deferred(FrameReport& report) {
+  report.deferred = 0;
+  report.resume_rounds = 0;
+  deferred_overflow_ = false;
+  int in = 0;
+  std::uint64_t count = read_deferred_count(in);
+  if (count > deferred_capacity_) {
+    deferred_overflow_ = true;
+    return count;
+  }
+  // Every round ends at least one call per contended slot (a lock's holder
+  // always completes its probe), so the rounds shrink the set; the bound
+  // only guards against a driver that cuts every call at once.
+  while (count > 0 && report.resume_rounds < options_.resume_rounds) {
+    report.deferred += count;
+    const int out = 1 - in;
+    zero_range(gpu_->deferred[out], 0, kDeferredHeaderBytes);
+    glUseProgram(gpu_->resume->id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings_.stream, gpu_->deferred[in]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings_.deferred, gpu_->deferred[out]);
+    gpu_->resume->set("ha_resume_count", static_cast<unsigned>(count));
+    dispatch_grid(count, 64);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    ++report.resume_rounds;
+    count = read_deferred_count(out);
+    in = out;
+  }
+  return count;
 }
 
 PassTiming GlHaBuffer::resolve(glm::vec3 background, unsigned background_texture) {
@@ -327,18 +409,24 @@ PassTiming GlHaBuffer::resolve(glm::vec3 background, unsigned background_texture
   return {wall, gpu};
 }
 
-std::tuple<Counters, std::uint64_t, std::uint64_t> GlHaBuffer::read_counters() const {
+std::pair<Counters, std::uint64_t> GlHaBuffer::read_counters() const {
   const auto words = read_words(gpu_->counters, kCounterWords);
   std::uint64_t tally[HA_OUTCOME_COUNT];
   for (std::uint32_t o = 0; o < HA_OUTCOME_COUNT; ++o) tally[o] = words[o * HA_COUNTER_STRIDE];
   Counters c;
   c.add_tally(tally);
-  return {c, words[HA_COUNTER_CUT_SHORT * HA_COUNTER_STRIDE], words[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE]};
+  return {c, words[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE]};
 }
 
 std::uint64_t GlHaBuffer::read_capture_count() const {
   std::uint32_t count = 0;
   glGetNamedBufferSubData(gpu_->capture, 0, 4, &count);
+  return count;
+}
+
+std::uint64_t GlHaBuffer::read_deferred_count(int which) const {
+  std::uint32_t count = 0;
+  glGetNamedBufferSubData(gpu_->deferred[which], 0, 4, &count);
   return count;
 }
 
@@ -371,6 +459,7 @@ std::uint64_t GlHaBuffer::memory_bytes() const {
                         offsets_.size() * sizeof(glm::uvec2) + kCounterWords * 4 + sizeof(GlParams);
   if (mode_ == AtomicMode::Emulated64) bytes += slots * 4;
   if (capture_capacity_ > 0) bytes += kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment);
+  bytes += 2 * (kDeferredHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
   return bytes;
 }
 

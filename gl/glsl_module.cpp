@@ -18,11 +18,14 @@ const char* mode_extensions(AtomicMode mode) {
   return "";
 }
 
-// The record word of the mode's layout (SPEC 2), as hash_kernel.h's Word.
+// The record word of the mode's layout (SPEC 2), as hash_kernel.h's Word,
+// and its split into (low, high) 32-bit words for deferred calls.
 const char* word_defines(AtomicMode mode) {
   if (mode == AtomicMode::Native32)
-    return "#define ha_word uint\nconst uint ha_word_bits = 32u;\nconst uint ha_payload_bits = 0u;\n";
-  return "#define ha_word uint64_t\nconst uint ha_word_bits = 64u;\nconst uint ha_payload_bits = 32u;\n";
+    return "#define ha_word uint\nconst uint ha_word_bits = 32u;\nconst uint ha_payload_bits = 0u;\n"
+           "#define ha_word_split(r) uvec2(r, 0u)\n#define ha_word_join(v) (v).x\n";
+  return "#define ha_word uint64_t\nconst uint ha_word_bits = 64u;\nconst uint ha_payload_bits = 32u;\n"
+         "#define ha_word_split(r) unpackUint2x32(r)\n#define ha_word_join(v) packUint2x32(v)\n";
 }
 
 const char* mode_prelude(AtomicMode mode) { return mode == AtomicMode::Emulated64 ? kPreludeEmulated64 : kPreludeNative; }
@@ -61,6 +64,7 @@ std::string GlBindings::glsl_defines() const {
   define("LOCKS", locks);
   define("CAPTURE", capture);
   define("STREAM", stream);
+  define("DEFERRED", deferred);
   define("PARAMS", params);
   return s;
 }
@@ -83,6 +87,10 @@ std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage s
 
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings) {
   return ha_module(mode, bindings, ShaderStage::Compute) + kInsertStreamCompute;
+}
+
+std::string resume_compute(AtomicMode mode, const GlBindings& bindings) {
+  return ha_module(mode, bindings, ShaderStage::Compute) + kResumeCompute;
 }
 
 }  // namespace habuffer::gl

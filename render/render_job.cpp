@@ -196,6 +196,8 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
       fs.attempts = static_cast<std::uint32_t>(report.attempts.size());
       fs.counters = report.counters;
       fs.slot_writes = report.slot_writes;
+      fs.deferred = report.deferred;
+      fs.resume_rounds = report.resume_rounds;
       fs.resize_limited = report.resize_limited;
       fs.gather_ms = report.gather.wall_ms;
       fs.max_age = largest(ha.read_max_age());

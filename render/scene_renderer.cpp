@@ -11,14 +11,15 @@
 namespace habuffer {
 namespace {
 
-constexpr unsigned kPixelFragmentsBinding = 7, kPixelCulledBinding = 8, kRejectedBinding = 9;
+constexpr unsigned kPixelFragmentsBinding = 10, kPixelCulledBinding = 11, kRejectedBinding = 12;
 
 std::string gather_source(const gl::GlHaBuffer& buffer) {
   const gl::GlBindings& b = buffer.bindings();
   for (unsigned p : b.storage_points())
     if (p == kPixelFragmentsBinding || p == kPixelCulledBinding || p == kRejectedBinding)
-      throw gl::GlError("the renderer's shader-storage points 7-9 collide with the HA-buffer's");
-  const std::string header = "#define R_BINDING_PIXEL_FRAGMENTS 7\n#define R_BINDING_PIXEL_CULLED 8\n#define R_BINDING_REJECTED 9\n";
+      throw gl::GlError("the renderer's shader-storage points 10-12 collide with the HA-buffer's");
+  const std::string header =
+      "#define R_BINDING_PIXEL_FRAGMENTS 10\n#define R_BINDING_PIXEL_CULLED 11\n#define R_BINDING_REJECTED 12\n";
   return buffer.module_source(gl::ShaderStage::Fragment, header) + render::kShading + render::kGatherFragment;
 }
 

@@ -34,6 +34,7 @@ inline gl::GlBindings host_bindings() {
   b.locks = 11;
   b.capture = 12;
   b.stream = 13;
+  b.deferred = 14;
   b.params = 3;
   return b;
 }

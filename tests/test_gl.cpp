@@ -177,33 +177,95 @@ TEST(Gl, EarlyCullImageErrorIsBoundedByOneMinusTau) {
   }
 }
 
-// emulated64's lock is bounded: with one attempt allowed, lanes that find a
-// slot locked by another lane give up as failed_iter, and every fragment is
-// still counted exactly once (SPEC invariant 1). With the default bound the
-// same hot stream builds the CPU table.
-TEST(Gl, Emulated64LockGivesUpAsFailedIterAndKeepsAccounting) {
-  gl_context();
-  const auto modes = gl::runnable_atomic_modes(gl::query_gl_info());
-  if (std::find(modes.begin(), modes.end(), gl::AtomicMode::Emulated64) == modes.end())
-    GTEST_SKIP() << "no 64-bit shader types";
-  const BufferConfig c = test::config({16, 16}, {32, 32}, Layout::L64, 8);
+// Neighbours share a pixel (they contend for its age-1 slot): 16 pixels, 16
+// depths each, 8 times over.
+std::vector<Fragment> contended_stream() {
   std::vector<Fragment> f;
-  // 16 pixels, 16 depths each, 8 times over: consecutive fragments (lanes of
-  // one SIMD group) share a pixel, so they contend for its age-1 slot.
   for (std::uint32_t i = 0; i < 2048; ++i)
     f.push_back({(i / 16) % 16, 3, static_cast<float>(i % 16 + 1) / 32.0f, 0x80808000u + i % 16});
+  return f;
+}
+
+bool has_emulated64() {
+  const auto modes = gl::runnable_atomic_modes(gl::query_gl_info());
+  return std::find(modes.begin(), modes.end(), gl::AtomicMode::Emulated64) != modes.end();
+}
+
+// emulated64's lock is bounded: with one attempt allowed, lanes that find a
+// slot locked by another lane give up, their calls are deferred with their
+// carried state and resumed until every call has ended: the CPU path's table
+// and counters, nothing failed. Without resume rounds the same calls end as
+// failed_iter, cut short, and every fragment is still counted exactly once.
+TEST(Gl, Emulated64LockGiveUpsAreResumedUntilEveryCallEnds) {
+  gl_context();
+  if (!has_emulated64()) GTEST_SKIP() << "no 64-bit shader types";
+  const BufferConfig c = test::config({16, 16}, {32, 32}, Layout::L64, 8);
+  const std::vector<Fragment> f = contended_stream();
   gl::GlFrameOptions tight;
   tight.lock_spin_limit = 1;
   gl::GlHaBuffer gpu(c, test::random_offsets(3), gl::AtomicMode::Emulated64, tight);
   const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
-  EXPECT_GT(r.counters.failed_iter, 0u);
-  EXPECT_EQ(r.counters.fragments, f.size());
-  EXPECT_EQ(gpu.count_stored(), r.counters.stored());
+  HaBuffer cpu = test::cpu_twin(gpu, {});
+  const Counters want = cpu.insert(f, {});
+  EXPECT_GT(r.deferred, 0u);
+  EXPECT_GE(r.resume_rounds, 1u);
+  EXPECT_EQ(r.cut_short, 0u);
+  EXPECT_EQ(r.cut_short_retries, 0u);
+  EXPECT_EQ(r.counters, want);
+  EXPECT_EQ(gpu.read_table(), test::table_words(cpu));
+  EXPECT_EQ(gpu.read_max_age(), cpu.max_age().ages());
 
-  gl::GlHaBuffer relaxed(c, test::random_offsets(3), gl::AtomicMode::Emulated64);
-  const gl::FrameReport ok = gl::ComputeInserter(relaxed).insert(f);
-  EXPECT_EQ(ok.counters.failed_iter, 0u);
-  EXPECT_EQ(relaxed.read_table(), test::table_words(test::cpu_twin(relaxed, f)));
+  tight.resume_rounds = 0;
+  tight.cut_short_retries = 0;
+  gl::GlHaBuffer unresumed(c, test::random_offsets(3), gl::AtomicMode::Emulated64, tight);
+  const gl::FrameReport u = gl::ComputeInserter(unresumed).insert(f);
+  EXPECT_GT(u.counters.failed_iter, 0u);
+  EXPECT_EQ(u.counters.failed_iter, u.cut_short);
+  EXPECT_EQ(u.counters.fragments, f.size());
+  EXPECT_EQ(unresumed.count_stored(), u.counters.stored());
+}
+
+// A deferred-call buffer too small for the calls cut short grows, and the
+// gather runs again: nothing is lost to the overflow.
+TEST(Gl, DeferredCallsBeyondTheBufferGrowItAndGatherAgain) {
+  gl_context();
+  if (!has_emulated64()) GTEST_SKIP() << "no 64-bit shader types";
+  const BufferConfig c = test::config({16, 16}, {32, 32}, Layout::L64, 8);
+  const std::vector<Fragment> f = contended_stream();
+  gl::GlFrameOptions o;
+  o.lock_spin_limit = 1;
+  o.deferred_capacity = 1;
+  gl::GlHaBuffer gpu(c, test::random_offsets(3), gl::AtomicMode::Emulated64, o);
+  const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
+  EXPECT_GE(r.deferred_regathers, 1u);
+  EXPECT_EQ(r.cut_short, 0u);
+  EXPECT_EQ(r.counters.failures(), 0u);
+  EXPECT_EQ(gpu.read_table(), test::table_words(test::cpu_twin(gpu, f)));
+}
+
+// The lock's critical section under stress: four pixels with about 200
+// fragments each in a 32x32 table, so every call walks and rewrites the same
+// few sorted lists (Robin Hood evictions) while llvmpipe's threads contend,
+// many times over, each time the CPU path's table. A lock released before its
+// slot write, or a write outside the lock, loses an update and fails this.
+TEST(Gl, Emulated64LockKeepsEverySlotWriteUnderStress) {
+  gl_context();
+  if (!has_emulated64()) GTEST_SKIP() << "no 64-bit shader types";
+  const BufferConfig c = test::config({2, 2}, {32, 32}, Layout::L64, 8);
+  SplitMix64 rng(21);
+  for (int round = 0; round < 40; ++round) {
+    std::vector<Fragment> f;
+    for (std::uint32_t i = 0; i < 800; ++i)
+      f.push_back({static_cast<std::uint32_t>(rng.below(2)), static_cast<std::uint32_t>(rng.below(2)),
+                   static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f, static_cast<std::uint32_t>(rng.next())});
+    gl::GlHaBuffer gpu(c, test::random_offsets(5 + round), gl::AtomicMode::Emulated64);
+    const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
+    HaBuffer cpu = test::cpu_twin(gpu, {});
+    const Counters want = cpu.insert(f, {});
+    ASSERT_EQ(gpu.read_table(), test::table_words(cpu)) << "round " << round;
+    EXPECT_EQ(r.counters.stored(), want.stored()) << "round " << round;
+    EXPECT_EQ(r.counters.failed_iter, 0u) << "round " << round;
+  }
 }
 
 }  // namespace

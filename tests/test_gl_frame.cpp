@@ -157,7 +157,8 @@ TEST(GlFrame, AGatherThatThrowsLeavesNoQueryOpenAndIsClearedNextFrame) {
 }
 
 // Lossless mode tells lock contention from a full table: give-ups of the
-// emulated atomic are gathered again into the same table, never a larger one.
+// emulated atomic left unresumed (no resume rounds) are gathered again into
+// the same table, never a larger one.
 TEST(GlFrame, LosslessModeRetriesLockGiveUpsWithoutGrowingTheTable) {
   gl_context();
   const auto all = modes();
@@ -168,6 +169,8 @@ TEST(GlFrame, LosslessModeRetriesLockGiveUpsWithoutGrowingTheTable) {
     f.push_back({(i / 16) % 16, 3, static_cast<float>(i % 16 + 1) / 32.0f, 0x80808000u + i % 16});
   gl::GlFrameOptions o;
   o.lock_spin_limit = 1;
+  o.resume_rounds = 0;
+  o.cut_short_retries = 0;
   o.max_attempts = 4;
   gl::GlHaBuffer gpu(c, test::random_offsets(3), gl::AtomicMode::Emulated64, o);
   const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);

@@ -48,6 +48,9 @@ BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fr
   timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   timing.gl_atomic_mode = gl::to_string(*mode);
   timing.gl_renderer = info.renderer;
+  timing.gl_deferred = report.deferred;
+  timing.gl_resume_rounds = report.resume_rounds;
+  timing.gl_cut_short_retries = report.cut_short_retries;
   HaBuffer buffer(gpu.config(), gpu.offsets());
   buffer.import_state(gpu.read_table(), gpu.read_max_age());
   return BuildResult{std::move(buffer), report.counters, std::move(report.attempts)};

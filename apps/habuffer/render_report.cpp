@@ -21,7 +21,7 @@ void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
   counters(json, f.counters);
   json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
-  if (gpu) json.field("slot_writes", f.slot_writes);
+  if (gpu) json.field("slot_writes", f.slot_writes).field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
   json.field("gather_ms", f.gather_ms).field("resolve_ms", f.resolve_ms).field("frame_ms", f.frame_ms);
   json.end_object();
 }

@@ -25,7 +25,9 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Build
   json.field("fragments_per_second", timing.build_ms > 0 ? static_cast<double>(c.fragments) / timing.build_ms * 1e3 : 0.0);
   json.field("threads", timing.threads).field("lossless", options.lossless);
   if (!timing.gl_atomic_mode.empty())
-    json.field("gl_atomic_mode", timing.gl_atomic_mode).field("gl_renderer", timing.gl_renderer);
+    json.field("gl_atomic_mode", timing.gl_atomic_mode).field("gl_renderer", timing.gl_renderer)
+        .field("gl_deferred", timing.gl_deferred).field("gl_resume_rounds", timing.gl_resume_rounds)
+        .field("gl_cut_short_retries", timing.gl_cut_short_retries);
   json.key("attempts").begin_array();
   for (const auto& a : result.attempts) {
     json.begin_object();

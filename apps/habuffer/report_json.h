@@ -14,6 +14,9 @@ struct BuildTiming {
   std::uint32_t threads = 1;
   std::string gl_atomic_mode;  // --path gl: the mode that ran, and the renderer
   std::string gl_renderer;
+  std::uint64_t gl_deferred = 0;         // insert calls cut short and resumed (summed over rounds)
+  std::uint32_t gl_resume_rounds = 0;
+  std::uint32_t gl_cut_short_retries = 0;
 };
 
 // "key": [x, y], the stats files' form of a size.

@@ -11,8 +11,11 @@
 #define HA_FAILED_ITER 4u
 #define HA_INVALID 5u
 #define HA_OUTCOME_COUNT 6u
-// Not an outcome: the insert call goes on (ha_insert_step).
+// Not outcomes: the insert call goes on (ha_insert_step), or it was cut short
+// by something other than the table and its carried state must be resumed
+// (GPU path only: an emulated atomic that gave up, the driver's loop budget).
 #define HA_PENDING 6u
+#define HA_CUT 7u
 
 // Traversal step results (SPEC 7).
 #define HA_VISIT_STOP 0u
@@ -38,18 +41,19 @@
 // not contend; a capture buffer starts with HA_CAPTURE_HEADER_WORDS words
 // (the append count, then padding to 16 bytes) before its fragments; an
 // emulated 64-bit atomic tries a contended slot lock this many times before
-// the insert call gives up as failed_iter (2^24 attempts, a fraction of a
-// second: long enough to outlast a lock holder the OS preempted).
+// the insert call is cut short and deferred to the frame's resume pass (2^24
+// attempts, a fraction of a second: long enough to outlast a lock holder the
+// OS preempted, where the driver lets a loop run that long).
 #define HA_COUNTER_STRIDE 16u
-// GPU counters after the six outcomes: insert calls cut short (also counted
-// as failed_iter) by something other than the table: an emulated atomic that
-// gave up on a contended lock, or the driver's loop budget (llvmpipe).
-#define HA_COUNTER_CUT_SHORT 6u
-// ... and, when asked for, the slot writes: atomicMax calls that raised a
-// slot, including records later evicted (the work an insertion order costs).
-#define HA_COUNTER_SLOT_WRITES 7u
-#define HA_GPU_COUNTER_COUNT 8u
+// GPU counter after the six outcomes, when asked for: the slot writes
+// (atomicMax calls that raised a slot, including records later evicted: the
+// work an insertion order costs).
+#define HA_COUNTER_SLOT_WRITES 6u
+#define HA_GPU_COUNTER_COUNT 7u
+// Capture and deferred-call buffers start with this many words (the append
+// count, then padding to 16 bytes).
 #define HA_CAPTURE_HEADER_WORDS 4u
+#define HA_DEFERRED_HEADER_WORDS 4u
 #define HA_DEFAULT_LOCK_SPIN_LIMIT 16777216u
 
 // IEEE-754 binary32 bit patterns used by the depth-validity test: a float is

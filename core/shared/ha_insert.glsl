@@ -5,12 +5,12 @@
 //
 // Host environment provides, besides ha_record.glsl and ha_probe.glsl:
 // ha_word ha_atomic_max_slot(ha_index s, ha_word r) (returns the old value),
-// bool ha_atomic_gave_up() (an emulated atomic hit its spin bound: the call
-// fails as failed_iter; always false where atomics are native),
+// uint ha_atomic_missed() (0 when the last slot atomic happened; an emulated
+// atomic that found its slot busy changed nothing and says HA_PENDING, probe
+// again, or HA_CUT once it has been busy too long; always 0 where atomics are
+// native),
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
-// ha_cull_tau (0 = early cull off), void ha_loop_cut() (notes a call the
-// driver's loop budget ended; nothing on the CPU), and HA_INOUT(T) (GLSL:
-// inout T; C++: T&).
+// ha_cull_tau (0 = early cull off), and HA_INOUT(T) (GLSL: inout T; C++: T&).
 
 // The state of one insert call between probes.
 struct HaCarry {
@@ -40,12 +40,15 @@ uint ha_insert_limit(HaCarry c) {
 }
 
 // One probe at h = ha_probe(c.p, c.a), within the limits. Returns HA_PENDING
-// while a record (the same or an evicted one) must go on, else the HA_*
-// outcome of the whole call.
+// while a record (the same or an evicted one) must go on (the same probe
+// again, carry unchanged, when an emulated atomic found its slot busy),
+// HA_CUT when that atomic gave up (carry unchanged: the probe is made when the
+// call resumes), else the HA_* outcome of the whole call.
 uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
-  c.iter += 1u;
   ha_word old = ha_atomic_max_slot(ha_slot(h), c.r);
-  if (ha_atomic_gave_up()) return HA_FAILED_ITER;
+  uint missed = ha_atomic_missed();
+  if (missed != 0u) return missed;
+  c.iter += 1u;
   if (old == c.r) return HA_DUPLICATE;
   bool cull = ha_cull_tau > 0.0f;
   if (old < c.r) {
@@ -76,21 +79,24 @@ uint ha_insert_step(HA_INOUT(HaCarry) c) {
   return ha_insert_step_at(c, ha_probe(c.p, c.a));
 }
 
-// The last line is defensive: a driver may end a long loop early (Mesa
-// llvmpipe gives a shader invocation about 65535 loop iterations in all), and
-// a call ended that way still fails as failed_iter instead of leaving an
-// outcome uncounted.
-uint ha_insert_code(uvec2 p, uint code, uint data) {
-  HaCarry c = ha_carry_begin(p, code, data);
+// Runs a call's steps until it ends. HA_CUT: cut short by something other
+// than the table, with `c` holding the state to resume from: an emulated
+// atomic gave up on a contended lock, or the driver ended the loop (Mesa
+// llvmpipe gives a shader invocation about 65535 loop iterations in all, every
+// loop together). Neither happens on the CPU path.
+uint ha_insert_run(HA_INOUT(HaCarry) c) {
   uint outcome = HA_PENDING;
   while (outcome == HA_PENDING) outcome = ha_insert_step(c);
-  if (outcome != HA_PENDING) return outcome;
-  ha_loop_cut();
-  return HA_FAILED_ITER;
+  return outcome == HA_PENDING ? HA_CUT : outcome;
 }
 
-// The whole insert call of one fragment (the GL entry ha_insert adds counting
-// and capture around it).
+uint ha_insert_code(uvec2 p, uint code, uint data) {
+  HaCarry c = ha_carry_begin(p, code, data);
+  return ha_insert_run(c);
+}
+
+// The whole insert call of one fragment on the CPU path (the GL entry
+// ha_insert adds counting, capture and the deferral of calls cut short).
 uint ha_insert_fragment(uvec2 p, float t, uint data) {
   if (!ha_depth_valid(t)) return HA_INVALID;
   return ha_insert_code(p, ha_depth_code(t), data);

@@ -16,7 +16,7 @@ layout(std140, binding = HA_BINDING_PARAMS) uniform HaParams {
   uint ha_capture_capacity;  // fragments the capture buffer holds; 0: capture off
   uint ha_capture_only;  // 1: capture, insert nothing, count nothing
   uint ha_count_writes;  // 1: count slot writes (HA_COUNTER_SLOT_WRITES)
-  uint ha_params_pad0;
+  uint ha_deferred_capacity;  // calls cut short that the deferred-call buffer holds
   uint ha_params_pad1;
   uint ha_params_pad2;
 };
@@ -28,14 +28,6 @@ layout(std140, binding = HA_BINDING_PARAMS) uniform HaParams {
 
 // Slot writes of the current insert call (the atomics raise it).
 uint ha_call_writes = 0u;
-
-// Whether the current insert call was cut short (a lock given up, or the
-// driver's loop budget spent) rather than failed by the table: the entry
-// counts those apart, so lossless mode gathers them again without growing it.
-bool ha_call_cut = false;
-void ha_begin_call() { ha_call_cut = false; }
-bool ha_call_cut_short() { return ha_call_cut; }
-void ha_loop_cut() { ha_call_cut = true; }
 
 layout(std430, binding = HA_BINDING_MAX_AGE) buffer HaMaxAge { uint ha_max_ages[]; };
 layout(std430, binding = HA_BINDING_OFFSETS) readonly buffer HaOffsets { uvec2 ha_offsets[]; };

@@ -5,19 +5,10 @@
 layout(std430, binding = HA_BINDING_TABLE) coherent buffer HaTable { uint64_t ha_table[]; };
 layout(std430, binding = HA_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
 
-// Set by a slot atomic that gave up; read (and reset) right after that atomic,
-// so one invocation inserting many fragments fails only the call concerned.
-bool ha_gave_up = false;
-bool ha_atomic_gave_up() {
-  bool gave_up = ha_gave_up;
-  ha_gave_up = false;
-  return gave_up;
-}
-
 // One attempt at the slot's lock; on success the max is done and `old` set.
 // The lock is taken and released inside this one call, so lanes of one SIMD
 // group that contend for the same slot cannot deadlock: the lane that wins
-// runs its critical section while the others retry.
+// runs its critical section while the others try again.
 bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
   if (atomicCompSwap(ha_locks[s], 0u, 1u) != 0u) return false;
   memoryBarrierBuffer();
@@ -31,17 +22,30 @@ bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
   return true;
 }
 
-// Bounded spinning: up to ha_lock_spin_limit attempts, then the insert call
-// gives up (failed_iter, and cut short: lossless mode gathers it again into
-// the same table). One attempt per iteration: unrolling the attempts halves
-// llvmpipe's speed, and no unrolling outlasts a lock holder the OS preempted
-// (llvmpipe gives a shader invocation about 65535 loop iterations in all).
+// Consecutive attempts that found the slot locked, and what the last one
+// means for the insert step (read right after the atomic, ha_atomic_missed).
+uint ha_busy_attempts = 0u;
+uint ha_missed = 0u;
+uint ha_atomic_missed() { return ha_missed; }
+
+// One attempt per call, no loop of its own: a busy slot makes the insert step
+// return HA_PENDING with its carry unchanged, so the step's own loop is the
+// spin. That keeps the insertion a single loop, whose back edge is the only
+// place a driver's loop budget can stop it (llvmpipe gives an invocation about
+// 65535 iterations in all): a nested spin loop stopped there was seen to leave
+// lanes whose write had happened looking as if it had not. After
+// ha_lock_spin_limit busy attempts in a row the call is cut short (HA_CUT) and
+// the frame's resume pass goes on with it.
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
   ha_word old = ha_word(0);
-  for (uint spin = 0u; spin < ha_lock_spin_limit; ++spin)
-    if (ha_try_max_slot(s, r, old)) return old;
-  ha_gave_up = true;
-  ha_call_cut = true;
+  if (ha_try_max_slot(s, r, old)) {
+    ha_busy_attempts = 0u;
+    ha_missed = 0u;
+    return old;
+  }
+  ha_busy_attempts += 1u;
+  ha_missed = ha_busy_attempts >= ha_lock_spin_limit ? HA_CUT : HA_PENDING;
+  if (ha_missed == HA_CUT) ha_busy_attempts = 0u;
   return ha_word(0);
 }
 ha_word ha_load_slot(ha_index s) { return ha_table[s]; }

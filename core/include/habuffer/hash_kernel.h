@@ -78,10 +78,8 @@ class HashKernel {
     }
   }
 
-  // CPU atomics never give up (the compare-exchange loop is lock-free).
-  static bool ha_atomic_gave_up() { return false; }
-  // C++ loops are not cut short by anything but the iteration limit.
-  static void ha_loop_cut() {}
+  // CPU atomics always happen (the compare-exchange loop is lock-free).
+  static uint ha_atomic_missed() { return 0u; }
 
   void ha_atomic_max_age(uint cell, uint age) {
     if constexpr (Concurrent) {

@@ -17,12 +17,13 @@ struct GlBindings {
   unsigned counters = 3;
   unsigned locks = 4;    // emulated64 only
   unsigned capture = 5;
-  unsigned stream = 6;   // the compute entry's input fragments
+  unsigned stream = 6;   // the compute entry's input fragments, the resume pass's input calls
+  unsigned deferred = 7; // insert calls cut short, appended for the resume pass
   // Uniform-buffer binding point of the parameters block.
   unsigned params = 0;
 
-  [[nodiscard]] std::array<unsigned, 7> storage_points() const {
-    return {table, max_age, offsets, counters, locks, capture, stream};
+  [[nodiscard]] std::array<unsigned, 8> storage_points() const {
+    return {table, max_age, offsets, counters, locks, capture, stream, deferred};
   }
   // Throws GlError when two storage points coincide or a point is at or beyond
   // the context's limits (GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS,

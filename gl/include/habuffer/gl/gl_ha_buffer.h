@@ -39,17 +39,24 @@ struct GlFrameOptions {
   bool adaptive = false;  // resize by `policy` from the previous frame's count (SPEC 8)
   ResizePolicy policy;    // also the growth step of lossless mode
   std::uint32_t max_attempts = 1;  // above 1: lossless mode, gather again into a grown table on failure
-  std::uint32_t lock_spin_limit = HA_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before failed_iter
-  // Gathers repeated into the same table when calls were cut short (never the
-  // table's fault: contention or the driver's loop budget), before the frame
-  // reports them as failed_iter. Not counted as lossless attempts.
+  std::uint32_t lock_spin_limit = HA_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before a call is cut short
+  // Calls cut short (a lock given up, the driver's loop budget spent: never
+  // the table's fault) are deferred with their carried state and resumed by
+  // the resume pass, round after round while any remain, at most this many
+  // rounds; only calls still cut short after the last round count failed_iter.
+  std::uint32_t resume_rounds = 256;
+  std::uint64_t deferred_capacity = 1u << 16;  // first capacity of the deferred-call buffers; grows on overflow
+  // Gathers repeated into the same table when calls stayed cut short after
+  // every resume round, or a driver ended calls without an outcome (nothing
+  // to resume), before the frame reports them as failed_iter. Not counted as
+  // lossless attempts.
   std::uint32_t cut_short_retries = 3;
   bool capture = false;                 // append every incoming fragment (read_capture())
   bool capture_only = false;            // capture without inserting (the CPU path replays the capture)
   std::uint64_t capture_capacity = 1u << 20;  // first capacity; grows (and the frame regathers) on overflow
   std::uint32_t clear_tile = 0;  // side of the clear pass's tiles; 0: the framebuffer limits
-  bool finish_timing = true;
-  bool count_writes = false;     // tally slot writes (FrameReport::slot_writes): one more atomic per insert     // glFinish after each pass so wall_ms is the pass's whole time
+  bool finish_timing = true;     // glFinish after each pass so wall_ms is the pass's whole time
+  bool count_writes = false;     // tally slot writes (FrameReport::slot_writes): one more atomic per insert
 };
 
 // Time of one pass: wall clock from submission to completion (glFinish when
@@ -70,17 +77,24 @@ struct FrameReport {
   std::optional<std::uint64_t> previous_stored;
   Counters counters;                   // of the final gather
   std::vector<BuildAttempt> attempts;  // every gather of lossless mode, in order
-  // Insert calls cut short (counted failed_iter) by something other than the
-  // table: an emulated64 lock given up, or the driver's loop budget spent.
+  // Insert calls cut short by something other than the table (an emulated64
+  // lock given up, the driver's loop budget spent) and resumed by the resume
+  // pass, summed over its rounds (a call cut twice counts twice).
+  std::uint64_t deferred = 0;
+  std::uint32_t resume_rounds = 0;  // resume passes run in the final gather
+  // Calls of the final gather that never ended: still cut short after the
+  // last resume round, or ended by the driver without an outcome (counted
+  // failed_iter; lossless mode gathers them again into the same table).
   std::uint64_t cut_short = 0;
   std::uint64_t slot_writes = 0;    // with count_writes: slot raises, evicted records included
   std::uint32_t cut_short_retries = 0;  // gathers repeated because calls were cut short
+  std::uint32_t deferred_regathers = 0;  // gathers repeated because the deferred-call buffer overflowed
   bool resize_limited = false;      // adaptive sizing wanted a table beyond this context's limits
   bool growth_limited = false;      // lossless mode stopped: the next table would exceed the limits
   std::uint32_t capture_regathers = 0;  // gathers repeated because the capture buffer overflowed
   std::uint64_t captured = 0;           // fragments in the capture buffer
   PassTiming clear;   // the clear pass (zero on the first frame)
-  PassTiming gather;  // the final gather
+  PassTiming gather;  // the final gather, its resume rounds included
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 
@@ -146,14 +160,19 @@ class GlHaBuffer {
   void write_params() const;
   void reset_frame_state() const;
   void grow_capture(std::uint64_t needed);
+  void grow_deferred(std::uint64_t needed);
   std::uint64_t clear_pass(bool writes, PassTiming* timing);
-  // The six outcome tallies, the lock give-ups and the slot writes.
-  [[nodiscard]] std::tuple<Counters, std::uint64_t, std::uint64_t> read_counters() const;
+  // The six outcome tallies and the slot writes.
+  [[nodiscard]] std::pair<Counters, std::uint64_t> read_counters() const;
+  // Resume rounds while deferred calls remain (at most resume_rounds): returns
+  // the calls still deferred, or the count when it overflowed the buffer.
+  std::uint64_t resume_deferred(FrameReport& report);
   // Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
   void run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
                   FrameReport& report);
   [[nodiscard]] std::uint64_t read_capture_count() const;
+  [[nodiscard]] std::uint64_t read_deferred_count(int which) const;
 
   BufferConfig config_;
   OffsetSource source_;
@@ -163,6 +182,8 @@ class GlHaBuffer {
   GlBindings bindings_;
   std::uint32_t cells_ = 0;
   std::uint64_t capture_capacity_ = 0;
+  std::uint64_t deferred_capacity_ = 0;
+  bool deferred_overflow_ = false;  // the last gather deferred more calls than the buffer held
   std::uint64_t frames_ = 0;
   bool holds_frame_ = false;  // the table holds a gathered frame the next clear pass must count
   std::unique_ptr<Gpu> gpu_;

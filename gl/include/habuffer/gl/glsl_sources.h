@@ -20,6 +20,7 @@ extern const char* const kPreludeNative;
 extern const char* const kPreludeEmulated64;
 extern const char* const kHaEntry;
 extern const char* const kInsertStreamCompute;
+extern const char* const kResumeCompute;
 extern const char* const kFullScreenVertex;
 extern const char* const kClearPassFragment;
 extern const char* const kResolveFragment;
@@ -36,5 +37,9 @@ std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage s
 
 // The compute shader that inserts a fragment stream held in a buffer.
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});
+
+// The resume pass: runs deferred insert calls (cut short by a lock or the
+// driver's loop budget) on from their carried state.
+std::string resume_compute(AtomicMode mode, const GlBindings& bindings = {});
 
 }  // namespace habuffer::gl

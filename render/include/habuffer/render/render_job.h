@@ -52,6 +52,8 @@ struct FrameStats {
   Counters counters;
   std::uint64_t opaque_rejected = 0;
   std::uint64_t slot_writes = 0;  // GPU path: slot raises, evicted records included (insertion work)
+  std::uint64_t deferred = 0;     // GPU path: insert calls cut short and resumed (FrameReport::deferred)
+  std::uint32_t resume_rounds = 0;
   bool resize_limited = false;    // GPU path: adaptive sizing wanted a table the context cannot hold
   std::uint32_t max_age = 0;
   double load_factor = 0.0;

@@ -1,0 +1,21 @@
+// The resume pass: one deferred insert call per invocation, resumed from its
+// carried state where it was cut short (a lock given up, the driver's loop
+// budget spent), with the same probe count, age, record and opacity, so the
+// call ends exactly as an uninterrupted one would. A call cut short again is
+// deferred again, into the other buffer, for the next round.
+layout(local_size_x = 64) in;
+
+layout(std430, binding = HA_BINDING_STREAM) readonly buffer HaResumeCalls {
+  uint ha_resume_header[4];
+  HaDeferred ha_resume[];
+};
+uniform uint ha_resume_count;
+
+void main() {
+  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  uint i = group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+  if (i >= ha_resume_count) return;
+  HaCarry c = ha_carry_from(ha_resume[i]);
+  ha_call_writes = 0u;
+  ha_end_call(c, ha_insert_run(c));
+}
