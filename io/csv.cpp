@@ -6,7 +6,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <utility>
+
+#include "habuffer/file_roles.h"
+#include "habuffer/printable.h"
 
 namespace habuffer {
 namespace {
@@ -27,12 +30,10 @@ void split(std::string_view line, std::vector<std::string_view>& fields) {
   }
 }
 
-std::string quoted(std::string_view s) {
-  std::string q(1, '\'');
-  q.append(s);
-  q.push_back('\'');
-  return q;
-}
+std::string quoted(std::string_view s) { return excerpt(s); }
+
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+constexpr std::size_t kReadChunk = std::size_t{1} << 20;
 
 // from_chars<float> reports both overflow and underflow as out of range.
 // Underflow rounds to a signed zero (a valid depth 0), overflow to a signed
@@ -55,13 +56,9 @@ float out_of_float_range(std::string_view text) {
 }  // namespace
 
 CsvReader::CsvReader(std::string path) : path_(std::move(path)) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path_, ec)) throw DataError(path_ + ": is a directory, not a CSV file");
-  std::ifstream in(path_, std::ios::binary);
-  if (!in) throw DataError(path_ + ": cannot open for reading: " + std::strerror(errno));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  text_ = std::move(ss).str();
+  check_input_file(path_, "CSV file");
+  file_ = std::fopen(path_.c_str(), "rb");
+  if (file_ == nullptr) throw DataError(printable(path_) + ": cannot open for reading: " + std::strerror(errno));
 }
 
 CsvReader CsvReader::from_text(std::string name, std::string text) {
@@ -71,13 +68,59 @@ CsvReader CsvReader::from_text(std::string name, std::string text) {
   return r;
 }
 
+CsvReader::~CsvReader() {
+  if (file_ != nullptr) std::fclose(file_);
+}
+
+CsvReader::CsvReader(CsvReader&& o) noexcept
+    : path_(std::move(o.path_)),
+      file_(std::exchange(o.file_, nullptr)),
+      text_(std::move(o.text_)),
+      pos_(o.pos_),
+      line_(o.line_),
+      columns_(o.columns_) {}
+
+void CsvReader::line_too_long() const {
+  throw DataError(printable(path_) + ":" + std::to_string(line_ + 1) + ": line longer than " +
+                  std::to_string(kMaxLineBytes) + " bytes (binary data, or not a CSV file?)");
+}
+
+bool CsvReader::read_line(std::string_view& line) {
+  for (;;) {
+    const auto end = text_.find('\n', pos_);
+    if (end != std::string::npos) {
+      if (end - pos_ > kMaxLineBytes) line_too_long();
+      line = std::string_view(text_).substr(pos_, end - pos_);
+      pos_ = end + 1;
+      return true;
+    }
+    if (text_.size() - pos_ > kMaxLineBytes) line_too_long();
+    std::size_t got = 0;
+    if (file_ != nullptr) {
+      text_.erase(0, pos_);  // views handed out before this call are no longer used
+      pos_ = 0;
+      const std::size_t old = text_.size();
+      text_.resize(old + kReadChunk);
+      got = std::fread(text_.data() + old, 1, kReadChunk, file_);
+      text_.resize(old + got);
+      if (got == 0 && std::ferror(file_))
+        throw DataError(printable(path_) + ": read failed: " + std::strerror(errno));
+    }
+    if (got == 0) {
+      if (pos_ >= text_.size()) return false;
+      line = std::string_view(text_).substr(pos_);  // a last line without newline
+      pos_ = text_.size();
+      return true;
+    }
+  }
+}
+
 bool CsvReader::next_line(std::string_view& line) {
-  while (pos_ < text_.size()) {
-    auto end = text_.find('\n', pos_);
-    if (end == std::string::npos) end = text_.size();
-    line = trim(std::string_view(text_).substr(pos_, end - pos_));
-    pos_ = end + 1;
+  std::string_view raw;
+  while (read_line(raw)) {
     ++line_;
+    if (line_ == 1 && raw.substr(0, kUtf8Bom.size()) == kUtf8Bom) raw.remove_prefix(kUtf8Bom.size());
+    line = trim(raw);
     if (!line.empty()) return true;
   }
   return false;
@@ -90,12 +133,12 @@ void CsvReader::expect_header(const std::vector<std::string_view>& header) {
     want.append(h);
   }
   std::string_view line;
-  if (!next_line(line)) throw DataError(path_ + ": empty file, expected header '" + want + "'");
+  if (!next_line(line)) throw DataError(printable(path_) + ": empty file, expected header '" + want + "'");
   std::vector<std::string_view> fields;
   split(line, fields);
   if (fields != header)
-    throw DataError(path_ + ":" + std::to_string(line_) + ": header is '" + std::string(line) + "', expected '" +
-                    want + "'");
+    throw DataError(printable(path_) + ":" + std::to_string(line_) + ": header is " + excerpt(line, 80) +
+                    ", expected '" + want + "'");
   columns_ = header.size();
 }
 
@@ -104,13 +147,13 @@ bool CsvReader::next(std::vector<std::string_view>& fields) {
   if (!next_line(line)) return false;
   split(line, fields);
   if (fields.size() != columns_)
-    throw DataError(path_ + ":" + std::to_string(line_) + ": " + std::to_string(fields.size()) + " fields, expected " +
-                    std::to_string(columns_));
+    throw DataError(printable(path_) + ":" + std::to_string(line_) + ": " + std::to_string(fields.size()) +
+                    " fields, expected " + std::to_string(columns_) + ": " + excerpt(line, 80));
   return true;
 }
 
 void CsvReader::fail(std::string_view field, const std::string& what) const {
-  throw DataError(path_ + ":" + std::to_string(line_) + ": field " + std::string(field) + ": " + what);
+  throw DataError(printable(path_) + ":" + std::to_string(line_) + ": field " + std::string(field) + ": " + what);
 }
 
 std::uint32_t CsvReader::u32(std::string_view text, std::string_view field) const {
@@ -146,7 +189,7 @@ float CsvReader::f32(std::string_view text, std::string_view field) const {
 }
 
 CsvWriter::CsvWriter(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
-  if (file_ == nullptr) throw DataError(path + ": cannot open for writing: " + std::strerror(errno));
+  if (file_ == nullptr) throw DataError(printable(path) + ": cannot open for writing: " + std::strerror(errno));
   buffer_.reserve(1 << 20);
 }
 

@@ -1,6 +1,9 @@
 #include "habuffer/interchange.h"
 
 #include <charconv>
+#include <new>
+
+#include "habuffer/printable.h"
 
 namespace habuffer {
 
@@ -17,7 +20,11 @@ std::vector<Fragment> parse_fragments(CsvReader& in, Extent screen) {
     Fragment frag{in.u32(f[0], "x"), in.u32(f[1], "y"), in.f32(f[2], "depth"), in.u32_dec_or_hex(f[3], "rgba")};
     if (frag.x >= screen.x) in.fail("x", std::to_string(frag.x) + " outside screen " + screen.str());
     if (frag.y >= screen.y) in.fail("y", std::to_string(frag.y) + " outside screen " + screen.str());
-    out.push_back(frag);
+    try {
+      out.push_back(frag);
+    } catch (const std::bad_alloc&) {
+      in.fail("x", "out of memory after " + std::to_string(out.size()) + " fragments");
+    }
   }
   return out;
 }
@@ -54,7 +61,7 @@ OffsetSequence read_offsets(const std::string& path, Extent table, std::uint32_t
   try {
     return OffsetSequence::from_list(table, count, rows);
   } catch (const std::invalid_argument& e) {
-    throw DataError(path + ": " + e.what());
+    throw DataError(printable(path) + ": " + e.what());
   }
 }
 

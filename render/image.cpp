@@ -16,7 +16,13 @@ bool float_format(const std::string& path) {
   return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
 }
 
+// Images are read whole by OpenImageIO, which may seek: only regular files
+// (a device such as /dev/zero would be read forever).
 OIIO::ImageBuf read_buffer(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw ImageError("image '" + path + "' does not exist");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw ImageError("image '" + path + "' is not a regular file");
   OIIO::ImageBuf buf(path);
   if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
     throw ImageError("image '" + path + "' cannot be read: " + buf.geterror());
@@ -37,11 +43,13 @@ void write_image(const std::string& path, const Image& image) {
     }
   buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, rgb.data());
   buf.set_write_format(float_format(path) ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
+  std::error_code ec;
+  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (!buf.write(path)) {
+    std::string why = buf.geterror();
+    if (why.empty()) why = std::filesystem::is_directory(path, ec) ? "it is a directory" : "OpenImageIO gave no reason";
+    throw ImageError("image '" + path + "' cannot be written: " + why);
   }
-  if (!buf.write(path)) throw ImageError("image '" + path + "' cannot be written: " + buf.geterror());
 }
 
 Image read_image(const std::string& path) {

@@ -215,6 +215,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
     finish_stats(fs);
     fs.frame_ms = ms_since(t0);
     result.frames.push_back(fs);
+    if (s.on_progress) s.on_progress(k + 1, s.frames);
   }
   result.pixel_fragments = renderer.read_pixel_fragments();
   if (s.path == RenderPath::Gl) {

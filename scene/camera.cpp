@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -59,6 +60,31 @@ Camera perspective(const Bounds& b, float radius, const CameraParams& params, Ex
   return c;
 }
 
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+// The depth t = (-z - near) / (far - near) needs a range that float32 can
+// resolve: finite matrices, 0 < near < far, and far - near well above far's
+// own rounding step (2^-20 of it keeps about a million distinct depths).
+void check_depth_range(const Scene& scene, const Bounds& b, const Camera& c) {
+  const bool usable = finite(c.view) && finite(c.projection) && std::isfinite(c.near_plane) &&
+                      std::isfinite(c.far_plane) && c.near_plane > 0.0f &&
+                      c.far_plane - c.near_plane > c.far_plane * 0x1.0p-20f;
+  if (usable) return;
+  const auto text = [](glm::vec3 v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
+    return std::string(buf);
+  };
+  throw SceneError("scene '" + scene.name + "': its extent, " + text(b.lo) + " to " + text(b.hi) +
+                   ", leaves no usable depth range in float32 (near " + std::to_string(c.near_plane) + ", far " +
+                   std::to_string(c.far_plane) + "); coordinates must be finite and below about 1e18");
+}
+
 }  // namespace
 
 Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen) {
@@ -70,8 +96,10 @@ Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen
   if (screen.area() == 0) throw SceneError("screen " + screen.str() + " has no pixels");
   const Bounds b = scene.bounds();
   if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices");
-  if (scene.orthographic_half) return orthographic(scene, *scene.orthographic_half, params, screen);
-  return perspective(b, scene.radius_around(b.centre()), params, screen);
+  const Camera c = scene.orthographic_half ? orthographic(scene, *scene.orthographic_half, params, screen)
+                                           : perspective(b, scene.radius_around(b.centre()), params, screen);
+  check_depth_range(scene, b, c);
+  return c;
 }
 
 }  // namespace habuffer

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "habuffer/scene_catalog.h"
 
 #include <cstdlib>
@@ -34,6 +35,11 @@ std::vector<std::string> scene_names() {
   return names;
 }
 
+bool is_scene_name(const std::string& name) {
+  const std::vector<std::string> names = scene_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 Scene make_scene(const std::string& name_or_path, const SceneOptions& o) {
   if (!(o.opacity > 0.0f && o.opacity <= 1.0f))
     throw SceneError("--opacity " + std::to_string(o.opacity) + " is not in (0, 1]");
@@ -50,7 +56,11 @@ Scene make_scene(const std::string& name_or_path, const SceneOptions& o) {
   if (name_or_path == "hairball") return make_hairball(or_default(o.count, 1500), o.seed, o.opacity);
   if (name_or_path == "quads") return make_quads(or_default(o.count, 64), o.spread, o.seed, o.opacity);
   if (name_or_path == "planes") return make_planes(or_default(o.count, 16), o.order, o.opacity);
-  if (std::filesystem::exists(name_or_path)) return load_mesh_file(name_or_path, o.opacity);
+  if (std::filesystem::exists(name_or_path)) {
+    if (!std::filesystem::is_regular_file(name_or_path))
+      throw SceneError("mesh file '" + name_or_path + "' is not a regular file");
+    return load_mesh_file(name_or_path, o.opacity);
+  }
   if (name_or_path.find_first_of("/.") != std::string::npos)
     throw SceneError("mesh file '" + name_or_path + "' does not exist");
   std::string names;

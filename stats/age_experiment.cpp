@@ -73,6 +73,8 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
   const Extent table = c.table.area() == 0 ? c.screen : c.table;
   const RecordLayout layout(Layout::L32, c.age_bits);
   std::vector<ExperimentRow> rows;
+  const std::uint64_t total_trials = std::uint64_t{c.trials} * c.loads.size();
+  std::uint64_t trials_done = 0;
   for (double load : c.loads) {
     if (!(load > 0.0)) throw std::invalid_argument("loads must be positive");
     struct Acc {
@@ -120,6 +122,7 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
         a.pixels += tot.pixels;
         a.failures += tot.counters.failures();
       }
+      if (c.on_progress) c.on_progress(++trials_done, total_trials);
     }
     for (std::size_t v = 0; v < c.variants.size(); ++v) {
       const Acc& a = acc[v];

@@ -1,10 +1,28 @@
 #include "cli_args.h"
 
 #include <charconv>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "habuffer/printable.h"
 
 namespace habuffer::cli {
+
+std::string shortest(float v) {
+  char buf[32];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  (void)ec;
+  return std::string(buf, end);
+}
+
+void check_files(const FileRoles& files) {
+  try {
+    files.check();
+  } catch (const FileConflict& e) {
+    throw UsageError(e.what());
+  }
+}
 
 bool print_help(const std::vector<std::string>& argv, const char* usage) {
   if (argv.size() != 1 || argv[0] != "--help") return false;
@@ -16,7 +34,7 @@ Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& va
            const std::set<std::string>& flags) {
   for (std::size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];
-    if (a.rfind("--", 0) != 0) throw UsageError("unexpected argument '" + a + "'");
+    if (a.rfind("--", 0) != 0) throw UsageError("unexpected argument " + excerpt(a));
     const std::string name = a.substr(2);
     if (flags.count(name) != 0) {
       if (!flags_.insert(name).second) throw UsageError("option --" + name + " given twice");
@@ -24,7 +42,7 @@ Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& va
       if (i + 1 >= argv.size()) throw UsageError("option --" + name + " needs a value");
       if (!values_.emplace(name, argv[++i]).second) throw UsageError("option --" + name + " given twice");
     } else {
-      throw UsageError("unknown option '" + a + "'");
+      throw UsageError("unknown option " + excerpt(a));
     }
   }
 }
@@ -44,12 +62,14 @@ std::uint64_t Args::u64(const std::string& name, std::uint64_t fallback, std::ui
   auto it = values_.find(name);
   if (it == values_.end()) return fallback;
   const std::string& s = it->second;
+  const std::string range = std::to_string(min) + ".." + std::to_string(max);
   std::uint64_t v = 0;
   auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec == std::errc::result_out_of_range && end == s.data() + s.size())
+    throw UsageError("option --" + name + ": " + excerpt(s) + " is too large (accepted: " + range + ")");
   if (s.empty() || ec != std::errc() || end != s.data() + s.size())
-    throw UsageError("option --" + name + ": '" + s + "' is not a non-negative integer");
-  if (v < min || v > max)
-    throw UsageError("option --" + name + ": " + s + " outside " + std::to_string(min) + ".." + std::to_string(max));
+    throw UsageError("option --" + name + ": " + excerpt(s) + " is not a non-negative integer (accepted: " + range + ")");
+  if (v < min || v > max) throw UsageError("option --" + name + ": " + s + " outside " + range);
   return v;
 }
 
@@ -64,15 +84,50 @@ double Args::real(const std::string& name, double fallback) const {
   double v = 0;
   auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
-    throw UsageError("option --" + name + ": '" + s + "' is not a finite number");
+    throw UsageError("option --" + name + ": " + excerpt(s) + " is not a finite number");
   return v;
+}
+
+float Args::f32(const std::string& name, float fallback) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) return fallback;
+  const std::string& s = it->second;
+  float v = 0;
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec == std::errc::result_out_of_range && end == s.data() + s.size())
+    throw UsageError("option --" + name + ": " + excerpt(s) + " is outside float32's range (it would become 0 or " +
+                     "infinity; the smallest normal float32 is " + shortest(std::numeric_limits<float>::min()) +
+                     ")");
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
+    throw UsageError("option --" + name + ": " + excerpt(s) + " is not a finite number");
+  return v;
+}
+
+std::vector<std::string> Args::list(const std::string& name, const std::string& fallback) const {
+  const std::string text = str(name, fallback);
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    items.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (items.back().empty())
+      throw UsageError("option --" + name + ": " + (text.empty() ? std::string("empty list") : "empty item in " + excerpt(text)));
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+void Args::refuse_unless(bool applies, std::initializer_list<const char*> names, const std::string& why) const {
+  if (applies) return;
+  for (const char* n : names)
+    if (has(n)) throw UsageError(std::string("option --") + n + " has no effect " + why);
 }
 
 std::optional<Extent> Args::extent(const std::string& name) const {
   auto it = values_.find(name);
   if (it == values_.end()) return std::nullopt;
   auto e = parse_extent(it->second);
-  if (!e) throw UsageError("option --" + name + ": '" + it->second + "' is not a size WxH with positive sides");
+  if (!e) throw UsageError("option --" + name + ": " + excerpt(it->second) + " is not a size WxH with positive sides");
   return e;
 }
 

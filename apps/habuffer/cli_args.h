@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <set>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "habuffer/extent.h"
+#include "habuffer/file_roles.h"
 
 namespace habuffer::cli {
 
@@ -19,6 +21,12 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// The shortest decimal that reads back as `v` ("1.1754944e-38").
+std::string shortest(float v);
+
+// FileRoles::check, its conflicts as bad usage.
+void check_files(const FileRoles& files);
 
 // Prints `usage` and returns true when the only argument is --help.
 bool print_help(const std::vector<std::string>& argv, const char* usage);
@@ -37,6 +45,15 @@ class Args {
   [[nodiscard]] std::uint32_t u32(const std::string& name, std::uint32_t fallback, std::uint32_t min = 0,
                                   std::uint32_t max = UINT32_MAX) const;
   [[nodiscard]] double real(const std::string& name, double fallback) const;
+  // A finite value parsed as the float32 it is used as (decimal rounded
+  // once); text beyond float32's range, or that rounds to zero from a
+  // non-zero value, is refused rather than turned into infinity or 0.
+  [[nodiscard]] float f32(const std::string& name, float fallback) const;
+  // A comma-separated list; an empty list or an empty item is refused.
+  [[nodiscard]] std::vector<std::string> list(const std::string& name, const std::string& fallback) const;
+  // Refuses each of `names` given on the command line unless `applies`:
+  // "option --NAME has no effect WHY".
+  void refuse_unless(bool applies, std::initializer_list<const char*> names, const std::string& why) const;
   [[nodiscard]] std::optional<Extent> extent(const std::string& name) const;
 
  private:

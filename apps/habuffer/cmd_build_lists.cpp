@@ -3,12 +3,11 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "habuffer/gl/compute_inserter.h"
-#include "habuffer/gl/egl_context.h"
-#include "habuffer/gl/gl_error.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "gl_build.h"
+#include "habuffer/file_roles.h"
 #include "habuffer/interchange.h"
 #include "hash_options.h"
+#include "loss_report.h"
 #include "report_json.h"
 
 namespace habuffer::cli {
@@ -22,40 +21,6 @@ constexpr const char* kHelp =
     "         [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
     "  --threads 0 uses every hardware thread; every insert mode builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n";
 
-// The GPU path: a headless context, one frame of compute insertion (lossless
-// mode regathers on the GPU), and the read-back imported into a CPU-side
-// buffer so lists and dumps are written the same way.
-// Sets timing.build_ms to the insertion alone (upload, every gather, counters),
-// without the context's creation and the shader compilation.
-BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
-  std::optional<gl::EglContext> context;
-  try {
-    context.emplace();
-  } catch (const gl::GlError& e) {
-    throw DataError(std::string("--path gl: no usable OpenGL: ") + e.what());
-  }
-  const BufferConfig& c = options.config;
-  const gl::GlInfo info = gl::query_gl_info();
-  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(info, c.layout);
-  if (!mode) throw DataError("--path gl --layout 64: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
-  gl::GlFrameOptions frame_options;
-  frame_options.policy = options.policy;
-  frame_options.max_attempts = options.max_attempts;
-  gl::GlHaBuffer gpu(c, options.offsets, *mode, frame_options);
-  gl::ComputeInserter inserter(gpu);
-  const auto t0 = std::chrono::steady_clock::now();
-  gl::FrameReport report = inserter.insert(fragments);
-  timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  timing.gl_atomic_mode = gl::to_string(*mode);
-  timing.gl_renderer = info.renderer;
-  timing.gl_deferred = report.deferred;
-  timing.gl_resume_rounds = report.resume_rounds;
-  timing.gl_cut_short_retries = report.cut_short_retries;
-  HaBuffer buffer(gpu.config(), gpu.offsets());
-  buffer.import_state(gpu.read_table(), gpu.read_max_age());
-  return BuildResult{std::move(buffer), report.counters, std::move(report.attempts)};
-}
-
 }  // namespace
 
 int run_build_lists(const std::vector<std::string>& argv) {
@@ -66,6 +31,12 @@ int run_build_lists(const std::vector<std::string>& argv) {
   const std::string in = args.required("in");
   const std::string out = args.required("out");
   const HashOptions options = parse_hash_options(args);
+  FileRoles files;
+  files.input("--in", in).output("--out", out);
+  add_offsets_input(files, options);
+  for (const char* o : {"stats", "dump-table", "dump-max-age"})
+    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
+  check_files(files);
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
   BuildTiming timing{0.0, resolved_threads(options.insert.threads), {}, {}};
@@ -96,12 +67,13 @@ int run_build_lists(const std::vector<std::string>& argv) {
                            " records, counters say " + std::to_string(report.counters.stored()));
   if (options.lossless && !result.lossless()) {
     std::fprintf(stderr,
-                 "habuffer build-lists: lossless mode: %llu fragments still failed after %zu attempts "
-                 "(last table %s, AMAX %u); a pixel with more than AMAX distinct fragments needs more --age-bits\n",
-                 static_cast<unsigned long long>(result.counters.failures()), result.attempts.size(),
-                 result.buffer.table().str().c_str(), options.config.record_layout().max_age());
+                 "habuffer build-lists: lossless mode: %s after %zu attempts (last table %s, AMAX %u); a pixel with "
+                 "more than AMAX distinct fragments needs more --age-bits\n",
+                 loss_summary(result.counters).c_str(), result.attempts.size(), result.buffer.table().str().c_str(),
+                 options.config.record_layout().max_age());
     return 1;
   }
+  warn_losses("build-lists", result.counters, failure_hint(options.lossless));
   return 0;
 }
 

@@ -4,9 +4,11 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "gl_build.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/interchange.h"
 #include "hash_options.h"
+#include "loss_report.h"
 #include "report_json.h"
 
 namespace habuffer::cli {
@@ -30,8 +32,10 @@ bool same_tables(const HaBuffer& a, const HaBuffer& b) {
 int run_demo(const std::vector<std::string>& argv) {
   if (print_help(argv,
         "usage: habuffer demo [--screen WxH (1024x1024)] [--stream coherent|random] [--fragments N (screen area)]\n"
-        "         [--load L (0.5)] [--seed N] [--threads N (0: all)] [--stats STATS.json] [--lists LISTS.csv]\n"
-        "         and the hash options of build-lists (--layout, --age-bits, --offsets, --block, ...)\n"))
+        "         [--load L (0.5)] [--seed N] [--threads N (0: all)] [--path cpu|gl] [--stats STATS.json]\n"
+        "         [--lists LISTS.csv] and the hash options of build-lists (--layout, --age-bits, --offsets, --block, ...)\n"
+        "  Builds the table serially on the CPU, then in parallel (--path cpu) or on the GPU (--path gl), and\n"
+        "  checks that both tables are bit-identical (SPEC 9).\n"))
     return 0;
   auto valued = hash_valued_options();
   valued.insert({"stream", "fragments", "load", "stats", "lists"});
@@ -44,9 +48,15 @@ int run_demo(const std::vector<std::string>& argv) {
   if (!probe.has("screen")) with_defaults.insert(with_defaults.end(), {"--screen", screen.str()});
   if (!probe.has("table"))
     with_defaults.insert(with_defaults.end(), {"--table", table_for_load(screen, count, load).str()});
-  if (!probe.has("threads")) with_defaults.insert(with_defaults.end(), {"--threads", "0"});
+  if (!probe.has("threads") && probe.str("path", "cpu") != "gl")
+    with_defaults.insert(with_defaults.end(), {"--threads", "0"});
   const Args args(with_defaults, valued, hash_flag_options());
   const HashOptions options = parse_hash_options(args);
+  FileRoles files;
+  add_offsets_input(files, options);
+  for (const char* o : {"stats", "lists"})
+    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
+  check_files(files);
 
   StreamOptions so;
   so.kind = parse_stream_kind(args.str("stream", "coherent"));
@@ -58,15 +68,21 @@ int run_demo(const std::vector<std::string>& argv) {
   InsertOptions serial = options.insert;
   serial.threads = 1;
   serial.mode = InsertMode::Auto;
-  const std::uint32_t threads = resolved_threads(options.insert.threads);
+  const std::uint32_t threads = options.gl ? 1 : resolved_threads(options.insert.threads);
   // Tables are allocated before the clock starts: the times are insertion only.
   const OffsetSequence offsets = options.offsets.make(options.config.table, options.config.record_layout().max_age());
   std::optional<BuildResult> one, many;
   one.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}});
-  many.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}});
   const double ms_one = timed_ms([&] { one->counters = one->buffer.insert(fragments, serial); });
-  const double ms_many = timed_ms([&] { many->counters = many->buffer.insert(fragments, options.insert); });
-  many->attempts.push_back({options.config.table, many->counters});
+  BuildTiming timing{0.0, threads, {}, {}};
+  if (options.gl) {
+    many.emplace(build_on_gl(options, fragments, timing));
+  } else {
+    many.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}});
+    timing.build_ms = timed_ms([&] { many->counters = many->buffer.insert(fragments, options.insert); });
+    many->attempts.push_back({options.config.table, many->counters});
+  }
+  const double ms_many = timing.build_ms;
   const BuildReport report = summarize(many->buffer, many->counters);
   const bool identical = options.config.early_cull_tau > 0.0f || same_tables(one->buffer, many->buffer);
 
@@ -82,16 +98,18 @@ int run_demo(const std::vector<std::string>& argv) {
               static_cast<unsigned long long>(report.counters.invalid),
               static_cast<unsigned long long>(report.counters.failures()), report.load_factor, report.max_age,
               report.mean_age, static_cast<double>(report.memory_bytes) / (1 << 20));
-  std::printf("  insert: 1 thread %.1f ms (%.1f M fragments/s), %u threads %.1f ms (%.1f M fragments/s); "
-              "tables %s\n",
-              ms_one, static_cast<double>(fragments.size()) / ms_one * 1e-3, threads, ms_many,
+  const std::string second = options.gl ? "gl " + timing.gl_atomic_mode + " on " + timing.gl_renderer
+                                        : std::to_string(threads) + " threads";
+  std::printf("  insert: 1 thread %.1f ms (%.1f M fragments/s), %s %.1f ms (%.1f M fragments/s); tables %s\n", ms_one,
+              static_cast<double>(fragments.size()) / ms_one * 1e-3, second.c_str(), ms_many,
               static_cast<double>(fragments.size()) / ms_many * 1e-3,
               identical ? "bit-identical" : "DIFFER (bug: SPEC 9 determinism)");
+  warn_losses("demo", report.counters, "a larger --table (or lower --load) or more --age-bits keeps them");
   if (args.has("lists")) write_lists(args.required("lists"), many->buffer);
   if (args.has("stats")) {
     JsonWriter json;
     json.begin_object().field("stream", to_string(so.kind));
-    write_build_stats(json, options, *many, report, BuildTiming{ms_many, threads, {}, {}});
+    write_build_stats(json, options, *many, report, timing);
     json.field("serial_build_ms", ms_one).field("parallel_identical", identical).end_object();
     json.save(args.required("stats"));
   }

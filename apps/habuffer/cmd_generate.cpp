@@ -26,6 +26,11 @@ int run_generate(const std::vector<std::string>& argv) {
     throw UsageError(std::string("option --stream: ") + e.what());
   }
   o.seed = args.u64("seed", 1);
+  args.refuse_unless(o.kind == StreamKind::Coherent, {"min-side", "max-side"}, "on a --stream other than coherent");
+  args.refuse_unless(args.has("load"), {"table"}, "without --load");
+  FileRoles files;
+  files.output("--out", out);
+  check_files(files);
   o.min_side = args.u32("min-side", o.min_side, 1);
   o.max_side = args.u32("max-side", o.max_side, o.min_side);
   if (args.has("fragments") == args.has("load")) throw UsageError("give exactly one of --fragments and --load");

@@ -21,6 +21,10 @@ int run_offsets(const std::vector<std::string>& argv) {
   if (args.has("age-bits") && args.has("count")) throw UsageError("give at most one of --age-bits and --count");
   const std::uint32_t age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, HA_MIN_AGE_BITS, HA_MAX_AGE_BITS);
   const std::uint32_t count = args.u32("count", (1u << age_bits) - 1, 1, 1u << 20);
+  FileRoles files;
+  for (const char* o : {"out", "quality"})
+    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
+  check_files(files);
   const std::string gen = args.str("generator", "random");
   if (gen != "random" && gen != "farthest") throw UsageError("option --generator: '" + gen + "' is not random or farthest");
   if (gen == "farthest" && table->area() > kFarthestMaxSlots)

@@ -14,7 +14,11 @@
 #include "habuffer/render/heatmap.h"
 #include "habuffer/render/render_job.h"
 #include "habuffer/scene_catalog.h"
+#include "habuffer/file_roles.h"
+#include "habuffer/printable.h"
+#include "habuffer/progress.h"
 #include "hash_options.h"
+#include "loss_report.h"
 #include "render_report.h"
 
 namespace habuffer::cli {
@@ -33,7 +37,9 @@ constexpr const char* kHelp =
     "  (float) by extension.\n"
     "  --opaque-meshes: meshes (indices in file order) drawn opaque with the depth test; transparent\n"
     "  fragments behind them are rejected before insertion and counted.\n"
-    "  Exit codes: 0 ok, 1 bad data (scene, file, GL limits), 2 bad usage.\n";
+    "  --quiet: no summary and no progress bar (shown on a terminal for --frames above 1).\n"
+    "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
+    "  --lossless render that still lost fragments, 2 bad usage.\n";
 
 glm::vec3 parse_background(const std::string& text) {
   glm::vec3 c(1.0f);
@@ -49,27 +55,57 @@ struct HeatmapRequest {
   std::string kind, path;
 };
 
-std::vector<HeatmapRequest> parse_heatmaps(const std::string& text) {
+std::vector<HeatmapRequest> parse_heatmaps(const Args& args) {
   std::vector<HeatmapRequest> out;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
+  if (!args.has("heatmap")) return out;
+  for (const std::string& item : args.list("heatmap", "")) {
     const auto colon = item.find(':');
     const std::string kind = item.substr(0, colon);
     if (colon == std::string::npos || colon + 1 == item.size() || (kind != "depth" && kind != "age" && kind != "culled"))
-      throw UsageError("option --heatmap: '" + item + "' is not depth:IMAGE, age:IMAGE or culled:IMAGE");
+      throw UsageError("option --heatmap: " + excerpt(item) + " is not depth:IMAGE, age:IMAGE or culled:IMAGE");
     out.push_back({kind, item.substr(colon + 1)});
   }
   return out;
 }
 
+// Options of the procedural scenes, and the scenes they shape.
+void refuse_scene_options_that_do_not_apply(const Args& args) {
+  const std::string scene = args.has("scene") ? args.required("scene") : "";
+  const auto is = [&](std::initializer_list<const char*> names) {
+    for (const char* n : names)
+      if (scene == n) return true;
+    return false;
+  };
+  const std::string why = "on scene " + excerpt(scene);
+  args.refuse_unless(is({"hairball", "quads", "planes"}), {"count"}, why + " (hairball, quads and planes take it)");
+  args.refuse_unless(is({"hairball", "quads"}), {"scene-seed"}, why + " (hairball and quads take it)");
+  args.refuse_unless(is({"quads"}), {"spread"}, why + " (quads takes it)");
+  args.refuse_unless(is({"planes"}), {"order"}, why + " (planes takes it)");
+}
+
+// Every file the command reads or writes, checked before any work.
+void check_render_files(const Args& args, const RenderSettings& s, const std::vector<HeatmapRequest>& heatmaps) {
+  FileRoles files;
+  if (args.has("fragments")) files.input("--fragments", args.required("fragments"));
+  if (args.has("scene") && !is_scene_name(args.required("scene"))) files.input("--scene", args.required("scene"));
+  if (s.offsets.generator == OffsetGenerator::List) files.input("--offsets", args.required("offsets"));
+  for (const char* o : {"out", "stats", "reference"})
+    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
+  for (const HeatmapRequest& h : heatmaps) files.output("--heatmap " + h.kind, h.path);
+  check_files(files);
+}
+
 SceneOptions parse_scene_options(const Args& args) {
   SceneOptions o;
-  o.opacity = static_cast<float>(args.real("opacity", 0.5));
-  if (!(o.opacity > 0.0f && o.opacity <= 1.0f)) throw UsageError("option --opacity: must be in (0, 1]");
+  o.opacity = args.f32("opacity", 0.5f);
+  // Records carry alpha as a byte, round(255 a): below 1/510 it would be 0.
+  constexpr float kSmallestOpacity = 1.0f / 510.0f;
+  if (!(o.opacity >= kSmallestOpacity && o.opacity <= 1.0f))
+    throw UsageError("option --opacity: must be in (0, 1], at least " + shortest(kSmallestOpacity) +
+                     " (1/510: smaller rounds to alpha 0 in the 8-bit record)");
   o.seed = args.u64("scene-seed", 1);
   o.count = args.u32("count", 0, 1, 1u << 20);
-  o.spread = static_cast<float>(args.real("spread", 1.0));
+  o.spread = args.f32("spread", 1.0f);
   if (!(o.spread >= 0.0f && o.spread <= 1.0f)) throw UsageError("option --spread: must be in [0, 1]");
   const std::string order = args.str("order", "back");
   if (order != "front" && order != "back") throw UsageError("option --order: '" + order + "' is not front or back");
@@ -94,6 +130,8 @@ RenderSettings parse_settings(const Args& args) {
   s.max_attempts = args.u32("max-attempts", 16, 1, 1000);
   s.frames = args.u32("frames", 1, 1, 100000);
   s.threads = args.u32("threads", 0, 0, 1024);
+  args.refuse_unless(s.path == RenderPath::Cpu || args.has("fragments"), {"threads"},
+                     "with --path gl (the GPU inserts and composites)");
   s.background = args.has("background") ? parse_background(args.required("background")) : glm::vec3(1.0f);
   return s;
 }
@@ -113,10 +151,8 @@ void check_camera_args(const Args& args) {
   if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov: must be in (1, 179) degrees");
 }
 
-void make_opaque(const std::string& list, Scene& scene) {
-  std::istringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) {
+void make_opaque(const Args& args, Scene& scene) {
+  for (const std::string& item : args.list("opaque-meshes", "")) {
     std::size_t used = 0;
     unsigned long index = 0;
     try {
@@ -125,7 +161,7 @@ void make_opaque(const std::string& list, Scene& scene) {
       used = 0;
     }
     if (used != item.size() || item.empty())
-      throw UsageError("option --opaque-meshes: '" + item + "' is not a mesh index");
+      throw UsageError("option --opaque-meshes: " + excerpt(item) + " is not a mesh index");
     if (index >= scene.meshes.size())
       throw UsageError("option --opaque-meshes: mesh " + item + " does not exist (the scene has " +
                        std::to_string(scene.meshes.size()) + " meshes)");
@@ -136,7 +172,7 @@ void make_opaque(const std::string& list, Scene& scene) {
 RenderResult render_with_gl(const Args& args, RenderSettings& s, SceneDescription& described) {
   const SceneOptions options = parse_scene_options(args);
   Scene scene = make_scene(args.required("scene"), options);
-  if (args.has("opaque-meshes")) make_opaque(args.required("opaque-meshes"), scene);
+  if (args.has("opaque-meshes")) make_opaque(args, scene);
   described = {scene.name, scene.meshes.size(), scene.triangle_count()};
   apply_camera(args, scene, s);
   std::optional<gl::EglContext> context;
@@ -190,6 +226,37 @@ Image reference_image(const RenderResult& r, Extent size) {
   return image;
 }
 
+// One warning line for fragments lost over all frames; exit 1 when lossless
+// mode could not keep them; a warning when nothing reached the screen.
+int report_render_losses(const RenderSettings& s, const RenderResult& r) {
+  Counters total;
+  std::uint64_t rejected = 0;
+  for (const FrameStats& f : r.frames) {
+    total.fragments += f.counters.fragments;
+    total.invalid += f.counters.invalid;
+    total.duplicates += f.counters.duplicates;
+    total.culled += f.counters.culled;
+    total.failed_age += f.counters.failed_age;
+    total.failed_iter += f.counters.failed_iter;
+    rejected += f.opaque_rejected;
+  }
+  if (total.fragments + rejected == 0)
+    std::fprintf(stderr, "habuffer render: warning: no transparent fragment reached the screen in %zu frame%s: the "
+                         "scene is out of view, fully opaque or degenerate\n",
+                 r.frames.size(), r.frames.size() == 1 ? "" : "s");
+  const std::string frames = r.frames.size() == 1 ? "" : " over " + std::to_string(r.frames.size()) + " frames";
+  if (s.lossless && total.failures() > 0) {
+    std::fprintf(stderr, "habuffer render: lossless mode: %s%s after up to %u attempts per frame%s\n",
+                 loss_summary(total).c_str(), frames.c_str(), s.max_attempts,
+                 r.growth_limited ? " (the table reached this OpenGL's limits)" : "; more --age-bits fits deeper pixels");
+    return 1;
+  }
+  if (lost_fragments(total) > 0)
+    std::fprintf(stderr, "habuffer render: warning: %s%s%s\n", loss_summary(total).c_str(), frames.c_str(),
+                 total.failures() > 0 ? "; --lossless keeps them (or more --age-bits)" : "");
+  return 0;
+}
+
 }  // namespace
 
 int run_render(const std::vector<std::string>& argv) {
@@ -204,8 +271,10 @@ int run_render(const std::vector<std::string>& argv) {
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");
   RenderSettings s = parse_settings(args);
   check_camera_args(args);
-  const std::vector<HeatmapRequest> heatmaps = args.has("heatmap") ? parse_heatmaps(args.required("heatmap"))
-                                                                   : std::vector<HeatmapRequest>{};
+  refuse_scene_options_that_do_not_apply(args);
+  if (args.has("opaque-meshes")) (void)args.list("opaque-meshes", "");
+  const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args);
+  check_render_files(args, s, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
   s.keep_fragments = args.has("reference");
   SceneDescription described;
@@ -221,7 +290,10 @@ int run_render(const std::vector<std::string>& argv) {
     described = {args.required("fragments"), 0, 0};
     r = render_fragments(fragments, s);
   } else {
+    ProgressBar progress = ProgressBar::for_terminal("habuffer render", "frames", args.has("quiet") || s.frames == 1);
+    s.on_progress = progress.callback();
     r = render_with_gl(args, s, described);
+    s.on_progress = nullptr;
   }
   if (s.config.layout == Layout::L32 && args.has("out"))
     std::fprintf(stderr, "habuffer render: note: L32 records carry no colour; the image shows the opaque parts only, "
@@ -243,7 +315,7 @@ int run_render(const std::vector<std::string>& argv) {
     write_render_stats(outputs.stats, summary);
   }
   if (!args.has("quiet")) print_render_summary(summary, outputs);
-  return 0;
+  return report_render_losses(s, r);
 }
 
 }  // namespace habuffer::cli

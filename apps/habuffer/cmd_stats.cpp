@@ -2,36 +2,32 @@
 #include <cstdio>
 #include <algorithm>
 #include <cstdlib>
-#include <sstream>
+#include <charconv>
 
 #include "cli_args.h"
 #include "commands.h"
 #include "habuffer/age_experiment.h"
 #include "habuffer/csv.h"
+#include "habuffer/file_roles.h"
 #include "habuffer/json_writer.h"
+#include "habuffer/printable.h"
+#include "habuffer/progress.h"
 
 namespace habuffer::cli {
 namespace {
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  for (std::string item; std::getline(ss, item, ',');) out.push_back(item);
-  return out;
-}
 
 template <class T>
 std::vector<T> choices(const Args& args, const std::string& name, const std::string& fallback,
                        const std::vector<std::pair<std::string, T>>& named) {
   std::vector<T> out;
-  for (const std::string& item : split_list(args.str(name, fallback))) {
+  for (const std::string& item : args.list(name, fallback)) {
     bool found = false;
     for (const auto& [key, value] : named)
       if (item == key || item == "all") {
         if (std::find(out.begin(), out.end(), value) == out.end()) out.push_back(value);
         found = true;
       }
-    if (!found) throw UsageError("option --" + name + ": unknown value '" + item + "'");
+    if (!found) throw UsageError("option --" + name + ": unknown value " + excerpt(item));
   }
   return out;
 }
@@ -80,22 +76,29 @@ int run_stats(const std::vector<std::string>& argv) {
         "usage: habuffer stats [--screen WxH (128x128)] [--table WxH (screen)] [--loads L1,L2,... (0.5,0.8,0.9)]\n"
         "         [--trials N (5)] [--seed S] [--stream random|coherent|stacked|hot] [--spread S]\n"
         "         [--probing coherent,independent|all] [--policy robinhood,fcfs|all] [--offsets random,farthest|all]\n"
-        "         [--age-bits N] [--block B] [--out FILE.json|FILE.csv]\n"
-        "  Fragments per trial = load x table slots; every variant sees the same streams.\n"))
+        "         [--age-bits N] [--block B] [--out FILE.json|FILE.csv] [--quiet]\n"
+        "  Fragments per trial = load x table slots; every variant sees the same streams. On a terminal a\n"
+        "  progress bar shows on stderr (--quiet: none).\n"))
     return 0;
   const Args args(argv, {"screen", "table", "loads", "trials", "seed", "stream", "spread", "probing", "policy",
                          "offsets", "age-bits", "block", "out"},
-                  {});
+                  {"quiet"});
+  if (args.has("out")) {
+    FileRoles files;
+    files.output("--out", args.required("out"));
+    check_files(files);
+  }
   ExperimentConfig c;
   c.screen = args.extent("screen").value_or(Extent{128, 128});
   c.table = args.extent("table").value_or(c.screen);
   if (c.table.x < c.screen.x || c.table.y < c.screen.y)
     throw UsageError("table " + c.table.str() + " is smaller than screen " + c.screen.str());
   c.loads.clear();
-  for (const std::string& l : split_list(args.str("loads", "0.5,0.8,0.9"))) {
-    char* end = nullptr;
-    const double v = std::strtod(l.c_str(), &end);
-    if (l.empty() || *end != '\0' || !(v > 0.0 && v <= 4.0)) throw UsageError("option --loads: '" + l + "' is not a load in (0, 4]");
+  for (const std::string& l : args.list("loads", "0.5,0.8,0.9")) {
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(l.data(), l.data() + l.size(), v);
+    if (ec != std::errc() || end != l.data() + l.size() || !(v > 0.0 && v <= 4.0))
+      throw UsageError("option --loads: " + excerpt(l) + " is not a load in (0, 4]");
     c.loads.push_back(v);
   }
   c.trials = args.u32("trials", 5, 1, 100000);
@@ -105,6 +108,7 @@ int run_stats(const std::vector<std::string>& argv) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("option --stream: ") + e.what());
   }
+  args.refuse_unless(c.stream.kind == StreamKind::Stacked, {"spread"}, "on a --stream other than stacked");
   c.stream.spread = args.real("spread", 1.0);
   if (!(c.stream.spread >= 0.0 && c.stream.spread <= 1.0)) throw UsageError("option --spread: must be in [0, 1]");
   c.age_bits = args.u32("age-bits", 8, 4, 12);
@@ -122,7 +126,12 @@ int run_stats(const std::vector<std::string>& argv) {
       for (auto of : offsets)
         if (pr == Probing::Coherent || of == offsets.front()) c.variants.push_back({pr, po, of});  // offsets only matter when coherent
 
-  const auto rows = run_age_experiment(c);
+  std::vector<ExperimentRow> rows;
+  {
+    ProgressBar progress = ProgressBar::for_terminal("habuffer stats", "trials", args.has("quiet"));
+    c.on_progress = progress.callback();
+    rows = run_age_experiment(c);
+  }
   std::printf("%-32s %6s %7s %16s %8s %4s %4s %4s %6s %8s %8s %7s %8s\n", "variant", "load", "stored", "mean age (95%)",
               "var", "p50", "p99", "max", "bound", "excess", "probes", "trav", "failed");
   for (const auto& r : rows)

@@ -2,6 +2,8 @@
 
 #include <tbb/info.h>
 
+#include <limits>
+
 #include "habuffer/interchange.h"
 
 namespace habuffer::cli {
@@ -33,9 +35,14 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   c.block = args.u32("block", HA_DEFAULT_BLOCK, 1, 1u << 16);
   c.iter_limit = args.u32("iter-limit", HA_DEFAULT_ITER_LIMIT, 1, HA_MAX_ITER_LIMIT);
   if (args.has("early-cull")) {
-    const double tau = args.real("early-cull", 0.0);
-    if (!(tau > 0.0 && tau <= 1.0)) throw UsageError("option --early-cull: threshold must be in (0, 1]");
-    c.early_cull_tau = static_cast<float>(tau);
+    // The threshold is used as a float32 on both paths; below the smallest
+    // normal float32 a GPU may flush it to 0, which turns cull off.
+    const float tau = args.f32("early-cull", 0.0f);
+    if (!(tau >= std::numeric_limits<float>::min() && tau <= 1.0f))
+      throw UsageError("option --early-cull: threshold must be in (0, 1], at least " +
+                       shortest(std::numeric_limits<float>::min()) + " (the smallest normal float32), not " +
+                       args.str("early-cull", ""));
+    c.early_cull_tau = tau;
   }
   try {
     c.validate();
@@ -72,10 +79,15 @@ HashOptions parse_hash_options(const Args& args) {
   const std::string path = args.str("path", "cpu");
   if (path != "cpu" && path != "gl") throw UsageError("option --path: '" + path + "' is not cpu or gl");
   o.gl = path == "gl";
+  args.refuse_unless(!o.gl, {"threads", "insert-mode"}, "with --path gl (the GPU inserts)");
 
   o.offsets_name = args.str("offsets", "random");
   o.offsets = parse_offset_source(args, c);
   return o;
+}
+
+void add_offsets_input(FileRoles& files, const HashOptions& options) {
+  if (options.offsets.generator == OffsetGenerator::List) files.input("--offsets", options.offsets_name);
 }
 
 OffsetSource parse_offset_source(const Args& args, const BufferConfig& c) {
@@ -89,6 +101,7 @@ OffsetSource parse_offset_source(const Args& args, const BufferConfig& c) {
     if (c.table_or_screen().area() > kFarthestMaxSlots)
       throw UsageError("--offsets farthest: table " + c.table_or_screen().str() + " has more than 2^28 slots");
   } else {
+    args.refuse_unless(false, {"seed"}, "with an offsets file (--offsets " + name + ")");
     s.generator = OffsetGenerator::List;
     s.list = read_offset_rows(name);
     // Validate now so the error names the file before any work is done.

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli_args.h"
+#include "habuffer/file_roles.h"
 #include "habuffer/lossless_build.h"
 
 namespace habuffer::cli {
@@ -39,5 +40,8 @@ HashOptions parse_hash_options(const Args& args);
 // --offsets and --seed.
 BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table);
 OffsetSource parse_offset_source(const Args& args, const BufferConfig& config);
+
+// Adds --offsets as an input when it names a file.
+void add_offsets_input(FileRoles& files, const HashOptions& options);
 
 }  // namespace habuffer::cli

@@ -8,6 +8,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "habuffer/csv.h"
+#include "habuffer/printable.h"
 
 namespace {
 
@@ -24,6 +25,19 @@ constexpr const char* kUsage =
     "  info         version, build type and available paths\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
 
+// One short printable line whatever a library put in its message: text with
+// control bytes or of more than 4 KiB is escaped and cut.
+std::string one_line(const char* what) {
+  const std::string_view m(what);
+  for (const char c : m)
+    if (static_cast<unsigned char>(c) < 0x20) return habuffer::printable(m, 4096);
+  return m.size() > 4096 ? habuffer::printable(m, 4096) : std::string(m);
+}
+
+void report(const std::string& name, const char* what) {
+  std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), one_line(what).c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -39,22 +53,23 @@ int main(int argc, char** argv) {
   const std::string name = argv[1];
   const auto it = commands.find(name);
   if (it == commands.end()) {
-    std::fprintf(stderr, "habuffer: unknown command '%s' (run 'habuffer --help' for the list)\n", name.c_str());
+    std::fprintf(stderr, "habuffer: unknown command %s (run 'habuffer --help' for the list)\n",
+                 excerpt(name).c_str());
     return 2;
   }
   try {
     return it->second(std::vector<std::string>(argv + 2, argv + argc));
   } catch (const cli::UsageError& e) {
-    std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), e.what());
+    report(name, e.what());
     return 2;
   } catch (const DataError& e) {
-    std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), e.what());
+    report(name, e.what());
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "habuffer %s: out of memory\n", name.c_str());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), e.what());
+    report(name, e.what());
     return 1;
   }
 }

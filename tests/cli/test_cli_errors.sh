@@ -81,9 +81,10 @@ for cfg in "48x32 48x32 4 coherent 0.8 32" "40x40 61x47 8 random 0.7 32" "64x16 
   read -r screen table bits kind load layout <<<"$cfg"
   "$bin" generate --screen "$screen" --table "$table" --load "$load" --stream "$kind" --seed 3 --out gen_$screen.csv
   for path in cpu gl; do
+    threads=(); [[ $path == cpu ]] && threads=(--threads 2)
     ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- build-lists --in gen_$screen.csv --out l_$path.csv --screen "$screen" \
-      --table "$table" --layout "$layout" --age-bits "$bits" --seed 5 --threads 2 --path $path --dump-table t_$path.csv \
-      --dump-max-age m_$path.csv --stats s_$path.json
+      --table "$table" --layout "$layout" --age-bits "$bits" --seed 5 "${threads[@]}" --path $path \
+      --dump-table t_$path.csv --dump-max-age m_$path.csv --stats s_$path.json
   done
   if cmp -s l_cpu.csv l_gl.csv && cmp -s t_cpu.csv t_gl.csv && cmp -s m_cpu.csv m_gl.csv && [[ $(wc -l <t_gl.csv) -gt 10 ]]; then
     pass=$((pass + 1))

@@ -221,6 +221,8 @@ def write_case(case, d):
 
 def habuffer_cmd(exe, case, d, tag, infile, threads, path="cpu"):
     p = lambda name: os.path.join(d, name)  # noqa: E731
+    # --threads is the CPU path's; the CLI refuses it with --path gl.
+    threads_args = ["--threads", str(threads)] if path == "cpu" else []
     return [exe, "build-lists", "--path", path,
             "--in", p(infile),
             "--out", p("lists%s.csv" % tag),
@@ -230,7 +232,7 @@ def habuffer_cmd(exe, case, d, tag, infile, threads, path="cpu"):
             "--age-bits", str(case["A"]),
             "--offsets", p("offsets.csv"),
             "--block", str(case["B"]),
-            "--threads", str(threads),
+            *threads_args,
             "--stats", p("stats%s.json" % tag),
             "--dump-table", p("table%s.csv" % tag),
             "--dump-max-age", p("maxage%s.csv" % tag)]

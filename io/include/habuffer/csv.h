@@ -17,12 +17,23 @@ class DataError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Reads line by line (files of any length, pipes included), with lines of at
+// most kMaxLineBytes; a UTF-8 byte-order mark before the header is skipped.
+// Quoted text in errors is cut short and escaped (habuffer/printable.h).
 class CsvReader {
  public:
-  // Reads the whole file; throws DataError if it cannot be opened.
+  static constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;
+
+  // Opens the file; throws DataError if it is missing, a directory, a device
+  // or cannot be opened.
   explicit CsvReader(std::string path);
   // Reads `text` as if it were the file `name` (tests and fuzzers).
   static CsvReader from_text(std::string name, std::string text);
+  ~CsvReader();
+  CsvReader(CsvReader&& other) noexcept;
+  CsvReader& operator=(CsvReader&&) = delete;
+  CsvReader(const CsvReader&) = delete;
+  CsvReader& operator=(const CsvReader&) = delete;
 
   // Checks the first line equals `header` (fields separated by commas,
   // surrounding spaces ignored); throws DataError naming both otherwise.
@@ -46,7 +57,11 @@ class CsvReader {
  private:
   CsvReader() = default;
   bool next_line(std::string_view& line);
+  // The next raw line (without its newline), refilling the buffer from the file.
+  bool read_line(std::string_view& line);
+  [[noreturn]] void line_too_long() const;
   std::string path_;
+  std::FILE* file_ = nullptr;  // null: text_ holds the whole input
   std::string text_;
   std::size_t pos_ = 0;
   std::uint64_t line_ = 0;

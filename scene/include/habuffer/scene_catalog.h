@@ -25,6 +25,8 @@ struct SceneOptions {
 // /usr/share/assimp/models (Debian's assimp-testmodels).
 std::string assimp_models_root();
 std::vector<std::string> scene_names();
+// Whether `name` is one of scene_names() (not a mesh file).
+bool is_scene_name(const std::string& name);
 
 // A scene name or a mesh file path. Throws SceneError naming what was wrong.
 Scene make_scene(const std::string& name_or_path, const SceneOptions& options);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct ExperimentConfig {
   std::vector<Variant> variants{Variant{}};
   std::uint32_t age_bits = 8;
   std::uint32_t block = 8;
+  // Called after each trial of each load with (trials done, loads x trials).
+  std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
 
 struct ExperimentRow {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -41,6 +42,8 @@ struct RenderSettings {
   bool keep_fragments = false;  // capture the last frame's fragments (reference, CPU-side heat maps)
   bool per_pixel_culled = false;  // CPU path: count culled fragments per pixel (serial insertion)
   std::uint32_t threads = 0;      // CPU path
+  // Called after each frame with (frames done, frames).
+  std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
 
 struct FrameStats {

@@ -1,0 +1,43 @@
+#include "gl_build.h"
+
+#include <chrono>
+#include <optional>
+
+#include "habuffer/csv.h"
+#include "habuffer/gl/compute_inserter.h"
+#include "habuffer/gl/egl_context.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_ha_buffer.h"
+
+namespace habuffer::cli {
+
+BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
+  std::optional<gl::EglContext> context;
+  try {
+    context.emplace();
+  } catch (const gl::GlError& e) {
+    throw DataError(std::string("--path gl: no usable OpenGL: ") + e.what());
+  }
+  const BufferConfig& c = options.config;
+  const gl::GlInfo info = gl::query_gl_info();
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(info, c.layout);
+  if (!mode) throw DataError("--path gl --layout 64: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  gl::GlFrameOptions frame_options;
+  frame_options.policy = options.policy;
+  frame_options.max_attempts = options.max_attempts;
+  gl::GlHaBuffer gpu(c, options.offsets, *mode, frame_options);
+  gl::ComputeInserter inserter(gpu);
+  const auto t0 = std::chrono::steady_clock::now();
+  gl::FrameReport report = inserter.insert(fragments);
+  timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  timing.gl_atomic_mode = gl::to_string(*mode);
+  timing.gl_renderer = info.renderer;
+  timing.gl_deferred = report.deferred;
+  timing.gl_resume_rounds = report.resume_rounds;
+  timing.gl_cut_short_retries = report.cut_short_retries;
+  HaBuffer buffer(gpu.config(), gpu.offsets());
+  buffer.import_state(gpu.read_table(), gpu.read_max_age());
+  return BuildResult{std::move(buffer), report.counters, std::move(report.attempts)};
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,39 @@
+#include "loss_report.h"
+
+#include <cstdio>
+
+namespace habuffer::cli {
+
+std::uint64_t lost_fragments(const Counters& c) { return c.failures() + c.culled + c.invalid; }
+
+std::string loss_summary(const Counters& c) {
+  std::string s = std::to_string(lost_fragments(c)) + " of " + std::to_string(c.fragments) + " fragments not stored:";
+  const std::pair<const char*, std::uint64_t> reasons[] = {{"failed_age", c.failed_age},
+                                                           {"failed_iter", c.failed_iter},
+                                                           {"culled (early cull)", c.culled},
+                                                           {"invalid (depth NaN or outside [0, 1])", c.invalid}};
+  bool first = true;
+  for (const auto& [name, n] : reasons) {
+    if (n == 0) continue;
+    s += first ? " " : ", ";
+    s += name;
+    s += ' ';
+    s += std::to_string(n);
+    first = false;
+  }
+  return s;
+}
+
+void warn_losses(const std::string& command, const Counters& c, const std::string& hint) {
+  if (lost_fragments(c) == 0) return;
+  std::string line = "habuffer " + command + ": warning: " + loss_summary(c);
+  if (c.failures() > 0 && !hint.empty()) line += "; " + hint;
+  std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+std::string failure_hint(bool lossless) {
+  return lossless ? "more --age-bits fits deeper pixels"
+                  : "--lossless grows the table until they fit (or give a larger --table, more --age-bits)";
+}
+
+}  // namespace habuffer::cli

@@ -1,0 +1,88 @@
+#include "habuffer/file_roles.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+
+#include "habuffer/csv.h"
+#include "habuffer/printable.h"
+
+namespace habuffer {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Identity {
+  std::string resolved;
+  std::optional<std::pair<dev_t, ino_t>> inode;  // where the file exists
+  bool regular = false;
+};
+
+Identity identify(const std::string& path) {
+  Identity id;
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  id.resolved = ec ? path : resolved.string();
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    id.inode = std::make_pair(st.st_dev, st.st_ino);
+    id.regular = S_ISREG(st.st_mode);
+  }
+  return id;
+}
+
+bool same_file(const Identity& a, const Identity& b) {
+  if (a.inode && b.inode) return *a.inode == *b.inode;
+  return a.resolved == b.resolved;
+}
+
+}  // namespace
+
+FileRoles& FileRoles::input(std::string_view role, const std::string& path) {
+  entries_.push_back({std::string(role), path, false});
+  return *this;
+}
+
+FileRoles& FileRoles::output(std::string_view role, const std::string& path) {
+  entries_.push_back({std::string(role), path, true});
+  return *this;
+}
+
+void FileRoles::check() const {
+  std::vector<Identity> ids;
+  ids.reserve(entries_.size());
+  for (const Entry& e : entries_) {
+    if (e.output && e.path.empty()) throw FileConflict(e.role + ": empty file name");
+    if (e.output && fs::is_directory(e.path))
+      throw FileConflict(e.role + ": " + printable(e.path) + " is a directory, not a file to write");
+    ids.push_back(identify(e.path));
+  }
+  for (std::size_t i = 0; i < entries_.size(); ++i)
+    for (std::size_t j = i + 1; j < entries_.size(); ++j) {
+      const Entry &a = entries_[i], &b = entries_[j];
+      if (!a.output && !b.output) continue;  // reading a file twice harms nothing
+      if (!same_file(ids[i], ids[j])) continue;
+      // Devices such as /dev/null may take several outputs.
+      if (a.output && b.output && ids[i].inode && !ids[i].regular) continue;
+      const Entry& out = a.output ? a : b;
+      const Entry& other = a.output ? b : a;
+      throw FileConflict(out.role + " " + printable(out.path) + " is the same file as " + other.role +
+                         (other.output ? " (two outputs)" : " (an input: it would be overwritten)"));
+    }
+}
+
+void check_input_file(const std::string& path, std::string_view what) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    throw DataError(printable(path) + ": cannot open for reading: " + std::strerror(errno));
+  if (S_ISDIR(st.st_mode))
+    throw DataError(printable(path) + ": is a directory, not a " + std::string(what));
+  if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
+    throw DataError(printable(path) + ": is a device or socket, not a " + std::string(what) +
+                    " (only regular files and pipes are read)");
+}
+
+}  // namespace habuffer

@@ -1,0 +1,45 @@
+// The files one command reads and writes, checked before any work is done:
+// an input must be a readable regular file or a pipe; no output may be one of
+// the inputs, and no two outputs may be the same file. Paths are compared
+// resolved (symbolic links, "..", relative to the working directory) and,
+// where the file exists, by device and inode (hard links).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace habuffer {
+
+// Two roles that would clobber each other, or an output that cannot be a
+// file (empty name, a directory). The CLI reports it as bad usage.
+class FileConflict : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+class FileRoles {
+ public:
+  // `role` names the option ("--in", "--heatmap depth") in messages.
+  FileRoles& input(std::string_view role, const std::string& path);
+  FileRoles& output(std::string_view role, const std::string& path);
+  // Throws FileConflict for an output equal to an input or to another
+  // output, an empty output name or an output that is a directory.
+  void check() const;
+
+ private:
+  struct Entry {
+    std::string role, path;
+    bool output;
+  };
+  std::vector<Entry> entries_;
+};
+
+// Throws DataError unless `path` can be read as a stream: missing, a
+// directory, or anything but a regular file or a pipe (a device such as
+// /dev/zero never ends) is refused with the reason. `what` names the kind of
+// file ("CSV file", "image", "mesh").
+void check_input_file(const std::string& path, std::string_view what);
+
+}  // namespace habuffer
