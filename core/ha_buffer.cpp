@@ -197,17 +197,20 @@ void HaBuffer::import_state(std::span<const std::uint64_t> table_words, std::spa
   std::copy(max_ages.begin(), max_ages.end(), impl_->max_age.data());
 }
 
-void HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+std::uint32_t HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
   out.clear();
-  impl_->with_kernel([&](auto& k) {
+  return impl_->with_kernel([&](auto& k) {
     const glm::uvec2 p(x, y);
     const std::uint32_t amax = k.ha_load_max_age(k.ha_cell(p));
+    std::uint32_t reads = 0;
     for (std::uint32_t a = 1; a <= amax; ++a) {
       const auto r = k.ha_load_slot(k.ha_slot(k.ha_probe(p, a)));
+      ++reads;
       const std::uint32_t v = k.ha_visit(r, a);
       if (v == HA_VISIT_STOP) break;
       if (v == HA_VISIT_EMIT) out.push_back({a, k.ha_code(r), k.ha_data(r)});
     }
+    return reads;
   });
 }
 

@@ -34,6 +34,27 @@ TEST(EarlyCull, OpaqueFrontFragmentCullsWhatLiesBehindInEitherOrder) {
   }
 }
 
+// At tau = 1 the accumulated opacity must exceed 1 to cull, which it never
+// can: even behind a fully opaque fragment (alpha 255, acc exactly 1) the
+// fragment is kept. A cull test of acc >= tau would drop it.
+TEST(EarlyCull, ThresholdOneKeepsWhatLiesBehindAnOpaqueFragment) {
+  for (bool front_first : {true, false}) {
+    HaBuffer b = cull_buffer({4, 4}, {8, 8}, 1.0f);
+    const Fragment front{2, 1, 0.2f, rgba(255)}, back{2, 1, 0.7f, rgba(255)};
+    Counters n;
+    n.count(b.insert_one(front_first ? front : back));
+    n.count(b.insert_one(front_first ? back : front));
+    EXPECT_EQ(n.culled, 0u) << (front_first ? "front first" : "back first");
+    std::vector<ListEntry> list;
+    b.list(2, 1, list);
+    EXPECT_EQ(list.size(), 2u);
+  }
+  // Just below 1, the same opaque front culls.
+  HaBuffer below = cull_buffer({4, 4}, {8, 8}, std::nextafter(1.0f, 0.0f));
+  below.insert_one({2, 1, 0.2f, rgba(255)});
+  EXPECT_EQ(below.insert_one({2, 1, 0.7f, rgba(255)}), HA_CULLED);
+}
+
 TEST(EarlyCull, ThresholdOneAndOpacityZeroNeverCull) {
   const auto f = test::stream({32, 32}, StreamKind::Coherent, 3000, 4);
   HaBuffer one = cull_buffer({32, 32}, {48, 48}, 1.0f);

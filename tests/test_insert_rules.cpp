@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "habuffer/hash_kernel.h"
 #include "test_support.h"
 
 namespace habuffer {
@@ -153,6 +154,50 @@ TEST(Insert, ClearReturnsTheStoredCountAndEmptiesBothTables) {
   EXPECT_EQ(b.clear(), 3u);
   EXPECT_EQ(b.count_stored(), 0u);
   EXPECT_EQ(b.max_age().max(), 0u);
+}
+
+// SPEC 7's early stop, counted: the walk of a pixel reads slots for ages
+// 1, 2, ... and stops at the first slot holding a younger record (or the
+// cell's max age), never reading on to the max age of its 8x8 block when it
+// can stop. Removing the stop would leave the lists unchanged (Proposition A)
+// but not the reads.
+TEST(Traverse, TheWalkStopsAtTheFirstYoungerRecordNotAtTheCellsMaxAge) {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const BufferConfig c = test::config({24, 24}, {40, 40}, Layout::L64, 8, 8);
+    HaBuffer b = test::make_buffer(c, seed);
+    b.insert(test::stream(c.screen, StreamKind::Coherent, 1000, seed));
+    const RecordLayout& l = b.record_layout();
+    std::uint64_t early = 0;
+    std::vector<ListEntry> list;
+    for (std::uint32_t y = 0; y < c.screen.y; ++y)
+      for (std::uint32_t x = 0; x < c.screen.x; ++x) {
+        const std::uint32_t amax = b.max_age().at(x / c.block, y / c.block);
+        std::uint32_t expected = amax;
+        for (std::uint32_t a = 1; a <= amax; ++a) {
+          const glm::uvec2 o = b.offsets()[a - 1];
+          const std::uint64_t s = (x + o.x) % c.table.x + std::uint64_t{(y + o.y) % c.table.y} * c.table.x;
+          if (l.age(b.slot(s)) < a) {
+            expected = a;
+            break;
+          }
+        }
+        ASSERT_EQ(b.list(x, y, list), expected) << "pixel " << x << "," << y;
+        early += expected < amax;
+      }
+    EXPECT_GT(early, 100u) << "most walks end before their cell's max age";
+  }
+}
+
+TEST(Traverse, EachVisitStepEmitsSkipsOrStops) {
+  const RecordLayout l(Layout::L64, 8);
+  const std::uint64_t age3 = l.pack(3, 100, 7);
+  using Kernel = HashKernel<std::uint64_t, false>;
+  KernelParams params;
+  Kernel k(params, nullptr, nullptr, nullptr);
+  EXPECT_EQ(k.ha_visit(age3, 3), HA_VISIT_EMIT);
+  EXPECT_EQ(k.ha_visit(age3, 2), HA_VISIT_SKIP) << "an older record of another pixel: walk on";
+  EXPECT_EQ(k.ha_visit(age3, 4), HA_VISIT_STOP) << "a younger record: nothing of this pixel lies beyond";
+  EXPECT_EQ(k.ha_visit(0, 1), HA_VISIT_STOP) << "an empty slot";
 }
 
 TEST(Config, TableSmallerThanScreenIsRejectedNamingBothSizes) {

@@ -49,12 +49,23 @@ TEST(ResizePolicy, FollowsGrowingThenShrinkingContent) {
   std::vector<Extent> sizes;
   for (double load_of_screen : {0.5, 0.9, 1.2, 1.5, 1.5, 1.5, 0.3, 0.1, 0.1, 0.1, 0.1}) {
     const auto stored = static_cast<std::uint64_t>(load_of_screen * static_cast<double>(screen.area()));
+    const Extent before = table;
     table = p.next(table, screen, stored);
-    const double load = static_cast<double>(stored) / static_cast<double>(table.area());
+    // The decision of every frame follows from the load it measured.
+    const double load = static_cast<double>(stored) / static_cast<double>(before.area());
+    SCOPED_TRACE("load " + std::to_string(load) + " in " + before.str());
+    if (load > p.grow_at) {
+      EXPECT_EQ(table, p.grown(before));
+      EXPECT_GE(static_cast<double>(table.area()), 1.25 * static_cast<double>(before.area()));
+    } else if (load < p.shrink_at && before != screen) {
+      EXPECT_LT(table.area(), before.area());
+      EXPECT_GE(static_cast<double>(table.area()), 0.75 * static_cast<double>(before.area()));
+    } else {
+      EXPECT_EQ(table, before);
+    }
     sizes.push_back(table);
     EXPECT_GE(table.x, screen.x);
     EXPECT_GE(table.y, screen.y);
-    (void)load;
   }
   EXPECT_EQ(sizes[0], screen);
   EXPECT_GT(sizes[1].area(), screen.area());

@@ -77,8 +77,10 @@ class HaBuffer {
   // buffer is given a word above 32 bits.
   void import_state(std::span<const std::uint64_t> table_words, std::span<const std::uint32_t> max_ages);
 
-  // Pixel (x, y)'s list, nearest first, by traversal (SPEC 7).
-  void list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const;
+  // Pixel (x, y)'s list, nearest first, by traversal (SPEC 7). Returns the
+  // slots read: the walk stops at the first age whose slot holds a younger
+  // record (Proposition A), before the cell's max age when it can.
+  std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const;
   // Front-to-back float32 compositing of pixel (x, y) over `background`.
   [[nodiscard]] glm::vec4 composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const;
   // The whole screen, row-major.
