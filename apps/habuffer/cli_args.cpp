@@ -16,6 +16,13 @@ std::string shortest(float v) {
   return std::string(buf, end);
 }
 
+std::string shortest(double v) {
+  char buf[32];
+  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  (void)ec;
+  return std::string(buf, end);
+}
+
 void check_files(const FileRoles& files) {
   try {
     files.check();
@@ -77,30 +84,33 @@ std::uint32_t Args::u32(const std::string& name, std::uint32_t fallback, std::ui
   return static_cast<std::uint32_t>(u64(name, fallback, min, max));
 }
 
-double Args::real(const std::string& name, double fallback) const {
-  auto it = values_.find(name);
-  if (it == values_.end()) return fallback;
-  const std::string& s = it->second;
-  double v = 0;
+namespace {
+
+// A finite decimal read as T, rounded once; text beyond T's range (which
+// from_chars reports instead of rounding to 0 or infinity) is refused.
+template <class T>
+T finite_number(const std::string& name, const std::string& s, const char* type) {
+  T v = 0;
   auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec == std::errc::result_out_of_range && end == s.data() + s.size())
+    throw UsageError("option --" + name + ": " + excerpt(s) + " is outside " + type + "'s range (it would become 0 or " +
+                     "infinity; the smallest normal " + type + " is " +
+                     shortest(std::numeric_limits<T>::min()) + ")");
   if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
     throw UsageError("option --" + name + ": " + excerpt(s) + " is not a finite number");
   return v;
 }
 
+}  // namespace
+
+double Args::real(const std::string& name, double fallback) const {
+  auto it = values_.find(name);
+  return it == values_.end() ? fallback : finite_number<double>(name, it->second, "double");
+}
+
 float Args::f32(const std::string& name, float fallback) const {
   auto it = values_.find(name);
-  if (it == values_.end()) return fallback;
-  const std::string& s = it->second;
-  float v = 0;
-  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec == std::errc::result_out_of_range && end == s.data() + s.size())
-    throw UsageError("option --" + name + ": " + excerpt(s) + " is outside float32's range (it would become 0 or " +
-                     "infinity; the smallest normal float32 is " + shortest(std::numeric_limits<float>::min()) +
-                     ")");
-  if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
-    throw UsageError("option --" + name + ": " + excerpt(s) + " is not a finite number");
-  return v;
+  return it == values_.end() ? fallback : finite_number<float>(name, it->second, "float32");
 }
 
 std::vector<std::string> Args::list(const std::string& name, const std::string& fallback) const {

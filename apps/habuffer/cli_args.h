@@ -24,6 +24,7 @@ class UsageError : public std::runtime_error {
 
 // The shortest decimal that reads back as `v` ("1.1754944e-38").
 std::string shortest(float v);
+std::string shortest(double v);
 
 // FileRoles::check, its conflicts as bad usage.
 void check_files(const FileRoles& files);

@@ -45,7 +45,9 @@ struct GlFrameOptions {
   // the resume pass, round after round while any remain, at most this many
   // rounds; only calls still cut short after the last round count failed_iter.
   std::uint32_t resume_rounds = 256;
-  std::uint64_t deferred_capacity = 1u << 12;  // first capacity of the deferred-call buffers (32 bytes a call); grows on overflow
+  // First capacity of the two deferred-call buffers (32 bytes a call); grows
+  // (and the frame gathers again) on overflow.
+  std::uint64_t deferred_capacity = 1u << 12;
   // Gathers repeated into the same table when calls stayed cut short after
   // every resume round, or a driver ended calls without an outcome (nothing
   // to resume), before the frame reports them as failed_iter. Not counted as
