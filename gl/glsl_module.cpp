@@ -93,4 +93,13 @@ std::string resume_compute(AtomicMode mode, const GlBindings& bindings) {
   return ha_module(mode, bindings, ShaderStage::Compute) + kResumeCompute;
 }
 
+std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings) {
+  const std::string fragment_module = ha_module(mode, bindings, ShaderStage::Fragment);
+  return {{"insert", "comp", insert_stream_compute(mode, bindings)},
+          {"resume", "comp", resume_compute(mode, bindings)},
+          {"full-screen", "vert", std::string("#version 450 core\n") + kFullScreenVertex},
+          {"clear", "frag", fragment_module + kClearPassFragment},
+          {"resolve", "frag", fragment_module + kResolveFragment}};
+}
+
 }  // namespace habuffer::gl

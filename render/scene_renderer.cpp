@@ -6,6 +6,7 @@
 
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/glsl_sources.h"
 #include "render_shaders.h"
 
 namespace habuffer {
@@ -14,22 +15,29 @@ namespace {
 constexpr unsigned kPixelFragmentsBinding = 10, kPixelCulledBinding = 11, kRejectedBinding = 12;
 
 std::string gather_source(const gl::GlHaBuffer& buffer) {
-  const gl::GlBindings& b = buffer.bindings();
+  return SceneRenderer::shader_sources(buffer.mode(), buffer.bindings()).gather_fragment;
+}
+
+}  // namespace
+
+SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b) {
   for (unsigned p : b.storage_points())
     if (p == kPixelFragmentsBinding || p == kPixelCulledBinding || p == kRejectedBinding)
       throw gl::GlError("the renderer's shader-storage points 10-12 collide with the HA-buffer's");
   const std::string header =
       "#define R_BINDING_PIXEL_FRAGMENTS 10\n#define R_BINDING_PIXEL_CULLED 11\n#define R_BINDING_REJECTED 12\n";
-  return buffer.module_source(gl::ShaderStage::Fragment, header) + render::kShading + render::kGatherFragment;
+  Sources s;
+  s.vertex = render::kSceneVertex;
+  s.opaque_fragment = std::string("#version 450 core\n") + render::kShading + render::kOpaqueFragment;
+  s.gather_fragment =
+      gl::ha_module(mode, b, gl::ShaderStage::Fragment, header) + render::kShading + render::kGatherFragment;
+  return s;
 }
-
-}  // namespace
 
 SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBuffer& buffer)
     : screen_(screen),
       opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex,
-                                                  std::string("#version 450 core\n") + render::kShading +
-                                                      render::kOpaqueFragment,
+                                                  shader_sources(buffer.mode(), buffer.bindings()).opaque_fragment,
                                                   "opaque pass")),
       gather_program_(gl::ShaderProgram::graphics(render::kSceneVertex, gather_source(buffer), "gather pass")) {
   for (const Mesh& m : scene.meshes) {

@@ -10,6 +10,7 @@ packages=(
   clang libclang-rt-14-dev
   pkg-config libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libassimp-dev assimp-testmodels libopenimageio-dev
+  glslang-tools
 )
 
 missing=()

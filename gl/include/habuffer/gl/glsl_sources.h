@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_info.h"
@@ -37,6 +38,16 @@ std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage s
 
 // The compute shader that inserts a fragment stream held in a buffer.
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});
+
+// A complete shader as the library compiles it, for checks by a reference
+// compiler: `name` is unique per mode ("insert", "clear", ...), `stage` the
+// file extension glslangValidator reads the stage from ("comp", "frag", "vert").
+struct ShaderSource {
+  std::string name, stage, source;
+};
+// Every shader the library compiles for `mode` (compute entry, resume pass,
+// clear pass, resolve pass). Needs no GL context.
+std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings = {});
 
 // The resume pass: runs deferred insert calls (cut short by a lock or the
 // driver's loop budget) on from their carried state.

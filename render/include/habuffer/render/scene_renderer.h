@@ -19,6 +19,13 @@ namespace habuffer {
 
 class SceneRenderer {
  public:
+  // The renderer's shaders for an atomic mode and binding points, as
+  // compiled (no GL needed: the reference-compiler check writes them out).
+  struct Sources {
+    std::string vertex, opaque_fragment, gather_fragment;
+  };
+  static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings);
+
   // Compiles the gather shader for `buffer`'s mode and binding points.
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBuffer& buffer);
   ~SceneRenderer();
