@@ -1,5 +1,10 @@
 #include "habuffer/gl/gl_info.h"
 
+#include <algorithm>
+#include <cstdlib>
+
+#include "habuffer/gl/gl_error.h"
+
 #include <epoxy/gl.h>
 
 namespace habuffer::gl {
@@ -47,7 +52,22 @@ std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info) {
   return modes;
 }
 
+std::optional<AtomicMode> atomic_mode_override() {
+  const char* env = std::getenv("HABUFFER_ATOMIC_MODE");
+  if (env == nullptr || *env == '\0') return std::nullopt;
+  for (AtomicMode m : {AtomicMode::Native32, AtomicMode::Native64, AtomicMode::Emulated64})
+    if (to_string(m) == env) return m;
+  throw GlError("HABUFFER_ATOMIC_MODE='" + std::string(env) + "' is not native32, native64 or emulated64");
+}
+
 std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout) {
+  if (const auto forced = atomic_mode_override(); forced && (*forced == AtomicMode::Native32) == (layout == Layout::L32)) {
+    const auto runnable = runnable_atomic_modes(info);
+    if (std::find(runnable.begin(), runnable.end(), *forced) == runnable.end())
+      throw GlError("HABUFFER_ATOMIC_MODE=" + to_string(*forced) + " cannot run on this OpenGL (" + info.renderer +
+                    (*forced == AtomicMode::Native64 ? "): no GL_NV_shader_atomic_int64" : "): no 64-bit shader types"));
+    return forced;
+  }
   if (layout == Layout::L32) return AtomicMode::Native32;
   if (info.int64_types && info.atomic_int64) return AtomicMode::Native64;
   if (info.int64_types) return AtomicMode::Emulated64;

@@ -5,6 +5,8 @@
 
 #include <epoxy/gl.h>
 
+#include <cstdlib>
+
 #include "gl_test_support.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
@@ -76,6 +78,39 @@ TEST(Gl, BindingPointsAreCheckedAgainstEachOtherAndTheLimits) {
   } catch (const gl::GlError& e) {
     EXPECT_NE(std::string(e.what()).find("1048576"), std::string::npos) << e.what();
   }
+}
+
+// HABUFFER_ATOMIC_MODE forces a mode for the layout it holds, refuses a mode
+// this context cannot run and any unknown name: never a silent fallback.
+TEST(Gl, TheAtomicModeOverrideIsObeyedOrRefused) {
+  gl_context();
+  const gl::GlInfo info = gl::query_gl_info();
+  const auto runnable = gl::runnable_atomic_modes(info);
+  struct Restore {
+    ~Restore() { ::unsetenv("HABUFFER_ATOMIC_MODE"); }
+  } restore;
+  ::setenv("HABUFFER_ATOMIC_MODE", "emulated64", 1);
+  if (info.int64_types) {
+    EXPECT_EQ(gl::chosen_atomic_mode(info, Layout::L64), gl::AtomicMode::Emulated64);
+  } else {
+    EXPECT_THROW((void)gl::chosen_atomic_mode(info, Layout::L64), gl::GlError);
+  }
+  EXPECT_EQ(gl::chosen_atomic_mode(info, Layout::L32), gl::AtomicMode::Native32) << "L32 has one mode";
+  ::setenv("HABUFFER_ATOMIC_MODE", "native64", 1);
+  if (std::find(runnable.begin(), runnable.end(), gl::AtomicMode::Native64) == runnable.end()) {
+    try {
+      (void)gl::chosen_atomic_mode(info, Layout::L64);
+      FAIL() << "native64 forced where it cannot run";
+    } catch (const gl::GlError& e) {
+      EXPECT_NE(std::string(e.what()).find("GL_NV_shader_atomic_int64"), std::string::npos) << e.what();
+    }
+  } else {
+    EXPECT_EQ(gl::chosen_atomic_mode(info, Layout::L64), gl::AtomicMode::Native64);
+  }
+  ::setenv("HABUFFER_ATOMIC_MODE", "native128", 1);
+  EXPECT_THROW((void)gl::atomic_mode_override(), gl::GlError);
+  ::unsetenv("HABUFFER_ATOMIC_MODE");
+  EXPECT_EQ(gl::atomic_mode_override(), std::nullopt);
 }
 
 TEST(Gl, ModesRefuseLayoutsTheyCannotHold) {

@@ -38,9 +38,15 @@ int run_info(const std::vector<std::string>& argv) {
                 std::min<long long>(max_slots / 8, 0xFFFFFFFFll), std::min<long long>(max_slots / 4, 0xFFFFFFFFll));
     std::string modes;
     for (gl::AtomicMode m : gl::runnable_atomic_modes(info)) modes += (modes.empty() ? "" : ", ") + gl::to_string(m);
-    const auto l64 = gl::chosen_atomic_mode(info, Layout::L64);
-    std::printf("    atomic modes runnable: %s; chosen: L32 -> native32, L64 -> %s\n", modes.c_str(),
-                l64 ? gl::to_string(*l64).c_str() : "none (no 64-bit shader types)");
+    std::string l64_text;
+    try {
+      const auto l64 = gl::chosen_atomic_mode(info, Layout::L64);
+      l64_text = l64 ? gl::to_string(*l64) : "none (no 64-bit shader types)";
+      if (l64 && gl::atomic_mode_override()) l64_text += " (forced by HABUFFER_ATOMIC_MODE)";
+    } catch (const gl::GlError& e) {
+      l64_text = std::string("refused: ") + e.what();
+    }
+    std::printf("    atomic modes runnable: %s; chosen: L32 -> native32, L64 -> %s\n", modes.c_str(), l64_text.c_str());
   } catch (const gl::GlError& e) {
     std::printf("  gl: unavailable: %s\n", e.what());
   }

@@ -35,8 +35,17 @@ GlInfo query_gl_info();
 // Modes this build can run on this context, in order of preference.
 std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info);
 
-// The mode the library runs a layout in: L32 native32; L64 native64 where the
-// driver has 64-bit atomics, else emulated64; none without 64-bit types.
+// The mode named by the environment variable HABUFFER_ATOMIC_MODE (native32,
+// native64 or emulated64), for tests and benchmarks that compare modes on one
+// GPU (emulated64 forced on a GPU with 64-bit atomics); none when unset.
+// Throws GlError naming the variable for any other value.
+std::optional<AtomicMode> atomic_mode_override();
+
+// The mode the library runs a layout in: the override when it holds the
+// layout (native32 for L32; native64 or emulated64 for L64); else L32
+// native32, L64 native64 where the driver has 64-bit atomics, else
+// emulated64; none without 64-bit types. Throws GlError when the override
+// cannot run here, never falling back silently.
 std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout);
 
 }  // namespace habuffer::gl
