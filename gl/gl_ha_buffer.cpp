@@ -38,7 +38,8 @@ struct GlParams {
 };
 static_assert(sizeof(GlParams) == 64);
 
-constexpr std::uint64_t kCounterWords = HA_GPU_COUNTER_COUNT * HA_COUNTER_STRIDE;
+constexpr std::uint64_t kCounterWords = HA_COUNTER_STRIPES * HA_COUNTER_STRIDE;
+static_assert(HA_GPU_COUNTER_COUNT <= HA_COUNTER_STRIDE, "a stripe's counters fit its cache line");
 constexpr std::uint64_t kCaptureHeaderBytes = HA_CAPTURE_HEADER_WORDS * 4;
 constexpr std::uint64_t kDeferredHeaderBytes = HA_DEFERRED_HEADER_WORDS * 4;
 constexpr std::uint64_t kDeferredCallBytes = 32;  // std430 HaDeferred of ha_entry.glsl
@@ -411,11 +412,12 @@ PassTiming GlHaBuffer::resolve(glm::vec3 background, unsigned background_texture
 
 std::pair<Counters, std::uint64_t> GlHaBuffer::read_counters() const {
   const auto words = read_words(gpu_->counters, kCounterWords);
-  std::uint64_t tally[HA_OUTCOME_COUNT];
-  for (std::uint32_t o = 0; o < HA_OUTCOME_COUNT; ++o) tally[o] = words[o * HA_COUNTER_STRIDE];
+  std::uint64_t tally[HA_GPU_COUNTER_COUNT] = {};
+  for (std::uint32_t stripe = 0; stripe < HA_COUNTER_STRIPES; ++stripe)
+    for (std::uint32_t k = 0; k < HA_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HA_COUNTER_STRIDE + k];
   Counters c;
   c.add_tally(tally);
-  return {c, words[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE]};
+  return {c, tally[HA_COUNTER_SLOT_WRITES]};
 }
 
 std::uint64_t GlHaBuffer::read_capture_count() const {

@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include <cstdlib>
+#include <limits>
 
 #include "gl_test_support.h"
 #include "habuffer/gl/debug_output.h"
@@ -209,6 +210,35 @@ TEST(Gl, EarlyCullImageErrorIsBoundedByOneMinusTau) {
     for (std::size_t i = 0; i < image.size(); ++i)
       for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(double(image[i][ch]) - reference[i][ch]));
     EXPECT_LE(worst, (1.0 - tau) + 1e-4) << "tau " << tau;
+  }
+}
+
+// The outcome tallies are striped over HA_COUNTER_STRIPES cache lines by
+// pixel; the host's sum is exact: stored, duplicates and invalid fragments of
+// a stream over every stripe equal the CPU path's counts, in every mode.
+TEST(Gl, StripedOutcomeCountersSumToTheCpuPathsCounters) {
+  gl_context();
+  const Extent screen{48, 40};
+  SplitMix64 rng(31);
+  std::vector<Fragment> f;
+  for (int i = 0; i < 6000; ++i) {
+    const auto x = static_cast<std::uint32_t>(rng.below(screen.x)), y = static_cast<std::uint32_t>(rng.below(screen.y));
+    const float t = rng.below(10) == 0 ? std::numeric_limits<float>::quiet_NaN()
+                                       : static_cast<float>(rng.below(64)) / 64.0f;  // few depths: duplicates
+    f.push_back({x, y, t, 0x40404080u});
+  }
+  for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info())) {
+    SCOPED_TRACE(gl::to_string(mode));
+    const BufferConfig c = test::config(screen, {120, 100}, test::layout_of(mode), 8);
+    gl::GlHaBuffer gpu(c, test::random_offsets(4), mode);
+    const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
+    HaBuffer cpu = test::cpu_twin(gpu, {});
+    const Counters want = cpu.insert(f, {});
+    ASSERT_EQ(want.failures(), 0u);
+    EXPECT_GT(want.duplicates, 100u);
+    EXPECT_GT(want.invalid, 100u);
+    EXPECT_EQ(r.counters, want);
+    EXPECT_EQ(gpu.count_stored(), want.stored());
   }
 }
 

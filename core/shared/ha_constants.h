@@ -36,16 +36,16 @@
 // (about 2^28 probes) on either path.
 #define HA_MAX_ITER_LIMIT 268431359u
 
-// GPU path: outcome tallies live HA_COUNTER_STRIDE words apart (one cache
-// line each), so the per-fragment counting atomics of different outcomes do
-// not contend; a capture buffer starts with HA_CAPTURE_HEADER_WORDS words
-// (the append count, then padding to 16 bytes) before its fragments; an
-// emulated 64-bit atomic tries a contended slot lock this many times before
-// the insert call is cut short and deferred to the frame's resume pass (2^24
-// attempts, a fraction of a second: long enough to outlast a lock holder the
-// OS preempted, where the driver lets a loop run that long).
+// GPU path: the outcome tallies are striped: HA_COUNTER_STRIPES copies of
+// the counters, one cache line (HA_COUNTER_STRIDE words) each, a call adding
+// to the stripe of its pixel (ha_counter_stripe) and the host summing them,
+// so the fragments of a frame do not all hit the same few addresses (exact:
+// every call still adds once); a capture buffer starts with
+// HA_CAPTURE_HEADER_WORDS words (the append count, then padding to 16 bytes)
+// before its fragments; an
 #define HA_COUNTER_STRIDE 16u
-// GPU counter after the six outcomes, when asked for: the slot writes
+#define HA_COUNTER_STRIPES 64u
+// GPU counter after the six outcomes in each stripe, when asked for: the slot writes
 // (atomicMax calls that raised a slot, including records later evicted: the
 // work an insertion order costs).
 #define HA_COUNTER_SLOT_WRITES 6u

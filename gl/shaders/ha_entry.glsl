@@ -59,17 +59,22 @@ HaCarry ha_carry_from(HaDeferred d) {
   return c;
 }
 
+// The counter stripe of a call: neighbouring pixels (the lanes of one SIMD
+// group) add to different cache lines; the host sums the stripes.
+uint ha_counter_stripe(uvec2 p) { return (p.x + p.y * 5u) & (HA_COUNTER_STRIPES - 1u); }
+
 // Ends a call (or one resumption of it): a call cut short is deferred and
 // returns HA_PENDING (its outcome is counted when the resume pass ends it);
-// any other outcome is tallied once.
-uint ha_end_call(HaCarry c, uint outcome) {
+// any other outcome is tallied once, in the stripe of `pixel`.
+uint ha_end_call(uvec2 pixel, HaCarry c, uint outcome) {
+  uint base = ha_counter_stripe(pixel) * HA_COUNTER_STRIDE;
   if (ha_count_writes != 0u && ha_call_writes != 0u)
-    atomicAdd(ha_counters[HA_COUNTER_SLOT_WRITES * HA_COUNTER_STRIDE], ha_call_writes);
+    atomicAdd(ha_counters[base + HA_COUNTER_SLOT_WRITES], ha_call_writes);
   if (outcome == HA_CUT) {
     ha_defer(c);
     return HA_PENDING;
   }
-  atomicAdd(ha_counters[outcome * HA_COUNTER_STRIDE], 1u);
+  atomicAdd(ha_counters[base + outcome], 1u);
   return outcome;
 }
 
@@ -93,7 +98,7 @@ uint ha_insert(uvec2 pixel, float depth, uint rgba) {
       outcome = ha_insert_run(c);
     }
   }
-  return ha_end_call(c, outcome);
+  return ha_end_call(pixel, c, outcome);
 }
 
 // Depth-only form (L32 records carry no payload).

@@ -17,5 +17,5 @@ void main() {
   if (i >= ha_resume_count) return;
   HaCarry c = ha_carry_from(ha_resume[i]);
   ha_call_writes = 0u;
-  ha_end_call(c, ha_insert_run(c));
+  ha_end_call(c.p, c, ha_insert_run(c));
 }
