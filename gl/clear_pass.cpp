@@ -23,7 +23,7 @@ ClearPass::~ClearPass() {
   glDeleteFramebuffers(1, &framebuffer_);
 }
 
-ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, bool finish) {
+ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, bool finish, unsigned result_buffer) {
   GLint max_w = 0, max_h = 0, viewport[2] = {};
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_w);
   glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_h);
@@ -53,8 +53,15 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   glEndQuery(GL_SAMPLES_PASSED);
   // Later passes and read-backs see the zeroed slots.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  if (result_buffer != 0) {
+    // The GPU writes the result when it has it; nobody waits (the caller's
+    // guard restores the host's query-buffer binding).
+    glBindBuffer(GL_QUERY_BUFFER, result_buffer);
+    glGetQueryObjectui64v(query_, GL_QUERY_RESULT, nullptr);
+    glBindBuffer(GL_QUERY_BUFFER, 0);
+  }
   const auto [wall, gpu] = clock.stop(finish);
-  return {query_result(query_), wall, gpu};
+  return {result_buffer != 0 ? 0 : query_result(query_), wall, gpu};
 }
 
 }  // namespace habuffer::gl

@@ -27,7 +27,9 @@ class ClearPass {
   };
   // Needs the buffers bound and the caller's state guard; `tile` 0: the limits.
   // writes false: count only. finish: wait for the pass before stopping the clock.
-  Result run(Extent table, std::uint32_t tile, bool writes, bool finish);
+  // result_buffer non-zero: the count is written there (8 bytes at offset 0)
+  // when the GPU has it, without waiting, and Result::stored is 0.
+  Result run(Extent table, std::uint32_t tile, bool writes, bool finish, unsigned result_buffer = 0);
 
  private:
   ShaderProgram program_;

@@ -71,14 +71,14 @@ BufferConfig validated(BufferConfig c) {
 }  // namespace
 
 struct GlHaBuffer::Gpu {
-  GLuint table = 0, locks = 0, max_age = 0, offsets = 0, counters = 0, capture = 0, params = 0;
+  GLuint table = 0, locks = 0, max_age = 0, offsets = 0, counters = 0, capture = 0, params = 0, count = 0;
   GLuint deferred[2] = {0, 0};  // ping-pong: the calls a round resumes, the calls it defers again
   std::unique_ptr<ClearPass> clear;
   std::unique_ptr<ResolvePass> resolve;
   std::unique_ptr<ShaderProgram> resume;
   GpuTimer gather_timer;
   ~Gpu() {
-    for (GLuint* b : {&table, &locks, &max_age, &offsets, &counters, &capture, &params, &deferred[0], &deferred[1]})
+    for (GLuint* b : {&table, &locks, &max_age, &offsets, &counters, &capture, &params, &count, &deferred[0], &deferred[1]})
       delete_buffer(*b);
   }
 };
@@ -119,6 +119,7 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
   gpu_->max_age = create_buffer(std::uint64_t{cells_} * 4);
   gpu_->counters = create_buffer(kCounterWords * 4);
   gpu_->params = create_buffer(sizeof(GlParams));
+  gpu_->count = create_buffer(sizeof(std::uint64_t));
   gpu_->capture = create_buffer(kCaptureHeaderBytes);
   if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
   grow_deferred(std::max<std::uint64_t>(options_.deferred_capacity, 1));
@@ -233,9 +234,10 @@ void GlHaBuffer::bind() const {
   glBindBufferBase(GL_UNIFORM_BUFFER, bindings_.params, gpu_->params);
 }
 
-std::uint64_t GlHaBuffer::clear_pass(bool writes, PassTiming* timing) {
+std::uint64_t GlHaBuffer::clear_pass(bool writes, PassTiming* timing, bool later) {
   bind();
-  const ClearPass::Result r = gpu_->clear->run(config_.table, options_.clear_tile, writes, options_.finish_timing);
+  const ClearPass::Result r =
+      gpu_->clear->run(config_.table, options_.clear_tile, writes, options_.finish_timing, later ? gpu_->count : 0);
   if (timing != nullptr) *timing = {r.wall_ms, r.gpu_ms};
   check_gl_errors("the clear pass");
   return r.stored;
@@ -258,13 +260,22 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather, const std::fu
   FrameReport report;
   report.index = frames_++;
   if (holds_frame_) {
+    // The count the previous frame's clear pass left in the query buffer (the
+    // GPU wrote it a frame ago: reading it does not stall), then this frame's
+    // clear pass, whose count will be read next frame.
+    if (pending_count_table_) {
+      report.counted_stored = read_pending_count();
+      report.counted_table = *pending_count_table_;
+    }
     {
       const GlStateGuard clear_guard(bindings_);  // the gather gets the host's state back
-      report.previous_stored = clear_pass(true, &report.clear);
+      clear_pass(true, &report.clear, true);
     }
+    pending_count_table_ = config_.table;
+    report.cleared = true;
     holds_frame_ = false;
-    if (options_.adaptive) {
-      const Extent next = options_.policy.next(config_.table, config_.screen, *report.previous_stored);
+    if (options_.adaptive && report.counted_stored && report.counted_table == config_.table) {
+      const Extent next = options_.policy.next(config_.table, config_.screen, *report.counted_stored);
       if (next != config_.table) {
         if (table_limit(next).empty()) {
           allocate_table(next);
@@ -426,6 +437,12 @@ std::uint64_t GlHaBuffer::read_capture_count() const {
   return count;
 }
 
+std::uint64_t GlHaBuffer::read_pending_count() const {
+  std::uint64_t count = 0;
+  glGetNamedBufferSubData(gpu_->count, 0, sizeof count, &count);
+  return count;
+}
+
 std::uint64_t GlHaBuffer::read_deferred_count(int which) const {
   std::uint32_t count = 0;
   glGetNamedBufferSubData(gpu_->deferred[which], 0, 4, &count);
@@ -458,7 +475,8 @@ std::vector<Fragment> GlHaBuffer::read_capture() const {
 std::uint64_t GlHaBuffer::memory_bytes() const {
   const std::uint64_t slots = config_.table.area();
   std::uint64_t bytes = slots * config_.record_layout().word_bytes() + std::uint64_t{cells_} * 4 +
-                        offsets_.size() * sizeof(glm::uvec2) + kCounterWords * 4 + sizeof(GlParams);
+                        offsets_.size() * sizeof(glm::uvec2) + kCounterWords * 4 + sizeof(GlParams) +
+                        sizeof(std::uint64_t);
   if (mode_ == AtomicMode::Emulated64) bytes += slots * 4;
   if (capture_capacity_ > 0) bytes += kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment);
   bytes += 2 * (kDeferredHeaderBytes + deferred_capacity_ * kDeferredCallBytes);

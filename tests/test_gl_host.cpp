@@ -137,10 +137,13 @@ TEST(GlHost, EveryPassRestoresTheStateOfTheHostsOwnContext) {
     const auto f = test::stream(c.screen, StreamKind::Coherent, 500, 1);
     inserter.insert(f);
     EXPECT_TRUE(host_state() == before);
-    const gl::FrameReport second = inserter.insert(f);  // with the clear pass
+    const gl::FrameReport second = inserter.insert(f);  // with the clear pass, its count into our query buffer
     EXPECT_TRUE(host_state() == before);
-    ASSERT_TRUE(second.previous_stored.has_value());
-    EXPECT_EQ(*second.previous_stored, second.counters.stored());  // the query result came back to memory
+    EXPECT_TRUE(second.cleared);
+    const gl::FrameReport third = inserter.insert(f);  // reads that count
+    EXPECT_TRUE(host_state() == before);
+    ASSERT_TRUE(third.counted_stored.has_value());
+    EXPECT_EQ(*third.counted_stored, second.counters.stored());  // the query result came back through our buffer
     // The gather runs in the host's state, not the clear pass's.
     HostState seen{};
     gpu.frame([&] { seen = host_state(); });

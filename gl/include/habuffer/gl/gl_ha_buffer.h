@@ -1,8 +1,9 @@
 // The HA-buffer on the GPU: its table, max-age table and offsets in shader
 // storage buffers, and the paper's per-frame machinery around a host's gather
 // pass: the clear pass that counts the previous frame's records under an
-// occlusion query, adaptive sizing of SPEC 8 from that count (one frame of
-// latency, offsets regenerated for every new size), the in-frame outcome
+// occlusion query into a query buffer, adaptive sizing of SPEC 8 from that
+// count read one frame later without a stall (offsets regenerated for every
+// new size), the in-frame outcome
 // tallies, lossless regathering, the capture mode, the resolve pass, and
 // GPU timers. Works in whatever OpenGL 4.5 core context is current (it never
 // creates or assumes one) and restores the GL state it touches.
@@ -74,9 +75,17 @@ struct FrameReport {
   std::uint64_t index = 0;  // frames since construction
   Extent table;             // the table this frame was gathered into
   bool resized = false;     // adaptive sizing changed the table before the gather
-  // The previous frame's stored-record count from the clear pass's occlusion
-  // query (none on the first frame), which drove the adaptive decision.
-  std::optional<std::uint64_t> previous_stored;
+  // Whether this frame began with the clear pass (every frame after one that
+  // gathered); its occlusion count goes to a query buffer and is read at the
+  // next frame's start, one frame late, without a stall (SPEC 8).
+  bool cleared = false;
+  // The count read at this frame's start: the records the previous frame's
+  // clear pass found (those of the frame before it), in `counted_table`;
+  // none on the first two frames. Adaptive sizing decides from it when
+  // counted_table is still the table (a table resized since then is not
+  // judged by a count it did not hold).
+  std::optional<std::uint64_t> counted_stored;
+  Extent counted_table;
   Counters counters;                   // of the final gather
   std::vector<BuildAttempt> attempts;  // every gather of lossless mode, in order
   // Insert calls cut short by something other than the table (an emulated64
@@ -163,7 +172,10 @@ class GlHaBuffer {
   void reset_frame_state() const;
   void grow_capture(std::uint64_t needed);
   void grow_deferred(std::uint64_t needed);
-  std::uint64_t clear_pass(bool writes, PassTiming* timing);
+  // The clear pass; with `later`, its count goes to the query buffer (read
+  // by read_pending_count() next frame) and the return value is 0.
+  std::uint64_t clear_pass(bool writes, PassTiming* timing, bool later = false);
+  [[nodiscard]] std::uint64_t read_pending_count() const;
   // The six outcome tallies and the slot writes.
   [[nodiscard]] std::pair<Counters, std::uint64_t> read_counters() const;
   // Resume rounds while deferred calls remain (at most resume_rounds): returns
@@ -188,6 +200,7 @@ class GlHaBuffer {
   bool deferred_overflow_ = false;  // the last gather deferred more calls than the buffer held
   std::uint64_t frames_ = 0;
   bool holds_frame_ = false;  // the table holds a gathered frame the next clear pass must count
+  std::optional<Extent> pending_count_table_;  // the table a count in the query buffer was measured in
   std::unique_ptr<Gpu> gpu_;
 };
 
