@@ -232,12 +232,7 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
   Counters total;
   std::uint64_t rejected = 0;
   for (const FrameStats& f : r.frames) {
-    total.fragments += f.counters.fragments;
-    total.invalid += f.counters.invalid;
-    total.duplicates += f.counters.duplicates;
-    total.culled += f.counters.culled;
-    total.failed_age += f.counters.failed_age;
-    total.failed_iter += f.counters.failed_iter;
+    total += f.counters;
     rejected += f.opaque_rejected;
   }
   if (total.fragments + rejected == 0)
