@@ -222,6 +222,12 @@ void GlHaBuffer::reset_frame_state() const {
 }
 
 void GlHaBuffer::bind() const {
+  // glBindBufferBase also sets the generic binding of its target: keep the
+  // host's, so a host that updates "its" GL_UNIFORM_BUFFER or
+  // GL_SHADER_STORAGE_BUFFER inside the gather writes its own buffer.
+  GLint storage_generic = 0, uniform_generic = 0;
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_generic);
+  glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_generic);
   const std::array<std::pair<unsigned, GLuint>, 7> storage{{{bindings_.table, gpu_->table},
                                                             {bindings_.max_age, gpu_->max_age},
                                                             {bindings_.offsets, gpu_->offsets},
@@ -232,6 +238,8 @@ void GlHaBuffer::bind() const {
   for (const auto& [point, buffer] : storage)
     if (buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buffer);
   glBindBufferBase(GL_UNIFORM_BUFFER, bindings_.params, gpu_->params);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(storage_generic));
+  glBindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(uniform_generic));
 }
 
 std::uint64_t GlHaBuffer::clear_pass(bool writes, PassTiming* timing, bool later) {

@@ -173,5 +173,52 @@ TEST(GlHost, EveryPassRestoresTheStateOfTheHostsOwnContext) {
   glDeleteBuffers(2, buffers);
 }
 
+// Inside the gather the host's generic GL_UNIFORM_BUFFER and
+// GL_SHADER_STORAGE_BUFFER bindings are its own: a host updating "its" UBO
+// and SSBO there writes its buffers, never our parameter block or table
+// (which would make every fragment invalid, with no error).
+TEST(GlHost, TheGatherSeesTheHostsOwnGenericBufferBindings) {
+  HostContext host;
+  GLuint host_ubo = 0, host_ssbo = 0;
+  glCreateBuffers(1, &host_ubo);
+  glCreateBuffers(1, &host_ssbo);
+  glNamedBufferData(host_ubo, 256, nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(host_ssbo, 256, nullptr, GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_UNIFORM_BUFFER, host_ubo);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, host_ssbo);
+  for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info())) {
+    SCOPED_TRACE(gl::to_string(mode));
+    const BufferConfig c = test::config({24, 24}, {30, 30}, test::layout_of(mode), 6);
+    gl::GlHaBuffer gpu(c, test::random_offsets(2), mode);
+    gl::ComputeInserter inserter(gpu);
+    const auto f = test::stream(c.screen, StreamKind::Coherent, 500, 3);
+    inserter.upload(f);
+    const std::vector<std::uint32_t> garbage(64, 0xDEADBEEFu);
+    GLint seen_ubo = 0, seen_ssbo = 0;
+    const gl::FrameReport r = gpu.frame(
+        [&] {
+          glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &seen_ubo);
+          glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &seen_ssbo);
+          glBufferSubData(GL_UNIFORM_BUFFER, 0, 256, garbage.data());
+          glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, 256, garbage.data());
+          inserter.dispatch();
+        },
+        [&] { return std::uint64_t{f.size()}; });
+    EXPECT_EQ(static_cast<GLuint>(seen_ubo), host_ubo);
+    EXPECT_EQ(static_cast<GLuint>(seen_ssbo), host_ssbo);
+    std::uint32_t first = 0;
+    glGetNamedBufferSubData(host_ubo, 0, 4, &first);
+    EXPECT_EQ(first, 0xDEADBEEFu);
+    glGetNamedBufferSubData(host_ssbo, 0, 4, &first);
+    EXPECT_EQ(first, 0xDEADBEEFu);
+    const HaBuffer cpu = test::cpu_twin(gpu, f);
+    EXPECT_EQ(r.counters.invalid, 0u);
+    EXPECT_EQ(r.counters.stored(), cpu.count_stored());
+    EXPECT_EQ(gpu.read_table(), test::table_words(cpu));
+  }
+  glDeleteBuffers(1, &host_ubo);
+  glDeleteBuffers(1, &host_ssbo);
+}
+
 }  // namespace
 }  // namespace habuffer

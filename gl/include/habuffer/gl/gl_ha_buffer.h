@@ -135,8 +135,10 @@ class GlHaBuffer {
   // Throws std::invalid_argument or GlError (beyond the context's limits).
   void resize(Extent table);
 
-  // Binds our buffers to their points (frame() does this around the gather;
-  // a host binding them itself restores its own state afterwards).
+  // Binds our buffers to their points, leaving the generic
+  // GL_SHADER_STORAGE_BUFFER and GL_UNIFORM_BUFFER bindings as they were
+  // (frame() does this around the gather; a host binding them itself
+  // restores its own indexed bindings afterwards).
   void bind() const;
 
   // One frame around `gather`, which draws or dispatches shaders calling
