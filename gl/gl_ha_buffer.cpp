@@ -166,6 +166,7 @@ void GlHaBuffer::allocate_table(Extent table, bool new_offsets) {
   }
   gpu_->offsets = create_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
   holds_frame_ = false;
+  pending_count_table_.reset();  // a count in flight belongs to a table no longer in use
   write_params();
 }
 
@@ -396,7 +397,9 @@ std::uint64_t GlHaBuffer::resume_deferred(FrameReport& report) {
   }
   // Every round ends at least one call per contended slot (a lock's holder
   // always completes its probe), so the rounds shrink the set; the bound
-  // only guards against a driver that cuts every call at once.
+  // only guards against a driver that cuts every call at once. Our buffers
+  // again at our points: the host's gather may have bound its own there.
+  if (count > 0) bind();
   while (count > 0 && report.resume_rounds < options_.resume_rounds) {
     report.deferred += count;
     const int out = 1 - in;

@@ -32,6 +32,9 @@ int run_generate(const std::vector<std::string>& argv) {
   files.output("--out", out);
   check_files(files);
   o.min_side = args.u32("min-side", o.min_side, 1);
+  if (!args.has("max-side") && o.max_side < o.min_side)
+    throw UsageError("option --min-side: " + std::to_string(o.min_side) + " is above the default --max-side " +
+                     std::to_string(o.max_side) + ": give --max-side too");
   o.max_side = args.u32("max-side", o.max_side, o.min_side);
   if (args.has("fragments") == args.has("load")) throw UsageError("give exactly one of --fragments and --load");
   if (args.has("fragments")) {

@@ -98,11 +98,12 @@ void check_render_files(const Args& args, const RenderSettings& s, const std::ve
 SceneOptions parse_scene_options(const Args& args) {
   SceneOptions o;
   o.opacity = args.f32("opacity", 0.5f);
-  // Records carry alpha as a byte, round(255 a): below 1/510 it would be 0.
-  constexpr float kSmallestOpacity = 1.0f / 510.0f;
+  // Records carry alpha as a byte, round(255 a): at 1/510 and below it may be
+  // 0 (255 a is then at most one half, and GLSL may round halves down).
+  const float kSmallestOpacity = std::nextafter(1.0f / 510.0f, 1.0f);
   if (!(o.opacity >= kSmallestOpacity && o.opacity <= 1.0f))
     throw UsageError("option --opacity: must be in (0, 1], at least " + shortest(kSmallestOpacity) +
-                     " (1/510: smaller rounds to alpha 0 in the 8-bit record)");
+                     " (just above 1/510: smaller rounds to alpha 0 in the 8-bit record)");
   o.seed = args.u64("scene-seed", 1);
   o.count = args.u32("count", 0, 1, 1u << 20);
   o.spread = args.f32("spread", 1.0f);

@@ -17,5 +17,8 @@ void main() {
   if (i >= ha_resume_count) return;
   HaCarry c = ha_carry_from(ha_resume[i]);
   ha_call_writes = 0u;
-  ha_end_call(c.p, c, ha_insert_run(c));
+  // Two statements: arguments are evaluated left to right, so one call would
+  // pass the carry as it was before the run.
+  uint outcome = ha_insert_run(c);
+  ha_end_call(c.p, c, outcome);
 }
