@@ -333,5 +333,38 @@ TEST(Gl, Emulated64LockKeepsEverySlotWriteUnderStress) {
   }
 }
 
+// Calls cut again and again after progress: with one lock attempt allowed,
+// the stress stream's calls are deferred, resumed, evict, carry on and are
+// cut once more, over several resume rounds; each resumption continues from
+// the carry it reached, so the table is still the CPU path's. (Mesa's GLSL
+// front end reads a call's `in` arguments after an `inout` argument's call,
+// so passing `c` and ha_insert_run(c) in one call passes here; the resume
+// pass keeps two statements for drivers that follow the spec's order.)
+TEST(Gl, CallsCutRepeatedlyResumeFromTheStateTheyReached) {
+  gl_context();
+  if (!has_emulated64()) GTEST_SKIP() << "no 64-bit shader types";
+  const BufferConfig c = test::config({2, 2}, {32, 32}, Layout::L64, 8);
+  SplitMix64 rng(23);
+  gl::GlFrameOptions tight;
+  tight.lock_spin_limit = 1;
+  std::uint32_t most_rounds = 0;
+  for (int round = 0; round < 10; ++round) {
+    std::vector<Fragment> f;
+    for (std::uint32_t i = 0; i < 800; ++i)
+      f.push_back({static_cast<std::uint32_t>(rng.below(2)), static_cast<std::uint32_t>(rng.below(2)),
+                   static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f, static_cast<std::uint32_t>(rng.next())});
+    gl::GlHaBuffer gpu(c, test::random_offsets(50 + round), gl::AtomicMode::Emulated64, tight);
+    const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
+    HaBuffer cpu = test::cpu_twin(gpu, {});
+    const Counters want = cpu.insert(f, {});
+    ASSERT_EQ(gpu.read_table(), test::table_words(cpu)) << "round " << round;
+    EXPECT_EQ(r.counters.stored(), want.stored()) << "round " << round;
+    EXPECT_EQ(r.counters.failed_iter, 0u) << "round " << round;
+    EXPECT_EQ(gpu.count_stored(), want.stored()) << "round " << round;
+    most_rounds = std::max(most_rounds, r.resume_rounds);
+  }
+  EXPECT_GE(most_rounds, 2u) << "calls should be cut again in the resume pass";
+}
+
 }  // namespace
 }  // namespace habuffer
