@@ -1,6 +1,7 @@
 #include "habuffer/file_roles.h"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -34,6 +35,23 @@ Identity identify(const std::string& path) {
   return id;
 }
 
+// Why `path` cannot be written, or empty: an existing file must be
+// writable; a new one needs a writable parent directory (or, when the writer
+// creates parents, a writable nearest existing ancestor).
+std::string unwritable(const std::string& path, bool creates_parents) {
+  std::error_code ec;
+  if (fs::exists(path, ec)) return ::access(path.c_str(), W_OK) == 0 ? "" : "is not writable";
+  fs::path dir = fs::absolute(path, ec).parent_path();
+  if (!fs::is_directory(dir, ec)) {
+    if (!creates_parents) return "cannot be created: directory " + printable(dir.string()) + " does not exist";
+    while (!dir.empty() && dir != dir.root_path() && !fs::exists(dir, ec)) dir = dir.parent_path();
+    if (!fs::is_directory(dir, ec)) return "cannot be created: " + printable(dir.string()) + " is not a directory";
+  }
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    return "cannot be created: directory " + printable(dir.string()) + " is not writable";
+  return {};
+}
+
 bool same_file(const Identity& a, const Identity& b) {
   if (a.inode && b.inode) return *a.inode == *b.inode;
   return a.resolved == b.resolved;
@@ -46,8 +64,8 @@ FileRoles& FileRoles::input(std::string_view role, const std::string& path) {
   return *this;
 }
 
-FileRoles& FileRoles::output(std::string_view role, const std::string& path) {
-  entries_.push_back({std::string(role), path, true});
+FileRoles& FileRoles::output(std::string_view role, const std::string& path, bool creates_parents) {
+  entries_.push_back({std::string(role), path, true, creates_parents});
   return *this;
 }
 
@@ -58,6 +76,9 @@ void FileRoles::check() const {
     if (e.output && e.path.empty()) throw FileConflict(e.role + ": empty file name");
     if (e.output && fs::is_directory(e.path))
       throw FileConflict(e.role + ": " + printable(e.path) + " is a directory, not a file to write");
+    if (e.output)
+      if (const std::string why = unwritable(e.path, e.creates_parents); !why.empty())
+        throw FileConflict(e.role + ": " + printable(e.path) + " " + why);
     ids.push_back(identify(e.path));
   }
   for (std::size_t i = 0; i < entries_.size(); ++i)

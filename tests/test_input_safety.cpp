@@ -99,6 +99,23 @@ TEST_F(InputSafety, EmptyOrDirectoryOutputsAreRefused) {
   EXPECT_NE(conflict(directory).find("is a directory"), std::string::npos);
 }
 
+TEST_F(InputSafety, OutputsThatCannotBeWrittenAreRefusedBeforeAnyWork) {
+  FileRoles missing_dir;
+  missing_dir.output("--out", path("nodir/lists.csv"));
+  EXPECT_NE(conflict(missing_dir).find("--out: " + path("nodir/lists.csv") + " cannot be created: directory"),
+            std::string::npos);
+  FileRoles image;  // image writers create their directories
+  image.output("--out", path("new/deeper/image.png"), true);
+  EXPECT_EQ(conflict(image), "");
+  const std::string file = write("plain.csv", "");
+  FileRoles under_a_file;
+  under_a_file.output("--heatmap depth", file + "/x.png", true);
+  EXPECT_NE(conflict(under_a_file).find("is not a directory"), std::string::npos) << conflict(under_a_file);
+  FileRoles fine;
+  fine.output("--out", path("lists.csv")).output("--stats", file);
+  EXPECT_EQ(conflict(fine), "");
+}
+
 TEST_F(InputSafety, OnlyRegularFilesAndPipesAreRead) {
   EXPECT_NE(data_error([] { check_input_file("/dev/zero", "CSV file"); }).find("is a device"), std::string::npos);
   EXPECT_NE(data_error([&] { check_input_file(dir_.string(), "CSV file"); }).find("is a directory"), std::string::npos);

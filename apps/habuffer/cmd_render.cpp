@@ -89,9 +89,10 @@ void check_render_files(const Args& args, const RenderSettings& s, const std::ve
   if (args.has("fragments")) files.input("--fragments", args.required("fragments"));
   if (args.has("scene") && !is_scene_name(args.required("scene"))) files.input("--scene", args.required("scene"));
   if (s.offsets.generator == OffsetGenerator::List) files.input("--offsets", args.required("offsets"));
-  for (const char* o : {"out", "stats", "reference"})
-    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
-  for (const HeatmapRequest& h : heatmaps) files.output("--heatmap " + h.kind, h.path);
+  for (const char* image : {"out", "reference"})  // images: their directories are created
+    if (args.has(image)) files.output(std::string("--") + image, args.required(image), true);
+  if (args.has("stats")) files.output("--stats", args.required("stats"));
+  for (const HeatmapRequest& h : heatmaps) files.output("--heatmap " + h.kind, h.path, true);
   check_files(files);
 }
 

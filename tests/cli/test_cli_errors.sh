@@ -54,7 +54,7 @@ expect 1 "offscreen.csv:3: field y: 5 outside screen 2x2" -- build-lists --in of
 expect 1 "baddepth.csv:2: field depth: 'half' is not a number" -- build-lists --in baddepth.csv --out l.csv --screen 2x2
 expect 1 "short_offsets.csv: offsets: 2 rows given, 15 needed" -- build-lists --in good.csv --out l.csv --screen 2x2 --table 4x4 --age-bits 4 --offsets short_offsets.csv
 expect 1 "dup_offsets.csv: offsets row 2 (age 2): duplicate offset (0,0)" -- build-lists --in good.csv --out l.csv --screen 2x2 --table 4x4 --age-bits 4 --offsets dup_offsets.csv
-expect 1 "cannot open for writing" -- build-lists --in good.csv --out /nonexistent/dir/l.csv --screen 2x2
+expect 2 "--out: /nonexistent/dir/l.csv cannot be created: directory /nonexistent/dir does not exist" -- build-lists --in good.csv --out /nonexistent/dir/l.csv --screen 2x2
 expect 2 "give exactly one of --fragments and --load" -- generate --screen 4x4 --out f.csv
 expect 2 "more than 2^28 slots" -- offsets --table 20000x20000 --generator farthest
 

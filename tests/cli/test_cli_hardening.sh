@@ -96,6 +96,11 @@ expect files 2 "is a directory" -- build-lists --in in.csv --screen 4x4 --out su
 expect files 2 "(two outputs)" -- demo --screen 16x16 --lists F --stats F
 expect files 2 "is the same file as --offsets" -- demo --screen 4x4 --table 4x4 --age-bits 4 --offsets off.csv --stats off.csv
 expect files 2 "(two outputs)" -- offsets --table 8x8 --out o.csv --quality o.csv
+expect files 2 "cannot be created: directory" -- "${B[@]}" --in in.csv --out l.csv --stats nodir/s.json
+expect files 2 "cannot be created: directory" -- render --scene quads --size 8x8 --out q.png --stats nodir/s.json
+expect files 2 "is not a directory" -- render --scene quads --size 8x8 --out in.csv/q.png
+expect files 0 "" -- render --scene quads --size 8x8 --out newdir/deeper/q.png --quiet
+[[ -s newdir/deeper/q.png ]] && ok files || bad files "render did not create the image's directories"
 expect files 0 "" -- "${B[@]}" --in in.csv --out /dev/null --stats /dev/null
 unchanged files in.csv "$sum_in"
 

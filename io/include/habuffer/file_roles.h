@@ -1,8 +1,10 @@
 // The files one command reads and writes, checked before any work is done:
 // an input must be a readable regular file or a pipe; no output may be one of
-// the inputs, and no two outputs may be the same file. Paths are compared
-// resolved (symbolic links, "..", relative to the working directory) and,
-// where the file exists, by device and inode (hard links).
+// the inputs, and no two outputs may be the same file; every output must be
+// writable where it is (a typo in a directory fails at once, not after hours
+// of work). Paths are compared resolved (symbolic links, "..", relative to
+// the working directory) and, where the file exists, by device and inode
+// (hard links).
 #pragma once
 
 #include <stdexcept>
@@ -23,15 +25,19 @@ class FileRoles {
  public:
   // `role` names the option ("--in", "--heatmap depth") in messages.
   FileRoles& input(std::string_view role, const std::string& path);
-  FileRoles& output(std::string_view role, const std::string& path);
+  // creates_parents: the writer makes missing parent directories (images);
+  // otherwise the parent directory must exist.
+  FileRoles& output(std::string_view role, const std::string& path, bool creates_parents = false);
   // Throws FileConflict for an output equal to an input or to another
-  // output, an empty output name or an output that is a directory.
+  // output, an empty output name, an output that is a directory, or one that
+  // cannot be written (a missing or read-only directory, a read-only file).
   void check() const;
 
  private:
   struct Entry {
     std::string role, path;
     bool output;
+    bool creates_parents = false;
   };
   std::vector<Entry> entries_;
 };
