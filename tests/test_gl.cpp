@@ -308,6 +308,24 @@ TEST(Gl, DeferredCallsBeyondTheBufferGrowItAndGatherAgain) {
   EXPECT_EQ(gpu.read_table(), test::table_words(test::cpu_twin(gpu, f)));
 }
 
+// 800 fragments on the four pixels of a 2x2 screen, random depths and colours.
+std::vector<Fragment> four_pixel_stream(SplitMix64& rng) {
+  std::vector<Fragment> f;
+  for (std::uint32_t i = 0; i < 800; ++i)
+    f.push_back({static_cast<std::uint32_t>(rng.below(2)), static_cast<std::uint32_t>(rng.below(2)),
+                 static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f, static_cast<std::uint32_t>(rng.next())});
+  return f;
+}
+
+// The GPU built the CPU path's table and stored count, with nothing failed.
+void expect_cpu_table(const gl::GlHaBuffer& gpu, const gl::FrameReport& r, const std::vector<Fragment>& f, int round) {
+  HaBuffer cpu = test::cpu_twin(gpu, {});
+  const Counters want = cpu.insert(f, {});
+  ASSERT_EQ(gpu.read_table(), test::table_words(cpu)) << "round " << round;
+  EXPECT_EQ(r.counters.stored(), want.stored()) << "round " << round;
+  EXPECT_EQ(r.counters.failed_iter, 0u) << "round " << round;
+}
+
 // The lock's critical section under stress: four pixels with about 200
 // fragments each in a 32x32 table, so every call walks and rewrites the same
 // few sorted lists (Robin Hood evictions) while llvmpipe's threads contend,
@@ -319,17 +337,10 @@ TEST(Gl, Emulated64LockKeepsEverySlotWriteUnderStress) {
   const BufferConfig c = test::config({2, 2}, {32, 32}, Layout::L64, 8);
   SplitMix64 rng(21);
   for (int round = 0; round < 40; ++round) {
-    std::vector<Fragment> f;
-    for (std::uint32_t i = 0; i < 800; ++i)
-      f.push_back({static_cast<std::uint32_t>(rng.below(2)), static_cast<std::uint32_t>(rng.below(2)),
-                   static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f, static_cast<std::uint32_t>(rng.next())});
+    const std::vector<Fragment> f = four_pixel_stream(rng);
     gl::GlHaBuffer gpu(c, test::random_offsets(5 + round), gl::AtomicMode::Emulated64);
     const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
-    HaBuffer cpu = test::cpu_twin(gpu, {});
-    const Counters want = cpu.insert(f, {});
-    ASSERT_EQ(gpu.read_table(), test::table_words(cpu)) << "round " << round;
-    EXPECT_EQ(r.counters.stored(), want.stored()) << "round " << round;
-    EXPECT_EQ(r.counters.failed_iter, 0u) << "round " << round;
+    ASSERT_NO_FATAL_FAILURE(expect_cpu_table(gpu, r, f, round));
   }
 }
 
@@ -349,18 +360,11 @@ TEST(Gl, CallsCutRepeatedlyResumeFromTheStateTheyReached) {
   tight.lock_spin_limit = 1;
   std::uint32_t most_rounds = 0;
   for (int round = 0; round < 10; ++round) {
-    std::vector<Fragment> f;
-    for (std::uint32_t i = 0; i < 800; ++i)
-      f.push_back({static_cast<std::uint32_t>(rng.below(2)), static_cast<std::uint32_t>(rng.below(2)),
-                   static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f, static_cast<std::uint32_t>(rng.next())});
+    const std::vector<Fragment> f = four_pixel_stream(rng);
     gl::GlHaBuffer gpu(c, test::random_offsets(50 + round), gl::AtomicMode::Emulated64, tight);
     const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
-    HaBuffer cpu = test::cpu_twin(gpu, {});
-    const Counters want = cpu.insert(f, {});
-    ASSERT_EQ(gpu.read_table(), test::table_words(cpu)) << "round " << round;
-    EXPECT_EQ(r.counters.stored(), want.stored()) << "round " << round;
-    EXPECT_EQ(r.counters.failed_iter, 0u) << "round " << round;
-    EXPECT_EQ(gpu.count_stored(), want.stored()) << "round " << round;
+    ASSERT_NO_FATAL_FAILURE(expect_cpu_table(gpu, r, f, round));
+    EXPECT_EQ(gpu.count_stored(), r.counters.stored()) << "round " << round;
     most_rounds = std::max(most_rounds, r.resume_rounds);
   }
   EXPECT_GE(most_rounds, 2u) << "calls should be cut again in the resume pass";
