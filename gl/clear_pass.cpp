@@ -9,9 +9,8 @@
 
 namespace habuffer::gl {
 
-ClearPass::ClearPass(const std::string& module)
-    : program_(ShaderProgram::graphics(std::string("#version 450 core\n") + kFullScreenVertex,
-                                       module + kClearPassFragment, "clear pass")) {
+ClearPass::ClearPass(AtomicMode mode, const GlBindings& bindings)
+    : program_(ShaderProgram::graphics(full_screen_vertex(), clear_pass_fragment(mode, bindings), "clear pass")) {
   glCreateFramebuffers(1, &framebuffer_);
   glCreateVertexArrays(1, &vertex_array_);
   glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);

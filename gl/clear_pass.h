@@ -9,14 +9,16 @@
 
 #include "gpu_timer.h"
 #include "habuffer/extent.h"
+#include "habuffer/gl/gl_bindings.h"
+#include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shader_program.h"
 
 namespace habuffer::gl {
 
 class ClearPass {
  public:
-  // `module`: the HA-buffer module (fragment stage) the pass appends to.
-  explicit ClearPass(const std::string& module);
+  // Compiles the pass for the buffer's atomic mode and binding points.
+  ClearPass(AtomicMode mode, const GlBindings& bindings);
   ~ClearPass();
   ClearPass(const ClearPass&) = delete;
   ClearPass& operator=(const ClearPass&) = delete;

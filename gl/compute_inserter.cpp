@@ -13,7 +13,7 @@ namespace habuffer::gl {
 
 ComputeInserter::ComputeInserter(GlHaBuffer& buffer, std::size_t max_chunk)
     : buffer_(buffer),
-      program_(ShaderProgram::compute(buffer.module_source(ShaderStage::Compute) + kInsertStreamCompute,
+      program_(ShaderProgram::compute(insert_stream_compute(buffer.mode(), buffer.bindings()),
                                       "insert compute shader")),
       max_chunk_(max_chunk) {}
 

@@ -40,8 +40,7 @@ static_assert(sizeof(GlParams) == 64);
 
 constexpr std::uint64_t kCounterWords = HA_COUNTER_STRIPES * HA_COUNTER_STRIDE;
 static_assert(HA_GPU_COUNTER_COUNT <= HA_COUNTER_STRIDE, "a stripe's counters fit its cache line");
-constexpr std::uint64_t kCaptureHeaderBytes = HA_CAPTURE_HEADER_WORDS * 4;
-constexpr std::uint64_t kDeferredHeaderBytes = HA_DEFERRED_HEADER_WORDS * 4;
+constexpr std::uint64_t kAppendHeaderBytes = HA_APPEND_HEADER_WORDS * 4;
 constexpr std::uint64_t kDeferredCallBytes = 32;  // std430 HaDeferred of ha_entry.glsl
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
 
@@ -120,14 +119,14 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
   gpu_->counters = create_buffer(kCounterWords * 4);
   gpu_->params = create_buffer(sizeof(GlParams));
   gpu_->count = create_buffer(sizeof(std::uint64_t));
-  gpu_->capture = create_buffer(kCaptureHeaderBytes);
+  gpu_->capture = create_buffer(kAppendHeaderBytes);
   if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
   grow_deferred(std::max<std::uint64_t>(options_.deferred_capacity, 1));
   allocate_table(config_.table, false);
   reset_frame_state();
   // Compile the passes now, so the first frame's timings measure the passes, not the compiler.
-  gpu_->clear = std::make_unique<ClearPass>(module_source(ShaderStage::Fragment));
-  gpu_->resolve = std::make_unique<ResolvePass>(module_source(ShaderStage::Fragment));
+  gpu_->clear = std::make_unique<ClearPass>(mode_, bindings_);
+  gpu_->resolve = std::make_unique<ResolvePass>(mode_, bindings_);
   gpu_->resume = std::make_unique<ShaderProgram>(
       ShaderProgram::compute(resume_compute(mode_, bindings_), "resume compute shader"));
   check_gl_errors("creating the GPU HA-buffer");
@@ -189,28 +188,34 @@ void GlHaBuffer::write_params() const {
   glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
 }
 
-void GlHaBuffer::grow_capture(std::uint64_t needed) {
-  const std::uint64_t limit = std::min<std::uint64_t>((max_storage_bytes() - kCaptureHeaderBytes) / sizeof(Fragment),
-                                                      UINT32_MAX);
+namespace {
+
+// The capacity an append buffer of `item_bytes` items grows to for `needed`
+// items: at least double the current one, within one shader-storage buffer
+// and 32-bit counts (throws GlError naming `what` beyond that).
+std::uint64_t grown_append_capacity(std::uint64_t needed, std::uint64_t current, std::uint64_t item_bytes,
+                                    const std::string& what) {
+  const std::uint64_t limit = std::min<std::uint64_t>((max_storage_bytes() - kAppendHeaderBytes) / item_bytes, UINT32_MAX);
   if (needed > limit)
-    throw GlError("capture of " + std::to_string(needed) + " fragments exceeds this OpenGL's " + std::to_string(limit) +
+    throw GlError(std::to_string(needed) + " " + what + " exceed this OpenGL's " + std::to_string(limit) +
                   " per shader-storage buffer");
-  capture_capacity_ = std::min(limit, std::max(needed, capture_capacity_ * 2));
+  return std::min(limit, std::max(needed, current * 2));
+}
+
+}  // namespace
+
+void GlHaBuffer::grow_capture(std::uint64_t needed) {
+  capture_capacity_ = grown_append_capacity(needed, capture_capacity_, sizeof(Fragment), "captured fragments");
   delete_buffer(gpu_->capture);
-  gpu_->capture = create_buffer(kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment));
+  gpu_->capture = create_buffer(kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment));
   write_params();
 }
 
 void GlHaBuffer::grow_deferred(std::uint64_t needed) {
-  const std::uint64_t limit = std::min<std::uint64_t>(
-      (max_storage_bytes() - kDeferredHeaderBytes) / kDeferredCallBytes, UINT32_MAX);
-  if (needed > limit)
-    throw GlError(std::to_string(needed) + " insert calls cut short exceed this OpenGL's " + std::to_string(limit) +
-                  " per shader-storage buffer");
-  deferred_capacity_ = std::min(limit, std::max(needed, deferred_capacity_ * 2));
+  deferred_capacity_ = grown_append_capacity(needed, deferred_capacity_, kDeferredCallBytes, "insert calls cut short");
   for (GLuint& b : gpu_->deferred) {
     delete_buffer(b);
-    b = create_buffer(kDeferredHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
+    b = create_buffer(kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
   }
   write_params();
 }
@@ -218,8 +223,8 @@ void GlHaBuffer::grow_deferred(std::uint64_t needed) {
 void GlHaBuffer::reset_frame_state() const {
   zero_buffer(gpu_->max_age);
   zero_buffer(gpu_->counters);
-  zero_range(gpu_->capture, 0, kCaptureHeaderBytes);
-  zero_range(gpu_->deferred[0], 0, kDeferredHeaderBytes);
+  zero_range(gpu_->capture, 0, kAppendHeaderBytes);
+  zero_range(gpu_->deferred[0], 0, kAppendHeaderBytes);
 }
 
 void GlHaBuffer::bind() const {
@@ -308,14 +313,14 @@ FrameReport GlHaBuffer::frame(const std::function<void()>& gather, const std::fu
       ++report.capture_regathers;
       continue;
     }
-    if (deferred_overflow_) {
+    if (deferred_overflow_ > 0) {
       // Calls cut short beyond the buffer lost their carried state: gather
       // again with room for all of them (contention varies between gathers,
       // so a few tries are allowed).
       if (report.deferred_regathers >= 8)
         throw GlError("insert calls cut short overflowed the deferred-call buffer 8 times (capacity " +
                       std::to_string(deferred_capacity_) + ")");
-      grow_deferred(report.deferred);
+      grow_deferred(deferred_overflow_);
       zero_buffer(gpu_->table);
       ++report.deferred_regathers;
       continue;
@@ -364,10 +369,7 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, const std::func
   if (options_.capture) report.captured = read_capture_count();
   check_gl_errors("the gather pass");
   report.cut_short = 0;
-  if (deferred_overflow_) {
-    report.deferred = unfinished;  // frame() grows the buffer to this and gathers again
-    return;
-  }
+  if (deferred_overflow_ > 0) return;  // frame() grows the buffer and gathers again
   // Calls still cut short after the last round end as failed_iter.
   report.counters.fragments += unfinished;
   report.counters.failed_iter += unfinished;
@@ -388,13 +390,10 @@ void GlHaBuffer::run_gather(const std::function<void()>& gather, const std::func
 std::uint64_t GlHaBuffer::resume_deferred(FrameReport& report) {
   report.deferred = 0;
   report.resume_rounds = 0;
-  deferred_overflow_ = false;
   int in = 0;
   std::uint64_t count = read_deferred_count(in);
-  if (count > deferred_capacity_) {
-    deferred_overflow_ = true;
-    return count;
-  }
+  deferred_overflow_ = count > deferred_capacity_ ? count : 0;
+  if (deferred_overflow_ > 0) return 0;
   // Every round ends at least one call per contended slot (a lock's holder
   // always completes its probe), so the rounds shrink the set; the bound
   // only guards against a driver that cuts every call at once. Our buffers
@@ -403,7 +402,7 @@ std::uint64_t GlHaBuffer::resume_deferred(FrameReport& report) {
   while (count > 0 && report.resume_rounds < options_.resume_rounds) {
     report.deferred += count;
     const int out = 1 - in;
-    zero_range(gpu_->deferred[out], 0, kDeferredHeaderBytes);
+    zero_range(gpu_->deferred[out], 0, kAppendHeaderBytes);
     glUseProgram(gpu_->resume->id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings_.stream, gpu_->deferred[in]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings_.deferred, gpu_->deferred[out]);
@@ -478,7 +477,7 @@ std::vector<Fragment> GlHaBuffer::read_capture() const {
   const std::uint64_t n = std::min(read_capture_count(), capture_capacity_);
   std::vector<Fragment> out(n);
   if (n > 0)
-    glGetNamedBufferSubData(gpu_->capture, static_cast<GLintptr>(kCaptureHeaderBytes),
+    glGetNamedBufferSubData(gpu_->capture, static_cast<GLintptr>(kAppendHeaderBytes),
                             static_cast<GLsizeiptr>(n * sizeof(Fragment)), out.data());
   return out;
 }
@@ -489,8 +488,8 @@ std::uint64_t GlHaBuffer::memory_bytes() const {
                         offsets_.size() * sizeof(glm::uvec2) + kCounterWords * 4 + sizeof(GlParams) +
                         sizeof(std::uint64_t);
   if (mode_ == AtomicMode::Emulated64) bytes += slots * 4;
-  if (capture_capacity_ > 0) bytes += kCaptureHeaderBytes + capture_capacity_ * sizeof(Fragment);
-  bytes += 2 * (kDeferredHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
+  if (capture_capacity_ > 0) bytes += kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment);
+  bytes += 2 * (kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
   return bytes;
 }
 

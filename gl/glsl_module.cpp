@@ -93,13 +93,22 @@ std::string resume_compute(AtomicMode mode, const GlBindings& bindings) {
   return ha_module(mode, bindings, ShaderStage::Compute) + kResumeCompute;
 }
 
+std::string full_screen_vertex() { return std::string("#version 450 core\n") + kFullScreenVertex; }
+
+std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings) {
+  return ha_module(mode, bindings, ShaderStage::Fragment) + kClearPassFragment;
+}
+
+std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings) {
+  return ha_module(mode, bindings, ShaderStage::Fragment) + kResolveFragment;
+}
+
 std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings) {
-  const std::string fragment_module = ha_module(mode, bindings, ShaderStage::Fragment);
   return {{"insert", "comp", insert_stream_compute(mode, bindings)},
           {"resume", "comp", resume_compute(mode, bindings)},
-          {"full-screen", "vert", std::string("#version 450 core\n") + kFullScreenVertex},
-          {"clear", "frag", fragment_module + kClearPassFragment},
-          {"resolve", "frag", fragment_module + kResolveFragment}};
+          {"full-screen", "vert", full_screen_vertex()},
+          {"clear", "frag", clear_pass_fragment(mode, bindings)},
+          {"resolve", "frag", resolve_fragment(mode, bindings)}};
 }
 
 }  // namespace habuffer::gl

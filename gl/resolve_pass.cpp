@@ -7,9 +7,8 @@
 
 namespace habuffer::gl {
 
-ResolvePass::ResolvePass(const std::string& module)
-    : program_(ShaderProgram::graphics(std::string("#version 450 core\n") + kFullScreenVertex,
-                                       module + kResolveFragment, "resolve pass")) {
+ResolvePass::ResolvePass(AtomicMode mode, const GlBindings& bindings)
+    : program_(ShaderProgram::graphics(full_screen_vertex(), resolve_fragment(mode, bindings), "resolve pass")) {
   glCreateVertexArrays(1, &vertex_array_);
 }
 

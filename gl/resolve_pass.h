@@ -9,13 +9,16 @@
 
 #include "gpu_timer.h"
 #include "habuffer/extent.h"
+#include "habuffer/gl/gl_bindings.h"
+#include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shader_program.h"
 
 namespace habuffer::gl {
 
 class ResolvePass {
  public:
-  explicit ResolvePass(const std::string& module);
+  // Compiles the pass for the buffer's atomic mode and binding points.
+  ResolvePass(AtomicMode mode, const GlBindings& bindings);
   ~ResolvePass();
   ResolvePass(const ResolvePass&) = delete;
   ResolvePass& operator=(const ResolvePass&) = delete;

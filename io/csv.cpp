@@ -30,8 +30,6 @@ void split(std::string_view line, std::vector<std::string_view>& fields) {
   }
 }
 
-std::string quoted(std::string_view s) { return excerpt(s); }
-
 constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
 constexpr std::size_t kReadChunk = std::size_t{1} << 20;
 
@@ -160,8 +158,8 @@ std::uint32_t CsvReader::u32(std::string_view text, std::string_view field) cons
   std::uint32_t v = 0;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
-    fail(field, quoted(text) + " is not an unsigned integer");
-  if (ec == std::errc::result_out_of_range) fail(field, quoted(text) + " does not fit in 32 bits");
+    fail(field, excerpt(text) + " is not an unsigned integer");
+  if (ec == std::errc::result_out_of_range) fail(field, excerpt(text) + " does not fit in 32 bits");
   return v;
 }
 
@@ -171,8 +169,8 @@ std::uint32_t CsvReader::u32_dec_or_hex(std::string_view text, std::string_view 
     const std::string_view digits = text.substr(2);
     auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), v, 16);
     if (ec == std::errc::invalid_argument || end != digits.data() + digits.size())
-      fail(field, quoted(text) + " is not a hexadecimal integer");
-    if (ec == std::errc::result_out_of_range) fail(field, quoted(text) + " does not fit in 32 bits");
+      fail(field, excerpt(text) + " is not a hexadecimal integer");
+    if (ec == std::errc::result_out_of_range) fail(field, excerpt(text) + " does not fit in 32 bits");
     return v;
   }
   return u32(text, field);
@@ -183,7 +181,7 @@ float CsvReader::f32(std::string_view text, std::string_view field) const {
   float v = 0.0f;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (text.empty() || ec == std::errc::invalid_argument || end != text.data() + text.size())
-    fail(field, quoted(text) + " is not a number");
+    fail(field, excerpt(text) + " is not a number");
   if (ec == std::errc::result_out_of_range) return out_of_float_range(text);
   return v;
 }

@@ -1,6 +1,6 @@
-#include <algorithm>
 #include "habuffer/scene_catalog.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -33,6 +33,15 @@ std::vector<std::string> scene_names() {
   for (const auto& [name, file] : named_meshes()) names.push_back(name);
   for (const char* n : {"hairball", "quads", "planes"}) names.emplace_back(n);
   return names;
+}
+
+std::vector<std::string> scenes_taking(const std::string& option) {
+  // As make_scene below passes them on.
+  static const std::map<std::string, std::vector<std::string>> takers{
+      {"count", {"hairball", "quads", "planes"}}, {"seed", {"hairball", "quads"}}, {"spread", {"quads"}},
+      {"order", {"planes"}}};
+  const auto it = takers.find(option);
+  return it == takers.end() ? std::vector<std::string>{} : it->second;
 }
 
 bool is_scene_name(const std::string& name) {

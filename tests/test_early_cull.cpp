@@ -18,13 +18,20 @@ HaBuffer cull_buffer(Extent screen, Extent table, float tau, std::uint64_t seed 
 
 std::uint32_t rgba(std::uint32_t alpha) { return 0x80808000u | alpha; }
 
+// Two opaque fragments of pixel `p` (depths 0.2 and 0.7) inserted into `b`,
+// the nearer first or second; their counted outcomes.
+Counters insert_opaque_pair(HaBuffer& b, glm::uvec2 p, bool front_first) {
+  const Fragment front{p.x, p.y, 0.2f, rgba(255)}, back{p.x, p.y, 0.7f, rgba(255)};
+  Counters n;
+  n.count(b.insert_one(front_first ? front : back));
+  n.count(b.insert_one(front_first ? back : front));
+  return n;
+}
+
 TEST(EarlyCull, OpaqueFrontFragmentCullsWhatLiesBehindInEitherOrder) {
   for (bool front_first : {true, false}) {
     HaBuffer b = cull_buffer({4, 4}, {8, 8}, 0.5f);
-    const Fragment front{1, 1, 0.2f, rgba(255)}, back{1, 1, 0.7f, rgba(255)};
-    Counters n;
-    n.count(b.insert_one(front_first ? front : back));
-    n.count(b.insert_one(front_first ? back : front));
+    const Counters n = insert_opaque_pair(b, {1, 1}, front_first);
     EXPECT_EQ(n.culled, 1u) << (front_first ? "front first" : "back first");
     std::vector<ListEntry> list;
     b.list(1, 1, list);
@@ -40,10 +47,7 @@ TEST(EarlyCull, OpaqueFrontFragmentCullsWhatLiesBehindInEitherOrder) {
 TEST(EarlyCull, ThresholdOneKeepsWhatLiesBehindAnOpaqueFragment) {
   for (bool front_first : {true, false}) {
     HaBuffer b = cull_buffer({4, 4}, {8, 8}, 1.0f);
-    const Fragment front{2, 1, 0.2f, rgba(255)}, back{2, 1, 0.7f, rgba(255)};
-    Counters n;
-    n.count(b.insert_one(front_first ? front : back));
-    n.count(b.insert_one(front_first ? back : front));
+    const Counters n = insert_opaque_pair(b, {2, 1}, front_first);
     EXPECT_EQ(n.culled, 0u) << (front_first ? "front first" : "back first");
     std::vector<ListEntry> list;
     b.list(2, 1, list);

@@ -9,19 +9,20 @@
 
 namespace habuffer::cli {
 
-std::string shortest(float v) {
+namespace {
+
+template <class T>
+std::string shortest_text(T v) {
   char buf[32];
   auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
   (void)ec;
   return std::string(buf, end);
 }
 
-std::string shortest(double v) {
-  char buf[32];
-  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  (void)ec;
-  return std::string(buf, end);
-}
+}  // namespace
+
+std::string shortest(float v) { return shortest_text(v); }
+std::string shortest(double v) { return shortest_text(v); }
 
 void check_files(const FileRoles& files) {
   try {

@@ -66,14 +66,14 @@ int run_build_lists(const std::vector<std::string>& argv) {
     throw std::logic_error("accounting broken: table holds " + std::to_string(report.stored) +
                            " records, counters say " + std::to_string(report.counters.stored()));
   if (options.lossless && !result.lossless()) {
-    std::fprintf(stderr,
-                 "habuffer build-lists: lossless mode: %s after %zu attempts (last table %s, AMAX %u); a pixel with "
-                 "more than AMAX distinct fragments needs more --age-bits\n",
-                 loss_summary(result.counters).c_str(), result.attempts.size(), result.buffer.table().str().c_str(),
-                 options.config.record_layout().max_age());
+    report_lossless_failure("build-lists", result.counters,
+                            " after " + std::to_string(result.attempts.size()) + " attempts (last table " +
+                                result.buffer.table().str() + ", AMAX " +
+                                std::to_string(options.config.record_layout().max_age()) +
+                                "); a pixel with more than AMAX distinct fragments needs more --age-bits");
     return 1;
   }
-  warn_losses("build-lists", result.counters, failure_hint(options.lossless));
+  warn_losses("build-lists", result.counters, "", kLosslessHint);
   return 0;
 }
 

@@ -48,10 +48,9 @@ int run_demo(const std::vector<std::string>& argv) {
   if (!probe.has("screen")) with_defaults.insert(with_defaults.end(), {"--screen", screen.str()});
   if (!probe.has("table"))
     with_defaults.insert(with_defaults.end(), {"--table", table_for_load(screen, count, load).str()});
-  if (!probe.has("threads") && probe.str("path", "cpu") != "gl")
-    with_defaults.insert(with_defaults.end(), {"--threads", "0"});
   const Args args(with_defaults, valued, hash_flag_options());
-  const HashOptions options = parse_hash_options(args);
+  HashOptions options = parse_hash_options(args);
+  if (!args.has("threads")) options.insert.threads = 0;  // demo's default: every hardware thread
   FileRoles files;
   add_offsets_input(files, options);
   for (const char* o : {"stats", "lists"})
@@ -104,7 +103,7 @@ int run_demo(const std::vector<std::string>& argv) {
               static_cast<double>(fragments.size()) / ms_one * 1e-3, second.c_str(), ms_many,
               static_cast<double>(fragments.size()) / ms_many * 1e-3,
               identical ? "bit-identical" : "DIFFER (bug: SPEC 9 determinism)");
-  warn_losses("demo", report.counters, "a larger --table (or lower --load) or more --age-bits keeps them");
+  warn_losses("demo", report.counters, "", "a larger --table (or lower --load) or more --age-bits keeps them");
   if (args.has("lists")) write_lists(args.required("lists"), many->buffer);
   if (args.has("stats")) {
     JsonWriter json;

@@ -1,5 +1,6 @@
 // habuffer render: a real scene (or a recorded stream) through the HA-buffer,
 // headless: the image, its stats, heat maps and the exact reference.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -68,19 +69,20 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args) {
   return out;
 }
 
-// Options of the procedural scenes, and the scenes they shape.
+// Options of the procedural scenes, refused on scenes that ignore them (the
+// catalog says which scenes take which).
 void refuse_scene_options_that_do_not_apply(const Args& args) {
   const std::string scene = args.has("scene") ? args.required("scene") : "";
-  const auto is = [&](std::initializer_list<const char*> names) {
-    for (const char* n : names)
-      if (scene == n) return true;
-    return false;
-  };
-  const std::string why = "on scene " + excerpt(scene);
-  args.refuse_unless(is({"hairball", "quads", "planes"}), {"count"}, why + " (hairball, quads and planes take it)");
-  args.refuse_unless(is({"hairball", "quads"}), {"scene-seed"}, why + " (hairball and quads take it)");
-  args.refuse_unless(is({"quads"}), {"spread"}, why + " (quads takes it)");
-  args.refuse_unless(is({"planes"}), {"order"}, why + " (planes takes it)");
+  const std::pair<const char*, const char*> options[] = {
+      {"count", "count"}, {"scene-seed", "seed"}, {"spread", "spread"}, {"order", "order"}};
+  for (const auto& [flag, option] : options) {
+    const std::vector<std::string> takers = scenes_taking(option);
+    std::string names;
+    for (const std::string& t : takers) names += (names.empty() ? "" : ", ") + t;
+    args.refuse_unless(std::find(takers.begin(), takers.end(), scene) != takers.end(), {flag},
+                       "on scene " + excerpt(scene) + " (" + names + " take" + (takers.size() == 1 ? "s" : "") +
+                           " it)");
+  }
 }
 
 // Every file the command reads or writes, checked before any work.
@@ -153,8 +155,8 @@ void check_camera_args(const Args& args) {
   if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov: must be in (1, 179) degrees");
 }
 
-void make_opaque(const Args& args, Scene& scene) {
-  for (const std::string& item : args.list("opaque-meshes", "")) {
+void make_opaque(const std::vector<std::string>& indices, Scene& scene) {
+  for (const std::string& item : indices) {
     std::size_t used = 0;
     unsigned long index = 0;
     try {
@@ -171,10 +173,11 @@ void make_opaque(const Args& args, Scene& scene) {
   }
 }
 
-RenderResult render_with_gl(const Args& args, RenderSettings& s, SceneDescription& described) {
+RenderResult render_with_gl(const Args& args, const std::vector<std::string>& opaque_meshes, RenderSettings& s,
+                            SceneDescription& described) {
   const SceneOptions options = parse_scene_options(args);
   Scene scene = make_scene(args.required("scene"), options);
-  if (args.has("opaque-meshes")) make_opaque(args, scene);
+  make_opaque(opaque_meshes, scene);
   described = {scene.name, scene.meshes.size(), scene.triangle_count()};
   apply_camera(args, scene, s);
   std::optional<gl::EglContext> context;
@@ -243,14 +246,13 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
                  r.frames.size(), r.frames.size() == 1 ? "" : "s");
   const std::string frames = r.frames.size() == 1 ? "" : " over " + std::to_string(r.frames.size()) + " frames";
   if (s.lossless && total.failures() > 0) {
-    std::fprintf(stderr, "habuffer render: lossless mode: %s%s after up to %u attempts per frame%s\n",
-                 loss_summary(total).c_str(), frames.c_str(), s.max_attempts,
-                 r.growth_limited ? " (the table reached this OpenGL's limits)" : "; more --age-bits fits deeper pixels");
+    report_lossless_failure("render", total,
+                            frames + " after up to " + std::to_string(s.max_attempts) + " attempts per frame" +
+                                (r.growth_limited ? " (the table reached this OpenGL's limits)"
+                                                  : "; more --age-bits fits deeper pixels"));
     return 1;
   }
-  if (lost_fragments(total) > 0)
-    std::fprintf(stderr, "habuffer render: warning: %s%s%s\n", loss_summary(total).c_str(), frames.c_str(),
-                 total.failures() > 0 ? "; --lossless keeps them (or more --age-bits)" : "");
+  warn_losses("render", total, frames, kLosslessHint);
   return 0;
 }
 
@@ -269,7 +271,8 @@ int run_render(const std::vector<std::string>& argv) {
   RenderSettings s = parse_settings(args);
   check_camera_args(args);
   refuse_scene_options_that_do_not_apply(args);
-  if (args.has("opaque-meshes")) (void)args.list("opaque-meshes", "");
+  const std::vector<std::string> opaque_meshes =
+      args.has("opaque-meshes") ? args.list("opaque-meshes", "") : std::vector<std::string>{};
   const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args);
   check_render_files(args, s, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
@@ -289,7 +292,7 @@ int run_render(const std::vector<std::string>& argv) {
   } else {
     ProgressBar progress = ProgressBar::for_terminal("habuffer render", "frames", args.has("quiet") || s.frames == 1);
     s.on_progress = progress.callback();
-    r = render_with_gl(args, s, described);
+    r = render_with_gl(args, opaque_meshes, s, described);
     s.on_progress = nullptr;
   }
   if (s.config.layout == Layout::L32 && args.has("out"))

@@ -24,16 +24,17 @@ std::string loss_summary(const Counters& c) {
   return s;
 }
 
-void warn_losses(const std::string& command, const Counters& c, const std::string& hint) {
+void warn_losses(const std::string& command, const Counters& c, const std::string& context,
+                 const std::string& hint) {
   if (lost_fragments(c) == 0) return;
-  std::string line = "habuffer " + command + ": warning: " + loss_summary(c);
+  std::string line = "habuffer " + command + ": warning: " + loss_summary(c) + context;
   if (c.failures() > 0 && !hint.empty()) line += "; " + hint;
   std::fprintf(stderr, "%s\n", line.c_str());
 }
 
-std::string failure_hint(bool lossless) {
-  return lossless ? "more --age-bits fits deeper pixels"
-                  : "--lossless grows the table until they fit (or give a larger --table, more --age-bits)";
+void report_lossless_failure(const std::string& command, const Counters& c, const std::string& context) {
+  std::fprintf(stderr, "habuffer %s: lossless mode: %s%s\n", command.c_str(), loss_summary(c).c_str(),
+               context.c_str());
 }
 
 }  // namespace habuffer::cli

@@ -18,10 +18,17 @@ std::uint64_t lost_fragments(const Counters& c);
 // the non-zero reasons).
 std::string loss_summary(const Counters& c);
 
-// Prints "habuffer COMMAND: warning: SUMMARY[; HINT]" when anything was lost.
-void warn_losses(const std::string& command, const Counters& c, const std::string& hint = {});
+// What to try when fragments failed in a command that takes --lossless.
+inline constexpr const char* kLosslessHint =
+    "--lossless grows the table until they fit (or give a larger --table, more --age-bits)";
 
-// What to try when fragments failed (not culled or invalid).
-std::string failure_hint(bool lossless);
+// Prints "habuffer COMMAND: warning: SUMMARY[CONTEXT][; HINT]" when anything
+// was lost; the hint only when fragments failed (not culled or invalid).
+void warn_losses(const std::string& command, const Counters& c, const std::string& context,
+                 const std::string& hint);
+
+// Prints "habuffer COMMAND: lossless mode: SUMMARYCONTEXT", the one line of
+// a --lossless run that still lost fragments (it exits 1).
+void report_lossless_failure(const std::string& command, const Counters& c, const std::string& context);
 
 }  // namespace habuffer::cli

@@ -40,9 +40,7 @@
 // the counters, one cache line (HA_COUNTER_STRIDE words) each, a call adding
 // to the stripe of its pixel (ha_counter_stripe) and the host summing them,
 // so the fragments of a frame do not all hit the same few addresses (exact:
-// every call still adds once); a capture buffer starts with
-// HA_CAPTURE_HEADER_WORDS words (the append count, then padding to 16 bytes)
-// before its fragments; an
+// every call still adds once).
 #define HA_COUNTER_STRIDE 16u
 #define HA_COUNTER_STRIPES 64u
 // GPU counter after the six outcomes in each stripe, when asked for: the slot writes
@@ -50,10 +48,13 @@
 // work an insertion order costs).
 #define HA_COUNTER_SLOT_WRITES 6u
 #define HA_GPU_COUNTER_COUNT 7u
-// Capture and deferred-call buffers start with this many words (the append
-// count, then padding to 16 bytes).
-#define HA_CAPTURE_HEADER_WORDS 4u
-#define HA_DEFERRED_HEADER_WORDS 4u
+// The GPU path's append buffers (capture, deferred calls) start with this
+// many words: the append count, then padding to 16 bytes.
+#define HA_APPEND_HEADER_WORDS 4u
+// An emulated 64-bit atomic tries a contended slot lock this many times in a
+// row before the insert call is cut short and deferred to the frame's resume
+// pass (2^24 attempts, a fraction of a second: long enough to outlast a lock
+// holder the OS preempted, where the driver lets a loop run that long).
 #define HA_DEFAULT_LOCK_SPIN_LIMIT 16777216u
 
 // IEEE-754 binary32 bit patterns used by the depth-validity test: a float is

@@ -27,6 +27,9 @@ std::string assimp_models_root();
 std::vector<std::string> scene_names();
 // Whether `name` is one of scene_names() (not a mesh file).
 bool is_scene_name(const std::string& name);
+// The procedural scenes that use SceneOptions' `option` ("count", "seed",
+// "spread" or "order"); make_scene ignores it for every other scene.
+std::vector<std::string> scenes_taking(const std::string& option);
 
 // A scene name or a mesh file path. Throws SceneError naming what was wrong.
 Scene make_scene(const std::string& name_or_path, const SceneOptions& options);

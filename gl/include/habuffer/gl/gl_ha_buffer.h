@@ -181,7 +181,8 @@ class GlHaBuffer {
   // The six outcome tallies and the slot writes.
   [[nodiscard]] std::pair<Counters, std::uint64_t> read_counters() const;
   // Resume rounds while deferred calls remain (at most resume_rounds): returns
-  // the calls still deferred, or the count when it overflowed the buffer.
+  // the calls still deferred after the last round; none are run when the
+  // gather deferred more than the buffer holds (deferred_overflow_).
   std::uint64_t resume_deferred(FrameReport& report);
   // Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
@@ -199,7 +200,7 @@ class GlHaBuffer {
   std::uint32_t cells_ = 0;
   std::uint64_t capture_capacity_ = 0;
   std::uint64_t deferred_capacity_ = 0;
-  bool deferred_overflow_ = false;  // the last gather deferred more calls than the buffer held
+  std::uint64_t deferred_overflow_ = 0;  // calls the last gather deferred, when more than the buffer held
   std::uint64_t frames_ = 0;
   bool holds_frame_ = false;  // the table holds a gathered frame the next clear pass must count
   std::optional<Extent> pending_count_table_;  // the table a count in the query buffer was measured in

@@ -49,6 +49,12 @@ struct ShaderSource {
 // clear pass, resolve pass). Needs no GL context.
 std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings = {});
 
+// The full-screen passes' shaders: one vertex shader, and the clear pass's
+// and resolve pass's fragment shaders (the module plus their own code).
+std::string full_screen_vertex();
+std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings);
+std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings);
+
 // The resume pass: runs deferred insert calls (cut short by a lock or the
 // driver's loop budget) on from their carried state.
 std::string resume_compute(AtomicMode mode, const GlBindings& bindings = {});
