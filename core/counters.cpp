@@ -13,6 +13,8 @@ void Counters::count(std::uint32_t outcome) {
     case HA_FAILED_AGE: ++failed_age; break;
     case HA_FAILED_ITER: ++failed_iter; break;
     case HA_INVALID: ++invalid; break;
+    case HA_DROPPED_POOL: ++dropped_pool; break;
+    case HA_DROPPED_LAYERS: ++dropped_layers; break;
     default: break;
   }
 }
@@ -24,6 +26,8 @@ void Counters::add_tally(const std::uint64_t* tally) {
   failed_age += tally[HA_FAILED_AGE];
   failed_iter += tally[HA_FAILED_ITER];
   invalid += tally[HA_INVALID];
+  dropped_pool += tally[HA_DROPPED_POOL];
+  dropped_layers += tally[HA_DROPPED_LAYERS];
 }
 
 Counters& Counters::operator+=(const Counters& o) {
@@ -33,6 +37,8 @@ Counters& Counters::operator+=(const Counters& o) {
   culled += o.culled;
   failed_age += o.failed_age;
   failed_iter += o.failed_iter;
+  dropped_pool += o.dropped_pool;
+  dropped_layers += o.dropped_layers;
   return *this;
 }
 

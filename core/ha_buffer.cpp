@@ -28,19 +28,6 @@ KernelParams make_params(const BufferConfig& c, const MaxAgeTable& m) {
   return p;
 }
 
-std::uint32_t resolve_threads(std::uint32_t threads) {
-  return threads != 0 ? threads : static_cast<std::uint32_t>(tbb::info::default_concurrency());
-}
-
-void check_on_screen(std::span<const Fragment> fragments, Extent screen) {
-  for (std::size_t i = 0; i < fragments.size(); ++i) {
-    const Fragment& f = fragments[i];
-    if (f.x >= screen.x || f.y >= screen.y)
-      throw std::out_of_range("fragment " + std::to_string(i) + " at pixel (" + std::to_string(f.x) + "," +
-                              std::to_string(f.y) + ") lies outside screen " + screen.str());
-  }
-}
-
 // One cache line per work unit's counters, so threads never share one.
 struct alignas(64) PaddedCounters {
   Counters c;

@@ -77,7 +77,7 @@ std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage s
   if (stage == ShaderStage::Fragment) s += "#define HA_STAGE_FRAGMENT\n";
   s += bindings.glsl_defines();
   s += word_defines(mode);
-  for (const char* part : {kHaConstants, kPreludeCommon, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaTraverse,
+  for (const char* part : {kHaConstants, kPreludeCommon, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaBlend, kHaTraverse,
                            kHaEntry}) {
     s += part;
     s += '\n';

@@ -10,6 +10,8 @@ std::string loss_summary(const Counters& c) {
   std::string s = std::to_string(lost_fragments(c)) + " of " + std::to_string(c.fragments) + " fragments not stored:";
   const std::pair<const char*, std::uint64_t> reasons[] = {{"failed_age", c.failed_age},
                                                            {"failed_iter", c.failed_iter},
+                                                           {"dropped_pool (node pool full)", c.dropped_pool},
+                                                           {"dropped_layers (pixel's layers full)", c.dropped_layers},
                                                            {"culled (early cull)", c.culled},
                                                            {"invalid (depth NaN or outside [0, 1])", c.invalid}};
   bool first = true;

@@ -3,19 +3,36 @@
 #ifndef HA_CONSTANTS_H
 #define HA_CONSTANTS_H
 
-// Outcome of one insert call (SPEC 6, invariant 1): exactly one per call.
+// Outcome of one insert call (SPEC 6, invariant 1): exactly one per call, for
+// every technique. The drop reasons are the technique's own: the HA-buffer
+// fails by age or iterations, linked lists by an exhausted node pool, fixed
+// arrays by a full pixel (docs/spec-notes.md, "Techniques").
 #define HA_STORED 0u
 #define HA_DUPLICATE 1u
 #define HA_CULLED 2u
 #define HA_FAILED_AGE 3u
 #define HA_FAILED_ITER 4u
 #define HA_INVALID 5u
-#define HA_OUTCOME_COUNT 6u
+#define HA_DROPPED_POOL 6u
+#define HA_DROPPED_LAYERS 7u
+#define HA_OUTCOME_COUNT 8u
 // Not outcomes: the insert call goes on (ha_insert_step), or it was cut short
 // by something other than the table and its carried state must be resumed
 // (GPU path only: an emulated atomic that gave up, the driver's loop budget).
-#define HA_PENDING 6u
-#define HA_CUT 7u
+#define HA_PENDING 8u
+#define HA_CUT 9u
+
+// Techniques (the GLSL module assembly defines HA_TECHNIQUE as one of them).
+#define HA_TECHNIQUE_HA 0u
+#define HA_TECHNIQUE_LISTS 1u
+#define HA_TECHNIQUE_ARRAYS 2u
+// Fixed arrays: default layers per pixel (Crassin 2010 uses 16).
+#define HA_DEFAULT_LAYERS 16u
+// The sort of lists and arrays: a pixel's entries up to this many are sorted
+// in a private array by insertion sort (registers on a GPU); longer ones in
+// place in the technique's buffer (merge sort of the linked list, heap sort
+// of the array), as GP5's post-sort variants switch algorithms by length.
+#define HA_SORT_LOCAL 32u
 
 // Traversal step results (SPEC 7).
 #define HA_VISIT_STOP 0u
@@ -43,11 +60,17 @@
 // every call still adds once).
 #define HA_COUNTER_STRIDE 16u
 #define HA_COUNTER_STRIPES 64u
-// GPU counter after the six outcomes in each stripe, when asked for: the slot writes
-// (atomicMax calls that raised a slot, including records later evicted: the
-// work an insertion order costs).
-#define HA_COUNTER_SLOT_WRITES 6u
-#define HA_GPU_COUNTER_COUNT 7u
+// GPU counters after the outcomes in each stripe: the slot writes, when asked
+// for (atomicMax calls that raised a slot, including records later evicted:
+// the work an insertion order costs); the records the sort pass of lists and
+// arrays merged as duplicates (counted stored at insertion, moved to
+// duplicates by the host); the pixels the sort pass began and finished (a
+// driver that ends an invocation early leaves them apart: never silent).
+#define HA_COUNTER_SLOT_WRITES 8u
+#define HA_COUNTER_MERGED 9u
+#define HA_COUNTER_SORT_BEGUN 10u
+#define HA_COUNTER_SORT_DONE 11u
+#define HA_GPU_COUNTER_COUNT 12u
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.
 #define HA_APPEND_HEADER_WORDS 4u

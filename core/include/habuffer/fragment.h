@@ -1,4 +1,4 @@
-// Fragments (SPEC 1) and the six counters of SPEC invariant 1.
+// Fragments (SPEC 1) and the counters of SPEC invariant 1, for every technique.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +16,11 @@ struct Fragment {
 };
 
 // Every insert call ends in exactly one outcome; `stored` follows from the
-// others, and equals the table's non-empty slot count.
+// others, and equals the records the technique holds (the HA-buffer's
+// non-empty slots, the list nodes or array layers left after merging
+// duplicates). The drop reasons are each technique's own: failed_age and
+// failed_iter (HA-buffer), dropped_pool (linked lists), dropped_layers
+// (fixed arrays); all count as failures.
 struct Counters {
   std::uint64_t fragments = 0;
   std::uint64_t invalid = 0;
@@ -24,11 +28,14 @@ struct Counters {
   std::uint64_t culled = 0;
   std::uint64_t failed_age = 0;
   std::uint64_t failed_iter = 0;
+  std::uint64_t dropped_pool = 0;
+  std::uint64_t dropped_layers = 0;
 
-  [[nodiscard]] std::uint64_t failures() const { return failed_age + failed_iter; }
-  [[nodiscard]] std::uint64_t stored() const {
-    return fragments - invalid - duplicates - culled - failed_age - failed_iter;
-  }
+  [[nodiscard]] std::uint64_t failures() const { return failed_age + failed_iter + dropped_pool + dropped_layers; }
+  [[nodiscard]] std::uint64_t stored() const { return fragments - invalid - duplicates - culled - failures(); }
+  // Records counted stored at insertion and found equal to another record of
+  // their pixel when the lists were sorted: moved to duplicates.
+  void merge_duplicates(std::uint64_t merged) { duplicates += merged; }
   // Counts one insert outcome (an HA_* constant of ha_constants.h).
   void count(std::uint32_t outcome);
   // Adds per-outcome totals, indexed by HA_* outcome (HA_OUTCOME_COUNT entries).

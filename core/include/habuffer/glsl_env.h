@@ -3,6 +3,7 @@
 // template can #include a shared file and turn its functions into members.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -21,3 +22,11 @@
   using vec4 = glm::vec4;                                                  \
   static float ha_floor(float x) { return std::floor(x); }                 \
   static uint ha_float_bits(float x) { return std::bit_cast<uint>(x); }
+
+// The private array of HA_SORT_LOCAL entries that ha_entries.glsl sorts in
+// (a GLSL shader's private array; here a member, so each kernel copy, one per
+// thread, has its own).
+#define HA_GLSL_CLASS_LOCAL_ARRAY                                          \
+  std::array<glm::uvec2, HA_SORT_LOCAL> ha_local_{};                       \
+  glm::uvec2 ha_local_get(std::uint32_t k) const { return ha_local_[k]; }  \
+  void ha_local_set(std::uint32_t k, glm::uvec2 e) { ha_local_[k] = e; }

@@ -13,59 +13,39 @@
 
 #include "habuffer/buffer_config.h"
 #include "habuffer/fragment.h"
+#include "habuffer/fragment_buffer.h"
 #include "habuffer/max_age_table.h"
 #include "habuffer/offset_sequence.h"
 
 namespace habuffer {
 
-// Every mode builds the same table (SPEC 9); they differ in speed only.
-// docs/performance.md compares them.
-enum class InsertMode {
-  Auto,           // Serial for one thread, Atomic for several (fastest measured)
-  Serial,         // one thread, input order, plain loads and stores
-  Atomic,         // the GPU's model: threads split the stream and share every slot through atomicMax
-  OwnerComputes,  // no atomics: table rows dealt out to threads, records handed over (owner_computes.h)
-};
-
-struct InsertOptions {
-  std::uint32_t threads = 1;  // 0: every hardware thread
-  InsertMode mode = InsertMode::Auto;
-  std::uint32_t band_rows = 16;  // OwnerComputes: table rows per band
-};
-
-// One record of a pixel's list, front to back.
-struct ListEntry {
-  std::uint32_t age = 0;
-  std::uint32_t code = 0;
-  std::uint32_t data = 0;
-  friend bool operator==(const ListEntry&, const ListEntry&) = default;
-};
-
-class HaBuffer {
+class HaBuffer final : public FragmentBuffer {
  public:
   // Validates the configuration (BufferConfig::validate) and that the offsets
   // were made for this table with one offset per age (AMAX of them).
   HaBuffer(const BufferConfig& config, OffsetSequence offsets);
-  ~HaBuffer();
+  ~HaBuffer() override;
   HaBuffer(HaBuffer&&) noexcept;
   HaBuffer& operator=(HaBuffer&&) noexcept;
 
   [[nodiscard]] const BufferConfig& config() const;
   [[nodiscard]] const RecordLayout& record_layout() const;
   [[nodiscard]] const OffsetSequence& offsets() const;
-  [[nodiscard]] Extent screen() const;
+  [[nodiscard]] Technique technique() const override { return Technique::Ha; }
+  [[nodiscard]] Extent screen() const override;
   [[nodiscard]] Extent table() const;
 
   // Inserts a batch; throws std::out_of_range (naming the index and pixel) if
   // any fragment lies off the screen, before inserting anything.
-  Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {});
+  Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   // Inserts one fragment and returns its HA_* outcome. Not thread-safe
   // against other calls on this buffer.
   std::uint32_t insert_one(const Fragment& fragment);
 
   // Zeroes T and M; returns the number of records T held.
-  std::uint64_t clear();
-  [[nodiscard]] std::uint64_t count_stored() const;
+  std::uint64_t clear() override;
+  [[nodiscard]] std::uint64_t count_stored() const override;
+  [[nodiscard]] std::uint64_t capacity() const override { return slot_count(); }
   [[nodiscard]] std::uint64_t slot_count() const;
   // Slot s as an unsigned integer (L32 records in the low 32 bits).
   [[nodiscard]] std::uint64_t slot(std::uint64_t s) const;
@@ -80,19 +60,19 @@ class HaBuffer {
   // Pixel (x, y)'s list, nearest first, by traversal (SPEC 7). Returns the
   // slots read: the walk stops at the first age whose slot holds a younger
   // record (Proposition A), before the cell's max age when it can.
-  std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const;
+  std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
   // Front-to-back float32 compositing of pixel (x, y) over `background`.
   [[nodiscard]] glm::vec4 composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const;
   // The whole screen, row-major.
   [[nodiscard]] std::vector<glm::vec4> composite_image(glm::vec3 background, std::uint32_t threads = 0) const;
   // Each pixel over its own background (row-major, screen area entries).
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
-                                                       std::uint32_t threads = 0) const;
+                                                       std::uint32_t threads = 0) const override;
 
   // Stored records per age: result[a] for a = 0..AMAX (result[0] is 0).
   [[nodiscard]] std::vector<std::uint64_t> age_histogram() const;
   // Bytes of T, M and O.
-  [[nodiscard]] std::uint64_t memory_bytes() const;
+  [[nodiscard]] std::uint64_t memory_bytes() const override;
 
  private:
   template <class Background>

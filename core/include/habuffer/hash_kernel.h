@@ -108,6 +108,7 @@ class HashKernel {
 #include "../../shared/ha_record.glsl"
 #include "../../shared/ha_probe.glsl"
 #include "../../shared/ha_insert.glsl"
+#include "../../shared/ha_blend.glsl"
 #include "../../shared/ha_traverse.glsl"
 
  private:

@@ -1,0 +1,108 @@
+#include "habuffer/fixed_arrays.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "technique_parallel.h"
+
+namespace habuffer {
+namespace {
+
+TechniqueConfig validated(TechniqueConfig c) {
+  c.technique = Technique::Arrays;
+  c.validate();
+  return c;
+}
+
+}  // namespace
+
+FixedArrays::FixedArrays(const TechniqueConfig& config)
+    : config_(validated(config)),
+      params_(make_technique_params(config_)),
+      counts_(config_.buffer.screen.area(), 0),
+      layers_(std::uint64_t{config_.layers} * config_.buffer.screen.area()) {}
+
+ArraysBuffers FixedArrays::buffers() const {
+  // The kernel's read-only uses (composite) never write through these.
+  auto* self = const_cast<FixedArrays*>(this);
+  return {self->counts_.data(), self->layers_.data(), &self->max_arrived_};
+}
+
+Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
+  check_on_screen(fragments, screen());
+  const std::uint32_t threads = detail::insert_threads(options, Technique::Arrays);
+  if (fragments.size() > UINT32_MAX - std::uint64_t{*std::max_element(counts_.begin(), counts_.end())})
+    throw std::invalid_argument("fixed arrays count a pixel's fragments in 32 bits: " +
+                                std::to_string(fragments.size()) + " fragments in one batch are too many");
+  Counters c = detail::insert_slices(
+      fragments, threads, [&](auto concurrent) { return ArraysKernel<decltype(concurrent)::value>(params_, buffers()); },
+      [](auto& k, const Fragment& f) { return k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+  // Sort every pixel's layers, merging identical entries.
+  std::vector<detail::PartCount> merged(threads);
+  detail::for_row_bands(screen(), threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
+    ArraysKernel<false> k(params_, buffers());
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < screen().x; ++x) merged[part].n += k.fa_sort_pixel(glm::uvec2(x, y));
+  });
+  for (const auto& m : merged) c.merge_duplicates(m.n);
+  return c;
+}
+
+std::uint64_t FixedArrays::clear() {
+  const std::uint64_t held = count_stored();
+  std::fill(counts_.begin(), counts_.end(), 0u);
+  max_arrived_ = 0;
+  return held;
+}
+
+std::uint64_t FixedArrays::count_stored() const {
+  std::uint64_t n = 0;
+  for (std::uint32_t c : counts_) n += c;
+  return n;
+}
+
+std::uint32_t FixedArrays::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  out.clear();
+  const std::size_t pixel = x + std::size_t{y} * screen().x;
+  for (std::uint32_t k = 0; k < counts_[pixel]; ++k) {
+    const glm::uvec2 e = layers_[k * screen().area() + pixel];
+    out.push_back({0, e.x, e.y});
+  }
+  return 1 + counts_[pixel];
+}
+
+std::vector<glm::vec4> FixedArrays::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+  if (backgrounds.size() != screen().area())
+    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
+                                screen().str());
+  std::vector<glm::vec4> image(screen().area());
+  detail::for_row_bands(screen(), resolve_threads(threads), [&](std::uint32_t, std::uint32_t y0, std::uint32_t y1) {
+    ArraysKernel<false> k(params_, buffers());
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < screen().x; ++x) {
+        const std::size_t p = x + std::size_t{y} * screen().x;
+        image[p] = k.fa_composite(glm::uvec2(x, y), backgrounds[p]);
+      }
+  });
+  return image;
+}
+
+std::uint64_t FixedArrays::memory_bytes() const {
+  return counts_.size() * 4 + layers_.size() * sizeof(glm::uvec2) + sizeof max_arrived_;
+}
+
+void FixedArrays::import_state(std::span<const std::uint32_t> counts, std::span<const glm::uvec2> layers,
+                               std::uint32_t largest_overflow) {
+  if (counts.size() != counts_.size() || layers.size() != layers_.size())
+    throw std::invalid_argument("imported arrays have " + std::to_string(counts.size()) + " pixels and " +
+                                std::to_string(layers.size()) + " layers, the buffer " + std::to_string(counts_.size()) +
+                                " and " + std::to_string(layers_.size()));
+  if (std::any_of(counts.begin(), counts.end(), [&](std::uint32_t n) { return n > params_.layers; }))
+    throw std::invalid_argument("imported arrays hold more than " + std::to_string(params_.layers) + " layers in a pixel");
+  std::copy(counts.begin(), counts.end(), counts_.begin());
+  std::copy(layers.begin(), layers.end(), layers_.begin());
+  max_arrived_ = largest_overflow;
+}
+
+}  // namespace habuffer

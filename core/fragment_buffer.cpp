@@ -1,0 +1,23 @@
+#include "habuffer/fragment_buffer.h"
+
+#include <stdexcept>
+#include <string>
+
+#include <tbb/info.h>
+
+namespace habuffer {
+
+void check_on_screen(std::span<const Fragment> fragments, Extent screen) {
+  for (std::size_t i = 0; i < fragments.size(); ++i) {
+    const Fragment& f = fragments[i];
+    if (f.x >= screen.x || f.y >= screen.y)
+      throw std::out_of_range("fragment " + std::to_string(i) + " at pixel (" + std::to_string(f.x) + "," +
+                              std::to_string(f.y) + ") lies outside screen " + screen.str());
+  }
+}
+
+std::uint32_t resolve_threads(std::uint32_t threads) {
+  return threads != 0 ? threads : static_cast<std::uint32_t>(tbb::info::default_concurrency());
+}
+
+}  // namespace habuffer

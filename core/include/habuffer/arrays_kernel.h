@@ -1,0 +1,69 @@
+// Fixed per-pixel arrays on the CPU: the shared GLSL of core/shared/ha_arrays.glsl
+// compiled as member functions, over the buffers a shader would get.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "habuffer/glsl_env.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer {
+
+// The buffers a kernel works on (what a shader gets bound).
+struct ArraysBuffers {
+  std::uint32_t* counts;       // one per pixel
+  glm::uvec2* layers;          // K per pixel, layer-major
+  std::uint32_t* max_arrived;  // the largest count of a pixel that overflowed
+};
+
+// Concurrent: the per-pixel counters are incremented atomically (several
+// inserters at once); the sort and compositing need no atomics (one pixel
+// per thread), except the note of the largest overflow.
+template <bool Concurrent>
+class ArraysKernel {
+ public:
+  HA_GLSL_CLASS_PRELUDE
+  HA_GLSL_CLASS_LOCAL_ARRAY
+  using ha_word = std::uint64_t;
+  static constexpr uint ha_word_bits = 64;
+
+  using Buffers = ArraysBuffers;
+
+  ArraysKernel(const TechniqueParams& params, const Buffers& b)
+      : ha_age_bits(params.age_bits),
+        ha_payload_bits(params.payload_bits),
+        ha_screen_size(params.screen.x, params.screen.y),
+        ha_layers(params.layers),
+        b_(b) {}
+
+  uint ha_age_bits;
+  uint ha_payload_bits;
+  uvec2 ha_screen_size;
+  uint ha_layers;
+
+  uint fa_count_add(uint pixel) {
+    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(b_.counts[pixel]).fetch_add(1, std::memory_order_relaxed);
+    return b_.counts[pixel]++;
+  }
+  uint fa_load_count(uint pixel) const { return b_.counts[pixel]; }
+  void fa_store_count(uint pixel, uint n) { b_.counts[pixel] = n; }
+  uvec2 fa_load_layer(uint slot) const { return b_.layers[slot]; }
+  void fa_store_layer(uint slot, uvec2 e) { b_.layers[slot] = e; }
+  void fa_note_overflow(uint arrived) {
+    std::atomic_ref<std::uint32_t> m(*b_.max_arrived);
+    std::uint32_t cur = m.load(std::memory_order_relaxed);
+    while (cur < arrived && !m.compare_exchange_weak(cur, arrived, std::memory_order_relaxed)) {
+    }
+  }
+
+#include "../../shared/ha_record.glsl"
+#include "../../shared/ha_blend.glsl"
+#include "../../shared/ha_entries.glsl"
+#include "../../shared/ha_arrays.glsl"
+
+ private:
+  Buffers b_;
+};
+
+}  // namespace habuffer

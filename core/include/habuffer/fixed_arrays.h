@@ -1,0 +1,58 @@
+// Fixed per-pixel arrays on the CPU (seed 004): K layers per pixel and a
+// per-pixel atomic counter, sorted after each insert batch. A fragment
+// arriving at a pixel whose K layers are taken is dropped and counted
+// (dropped_layers); largest_overflow() gives the most fragments a pixel
+// received, so a caller can size K for a lossless regather. With K at least
+// the depth complexity the lists are exact.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/arrays_kernel.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer {
+
+class FixedArrays final : public FragmentBuffer {
+ public:
+  // Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
+  explicit FixedArrays(const TechniqueConfig& config);
+
+  [[nodiscard]] Technique technique() const override { return Technique::Arrays; }
+  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  [[nodiscard]] std::uint32_t layers() const { return params_.layers; }
+
+  Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  std::uint64_t clear() override;
+  [[nodiscard]] std::uint64_t count_stored() const override;
+  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.layers} * screen().area(); }
+  // The most fragments one pixel received since the last clear, when some
+  // pixel received more than K; else 0.
+  [[nodiscard]] std::uint32_t largest_overflow() const { return max_arrived_; }
+
+  std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
+  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+                                                       std::uint32_t threads = 0) const override;
+  // Counters and layers.
+  [[nodiscard]] std::uint64_t memory_bytes() const override;
+
+  // The GPU path's read-back (after its sort pass): per-pixel sorted lengths,
+  // layers, and the largest overflow; throws std::invalid_argument when the
+  // sizes differ or a length exceeds K.
+  void import_state(std::span<const std::uint32_t> counts, std::span<const glm::uvec2> layers,
+                    std::uint32_t largest_overflow);
+
+ private:
+  [[nodiscard]] ArraysBuffers buffers() const;
+
+  TechniqueConfig config_;
+  TechniqueParams params_;
+  std::vector<std::uint32_t> counts_;
+  std::vector<glm::uvec2> layers_;
+  std::uint32_t max_arrived_ = 0;
+};
+
+}  // namespace habuffer

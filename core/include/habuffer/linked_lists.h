@@ -1,0 +1,57 @@
+// Per-pixel linked lists on the CPU (seed 002): head pointers, a node pool
+// of fixed capacity with one atomic counter, sorted after each insert batch.
+// A fragment arriving at a full pool is dropped and counted (dropped_pool);
+// requested() tells how many nodes the last gather wanted, so a caller can
+// size the next pool (adaptive sizing, lossless regathering).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/lists_kernel.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer {
+
+class LinkedLists final : public FragmentBuffer {
+ public:
+  // Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
+  explicit LinkedLists(const TechniqueConfig& config);
+
+  [[nodiscard]] Technique technique() const override { return Technique::Lists; }
+  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+
+  Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  std::uint64_t clear() override;
+  [[nodiscard]] std::uint64_t count_stored() const override;
+  [[nodiscard]] std::uint64_t capacity() const override { return params_.pool_capacity; }
+  // Nodes asked for since the last clear, including those the pool could not give.
+  [[nodiscard]] std::uint64_t requested() const { return requested_; }
+
+  std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
+  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+                                                       std::uint32_t threads = 0) const override;
+  // Head pointers, nodes (entry and link) and the counter.
+  [[nodiscard]] std::uint64_t memory_bytes() const override;
+
+  // The GPU path's read-back: heads, node entries and links, and the nodes
+  // asked for; throws std::invalid_argument when the sizes differ from this
+  // buffer's or a link points outside the pool.
+  void import_state(std::span<const std::uint32_t> heads, std::span<const glm::uvec2> entries,
+                    std::span<const std::uint32_t> next, std::uint64_t requested);
+
+ private:
+  [[nodiscard]] ListsBuffers buffers() const;
+
+  TechniqueConfig config_;
+  TechniqueParams params_;
+  std::vector<std::uint32_t> heads_;
+  std::vector<glm::uvec2> entries_;
+  std::vector<std::uint32_t> next_;
+  std::uint32_t counter_ = 0;
+  std::uint64_t requested_ = 0;
+};
+
+}  // namespace habuffer

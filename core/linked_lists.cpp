@@ -1,0 +1,116 @@
+#include "habuffer/linked_lists.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "habuffer/lists_kernel.h"
+#include "technique_parallel.h"
+
+namespace habuffer {
+namespace {
+
+TechniqueConfig validated(TechniqueConfig c) {
+  c.technique = Technique::Lists;
+  c.validate();
+  return c;
+}
+
+}  // namespace
+
+LinkedLists::LinkedLists(const TechniqueConfig& config)
+    : config_(validated(config)),
+      params_(make_technique_params(config_)),
+      heads_(config_.buffer.screen.area(), 0),
+      entries_(config_.pool_capacity),
+      next_(config_.pool_capacity, 0) {}
+
+Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
+  check_on_screen(fragments, screen());
+  const std::uint32_t threads = detail::insert_threads(options, Technique::Lists);
+  if (requested_ + fragments.size() > UINT32_MAX)
+    throw std::invalid_argument("linked lists count nodes in 32 bits: " + std::to_string(requested_ + fragments.size()) +
+                                " fragments since the last clear are too many");
+  Counters c = detail::insert_slices(
+      fragments, threads, [&](auto concurrent) { return ListsKernel<decltype(concurrent)::value>(params_, buffers()); },
+      [](auto& k, const Fragment& f) { return k.ll_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+  requested_ = counter_;
+  // Sort every pixel's list (new nodes were prepended), merging identical entries.
+  std::vector<detail::PartCount> merged(threads);
+  detail::for_row_bands(screen(), threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
+    ListsKernel<false> k(params_, buffers());
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < screen().x; ++x) merged[part].n += k.ll_sort_pixel(glm::uvec2(x, y));
+  });
+  for (const auto& m : merged) c.merge_duplicates(m.n);
+  return c;
+}
+
+ListsBuffers LinkedLists::buffers() const {
+  // The kernel's read-only uses (length, composite) never write through these.
+  auto* self = const_cast<LinkedLists*>(this);
+  return {self->heads_.data(), self->entries_.data(), self->next_.data(), &self->counter_};
+}
+
+std::uint64_t LinkedLists::clear() {
+  const std::uint64_t held = count_stored();
+  std::fill(heads_.begin(), heads_.end(), 0u);
+  counter_ = 0;
+  requested_ = 0;
+  return held;
+}
+
+std::uint64_t LinkedLists::count_stored() const {
+  ListsKernel<false> k(params_, buffers());
+  std::uint64_t n = 0;
+  for (std::uint32_t head : heads_) n += k.ll_length(head);
+  return n;
+}
+
+std::uint32_t LinkedLists::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  out.clear();
+  std::uint32_t reads = 1;
+  for (std::uint32_t l = heads_[x + std::size_t{y} * screen().x]; l != 0; l = next_[l - 1]) {
+    out.push_back({0, entries_[l - 1].x, entries_[l - 1].y});
+    reads += 2;
+  }
+  return reads;
+}
+
+std::vector<glm::vec4> LinkedLists::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+  if (backgrounds.size() != screen().area())
+    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
+                                screen().str());
+  std::vector<glm::vec4> image(screen().area());
+  detail::for_row_bands(screen(), resolve_threads(threads), [&](std::uint32_t, std::uint32_t y0, std::uint32_t y1) {
+    ListsKernel<false> k(params_, buffers());
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < screen().x; ++x) {
+        const std::size_t p = x + std::size_t{y} * screen().x;
+        image[p] = k.ll_composite(glm::uvec2(x, y), backgrounds[p]);
+      }
+  });
+  return image;
+}
+
+std::uint64_t LinkedLists::memory_bytes() const {
+  return heads_.size() * 4 + entries_.size() * sizeof(glm::uvec2) + next_.size() * 4 + sizeof counter_;
+}
+
+void LinkedLists::import_state(std::span<const std::uint32_t> heads, std::span<const glm::uvec2> entries,
+                               std::span<const std::uint32_t> next, std::uint64_t requested) {
+  if (heads.size() != heads_.size() || entries.size() != entries_.size() || next.size() != next_.size())
+    throw std::invalid_argument("imported lists have " + std::to_string(heads.size()) + " heads and " +
+                                std::to_string(entries.size()) + " nodes, the buffer " + std::to_string(heads_.size()) +
+                                " and " + std::to_string(entries_.size()));
+  const auto bad_link = [&](std::uint32_t l) { return l > entries_.size(); };
+  if (std::any_of(heads.begin(), heads.end(), bad_link) || std::any_of(next.begin(), next.end(), bad_link))
+    throw std::invalid_argument("imported lists link beyond the pool of " + std::to_string(entries_.size()) + " nodes");
+  std::copy(heads.begin(), heads.end(), heads_.begin());
+  std::copy(entries.begin(), entries.end(), entries_.begin());
+  std::copy(next.begin(), next.end(), next_.begin());
+  requested_ = requested;
+  counter_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(requested, UINT32_MAX));
+}
+
+}  // namespace habuffer

@@ -1,0 +1,84 @@
+// The parallel shapes the sorted techniques share on the CPU: a stream split
+// into contiguous slices, one per thread, all inserting into the same
+// buffers with atomics (the GPU's model); and a screen split into bands of
+// rows, one per thread, for the per-pixel sort and compositing.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <tbb/task_arena.h>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/parallel.h"
+
+namespace habuffer::detail {
+
+// One cache line per thread's counters, so threads never share one.
+struct alignas(64) SliceCounters {
+  Counters c;
+};
+
+// A count per thread, one cache line each.
+struct alignas(64) PartCount {
+  std::uint64_t n = 0;
+};
+
+// The threads and whether they share the buffers through atomics; throws for
+// a mode the sorted techniques do not have.
+inline std::uint32_t insert_threads(const InsertOptions& options, Technique technique) {
+  const std::uint32_t threads = resolve_threads(options.threads);
+  if (options.mode == InsertMode::OwnerComputes)
+    throw std::invalid_argument("owner-computes insertion is the HA-buffer's, not " + to_string(technique) + "'s");
+  if (options.mode == InsertMode::Serial && threads != 1)
+    throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
+  return threads;
+}
+
+// `make_kernel(concurrent)` is called once per thread with a bool_constant
+// telling whether atomics are needed; insert(kernel, fragment) returns the
+// HA_* outcome.
+template <class MakeKernel, class Insert>
+Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Insert insert) {
+  const auto run = [&](auto& k, std::span<const Fragment> slice, Counters& counters) {
+    // A local tally: counters in memory could alias the buffers and force a store per fragment.
+    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
+    for (const Fragment& f : slice) ++tally[insert(k, f)];
+    counters.add_tally(tally);
+  };
+  if (threads == 1) {
+    Counters c;
+    auto k = make_kernel(std::false_type{});
+    run(k, frags, c);
+    return c;
+  }
+  std::vector<SliceCounters> slices(threads);
+  tbb::task_arena arena(static_cast<int>(threads));
+  arena.execute([&] {
+    fork_join(threads, [&](std::uint32_t t) {
+      auto k = make_kernel(std::true_type{});
+      const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
+      run(k, frags.subspan(begin, end - begin), slices[t].c);
+    });
+  });
+  Counters total;
+  for (const auto& s : slices) total += s.c;
+  return total;
+}
+
+// body(part, y_begin, y_end) over `parts` bands of rows, in parallel.
+template <class Body>
+void for_row_bands(Extent screen, std::uint32_t parts, Body body) {
+  tbb::task_arena arena(static_cast<int>(parts));
+  arena.execute([&] {
+    fork_join(parts, [&](std::uint32_t part) {
+      body(part, static_cast<std::uint32_t>(std::uint64_t{screen.y} * part / parts),
+           static_cast<std::uint32_t>(std::uint64_t{screen.y} * (part + 1) / parts));
+    });
+  });
+}
+
+}  // namespace habuffer::detail
