@@ -10,6 +10,7 @@
 #include "clear_pass.h"
 #include "compute_grid.h"
 #include "gl_state_guard.h"
+#include "gl_params.h"
 #include "gpu_timer.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
@@ -19,24 +20,6 @@
 
 namespace habuffer::gl {
 namespace {
-
-// The HaParams uniform block of prelude_common.glsl, std140.
-struct GlParams {
-  std::uint32_t table[2];
-  std::uint32_t age_bits;
-  std::uint32_t block;
-  std::uint32_t max_age_cells_x;
-  std::uint32_t iter_limit;
-  float cull_tau;
-  std::uint32_t lock_spin_limit;
-  std::uint32_t screen[2];
-  std::uint32_t capture_capacity;
-  std::uint32_t capture_only;
-  std::uint32_t count_writes;
-  std::uint32_t deferred_capacity;
-  std::uint32_t pad[2];
-};
-static_assert(sizeof(GlParams) == 64);
 
 constexpr std::uint64_t kCounterWords = HA_COUNTER_STRIPES * HA_COUNTER_STRIDE;
 static_assert(HA_GPU_COUNTER_COUNT <= HA_COUNTER_STRIDE, "a stripe's counters fit its cache line");
@@ -170,21 +153,21 @@ void GlHaBuffer::allocate_table(Extent table, bool new_offsets) {
 }
 
 void GlHaBuffer::write_params() const {
-  GlParams p{};
-  p.table[0] = config_.table.x;
-  p.table[1] = config_.table.y;
-  p.age_bits = config_.age_bits;
-  p.block = config_.block;
-  p.max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
-  p.iter_limit = config_.iter_limit;
-  p.cull_tau = config_.early_cull_tau;
-  p.lock_spin_limit = options_.lock_spin_limit;
-  p.screen[0] = config_.screen.x;
-  p.screen[1] = config_.screen.y;
-  p.capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
-  p.capture_only = options_.capture_only ? 1u : 0u;
-  p.count_writes = options_.count_writes ? 1u : 0u;
-  p.deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
+  GlParams p;
+  p.ha_table_size[0] = config_.table.x;
+  p.ha_table_size[1] = config_.table.y;
+  p.ha_age_bits = config_.age_bits;
+  p.ha_block = config_.block;
+  p.ha_max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
+  p.ha_iter_limit = config_.iter_limit;
+  p.ha_cull_tau = config_.early_cull_tau;
+  p.ha_lock_spin_limit = options_.lock_spin_limit;
+  p.ha_screen_size[0] = config_.screen.x;
+  p.ha_screen_size[1] = config_.screen.y;
+  p.ha_capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
+  p.ha_capture_only = options_.capture_only ? 1u : 0u;
+  p.ha_count_writes = options_.count_writes ? 1u : 0u;
+  p.ha_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
   glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
 }
 

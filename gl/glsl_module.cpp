@@ -66,10 +66,49 @@ std::string GlBindings::glsl_defines() const {
   define("STREAM", stream);
   define("DEFERRED", deferred);
   define("PARAMS", params);
+  // The sorted techniques' buffers take the HA-buffer's points (one technique per module).
+  define("HEADS", table);
+  define("NODES", max_age);
+  define("LINKS", offsets);
+  define("COUNTS", table);
+  define("LAYERS", max_age);
   return s;
 }
 
-std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header) {
+namespace {
+
+// The parts of a technique's module after the shared prelude, in order, and
+// the names the passes call (insert, sort, composite) as macros.
+std::string technique_parts(Technique technique, AtomicMode mode) {
+  std::string s;
+  const auto add = [&](const char* part) {
+    s += part;
+    s += '\n';
+  };
+  switch (technique) {
+    case Technique::Ha:
+      s += "#define HA_TECHNIQUE_COMPOSITE ha_composite\n";
+      for (const char* part : {kHaEnv, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaBlend, kHaTraverse, kHaEntry})
+        add(part);
+      break;
+    case Technique::Lists:
+      s += "#define HA_TECHNIQUE_INSERT ll_insert_fragment\n#define HA_TECHNIQUE_SORT ll_sort_pixel\n"
+           "#define HA_TECHNIQUE_COMPOSITE ll_composite\n";
+      for (const char* part : {kListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kSortedEntry}) add(part);
+      break;
+    case Technique::Arrays:
+      s += "#define HA_TECHNIQUE_INSERT fa_insert_fragment\n#define HA_TECHNIQUE_SORT fa_sort_pixel\n"
+           "#define HA_TECHNIQUE_COMPOSITE fa_composite\n";
+      for (const char* part : {kArraysEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaArrays, kSortedEntry}) add(part);
+      break;
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string technique_module(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
+                             std::string_view header) {
   std::string s = "#version 450 core\n";
   s += mode_extensions(mode);
   s += header;
@@ -77,20 +116,32 @@ std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage s
   if (stage == ShaderStage::Fragment) s += "#define HA_STAGE_FRAGMENT\n";
   s += bindings.glsl_defines();
   s += word_defines(mode);
-  for (const char* part : {kHaConstants, kPreludeCommon, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaBlend, kHaTraverse,
-                           kHaEntry}) {
+  for (const char* part : {kHaConstants, kPreludeCommon, kHaParams, kGlslEnv, kEntryCommon}) {
     s += part;
     s += '\n';
   }
-  return s;
+  return s + technique_parts(technique, mode);
+}
+
+std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header) {
+  return technique_module(Technique::Ha, mode, bindings, stage, header);
+}
+
+std::string insert_stream_compute(Technique technique, AtomicMode mode, const GlBindings& bindings) {
+  return technique_module(technique, mode, bindings, ShaderStage::Compute) + kInsertStreamCompute;
 }
 
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings) {
-  return ha_module(mode, bindings, ShaderStage::Compute) + kInsertStreamCompute;
+  return insert_stream_compute(Technique::Ha, mode, bindings);
 }
 
 std::string resume_compute(AtomicMode mode, const GlBindings& bindings) {
   return ha_module(mode, bindings, ShaderStage::Compute) + kResumeCompute;
+}
+
+std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings& bindings) {
+  if (technique == Technique::Ha) throw GlError("the HA-buffer is sorted by insertion: it has no sort pass");
+  return technique_module(technique, mode, bindings, ShaderStage::Compute) + kSortCompute;
 }
 
 std::string full_screen_vertex() { return std::string("#version 450 core\n") + kFullScreenVertex; }
@@ -99,16 +150,27 @@ std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings) {
   return ha_module(mode, bindings, ShaderStage::Fragment) + kClearPassFragment;
 }
 
+std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings) {
+  return technique_module(technique, mode, bindings, ShaderStage::Fragment) + kResolveFragment;
+}
+
 std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings) {
-  return ha_module(mode, bindings, ShaderStage::Fragment) + kResolveFragment;
+  return resolve_fragment(Technique::Ha, mode, bindings);
 }
 
 std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings) {
-  return {{"insert", "comp", insert_stream_compute(mode, bindings)},
-          {"resume", "comp", resume_compute(mode, bindings)},
-          {"full-screen", "vert", full_screen_vertex()},
-          {"clear", "frag", clear_pass_fragment(mode, bindings)},
-          {"resolve", "frag", resolve_fragment(mode, bindings)}};
+  std::vector<ShaderSource> shaders{{"insert", "comp", insert_stream_compute(mode, bindings)},
+                                    {"resume", "comp", resume_compute(mode, bindings)},
+                                    {"full-screen", "vert", full_screen_vertex()},
+                                    {"clear", "frag", clear_pass_fragment(mode, bindings)},
+                                    {"resolve", "frag", resolve_fragment(mode, bindings)}};
+  for (Technique t : {Technique::Lists, Technique::Arrays}) {
+    const std::string name = to_string(t);
+    shaders.push_back({name + "-insert", "comp", insert_stream_compute(t, mode, bindings)});
+    shaders.push_back({name + "-sort", "comp", sort_compute(t, mode, bindings)});
+    shaders.push_back({name + "-resolve", "frag", resolve_fragment(t, mode, bindings)});
+  }
+  return shaders;
 }
 
 }  // namespace habuffer::gl

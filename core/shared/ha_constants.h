@@ -71,6 +71,11 @@
 #define HA_COUNTER_SORT_BEGUN 10u
 #define HA_COUNTER_SORT_DONE 11u
 #define HA_GPU_COUNTER_COUNT 12u
+// Words of stripe 0 that are not sums: the linked lists' node counter (one
+// atomic add per fragment, the technique's own hot spot) and the most
+// fragments a fixed-array pixel received when some pixel overflowed.
+#define HA_COUNTER_NODES 12u
+#define HA_COUNTER_MOST_ARRIVED 13u
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.
 #define HA_APPEND_HEADER_WORDS 4u

@@ -1,17 +1,9 @@
-// The GPU path's public insertion functions, for host fragment shaders and
-// our compute entry: the shared insert (ha_insert_run) plus the frame's
-// outcome tallies (SPEC invariant 1 on the GPU), the capture mode, which
-// appends every incoming fragment so the CPU path can replay exactly what the
-// rasterizer produced, and the deferral of calls cut short: their carried
-// state goes to a buffer that the frame's resume pass (resume.comp.glsl) runs
-// on until every call has ended, so contention and the driver's loop budget
-// lose nothing.
-struct HaFragment {
-  uint x;
-  uint y;
-  float depth;  // as given: the CPU path derives the same depth code from it
-  uint rgba;
-};
+// The HA-buffer's insertion entry on the GPU, for host fragment shaders and
+// our compute entry: the shared insert (ha_insert_run) plus the outcome
+// tallies and capture of entry_common.glsl, and the deferral of calls cut
+// short: their carried state goes to a buffer that the frame's resume pass
+// (resume.comp.glsl) runs on until every call has ended, so contention and
+// the driver's loop budget lose nothing.
 
 // A HaCarry in a buffer (std430, 32 bytes): the record split in 32-bit halves.
 struct HaDeferred {
@@ -23,14 +15,6 @@ struct HaDeferred {
   uvec2 r;  // (low, high) words; high is 0 for L32
 };
 
-layout(std430, binding = HA_BINDING_COUNTERS) buffer HaCounters { uint ha_counters[]; };
-layout(std430, binding = HA_BINDING_CAPTURE) buffer HaCapture {
-  uint ha_capture_count;  // may exceed the capacity: the host sees the overflow and gathers again
-  uint ha_capture_pad0;
-  uint ha_capture_pad1;
-  uint ha_capture_pad2;
-  HaFragment ha_captured[];
-};
 layout(std430, binding = HA_BINDING_DEFERRED) buffer HaDeferredCalls {
   uint ha_deferred_count;  // may exceed the capacity: the host sees the overflow and gathers again
   uint ha_deferred_pad0;
@@ -38,11 +22,6 @@ layout(std430, binding = HA_BINDING_DEFERRED) buffer HaDeferredCalls {
   uint ha_deferred_pad2;
   HaDeferred ha_deferred[];
 };
-
-void ha_capture(uvec2 pixel, float depth, uint rgba) {
-  uint i = atomicAdd(ha_capture_count, 1u);
-  if (i < ha_capture_capacity) ha_captured[i] = HaFragment(pixel.x, pixel.y, depth, rgba);
-}
 
 void ha_defer(HaCarry c) {
   uint i = atomicAdd(ha_deferred_count, 1u);
@@ -58,10 +37,6 @@ HaCarry ha_carry_from(HaDeferred d) {
   c.iter = d.iter;
   return c;
 }
-
-// The counter stripe of a call: neighbouring pixels (the lanes of one SIMD
-// group) add to different cache lines; the host sums the stripes.
-uint ha_counter_stripe(uvec2 p) { return (p.x + p.y * 5u) & (HA_COUNTER_STRIPES - 1u); }
 
 // Ends a call (or one resumption of it): a call cut short is deferred and
 // returns HA_PENDING (its outcome is counted when the resume pass ends it);

@@ -8,6 +8,7 @@
 
 #include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_info.h"
+#include "habuffer/technique.h"
 
 namespace habuffer::gl {
 
@@ -20,7 +21,16 @@ extern const char* const kHaTraverse;
 extern const char* const kHaEntries;
 extern const char* const kHaLists;
 extern const char* const kHaArrays;
+extern const char* const kHaParams;
 extern const char* const kPreludeCommon;
+extern const char* const kGlslEnv;
+extern const char* const kEntryCommon;
+extern const char* const kHaEnv;
+extern const char* const kListsEnv;
+extern const char* const kArraysEnv;
+extern const char* const kSortedEnv;
+extern const char* const kSortedEntry;
+extern const char* const kSortCompute;
 extern const char* const kPreludeNative;
 extern const char* const kPreludeEmulated64;
 extern const char* const kHaEntry;
@@ -39,9 +49,15 @@ enum class ShaderStage { Compute, Fragment };
 // and traversal, and the entry ha_insert(uvec2 pixel, float depth, uint rgba)
 // (and ha_insert(uvec2 pixel, float depth) for L32). Do not repeat #version.
 std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header = {});
+// The same for any technique: its buffers and algorithm, and the same entry
+// ha_insert(pixel, depth, rgba) (outcomes HA_*, counted). The atomic mode
+// fixes the record layout (native32: L32, else L64) for every technique.
+std::string technique_module(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
+                             std::string_view header = {});
 
 // The compute shader that inserts a fragment stream held in a buffer.
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});
+std::string insert_stream_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
 
 // A complete shader as the library compiles it, for checks by a reference
 // compiler: `name` is unique per mode ("insert", "clear", ...), `stage` the
@@ -49,8 +65,9 @@ std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = 
 struct ShaderSource {
   std::string name, stage, source;
 };
-// Every shader the library compiles for `mode` (compute entry, resume pass,
-// clear pass, resolve pass). Needs no GL context.
+// Every shader the library compiles for `mode` (the HA-buffer's compute
+// entry, resume, clear and resolve passes; every other technique's compute
+// entry, sort and resolve passes, named "lists-insert", ...). Needs no GL context.
 std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings = {});
 
 // The full-screen passes' shaders: one vertex shader, and the clear pass's
@@ -58,6 +75,11 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
 std::string full_screen_vertex();
 std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings);
 std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings);
+std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings);
+
+// The sort pass of the techniques that sort after the gather (one
+// invocation per pixel); throws GlError for the HA-buffer.
+std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
 
 // The resume pass: runs deferred insert calls (cut short by a lock or the
 // driver's loop budget) on from their carried state.

@@ -1,0 +1,15 @@
+// Linked lists' environment on the GPU (core/shared/ha_lists.glsl): the head
+// image, the node pool's entries and links, and the node counter (one word of
+// the counters buffer, zeroed with the tallies before every gather).
+layout(std430, binding = HA_BINDING_HEADS) coherent buffer HaHeads { uint ha_heads[]; };
+layout(std430, binding = HA_BINDING_NODES) coherent buffer HaNodes { uvec2 ha_nodes[]; };
+layout(std430, binding = HA_BINDING_LINKS) coherent buffer HaLinks { uint ha_links[]; };
+
+uint ll_allocate_node() { return atomicAdd(ha_counters[HA_COUNTER_NODES], 1u); }
+uint ll_exchange_head(uint pixel, uint link) { return atomicExchange(ha_heads[pixel], link); }
+uint ll_load_head(uint pixel) { return ha_heads[pixel]; }
+void ll_store_head(uint pixel, uint link) { ha_heads[pixel] = link; }
+uvec2 ll_load_entry(uint node) { return ha_nodes[node]; }
+void ll_store_entry(uint node, uvec2 e) { ha_nodes[node] = e; }
+uint ll_load_next(uint node) { return ha_links[node]; }
+void ll_store_next(uint node, uint link) { ha_links[node] = link; }
