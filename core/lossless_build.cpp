@@ -20,7 +20,7 @@ BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::
   for (;;) {
     HaBuffer buffer(c, offsets.make(c.table, amax));
     const Counters counters = buffer.insert(fragments, options);
-    attempts.push_back({c.table, counters});
+    attempts.push_back({c.table, counters, c.table.area()});
     if (counters.failures() == 0 || attempts.size() >= max_attempts)
       return BuildResult{std::move(buffer), counters, std::move(attempts)};
     c.table = policy.grown(c.table);

@@ -7,8 +7,8 @@
 
 namespace habuffer::gl {
 
-ResolvePass::ResolvePass(AtomicMode mode, const GlBindings& bindings)
-    : program_(ShaderProgram::graphics(full_screen_vertex(), resolve_fragment(mode, bindings), "resolve pass")) {
+ResolvePass::ResolvePass(const std::string& fragment_source, const std::string& name)
+    : program_(ShaderProgram::graphics(full_screen_vertex(), fragment_source, name)) {
   glCreateVertexArrays(1, &vertex_array_);
 }
 

@@ -3,6 +3,7 @@
 // them over the background into the bound framebuffer.
 #pragma once
 
+#include <string>
 #include <utility>
 
 #include <glm/vec3.hpp>
@@ -17,8 +18,8 @@ namespace habuffer::gl {
 
 class ResolvePass {
  public:
-  // Compiles the pass for the buffer's atomic mode and binding points.
-  ResolvePass(AtomicMode mode, const GlBindings& bindings);
+  // Compiles the pass from its fragment shader (resolve_fragment()).
+  ResolvePass(const std::string& fragment_source, const std::string& name);
   ~ResolvePass();
   ResolvePass(const ResolvePass&) = delete;
   ResolvePass& operator=(const ResolvePass&) = delete;

@@ -26,8 +26,9 @@ struct OffsetSource {
 };
 
 struct BuildAttempt {
-  Extent table;
+  Extent table;  // the HA-buffer's table; zero for other techniques
   Counters counters;
+  std::uint64_t capacity = 0;  // records the technique could hold (slots, nodes, layers of every pixel)
 };
 
 struct BuildResult {

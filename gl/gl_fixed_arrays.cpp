@@ -1,0 +1,98 @@
+#include "habuffer/gl/gl_fixed_arrays.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+
+#include "gl_params.h"
+#include "habuffer/fixed_arrays.h"
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "sort_pass.h"
+
+namespace habuffer::gl {
+namespace {
+
+TechniqueConfig validated(TechniqueConfig c) {
+  c.technique = Technique::Arrays;
+  c.validate();
+  return c;
+}
+
+void delete_buffer(GLuint& b) {
+  if (b != 0) glDeleteBuffers(1, &b);
+  b = 0;
+}
+
+}  // namespace
+
+struct GlFixedArrays::Gpu {
+  GLuint counts = 0, layers = 0;
+  std::unique_ptr<SortPass> sort;
+  ~Gpu() {
+    for (GLuint* b : {&counts, &layers}) delete_buffer(*b);
+  }
+};
+
+GlFixedArrays::GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
+    : GlTechnique(Technique::Arrays, mode, bindings, validated(config).buffer.screen),
+      config_(validated(config)),
+      gpu_(std::make_unique<Gpu>()) {
+  if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
+    throw GlError("atomic mode " + to_string(mode) + " does not build " + to_string(config_.buffer.layout) + " arrays");
+  check_storage_fits(screen().area() * 4, "the counters of screen " + screen().str());
+  gpu_->counts = create_buffer(screen().area() * 4);
+  allocate_layers(config_.layers);
+  gpu_->sort = std::make_unique<SortPass>(Technique::Arrays, mode, bindings);
+}
+
+GlFixedArrays::~GlFixedArrays() = default;
+
+void GlFixedArrays::allocate_layers(std::uint32_t layers) {
+  TechniqueConfig c = config_;
+  c.layers = layers;
+  c.validate();
+  const std::uint64_t bytes = std::uint64_t{layers} * screen().area() * sizeof(glm::uvec2);
+  check_storage_fits(bytes, std::to_string(layers) + " layers of screen " + screen().str());
+  delete_buffer(gpu_->layers);
+  gpu_->layers = create_buffer(bytes);
+  config_.layers = layers;
+}
+
+void GlFixedArrays::write_params(GlParams& p) const {
+  p.ha_age_bits = config_.buffer.age_bits;
+  p.ha_layers = config_.layers;
+}
+
+void GlFixedArrays::bind() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->counts);    // HA_BINDING_COUNTS
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->layers);  // HA_BINDING_LAYERS
+}
+
+void GlFixedArrays::before_gather() { zero_buffer(gpu_->counts); }
+
+PassTiming GlFixedArrays::after_gather(bool finish_timing) { return gpu_->sort->run(screen(), finish_timing); }
+
+bool GlFixedArrays::grow(const FrameReport& report, const GlFrameOptions&) {
+  // K as large as the deepest pixel: the regather keeps every fragment.
+  const std::uint32_t next = std::max(report.most_arrived, config_.layers + 1);
+  const std::uint64_t bytes = std::uint64_t{next} * screen().area() * sizeof(glm::uvec2);
+  if (bytes > max_storage_bytes() || std::uint64_t{next} * screen().area() > UINT32_MAX) return false;
+  allocate_layers(next);
+  return true;
+}
+
+std::uint64_t GlFixedArrays::memory_bytes() const {
+  return screen().area() * 4 + capacity() * sizeof(glm::uvec2);
+}
+
+std::unique_ptr<FragmentBuffer> GlFixedArrays::read_back() const {
+  auto arrays = std::make_unique<FixedArrays>(config_);
+  const std::vector<std::uint32_t> counts = read_words(gpu_->counts, screen().area());
+  std::vector<glm::uvec2> layers(capacity());
+  glGetNamedBufferSubData(gpu_->layers, 0, static_cast<GLsizeiptr>(layers.size() * sizeof(glm::uvec2)), layers.data());
+  arrays->import_state(counts, layers, most_arrived_);
+  return arrays;
+}
+
+}  // namespace habuffer::gl

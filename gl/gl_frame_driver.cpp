@@ -1,0 +1,345 @@
+#include "habuffer/gl/gl_frame_driver.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+#include <tuple>
+
+#include "compute_grid.h"
+#include "gl_params.h"
+#include "gl_state_guard.h"
+#include "gpu_timer.h"
+#include "habuffer/gl/debug_output.h"
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/shader_program.h"
+#include "resolve_pass.h"
+
+namespace habuffer::gl {
+namespace {
+
+constexpr std::uint64_t kCounterWords = HA_COUNTER_STRIPES * HA_COUNTER_STRIDE;
+static_assert(HA_GPU_COUNTER_COUNT <= HA_COUNTER_STRIDE && HA_COUNTER_MOST_ARRIVED < HA_COUNTER_STRIDE,
+              "a stripe's counters fit its cache line");
+constexpr std::uint64_t kAppendHeaderBytes = HA_APPEND_HEADER_WORDS * 4;
+constexpr std::uint64_t kDeferredCallBytes = 32;  // std430 HaDeferred of ha_entry.glsl
+static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
+
+void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {
+  const GLuint z = 0;
+  glClearNamedBufferSubData(buffer, GL_R32UI, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+                            GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
+}
+
+void delete_buffer(GLuint& b) {
+  if (b != 0) glDeleteBuffers(1, &b);
+  b = 0;
+}
+
+// The capacity an append buffer of `item_bytes` items grows to for `needed`
+// items: at least double the current one, within one shader-storage buffer
+// and 32-bit counts (throws GlError naming `what` beyond that).
+std::uint64_t grown_append_capacity(std::uint64_t needed, std::uint64_t current, std::uint64_t item_bytes,
+                                    const std::string& what) {
+  const std::uint64_t limit = std::min<std::uint64_t>((max_storage_bytes() - kAppendHeaderBytes) / item_bytes, UINT32_MAX);
+  if (needed > limit)
+    throw GlError(std::to_string(needed) + " " + what + " exceed this OpenGL's " + std::to_string(limit) +
+                  " per shader-storage buffer");
+  return std::min(limit, std::max(needed, current * 2));
+}
+
+std::unique_ptr<GlTechnique> checked(std::unique_ptr<GlTechnique> t) {
+  if (!t) throw std::invalid_argument("the frame driver needs a technique");
+  return t;
+}
+
+}  // namespace
+
+struct GlFrameDriver::Gpu {
+  GLuint counters = 0, capture = 0, params = 0;
+  GLuint deferred[2] = {0, 0};  // ping-pong: the calls a round resumes, the calls it defers again
+  std::unique_ptr<ResolvePass> resolve;
+  std::unique_ptr<ShaderProgram> resume;
+  GpuTimer gather_timer;
+  ~Gpu() {
+    for (GLuint* b : {&counters, &capture, &params, &deferred[0], &deferred[1]}) delete_buffer(*b);
+  }
+};
+
+GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options)
+    : technique_(checked(std::move(technique))), options_(options), gpu_(std::make_unique<Gpu>()) {
+  options_.policy.validate();
+  if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
+  if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
+  if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
+  bindings().validate();
+  GLint viewport[2] = {};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  const Extent s = screen();
+  if (s.x > static_cast<std::uint32_t>(viewport[0]) || s.y > static_cast<std::uint32_t>(viewport[1]))
+    throw GlError("screen " + s.str() + " exceeds this OpenGL's largest viewport " + std::to_string(viewport[0]) + "x" +
+                  std::to_string(viewport[1]));
+  gpu_->counters = create_buffer(kCounterWords * 4);
+  gpu_->params = create_buffer(sizeof(GlParams));
+  gpu_->capture = create_buffer(kAppendHeaderBytes);
+  if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
+  if (technique_->defers_calls()) grow_deferred(std::max<std::uint64_t>(options_.deferred_capacity, 1));
+  write_params();
+  // Compile the passes now, so the first frame's timings measure the passes, not the compiler.
+  gpu_->resolve = std::make_unique<ResolvePass>(
+      resolve_fragment(technique_->technique(), mode(), bindings()), to_string(technique_->technique()) + " resolve pass");
+  if (technique_->defers_calls())
+    gpu_->resume = std::make_unique<ShaderProgram>(
+        ShaderProgram::compute(resume_compute(mode(), bindings()), "resume compute shader"));
+  check_gl_errors("creating the GPU frame buffers");
+}
+
+GlFrameDriver::~GlFrameDriver() = default;
+
+std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
+  return technique_->module_source(stage, header);
+}
+
+void GlFrameDriver::write_params() const {
+  GlParams p;
+  p.ha_lock_spin_limit = options_.lock_spin_limit;
+  p.ha_screen_size[0] = screen().x;
+  p.ha_screen_size[1] = screen().y;
+  p.ha_capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
+  p.ha_capture_only = options_.capture_only ? 1u : 0u;
+  p.ha_count_writes = options_.count_writes ? 1u : 0u;
+  p.ha_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
+  technique_->write_params(p);
+  glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
+}
+
+void GlFrameDriver::grow_capture(std::uint64_t needed) {
+  capture_capacity_ = grown_append_capacity(needed, capture_capacity_, sizeof(Fragment), "captured fragments");
+  delete_buffer(gpu_->capture);
+  gpu_->capture = create_buffer(kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment));
+  write_params();
+}
+
+void GlFrameDriver::grow_deferred(std::uint64_t needed) {
+  deferred_capacity_ = grown_append_capacity(needed, deferred_capacity_, kDeferredCallBytes, "insert calls cut short");
+  for (GLuint& b : gpu_->deferred) {
+    delete_buffer(b);
+    b = create_buffer(kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
+  }
+  write_params();
+}
+
+void GlFrameDriver::reset_frame_state() const {
+  zero_buffer(gpu_->counters);
+  zero_range(gpu_->capture, 0, kAppendHeaderBytes);
+  if (gpu_->deferred[0] != 0) zero_range(gpu_->deferred[0], 0, kAppendHeaderBytes);
+}
+
+void GlFrameDriver::bind() const {
+  // glBindBufferBase also sets the generic binding of its target: keep the
+  // host's, so a host that updates "its" GL_UNIFORM_BUFFER or
+  // GL_SHADER_STORAGE_BUFFER inside the gather writes its own buffer.
+  GLint storage_generic = 0, uniform_generic = 0;
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_generic);
+  glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_generic);
+  technique_->bind();
+  const GlBindings& b = bindings();
+  for (const auto& [point, buffer] : {std::pair{b.counters, gpu_->counters}, std::pair{b.capture, gpu_->capture},
+                                      std::pair{b.deferred, gpu_->deferred[0]}})
+    if (buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buffer);
+  glBindBufferBase(GL_UNIFORM_BUFFER, b.params, gpu_->params);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(storage_generic));
+  glBindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(uniform_generic));
+}
+
+FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
+  const GlStateGuard guard(bindings());
+  FrameReport report;
+  report.index = frames_++;
+  {
+    const GlStateGuard begin_guard(bindings());  // the gather gets the host's state back
+    write_params();
+    bind();
+    technique_->begin_frame(report, options_);
+  }
+  for (;;) {
+    run_gather(gather, calls, report);
+    if (options_.capture && report.captured > capture_capacity_) {
+      // A gather is deterministic in what it rasterizes, so one regather suffices;
+      // two would mean the host's gather is not repeatable.
+      if (report.capture_regathers > 0)
+        throw GlError("capture overflowed twice: the gather produced " + std::to_string(report.captured) +
+                      " fragments after fitting a capture of " + std::to_string(capture_capacity_));
+      grow_capture(report.captured);
+      technique_->reset();
+      ++report.capture_regathers;
+      continue;
+    }
+    if (deferred_overflow_ > 0) {
+      // Calls cut short beyond the buffer lost their carried state: gather
+      // again with room for all of them (contention varies between gathers,
+      // so a few tries are allowed).
+      if (report.deferred_regathers >= 8)
+        throw GlError("insert calls cut short overflowed the deferred-call buffer 8 times (capacity " +
+                      std::to_string(deferred_capacity_) + ")");
+      grow_deferred(deferred_overflow_);
+      technique_->reset();
+      ++report.deferred_regathers;
+      continue;
+    }
+    if (report.cut_short > 0 && report.cut_short_retries < options_.cut_short_retries) {
+      technique_->reset();
+      ++report.cut_short_retries;
+      continue;
+    }
+    report.attempts.push_back({technique_->table(), report.counters, technique_->capacity()});
+    if (report.counters.failures() == 0 || report.attempts.size() >= options_.max_attempts) break;
+    // Lossless mode: the same frame again, with room for what was dropped.
+    if (!technique_->grow(report, options_)) {
+      report.growth_limited = true;
+      break;
+    }
+  }
+  report.table = technique_->table();
+  report.capacity = technique_->capacity();
+  return report;
+}
+
+void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
+                               FrameReport& report) {
+  reset_frame_state();
+  technique_->before_gather();
+  write_params();
+  std::uint64_t unfinished = 0;
+  {
+    const GlStateGuard attempt_guard(bindings());
+    bind();
+    PassClock clock(gpu_->gather_timer);
+    gather();
+    // Resolve, read-backs and the next clear see every insert.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+    unfinished = resume_deferred(report);
+    std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
+    if (deferred_overflow_ == 0 && !options_.capture_only) {
+      bind();  // the host's gather may have bound its own buffers at our points
+      report.sort = technique_->after_gather(options_.finish_timing);
+    }
+  }
+  read_counters(report);
+  if (options_.capture) report.captured = read_capture_count();
+  check_gl_errors("the gather pass");
+  report.cut_short = 0;
+  if (deferred_overflow_ > 0) return;  // frame() grows the buffer and gathers again
+  // Calls still cut short after the last round end as failed_iter.
+  report.counters.fragments += unfinished;
+  report.counters.failed_iter += unfinished;
+  report.cut_short += unfinished;
+  if (calls && !options_.capture_only) {
+    const std::uint64_t made = calls();
+    if (made < report.counters.fragments)
+      throw GlError("the gather counted " + std::to_string(report.counters.fragments) + " insert calls, the host " +
+                    std::to_string(made));
+    // Calls a driver ended without an outcome or a deferral: nothing to resume.
+    const std::uint64_t ended_by_driver = made - report.counters.fragments;
+    report.counters.fragments += ended_by_driver;
+    report.counters.failed_iter += ended_by_driver;
+    report.cut_short += ended_by_driver;
+  }
+  technique_->gathered(report);
+}
+
+std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
+  report.deferred = 0;
+  report.resume_rounds = 0;
+  deferred_overflow_ = 0;
+  if (!technique_->defers_calls()) return 0;
+  int in = 0;
+  std::uint64_t count = read_deferred_count(in);
+  deferred_overflow_ = count > deferred_capacity_ ? count : 0;
+  if (deferred_overflow_ > 0) return 0;
+  // Every round ends at least one call per contended slot (a lock's holder
+  // always completes its probe), so the rounds shrink the set; the bound
+  // only guards against a driver that cuts every call at once. Our buffers
+  // again at our points: the host's gather may have bound its own there.
+  if (count > 0) bind();
+  while (count > 0 && report.resume_rounds < options_.resume_rounds) {
+    report.deferred += count;
+    const int out = 1 - in;
+    zero_range(gpu_->deferred[out], 0, kAppendHeaderBytes);
+    glUseProgram(gpu_->resume->id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().stream, gpu_->deferred[in]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().deferred, gpu_->deferred[out]);
+    gpu_->resume->set("ha_resume_count", static_cast<unsigned>(count));
+    dispatch_grid(count, 64);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    ++report.resume_rounds;
+    count = read_deferred_count(out);
+    in = out;
+  }
+  return count;
+}
+
+void GlFrameDriver::read_counters(FrameReport& report) const {
+  const auto words = read_words(gpu_->counters, kCounterWords);
+  std::uint64_t tally[HA_GPU_COUNTER_COUNT] = {};
+  for (std::uint32_t stripe = 0; stripe < HA_COUNTER_STRIPES; ++stripe)
+    for (std::uint32_t k = 0; k < HA_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HA_COUNTER_STRIDE + k];
+  if (tally[HA_COUNTER_SORT_BEGUN] != tally[HA_COUNTER_SORT_DONE])
+    throw GlError("the driver ended " + std::to_string(tally[HA_COUNTER_SORT_BEGUN] - tally[HA_COUNTER_SORT_DONE]) +
+                  " of " + std::to_string(tally[HA_COUNTER_SORT_BEGUN]) +
+                  " per-pixel sorts early (its loop budget): the lists are too long for this driver's sort pass");
+  Counters c;
+  c.add_tally(tally);
+  c.merge_duplicates(tally[HA_COUNTER_MERGED]);
+  report.counters = c;
+  report.slot_writes = tally[HA_COUNTER_SLOT_WRITES];
+  report.nodes_requested = words[HA_COUNTER_NODES];
+  report.most_arrived = words[HA_COUNTER_MOST_ARRIVED];
+}
+
+PassTiming GlFrameDriver::resolve(glm::vec3 background, unsigned background_texture) {
+  const GlStateGuard guard(bindings());
+  const GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    GLint bound = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    throw GlError("resolve: the bound draw framebuffer " + std::to_string(bound) +
+                  " is not complete (status 0x" + std::to_string(status) + "); bind one with a colour attachment");
+  }
+  bind();
+  const auto [wall, gpu] = gpu_->resolve->run(screen(), background, background_texture, options_.finish_timing);
+  check_gl_errors("the resolve pass");
+  return {wall, gpu};
+}
+
+std::uint64_t GlFrameDriver::read_capture_count() const {
+  std::uint32_t count = 0;
+  glGetNamedBufferSubData(gpu_->capture, 0, 4, &count);
+  return count;
+}
+
+std::uint64_t GlFrameDriver::read_deferred_count(int which) const {
+  std::uint32_t count = 0;
+  glGetNamedBufferSubData(gpu_->deferred[which], 0, 4, &count);
+  return count;
+}
+
+std::vector<Fragment> GlFrameDriver::read_capture() const {
+  const std::uint64_t n = std::min(read_capture_count(), capture_capacity_);
+  std::vector<Fragment> out(n);
+  if (n > 0)
+    glGetNamedBufferSubData(gpu_->capture, static_cast<GLintptr>(kAppendHeaderBytes),
+                            static_cast<GLsizeiptr>(n * sizeof(Fragment)), out.data());
+  return out;
+}
+
+std::uint64_t GlFrameDriver::memory_bytes() const {
+  std::uint64_t bytes = technique_->memory_bytes() + kCounterWords * 4 + sizeof(GlParams);
+  if (capture_capacity_ > 0) bytes += kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment);
+  if (deferred_capacity_ > 0) bytes += 2 * (kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
+  return bytes;
+}
+
+}  // namespace habuffer::gl

@@ -1,0 +1,203 @@
+#include "habuffer/gl/gl_ha_table.h"
+
+#include <epoxy/gl.h>
+
+#include "clear_pass.h"
+#include "gl_params.h"
+#include "habuffer/gl/debug_output.h"
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/ha_buffer.h"
+
+namespace habuffer::gl {
+namespace {
+
+BufferConfig validated(BufferConfig c) {
+  c.validate();
+  c.table = c.table_or_screen();
+  return c;
+}
+
+void delete_buffer(GLuint& b) {
+  if (b != 0) glDeleteBuffers(1, &b);
+  b = 0;
+}
+
+}  // namespace
+
+struct GlHaTable::Gpu {
+  GLuint table = 0, locks = 0, max_age = 0, offsets = 0, count = 0;
+  std::unique_ptr<ClearPass> clear;
+  ~Gpu() {
+    for (GLuint* b : {&table, &locks, &max_age, &offsets, &count}) delete_buffer(*b);
+  }
+};
+
+GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlBindings& bindings,
+                     std::uint32_t clear_tile)
+    : GlTechnique(Technique::Ha, mode, bindings, validated(config).screen),
+      config_(validated(config)),
+      source_(std::move(offsets)),
+      offsets_(source_.make(config_.table, config_.record_layout().max_age())),
+      clear_tile_(clear_tile),
+      gpu_(std::make_unique<Gpu>()) {
+  if (mode == AtomicMode::Native32 && config_.layout != Layout::L32)
+    throw GlError("atomic mode native32 holds L32 records only");
+  if (mode != AtomicMode::Native32 && config_.layout != Layout::L64)
+    throw GlError("atomic mode " + to_string(mode) + " holds L64 records only");
+  const GlInfo info = query_gl_info();
+  if (mode != AtomicMode::Native32 && !info.int64_types)
+    throw GlError("atomic mode " + to_string(mode) + " needs 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  if (mode == AtomicMode::Native64 && !info.atomic_int64)
+    throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
+  const std::uint64_t cells = std::uint64_t{(config_.screen.x - 1) / config_.block + 1} *
+                              std::uint64_t{(config_.screen.y - 1) / config_.block + 1};
+  if (cells > UINT32_MAX) throw GlError("max-age table of " + std::to_string(cells) + " cells is too large");
+  cells_ = static_cast<std::uint32_t>(cells);
+  if (const std::string why = table_limit(config_.table); !why.empty()) throw GlError(why);
+  gpu_->max_age = create_buffer(std::uint64_t{cells_} * 4);
+  gpu_->count = create_buffer(sizeof(std::uint64_t));
+  allocate_table(config_.table, false);
+  gpu_->clear = std::make_unique<ClearPass>(mode, bindings);
+}
+
+GlHaTable::~GlHaTable() = default;
+
+std::string GlHaTable::table_limit(Extent table) const {
+  const std::uint64_t slots = table.area();
+  if (slots > UINT32_MAX) return "the GPU path indexes at most 2^32 - 1 slots, table " + table.str();
+  const std::uint64_t bytes = slots * config_.record_layout().word_bytes();
+  if (bytes > max_storage_bytes())
+    return "table " + table.str() + " needs " + std::to_string(bytes) + " bytes, this OpenGL allows " +
+           std::to_string(max_storage_bytes()) + " per shader-storage buffer";
+  return {};
+}
+
+void GlHaTable::allocate_table(Extent table, bool new_offsets) {
+  if (const std::string why = table_limit(table); !why.empty()) throw GlError(why);
+  const std::uint64_t slots = table.area();
+  config_.table = table;
+  if (new_offsets) offsets_ = source_.make(table, config_.record_layout().max_age());
+  delete_buffer(gpu_->table);
+  delete_buffer(gpu_->locks);
+  delete_buffer(gpu_->offsets);
+  gpu_->table = create_buffer(slots * config_.record_layout().word_bytes());
+  zero_buffer(gpu_->table);
+  if (mode() == AtomicMode::Emulated64) {
+    gpu_->locks = create_buffer(slots * 4);
+    zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
+  }
+  gpu_->offsets = create_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
+  holds_frame_ = false;
+  pending_count_table_.reset();  // a count in flight belongs to a table no longer in use
+}
+
+void GlHaTable::write_params(GlParams& p) const {
+  p.ha_table_size[0] = config_.table.x;
+  p.ha_table_size[1] = config_.table.y;
+  p.ha_age_bits = config_.age_bits;
+  p.ha_block = config_.block;
+  p.ha_max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
+  p.ha_iter_limit = config_.iter_limit;
+  p.ha_cull_tau = config_.early_cull_tau;
+}
+
+void GlHaTable::bind() const {
+  const GlBindings& b = bindings();
+  for (const auto& [point, buffer] : {std::pair{b.table, gpu_->table}, std::pair{b.max_age, gpu_->max_age},
+                                      std::pair{b.offsets, gpu_->offsets}, std::pair{b.locks, gpu_->locks}})
+    if (buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buffer);
+}
+
+void GlHaTable::resize(Extent table) {
+  BufferConfig c = config_;
+  c.table = table;
+  c.validate();
+  if (table != config_.table) allocate_table(table);
+}
+
+std::uint64_t GlHaTable::count_stored() {
+  const std::uint64_t stored = gpu_->clear->run(config_.table, clear_tile_, false, true).stored;
+  check_gl_errors("the counting pass");
+  return stored;
+}
+
+void GlHaTable::begin_frame(FrameReport& report, const GlFrameOptions& options) {
+  if (!holds_frame_) return;
+  // The count the previous frame's clear pass left in the query buffer (the
+  // GPU wrote it a frame ago: reading it does not stall), then this frame's
+  // clear pass, whose count will be read next frame.
+  if (pending_count_table_) {
+    std::uint64_t count = 0;
+    glGetNamedBufferSubData(gpu_->count, 0, sizeof count, &count);
+    report.counted_stored = count;
+    report.counted_table = *pending_count_table_;
+  }
+  const ClearPass::Result r = gpu_->clear->run(config_.table, clear_tile_, true, options.finish_timing, gpu_->count);
+  report.clear = {r.wall_ms, r.gpu_ms};
+  check_gl_errors("the clear pass");
+  pending_count_table_ = config_.table;
+  report.cleared = true;
+  holds_frame_ = false;
+  if (options.adaptive && report.counted_stored && report.counted_table == config_.table) {
+    const Extent next = options.policy.next(config_.table, config_.screen, *report.counted_stored);
+    if (next != config_.table) {
+      if (table_limit(next).empty()) {
+        allocate_table(next);
+        report.resized = true;
+      } else {
+        report.resize_limited = true;  // keep the largest table this context holds
+      }
+    }
+  }
+}
+
+void GlHaTable::before_gather() {
+  zero_buffer(gpu_->max_age);
+  holds_frame_ = true;  // even if the gather throws halfway, the next frame clears what it inserted
+}
+
+void GlHaTable::reset() { zero_buffer(gpu_->table); }
+
+bool GlHaTable::grow(const FrameReport& report, const GlFrameOptions& options) {
+  // Failures of the table need a larger one; calls cut short alone
+  // (contention or the driver, not load) retry the same table.
+  if (report.counters.failures() <= report.cut_short) {
+    reset();
+    return true;
+  }
+  const Extent grown = options.policy.grown(config_.table);
+  if (!table_limit(grown).empty()) return false;
+  allocate_table(grown);
+  return true;
+}
+
+std::vector<std::uint64_t> GlHaTable::read_table() const {
+  const std::uint64_t slots = config_.table.area();
+  std::vector<std::uint64_t> out(slots);
+  if (config_.record_layout().word_bytes() == 8) {
+    glGetNamedBufferSubData(gpu_->table, 0, static_cast<GLsizeiptr>(slots * 8), out.data());
+  } else {
+    const auto words = read_words(gpu_->table, slots);
+    std::copy(words.begin(), words.end(), out.begin());
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> GlHaTable::read_max_age() const { return read_words(gpu_->max_age, cells_); }
+
+std::uint64_t GlHaTable::memory_bytes() const {
+  const std::uint64_t slots = config_.table.area();
+  std::uint64_t bytes = slots * config_.record_layout().word_bytes() + std::uint64_t{cells_} * 4 +
+                        offsets_.size() * sizeof(glm::uvec2) + sizeof(std::uint64_t);
+  if (mode() == AtomicMode::Emulated64) bytes += slots * 4;
+  return bytes;
+}
+
+std::unique_ptr<FragmentBuffer> GlHaTable::read_back() const {
+  auto buffer = std::make_unique<HaBuffer>(config_, offsets_);
+  buffer->import_state(read_table(), read_max_age());
+  return buffer;
+}
+
+}  // namespace habuffer::gl

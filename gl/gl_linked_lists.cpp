@@ -1,0 +1,134 @@
+#include "habuffer/gl/gl_linked_lists.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl_params.h"
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/linked_lists.h"
+#include "sort_pass.h"
+
+namespace habuffer::gl {
+namespace {
+
+TechniqueConfig validated(TechniqueConfig c) {
+  c.technique = Technique::Lists;
+  c.validate();
+  return c;
+}
+
+void delete_buffer(GLuint& b) {
+  if (b != 0) glDeleteBuffers(1, &b);
+  b = 0;
+}
+
+constexpr std::uint64_t kNodeBytes = sizeof(glm::uvec2) + 4;  // entry and link
+
+}  // namespace
+
+struct GlLinkedLists::Gpu {
+  GLuint heads = 0, nodes = 0, links = 0;
+  std::unique_ptr<SortPass> sort;
+  ~Gpu() {
+    for (GLuint* b : {&heads, &nodes, &links}) delete_buffer(*b);
+  }
+};
+
+GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
+    : GlTechnique(Technique::Lists, mode, bindings, validated(config).buffer.screen),
+      config_(validated(config)),
+      gpu_(std::make_unique<Gpu>()) {
+  if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
+    throw GlError("atomic mode " + to_string(mode) + " does not build " + to_string(config_.buffer.layout) + " lists");
+  check_storage_fits(screen().area() * 4, "the head image of screen " + screen().str());
+  gpu_->heads = create_buffer(screen().area() * 4);
+  allocate_pool(config_.pool_capacity);
+  gpu_->sort = std::make_unique<SortPass>(Technique::Lists, mode, bindings);
+}
+
+GlLinkedLists::~GlLinkedLists() = default;
+
+void GlLinkedLists::allocate_pool(std::uint64_t nodes) {
+  TechniqueConfig c = config_;
+  c.pool_capacity = nodes;
+  c.validate();
+  check_storage_fits(nodes * sizeof(glm::uvec2), "a node pool of " + std::to_string(nodes) + " nodes");
+  delete_buffer(gpu_->nodes);
+  delete_buffer(gpu_->links);
+  gpu_->nodes = create_buffer(nodes * sizeof(glm::uvec2));
+  gpu_->links = create_buffer(nodes * 4);
+  config_.pool_capacity = nodes;
+}
+
+void GlLinkedLists::resize_pool(std::uint64_t nodes) {
+  if (nodes != config_.pool_capacity) allocate_pool(nodes);
+}
+
+void GlLinkedLists::write_params(GlParams& p) const {
+  p.ha_age_bits = config_.buffer.age_bits;
+  p.ha_pool_capacity = static_cast<std::uint32_t>(config_.pool_capacity);
+}
+
+void GlLinkedLists::bind() const {
+  const GlBindings& b = bindings();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.table, gpu_->heads);   // HA_BINDING_HEADS
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.max_age, gpu_->nodes);  // HA_BINDING_NODES
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HA_BINDING_LINKS
+}
+
+void GlLinkedLists::begin_frame(FrameReport& report, const GlFrameOptions& options) {
+  if (!options.adaptive || !has_request_) return;
+  // SPEC 8's rule on the pool: its use is the nodes the last frame asked for.
+  const double capacity = static_cast<double>(config_.pool_capacity);
+  const double use = static_cast<double>(last_requested_) / capacity;
+  std::uint64_t next = config_.pool_capacity;
+  if (use > options.policy.grow_at) next = static_cast<std::uint64_t>(std::ceil(capacity * (1.0 + options.policy.step)));
+  else if (use < options.policy.shrink_at)
+    next = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(capacity * (1.0 - options.policy.step))));
+  if (next == config_.pool_capacity) return;
+  if (next * sizeof(glm::uvec2) > max_storage_bytes() || next >= UINT32_MAX) {
+    report.resize_limited = true;
+    return;
+  }
+  allocate_pool(next);
+  report.resized = true;
+}
+
+void GlLinkedLists::before_gather() {
+  zero_buffer(gpu_->heads);  // the node counter is zeroed with the driver's tallies
+}
+
+PassTiming GlLinkedLists::after_gather(bool finish_timing) { return gpu_->sort->run(screen(), finish_timing); }
+
+void GlLinkedLists::gathered(const FrameReport& report) {
+  last_requested_ = report.nodes_requested;
+  has_request_ = true;
+}
+
+bool GlLinkedLists::grow(const FrameReport& report, const GlFrameOptions& options) {
+  // The counter counted every node asked for: a pool of that size holds the frame.
+  const auto stepped = static_cast<std::uint64_t>(std::ceil(static_cast<double>(config_.pool_capacity) * (1.0 + options.policy.step)));
+  const std::uint64_t next = std::max(report.nodes_requested, stepped);
+  if (next * sizeof(glm::uvec2) > max_storage_bytes() || next >= UINT32_MAX) return false;
+  allocate_pool(next);
+  return true;
+}
+
+std::uint64_t GlLinkedLists::memory_bytes() const {
+  return screen().area() * 4 + config_.pool_capacity * kNodeBytes;
+}
+
+std::unique_ptr<FragmentBuffer> GlLinkedLists::read_back() const {
+  auto lists = std::make_unique<LinkedLists>(config_);
+  const std::vector<std::uint32_t> heads = read_words(gpu_->heads, screen().area());
+  std::vector<glm::uvec2> entries(config_.pool_capacity);
+  glGetNamedBufferSubData(gpu_->nodes, 0, static_cast<GLsizeiptr>(entries.size() * sizeof(glm::uvec2)), entries.data());
+  const std::vector<std::uint32_t> links = read_words(gpu_->links, config_.pool_capacity);
+  lists->import_state(heads, entries, links, last_requested_);
+  return lists;
+}
+
+}  // namespace habuffer::gl

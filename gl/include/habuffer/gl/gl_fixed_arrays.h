@@ -1,0 +1,45 @@
+// Fixed per-pixel arrays on the GPU (seed 004): per-pixel counters (zeroed
+// before every gather) and K layers per pixel, layer-major, sorted by the
+// sort pass after the gather. A full pixel drops and counts
+// (dropped_layers); lossless mode regathers with K raised to the most
+// fragments a pixel received.
+#pragma once
+
+#include <memory>
+
+#include "habuffer/gl/gl_technique.h"
+
+namespace habuffer::gl {
+
+class GlFixedArrays final : public GlTechnique {
+ public:
+  // Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
+  GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
+  ~GlFixedArrays() override;
+
+  [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+
+  void write_params(GlParams& params) const override;
+  void bind() const override;
+  void begin_frame(FrameReport&, const GlFrameOptions&) override {}
+  void before_gather() override;
+  void reset() override {}
+  PassTiming after_gather(bool finish_timing) override;
+  bool grow(const FrameReport& report, const GlFrameOptions& options) override;
+  [[nodiscard]] std::uint64_t capacity() const override {
+    return std::uint64_t{config_.layers} * config_.buffer.screen.area();
+  }
+  [[nodiscard]] std::uint64_t memory_bytes() const override;
+  [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
+  void gathered(const FrameReport& report) override { most_arrived_ = report.most_arrived; }
+
+ private:
+  struct Gpu;
+  void allocate_layers(std::uint32_t layers);
+
+  TechniqueConfig config_;
+  std::uint32_t most_arrived_ = 0;
+  std::unique_ptr<Gpu> gpu_;
+};
+
+}  // namespace habuffer::gl

@@ -1,0 +1,48 @@
+// Per-pixel linked lists on the GPU (seed 002): the head-pointer image
+// (zeroed before every gather), the node pool's entries and links (the node
+// counter is a word of the driver's counters), and the sort pass after the
+// gather. A full pool drops and counts (dropped_pool); adaptive sizing grows
+// the pool by the policy's step past grow_at use of the previous frame's
+// request and shrinks it below shrink_at (SPEC 8's rule on nodes); lossless
+// mode regathers into a pool of at least the nodes the gather asked for.
+#pragma once
+
+#include <memory>
+
+#include "habuffer/gl/gl_technique.h"
+
+namespace habuffer::gl {
+
+class GlLinkedLists final : public GlTechnique {
+ public:
+  // Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
+  GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
+  ~GlLinkedLists() override;
+
+  [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  // Sets the pool for the next frame (a host's own estimate).
+  void resize_pool(std::uint64_t nodes);
+
+  void write_params(GlParams& params) const override;
+  void bind() const override;
+  void begin_frame(FrameReport& report, const GlFrameOptions& options) override;
+  void before_gather() override;
+  void reset() override {}
+  PassTiming after_gather(bool finish_timing) override;
+  bool grow(const FrameReport& report, const GlFrameOptions& options) override;
+  [[nodiscard]] std::uint64_t capacity() const override { return config_.pool_capacity; }
+  [[nodiscard]] std::uint64_t memory_bytes() const override;
+  [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
+  void gathered(const FrameReport& report) override;
+
+ private:
+  struct Gpu;
+  void allocate_pool(std::uint64_t nodes);
+
+  TechniqueConfig config_;
+  std::uint64_t last_requested_ = 0;
+  bool has_request_ = false;
+  std::unique_ptr<Gpu> gpu_;
+};
+
+}  // namespace habuffer::gl

@@ -1,0 +1,82 @@
+// One technique's buffers and passes on the GPU (its "container"), behind
+// the interface the technique-neutral frame driver (GlFrameDriver) runs:
+// the driver owns the frame (state guard, parameters, outcome tallies,
+// capture, deferred calls, retries, lossless regathers, resolve, timers) and
+// asks the technique to empty itself, to sort after the gather, to grow when
+// it dropped fragments, and for its memory.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/gl/frame_report.h"
+#include "habuffer/gl/gl_bindings.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/glsl_sources.h"
+
+namespace habuffer::gl {
+
+struct GlParams;
+
+class GlTechnique {
+ public:
+  GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen);
+  virtual ~GlTechnique();
+  GlTechnique(const GlTechnique&) = delete;
+  GlTechnique& operator=(const GlTechnique&) = delete;
+
+  [[nodiscard]] Technique technique() const { return technique_; }
+  [[nodiscard]] AtomicMode mode() const { return mode_; }
+  [[nodiscard]] const GlBindings& bindings() const { return bindings_; }
+  [[nodiscard]] Extent screen() const { return screen_; }
+  // The GLSL module host shaders append their code to (technique_module).
+  [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
+
+  // The technique's fields of the parameter block.
+  virtual void write_params(GlParams& params) const = 0;
+  // Binds the technique's storage buffers at their points.
+  virtual void bind() const = 0;
+  // At a frame's start, inside the driver's state guard with every buffer
+  // bound: count and empty what the previous frame left where the technique
+  // does so (the HA-buffer's clear pass), and adapt the size (SPEC 8).
+  virtual void begin_frame(FrameReport& report, const GlFrameOptions& options) = 0;
+  // Right before every gather, the frame's first and its regathers.
+  virtual void before_gather() = 0;
+  // Empties what a gather inserted, for a regather of the same frame.
+  virtual void reset() = 0;
+  // After every gather, with every buffer bound: the sort pass, if any.
+  virtual PassTiming after_gather(bool finish_timing);
+  // After every gather's counters are read (the report holds them).
+  virtual void gathered(const FrameReport& report);
+  // Lossless mode: room for what the last gather dropped (the report's
+  // counters and counts); false when this context cannot hold more.
+  virtual bool grow(const FrameReport& report, const GlFrameOptions& options) = 0;
+  // Whether insert calls can be cut short and deferred (the HA-buffer's probe loop).
+  [[nodiscard]] virtual bool defers_calls() const { return false; }
+  // Records the technique can hold now.
+  [[nodiscard]] virtual std::uint64_t capacity() const = 0;
+  // The HA-buffer's current table (zero for other techniques).
+  [[nodiscard]] virtual Extent table() const { return {}; }
+  // Bytes of the technique's own buffers.
+  [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
+  // The last frame's state as a CPU container of the same technique (lists,
+  // dumps, compositing on the CPU), its insert counters left to the caller.
+  [[nodiscard]] virtual std::unique_ptr<FragmentBuffer> read_back() const = 0;
+
+ private:
+  Technique technique_;
+  AtomicMode mode_;
+  GlBindings bindings_;
+  Extent screen_;
+};
+
+// Throws GlError unless a buffer of `bytes` fits one shader-storage buffer
+// of this context (the message names `what` and the sizes).
+void check_storage_fits(std::uint64_t bytes, const std::string& what);
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+std::uint64_t max_storage_bytes();
+
+}  // namespace habuffer::gl
