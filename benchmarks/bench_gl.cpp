@@ -12,6 +12,7 @@
 
 #include "bench_common.h"
 #include "habuffer/gl/compute_inserter.h"
+#include "habuffer/gl/gl_ha_buffer.h"
 #include "habuffer/gl/egl_context.h"
 
 namespace habuffer::bench {

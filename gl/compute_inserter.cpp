@@ -11,9 +11,9 @@
 
 namespace habuffer::gl {
 
-ComputeInserter::ComputeInserter(GlHaBuffer& buffer, std::size_t max_chunk)
+ComputeInserter::ComputeInserter(GlFrameDriver& buffer, std::size_t max_chunk)
     : buffer_(buffer),
-      program_(ShaderProgram::compute(insert_stream_compute(buffer.mode(), buffer.bindings()),
+      program_(ShaderProgram::compute(insert_stream_compute(buffer.technique().technique(), buffer.mode(), buffer.bindings()),
                                       "insert compute shader")),
       max_chunk_(max_chunk) {}
 
@@ -25,7 +25,7 @@ void ComputeInserter::release() {
 }
 
 void ComputeInserter::upload(std::span<const Fragment> fragments) {
-  const Extent screen = buffer_.config().screen;
+  const Extent screen = buffer_.screen();
   for (std::size_t i = 0; i < fragments.size(); ++i)
     if (fragments[i].x >= screen.x || fragments[i].y >= screen.y)
       throw GlError("fragment " + std::to_string(i) + " at (" + std::to_string(fragments[i].x) + ", " +

@@ -49,9 +49,9 @@ inline HaBuffer cpu_twin(const gl::GlHaBuffer& gpu, std::span<const Fragment> fr
 }
 
 // The resolve pass into an RGBA32F texture, read back row-major.
-inline std::vector<glm::vec4> resolve_to_image(gl::GlHaBuffer& gpu, glm::vec3 background,
+inline std::vector<glm::vec4> resolve_to_image(gl::GlFrameDriver& gpu, glm::vec3 background,
                                                gl::PassTiming* timing = nullptr) {
-  const Extent screen = gpu.config().screen;
+  const Extent screen = gpu.screen();
   GLuint texture = 0, framebuffer = 0;
   GLint previous = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous);

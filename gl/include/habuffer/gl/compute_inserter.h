@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "habuffer/fragment.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/gl_frame_driver.h"
 #include "habuffer/gl/shader_program.h"
 
 namespace habuffer::gl {
@@ -18,7 +18,7 @@ class ComputeInserter {
   // GlError with the log on shader errors). `buffer` must outlive this.
   // max_chunk: fragments per stream buffer (0: as many as one shader-storage
   // buffer holds).
-  explicit ComputeInserter(GlHaBuffer& buffer, std::size_t max_chunk = 0);
+  explicit ComputeInserter(GlFrameDriver& buffer, std::size_t max_chunk = 0);
   ~ComputeInserter();
   ComputeInserter(const ComputeInserter&) = delete;
   ComputeInserter& operator=(const ComputeInserter&) = delete;
@@ -28,13 +28,13 @@ class ComputeInserter {
   // screen, as the CPU path does.
   void upload(std::span<const Fragment> fragments);
   [[nodiscard]] std::size_t uploaded() const;
-  // Inserts the uploaded stream; call inside GlHaBuffer::frame's gather.
+  // Inserts the uploaded stream; call inside GlFrameDriver::frame's gather.
   void dispatch() const;
   // One frame whose gather is the stream: upload, then buffer.frame(dispatch).
   FrameReport insert(std::span<const Fragment> fragments);
 
  private:
-  GlHaBuffer& buffer_;
+  GlFrameDriver& buffer_;
   ShaderProgram program_;
   struct Chunk {
     unsigned buffer;

@@ -1,0 +1,211 @@
+// Linked lists and fixed arrays on the GPU path: the same lists as their CPU
+// builds and as the HA-buffer on the same captured stream, every drop
+// counted, lossless regathering, the sort pass beyond the private array, and
+// the resolve's image bit for bit the HA-buffer's.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "gl_test_support.h"
+#include "habuffer/fixed_arrays.h"
+#include "habuffer/gl/gl_fixed_arrays.h"
+#include "habuffer/gl/gl_linked_lists.h"
+#include "habuffer/linked_lists.h"
+#include "habuffer/lossless_build.h"
+
+namespace habuffer {
+namespace {
+
+using test::ExactLists;
+
+ExactLists lists_of(const FragmentBuffer& b) {
+  ExactLists out;
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < b.screen().y; ++y)
+    for (std::uint32_t x = 0; x < b.screen().x; ++x) {
+      b.list(x, y, list);
+      if (list.empty()) continue;
+      auto& v = out[{x, y}];
+      for (ListEntry e : list) v.push_back({0, e.code, e.data});
+    }
+  return out;
+}
+
+std::uint32_t depth_complexity(std::span<const Fragment> frags, Extent screen) {
+  std::vector<std::uint32_t> n(screen.area(), 0);
+  for (const Fragment& f : frags) ++n[f.x + std::size_t{f.y} * screen.x];
+  return *std::max_element(n.begin(), n.end());
+}
+
+TechniqueConfig technique_config(Technique t, Extent screen, gl::AtomicMode mode, std::uint32_t age_bits = 8) {
+  TechniqueConfig c;
+  c.technique = t;
+  c.buffer = test::config(screen, screen, test::layout_of(mode), age_bits);
+  return c;
+}
+
+std::unique_ptr<gl::GlTechnique> gl_technique(const TechniqueConfig& c, gl::AtomicMode mode,
+                                              const gl::GlBindings& bindings = {}) {
+  if (c.technique == Technique::Lists) return std::make_unique<gl::GlLinkedLists>(c, mode, bindings);
+  return std::make_unique<gl::GlFixedArrays>(c, mode, bindings);
+}
+
+std::unique_ptr<FragmentBuffer> cpu_technique(const TechniqueConfig& c) {
+  if (c.technique == Technique::Lists) return std::make_unique<LinkedLists>(c);
+  return std::make_unique<FixedArrays>(c);
+}
+
+class GlTechniques : public ::testing::Test {
+ protected:
+  void SetUp() override { test::gl_context(); }
+  static std::vector<gl::AtomicMode> modes() { return {gl::AtomicMode::Native32, gl::AtomicMode::Emulated64}; }
+};
+
+TEST_F(GlTechniques, ListsAndArraysOnTheGpuGiveTheCpuAndHaBufferListsOverSeedsAndLayouts) {
+  for (gl::AtomicMode mode : modes())
+    for (Technique t : {Technique::Lists, Technique::Arrays})
+      for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const Extent screen{13 + 7 * static_cast<std::uint32_t>(seed), 9 + 2 * static_cast<std::uint32_t>(seed)};
+        const StreamKind kind = seed == 2 ? StreamKind::Hot : StreamKind::Coherent;
+        const std::uint32_t age_bits = seed == 3 ? 5 : 8;
+        const std::vector<Fragment> frags = test::stream(screen, kind, 900 + seed * 300, seed);
+        TechniqueConfig c = technique_config(t, screen, mode, age_bits);
+        c.pool_capacity = frags.size();
+        c.layers = depth_complexity(frags, screen);
+        gl::GlFrameDriver gpu(gl_technique(c, mode));
+        gl::ComputeInserter inserter(gpu);
+        const gl::FrameReport report = inserter.insert(frags);
+        const auto cpu = cpu_technique(c);
+        const Counters expected = cpu->insert(frags);
+        EXPECT_EQ(report.counters, expected) << to_string(t) << " " << to_string(mode) << " seed " << seed;
+        const ExactLists gl_lists = lists_of(*gpu.technique().read_back());
+        EXPECT_EQ(gl_lists, lists_of(*cpu)) << to_string(t) << " " << to_string(mode) << " seed " << seed;
+        const BuildResult ha = build(c.buffer, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 32);
+        EXPECT_EQ(gl_lists, test::traversed_lists(ha.buffer));
+        EXPECT_EQ(report.counters, ha.counters);
+      }
+}
+
+TEST_F(GlTechniques, AFullPoolIsCountedAndLosslessModeRegathersIntoAPoolThatHoldsEveryFragment) {
+  const Extent screen{24, 16};
+  const std::vector<Fragment> frags = test::stream(screen, StreamKind::Coherent, 3000, 4);
+  for (gl::AtomicMode mode : modes()) {
+    TechniqueConfig c = technique_config(Technique::Lists, screen, mode);
+    c.pool_capacity = 1000;
+    gl::GlFrameDriver lossy(gl_technique(c, mode));
+    const gl::FrameReport r = gl::ComputeInserter(lossy).insert(frags);
+    EXPECT_EQ(r.counters.dropped_pool, frags.size() - 1000) << to_string(mode);
+    EXPECT_EQ(r.nodes_requested, frags.size());
+    EXPECT_EQ(r.counters.stored(), lossy.technique().read_back()->count_stored());
+
+    gl::GlFrameOptions options;
+    options.max_attempts = 4;
+    gl::GlFrameDriver lossless(gl_technique(c, mode), options);
+    const gl::FrameReport l = gl::ComputeInserter(lossless).insert(frags);
+    EXPECT_TRUE(l.lossless()) << to_string(mode);
+    ASSERT_EQ(l.attempts.size(), 2u);
+    EXPECT_EQ(l.attempts[0].capacity, 1000u);
+    EXPECT_GE(l.capacity, frags.size());
+    const BuildResult ha = build(c.buffer, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 32);
+    EXPECT_EQ(lists_of(*lossless.technique().read_back()), test::traversed_lists(ha.buffer));
+  }
+}
+
+TEST_F(GlTechniques, ArraysWithFewLayersCountTheSameDropsAsTheCpuKeepListsSortedAndGrowWhenLossless) {
+  const Extent screen{20, 12};
+  const std::vector<Fragment> frags = test::stream(screen, StreamKind::Hot, 2000, 6);
+  for (gl::AtomicMode mode : modes()) {
+    TechniqueConfig c = technique_config(Technique::Arrays, screen, mode);
+    c.layers = 4;
+    gl::GlFrameDriver gpu(gl_technique(c, mode));
+    const gl::FrameReport r = gl::ComputeInserter(gpu).insert(frags);
+    FixedArrays cpu(c);
+    const Counters expected = cpu.insert(frags);
+    // Which K fragments a pixel keeps depends on arrival order; how many does not.
+    EXPECT_EQ(r.counters.dropped_layers, expected.dropped_layers) << to_string(mode);
+    EXPECT_EQ(r.most_arrived, cpu.largest_overflow());
+    const auto back = gpu.technique().read_back();
+    std::vector<ListEntry> list;
+    std::uint64_t held = 0;
+    for (std::uint32_t y = 0; y < screen.y; ++y)
+      for (std::uint32_t x = 0; x < screen.x; ++x) {
+        back->list(x, y, list);
+        held += list.size();
+        EXPECT_LE(list.size(), 4u);
+        for (std::size_t k = 1; k < list.size(); ++k)
+          EXPECT_TRUE(list[k - 1].code > list[k].code || (list[k - 1].code == list[k].code && list[k - 1].data > list[k].data));
+      }
+    EXPECT_EQ(held, r.counters.stored());
+
+    gl::GlFrameOptions options;
+    options.max_attempts = 3;
+    gl::GlFrameDriver lossless(gl_technique(c, mode), options);
+    const gl::FrameReport l = gl::ComputeInserter(lossless).insert(frags);
+    EXPECT_TRUE(l.lossless()) << to_string(mode);
+    EXPECT_EQ(l.capacity, std::uint64_t{depth_complexity(frags, screen)} * screen.area());
+  }
+}
+
+TEST_F(GlTechniques, ListsLongerThanThePrivateArrayAreSortedOnTheGpu) {
+  const Extent screen{4, 4};
+  std::vector<Fragment> frags;
+  SplitMix64 rng(3);
+  for (int i = 0; i < 300; ++i)
+    frags.push_back({2, 1, static_cast<float>(rng.below(200)) / 211.0f, 0x40506000u + static_cast<std::uint32_t>(rng.below(2))});
+  for (Technique t : {Technique::Lists, Technique::Arrays}) {
+    TechniqueConfig c = technique_config(t, screen, gl::AtomicMode::Emulated64);
+    c.pool_capacity = frags.size();
+    c.layers = static_cast<std::uint32_t>(frags.size());
+    gl::GlFrameDriver gpu(gl_technique(c, gl::AtomicMode::Emulated64));
+    const gl::FrameReport r = gl::ComputeInserter(gpu).insert(frags);
+    const ExactLists expected = test::exact_lists(frags, RecordLayout(Layout::L64, 8));
+    ASSERT_GT(expected.at({2, 1}).size(), HA_SORT_LOCAL);
+    EXPECT_EQ(lists_of(*gpu.technique().read_back()), expected) << to_string(t);
+    EXPECT_EQ(r.counters.duplicates, frags.size() - expected.at({2, 1}).size()) << to_string(t);
+  }
+}
+
+TEST_F(GlTechniques, ExactTechniquesResolveTheHaBuffersImageBitForBitAtHostBindings) {
+  const Extent screen{32, 24};
+  const std::vector<Fragment> frags = test::stream(screen, StreamKind::Coherent, 5000, 8);
+  const gl::AtomicMode mode = gl::AtomicMode::Emulated64;
+  BufferConfig hc = test::config(screen, Extent{40, 30}, Layout::L64);
+  gl::GlFrameOptions lossless;
+  lossless.max_attempts = 8;
+  gl::GlHaBuffer ha(hc, test::random_offsets(2), mode, lossless, test::host_bindings());
+  ASSERT_TRUE(gl::ComputeInserter(ha).insert(frags).lossless());
+  const glm::vec3 background(0.2f, 0.4f, 0.9f);
+  const std::vector<glm::vec4> expected = test::resolve_to_image(ha, background);
+  for (Technique t : {Technique::Lists, Technique::Arrays}) {
+    TechniqueConfig c = technique_config(t, screen, mode);
+    c.pool_capacity = frags.size();
+    c.layers = depth_complexity(frags, screen);
+    gl::GlFrameDriver gpu(gl_technique(c, mode, test::host_bindings()));
+    gl::ComputeInserter(gpu).insert(frags);
+    EXPECT_EQ(test::resolve_to_image(gpu, background), expected) << to_string(t);
+  }
+}
+
+TEST_F(GlTechniques, AdaptivePoolGrowsPastItsGrowThresholdAndShrinksBelowItsShrinkThreshold) {
+  const Extent screen{16, 16};
+  const std::vector<Fragment> frags = test::stream(screen, StreamKind::Random, 900, 2);
+  TechniqueConfig c = technique_config(Technique::Lists, screen, gl::AtomicMode::Emulated64);
+  c.pool_capacity = 1000;  // 90% use: grows 25% next frame
+  gl::GlFrameOptions options;
+  options.adaptive = true;
+  gl::GlFrameDriver gpu(gl_technique(c, gl::AtomicMode::Emulated64), options);
+  gl::ComputeInserter inserter(gpu);
+  EXPECT_EQ(inserter.insert(frags).capacity, 1000u);
+  const gl::FrameReport grown = inserter.insert(frags);
+  EXPECT_TRUE(grown.resized);
+  EXPECT_EQ(grown.capacity, 1250u);
+  const std::span<const Fragment> few(frags.data(), 100);  // 8% use: shrinks 25%
+  inserter.insert(few);
+  const gl::FrameReport shrunk = inserter.insert(few);
+  EXPECT_TRUE(shrunk.resized);
+  EXPECT_EQ(shrunk.capacity, 938u);
+  EXPECT_EQ(shrunk.counters.stored(), 100u);
+}
+
+}  // namespace
+}  // namespace habuffer
