@@ -10,6 +10,7 @@
 #include "habuffer/fixed_arrays.h"
 #include "habuffer/linked_lists.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/memory_model.h"
 #include "test_support.h"
 
 namespace habuffer {
@@ -267,6 +268,51 @@ TEST(Techniques, BadConfigurationsAreRefusedNamingTheField) {
   EXPECT_THROW(arrays.insert({}, owner), std::invalid_argument);
   EXPECT_EQ(parse_technique("lists"), Technique::Lists);
   EXPECT_FALSE(parse_technique("list").has_value());
+}
+
+TEST(Techniques, LosslessBuildsGrowThePoolAndTheLayersUntilNothingIsDropped) {
+  const Extent screen{30, 20};
+  const std::vector<Fragment> frags = test::stream(screen, StreamKind::Hot, 4000, 12);
+  const ExactLists expected = test::exact_lists(frags, RecordLayout(Layout::L64, 8));
+  for (Technique t : {Technique::Lists, Technique::Arrays}) {
+    TechniqueConfig c = technique_config(t, screen);
+    c.pool_capacity = 100;
+    c.layers = 2;
+    const TechniqueBuild lossy = build_technique(c, OffsetSource{}, frags, InsertOptions{});
+    EXPECT_GT(lossy.counters.failures(), 0u) << to_string(t);
+    const TechniqueBuild b = build_technique(c, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 4);
+    EXPECT_TRUE(b.lossless()) << to_string(t);
+    EXPECT_EQ(b.attempts.size(), 2u) << to_string(t);
+    EXPECT_EQ(lists_of(*b.buffer), expected) << to_string(t);
+  }
+}
+
+TEST(Techniques, TheMemoryModelGivesWhatTheCpuContainersAllocateToTheByte) {
+  for (const Extent screen : {Extent{64, 48}, Extent{1000, 3}, Extent{17, 17}})
+    for (std::uint32_t block : {1u, 8u, 5u}) {
+      TechniqueConfig c = technique_config(Technique::Ha, screen);
+      c.buffer.block = block;
+      c.buffer.table = Extent{screen.x + 3, screen.y + 1};
+      const HaBuffer ha = test::make_buffer(c.buffer);
+      EXPECT_EQ(memory_model_bytes(c, ha.capacity()), ha.memory_bytes()) << screen.str();
+      c.technique = Technique::Lists;
+      c.pool_capacity = 777;
+      EXPECT_EQ(memory_model_bytes(c, 777), LinkedLists(c).memory_bytes());
+      c.technique = Technique::Arrays;
+      c.layers = 5;
+      EXPECT_EQ(memory_model_bytes(c, 0), FixedArrays(c).memory_bytes());
+    }
+}
+
+TEST(Techniques, ThePapersTable1IsReproducedByItsFormulas) {
+  // Seed 000, Table 1: V = 1024^2, F = 1.5 M: lists 19.7 MiB, HA at 80% 14.3 MiB,
+  // paged K = 4 lower bound 16.4 MiB (within the table's rounding of F).
+  const std::uint64_t v = 1024 * 1024, f = 1500000;
+  const double mib = 1024.0 * 1024.0;
+  EXPECT_NEAR(paper_memory_bytes(Technique::Lists, v, f, 1.0, 0) / mib, 19.7, 0.05);
+  EXPECT_NEAR(paper_memory_bytes(Technique::Ha, v, f, 0.8, 0) / mib, 14.3, 0.05);
+  EXPECT_NEAR(paper_paged_lists_bytes(v, f, 4) / mib, 16.4, 0.1);
+  EXPECT_NEAR(paper_memory_bytes(Technique::Ha, v, 10000000, 0.5, 0) / mib, 152.6, 0.1);
 }
 
 }  // namespace

@@ -5,11 +5,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
 #include "habuffer/ha_buffer.h"
+#include "habuffer/technique.h"
 #include "habuffer/resize_policy.h"
 
 namespace habuffer {
@@ -42,5 +44,23 @@ struct BuildResult {
 // `policy` and gather the whole stream again, at most `max_attempts` times.
 BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::span<const Fragment> fragments,
                   const InsertOptions& options, const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
+
+// Any technique's build, lossless mode included: the HA-buffer's table grows
+// by `policy`; the linked lists' pool to at least the nodes the attempt asked
+// for (and by the policy's step); the fixed arrays' K to the most fragments a
+// pixel received.
+struct TechniqueBuild {
+  std::unique_ptr<FragmentBuffer> buffer;
+  Counters counters;                   // of the final attempt
+  std::vector<BuildAttempt> attempts;  // every attempt, in order
+  [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
+};
+
+TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource& offsets,
+                               std::span<const Fragment> fragments, const InsertOptions& options,
+                               const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
+
+// An empty container of the configured technique (offsets for the HA-buffer's table).
+std::unique_ptr<FragmentBuffer> make_fragment_buffer(const TechniqueConfig& config, const OffsetSource& offsets);
 
 }  // namespace habuffer
