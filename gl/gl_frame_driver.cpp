@@ -335,9 +335,12 @@ std::vector<Fragment> GlFrameDriver::read_capture() const {
   return out;
 }
 
+std::uint64_t GlFrameDriver::capture_bytes() const {
+  return kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment);
+}
+
 std::uint64_t GlFrameDriver::memory_bytes() const {
-  std::uint64_t bytes = technique_->memory_bytes() + kCounterWords * 4 + sizeof(GlParams);
-  if (capture_capacity_ > 0) bytes += kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment);
+  std::uint64_t bytes = technique_->memory_bytes() + kCounterWords * 4 + sizeof(GlParams) + capture_bytes();
   if (deferred_capacity_ > 0) bytes += 2 * (kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
   return bytes;
 }

@@ -14,27 +14,28 @@ namespace {
 
 constexpr unsigned kPixelFragmentsBinding = 10, kPixelCulledBinding = 11, kRejectedBinding = 12;
 
-std::string gather_source(const gl::GlHaBuffer& buffer) {
-  return SceneRenderer::shader_sources(buffer.mode(), buffer.bindings()).gather_fragment;
+std::string gather_source(const gl::GlFrameDriver& buffer) {
+  return SceneRenderer::shader_sources(buffer.mode(), buffer.bindings(), buffer.technique().technique()).gather_fragment;
 }
 
 }  // namespace
 
-SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b) {
+SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b, Technique technique) {
   for (unsigned p : b.storage_points())
     if (p == kPixelFragmentsBinding || p == kPixelCulledBinding || p == kRejectedBinding)
-      throw gl::GlError("the renderer's shader-storage points 10-12 collide with the HA-buffer's");
+      throw gl::GlError("the renderer's shader-storage points 10-12 collide with the library's");
   const std::string header =
       "#define R_BINDING_PIXEL_FRAGMENTS 10\n#define R_BINDING_PIXEL_CULLED 11\n#define R_BINDING_REJECTED 12\n";
   Sources s;
   s.vertex = render::kSceneVertex;
   s.opaque_fragment = std::string("#version 450 core\n") + render::kShading + render::kOpaqueFragment;
   s.gather_fragment =
-      gl::ha_module(mode, b, gl::ShaderStage::Fragment, header) + render::kShading + render::kGatherFragment;
+      gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, header) + render::kShading +
+      render::kGatherFragment;
   return s;
 }
 
-SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBuffer& buffer)
+SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer)
     : screen_(screen),
       opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex,
                                                   shader_sources(buffer.mode(), buffer.bindings()).opaque_fragment,

@@ -91,7 +91,7 @@ TEST(Render, GlAndCpuPathsGiveTheSameImage) {
     const Scene scene = make_scene(name, {});
     const RenderResult gl = render(scene, settings({120, 90}, RenderPath::Gl));
     const RenderResult cpu = render(scene, settings({120, 90}, RenderPath::Cpu));
-    EXPECT_EQ(test::table_words(*gl.buffer), test::table_words(*cpu.buffer));
+    EXPECT_EQ(test::table_words(*gl.ha_buffer()), test::table_words(*cpu.ha_buffer()));
     EXPECT_EQ(quantized(gl.image), quantized(cpu.image));
     EXPECT_EQ(gl.frames[0].counters, cpu.frames[0].counters);
   }

@@ -21,13 +21,15 @@
 #include "hash_options.h"
 #include "loss_report.h"
 #include "render_report.h"
+#include "technique_options.h"
 
 namespace habuffer::cli {
 namespace {
 
 constexpr const char* kHelp =
     "usage: habuffer render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json]\n"
-    "         [--size WxH] [--path gl|cpu] [--layout 64|32] [--opacity A] [--early-cull TAU]\n"
+    "         [--size WxH] [--path gl|cpu] [--technique ha|lists|arrays] [--layers K] [--pool N|auto]\n"
+    "         [--layout 64|32] [--opacity A] [--early-cull TAU]\n"
     "         [--table WxH|auto] [--lossless [--max-attempts N]] [--frames N] [--yaw DEG] [--pitch DEG] [--fov DEG]\n"
     "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE]\n"
     "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
@@ -38,6 +40,10 @@ constexpr const char* kHelp =
     "  (float) by extension.\n"
     "  --opaque-meshes: meshes (indices in file order) drawn opaque with the depth test; transparent\n"
     "  fragments behind them are rejected before insertion and counted.\n"
+    "  --technique: the HA-buffer (default), per-pixel linked lists (--pool: nodes, auto by default: sized\n"
+    "  from a counting pass, grown when a frame drops, adapted between frames) or fixed per-pixel arrays\n"
+    "  (--layers K, default 16: fragments beyond K in a pixel are dropped and counted). --table, --block,\n"
+    "  --iter-limit, --early-cull, --offsets and --seed are the HA-buffer's.\n"
     "  --quiet: no summary and no progress bar (shown on a terminal for --frames above 1).\n"
     "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
     "  --lossless render that still lost fragments, 2 bad usage.\n";
@@ -64,6 +70,9 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args) {
     const std::string kind = item.substr(0, colon);
     if (colon == std::string::npos || colon + 1 == item.size() || (kind != "depth" && kind != "age" && kind != "culled"))
       throw UsageError("option --heatmap: " + excerpt(item) + " is not depth:IMAGE, age:IMAGE or culled:IMAGE");
+    if (kind != "depth" && args.str("technique", "ha") != "ha")
+      throw UsageError("option --heatmap " + kind + ": the HA-buffer's (ages, early cull), not technique " +
+                       excerpt(args.str("technique", "ha")) + "'s");
     out.push_back({kind, item.substr(colon + 1)});
   }
   return out;
@@ -121,6 +130,10 @@ RenderSettings parse_settings(const Args& args) {
   RenderSettings s;
   const Extent size = args.extent("size").value_or(Extent{1024, 1024});
   if (size.area() == 0) throw UsageError("option --size: " + size.str() + " has no pixels");
+  const TechniqueOptions technique = parse_technique_options(args);
+  s.technique = technique.technique;
+  s.layers = technique.layers;
+  s.pool = technique.pool;
   const std::string table = args.str("table", "auto");
   const Extent t = table == "auto" ? Extent{0, 0} : args.extent("table").value();
   s.config = parse_buffer_config(args, size, t);
@@ -129,8 +142,9 @@ RenderSettings parse_settings(const Args& args) {
   if (path != "gl" && path != "cpu") throw UsageError("option --path: '" + path + "' is not gl or cpu");
   s.path = path == "gl" ? RenderPath::Gl : RenderPath::Cpu;
   s.lossless = args.has("lossless");
-  if (!s.lossless && args.has("max-attempts") && table != "auto")
-    throw UsageError("option --max-attempts needs --lossless or --table auto");
+  const bool automatic = (s.technique == Technique::Ha && table == "auto") || (s.technique == Technique::Lists && s.pool == 0);
+  if (!s.lossless && args.has("max-attempts") && !automatic)
+    throw UsageError("option --max-attempts needs --lossless or an automatic size (--table auto, --pool auto)");
   s.max_attempts = args.u32("max-attempts", 16, 1, 1000);
   s.frames = args.u32("frames", 1, 1, 100000);
   s.threads = args.u32("threads", 0, 0, 1024);
@@ -212,7 +226,7 @@ std::vector<HeatmapOutput> write_heatmaps(const std::vector<HeatmapRequest>& req
       values = as_floats(r.pixel_fragments);
       title = "fragments per pixel";
     } else if (h.kind == "age") {
-      values = max_age_per_pixel(*r.buffer);
+      values = max_age_per_pixel(*r.ha_buffer());
       title = "max age per pixel";
     } else {
       values = as_floats(r.pixel_culled);
@@ -248,11 +262,11 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
   if (s.lossless && total.failures() > 0) {
     report_lossless_failure("render", total,
                             frames + " after up to " + std::to_string(s.max_attempts) + " attempts per frame" +
-                                (r.growth_limited ? " (the table reached this OpenGL's limits)"
-                                                  : "; more --age-bits fits deeper pixels"));
+                                (r.growth_limited ? " (the technique's buffers reached this OpenGL's limits)"
+                                 : s.technique == Technique::Ha ? "; more --age-bits fits deeper pixels" : ""));
     return 1;
   }
-  warn_losses("render", total, frames, kLosslessHint);
+  warn_losses("render", total, frames, lossless_hint(s.technique));
   return 0;
 }
 
@@ -264,7 +278,7 @@ int run_render(const std::vector<std::string>& argv) {
                   {"scene", "fragments", "size", "path", "layout", "opacity", "early-cull", "table", "max-attempts",
                    "frames", "yaw", "pitch", "fov", "background", "out", "stats", "heatmap", "reference", "age-bits",
                    "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed",
-                   "opaque-meshes"},
+                   "opaque-meshes", "technique", "layers", "pool"},
                   {"lossless", "quiet"});
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");

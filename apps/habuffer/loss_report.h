@@ -7,6 +7,7 @@
 #include <string>
 
 #include "habuffer/fragment.h"
+#include "habuffer/technique.h"
 
 namespace habuffer::cli {
 
@@ -21,6 +22,15 @@ std::string loss_summary(const Counters& c);
 // What to try when fragments failed in a command that takes --lossless.
 inline constexpr const char* kLosslessHint =
     "--lossless grows the table until they fit (or give a larger --table, more --age-bits)";
+// What keeps a technique's dropped fragments.
+inline const char* lossless_hint(Technique t) {
+  switch (t) {
+    case Technique::Ha: return kLosslessHint;
+    case Technique::Lists: return "--lossless grows the node pool until they fit (or give a larger --pool)";
+    case Technique::Arrays: return "--lossless raises K to the deepest pixel (or give more --layers)";
+  }
+  return kLosslessHint;
+}
 
 // Prints "habuffer COMMAND: warning: SUMMARY[CONTEXT][; HINT]" when anything
 // was lost; the hint only when fragments failed (not culled or invalid).

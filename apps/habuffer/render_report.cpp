@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "habuffer/json_writer.h"
+#include "habuffer/memory_model.h"
 #include "report_json.h"
 
 namespace habuffer::cli {
@@ -12,13 +13,13 @@ namespace {
 void counters(JsonWriter& json, const Counters& c) {
   json.field("fragments", c.fragments).field("stored", c.stored()).field("duplicates", c.duplicates);
   json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
-  json.field("failed_iter", c.failed_iter);
+  json.field("failed_iter", c.failed_iter).field("dropped_pool", c.dropped_pool).field("dropped_layers", c.dropped_layers);
 }
 
 void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.begin_object().field("index", f.index).field("yaw", static_cast<double>(f.yaw));
   write_extent(json, "table", f.table);
-  json.field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
+  json.field("capacity", f.capacity).field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
   counters(json, f.counters);
   json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
   if (gpu) json.field("slot_writes", f.slot_writes).field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
@@ -56,19 +57,31 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   json.key("scene").begin_object().field("name", s.scene.name).field("meshes", static_cast<std::uint64_t>(s.scene.meshes));
   json.field("triangles", s.scene.triangles).end_object();
   write_extent(json, "size", set.config.screen);
-  json.field("path", path_name(set.path)).field("device", r.device).field("layout", to_string(set.config.layout));
+  json.field("path", path_name(set.path)).field("technique", to_string(set.technique));
+  json.field("device", r.device).field("layout", to_string(set.config.layout));
+  if (set.technique == Technique::Arrays) json.field("layers", static_cast<std::uint64_t>(last.capacity / set.config.screen.area()));
+  if (set.technique == Technique::Lists) json.field("pool_nodes", last.capacity);
   json.field("age_bits", set.config.age_bits).field("block", set.config.block);
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
-  json.field("table_mode", set.config.table.area() == 0 ? "auto" : (set.lossless ? "lossless" : "fixed"));
+  const bool automatic = (set.technique == Technique::Ha && set.config.table.area() == 0) ||
+                         (set.technique == Technique::Lists && set.pool == 0);
+  json.field("table_mode", automatic ? "auto" : (set.lossless ? "lossless" : "fixed"));
   counters(json, last.counters);
   json.field("opaque_rejected", last.opaque_rejected);
   if (set.path == RenderPath::Gl) json.field("slot_writes", last.slot_writes);  // counted on the GPU path only
   json.field("max_depth_complexity", s.max_depth_complexity).field("mean_depth_complexity", s.mean_depth_complexity);
   json.field("covered_pixels", s.covered_pixels);
   write_extent(json, "table", last.table);
-  json.field("load_factor", last.load_factor).field("max_age", last.max_age);
+  json.field("capacity", last.capacity).field("load_factor", last.load_factor).field("max_age", last.max_age);
   json.field("gather_ms", last.gather_ms).field("resolve_ms", last.resolve_ms).field("frame_ms", last.frame_ms);
-  json.field("memory_bytes", r.memory_bytes).field("growth_limited", r.growth_limited);
+  const std::uint64_t stored = last.counters.stored();
+  json.field("memory_bytes", r.memory_bytes).field("memory_model_bytes", r.memory_model_bytes);
+  json.field("bytes_per_fragment", stored > 0 ? static_cast<double>(r.memory_bytes) / static_cast<double>(stored) : 0.0);
+  json.field("memory_paper_bytes",
+             paper_memory_bytes(set.technique, set.config.screen.area(), stored,
+                                last.load_factor > 0 ? last.load_factor : 1.0,
+                                static_cast<std::uint32_t>(last.capacity / set.config.screen.area())));
+  json.field("growth_limited", r.growth_limited);
   json.key("heatmaps").begin_array();
   for (const HeatmapOutput& h : s.outputs->heatmaps)
     json.begin_object().field("kind", h.kind).field("path", h.path).field("max", h.max).end_object();
@@ -88,12 +101,15 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
 void print_render_summary(const RenderSummary& s, const RenderOutputs& outputs) {
   const FrameStats& last = s.result->frames.back();
   const RenderSettings& set = *s.settings;
-  std::printf("%s %s %s, %s: %.3g M fragments (max depth complexity %u), %.3g M stored, load %.2f of table %s, max age %u\n",
+  const std::string held = set.technique == Technique::Ha ? "table " + last.table.str() + ", max age " + std::to_string(last.max_age)
+                                                         : std::to_string(last.capacity) + " records of " + to_string(set.technique);
+  std::printf("%s %s %s, %s: %.3g M fragments (max depth complexity %u), %.3g M stored, load %.2f of %s\n",
               s.scene.name.c_str(), set.config.screen.str().c_str(), to_string(set.config.layout).c_str(),
               s.result->device.c_str(), static_cast<double>(last.counters.fragments) * 1e-6, s.max_depth_complexity,
-              static_cast<double>(last.counters.stored()) * 1e-6, last.load_factor, last.table.str().c_str(), last.max_age);
-  std::printf("gather %.1f ms, resolve %.1f ms, frame %.1f ms; HA-buffer memory %.1f MiB; culled %llu, failed %llu%s\n",
-              last.gather_ms, last.resolve_ms, last.frame_ms, static_cast<double>(s.result->memory_bytes) / (1 << 20),
+              static_cast<double>(last.counters.stored()) * 1e-6, last.load_factor, held.c_str());
+  std::printf("gather %.1f ms, resolve %.1f ms, frame %.1f ms; %s memory %.1f MiB; culled %llu, failed %llu%s\n",
+              last.gather_ms, last.resolve_ms, last.frame_ms, to_string(set.technique).c_str(),
+              static_cast<double>(s.result->memory_bytes) / (1 << 20),
               static_cast<unsigned long long>(last.counters.culled),
               static_cast<unsigned long long>(last.counters.failures()),
               outputs.reference_difference

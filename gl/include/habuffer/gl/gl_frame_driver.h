@@ -74,6 +74,8 @@ class GlFrameDriver {
   // Every buffer: the technique's and the frame's (tallies, parameters,
   // capture and deferred-call buffers).
   [[nodiscard]] std::uint64_t memory_bytes() const;
+  // Of those, the capture buffer's (a tool of the CPU path and the reference, not the technique's).
+  [[nodiscard]] std::uint64_t capture_bytes() const;
 
  protected:
   // Writes the parameter block (the frame's fields and the technique's).

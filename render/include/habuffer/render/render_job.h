@@ -1,11 +1,13 @@
-// `habuffer render` as a library call: frames of a scene through the
-// HA-buffer on the GPU path, or rasterized by GL (capture mode) and inserted,
-// traversed and composited on the CPU path, or a recorded fragment stream on
-// the CPU path alone; with everything the stats, heat maps and reference need.
+// `habuffer render` as a library call: frames of a scene through any
+// technique (the HA-buffer, linked lists, fixed arrays) on the GPU path, or
+// rasterized by GL (capture mode) and inserted, sorted and composited on the
+// CPU path, or a recorded fragment stream on the CPU path alone; with
+// everything the stats, heat maps and reference need.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -15,7 +17,9 @@
 
 #include "habuffer/buffer_config.h"
 #include "habuffer/camera.h"
+#include "habuffer/fragment_buffer.h"
 #include "habuffer/ha_buffer.h"
+#include "habuffer/technique.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/render/image.h"
 #include "habuffer/resize_policy.h"
@@ -27,10 +31,15 @@ enum class RenderPath { Gl, Cpu };
 
 struct RenderSettings {
   RenderPath path = RenderPath::Gl;
-  // Screen, layout, age bits, block, iteration limit, early cull; config.table
-  // zero means auto: size the first table from a counting pass, grow at once
-  // when a frame fails, and adapt between frames (SPEC 8). A given table is
-  // kept unless lossless.
+  Technique technique = Technique::Ha;
+  std::uint32_t layers = HA_DEFAULT_LAYERS;  // fixed arrays: K
+  // Linked lists: nodes in the pool; 0 means auto: sized from a counting pass
+  // (to grow_at use), grown at once when a frame drops, adapted between frames.
+  std::uint64_t pool = 0;
+  // Screen, layout and age bits (every technique); block, iteration limit,
+  // early cull and table (the HA-buffer). config.table zero means auto: size
+  // the first table from a counting pass, grow at once when a frame fails,
+  // and adapt between frames (SPEC 8). A given table is kept unless lossless.
   BufferConfig config;
   bool lossless = false;
   std::uint32_t max_attempts = 16;  // lossless and auto
@@ -49,7 +58,8 @@ struct RenderSettings {
 struct FrameStats {
   std::uint32_t index = 0;
   float yaw = 0.0f;
-  Extent table;
+  Extent table;                  // HA-buffer
+  std::uint64_t capacity = 0;    // records the technique could hold (slots, nodes, layers of every pixel)
   bool resized = false;
   std::uint32_t attempts = 1;
   Counters counters;
@@ -58,8 +68,10 @@ struct FrameStats {
   std::uint64_t deferred = 0;     // GPU path: insert calls cut short and resumed (FrameReport::deferred)
   std::uint32_t resume_rounds = 0;
   bool resize_limited = false;    // GPU path: adaptive sizing wanted a table the context cannot hold
-  std::uint32_t max_age = 0;
-  double load_factor = 0.0;
+  std::uint32_t max_age = 0;     // HA-buffer
+  double load_factor = 0.0;      // stored / capacity
+  // gather: the gather pass (resume rounds included); resolve: the sort pass
+  // (lists, arrays) and the compositing.
   double gather_ms = 0.0, resolve_ms = 0.0, frame_ms = 0.0;
 };
 
@@ -70,8 +82,14 @@ struct RenderResult {
   std::vector<std::uint32_t> pixel_culled;     // last frame, per pixel (empty unless counted)
   std::vector<glm::vec3> backgrounds;          // per pixel: the opaque pass's colour
   std::vector<Fragment> fragments;             // last frame (when keep_fragments or path cpu)
-  std::optional<HaBuffer> buffer;              // the last frame's table and max-age table
-  std::uint64_t memory_bytes = 0;              // of the HA-buffer (GPU or CPU)
+  std::unique_ptr<FragmentBuffer> buffer;      // the last frame's lists (on the CPU, read back from the GPU)
+  // Every buffer the technique and its frames allocated (GPU: its own, the
+  // tallies, parameters and deferred calls; not the capture, which serves
+  // the CPU path and --reference).
+  std::uint64_t memory_bytes = 0;
+  std::uint64_t memory_model_bytes = 0;        // the technique's storage by formula (memory_model.h)
+  // The HA-buffer's last table, or nullptr for other techniques.
+  [[nodiscard]] const HaBuffer* ha_buffer() const { return dynamic_cast<const HaBuffer*>(buffer.get()); }
   std::string device;                          // "gl native32 on llvmpipe ...", "cpu (N threads)"
   bool growth_limited = false;  // the context could not hold the table the first frame or lossless mode wanted
 };
@@ -79,6 +97,10 @@ struct RenderResult {
 // Needs a current OpenGL 4.5 core context. Throws SceneError, GlError,
 // std::invalid_argument with the reason.
 RenderResult render_scene(const Scene& scene, const RenderSettings& settings);
+
+// The technique's configuration for the settings (an automatic table or
+// pool given its placeholder: the screen).
+TechniqueConfig technique_config(const RenderSettings& settings);
 
 // A recorded stream on the CPU path, one frame, over the uniform background.
 RenderResult render_fragments(std::span<const Fragment> fragments, const RenderSettings& settings);

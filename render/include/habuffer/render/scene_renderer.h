@@ -11,7 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "habuffer/camera.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/gl_frame_driver.h"
 #include "habuffer/gl/shader_program.h"
 #include "habuffer/scene.h"
 
@@ -19,21 +19,23 @@ namespace habuffer {
 
 class SceneRenderer {
  public:
-  // The renderer's shaders for an atomic mode and binding points, as
-  // compiled (no GL needed: the reference-compiler check writes them out).
+  // The renderer's shaders for an atomic mode, binding points and
+  // technique, as compiled (no GL needed: the reference-compiler check
+  // writes them out).
   struct Sources {
     std::string vertex, opaque_fragment, gather_fragment;
   };
-  static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings);
+  static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings,
+                                Technique technique = Technique::Ha);
 
-  // Compiles the gather shader for `buffer`'s mode and binding points.
-  SceneRenderer(const Scene& scene, Extent screen, const gl::GlHaBuffer& buffer);
+  // Compiles the gather shader for `buffer`'s technique, mode and binding points.
+  SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
   void draw_opaque(const Camera& camera, glm::vec3 background);
-  // The transparent meshes; call inside GlHaBuffer::frame (it may run twice
+  // The transparent meshes; call inside GlFrameDriver::frame (it may run twice
   // in one frame: the per-pixel counts start from zero each time).
   void gather(const Camera& camera);
   // The fragments a gather would insert (after opaque rejection), inserting

@@ -1,0 +1,50 @@
+// The CPU path's frames of one technique: the first size from a fragment
+// count, adaptive sizing between frames from the previous frame's exact
+// count (SPEC 8 on the HA-buffer's table and on the lists' pool), lossless
+// and automatic regathers, and the frame's statistics.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "habuffer/lossless_build.h"
+#include "habuffer/render/render_job.h"
+
+namespace habuffer {
+
+class CpuBuilder {
+ public:
+  explicit CpuBuilder(const RenderSettings& settings);
+  // Sizes an automatic table or pool for `fragments` (before the first frame).
+  void size_for(std::uint64_t fragments);
+  // One frame: inserts (and sorts) `fragments`, filling the frame's counts and gather time.
+  TechniqueBuild build(std::span<const Fragment> fragments, FrameStats& fs);
+
+ private:
+  const RenderSettings& settings_;
+  TechniqueConfig config_;
+  std::optional<std::uint64_t> previous_use_;  // stored records (HA) or nodes asked for (lists)
+};
+
+// Whether the technique's size is automatic in these settings (the
+// HA-buffer's table or the lists' pool; fixed arrays keep K).
+bool automatic_size(const RenderSettings& s);
+// The attempts a frame may take: lossless or automatic sizes regather.
+std::uint32_t frame_attempts(const RenderSettings& s);
+// An automatic HA table's first size: the fragments at the middle of the
+// policy's band of loads, at least the screen.
+Extent initial_table(const RenderSettings& s, std::uint64_t fragments);
+// An automatic pool's first size: the fragments at the policy's grow_at use.
+std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments);
+// The next pool by SPEC 8's rule on `requested` nodes of the last frame.
+std::uint64_t next_pool(const ResizePolicy& policy, std::uint64_t pool, std::uint64_t requested);
+
+}  // namespace habuffer
+
+namespace habuffer {
+// Moves the last frame's build into the result: the lists, the memory
+// (measured and by formula) and, when asked, the culled fragments per pixel
+// (the HA-buffer's early cull, replayed serially).
+void finish_cpu_result(const RenderSettings& settings, TechniqueBuild last, RenderResult& result);
+}  // namespace habuffer

@@ -1,0 +1,70 @@
+// The CPU path of `habuffer render`: the GPU rasterizes and captures every
+// fragment (inserting nothing), the technique runs on the CPU over the
+// capture, and the image is composited on the CPU over the opaque pass.
+#include <chrono>
+
+#include "cpu_builder.h"
+#include "frame_path.h"
+#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/memory_model.h"
+
+namespace habuffer {
+namespace {
+
+// A screen-sized HA-buffer that only captures: the CPU path's rasterizer.
+gl::GlFrameOptions capture_options() {
+  gl::GlFrameOptions o;
+  o.capture = true;
+  o.capture_only = true;
+  return o;
+}
+
+BufferConfig capture_config(const RenderSettings& s) {
+  BufferConfig c = s.config;
+  c.table = c.screen;
+  c.early_cull_tau = 0.0f;
+  return c;
+}
+
+class CpuFrames final : public FramePath {
+ public:
+  CpuFrames(const RenderSettings& s, gl::AtomicMode mode)
+      : settings_(s), capture_(capture_config(s), s.offsets, mode, capture_options()), builder_(s) {}
+
+  gl::GlFrameDriver& driver() override { return capture_; }
+
+  void size_for(std::uint64_t fragments, RenderResult&) override { builder_.size_for(fragments); }
+
+  void complete_frame(const gl::FrameReport&, SceneRenderer& renderer, FrameStats& fs, RenderResult& result) override {
+    const std::vector<Fragment> fragments = capture_.read_capture();
+    last_.emplace(builder_.build(fragments, fs));
+    const auto r0 = std::chrono::steady_clock::now();
+    result.backgrounds = renderer.read_opaque_colour();
+    result.image = Image{settings_.config.screen, last_->buffer->composite_image(result.backgrounds, settings_.threads)};
+    fs.resolve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+    result.fragments = fragments;
+  }
+
+  void finish(SceneRenderer&, RenderResult& result) override {
+    finish_cpu_result(settings_, std::move(*last_), result);
+    result.device = "cpu, fragments rasterized by gl (" + gl::query_gl_info().renderer + ")";
+  }
+
+ private:
+  const RenderSettings& settings_;
+  gl::GlHaBuffer capture_;
+  CpuBuilder builder_;
+  std::optional<TechniqueBuild> last_;
+};
+
+}  // namespace
+
+std::unique_ptr<FramePath> make_gpu_frames(const RenderSettings& settings, gl::AtomicMode mode);
+
+std::unique_ptr<FramePath> make_frame_path(const RenderSettings& settings, gl::AtomicMode mode) {
+  if (settings.path == RenderPath::Cpu) return std::make_unique<CpuFrames>(settings, mode);
+  return make_gpu_frames(settings, mode);
+}
+
+}  // namespace habuffer

@@ -1,0 +1,33 @@
+// How `habuffer render` turns a gathered frame into an image, one class per
+// path: GpuFrames (the technique's buffers on the GPU, resolved there) and
+// CpuFrames (the GPU only captures; the technique runs on the CPU). The job
+// (render_job.cpp) draws and gathers the same way for both.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "habuffer/gl/gl_frame_driver.h"
+#include "habuffer/render/render_job.h"
+#include "habuffer/render/scene_renderer.h"
+
+namespace habuffer {
+
+class FramePath {
+ public:
+  virtual ~FramePath() = default;
+  // The driver the scene renderer gathers into.
+  virtual gl::GlFrameDriver& driver() = 0;
+  // Before the first frame: automatic sizes from the counting pass.
+  virtual void size_for(std::uint64_t fragments, RenderResult& result) = 0;
+  // After the frame's gather: build or resolve, and fill the frame's stats
+  // (and, for the CPU path, the image).
+  virtual void complete_frame(const gl::FrameReport& report, SceneRenderer& renderer, FrameStats& fs,
+                              RenderResult& result) = 0;
+  // After the last frame: the image, lists, memory and device of the result.
+  virtual void finish(SceneRenderer& renderer, RenderResult& result) = 0;
+};
+
+std::unique_ptr<FramePath> make_frame_path(const RenderSettings& settings, gl::AtomicMode mode);
+
+}  // namespace habuffer

@@ -1,0 +1,121 @@
+// The GPU path of `habuffer render`: the technique's buffers on the GPU,
+// sized automatically from the counting pass, resolved on the GPU into an
+// RGBA32F target; the last frame's lists read back for stats and heat maps.
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cpu_builder.h"
+#include "frame_path.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_fixed_arrays.h"
+#include "habuffer/gl/gl_ha_table.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/gl_linked_lists.h"
+#include "habuffer/memory_model.h"
+#include "resolve_target.h"
+
+namespace habuffer {
+namespace {
+
+gl::GlFrameOptions gpu_frame_options(const RenderSettings& s) {
+  gl::GlFrameOptions o;
+  o.adaptive = automatic_size(s);
+  o.policy = s.policy;
+  o.max_attempts = frame_attempts(s);
+  o.capture = s.keep_fragments;
+  o.count_writes = true;
+  return o;
+}
+
+std::unique_ptr<gl::GlTechnique> make_gl_technique(const RenderSettings& s, gl::AtomicMode mode) {
+  TechniqueConfig c = technique_config(s);
+  switch (c.technique) {
+    case Technique::Ha: return std::make_unique<gl::GlHaTable>(c.buffer, s.offsets, mode, gl::GlBindings{});
+    case Technique::Lists: return std::make_unique<gl::GlLinkedLists>(c, mode, gl::GlBindings{});
+    case Technique::Arrays: return std::make_unique<gl::GlFixedArrays>(c, mode, gl::GlBindings{});
+  }
+  throw std::invalid_argument("unknown technique");
+}
+
+// The largest table up to `wanted` (same aspect) the context holds.
+Extent fit_gpu_table(const gl::GlHaTable& ha, Extent wanted) {
+  const std::uint64_t max_slots = gl::max_storage_bytes() / ha.config().record_layout().word_bytes();
+  if (wanted.area() <= max_slots) return wanted;
+  const double scale = std::sqrt(static_cast<double>(max_slots) / static_cast<double>(wanted.area()));
+  const Extent screen = ha.config().screen;
+  return {std::max(screen.x, static_cast<std::uint32_t>(wanted.x * scale)),
+          std::max(screen.y, static_cast<std::uint32_t>(wanted.y * scale))};
+}
+
+std::uint32_t largest(std::span<const std::uint32_t> v) { return v.empty() ? 0u : *std::max_element(v.begin(), v.end()); }
+
+class GpuFrames final : public FramePath {
+ public:
+  GpuFrames(const RenderSettings& s, gl::AtomicMode mode)
+      : settings_(s), mode_(mode), driver_(make_gl_technique(s, mode), gpu_frame_options(s)), target_(s.config.screen) {}
+
+  gl::GlFrameDriver& driver() override { return driver_; }
+
+  void size_for(std::uint64_t fragments, RenderResult& result) override {
+    if (!automatic_size(settings_)) return;
+    if (auto* ha = dynamic_cast<gl::GlHaTable*>(&driver_.technique())) {
+      const Extent first = initial_table(settings_, fragments);
+      const Extent fitted = fit_gpu_table(*ha, first);
+      result.growth_limited = result.growth_limited || fitted != first;
+      ha->resize(fitted);
+    } else if (auto* lists = dynamic_cast<gl::GlLinkedLists*>(&driver_.technique())) {
+      const std::uint64_t wanted = initial_pool(settings_, fragments);
+      const std::uint64_t fitted = std::min<std::uint64_t>(wanted, gl::max_storage_bytes() / sizeof(glm::uvec2));
+      result.growth_limited = result.growth_limited || fitted != wanted;
+      lists->resize_pool(fitted);
+    }
+  }
+
+  void complete_frame(const gl::FrameReport& report, SceneRenderer& renderer, FrameStats& fs,
+                      RenderResult& result) override {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_.framebuffer());
+    fs.resolve_ms = report.sort.wall_ms + driver_.resolve(settings_.background, renderer.opaque_colour_texture()).wall_ms;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    fs.table = report.table;
+    fs.capacity = report.capacity;
+    fs.resized = report.resized;
+    fs.attempts = static_cast<std::uint32_t>(report.attempts.size());
+    fs.counters = report.counters;
+    fs.slot_writes = report.slot_writes;
+    fs.deferred = report.deferred;
+    fs.resume_rounds = report.resume_rounds;
+    fs.resize_limited = report.resize_limited;
+    fs.gather_ms = report.gather.wall_ms;
+    if (const auto* ha = dynamic_cast<const gl::GlHaTable*>(&driver_.technique())) fs.max_age = largest(ha->read_max_age());
+    result.growth_limited = result.growth_limited || report.growth_limited;
+  }
+
+  void finish(SceneRenderer& renderer, RenderResult& result) override {
+    result.backgrounds = renderer.read_opaque_colour();
+    result.image = target_.read();
+    result.pixel_culled = renderer.read_pixel_culled();
+    if (settings_.keep_fragments) result.fragments = driver_.read_capture();
+    result.buffer = driver_.technique().read_back();
+    result.memory_bytes = driver_.memory_bytes() - driver_.capture_bytes();  // the capture serves --reference only
+    TechniqueConfig c = technique_config(settings_);
+    if (const auto* arrays = dynamic_cast<const gl::GlFixedArrays*>(&driver_.technique())) c.layers = arrays->config().layers;
+    result.memory_model_bytes = memory_model_bytes(c, driver_.technique().capacity());
+    result.device = "gl " + gl::to_string(mode_) + " on " + gl::query_gl_info().renderer;
+  }
+
+ private:
+  const RenderSettings& settings_;
+  gl::AtomicMode mode_;
+  gl::GlFrameDriver driver_;
+  ResolveTarget target_;
+};
+
+}  // namespace
+
+std::unique_ptr<FramePath> make_gpu_frames(const RenderSettings& settings, gl::AtomicMode mode) {
+  return std::make_unique<GpuFrames>(settings, mode);
+}
+
+}  // namespace habuffer
