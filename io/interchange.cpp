@@ -72,7 +72,7 @@ void write_offsets(const std::string& path, const OffsetSequence& offsets) {
   out.close();
 }
 
-void write_lists(const std::string& path, const HaBuffer& buffer) {
+void write_lists(const std::string& path, const FragmentBuffer& buffer) {
   CsvWriter out(path);
   out.text("x,y,rank,code,rgba\n");
   std::vector<ListEntry> list;

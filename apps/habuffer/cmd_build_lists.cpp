@@ -1,6 +1,7 @@
 // habuffer build-lists: fragment CSV in, per-pixel sorted lists out.
 #include <chrono>
 #include <cstdio>
+#include <iterator>
 
 #include "commands.h"
 #include "gl_build.h"
@@ -17,9 +18,13 @@ constexpr const char* kHelp =
     "usage: habuffer build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [--table WxH] [--layout 64|32]\n"
     "         [--age-bits N] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--block B] [--threads N]\n"
     "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
-    "         [--insert-mode auto|serial|atomic|owner] [--path cpu|gl]\n"
-    "         [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
-    "  --threads 0 uses every hardware thread; every insert mode builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n";
+    "         [--insert-mode auto|serial|atomic|owner] [--path cpu|gl] [--technique ha|lists|arrays]\n"
+    "         [--layers K] [--pool N|auto] [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
+    "  --threads 0 uses every hardware thread; every insert mode builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
+    "  --technique lists|arrays: the same lists CSV from per-pixel linked lists (--pool: nodes, auto: one per\n"
+    "  fragment) or fixed arrays (--layers K, default 16); identical records are merged as duplicates, so an\n"
+    "  exact technique's lists equal the HA-buffer's byte for byte. --table, --block, --iter-limit, --early-cull,\n"
+    "  --offsets, --seed and the dumps are the HA-buffer's.\n";
 
 }  // namespace
 
@@ -27,10 +32,11 @@ int run_build_lists(const std::vector<std::string>& argv) {
   if (print_help(argv, kHelp)) return 0;
   auto valued = hash_valued_options();
   valued.insert({"in", "out", "stats", "dump-table", "dump-max-age"});
+  valued.insert(std::begin(kTechniqueValued), std::end(kTechniqueValued));
   const Args args(argv, valued, hash_flag_options());
   const std::string in = args.required("in");
   const std::string out = args.required("out");
-  const HashOptions options = parse_hash_options(args);
+  const HashOptions options = parse_hash_options(args, true, {"dump-table", "dump-max-age"});
   FileRoles files;
   files.input("--in", in).output("--out", out);
   add_offsets_input(files, options);
@@ -40,40 +46,46 @@ int run_build_lists(const std::vector<std::string>& argv) {
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
   BuildTiming timing{0.0, resolved_threads(options.insert.threads), {}, {}};
-  std::optional<BuildResult> built;
+  std::optional<TechniqueBuild> built;
   if (options.gl) {
     built.emplace(build_on_gl(options, fragments, timing));
   } else {
     const auto t0 = std::chrono::steady_clock::now();
-    built.emplace(build(options.config, options.offsets, fragments, options.insert, options.policy, options.max_attempts));
+    built.emplace(build_technique(technique_config(options, fragments.size()), options.offsets, fragments, options.insert,
+                                  options.policy, options.max_attempts));
     timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
-  BuildResult& result = *built;
+  TechniqueBuild& result = *built;
 
-  write_lists(out, result.buffer);
-  if (args.has("dump-table")) write_table(args.required("dump-table"), result.buffer);
-  if (args.has("dump-max-age")) write_max_age(args.required("dump-max-age"), result.buffer);
-  const BuildReport report = summarize(result.buffer, result.counters);
+  write_lists(out, *result.buffer);
+  if (const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get())) {
+    if (args.has("dump-table")) write_table(args.required("dump-table"), *ha);
+    if (args.has("dump-max-age")) write_max_age(args.required("dump-max-age"), *ha);
+  }
+  const BuildReport report = summarize(*result.buffer, result.counters);
   if (args.has("stats")) {
     JsonWriter json;
     json.begin_object();
     json.field("in", in);
-    write_build_stats(json, options, result, report, timing);
+    write_build_stats(json, options, *result.buffer, result.attempts, report, timing);
     json.end_object();
     json.save(args.required("stats"));
   }
   if (report.stored != report.counters.stored())
-    throw std::logic_error("accounting broken: table holds " + std::to_string(report.stored) +
+    throw std::logic_error("accounting broken: the " + to_string(result.buffer->technique()) + " buffer holds " +
+                           std::to_string(report.stored) +
                            " records, counters say " + std::to_string(report.counters.stored()));
   if (options.lossless && !result.lossless()) {
+    const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get());
     report_lossless_failure("build-lists", result.counters,
-                            " after " + std::to_string(result.attempts.size()) + " attempts (last table " +
-                                result.buffer.table().str() + ", AMAX " +
-                                std::to_string(options.config.record_layout().max_age()) +
-                                "); a pixel with more than AMAX distinct fragments needs more --age-bits");
+                            " after " + std::to_string(result.attempts.size()) + " attempts" +
+                                (ha != nullptr ? " (last table " + ha->table().str() + ", AMAX " +
+                                                     std::to_string(options.config.record_layout().max_age()) +
+                                                     "); a pixel with more than AMAX distinct fragments needs more --age-bits"
+                                               : " (last capacity " + std::to_string(result.buffer->capacity()) + ")"));
     return 1;
   }
-  warn_losses("build-lists", result.counters, "", kLosslessHint);
+  warn_losses("build-lists", result.counters, "", lossless_hint(options.technique.technique));
   return 0;
 }
 

@@ -75,11 +75,11 @@ int run_demo(const std::vector<std::string>& argv) {
   const double ms_one = timed_ms([&] { one->counters = one->buffer.insert(fragments, serial); });
   BuildTiming timing{0.0, threads, {}, {}};
   if (options.gl) {
-    many.emplace(build_on_gl(options, fragments, timing));
+    many.emplace(build_ha_on_gl(options, fragments, timing));
   } else {
     many.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}});
     timing.build_ms = timed_ms([&] { many->counters = many->buffer.insert(fragments, options.insert); });
-    many->attempts.push_back({options.config.table, many->counters});
+    many->attempts.push_back({options.config.table, many->counters, options.config.table.area()});
   }
   const double ms_many = timing.build_ms;
   const BuildReport report = summarize(many->buffer, many->counters);
@@ -108,7 +108,7 @@ int run_demo(const std::vector<std::string>& argv) {
   if (args.has("stats")) {
     JsonWriter json;
     json.begin_object().field("stream", to_string(so.kind));
-    write_build_stats(json, options, *many, report, timing);
+    write_build_stats(json, options, many->buffer, many->attempts, report, timing);
     json.field("serial_build_ms", ms_one).field("parallel_identical", identical).end_object();
     json.save(args.required("stats"));
   }

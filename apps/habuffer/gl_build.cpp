@@ -7,11 +7,26 @@
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/gl_fixed_arrays.h"
+#include "habuffer/gl/gl_ha_table.h"
+#include "habuffer/gl/gl_linked_lists.h"
 
 namespace habuffer::cli {
+namespace {
 
-BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
+std::unique_ptr<gl::GlTechnique> make_gl_technique(const TechniqueConfig& c, const OffsetSource& offsets,
+                                                   gl::AtomicMode mode) {
+  switch (c.technique) {
+    case Technique::Ha: return std::make_unique<gl::GlHaTable>(c.buffer, offsets, mode, gl::GlBindings{});
+    case Technique::Lists: return std::make_unique<gl::GlLinkedLists>(c, mode, gl::GlBindings{});
+    case Technique::Arrays: return std::make_unique<gl::GlFixedArrays>(c, mode, gl::GlBindings{});
+  }
+  throw std::invalid_argument("unknown technique");
+}
+
+}  // namespace
+
+TechniqueBuild build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
   std::optional<gl::EglContext> context;
   try {
     context.emplace();
@@ -25,7 +40,8 @@ BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fr
   gl::GlFrameOptions frame_options;
   frame_options.policy = options.policy;
   frame_options.max_attempts = options.max_attempts;
-  gl::GlHaBuffer gpu(c, options.offsets, *mode, frame_options);
+  gl::GlFrameDriver gpu(make_gl_technique(technique_config(options, fragments.size()), options.offsets, *mode),
+                        frame_options);
   gl::ComputeInserter inserter(gpu);
   const auto t0 = std::chrono::steady_clock::now();
   gl::FrameReport report = inserter.insert(fragments);
@@ -35,9 +51,12 @@ BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fr
   timing.gl_deferred = report.deferred;
   timing.gl_resume_rounds = report.resume_rounds;
   timing.gl_cut_short_retries = report.cut_short_retries;
-  HaBuffer buffer(gpu.config(), gpu.offsets());
-  buffer.import_state(gpu.read_table(), gpu.read_max_age());
-  return BuildResult{std::move(buffer), report.counters, std::move(report.attempts)};
+  return TechniqueBuild{gpu.technique().read_back(), report.counters, std::move(report.attempts)};
+}
+
+BuildResult build_ha_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
+  TechniqueBuild b = build_on_gl(options, fragments, timing);
+  return BuildResult{std::move(dynamic_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts)};
 }
 
 }  // namespace habuffer::cli

@@ -12,10 +12,14 @@
 
 namespace habuffer::cli {
 
-// Sets timing.build_ms to the insertion alone (upload, every gather, resume
-// rounds, counters), without the context's creation and the shader
-// compilation, and the GL fields of `timing`. Throws DataError when no usable
-// OpenGL or no mode for the layout is found.
-BuildResult build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing);
+// Any technique of `options` on the GPU. Sets timing.build_ms to the
+// insertion alone (upload, every gather, resume rounds, sort pass,
+// counters), without the context's creation and the shader compilation, and
+// the GL fields of `timing`. Throws DataError when no usable OpenGL or no
+// mode for the layout is found.
+TechniqueBuild build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing);
+
+// The HA-buffer's build on the GPU (options.technique must be ha).
+BuildResult build_ha_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing);
 
 }  // namespace habuffer::cli

@@ -2,6 +2,7 @@
 
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "habuffer/interchange.h"
@@ -52,8 +53,18 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   return c;
 }
 
-HashOptions parse_hash_options(const Args& args) {
+TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragments) {
+  TechniqueConfig c;
+  c.technique = options.technique.technique;
+  c.buffer = options.config;
+  c.layers = options.technique.layers;
+  c.pool_capacity = options.technique.pool != 0 ? options.technique.pool : std::max<std::uint64_t>(fragments, 1);
+  return c;
+}
+
+HashOptions parse_hash_options(const Args& args, bool techniques, std::initializer_list<const char*> ha_only) {
   HashOptions o;
+  if (techniques) o.technique = parse_technique_options(args, ha_only);
   const auto screen = args.extent("screen");
   if (!screen) throw UsageError("option --screen is required");
   o.config = parse_buffer_config(args, *screen, args.extent("table").value_or(*screen));

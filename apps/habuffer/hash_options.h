@@ -10,6 +10,7 @@
 #include "cli_args.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/lossless_build.h"
+#include "technique_options.h"
 
 namespace habuffer::cli {
 
@@ -22,7 +23,12 @@ struct HashOptions {
   std::uint32_t max_attempts = 1;  // > 1 in lossless mode
   bool lossless = false;
   bool gl = false;  // --path gl
+  TechniqueOptions technique;  // ha unless the command takes --technique
 };
+
+// The technique's configuration for a stream of `fragments` (an automatic
+// pool holds them all).
+TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragments);
 
 // Names to add to a command's accepted options.
 const std::set<std::string>& hash_valued_options();
@@ -32,8 +38,11 @@ const std::set<std::string>& hash_flag_options();
 std::uint32_t resolved_threads(std::uint32_t requested);
 
 // Throws UsageError for bad values or conflicting sizes, DataError for a bad
-// offsets file. `screen` is required.
-HashOptions parse_hash_options(const Args& args);
+// offsets file. `screen` is required. With `techniques`, --technique,
+// --layers and --pool are parsed too (the command accepts them), and the
+// HA-buffer's options (and `ha_only`) refused with another technique.
+HashOptions parse_hash_options(const Args& args, bool techniques = false,
+                               std::initializer_list<const char*> ha_only = {});
 
 // The parts other commands share: --layout, --age-bits, --block,
 // --iter-limit, --early-cull for a screen and table (zero table: auto);

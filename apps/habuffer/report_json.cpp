@@ -1,27 +1,42 @@
 #include "report_json.h"
 
+#include "habuffer/ha_buffer.h"
+#include "habuffer/memory_model.h"
+
 namespace habuffer::cli {
 void write_extent(JsonWriter& json, std::string_view key, Extent e) {
   json.key(key).begin_array().value(e.x).value(e.y).end_array();
 }
 
-void write_build_stats(JsonWriter& json, const HashOptions& options, const BuildResult& result,
-                       const BuildReport& report, const BuildTiming& timing) {
+void write_build_stats(JsonWriter& json, const HashOptions& options, const FragmentBuffer& buffer,
+                       const std::vector<BuildAttempt>& attempts, const BuildReport& report, const BuildTiming& timing) {
   const Counters& c = report.counters;
-  json.field("path", options.gl ? "gl" : "cpu").field("layout", to_string(options.config.layout));
+  const Technique technique = buffer.technique();
+  json.field("path", options.gl ? "gl" : "cpu").field("technique", to_string(technique));
+  json.field("layout", to_string(options.config.layout));
   json.field("age_bits", options.config.age_bits).field("block", options.config.block);
   write_extent(json, "screen", options.config.screen);
-  write_extent(json, "table", result.buffer.table());
+  const auto* ha = dynamic_cast<const HaBuffer*>(&buffer);
+  write_extent(json, "table", ha != nullptr ? ha->table() : Extent{});
+  json.field("capacity", report.capacity);
+  if (technique == Technique::Arrays) json.field("layers", report.capacity / options.config.screen.area());
+  if (technique == Technique::Lists) json.field("pool_nodes", report.capacity);
   json.field("offsets", options.offsets_name).field("seed", options.offsets.seed);
   json.field("early_cull", static_cast<double>(options.config.early_cull_tau));
   json.field("fragments", c.fragments).field("stored", report.stored).field("duplicates", c.duplicates);
   json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
-  json.field("failed_iter", c.failed_iter).field("load_factor", report.load_factor);
+  json.field("failed_iter", c.failed_iter).field("dropped_pool", c.dropped_pool).field("dropped_layers", c.dropped_layers);
+  json.field("load_factor", report.load_factor);
   json.field("max_age", report.max_age).field("mean_age", report.mean_age);
   json.key("age_histogram").begin_array();
   for (auto n : report.age_histogram) json.value(n);
   json.end_array();
-  json.field("memory_bytes", report.memory_bytes).field("build_ms", timing.build_ms);
+  TechniqueConfig model = technique_config(options, report.capacity);
+  if (technique == Technique::Arrays) model.layers = static_cast<std::uint32_t>(report.capacity / options.config.screen.area());
+  json.field("memory_bytes", report.memory_bytes).field("memory_model_bytes", memory_model_bytes(model, report.capacity));
+  json.field("bytes_per_fragment",
+             report.stored > 0 ? static_cast<double>(report.memory_bytes) / static_cast<double>(report.stored) : 0.0);
+  json.field("build_ms", timing.build_ms);
   json.field("fragments_per_second", timing.build_ms > 0 ? static_cast<double>(c.fragments) / timing.build_ms * 1e3 : 0.0);
   json.field("threads", timing.threads).field("lossless", options.lossless);
   if (!timing.gl_atomic_mode.empty())
@@ -29,10 +44,12 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Build
         .field("gl_deferred", timing.gl_deferred).field("gl_resume_rounds", timing.gl_resume_rounds)
         .field("gl_cut_short_retries", timing.gl_cut_short_retries);
   json.key("attempts").begin_array();
-  for (const auto& a : result.attempts) {
+  for (const auto& a : attempts) {
     json.begin_object();
     write_extent(json, "table", a.table);
-    json.field("failed_age", a.counters.failed_age).field("failed_iter", a.counters.failed_iter).end_object();
+    json.field("capacity", a.capacity).field("failed_age", a.counters.failed_age);
+    json.field("failed_iter", a.counters.failed_iter).field("dropped_pool", a.counters.dropped_pool);
+    json.field("dropped_layers", a.counters.dropped_layers).end_object();
   }
   json.end_array();
 }

@@ -23,7 +23,7 @@ struct BuildTiming {
 void write_extent(JsonWriter& json, std::string_view key, Extent e);
 
 // Writes the body of the stats object (the caller opens and closes it).
-void write_build_stats(JsonWriter& json, const HashOptions& options, const BuildResult& result,
-                       const BuildReport& report, const BuildTiming& timing);
+void write_build_stats(JsonWriter& json, const HashOptions& options, const FragmentBuffer& buffer,
+                       const std::vector<BuildAttempt>& attempts, const BuildReport& report, const BuildTiming& timing);
 
 }  // namespace habuffer::cli

@@ -5,14 +5,16 @@
 #include <cstdint>
 #include <vector>
 
-#include "habuffer/ha_buffer.h"
+#include "habuffer/fragment_buffer.h"
 
 namespace habuffer {
 
 struct BuildReport {
   Counters counters;
-  std::uint64_t stored = 0;        // non-empty slots, measured on the table
-  double load_factor = 0.0;        // stored / table slots
+  std::uint64_t stored = 0;        // records held, measured on the buffer (the HA-buffer's non-empty slots)
+  std::uint64_t capacity = 0;      // records it could hold (slots, nodes, layers of every pixel)
+  double load_factor = 0.0;        // stored / capacity
+  // The HA-buffer's ages (zero and empty for other techniques).
   std::uint32_t max_age = 0;       // largest age of a stored record
   double mean_age = 0.0;           // over stored records
   std::vector<std::uint64_t> age_histogram;  // [a] = stored records of age a, a = 0..max_age
@@ -20,6 +22,6 @@ struct BuildReport {
   std::uint64_t memory_bytes = 0;
 };
 
-BuildReport summarize(const HaBuffer& buffer, const Counters& counters);
+BuildReport summarize(const FragmentBuffer& buffer, const Counters& counters);
 
 }  // namespace habuffer

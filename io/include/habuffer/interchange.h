@@ -30,7 +30,7 @@ OffsetSequence read_offsets(const std::string& path, Extent table, std::uint32_t
 void write_offsets(const std::string& path, const OffsetSequence& offsets);
 
 // Header x,y,rank,code,rgba: every pixel's list, pixels row-major.
-void write_lists(const std::string& path, const HaBuffer& buffer);
+void write_lists(const std::string& path, const FragmentBuffer& buffer);
 // Header slot,record: non-empty slots ascending, record in 0x hex (16 or 8 digits).
 void write_table(const std::string& path, const HaBuffer& buffer);
 // Header cx,cy,max_age: every cell, row-major.
