@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Careless use of the CLI, one section per class of harm (issue 9): inputs
+# Careless use of the CLI, one section per class of harm (issues 9 and 10): inputs
 # overwritten or outputs shared, losses unreported, values that silently
 # become others, endless or binary input, GL losing what the CPU keeps, and
 # long work without a sign of life. Each case checks the exit code, that
@@ -221,6 +221,34 @@ if command -v script >/dev/null; then
 fi
 "$bin" stats --screen 64x64 --trials 40 --loads 0.5,0.9 >/dev/null 2>notty.txt
 [[ ! -s notty.txt ]] && ok progress || bad progress "progress written to a non-terminal: $(head -c 200 notty.txt)"
+
+# --- 7. Techniques: options that would be ignored are refused; drops are reported
+expect values 2 "'listz' is not one of ha, lists, arrays" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique listz
+for t in lists arrays; do
+  for ha_only in "--table 4x4" "--block 2" "--iter-limit 9" "--early-cull 0.5" "--offsets random" "--seed 3" \
+    "--dump-table dt.csv"; do
+    # shellcheck disable=SC2086
+    expect values 2 "has no effect with --technique $t" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique $t $ha_only
+  done
+  expect values 2 "has no effect with --technique $t" -- render --scene quads --size 8x8 --out q.png --technique $t --table 8x8
+  expect values 2 "the HA-buffer's" -- render --scene quads --size 8x8 --out q.png --technique $t --heatmap age:a.png
+done
+expect values 2 "--layers has no effect with --technique ha" -- build-lists --in in.csv --out t.csv --screen 4x4 --layers 4
+expect values 2 "--pool has no effect with --technique arrays" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique arrays --pool 9
+expect values 2 "--layers" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique arrays --layers 0
+expect values 2 "--pool" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique lists --pool 0
+printf 'x,y,depth,rgba\n2,2,0.5,1\n2,2,0.25,2\n2,2,0.75,3\n2,2,0.5,1\n0,1,0.1,4\n' >deep.csv
+expect losses 0 "dropped_layers (pixel's layers full) 2" -- build-lists --in deep.csv --out t.csv --screen 4x4 --technique arrays --layers 2
+expect losses 0 "dropped_pool (node pool full) 3" -- build-lists --in deep.csv --out t.csv --screen 4x4 --technique lists --pool 2
+expect losses 1 "lossless mode" -- build-lists --in deep.csv --out t.csv --screen 4x4 --technique lists --pool 2 --lossless --max-attempts 1
+"$bin" build-lists --in deep.csv --out ha.csv --screen 4x4 >/dev/null 2>&1
+for path in cpu gl; do
+  for t in "lists --pool 2 --lossless" "arrays --layers 1 --lossless" "lists" "arrays"; do
+    # shellcheck disable=SC2086
+    "$bin" build-lists --in deep.csv --out tech.csv --screen 4x4 --path $path --technique $t >/dev/null 2>err.txt &&
+      cmp -s tech.csv ha.csv && ok losses || bad losses "$path $t lists differ from the HA-buffer's: $(cat err.txt)"
+  done
+done
 
 for cls in files losses values input gl progress; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli hardening: $pass passed, $fail failed"
