@@ -276,3 +276,49 @@ TEST(Render, GlAndCpuPathsAgreeWithOpaquePartsOverFrames) {
 
 }  // namespace
 }  // namespace habuffer
+
+namespace habuffer {
+namespace {
+
+TEST(Render, EveryExactTechniqueRendersTheHaBuffersImageOnBothPathsWithinTheReferenceTolerance) {
+  const Scene engine = make_scene("engine", {});
+  RenderSettings ha = settings({96, 72});
+  ha.keep_fragments = true;
+  const RenderResult expected = render(engine, ha);
+  ASSERT_EQ(expected.frames.back().counters.failures(), 0u);
+  const ImageDifference exact = against_reference(expected, "engine-ha");
+  EXPECT_GE(exact.psnr, 40.0);  // as every scene: quantized colours and depths
+  const std::uint32_t depth = *std::max_element(expected.pixel_fragments.begin(), expected.pixel_fragments.end());
+  for (const RenderPath path : {RenderPath::Gl, RenderPath::Cpu})
+    for (const Technique t : {Technique::Lists, Technique::Arrays}) {
+      SCOPED_TRACE(to_string(t) + (path == RenderPath::Gl ? " gl" : " cpu"));
+      RenderSettings s = settings({96, 72}, path);
+      s.technique = t;
+      s.layers = depth;  // at least the depth complexity: exact
+      const RenderResult r = render(engine, s);
+      EXPECT_EQ(r.frames.back().counters, expected.frames.back().counters);
+      EXPECT_EQ(quantized(r.image), quantized(expected.image));
+      EXPECT_EQ(r.image.pixels, expected.image.pixels);  // bit for bit: the same float32 operations
+      EXPECT_EQ(r.buffer->count_stored(), expected.buffer->count_stored());
+      EXPECT_GT(r.memory_bytes, 0u);
+      EXPECT_GT(r.memory_model_bytes, 0u);
+    }
+}
+
+TEST(Render, ArraysWithFewLayersDropAndCountTheRestAndLosslessModeKeepsEverything) {
+  const Scene hairball = make_scene("hairball", {});
+  RenderSettings s = settings({64, 64});
+  s.technique = Technique::Arrays;
+  s.layers = 2;
+  const RenderResult lossy = render(hairball, s);
+  const Counters c = lossy.frames.back().counters;
+  EXPECT_GT(c.dropped_layers, 0u);
+  EXPECT_EQ(c.stored(), lossy.buffer->count_stored());
+  s.lossless = true;
+  const RenderResult lossless = render(hairball, s);
+  EXPECT_EQ(lossless.frames.back().counters.failures(), 0u);
+  EXPECT_GT(lossless.frames.back().attempts, 1u);
+}
+
+}  // namespace
+}  // namespace habuffer
