@@ -22,9 +22,9 @@ const char* mode_extensions(AtomicMode mode) {
 // and its split into (low, high) 32-bit words for deferred calls.
 const char* word_defines(AtomicMode mode) {
   if (mode == AtomicMode::Native32)
-    return "#define ha_word uint\nconst uint ha_word_bits = 32u;\nconst uint ha_payload_bits = 0u;\n"
+    return "#define ha_word uint\n#define HA_WORD_BITS 32\nconst uint ha_word_bits = 32u;\nconst uint ha_payload_bits = 0u;\n"
            "#define ha_word_split(r) uvec2(r, 0u)\n#define ha_word_join(v) (v).x\n";
-  return "#define ha_word uint64_t\nconst uint ha_word_bits = 64u;\nconst uint ha_payload_bits = 32u;\n"
+  return "#define ha_word uint64_t\n#define HA_WORD_BITS 64\nconst uint ha_word_bits = 64u;\nconst uint ha_payload_bits = 32u;\n"
          "#define ha_word_split(r) unpackUint2x32(r)\n#define ha_word_join(v) packUint2x32(v)\n";
 }
 

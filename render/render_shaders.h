@@ -7,5 +7,6 @@ extern const char* const kSceneVertex;
 extern const char* const kShading;
 extern const char* const kOpaqueFragment;
 extern const char* const kGatherFragment;
+extern const char* const kBlendFragment;
 
 }  // namespace habuffer::render

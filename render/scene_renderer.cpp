@@ -4,6 +4,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <chrono>
+
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
@@ -40,7 +42,10 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
       opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex,
                                                   shader_sources(buffer.mode(), buffer.bindings()).opaque_fragment,
                                                   "opaque pass")),
-      gather_program_(gl::ShaderProgram::graphics(render::kSceneVertex, gather_source(buffer), "gather pass")) {
+      gather_program_(gl::ShaderProgram::graphics(render::kSceneVertex, gather_source(buffer), "gather pass")),
+      blend_program_(gl::ShaderProgram::graphics(
+          render::kSceneVertex, std::string("#version 450 core\n") + render::kShading + render::kBlendFragment,
+          "blend floor")) {
   for (const Mesh& m : scene.meshes) {
     GpuMesh g;
     g.count = static_cast<std::int32_t>(m.indices.size());
@@ -71,6 +76,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glNamedFramebufferDrawBuffers(opaque_framebuffer_, 2, draw);
   if (glCheckNamedFramebufferStatus(opaque_framebuffer_, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw gl::GlError("the opaque pass's framebuffer " + screen.str() + " is not complete");
+  glCreateFramebuffers(1, &blend_framebuffer_);
+  glNamedFramebufferTexture(blend_framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
   glCreateFramebuffers(1, &gather_framebuffer_);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
@@ -88,8 +95,8 @@ SceneRenderer::~SceneRenderer() {
   }
   const GLuint buffers[] = {pixel_fragments_, pixel_culled_, rejected_};
   glDeleteBuffers(3, buffers);
-  const GLuint framebuffers[] = {opaque_framebuffer_, gather_framebuffer_};
-  glDeleteFramebuffers(2, framebuffers);
+  const GLuint framebuffers[] = {opaque_framebuffer_, gather_framebuffer_, blend_framebuffer_};
+  glDeleteFramebuffers(3, framebuffers);
   glDeleteRenderbuffers(1, &depth_buffer_);
   const GLuint textures[] = {colour_, depth_};
   glDeleteTextures(2, textures);
@@ -156,6 +163,39 @@ void SceneRenderer::run_gather(const Camera& camera, bool count_only) {
   glBindTextureUnit(0, 0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+namespace {
+
+double finished_ms(std::chrono::steady_clock::time_point t0) {
+  glFinish();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+double SceneRenderer::blend_floor(const Camera& camera) {
+  glFinish();
+  const auto t0 = std::chrono::steady_clock::now();
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, blend_framebuffer_);  // the opaque colour alone: its depth image is read
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glBindTextureUnit(0, depth_);
+  draw_meshes(blend_program_, camera, false);
+  glBindTextureUnit(0, 0);
+  glDisable(GL_BLEND);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  return finished_ms(t0);
+}
+
+double SceneRenderer::atomic_floor(const Camera& camera) {
+  glFinish();
+  const auto t0 = std::chrono::steady_clock::now();
+  run_gather(camera, true);
+  return finished_ms(t0);
 }
 
 std::vector<glm::vec3> SceneRenderer::read_opaque_colour() const {

@@ -10,7 +10,9 @@
 // again, or HA_CUT once it has been busy too long; always 0 where atomics are
 // native),
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
-// ha_cull_tau (0 = early cull off), and HA_INOUT(T) (GLSL: inout T; C++: T&).
+// ha_cull_tau (0 = early cull off), uint ha_slot_high(ha_index s) (the
+// slot's high 32 bits, the whole slot for L32, by one 32-bit load: never a
+// mix of two values), and HA_INOUT(T) (GLSL: inout T; C++: T&).
 
 // The state of one insert call between probes.
 struct HaCarry {
@@ -44,8 +46,31 @@ uint ha_insert_limit(HaCarry c) {
 // again, carry unchanged, when an emulated atomic found its slot busy),
 // HA_CUT when that atomic gave up (carry unchanged: the probe is made when the
 // call resumes), else the HA_* outcome of the whole call.
+// Whether the slot is known to hold a larger record than the carried one
+// without an atomic: slots only grow during a gather, so a high word read
+// above the carried record's belongs to a smaller value than the slot's
+// current one, which already exceeds the record; atomicMax would change
+// nothing. Early cull needs the opacity of a front record of the same pixel,
+// which only a slot record of the carried age can be (age equivalence): that
+// case still takes the atomic.
+bool ha_slot_known_larger(ha_index s, HaCarry c) {
+  uint high = ha_slot_high(s);
+  if (high <= uint(c.r >> (ha_word_bits - 32u))) return false;
+  return ha_cull_tau <= 0.0f || (high >> (32u - ha_age_bits)) > c.a;
+}
+
 uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
-  ha_word old = ha_atomic_max_slot(ha_slot(h), c.r);
+  ha_index s = ha_slot(h);
+  // A slot that loses to a record in place costs one plain load, not an
+  // atomic (and, in emulated64, not a lock): at high depth complexity most
+  // probes meet older, larger records.
+  if (ha_slot_known_larger(s, c)) {
+    c.iter += 1u;
+    c.a += 1u;
+    c.r = ha_with_age(c.r, c.a);
+    return HA_PENDING;
+  }
+  ha_word old = ha_atomic_max_slot(s, c.r);
   uint missed = ha_atomic_missed();
   if (missed != 0u) return missed;
   c.iter += 1u;

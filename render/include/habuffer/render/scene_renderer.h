@@ -42,6 +42,13 @@ class SceneRenderer {
   // nothing: what an automatic table is sized from before the first frame.
   std::uint64_t count_fragments(const Camera& camera);
 
+  // The floors every technique is measured against (benchmarks): plain
+  // unsorted blending of the transparent fragments over the opaque pass's
+  // colour (fixed-function, no lists), and count_fragments(), one atomic add
+  // per fragment. Returns the pass's wall-clock milliseconds (to glFinish).
+  double blend_floor(const Camera& camera);
+  double atomic_floor(const Camera& camera);
+
   [[nodiscard]] unsigned opaque_colour_texture() const { return colour_; }
   // Row-major, row 0 at the bottom.
   [[nodiscard]] std::vector<glm::vec3> read_opaque_colour() const;
@@ -63,9 +70,9 @@ class SceneRenderer {
 
   Extent screen_;
   std::vector<GpuMesh> meshes_;
-  gl::ShaderProgram opaque_program_, gather_program_;
+  gl::ShaderProgram opaque_program_, gather_program_, blend_program_;
   unsigned opaque_framebuffer_ = 0, colour_ = 0, depth_ = 0, depth_buffer_ = 0;
-  unsigned gather_framebuffer_ = 0;
+  unsigned gather_framebuffer_ = 0, blend_framebuffer_ = 0;
   unsigned pixel_fragments_ = 0, pixel_culled_ = 0, rejected_ = 0;
 };
 

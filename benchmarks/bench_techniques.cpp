@@ -1,0 +1,99 @@
+// Every technique's frame of a real scene at 512x512, on the GPU path
+// (llvmpipe here) and the CPU path, beside the two floors in the same run:
+// plain blending (no lists) and one atomic add per fragment. The time of a
+// technique is its gather plus its resolve (the sort pass of lists and
+// arrays included; on the CPU path the sort runs in the insert, so in the
+// gather); counters give each part, the memory measured and by formula,
+// and the fragments dropped. Run with --benchmark_enable_random_interleaving
+// and repetitions so the machine's drift hits every technique alike.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "habuffer/gl/egl_context.h"
+#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/render/render_job.h"
+#include "habuffer/render/scene_renderer.h"
+#include "habuffer/scene_catalog.h"
+
+namespace habuffer::bench {
+namespace {
+
+constexpr std::uint32_t kSide = 512;
+
+gl::EglContext& context() {
+  static gl::EglContext ctx;
+  ctx.make_current();
+  return ctx;
+}
+
+void run_technique(benchmark::State& state, const std::string& name, RenderPath path, Technique technique) {
+  context();
+  const Scene scene = make_scene(name, {});
+  RenderSettings s;
+  s.path = path;
+  s.technique = technique;
+  s.config.screen = {kSide, kSide};
+  s.camera = {scene.default_yaw, scene.default_pitch, 45.0f};
+  FrameStats last;
+  RenderResult r;
+  double gather = 0.0, resolve = 0.0;
+  for (auto _ : state) {
+    r = render_scene(scene, s);
+    last = r.frames.back();
+    state.SetIterationTime((last.gather_ms + last.resolve_ms) * 1e-3);
+    gather += last.gather_ms;
+    resolve += last.resolve_ms;
+  }
+  const auto n = static_cast<double>(state.iterations());
+  state.counters["gather_ms"] = gather / n;
+  state.counters["resolve_ms"] = resolve / n;
+  state.counters["fragments"] = static_cast<double>(last.counters.fragments);
+  state.counters["dropped"] = static_cast<double>(last.counters.failures());
+  state.counters["memory_MiB"] = static_cast<double>(r.memory_bytes) / (1 << 20);
+  state.counters["model_MiB"] = static_cast<double>(r.memory_model_bytes) / (1 << 20);
+  state.counters["load"] = last.load_factor;
+}
+
+void run_floor(benchmark::State& state, const std::string& name, bool blend) {
+  context();
+  const Scene scene = make_scene(name, {});
+  const Extent screen{kSide, kSide};
+  BufferConfig c;
+  c.screen = screen;
+  const gl::GlInfo info = gl::query_gl_info();
+  gl::GlHaBuffer module_owner(c, OffsetSource{}, *gl::chosen_atomic_mode(info, Layout::L64));  // the gather shader's module
+  SceneRenderer renderer(scene, screen, module_owner);
+  const Camera camera = frame_scene(scene, {scene.default_yaw, scene.default_pitch, 45.0f}, screen);
+  std::uint64_t fragments = 0;
+  for (auto _ : state) {
+    renderer.draw_opaque(camera, glm::vec3(1.0f));
+    module_owner.bind();
+    const double ms = blend ? renderer.blend_floor(camera) : renderer.atomic_floor(camera);
+    state.SetIterationTime(ms * 1e-3);
+    fragments = renderer.inserted();
+  }
+  state.counters["fragments"] = static_cast<double>(fragments);
+}
+
+const bool registered = [] {
+  for (const char* scene : {"engine", "hairball"}) {
+    for (const auto& [path, path_name] : {std::pair{RenderPath::Gl, "gl"}, std::pair{RenderPath::Cpu, "cpu"}})
+      for (Technique t : all_techniques())
+        benchmark::RegisterBenchmark(("BM_Technique/" + std::string(scene) + "/" + path_name + "/" + to_string(t)).c_str(),
+                                     [=](benchmark::State& st) { run_technique(st, scene, path, t); })
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(2);
+    for (const auto& [blend, floor] : {std::pair{true, "blend"}, std::pair{false, "atomic"}})
+      benchmark::RegisterBenchmark(("BM_Floor/" + std::string(scene) + "/gl/" + floor).c_str(),
+                                   [=](benchmark::State& st) { run_floor(st, scene, blend); })
+          ->UseManualTime()
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(3);
+  }
+  return true;
+}();
+
+}  // namespace
+}  // namespace habuffer::bench
