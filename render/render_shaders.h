@@ -8,5 +8,6 @@ extern const char* const kShading;
 extern const char* const kOpaqueFragment;
 extern const char* const kGatherFragment;
 extern const char* const kBlendFragment;
+extern const char* const kAtomicFloorFragment;
 
 }  // namespace habuffer::render

@@ -45,7 +45,12 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
       gather_program_(gl::ShaderProgram::graphics(render::kSceneVertex, gather_source(buffer), "gather pass")),
       blend_program_(gl::ShaderProgram::graphics(
           render::kSceneVertex, std::string("#version 450 core\n") + render::kShading + render::kBlendFragment,
-          "blend floor")) {
+          "blend floor")),
+      atomic_floor_program_(gl::ShaderProgram::graphics(
+          render::kSceneVertex,
+          std::string("#version 450 core\n#define R_BINDING_PIXEL_FRAGMENTS 10\n") + render::kShading +
+              render::kAtomicFloorFragment,
+          "atomic floor")) {
   for (const Mesh& m : scene.meshes) {
     GpuMesh g;
     g.count = static_cast<std::int32_t>(m.indices.size());
@@ -82,6 +87,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
   gather_program_.set("r_screen_width", screen.x);
+  atomic_floor_program_.set("r_screen_width", screen.x);
   pixel_fragments_ = gl::create_buffer(screen.area() * 4);
   pixel_culled_ = gl::create_buffer(screen.area() * 4);
   rejected_ = gl::create_buffer(4);
@@ -192,9 +198,19 @@ double SceneRenderer::blend_floor(const Camera& camera) {
 }
 
 double SceneRenderer::atomic_floor(const Camera& camera) {
+  gl::zero_buffer(pixel_fragments_);
   glFinish();
   const auto t0 = std::chrono::steady_clock::now();
-  run_gather(camera, true);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gather_framebuffer_);
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
+  glBindTextureUnit(0, depth_);
+  draw_meshes(atomic_floor_program_, camera, false);
+  glBindTextureUnit(0, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   return finished_ms(t0);
 }
 

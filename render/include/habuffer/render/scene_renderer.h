@@ -44,8 +44,9 @@ class SceneRenderer {
 
   // The floors every technique is measured against (benchmarks): plain
   // unsorted blending of the transparent fragments over the opaque pass's
-  // colour (fixed-function, no lists), and count_fragments(), one atomic add
-  // per fragment. Returns the pass's wall-clock milliseconds (to glFinish).
+  // colour (fixed-function, no lists), and one atomic add per fragment (to
+  // the per-pixel counts of read_pixel_fragments). Returns the pass's
+  // wall-clock milliseconds (to glFinish).
   double blend_floor(const Camera& camera);
   double atomic_floor(const Camera& camera);
 
@@ -70,7 +71,7 @@ class SceneRenderer {
 
   Extent screen_;
   std::vector<GpuMesh> meshes_;
-  gl::ShaderProgram opaque_program_, gather_program_, blend_program_;
+  gl::ShaderProgram opaque_program_, gather_program_, blend_program_, atomic_floor_program_;
   unsigned opaque_framebuffer_ = 0, colour_ = 0, depth_ = 0, depth_buffer_ = 0;
   unsigned gather_framebuffer_ = 0, blend_framebuffer_ = 0;
   unsigned pixel_fragments_ = 0, pixel_culled_ = 0, rejected_ = 0;
