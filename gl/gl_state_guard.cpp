@@ -74,14 +74,19 @@ GlStateGuard::~GlStateGuard() {
   glViewportIndexedfv(0, viewport_);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
   for (const Capability& c : capabilities_) set_capability(c.cap, c.index, c.enabled != GL_FALSE);
+  // A buffer the library replaced meanwhile (a grown capture, a resized
+  // table bound at our points before the guard) no longer exists: GL unbinds
+  // a deleted buffer, so its binding comes back as 0.
+  const auto existing = [](GLint name) { return name != 0 && glIsBuffer(static_cast<GLuint>(name)) ? static_cast<GLuint>(name) : 0u; };
   for (const IndexedBuffer& b : indexed_) {
-    if (b.size > 0)
-      glBindBufferRange(b.target, b.index, static_cast<GLuint>(b.buffer), b.start, b.size);
+    const GLuint buffer = existing(b.buffer);
+    if (b.size > 0 && buffer != 0)
+      glBindBufferRange(b.target, b.index, buffer, b.start, b.size);
     else
-      glBindBufferBase(b.target, b.index, static_cast<GLuint>(b.buffer));
+      glBindBufferBase(b.target, b.index, buffer);
   }
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(storage_generic_));
-  glBindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(uniform_generic_));
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, existing(storage_generic_));
+  glBindBuffer(GL_UNIFORM_BUFFER, existing(uniform_generic_));
 }
 
 }  // namespace habuffer::gl

@@ -222,3 +222,32 @@ TEST(GlHost, TheGatherSeesTheHostsOwnGenericBufferBindings) {
 
 }  // namespace
 }  // namespace habuffer
+
+namespace habuffer {
+namespace {
+
+// render binds our buffers itself before the first frame (its counting
+// pass); a capture that grows inside the frame replaces one of them, and the
+// frame's state guard must not rebind the deleted name (GL_INVALID_OPERATION).
+TEST(GlHost, BuffersReplacedInsideAFrameAreNotRebound) {
+  test::gl_context();
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  const Extent screen{16, 16};
+  gl::GlFrameOptions o;
+  o.capture = true;
+  o.capture_capacity = 8;
+  const gl::AtomicMode mode = *gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
+  gl::GlHaBuffer gpu(test::config(screen, {20, 20}), test::random_offsets(1), mode, o, test::host_bindings());
+  gpu.bind();
+  const std::vector<Fragment> frags = test::stream(screen, StreamKind::Random, 200, 3);
+  const gl::FrameReport r = gl::ComputeInserter(gpu).insert(frags);
+  EXPECT_EQ(r.capture_regathers, 1u);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  GLint bound = -1;
+  glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, test::host_bindings().capture, &bound);
+  EXPECT_TRUE(bound == 0 || glIsBuffer(static_cast<GLuint>(bound)));
+}
+
+}  // namespace
+}  // namespace habuffer
