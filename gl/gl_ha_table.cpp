@@ -23,6 +23,9 @@ void delete_buffer(GLuint& b) {
   b = 0;
 }
 
+// Emulated64's lock words: one per 2^HA_LOCK_SHIFT slots.
+std::uint64_t lock_words(std::uint64_t slots) { return (slots + (1u << HA_LOCK_SHIFT) - 1) >> HA_LOCK_SHIFT; }
+
 }  // namespace
 
 struct GlHaTable::Gpu {
@@ -84,7 +87,7 @@ void GlHaTable::allocate_table(Extent table, bool new_offsets) {
   gpu_->table = create_buffer(slots * config_.record_layout().word_bytes());
   zero_buffer(gpu_->table);
   if (mode() == AtomicMode::Emulated64) {
-    gpu_->locks = create_buffer(slots * 4);
+    gpu_->locks = create_buffer(lock_words(slots) * 4);
     zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
   }
   gpu_->offsets = create_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
@@ -190,7 +193,7 @@ std::uint64_t GlHaTable::memory_bytes() const {
   const std::uint64_t slots = config_.table.area();
   std::uint64_t bytes = slots * config_.record_layout().word_bytes() + std::uint64_t{cells_} * 4 +
                         offsets_.size() * sizeof(glm::uvec2) + sizeof(std::uint64_t);
-  if (mode() == AtomicMode::Emulated64) bytes += slots * 4;
+  if (mode() == AtomicMode::Emulated64) bytes += lock_words(slots) * 4;
   return bytes;
 }
 

@@ -85,6 +85,12 @@
 // holder the OS preempted, where the driver lets a loop run that long).
 #define HA_DEFAULT_LOCK_SPIN_LIMIT 16777216u
 
+// Emulated64: one lock word guards 2^HA_LOCK_SHIFT neighbouring slots (each
+// critical section takes one lock and releases it in the same call, so
+// sharing cannot deadlock): 0.5 byte a slot instead of 4, which keeps the
+// GPU HA-buffer below linked lists' memory at load 0.8.
+#define HA_LOCK_SHIFT 3u
+
 // IEEE-754 binary32 bit patterns used by the depth-validity test: a float is
 // in [0, 1] exactly when its bits are in [0, 0x3F800000] or it is -0.
 #define HA_FLOAT_ONE_BITS 0x3F800000u

@@ -1,6 +1,6 @@
 // Atomic mode emulated64: L64 records on drivers with 64-bit types but no
 // 64-bit atomics (Mesa llvmpipe); atomicMax on a 64-bit slot is emulated with
-// a per-slot 32-bit lock (the module assembly defines ha_word as uint64_t and
+// a 32-bit lock per 2^HA_LOCK_SHIFT slots (the module assembly defines ha_word as uint64_t and
 // enables GL_ARB_gpu_shader_int64).
 layout(std430, binding = HA_BINDING_TABLE) coherent buffer HaTable { uint64_t ha_table[]; };
 layout(std430, binding = HA_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
@@ -15,7 +15,8 @@ uint ha_slot_high(ha_index s) { return ha_table_words[2u * s + 1u]; }
 // group that contend for the same slot cannot deadlock: the lane that wins
 // runs its critical section while the others try again.
 bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
-  if (atomicCompSwap(ha_locks[s], 0u, 1u) != 0u) return false;
+  uint lock = s >> HA_LOCK_SHIFT;
+  if (atomicCompSwap(ha_locks[lock], 0u, 1u) != 0u) return false;
   memoryBarrierBuffer();
   old = ha_table[s];
   if (old < r) {
@@ -23,7 +24,7 @@ bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
     ha_call_writes += 1u;
   }
   memoryBarrierBuffer();
-  atomicExchange(ha_locks[s], 0u);
+  atomicExchange(ha_locks[lock], 0u);
   return true;
 }
 
