@@ -36,13 +36,9 @@ Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOp
       [](auto& k, const Fragment& f) { return k.ll_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
   requested_ = counter_;
   // Sort every pixel's list (new nodes were prepended), merging identical entries.
-  std::vector<detail::PartCount> merged(threads);
-  detail::for_row_bands(screen(), threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
-    ListsKernel<false> k(params_, buffers());
-    for (std::uint32_t y = y0; y < y1; ++y)
-      for (std::uint32_t x = 0; x < screen().x; ++x) merged[part].n += k.ll_sort_pixel(glm::uvec2(x, y));
-  });
-  for (const auto& m : merged) c.merge_duplicates(m.n);
+  c.merge_duplicates(detail::sort_every_pixel(
+      screen(), threads, [&] { return ListsKernel<false>(params_, buffers()); },
+      [](auto& k, glm::uvec2 p) { return k.ll_sort_pixel(p); }));
   return c;
 }
 
@@ -78,19 +74,9 @@ std::uint32_t LinkedLists::list(std::uint32_t x, std::uint32_t y, std::vector<Li
 }
 
 std::vector<glm::vec4> LinkedLists::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
-  if (backgrounds.size() != screen().area())
-    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
-                                screen().str());
-  std::vector<glm::vec4> image(screen().area());
-  detail::for_row_bands(screen(), resolve_threads(threads), [&](std::uint32_t, std::uint32_t y0, std::uint32_t y1) {
-    ListsKernel<false> k(params_, buffers());
-    for (std::uint32_t y = y0; y < y1; ++y)
-      for (std::uint32_t x = 0; x < screen().x; ++x) {
-        const std::size_t p = x + std::size_t{y} * screen().x;
-        image[p] = k.ll_composite(glm::uvec2(x, y), backgrounds[p]);
-      }
-  });
-  return image;
+  return detail::composite_image(
+      screen(), backgrounds, threads, [&] { return ListsKernel<false>(params_, buffers()); },
+      [](auto& k, glm::uvec2 p, glm::vec3 background) { return k.ll_composite(p, background); });
 }
 
 std::uint64_t LinkedLists::memory_bytes() const {

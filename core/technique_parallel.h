@@ -81,4 +81,39 @@ void for_row_bands(Extent screen, std::uint32_t parts, Body body) {
   });
 }
 
+// Every pixel's list sorted by `make_kernel()`'s sort(kernel, pixel), which
+// returns the entries it merged; returns them all.
+template <class MakeKernel, class Sort>
+std::uint64_t sort_every_pixel(Extent screen, std::uint32_t threads, MakeKernel make_kernel, Sort sort) {
+  std::vector<PartCount> merged(threads);
+  for_row_bands(screen, threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
+    auto k = make_kernel();
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < screen.x; ++x) merged[part].n += sort(k, glm::uvec2(x, y));
+  });
+  std::uint64_t total = 0;
+  for (const PartCount& m : merged) total += m.n;
+  return total;
+}
+
+// Each pixel composited over its own background by `make_kernel()`'s
+// composite(kernel, pixel, background), bands of rows in parallel.
+template <class MakeKernel, class Composite>
+std::vector<glm::vec4> composite_image(Extent screen, std::span<const glm::vec3> backgrounds, std::uint32_t threads,
+                                       MakeKernel make_kernel, Composite composite) {
+  if (backgrounds.size() != screen.area())
+    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
+                                screen.str());
+  std::vector<glm::vec4> image(screen.area());
+  for_row_bands(screen, resolve_threads(threads), [&](std::uint32_t, std::uint32_t y0, std::uint32_t y1) {
+    auto k = make_kernel();
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < screen.x; ++x) {
+        const std::size_t p = x + std::size_t{y} * screen.x;
+        image[p] = composite(k, glm::uvec2(x, y), backgrounds[p]);
+      }
+  });
+  return image;
+}
+
 }  // namespace habuffer::detail

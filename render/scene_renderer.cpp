@@ -152,23 +152,27 @@ std::uint64_t SceneRenderer::count_fragments(const Camera& camera) {
   return inserted();
 }
 
+void SceneRenderer::draw_transparent(const gl::ShaderProgram& program, const Camera& camera, unsigned framebuffer) const {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glBindTextureUnit(0, depth_);  // every transparent pass rejects what lies behind the opaque surfaces
+  draw_meshes(program, camera, false);
+  glBindTextureUnit(0, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
 void SceneRenderer::run_gather(const Camera& camera, bool count_only) {
   gather_program_.set("r_count_only", count_only ? 1u : 0u);
   gl::zero_buffer(pixel_fragments_);
   gl::zero_buffer(pixel_culled_);
   gl::zero_buffer(rejected_);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gather_framebuffer_);
-  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelCulledBinding, pixel_culled_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRejectedBinding, rejected_);
-  glBindTextureUnit(0, depth_);
-  draw_meshes(gather_program_, camera, false);
-  glBindTextureUnit(0, 0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  draw_transparent(gather_program_, camera, gather_framebuffer_);
 }
 
 namespace {
@@ -183,17 +187,10 @@ double finished_ms(std::chrono::steady_clock::time_point t0) {
 double SceneRenderer::blend_floor(const Camera& camera) {
   glFinish();
   const auto t0 = std::chrono::steady_clock::now();
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, blend_framebuffer_);  // the opaque colour alone: its depth image is read
-  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  glBindTextureUnit(0, depth_);
-  draw_meshes(blend_program_, camera, false);
-  glBindTextureUnit(0, 0);
+  draw_transparent(blend_program_, camera, blend_framebuffer_);  // the opaque colour alone: its depth image is read
   glDisable(GL_BLEND);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   return finished_ms(t0);
 }
 
@@ -201,16 +198,8 @@ double SceneRenderer::atomic_floor(const Camera& camera) {
   gl::zero_buffer(pixel_fragments_);
   glFinish();
   const auto t0 = std::chrono::steady_clock::now();
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gather_framebuffer_);
-  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
-  glBindTextureUnit(0, depth_);
-  draw_meshes(atomic_floor_program_, camera, false);
-  glBindTextureUnit(0, 0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  draw_transparent(atomic_floor_program_, camera, gather_framebuffer_);
   return finished_ms(t0);
 }
 

@@ -18,25 +18,6 @@ namespace {
 
 using test::ExactLists;
 
-ExactLists lists_of(const FragmentBuffer& b) {
-  ExactLists out;
-  std::vector<ListEntry> list;
-  for (std::uint32_t y = 0; y < b.screen().y; ++y)
-    for (std::uint32_t x = 0; x < b.screen().x; ++x) {
-      b.list(x, y, list);
-      if (list.empty()) continue;
-      auto& v = out[{x, y}];
-      for (ListEntry e : list) v.push_back({0, e.code, e.data});
-    }
-  return out;
-}
-
-std::uint32_t depth_complexity(std::span<const Fragment> frags, Extent screen) {
-  std::vector<std::uint32_t> n(screen.area(), 0);
-  for (const Fragment& f : frags) ++n[f.x + std::size_t{f.y} * screen.x];
-  return *std::max_element(n.begin(), n.end());
-}
-
 TechniqueConfig technique_config(Technique t, Extent screen, gl::AtomicMode mode, std::uint32_t age_bits = 8) {
   TechniqueConfig c;
   c.technique = t;
@@ -71,15 +52,15 @@ TEST_F(GlTechniques, ListsAndArraysOnTheGpuGiveTheCpuAndHaBufferListsOverSeedsAn
         const std::vector<Fragment> frags = test::stream(screen, kind, 900 + seed * 300, seed);
         TechniqueConfig c = technique_config(t, screen, mode, age_bits);
         c.pool_capacity = frags.size();
-        c.layers = depth_complexity(frags, screen);
+        c.layers = test::depth_complexity(frags, screen);
         gl::GlFrameDriver gpu(gl_technique(c, mode));
         gl::ComputeInserter inserter(gpu);
         const gl::FrameReport report = inserter.insert(frags);
         const auto cpu = cpu_technique(c);
         const Counters expected = cpu->insert(frags);
         EXPECT_EQ(report.counters, expected) << to_string(t) << " " << to_string(mode) << " seed " << seed;
-        const ExactLists gl_lists = lists_of(*gpu.technique().read_back());
-        EXPECT_EQ(gl_lists, lists_of(*cpu)) << to_string(t) << " " << to_string(mode) << " seed " << seed;
+        const ExactLists gl_lists = test::traversed_lists(*gpu.technique().read_back());
+        EXPECT_EQ(gl_lists, test::traversed_lists(*cpu)) << to_string(t) << " " << to_string(mode) << " seed " << seed;
         const BuildResult ha = build(c.buffer, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 32);
         EXPECT_EQ(gl_lists, test::traversed_lists(ha.buffer));
         EXPECT_EQ(report.counters, ha.counters);
@@ -107,7 +88,7 @@ TEST_F(GlTechniques, AFullPoolIsCountedAndLosslessModeRegathersIntoAPoolThatHold
     EXPECT_EQ(l.attempts[0].capacity, 1000u);
     EXPECT_GE(l.capacity, frags.size());
     const BuildResult ha = build(c.buffer, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 32);
-    EXPECT_EQ(lists_of(*lossless.technique().read_back()), test::traversed_lists(ha.buffer));
+    EXPECT_EQ(test::traversed_lists(*lossless.technique().read_back()), test::traversed_lists(ha.buffer));
   }
 }
 
@@ -142,7 +123,7 @@ TEST_F(GlTechniques, ArraysWithFewLayersCountTheSameDropsAsTheCpuKeepListsSorted
     gl::GlFrameDriver lossless(gl_technique(c, mode), options);
     const gl::FrameReport l = gl::ComputeInserter(lossless).insert(frags);
     EXPECT_TRUE(l.lossless()) << to_string(mode);
-    EXPECT_EQ(l.capacity, std::uint64_t{depth_complexity(frags, screen)} * screen.area());
+    EXPECT_EQ(l.capacity, std::uint64_t{test::depth_complexity(frags, screen)} * screen.area());
   }
 }
 
@@ -160,7 +141,7 @@ TEST_F(GlTechniques, ListsLongerThanThePrivateArrayAreSortedOnTheGpu) {
     const gl::FrameReport r = gl::ComputeInserter(gpu).insert(frags);
     const ExactLists expected = test::exact_lists(frags, RecordLayout(Layout::L64, 8));
     ASSERT_GT(expected.at({2, 1}).size(), HA_SORT_LOCAL);
-    EXPECT_EQ(lists_of(*gpu.technique().read_back()), expected) << to_string(t);
+    EXPECT_EQ(test::traversed_lists(*gpu.technique().read_back()), expected) << to_string(t);
     EXPECT_EQ(r.counters.duplicates, frags.size() - expected.at({2, 1}).size()) << to_string(t);
   }
 }
@@ -179,7 +160,7 @@ TEST_F(GlTechniques, ExactTechniquesResolveTheHaBuffersImageBitForBitAtHostBindi
   for (Technique t : {Technique::Lists, Technique::Arrays}) {
     TechniqueConfig c = technique_config(t, screen, mode);
     c.pool_capacity = frags.size();
-    c.layers = depth_complexity(frags, screen);
+    c.layers = test::depth_complexity(frags, screen);
     gl::GlFrameDriver gpu(gl_technique(c, mode, test::host_bindings()));
     gl::ComputeInserter(gpu).insert(frags);
     EXPECT_EQ(test::resolve_to_image(gpu, background), expected) << to_string(t);

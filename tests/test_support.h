@@ -46,8 +46,9 @@ inline ExactLists exact_lists(const std::vector<Fragment>& frags, const RecordLa
   return out;
 }
 
-// Lists read back by traversal, ages dropped so they compare with exact_lists.
-inline ExactLists traversed_lists(const HaBuffer& b) {
+// Lists of any technique (the HA-buffer's by traversal), ages dropped so
+// they compare with exact_lists.
+inline ExactLists traversed_lists(const FragmentBuffer& b) {
   ExactLists out;
   std::vector<ListEntry> list;
   for (std::uint32_t y = 0; y < b.screen().y; ++y)
@@ -58,6 +59,13 @@ inline ExactLists traversed_lists(const HaBuffer& b) {
       for (ListEntry e : list) v.push_back({0, e.code, e.data});
     }
   return out;
+}
+
+// The most fragments any pixel of `screen` receives.
+inline std::uint32_t depth_complexity(std::span<const Fragment> frags, Extent screen) {
+  std::vector<std::uint32_t> n(screen.area(), 0);
+  for (const Fragment& f : frags) ++n[f.x + std::size_t{f.y} * screen.x];
+  return *std::max_element(n.begin(), n.end());
 }
 
 inline std::vector<std::uint64_t> table_words(const HaBuffer& b) {

@@ -25,25 +25,6 @@ TechniqueConfig technique_config(Technique t, Extent screen, Layout layout = Lay
   return c;
 }
 
-ExactLists lists_of(const FragmentBuffer& b) {
-  ExactLists out;
-  std::vector<ListEntry> list;
-  for (std::uint32_t y = 0; y < b.screen().y; ++y)
-    for (std::uint32_t x = 0; x < b.screen().x; ++x) {
-      b.list(x, y, list);
-      if (list.empty()) continue;
-      auto& v = out[{x, y}];
-      for (ListEntry e : list) v.push_back({0, e.code, e.data});
-    }
-  return out;
-}
-
-std::uint32_t depth_complexity(const std::vector<Fragment>& frags, Extent screen) {
-  std::vector<std::uint32_t> n(screen.area(), 0);
-  for (const Fragment& f : frags) ++n[f.x + std::size_t{f.y} * screen.x];
-  return *std::max_element(n.begin(), n.end());
-}
-
 BuildResult lossless_ha(const BufferConfig& c, const std::vector<Fragment>& frags) {
   BuildResult r = build(c, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 32);
   EXPECT_TRUE(r.lossless());
@@ -71,15 +52,15 @@ TEST_P(ExactTechniques, ListsAndArraysGiveTheHaBuffersListsByteForByteOverSeeds)
     lc.pool_capacity = frags.size();
     LinkedLists lists(lc);
     const Counters cl = lists.insert(frags);
-    EXPECT_EQ(lists_of(lists), expected) << "lists, seed " << seed;
+    EXPECT_EQ(test::traversed_lists(lists), expected) << "lists, seed " << seed;
     EXPECT_EQ(cl.failures(), 0u);
     EXPECT_EQ(cl.stored(), lists.count_stored());
 
     TechniqueConfig ac = technique_config(Technique::Arrays, screen, p.layout, p.age_bits);
-    ac.layers = depth_complexity(frags, screen);
+    ac.layers = test::depth_complexity(frags, screen);
     FixedArrays arrays(ac);
     const Counters ca = arrays.insert(frags);
-    EXPECT_EQ(lists_of(arrays), expected) << "arrays, seed " << seed;
+    EXPECT_EQ(test::traversed_lists(arrays), expected) << "arrays, seed " << seed;
     EXPECT_EQ(ca.failures(), 0u);
     EXPECT_EQ(ca.stored(), arrays.count_stored());
 
@@ -111,13 +92,13 @@ TEST(Techniques, ListsLongerThanThePrivateArrayAreSortedInPlaceAndMerged) {
   lc.pool_capacity = frags.size();
   LinkedLists lists(lc);
   const Counters cl = lists.insert(frags);
-  EXPECT_EQ(lists_of(lists), expected);
+  EXPECT_EQ(test::traversed_lists(lists), expected);
   EXPECT_EQ(cl.duplicates, frags.size() - 1 - expected.at({1, 1}).size());
   TechniqueConfig ac = technique_config(Technique::Arrays, screen);
   ac.layers = 700;
   FixedArrays arrays(ac);
   const Counters ca = arrays.insert(frags);
-  EXPECT_EQ(lists_of(arrays), expected);
+  EXPECT_EQ(test::traversed_lists(arrays), expected);
   EXPECT_EQ(ca, cl);
 }
 
@@ -127,7 +108,7 @@ TEST(Techniques, ThreadsBuildTheSameListsAsOneThread) {
   for (Technique t : {Technique::Lists, Technique::Arrays}) {
     TechniqueConfig c = technique_config(t, screen);
     c.pool_capacity = frags.size();
-    c.layers = depth_complexity(frags, screen);
+    c.layers = test::depth_complexity(frags, screen);
     std::unique_ptr<FragmentBuffer> serial, parallel;
     if (t == Technique::Lists) {
       serial = std::make_unique<LinkedLists>(c);
@@ -142,7 +123,7 @@ TEST(Techniques, ThreadsBuildTheSameListsAsOneThread) {
     options.mode = InsertMode::Atomic;
     const Counters b = parallel->insert(frags, options);
     EXPECT_EQ(a, b) << to_string(t);
-    EXPECT_EQ(lists_of(*serial), lists_of(*parallel)) << to_string(t);
+    EXPECT_EQ(test::traversed_lists(*serial), test::traversed_lists(*parallel)) << to_string(t);
   }
 }
 
@@ -164,7 +145,7 @@ TEST(Techniques, ArraysWithFewLayersKeepTheFirstKOfEachPixelSortedAndCountTheRes
       else ++dropped;
     }
     EXPECT_EQ(counters.dropped_layers, dropped);
-    EXPECT_EQ(lists_of(arrays), test::exact_lists(kept, RecordLayout(Layout::L64, 8))) << "seed " << seed;
+    EXPECT_EQ(test::traversed_lists(arrays), test::exact_lists(kept, RecordLayout(Layout::L64, 8))) << "seed " << seed;
     EXPECT_EQ(counters.stored(), arrays.count_stored());
     std::uint32_t most = 0;
     for (const auto& [p, n] : arrived) most = std::max(most, n);
@@ -183,7 +164,7 @@ TEST(Techniques, AFullPoolDropsAndCountsEveryFragmentBeyondIt) {
   EXPECT_EQ(lists.requested(), frags.size());
   EXPECT_EQ(counters.stored(), lists.count_stored());
   const std::vector<Fragment> first(frags.begin(), frags.begin() + 500);
-  EXPECT_EQ(lists_of(lists), test::exact_lists(first, RecordLayout(Layout::L64, 8)));
+  EXPECT_EQ(test::traversed_lists(lists), test::exact_lists(first, RecordLayout(Layout::L64, 8)));
 }
 
 TEST(Techniques, TwoBatchesEqualOneAndClearEmptiesEverything) {
@@ -193,7 +174,7 @@ TEST(Techniques, TwoBatchesEqualOneAndClearEmptiesEverything) {
   for (Technique t : {Technique::Lists, Technique::Arrays}) {
     TechniqueConfig c = technique_config(t, screen);
     c.pool_capacity = frags.size();
-    c.layers = depth_complexity(frags, screen);
+    c.layers = test::depth_complexity(frags, screen);
     std::unique_ptr<FragmentBuffer> one, two;
     if (t == Technique::Lists) {
       one = std::make_unique<LinkedLists>(c);
@@ -206,10 +187,10 @@ TEST(Techniques, TwoBatchesEqualOneAndClearEmptiesEverything) {
     Counters halves = two->insert(all.first(1234));
     halves += two->insert(all.subspan(1234));
     EXPECT_EQ(whole, halves) << to_string(t);
-    EXPECT_EQ(lists_of(*one), lists_of(*two)) << to_string(t);
+    EXPECT_EQ(test::traversed_lists(*one), test::traversed_lists(*two)) << to_string(t);
     EXPECT_EQ(two->clear(), whole.stored());
     EXPECT_EQ(two->count_stored(), 0u);
-    EXPECT_TRUE(lists_of(*two).empty());
+    EXPECT_TRUE(test::traversed_lists(*two).empty());
   }
 }
 
@@ -226,7 +207,7 @@ TEST(Techniques, ExactTechniquesCompositeTheHaBuffersImageBitForBit) {
   lists.insert(frags);
   EXPECT_EQ(lists.composite_image(backgrounds, 2), expected);
   TechniqueConfig ac = technique_config(Technique::Arrays, screen);
-  ac.layers = depth_complexity(frags, screen);
+  ac.layers = test::depth_complexity(frags, screen);
   FixedArrays arrays(ac);
   arrays.insert(frags);
   EXPECT_EQ(arrays.composite_image(backgrounds, 2), expected);
@@ -283,7 +264,7 @@ TEST(Techniques, LosslessBuildsGrowThePoolAndTheLayersUntilNothingIsDropped) {
     const TechniqueBuild b = build_technique(c, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 4);
     EXPECT_TRUE(b.lossless()) << to_string(t);
     EXPECT_EQ(b.attempts.size(), 2u) << to_string(t);
-    EXPECT_EQ(lists_of(*b.buffer), expected) << to_string(t);
+    EXPECT_EQ(test::traversed_lists(*b.buffer), expected) << to_string(t);
   }
 }
 

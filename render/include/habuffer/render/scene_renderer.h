@@ -68,6 +68,8 @@ class SceneRenderer {
   };
   void draw_meshes(const gl::ShaderProgram& program, const Camera& camera, bool opaque) const;
   void run_gather(const Camera& camera, bool count_only);
+  // The transparent meshes through `program` into `framebuffer`, the opaque depth image at unit 0.
+  void draw_transparent(const gl::ShaderProgram& program, const Camera& camera, unsigned framebuffer) const;
 
   Extent screen_;
   std::vector<GpuMesh> meshes_;
