@@ -7,18 +7,8 @@
 #include "technique_parallel.h"
 
 namespace habuffer {
-namespace {
-
-TechniqueConfig validated(TechniqueConfig c) {
-  c.technique = Technique::Arrays;
-  c.validate();
-  return c;
-}
-
-}  // namespace
-
 FixedArrays::FixedArrays(const TechniqueConfig& config)
-    : config_(validated(config)),
+    : config_(validated_as(config, Technique::Arrays)),
       params_(make_technique_params(config_)),
       counts_(config_.buffer.screen.area(), 0),
       layers_(std::uint64_t{config_.layers} * config_.buffer.screen.area()) {}

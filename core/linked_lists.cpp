@@ -8,18 +8,8 @@
 #include "technique_parallel.h"
 
 namespace habuffer {
-namespace {
-
-TechniqueConfig validated(TechniqueConfig c) {
-  c.technique = Technique::Lists;
-  c.validate();
-  return c;
-}
-
-}  // namespace
-
 LinkedLists::LinkedLists(const TechniqueConfig& config)
-    : config_(validated(config)),
+    : config_(validated_as(config, Technique::Lists)),
       params_(make_technique_params(config_)),
       heads_(config_.buffer.screen.area(), 0),
       entries_(config_.pool_capacity),

@@ -45,4 +45,10 @@ void TechniqueConfig::validate() const {
   }
 }
 
+TechniqueConfig validated_as(TechniqueConfig config, Technique t) {
+  config.technique = t;
+  config.validate();
+  return config;
+}
+
 }  // namespace habuffer

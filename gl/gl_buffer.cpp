@@ -34,4 +34,9 @@ std::vector<std::uint32_t> read_words(unsigned buffer, std::uint64_t words) {
   return out;
 }
 
+void delete_buffer(unsigned& buffer) {
+  if (buffer != 0) glDeleteBuffers(1, &buffer);
+  buffer = 0;
+}
+
 }  // namespace habuffer::gl

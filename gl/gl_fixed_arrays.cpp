@@ -11,21 +11,6 @@
 #include "sort_pass.h"
 
 namespace habuffer::gl {
-namespace {
-
-TechniqueConfig validated(TechniqueConfig c) {
-  c.technique = Technique::Arrays;
-  c.validate();
-  return c;
-}
-
-void delete_buffer(GLuint& b) {
-  if (b != 0) glDeleteBuffers(1, &b);
-  b = 0;
-}
-
-}  // namespace
-
 struct GlFixedArrays::Gpu {
   GLuint counts = 0, layers = 0;
   std::unique_ptr<SortPass> sort;
@@ -35,8 +20,8 @@ struct GlFixedArrays::Gpu {
 };
 
 GlFixedArrays::GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(Technique::Arrays, mode, bindings, validated(config).buffer.screen),
-      config_(validated(config)),
+    : GlTechnique(Technique::Arrays, mode, bindings, validated_as(config, Technique::Arrays).buffer.screen),
+      config_(validated_as(config, Technique::Arrays)),
       gpu_(std::make_unique<Gpu>()) {
   if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
     throw GlError("atomic mode " + to_string(mode) + " does not build " + to_string(config_.buffer.layout) + " arrays");

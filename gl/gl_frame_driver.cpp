@@ -33,11 +33,6 @@ void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {
                             GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
 }
 
-void delete_buffer(GLuint& b) {
-  if (b != 0) glDeleteBuffers(1, &b);
-  b = 0;
-}
-
 // The capacity an append buffer of `item_bytes` items grows to for `needed`
 // items: at least double the current one, within one shader-storage buffer
 // and 32-bit counts (throws GlError naming `what` beyond that).

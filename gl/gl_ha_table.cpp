@@ -18,11 +18,6 @@ BufferConfig validated(BufferConfig c) {
   return c;
 }
 
-void delete_buffer(GLuint& b) {
-  if (b != 0) glDeleteBuffers(1, &b);
-  b = 0;
-}
-
 // Emulated64's lock words: one per 2^HA_LOCK_SHIFT slots.
 std::uint64_t lock_words(std::uint64_t slots) { return (slots + (1u << HA_LOCK_SHIFT) - 1) >> HA_LOCK_SHIFT; }
 

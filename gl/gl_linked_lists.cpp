@@ -14,17 +14,6 @@
 namespace habuffer::gl {
 namespace {
 
-TechniqueConfig validated(TechniqueConfig c) {
-  c.technique = Technique::Lists;
-  c.validate();
-  return c;
-}
-
-void delete_buffer(GLuint& b) {
-  if (b != 0) glDeleteBuffers(1, &b);
-  b = 0;
-}
-
 constexpr std::uint64_t kNodeBytes = sizeof(glm::uvec2) + 4;  // entry and link
 
 }  // namespace
@@ -38,8 +27,8 @@ struct GlLinkedLists::Gpu {
 };
 
 GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(Technique::Lists, mode, bindings, validated(config).buffer.screen),
-      config_(validated(config)),
+    : GlTechnique(Technique::Lists, mode, bindings, validated_as(config, Technique::Lists).buffer.screen),
+      config_(validated_as(config, Technique::Lists)),
       gpu_(std::make_unique<Gpu>()) {
   if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
     throw GlError("atomic mode " + to_string(mode) + " does not build " + to_string(config_.buffer.layout) + " lists");

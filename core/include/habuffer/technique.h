@@ -42,4 +42,7 @@ struct TechniqueConfig {
   void validate() const;
 };
 
+// `config` as technique `t`, validated (throws as validate()).
+TechniqueConfig validated_as(TechniqueConfig config, Technique t);
+
 }  // namespace habuffer
