@@ -102,7 +102,7 @@ TEST(Techniques, ListsLongerThanThePrivateArrayAreSortedInPlaceAndMerged) {
   EXPECT_EQ(ca, cl);
 }
 
-TEST(Techniques, ThreadsBuildTheSameListsAsOneThread) {
+TEST(Techniques, ParallelInsertionBuildsTheSameListsAsOneThread) {
   const Extent screen{64, 48};
   const std::vector<Fragment> frags = test::stream(screen, StreamKind::Coherent, 20000, 3);
   for (Technique t : {Technique::Lists, Technique::Arrays}) {
