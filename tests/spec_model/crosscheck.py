@@ -8,7 +8,10 @@ usage: python3 crosscheck.py --habuffer PATH/TO/habuffer [--cases N]
 For every case a seeded random configuration and fragment stream are written
 to the work directory, `habuffer build-lists` is run twice (file order, and
 shuffled rows with 2 threads) and the outputs are compared with each other and
-with ha_model.HAModel. A failing case prints one line with the command that
+with ha_model.HAModel. When the model loses nothing, a third run builds the
+shuffled stream with linked lists or fixed arrays (alternating; from a pool
+of 3 nodes or 2 layers, grown by --lossless) on the shuffled run's path, and
+its lists and counters must be the model's too. A failing case prints one line with the command that
 reproduces it; its files stay in the work directory. The last line is
 `crosscheck: N passed, M failed`; the exit status is non-zero on any failure.
 """
@@ -238,6 +241,46 @@ def habuffer_cmd(exe, case, d, tag, infile, threads, path="cpu"):
             "--dump-max-age", p("maxage%s.csv" % tag)]
 
 
+def technique_cmd(exe, case, d, technique, path):
+    """A sorted technique (lists, arrays) on the shuffled stream, lossless:
+    its lists must be the model's whenever the model lost nothing."""
+    p = lambda name: os.path.join(d, name)  # noqa: E731
+    return [exe, "build-lists", "--path", path, "--technique", technique,
+            "--in", p("frags_shuffled.csv"),
+            "--out", p("lists_%s.csv" % technique),
+            "--screen", "%dx%d" % (case["Vx"], case["Vy"]),
+            "--layout", str(case["layout"]),
+            "--age-bits", str(case["A"]),
+            *(["--layers", "2"] if technique == "arrays" else ["--pool", "3"]),
+            "--lossless", "--max-attempts", "40",
+            "--stats", p("stats_%s.json" % technique)]
+
+
+def check_technique(exe, case, d, timeout, model, technique, path):
+    """Errors of the technique run against the model (no HA failure)."""
+    cmd = technique_cmd(exe, case, d, technique, path)
+    try:
+        run_habuffer(cmd, timeout)
+        lists = _parse_csv(os.path.join(d, "lists_%s.csv" % technique),
+                           "x,y,rank,code,rgba", (int,) * 5)
+        st = json.loads(_read(os.path.join(d, "stats_%s.json" % technique)))
+    except (CaseFailure, ValueError) as e:
+        return ["%s on %s: %s" % (technique, path, e)]
+    errs = []
+    ms = model.stats()
+    dif = _first_diff("lists", lists, model.lists())
+    if dif:
+        errs.append("%s on %s %s" % (technique, path, dif))
+    for k in ("fragments", "invalid", "duplicates", "stored"):
+        if st.get(k) != ms[k]:
+            errs.append("%s on %s stats %s: habuffer %s, model %s"
+                        % (technique, path, k, st.get(k), ms[k]))
+    if st.get("dropped_pool", 0) or st.get("dropped_layers", 0):
+        errs.append("%s on %s dropped fragments in lossless mode: %s"
+                    % (technique, path, st))
+    return errs
+
+
 def run_habuffer(cmd, timeout):
     env = dict(os.environ)
     if "gl" in cmd:
@@ -442,6 +485,11 @@ def run_case(exe, case, d, timeout, gl=False):
                 dif = _first_diff(k, o[k], want)
                 if dif:
                     errs.append("run%s %s" % (tag, dif))
+        # The other exact techniques, from tiny first sizes grown losslessly,
+        # on the path of the shuffled run.
+        technique = "lists" if len(case["frags"]) % 2 == 0 else "arrays"
+        errs += check_technique(exe, case, d, timeout, m, technique,
+                                "gl" if gl else "cpu")
     return errs, cmd1, ms
 
 
