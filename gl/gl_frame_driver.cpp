@@ -217,7 +217,8 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     unfinished = resume_deferred(report);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
-    if (deferred_overflow_ == 0 && !options_.capture_only) {
+    sorted_ = deferred_overflow_ == 0 && !options_.capture_only && technique_->sorts();
+    if (sorted_) {
       bind();  // the host's gather may have bound its own buffers at our points
       report.sort = technique_->after_gather(options_.finish_timing);
     }
@@ -281,9 +282,10 @@ void GlFrameDriver::read_counters(FrameReport& report) const {
   std::uint64_t tally[HA_GPU_COUNTER_COUNT] = {};
   for (std::uint32_t stripe = 0; stripe < HA_COUNTER_STRIPES; ++stripe)
     for (std::uint32_t k = 0; k < HA_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HA_COUNTER_STRIDE + k];
-  if (tally[HA_COUNTER_SORT_BEGUN] != tally[HA_COUNTER_SORT_DONE])
-    throw GlError("the driver ended " + std::to_string(tally[HA_COUNTER_SORT_BEGUN] - tally[HA_COUNTER_SORT_DONE]) +
-                  " of " + std::to_string(tally[HA_COUNTER_SORT_BEGUN]) +
+  const std::uint64_t pixels = screen().area();
+  if (sorted_ && tally[HA_COUNTER_SORT_DONE] != pixels)
+    throw GlError("the driver ended " + std::to_string(pixels - tally[HA_COUNTER_SORT_DONE]) + " of " +
+                  std::to_string(pixels) +
                   " per-pixel sorts early (its loop budget): the lists are too long for this driver's sort pass");
   Counters c;
   c.add_tally(tally);

@@ -64,13 +64,13 @@
 // for (atomicMax calls that raised a slot, including records later evicted:
 // the work an insertion order costs); the records the sort pass of lists and
 // arrays merged as duplicates (counted stored at insertion, moved to
-// duplicates by the host); the pixels the sort pass began and finished (a
-// driver that ends an invocation early leaves them apart: never silent).
+// duplicates by the host); the pixels the sort pass finished (every pixel of
+// the screen must: a driver that ends an invocation early leaves the count
+// short, never silently).
 #define HA_COUNTER_SLOT_WRITES 8u
 #define HA_COUNTER_MERGED 9u
-#define HA_COUNTER_SORT_BEGUN 10u
-#define HA_COUNTER_SORT_DONE 11u
-#define HA_GPU_COUNTER_COUNT 12u
+#define HA_COUNTER_SORT_DONE 10u
+#define HA_GPU_COUNTER_COUNT 11u
 // Words of stripe 0 that are not sums: the linked lists' node counter (one
 // atomic add per fragment, the technique's own hot spot) and the most
 // fragments a fixed-array pixel received when some pixel overflowed.

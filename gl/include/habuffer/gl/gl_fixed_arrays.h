@@ -25,6 +25,7 @@ class GlFixedArrays final : public GlTechnique {
   void before_gather() override;
   void reset() override {}
   PassTiming after_gather(bool finish_timing) override;
+  [[nodiscard]] bool sorts() const override { return true; }
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] std::uint64_t capacity() const override {
     return std::uint64_t{config_.layers} * config_.buffer.screen.area();

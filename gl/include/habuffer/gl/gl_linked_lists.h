@@ -29,6 +29,7 @@ class GlLinkedLists final : public GlTechnique {
   void before_gather() override;
   void reset() override {}
   PassTiming after_gather(bool finish_timing) override;
+  [[nodiscard]] bool sorts() const override { return true; }
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] std::uint64_t capacity() const override { return config_.pool_capacity; }
   [[nodiscard]] std::uint64_t memory_bytes() const override;

@@ -49,6 +49,8 @@ class GlTechnique {
   virtual void reset() = 0;
   // After every gather, with every buffer bound: the sort pass, if any.
   virtual PassTiming after_gather(bool finish_timing);
+  // Whether after_gather sorts every pixel (its sort pass counts each one).
+  [[nodiscard]] virtual bool sorts() const { return false; }
   // After every gather's counters are read (the report holds them).
   virtual void gathered(const FrameReport& report);
   // Lossless mode: room for what the last gather dropped (the report's
