@@ -7,6 +7,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "habuffer/technique.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_info.h"
@@ -20,6 +21,7 @@ int run_info(const std::vector<std::string>& argv) {
   std::printf("build type: %s%s%s\n", HABUFFER_BUILD_TYPE, *HABUFFER_SANITIZE_NAME ? ", sanitizers: " : "",
               HABUFFER_SANITIZE_NAME);
   std::printf("compiler: %s\n", __VERSION__);
+  std::printf("techniques: %s (every one on both paths; --technique)\n", technique_names().c_str());
   std::printf("paths:\n");
   std::printf("  cpu: available (oneTBB %d.%d, %d hardware threads; layouts L64 and L32; age bits 4..12)\n",
               TBB_VERSION_MAJOR, TBB_VERSION_MINOR, tbb::info::default_concurrency());

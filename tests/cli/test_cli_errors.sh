@@ -74,6 +74,7 @@ expect 0 "" -- offsets --table 64x64 --generator farthest --out o.csv --quality 
 # info opens a GL context: Mesa leaves allocations LeakSanitizer cannot attribute.
 ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- info
 grep -q "gl: available through" out.txt && pass=$((pass + 1)) || { echo "FAIL: info has no GL path"; cat out.txt; fail=$((fail + 1)); }
+grep -q "techniques: ha, lists, arrays" out.txt && pass=$((pass + 1)) || { echo "FAIL: info lists no techniques"; fail=$((fail + 1)); }
 # --path gl and --path cpu write identical lists, table and max-age dumps
 # (L32, native32), on streams of several shapes and table sizes.
 for cfg in "48x32 48x32 4 coherent 0.8 32" "40x40 61x47 8 random 0.7 32" "64x16 64x16 6 random 0.9 32" \
