@@ -31,11 +31,6 @@ std::unique_ptr<gl::GlTechnique> gl_technique(const TechniqueConfig& c, gl::Atom
   return std::make_unique<gl::GlFixedArrays>(c, mode, bindings);
 }
 
-std::unique_ptr<FragmentBuffer> cpu_technique(const TechniqueConfig& c) {
-  if (c.technique == Technique::Lists) return std::make_unique<LinkedLists>(c);
-  return std::make_unique<FixedArrays>(c);
-}
-
 class GlTechniques : public ::testing::Test {
  protected:
   void SetUp() override { test::gl_context(); }
@@ -56,7 +51,7 @@ TEST_F(GlTechniques, ListsAndArraysOnTheGpuGiveTheCpuAndHaBufferListsOverSeedsAn
         gl::GlFrameDriver gpu(gl_technique(c, mode));
         gl::ComputeInserter inserter(gpu);
         const gl::FrameReport report = inserter.insert(frags);
-        const auto cpu = cpu_technique(c);
+        const auto cpu = make_fragment_buffer(c, OffsetSource{});
         const Counters expected = cpu->insert(frags);
         EXPECT_EQ(report.counters, expected) << to_string(t) << " " << to_string(mode) << " seed " << seed;
         const ExactLists gl_lists = test::traversed_lists(*gpu.technique().read_back());

@@ -109,14 +109,8 @@ TEST(Techniques, ParallelInsertionBuildsTheSameListsAsOneThread) {
     TechniqueConfig c = technique_config(t, screen);
     c.pool_capacity = frags.size();
     c.layers = test::depth_complexity(frags, screen);
-    std::unique_ptr<FragmentBuffer> serial, parallel;
-    if (t == Technique::Lists) {
-      serial = std::make_unique<LinkedLists>(c);
-      parallel = std::make_unique<LinkedLists>(c);
-    } else {
-      serial = std::make_unique<FixedArrays>(c);
-      parallel = std::make_unique<FixedArrays>(c);
-    }
+    const std::unique_ptr<FragmentBuffer> serial = make_fragment_buffer(c, OffsetSource{});
+    const std::unique_ptr<FragmentBuffer> parallel = make_fragment_buffer(c, OffsetSource{});
     const Counters a = serial->insert(frags);
     InsertOptions options;
     options.threads = 4;
@@ -175,14 +169,8 @@ TEST(Techniques, TwoBatchesEqualOneAndClearEmptiesEverything) {
     TechniqueConfig c = technique_config(t, screen);
     c.pool_capacity = frags.size();
     c.layers = test::depth_complexity(frags, screen);
-    std::unique_ptr<FragmentBuffer> one, two;
-    if (t == Technique::Lists) {
-      one = std::make_unique<LinkedLists>(c);
-      two = std::make_unique<LinkedLists>(c);
-    } else {
-      one = std::make_unique<FixedArrays>(c);
-      two = std::make_unique<FixedArrays>(c);
-    }
+    const std::unique_ptr<FragmentBuffer> one = make_fragment_buffer(c, OffsetSource{});
+    const std::unique_ptr<FragmentBuffer> two = make_fragment_buffer(c, OffsetSource{});
     const Counters whole = one->insert(all);
     Counters halves = two->insert(all.first(1234));
     halves += two->insert(all.subspan(1234));
