@@ -1,6 +1,7 @@
 #include "habuffer/build_report.h"
 
 #include "habuffer/ha_buffer.h"
+#include "habuffer/memory_model.h"
 
 namespace habuffer {
 
@@ -9,6 +10,7 @@ BuildReport summarize(const FragmentBuffer& any, const Counters& counters) {
   r.counters = counters;
   r.capacity = any.capacity();
   r.memory_bytes = any.memory_bytes();
+  r.memory_model_bytes = memory_model_bytes(any);
   const auto* ha = dynamic_cast<const HaBuffer*>(&any);
   if (ha == nullptr) {
     r.stored = any.count_stored();

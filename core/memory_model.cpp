@@ -18,6 +18,10 @@ std::uint64_t memory_model_bytes(const TechniqueConfig& c, std::uint64_t capacit
   return 0;
 }
 
+std::uint64_t memory_model_bytes(const FragmentBuffer& buffer) {
+  return memory_model_bytes(buffer.technique_config(), buffer.capacity());
+}
+
 double paper_memory_bytes(Technique technique, std::uint64_t pixels, std::uint64_t fragments, double load,
                           std::uint32_t layers) {
   const double v = static_cast<double>(pixels), f = static_cast<double>(fragments);

@@ -7,6 +7,7 @@
 #include "compute_grid.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_technique.h"
 #include "habuffer/gl/glsl_sources.h"
 
 namespace habuffer::gl {
@@ -33,10 +34,8 @@ void ComputeInserter::upload(std::span<const Fragment> fragments) {
   release();
   // Streams beyond one shader-storage buffer (128 MiB, 8 M fragments on
   // llvmpipe) go in several, dispatched one after the other.
-  GLint64 max_bytes = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_bytes);
   std::size_t per_chunk =
-      std::min<std::size_t>(static_cast<std::size_t>(max_bytes) / sizeof(Fragment), std::size_t{1} << 26);
+      std::min<std::size_t>(static_cast<std::size_t>(max_storage_bytes()) / sizeof(Fragment), std::size_t{1} << 26);
   if (max_chunk_ > 0) per_chunk = std::min(per_chunk, max_chunk_);
   for (std::size_t first = 0; first < fragments.size() || first == 0; first += per_chunk) {
     const std::size_t n = std::min(per_chunk, fragments.size() - first);

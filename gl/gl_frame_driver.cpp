@@ -3,7 +3,6 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <array>
 #include <stdexcept>
 #include <tuple>
 
@@ -20,9 +19,8 @@
 namespace habuffer::gl {
 namespace {
 
-constexpr std::uint64_t kCounterWords = HA_COUNTER_STRIPES * HA_COUNTER_STRIDE;
-static_assert(HA_GPU_COUNTER_COUNT <= HA_COUNTER_STRIDE && HA_COUNTER_MOST_ARRIVED < HA_COUNTER_STRIDE,
-              "a stripe's counters fit its cache line");
+constexpr std::uint64_t kCounterWords = HA_COUNTER_WORDS;
+static_assert(HA_GPU_COUNTER_COUNT <= HA_COUNTER_STRIDE, "a stripe's counters fit its cache line");
 constexpr std::uint64_t kAppendHeaderBytes = HA_APPEND_HEADER_WORDS * 4;
 constexpr std::uint64_t kDeferredCallBytes = 32;  // std430 HaDeferred of ha_entry.glsl
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
@@ -114,7 +112,6 @@ void GlFrameDriver::grow_capture(std::uint64_t needed) {
   capture_capacity_ = grown_append_capacity(needed, capture_capacity_, sizeof(Fragment), "captured fragments");
   delete_buffer(gpu_->capture);
   gpu_->capture = create_buffer(kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment));
-  write_params();
 }
 
 void GlFrameDriver::grow_deferred(std::uint64_t needed) {
@@ -123,7 +120,6 @@ void GlFrameDriver::grow_deferred(std::uint64_t needed) {
     delete_buffer(b);
     b = create_buffer(kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
   }
-  write_params();
 }
 
 void GlFrameDriver::reset_frame_state() const {
@@ -217,14 +213,16 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     unfinished = resume_deferred(report);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
-    sorted_ = deferred_overflow_ == 0 && !options_.capture_only && technique_->sorts();
+    // A gather frame() will repeat (a buffer overflowed) is not worth sorting.
+    if (options_.capture) report.captured = read_capture_count();
+    const bool repeated = deferred_overflow_ > 0 || (options_.capture && report.captured > capture_capacity_);
+    sorted_ = !repeated && !options_.capture_only && technique_->sorts();
     if (sorted_) {
       bind();  // the host's gather may have bound its own buffers at our points
       report.sort = technique_->after_gather(options_.finish_timing);
     }
   }
   read_counters(report);
-  if (options_.capture) report.captured = read_capture_count();
   check_gl_errors("the gather pass");
   report.cut_short = 0;
   if (deferred_overflow_ > 0) return;  // frame() grows the buffer and gathers again

@@ -10,8 +10,6 @@
 
 #include "gpu_timer.h"
 #include "habuffer/extent.h"
-#include "habuffer/gl/gl_bindings.h"
-#include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shader_program.h"
 
 namespace habuffer::gl {

@@ -11,17 +11,6 @@
 
 namespace habuffer {
 
-bool automatic_size(const RenderSettings& s) {
-  switch (s.technique) {
-    case Technique::Ha: return s.config.table.area() == 0;
-    case Technique::Lists: return s.pool == 0;
-    case Technique::Arrays: return false;
-  }
-  return false;
-}
-
-std::uint32_t frame_attempts(const RenderSettings& s) { return automatic_size(s) || s.lossless ? s.max_attempts : 1; }
-
 Extent initial_table(const RenderSettings& s, std::uint64_t fragments) {
   const double target = (s.policy.grow_at + s.policy.shrink_at) / 2.0;
   return table_for_load(s.config.screen, fragments, target);
@@ -105,9 +94,7 @@ void finish_cpu_result(const RenderSettings& settings, TechniqueBuild last, Rend
       result.pixel_culled.assign(settings.config.screen.area(), 0);  // no early cull: nothing culled
   }
   result.memory_bytes = last.buffer->memory_bytes();
-  TechniqueConfig c = technique_config(settings);
-  if (const auto* arrays = dynamic_cast<const FixedArrays*>(last.buffer.get())) c.layers = arrays->layers();
-  result.memory_model_bytes = memory_model_bytes(c, last.buffer->capacity());
+  result.memory_model_bytes = memory_model_bytes(*last.buffer);
   result.buffer = std::move(last.buffer);
 }
 

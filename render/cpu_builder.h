@@ -27,11 +27,6 @@ class CpuBuilder {
   std::optional<std::uint64_t> previous_use_;  // stored records (HA) or nodes asked for (lists)
 };
 
-// Whether the technique's size is automatic in these settings (the
-// HA-buffer's table or the lists' pool; fixed arrays keep K).
-bool automatic_size(const RenderSettings& s);
-// The attempts a frame may take: lossless or automatic sizes regather.
-std::uint32_t frame_attempts(const RenderSettings& s);
 // An automatic HA table's first size: the fragments at the middle of the
 // policy's band of loads, at least the screen.
 Extent initial_table(const RenderSettings& s, std::uint64_t fragments);

@@ -7,7 +7,6 @@
 #include "frame_path.h"
 #include "habuffer/gl/gl_ha_buffer.h"
 #include "habuffer/gl/gl_info.h"
-#include "habuffer/memory_model.h"
 
 namespace habuffer {
 namespace {
@@ -37,13 +36,13 @@ class CpuFrames final : public FramePath {
   void size_for(std::uint64_t fragments, RenderResult&) override { builder_.size_for(fragments); }
 
   void complete_frame(const gl::FrameReport&, SceneRenderer& renderer, FrameStats& fs, RenderResult& result) override {
-    const std::vector<Fragment> fragments = capture_.read_capture();
+    std::vector<Fragment> fragments = capture_.read_capture();
     last_.emplace(builder_.build(fragments, fs));
     const auto r0 = std::chrono::steady_clock::now();
     result.backgrounds = renderer.read_opaque_colour();
     result.image = Image{settings_.config.screen, last_->buffer->composite_image(result.backgrounds, settings_.threads)};
     fs.resolve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
-    result.fragments = fragments;
+    result.fragments = std::move(fragments);  // the last frame's stay (reference, culled heat map)
   }
 
   void finish(SceneRenderer&, RenderResult& result) override {

@@ -9,7 +9,6 @@
 #include "cpu_builder.h"
 #include "frame_path.h"
 #include "habuffer/gl/gl_error.h"
-#include "habuffer/gl/gl_fixed_arrays.h"
 #include "habuffer/gl/gl_ha_table.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/gl_linked_lists.h"
@@ -29,16 +28,6 @@ gl::GlFrameOptions gpu_frame_options(const RenderSettings& s) {
   return o;
 }
 
-std::unique_ptr<gl::GlTechnique> make_gl_technique(const RenderSettings& s, gl::AtomicMode mode) {
-  TechniqueConfig c = technique_config(s);
-  switch (c.technique) {
-    case Technique::Ha: return std::make_unique<gl::GlHaTable>(c.buffer, s.offsets, mode, gl::GlBindings{});
-    case Technique::Lists: return std::make_unique<gl::GlLinkedLists>(c, mode, gl::GlBindings{});
-    case Technique::Arrays: return std::make_unique<gl::GlFixedArrays>(c, mode, gl::GlBindings{});
-  }
-  throw std::invalid_argument("unknown technique");
-}
-
 // The largest table up to `wanted` (same aspect) the context holds.
 Extent fit_gpu_table(const gl::GlHaTable& ha, Extent wanted) {
   const std::uint64_t max_slots = gl::max_storage_bytes() / ha.config().record_layout().word_bytes();
@@ -54,7 +43,7 @@ std::uint32_t largest(std::span<const std::uint32_t> v) { return v.empty() ? 0u 
 class GpuFrames final : public FramePath {
  public:
   GpuFrames(const RenderSettings& s, gl::AtomicMode mode)
-      : settings_(s), mode_(mode), driver_(make_gl_technique(s, mode), gpu_frame_options(s)), target_(s.config.screen) {}
+      : settings_(s), mode_(mode), driver_(gl::make_gl_technique(technique_config(s), s.offsets, mode), gpu_frame_options(s)), target_(s.config.screen) {}
 
   gl::GlFrameDriver& driver() override { return driver_; }
 
@@ -99,9 +88,7 @@ class GpuFrames final : public FramePath {
     if (settings_.keep_fragments) result.fragments = driver_.read_capture();
     result.buffer = driver_.technique().read_back();
     result.memory_bytes = driver_.memory_bytes() - driver_.capture_bytes();  // the capture serves --reference only
-    TechniqueConfig c = technique_config(settings_);
-    if (const auto* arrays = dynamic_cast<const gl::GlFixedArrays*>(&driver_.technique())) c.layers = arrays->config().layers;
-    result.memory_model_bytes = memory_model_bytes(c, driver_.technique().capacity());
+    result.memory_model_bytes = memory_model_bytes(*result.buffer);  // the read-back holds the GPU's sizes
     result.device = "gl " + gl::to_string(mode_) + " on " + gl::query_gl_info().renderer;
   }
 

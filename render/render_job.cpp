@@ -23,9 +23,7 @@ void validate(const RenderSettings& s) {
   s.policy.validate();
   if (s.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (s.max_attempts == 0) throw std::invalid_argument("--max-attempts must be at least 1");
-  TechniqueConfig c = technique_config(s);
-  if (c.technique == Technique::Lists && c.pool_capacity == 0) c.pool_capacity = 1;  // auto: sized later
-  c.validate();
+  technique_config(s).validate();
 }
 
 void finish_stats(FrameStats& fs) {
@@ -33,6 +31,17 @@ void finish_stats(FrameStats& fs) {
 }
 
 }  // namespace
+
+bool automatic_size(const RenderSettings& s) {
+  switch (s.technique) {
+    case Technique::Ha: return s.config.table.area() == 0;
+    case Technique::Lists: return s.pool == 0;
+    case Technique::Arrays: return false;
+  }
+  return false;
+}
+
+std::uint32_t frame_attempts(const RenderSettings& s) { return automatic_size(s) || s.lossless ? s.max_attempts : 1; }
 
 TechniqueConfig technique_config(const RenderSettings& s) {
   TechniqueConfig c;

@@ -27,8 +27,7 @@ TechniqueConfig technique_config(Technique t, Extent screen, gl::AtomicMode mode
 
 std::unique_ptr<gl::GlTechnique> gl_technique(const TechniqueConfig& c, gl::AtomicMode mode,
                                               const gl::GlBindings& bindings = {}) {
-  if (c.technique == Technique::Lists) return std::make_unique<gl::GlLinkedLists>(c, mode, bindings);
-  return std::make_unique<gl::GlFixedArrays>(c, mode, bindings);
+  return gl::make_gl_technique(c, OffsetSource{}, mode, bindings);
 }
 
 class GlTechniques : public ::testing::Test {

@@ -45,7 +45,7 @@ int run_build_lists(const std::vector<std::string>& argv) {
   check_files(files);
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
-  BuildTiming timing{0.0, resolved_threads(options.insert.threads), {}, {}};
+  BuildTiming timing{0.0, resolve_threads(options.insert.threads), {}, {}};
   std::optional<TechniqueBuild> built;
   if (options.gl) {
     built.emplace(build_on_gl(options, fragments, timing));

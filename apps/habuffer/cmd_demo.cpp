@@ -50,7 +50,8 @@ int run_demo(const std::vector<std::string>& argv) {
     with_defaults.insert(with_defaults.end(), {"--table", table_for_load(screen, count, load).str()});
   const Args args(with_defaults, valued, hash_flag_options());
   HashOptions options = parse_hash_options(args);
-  if (!args.has("threads")) options.insert.threads = 0;  // demo's default: every hardware thread
+  // demo's default: every hardware thread (serial insertion keeps its one).
+  if (!args.has("threads") && options.insert.mode != InsertMode::Serial) options.insert.threads = 0;
   FileRoles files;
   add_offsets_input(files, options);
   for (const char* o : {"stats", "lists"})
@@ -67,7 +68,7 @@ int run_demo(const std::vector<std::string>& argv) {
   InsertOptions serial = options.insert;
   serial.threads = 1;
   serial.mode = InsertMode::Auto;
-  const std::uint32_t threads = options.gl ? 1 : resolved_threads(options.insert.threads);
+  const std::uint32_t threads = options.gl ? 1 : resolve_threads(options.insert.threads);
   // Tables are allocated before the clock starts: the times are insertion only.
   const OffsetSequence offsets = options.offsets.make(options.config.table, options.config.record_layout().max_age());
   std::optional<BuildResult> one, many;

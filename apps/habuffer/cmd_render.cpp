@@ -62,7 +62,7 @@ struct HeatmapRequest {
   std::string kind, path;
 };
 
-std::vector<HeatmapRequest> parse_heatmaps(const Args& args) {
+std::vector<HeatmapRequest> parse_heatmaps(const Args& args, Technique technique) {
   std::vector<HeatmapRequest> out;
   if (!args.has("heatmap")) return out;
   for (const std::string& item : args.list("heatmap", "")) {
@@ -70,9 +70,9 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args) {
     const std::string kind = item.substr(0, colon);
     if (colon == std::string::npos || colon + 1 == item.size() || (kind != "depth" && kind != "age" && kind != "culled"))
       throw UsageError("option --heatmap: " + excerpt(item) + " is not depth:IMAGE, age:IMAGE or culled:IMAGE");
-    if (kind != "depth" && args.str("technique", "ha") != "ha")
+    if (kind != "depth" && technique != Technique::Ha)
       throw UsageError("option --heatmap " + kind + ": the HA-buffer's (ages, early cull), not technique " +
-                       excerpt(args.str("technique", "ha")) + "'s");
+                       to_string(technique) + "'s");
     out.push_back({kind, item.substr(colon + 1)});
   }
   return out;
@@ -142,8 +142,7 @@ RenderSettings parse_settings(const Args& args) {
   if (path != "gl" && path != "cpu") throw UsageError("option --path: '" + path + "' is not gl or cpu");
   s.path = path == "gl" ? RenderPath::Gl : RenderPath::Cpu;
   s.lossless = args.has("lossless");
-  const bool automatic = (s.technique == Technique::Ha && table == "auto") || (s.technique == Technique::Lists && s.pool == 0);
-  if (!s.lossless && args.has("max-attempts") && !automatic)
+  if (!s.lossless && args.has("max-attempts") && !automatic_size(s))
     throw UsageError("option --max-attempts needs --lossless or an automatic size (--table auto, --pool auto)");
   s.max_attempts = args.u32("max-attempts", 16, 1, 1000);
   s.frames = args.u32("frames", 1, 1, 100000);
@@ -287,7 +286,7 @@ int run_render(const std::vector<std::string>& argv) {
   refuse_scene_options_that_do_not_apply(args);
   const std::vector<std::string> opaque_meshes =
       args.has("opaque-meshes") ? args.list("opaque-meshes", "") : std::vector<std::string>{};
-  const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args);
+  const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args, s.technique);
   check_render_files(args, s, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
   s.keep_fragments = args.has("reference");

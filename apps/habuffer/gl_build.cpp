@@ -7,25 +7,8 @@
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
-#include "habuffer/gl/gl_fixed_arrays.h"
-#include "habuffer/gl/gl_ha_table.h"
-#include "habuffer/gl/gl_linked_lists.h"
 
 namespace habuffer::cli {
-namespace {
-
-std::unique_ptr<gl::GlTechnique> make_gl_technique(const TechniqueConfig& c, const OffsetSource& offsets,
-                                                   gl::AtomicMode mode) {
-  switch (c.technique) {
-    case Technique::Ha: return std::make_unique<gl::GlHaTable>(c.buffer, offsets, mode, gl::GlBindings{});
-    case Technique::Lists: return std::make_unique<gl::GlLinkedLists>(c, mode, gl::GlBindings{});
-    case Technique::Arrays: return std::make_unique<gl::GlFixedArrays>(c, mode, gl::GlBindings{});
-  }
-  throw std::invalid_argument("unknown technique");
-}
-
-}  // namespace
-
 TechniqueBuild build_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
   std::optional<gl::EglContext> context;
   try {
@@ -40,8 +23,8 @@ TechniqueBuild build_on_gl(const HashOptions& options, std::span<const Fragment>
   gl::GlFrameOptions frame_options;
   frame_options.policy = options.policy;
   frame_options.max_attempts = options.max_attempts;
-  gl::GlFrameDriver gpu(make_gl_technique(technique_config(options, fragments.size()), options.offsets, *mode),
-                        frame_options);
+  gl::GlFrameDriver gpu(
+      gl::make_gl_technique(technique_config(options, fragments.size()), options.offsets, *mode), frame_options);
   gl::ComputeInserter inserter(gpu);
   const auto t0 = std::chrono::steady_clock::now();
   gl::FrameReport report = inserter.insert(fragments);

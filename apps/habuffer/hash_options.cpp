@@ -1,6 +1,5 @@
 #include "hash_options.h"
 
-#include <tbb/info.h>
 
 #include <algorithm>
 #include <limits>
@@ -19,10 +18,6 @@ const std::set<std::string>& hash_valued_options() {
 const std::set<std::string>& hash_flag_options() {
   static const std::set<std::string> names{"lossless"};
   return names;
-}
-
-std::uint32_t resolved_threads(std::uint32_t requested) {
-  return requested != 0 ? requested : static_cast<std::uint32_t>(tbb::info::default_concurrency());
 }
 
 BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) {
@@ -80,6 +75,9 @@ HashOptions parse_hash_options(const Args& args, bool techniques, std::initializ
     o.insert.mode = InsertMode::Atomic;
   } else if (mode == "owner") {
     o.insert.mode = InsertMode::OwnerComputes;
+    if (o.technique.technique != Technique::Ha)
+      throw UsageError("option --insert-mode owner has no effect with --technique " + to_string(o.technique.technique) +
+                       " (the HA-buffer's own)");
   } else {
     throw UsageError("option --insert-mode: '" + mode + "' is not auto, serial, atomic or owner");
   }

@@ -34,9 +34,6 @@ TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragm
 const std::set<std::string>& hash_valued_options();
 const std::set<std::string>& hash_flag_options();
 
-// --threads 0 means every hardware thread: the count that actually runs.
-std::uint32_t resolved_threads(std::uint32_t requested);
-
 // Throws UsageError for bad values or conflicting sizes, DataError for a bad
 // offsets file. `screen` is required. With `techniques`, --technique,
 // --layers and --pool are parsed too (the command accepts them), and the

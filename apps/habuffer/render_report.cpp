@@ -63,9 +63,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   if (set.technique == Technique::Lists) json.field("pool_nodes", last.capacity);
   json.field("age_bits", set.config.age_bits).field("block", set.config.block);
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
-  const bool automatic = (set.technique == Technique::Ha && set.config.table.area() == 0) ||
-                         (set.technique == Technique::Lists && set.pool == 0);
-  json.field("table_mode", automatic ? "auto" : (set.lossless ? "lossless" : "fixed"));
+  json.field("table_mode", automatic_size(set) ? "auto" : (set.lossless ? "lossless" : "fixed"));
   counters(json, last.counters);
   json.field("opaque_rejected", last.opaque_rejected);
   if (set.path == RenderPath::Gl) json.field("slot_writes", last.slot_writes);  // counted on the GPU path only

@@ -1,7 +1,6 @@
 #include "report_json.h"
 
 #include "habuffer/ha_buffer.h"
-#include "habuffer/memory_model.h"
 
 namespace habuffer::cli {
 void write_extent(JsonWriter& json, std::string_view key, Extent e) {
@@ -31,9 +30,7 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
   json.key("age_histogram").begin_array();
   for (auto n : report.age_histogram) json.value(n);
   json.end_array();
-  TechniqueConfig model = technique_config(options, report.capacity);
-  if (technique == Technique::Arrays) model.layers = static_cast<std::uint32_t>(report.capacity / options.config.screen.area());
-  json.field("memory_bytes", report.memory_bytes).field("memory_model_bytes", memory_model_bytes(model, report.capacity));
+  json.field("memory_bytes", report.memory_bytes).field("memory_model_bytes", report.memory_model_bytes);
   json.field("bytes_per_fragment",
              report.stored > 0 ? static_cast<double>(report.memory_bytes) / static_cast<double>(report.stored) : 0.0);
   json.field("build_ms", timing.build_ms);

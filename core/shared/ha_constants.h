@@ -22,10 +22,6 @@
 #define HA_PENDING 8u
 #define HA_CUT 9u
 
-// Techniques (the GLSL module assembly defines HA_TECHNIQUE as one of them).
-#define HA_TECHNIQUE_HA 0u
-#define HA_TECHNIQUE_LISTS 1u
-#define HA_TECHNIQUE_ARRAYS 2u
 // Fixed arrays: default layers per pixel (Crassin 2010 uses 16).
 #define HA_DEFAULT_LAYERS 16u
 // The sort of lists and arrays: a pixel's entries up to this many are sorted
@@ -71,11 +67,13 @@
 #define HA_COUNTER_MERGED 9u
 #define HA_COUNTER_SORT_DONE 10u
 #define HA_GPU_COUNTER_COUNT 11u
-// Words of stripe 0 that are not sums: the linked lists' node counter (one
-// atomic add per fragment, the technique's own hot spot) and the most
-// fragments a fixed-array pixel received when some pixel overflowed.
-#define HA_COUNTER_NODES 12u
-#define HA_COUNTER_MOST_ARRIVED 13u
+// Words after the stripes, on a cache line of their own, that are not sums:
+// the linked lists' node counter (one atomic add per fragment, the
+// technique's own hot spot) and the most fragments a fixed-array pixel
+// received when some pixel overflowed.
+#define HA_COUNTER_NODES (HA_COUNTER_STRIPES * HA_COUNTER_STRIDE)
+#define HA_COUNTER_MOST_ARRIVED (HA_COUNTER_NODES + 1u)
+#define HA_COUNTER_WORDS (HA_COUNTER_NODES + HA_COUNTER_STRIDE)
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.
 #define HA_APPEND_HEADER_WORDS 4u

@@ -233,6 +233,8 @@ for t in lists arrays; do
   expect values 2 "has no effect with --technique $t" -- render --scene quads --size 8x8 --out q.png --technique $t --table 8x8
   expect values 2 "the HA-buffer's" -- render --scene quads --size 8x8 --out q.png --technique $t --heatmap age:a.png
 done
+expect values 2 "--insert-mode owner has no effect with --technique lists" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique lists --insert-mode owner
+expect values 0 "" -- demo --screen 16x16 --insert-mode serial
 expect values 2 "--layers has no effect with --technique ha" -- build-lists --in in.csv --out t.csv --screen 4x4 --layers 4
 expect values 2 "--pool has no effect with --technique arrays" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique arrays --pool 9
 expect values 2 "--layers" -- build-lists --in in.csv --out t.csv --screen 4x4 --technique arrays --layers 0

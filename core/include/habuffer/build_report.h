@@ -20,6 +20,7 @@ struct BuildReport {
   std::vector<std::uint64_t> age_histogram;  // [a] = stored records of age a, a = 0..max_age
   std::uint32_t max_age_table_max = 0;       // largest cell of M
   std::uint64_t memory_bytes = 0;
+  std::uint64_t memory_model_bytes = 0;  // memory_model.h, for the buffer as it is
 };
 
 BuildReport summarize(const FragmentBuffer& buffer, const Counters& counters);

@@ -23,6 +23,7 @@ class FixedArrays final : public FragmentBuffer {
   [[nodiscard]] Technique technique() const override { return Technique::Arrays; }
   [[nodiscard]] Extent screen() const override { return params_.screen; }
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
   [[nodiscard]] std::uint32_t layers() const { return params_.layers; }
 
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;

@@ -67,6 +67,8 @@ class FragmentBuffer {
                                                                std::uint32_t threads = 0) const = 0;
   // Bytes of every buffer the technique allocated.
   [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
+  // The configuration it holds now (sizes grown by lossless builds included).
+  [[nodiscard]] virtual TechniqueConfig technique_config() const = 0;
 };
 
 // Throws std::out_of_range naming the first fragment outside `screen`.

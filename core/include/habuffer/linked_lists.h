@@ -22,6 +22,7 @@ class LinkedLists final : public FragmentBuffer {
   [[nodiscard]] Technique technique() const override { return Technique::Lists; }
   [[nodiscard]] Extent screen() const override { return params_.screen; }
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
 
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   std::uint64_t clear() override;

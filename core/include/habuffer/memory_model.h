@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "habuffer/fragment_buffer.h"
 #include "habuffer/technique.h"
 
 namespace habuffer {
@@ -20,6 +21,8 @@ namespace habuffer {
 // slots in atomic mode emulated64 and 8 bytes of query result; and for every technique the
 // frame's tallies, parameters, capture and deferred-call buffers.
 std::uint64_t memory_model_bytes(const TechniqueConfig& config, std::uint64_t capacity);
+// The model of a container as it is (its configuration and capacity).
+std::uint64_t memory_model_bytes(const FragmentBuffer& buffer);
 
 // Seed 000's Table 1 in bytes for `fragments` stored fragments on `pixels`
 // pixels: HA-buffer V/8 + 64F/L bits (L = load), linked lists 32V + 88F bits,

@@ -14,7 +14,7 @@
 
 #include "habuffer/buffer_config.h"
 #include "habuffer/gl/gl_technique.h"
-#include "habuffer/lossless_build.h"
+#include "habuffer/lossless_build.h"  // OffsetSource
 #include "habuffer/offset_sequence.h"
 
 namespace habuffer::gl {

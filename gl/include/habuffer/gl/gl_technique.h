@@ -16,6 +16,7 @@
 #include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/glsl_sources.h"
+#include "habuffer/lossless_build.h"
 
 namespace habuffer::gl {
 
@@ -74,6 +75,12 @@ class GlTechnique {
   GlBindings bindings_;
   Extent screen_;
 };
+
+// The container of config.technique on the GPU (offsets and the clear
+// pass's tile side are the HA-buffer's; GlFrameOptions::clear_tile).
+std::unique_ptr<GlTechnique> make_gl_technique(const TechniqueConfig& config, const OffsetSource& offsets,
+                                               AtomicMode mode, const GlBindings& bindings = {},
+                                               std::uint32_t clear_tile = 0);
 
 // Throws GlError unless a buffer of `bytes` fits one shader-storage buffer
 // of this context (the message names `what` and the sizes).

@@ -98,6 +98,12 @@ struct RenderResult {
 // std::invalid_argument with the reason.
 RenderResult render_scene(const Scene& scene, const RenderSettings& settings);
 
+// Whether the technique's size is automatic in these settings (the
+// HA-buffer's table or the lists' pool; fixed arrays keep K).
+bool automatic_size(const RenderSettings& settings);
+// The attempts a frame may take: lossless or automatic sizes regather.
+std::uint32_t frame_attempts(const RenderSettings& settings);
+
 // The technique's configuration for the settings (an automatic table or
 // pool given its placeholder: the screen).
 TechniqueConfig technique_config(const RenderSettings& settings);
