@@ -35,6 +35,18 @@ Extent ResizePolicy::grown(Extent table) const {
   return g;
 }
 
+std::uint64_t ResizePolicy::next(std::uint64_t capacity, std::uint64_t used) const {
+  const double c = static_cast<double>(capacity), use = static_cast<double>(used) / c;
+  if (use > grow_at) return static_cast<std::uint64_t>(std::ceil(c * (1.0 + step)));
+  if (use < shrink_at) return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(c * (1.0 - step))));
+  return capacity;
+}
+
+std::uint64_t ResizePolicy::grown(std::uint64_t capacity, std::uint64_t needed) const {
+  const auto stepped = static_cast<std::uint64_t>(std::ceil(static_cast<double>(capacity) * (1.0 + step)));
+  return std::max({needed, stepped, capacity + 1});
+}
+
 Extent ResizePolicy::shrunk(Extent table, Extent screen) const {
   const Extent s = scaled(table, 1.0 - step);
   return {std::max(s.x, screen.x), std::max(s.y, screen.y)};

@@ -1,5 +1,6 @@
 #include "habuffer/technique.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace habuffer {
@@ -43,6 +44,26 @@ void TechniqueConfig::validate() const {
       throw std::invalid_argument(std::to_string(layers) + " layers of screen " + buffer.screen.str() +
                                   " exceed 2^32 - 1 slots");
   }
+}
+
+std::string TechniqueConfig::limit() const {
+  try {
+    validate();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TechniqueConfig TechniqueConfig::grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
+                                       std::uint32_t most_arrived) const {
+  TechniqueConfig c = *this;
+  switch (technique) {
+    case Technique::Ha: c.buffer.table = policy.grown(buffer.table_or_screen()); break;
+    case Technique::Lists: c.pool_capacity = policy.grown(pool_capacity, nodes_requested); break;
+    case Technique::Arrays: c.layers = std::max(most_arrived, layers + 1); break;
+  }
+  return c;
 }
 
 TechniqueConfig validated_as(TechniqueConfig config, Technique t) {

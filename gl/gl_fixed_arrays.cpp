@@ -58,12 +58,13 @@ void GlFixedArrays::before_gather() { zero_buffer(gpu_->counts); }
 
 PassTiming GlFixedArrays::after_gather(bool finish_timing) { return gpu_->sort->run(screen(), finish_timing); }
 
-bool GlFixedArrays::grow(const FrameReport& report, const GlFrameOptions&) {
+bool GlFixedArrays::grow(const FrameReport& report, const GlFrameOptions& options) {
   // K as large as the deepest pixel: the regather keeps every fragment.
-  const std::uint32_t next = std::max(report.most_arrived, config_.layers + 1);
-  const std::uint64_t bytes = std::uint64_t{next} * screen().area() * sizeof(glm::uvec2);
-  if (bytes > max_storage_bytes() || std::uint64_t{next} * screen().area() > UINT32_MAX) return false;
-  allocate_layers(next);
+  const TechniqueConfig next = config_.grown(options.policy, 0, report.most_arrived);
+  if (!next.limit().empty() ||
+      std::uint64_t{next.layers} * screen().area() * sizeof(glm::uvec2) > max_storage_bytes())
+    return false;
+  allocate_layers(next.layers);
   return true;
 }
 

@@ -3,7 +3,6 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
-#include <cmath>
 
 #include "gl_params.h"
 #include "habuffer/gl/gl_buffer.h"
@@ -68,17 +67,21 @@ void GlLinkedLists::bind() const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HA_BINDING_LINKS
 }
 
+std::string GlLinkedLists::pool_limit(std::uint64_t nodes) const {
+  TechniqueConfig c = config_;
+  c.pool_capacity = nodes;
+  if (std::string why = c.limit(); !why.empty()) return why;
+  if (nodes * sizeof(glm::uvec2) > max_storage_bytes())
+    return "a node pool of " + std::to_string(nodes) + " nodes exceeds this OpenGL's shader-storage buffers";
+  return {};
+}
+
 void GlLinkedLists::begin_frame(FrameReport& report, const GlFrameOptions& options) {
   if (!options.adaptive || !has_request_) return;
   // SPEC 8's rule on the pool: its use is the nodes the last frame asked for.
-  const double capacity = static_cast<double>(config_.pool_capacity);
-  const double use = static_cast<double>(last_requested_) / capacity;
-  std::uint64_t next = config_.pool_capacity;
-  if (use > options.policy.grow_at) next = static_cast<std::uint64_t>(std::ceil(capacity * (1.0 + options.policy.step)));
-  else if (use < options.policy.shrink_at)
-    next = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(capacity * (1.0 - options.policy.step))));
+  const std::uint64_t next = options.policy.next(config_.pool_capacity, last_requested_);
   if (next == config_.pool_capacity) return;
-  if (next * sizeof(glm::uvec2) > max_storage_bytes() || next >= UINT32_MAX) {
+  if (!pool_limit(next).empty()) {
     report.resize_limited = true;
     return;
   }
@@ -99,9 +102,8 @@ void GlLinkedLists::gathered(const FrameReport& report) {
 
 bool GlLinkedLists::grow(const FrameReport& report, const GlFrameOptions& options) {
   // The counter counted every node asked for: a pool of that size holds the frame.
-  const auto stepped = static_cast<std::uint64_t>(std::ceil(static_cast<double>(config_.pool_capacity) * (1.0 + options.policy.step)));
-  const std::uint64_t next = std::max(report.nodes_requested, stepped);
-  if (next * sizeof(glm::uvec2) > max_storage_bytes() || next >= UINT32_MAX) return false;
+  const std::uint64_t next = config_.grown(options.policy, report.nodes_requested, 0).pool_capacity;
+  if (!pool_limit(next).empty()) return false;
   allocate_pool(next);
   return true;
 }

@@ -20,14 +20,6 @@ std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments) {
   return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / s.policy.grow_at)));
 }
 
-std::uint64_t next_pool(const ResizePolicy& policy, std::uint64_t pool, std::uint64_t requested) {
-  const double use = static_cast<double>(requested) / static_cast<double>(pool);
-  if (use > policy.grow_at) return static_cast<std::uint64_t>(std::ceil(static_cast<double>(pool) * (1.0 + policy.step)));
-  if (use < policy.shrink_at)
-    return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(pool) * (1.0 - policy.step))));
-  return pool;
-}
-
 CpuBuilder::CpuBuilder(const RenderSettings& settings) : settings_(settings), config_(technique_config(settings)) {}
 
 void CpuBuilder::size_for(std::uint64_t fragments) {
@@ -43,7 +35,7 @@ TechniqueBuild CpuBuilder::build(std::span<const Fragment> fragments, FrameStats
       fs.resized = next != config_.buffer.table;
       config_.buffer.table = next;
     } else {
-      const std::uint64_t next = next_pool(settings_.policy, config_.pool_capacity, *previous_use_);
+      const std::uint64_t next = settings_.policy.next(config_.pool_capacity, *previous_use_);
       fs.resized = next != config_.pool_capacity;
       config_.pool_capacity = next;
     }

@@ -32,8 +32,6 @@ class CpuBuilder {
 Extent initial_table(const RenderSettings& s, std::uint64_t fragments);
 // An automatic pool's first size: the fragments at the policy's grow_at use.
 std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments);
-// The next pool by SPEC 8's rule on `requested` nodes of the last frame.
-std::uint64_t next_pool(const ResizePolicy& policy, std::uint64_t pool, std::uint64_t requested);
 
 }  // namespace habuffer
 

@@ -38,6 +38,7 @@ class CpuFrames final : public FramePath {
   void complete_frame(const gl::FrameReport&, SceneRenderer& renderer, FrameStats& fs, RenderResult& result) override {
     std::vector<Fragment> fragments = capture_.read_capture();
     last_.emplace(builder_.build(fragments, fs));
+    result.growth_limited = result.growth_limited || last_->growth_limited;
     const auto r0 = std::chrono::steady_clock::now();
     result.backgrounds = renderer.read_opaque_colour();
     result.image = Image{settings_.config.screen, last_->buffer->composite_image(result.backgrounds, settings_.threads)};

@@ -103,6 +103,7 @@ RenderResult render_fragments(std::span<const Fragment> fragments, const RenderS
   FrameStats fs;
   const auto t0 = Clock::now();
   TechniqueBuild b = builder.build(fragments, fs);
+  result.growth_limited = b.growth_limited;
   const auto r0 = Clock::now();
   result.backgrounds.assign(s.config.screen.area(), s.background);
   result.image = Image{s.config.screen, b.buffer->composite_image(result.backgrounds, s.threads)};

@@ -53,6 +53,7 @@ struct TechniqueBuild {
   std::unique_ptr<FragmentBuffer> buffer;
   Counters counters;                   // of the final attempt
   std::vector<BuildAttempt> attempts;  // every attempt, in order
+  bool growth_limited = false;         // lossless mode stopped: the next size cannot be built
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 

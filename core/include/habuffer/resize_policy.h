@@ -20,6 +20,12 @@ struct ResizePolicy {
   [[nodiscard]] Extent next(Extent table, Extent screen, std::uint64_t stored) const;
   // Area times (1 + step), aspect ratio kept, sides rounded up.
   [[nodiscard]] Extent grown(Extent table) const;
+
+  // The same rules for a capacity counted in records (the linked lists'
+  // pool), at least 1: the next frame's from the records `used` this frame,
+  // and lossless growth to at least `needed` and at least one step.
+  [[nodiscard]] std::uint64_t next(std::uint64_t capacity, std::uint64_t used) const;
+  [[nodiscard]] std::uint64_t grown(std::uint64_t capacity, std::uint64_t needed) const;
   // Area times (1 - step), aspect ratio kept, sides rounded up, at least the screen.
   [[nodiscard]] Extent shrunk(Extent table, Extent screen) const;
 };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "habuffer/buffer_config.h"
+#include "habuffer/resize_policy.h"
 
 namespace habuffer {
 
@@ -40,6 +41,15 @@ struct TechniqueConfig {
   // early cull on a technique without it, a pool or layers of 0 or beyond
   // 32-bit node and slot indices.
   void validate() const;
+  // Why this configuration cannot be built, or empty (validate's message).
+  [[nodiscard]] std::string limit() const;
+
+  // Lossless mode's next configuration after an attempt that dropped
+  // fragments: the HA-buffer's table grown by `policy`; the lists' pool to
+  // at least the nodes asked for (and one step); fixed arrays' K to the most
+  // fragments a pixel received (and at least one more).
+  [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
+                                      std::uint32_t most_arrived) const;
 };
 
 // `config` as technique `t`, validated (throws as validate()).

@@ -39,6 +39,8 @@ class GlLinkedLists final : public GlTechnique {
  private:
   struct Gpu;
   void allocate_pool(std::uint64_t nodes);
+  // Why a pool of `nodes` cannot be allocated here, or empty.
+  [[nodiscard]] std::string pool_limit(std::uint64_t nodes) const;
 
   TechniqueConfig config_;
   std::uint64_t last_requested_ = 0;
