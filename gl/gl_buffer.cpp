@@ -39,4 +39,6 @@ void delete_buffer(unsigned& buffer) {
   buffer = 0;
 }
 
+void bind_at(unsigned target, unsigned point, unsigned buffer) { glBindBuffersBase(target, point, 1, &buffer); }
+
 }  // namespace habuffer::gl

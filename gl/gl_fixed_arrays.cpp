@@ -50,8 +50,8 @@ void GlFixedArrays::write_params(GlParams& p) const {
 }
 
 void GlFixedArrays::bind() const {
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->counts);    // HA_BINDING_COUNTS
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->layers);  // HA_BINDING_LAYERS
+  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->counts);    // HA_BINDING_COUNTS
+  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->layers);  // HA_BINDING_LAYERS
 }
 
 void GlFixedArrays::before_gather() { zero_buffer(gpu_->counts); }

@@ -129,31 +129,28 @@ void GlFrameDriver::reset_frame_state() const {
 }
 
 void GlFrameDriver::bind() const {
-  // glBindBufferBase also sets the generic binding of its target: keep the
-  // host's, so a host that updates "its" GL_UNIFORM_BUFFER or
-  // GL_SHADER_STORAGE_BUFFER inside the gather writes its own buffer.
-  GLint storage_generic = 0, uniform_generic = 0;
-  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_generic);
-  glGetIntegerv(GL_UNIFORM_BUFFER_BINDING, &uniform_generic);
+  // bind_at leaves the generic bindings the host's, so a host that updates
+  // "its" GL_UNIFORM_BUFFER or GL_SHADER_STORAGE_BUFFER inside the gather
+  // writes its own buffer.
   technique_->bind();
   const GlBindings& b = bindings();
   for (const auto& [point, buffer] : {std::pair{b.counters, gpu_->counters}, std::pair{b.capture, gpu_->capture},
                                       std::pair{b.deferred, gpu_->deferred[0]}})
-    if (buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buffer);
-  glBindBufferBase(GL_UNIFORM_BUFFER, b.params, gpu_->params);
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(storage_generic));
-  glBindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(uniform_generic));
+    if (buffer != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, buffer);
+  bind_at(GL_UNIFORM_BUFFER, b.params, gpu_->params);
 }
 
 FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
   const GlStateGuard guard(bindings());
   FrameReport report;
   report.index = frames_++;
-  {
+  if (technique_->draws_at_frame_start()) {
     const GlStateGuard begin_guard(bindings());  // the gather gets the host's state back
     write_params();
     bind();
     technique_->begin_frame(report, options_);
+  } else {
+    technique_->begin_frame(report, options_);  // sizing only, no GL state touched
   }
   for (;;) {
     run_gather(gather, calls, report);
@@ -263,8 +260,8 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
     const int out = 1 - in;
     zero_range(gpu_->deferred[out], 0, kAppendHeaderBytes);
     glUseProgram(gpu_->resume->id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().stream, gpu_->deferred[in]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, bindings().deferred, gpu_->deferred[out]);
+    bind_at(GL_SHADER_STORAGE_BUFFER, bindings().stream, gpu_->deferred[in]);
+    bind_at(GL_SHADER_STORAGE_BUFFER, bindings().deferred, gpu_->deferred[out]);
     gpu_->resume->set("ha_resume_count", static_cast<unsigned>(count));
     dispatch_grid(count, 64);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

@@ -104,7 +104,7 @@ void GlHaTable::bind() const {
   const GlBindings& b = bindings();
   for (const auto& [point, buffer] : {std::pair{b.table, gpu_->table}, std::pair{b.max_age, gpu_->max_age},
                                       std::pair{b.offsets, gpu_->offsets}, std::pair{b.locks, gpu_->locks}})
-    if (buffer != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, point, buffer);
+    if (buffer != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, buffer);
 }
 
 void GlHaTable::resize(Extent table) {

@@ -62,9 +62,9 @@ void GlLinkedLists::write_params(GlParams& p) const {
 
 void GlLinkedLists::bind() const {
   const GlBindings& b = bindings();
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.table, gpu_->heads);   // HA_BINDING_HEADS
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.max_age, gpu_->nodes);  // HA_BINDING_NODES
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HA_BINDING_LINKS
+  bind_at(GL_SHADER_STORAGE_BUFFER, b.table, gpu_->heads);   // HA_BINDING_HEADS
+  bind_at(GL_SHADER_STORAGE_BUFFER, b.max_age, gpu_->nodes);  // HA_BINDING_NODES
+  bind_at(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HA_BINDING_LINKS
 }
 
 std::string GlLinkedLists::pool_limit(std::uint64_t nodes) const {

@@ -22,9 +22,9 @@ const char* mode_extensions(AtomicMode mode) {
 // and its split into (low, high) 32-bit words for deferred calls.
 const char* word_defines(AtomicMode mode) {
   if (mode == AtomicMode::Native32)
-    return "#define ha_word uint\n#define HA_WORD_BITS 32\nconst uint ha_word_bits = 32u;\nconst uint ha_payload_bits = 0u;\n"
+    return "#define ha_word uint\nconst uint ha_word_bits = 32u;\nconst uint ha_payload_bits = 0u;\n"
            "#define ha_word_split(r) uvec2(r, 0u)\n#define ha_word_join(v) (v).x\n";
-  return "#define ha_word uint64_t\n#define HA_WORD_BITS 64\nconst uint ha_word_bits = 64u;\nconst uint ha_payload_bits = 32u;\n"
+  return "#define ha_word uint64_t\nconst uint ha_word_bits = 64u;\nconst uint ha_payload_bits = 32u;\n"
          "#define ha_word_split(r) unpackUint2x32(r)\n#define ha_word_join(v) packUint2x32(v)\n";
 }
 
@@ -87,19 +87,20 @@ std::string technique_parts(Technique technique, AtomicMode mode) {
   };
   switch (technique) {
     case Technique::Ha:
-      s += "#define HA_TECHNIQUE_COMPOSITE ha_composite\n";
-      for (const char* part : {kHaEnv, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaBlend, kHaTraverse, kHaEntry})
+      s += "#define HA_TECHNIQUE_CALL ha_call\n#define HA_TECHNIQUE_COMPOSITE ha_composite\n";
+      for (const char* part : {kHaEnv, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaBlend, kHaTraverse, kHaEntry,
+                               kInsertEntry})
         add(part);
       break;
     case Technique::Lists:
-      s += "#define HA_TECHNIQUE_INSERT ll_insert_fragment\n#define HA_TECHNIQUE_SORT ll_sort_pixel\n"
+      s += "#define HA_TECHNIQUE_CALL ll_insert_fragment\n#define HA_TECHNIQUE_SORT ll_sort_pixel\n"
            "#define HA_TECHNIQUE_COMPOSITE ll_composite\n";
-      for (const char* part : {kListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kSortedEntry}) add(part);
+      for (const char* part : {kListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kInsertEntry}) add(part);
       break;
     case Technique::Arrays:
-      s += "#define HA_TECHNIQUE_INSERT fa_insert_fragment\n#define HA_TECHNIQUE_SORT fa_sort_pixel\n"
+      s += "#define HA_TECHNIQUE_CALL fa_insert_fragment\n#define HA_TECHNIQUE_SORT fa_sort_pixel\n"
            "#define HA_TECHNIQUE_COMPOSITE fa_composite\n";
-      for (const char* part : {kArraysEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaArrays, kSortedEntry}) add(part);
+      for (const char* part : {kArraysEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaArrays, kInsertEntry}) add(part);
       break;
   }
   return s;

@@ -10,9 +10,8 @@
 // again, or HA_CUT once it has been busy too long; always 0 where atomics are
 // native),
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
-// ha_cull_tau (0 = early cull off), uint ha_slot_high(ha_index s) (the
-// slot's high 32 bits, the whole slot for L32, by one 32-bit load: never a
-// mix of two values), and HA_INOUT(T) (GLSL: inout T; C++: T&).
+// ha_cull_tau (0 = early cull off), ha_word ha_load_slot(ha_index s) (a
+// plain read), and HA_INOUT(T) (GLSL: inout T; C++: T&).
 
 // The state of one insert call between probes.
 struct HaCarry {
@@ -46,6 +45,11 @@ uint ha_insert_limit(HaCarry c) {
 // again, carry unchanged, when an emulated atomic found its slot busy),
 // HA_CUT when that atomic gave up (carry unchanged: the probe is made when the
 // call resumes), else the HA_* outcome of the whole call.
+// The slot's high 32 bits (the whole slot for L32). A 64-bit slot read
+// while another invocation writes it may mix halves, but its high half is
+// one value the slot held, which is all the comparison below uses.
+uint ha_slot_high(ha_index s) { return uint(ha_load_slot(s) >> (ha_word_bits - 32u)); }
+
 // Whether the slot is known to hold a larger record than the carried one
 // without an atomic: slots only grow during a gather, so a high word read
 // above the carried record's belongs to a smaller value than the slot's

@@ -1,8 +1,8 @@
 // Fixed arrays' environment on the GPU (core/shared/ha_arrays.glsl): the
 // per-pixel counters and the layers; the largest overflow goes to one word
 // of the counters buffer.
-layout(std430, binding = HA_BINDING_COUNTS) coherent buffer HaCounts { uint ha_counts[]; };
-layout(std430, binding = HA_BINDING_LAYERS) coherent buffer HaLayers { uvec2 ha_layer_entries[]; };
+layout(std430, binding = HA_BINDING_COUNTS) buffer HaCounts { uint ha_counts[]; };
+layout(std430, binding = HA_BINDING_LAYERS) buffer HaLayers { uvec2 ha_layer_entries[]; };
 
 uint fa_count_add(uint pixel) { return atomicAdd(ha_counts[pixel], 1u); }
 uint fa_load_count(uint pixel) { return ha_counts[pixel]; }

@@ -28,6 +28,7 @@ void ha_capture(uvec2 pixel, float depth, uint rgba) {
 // group) add to different cache lines; the host sums the stripes.
 uint ha_counter_stripe(uvec2 p) { return (p.x + p.y * 5u) & (HA_COUNTER_STRIPES - 1u); }
 
-void ha_count_outcome(uvec2 pixel, uint outcome) {
-  atomicAdd(ha_counters[ha_counter_stripe(pixel) * HA_COUNTER_STRIDE + outcome], 1u);
+// Adds n to counter `counter` (an outcome or HA_COUNTER_*) in the stripe of `pixel`.
+void ha_counter_add(uvec2 pixel, uint counter, uint n) {
+  atomicAdd(ha_counters[ha_counter_stripe(pixel) * HA_COUNTER_STRIDE + counter], n);
 }

@@ -1,6 +1,5 @@
-// The HA-buffer's insertion entry on the GPU, for host fragment shaders and
-// our compute entry: the shared insert (ha_insert_run) plus the outcome
-// tallies and capture of entry_common.glsl, and the deferral of calls cut
+// The HA-buffer's part of the insertion entry on the GPU: the shared insert
+// (ha_insert_run) as insert_entry.glsl's call, and the deferral of calls cut
 // short: their carried state goes to a buffer that the frame's resume pass
 // (resume.comp.glsl) runs on until every call has ended, so contention and
 // the driver's loop budget lose nothing.
@@ -38,43 +37,25 @@ HaCarry ha_carry_from(HaDeferred d) {
   return c;
 }
 
-// Ends a call (or one resumption of it): a call cut short is deferred and
-// returns HA_PENDING (its outcome is counted when the resume pass ends it);
-// any other outcome is tallied once, in the stripe of `pixel`.
-uint ha_end_call(uvec2 pixel, HaCarry c, uint outcome) {
-  uint base = ha_counter_stripe(pixel) * HA_COUNTER_STRIDE;
-  if (ha_count_writes != 0u && ha_call_writes != 0u)
-    atomicAdd(ha_counters[base + HA_COUNTER_SLOT_WRITES], ha_call_writes);
+// Ends one run of a call (the call itself or a resumption): adds its slot
+// writes, and defers a call cut short, returning HA_PENDING (its outcome is
+// counted when the resume pass ends it); any other outcome is returned for
+// the caller to count.
+uint ha_end_run(uvec2 pixel, HaCarry c, uint outcome) {
+  if (ha_count_writes != 0u && ha_call_writes != 0u) ha_counter_add(pixel, HA_COUNTER_SLOT_WRITES, ha_call_writes);
   if (outcome == HA_CUT) {
     ha_defer(c);
     return HA_PENDING;
   }
-  atomicAdd(ha_counters[base + outcome], 1u);
   return outcome;
 }
 
-// Inserts one fragment and counts its outcome. A pixel outside the screen
-// cannot be inserted (its max-age cell does not exist): it counts as invalid
-// and is not captured (a replay could not insert it either). Returns the
-// outcome, or HA_PENDING for a call cut short and deferred to the resume pass.
-uint ha_insert(uvec2 pixel, float depth, uint rgba) {
-#ifdef HA_STAGE_FRAGMENT
-  // Helper invocations' stores and atomics have no effect: skip the work.
-  if (gl_HelperInvocation) return HA_INVALID;
-#endif
-  HaCarry c;
-  uint outcome = HA_INVALID;
+// The HA-buffer's insert call for insert_entry.glsl's ha_insert: its outcome,
+// or HA_PENDING for a call cut short and deferred to the resume pass.
+uint ha_call(uvec2 pixel, float depth, uint rgba) {
   ha_call_writes = 0u;
-  if (all(lessThan(pixel, ha_screen_size))) {
-    if (ha_capture_capacity > 0u) ha_capture(pixel, depth, rgba);
-    if (ha_capture_only != 0u) return HA_INVALID;
-    if (ha_depth_valid(depth)) {
-      c = ha_carry_begin(pixel, ha_depth_code(depth), rgba);
-      outcome = ha_insert_run(c);
-    }
-  }
-  return ha_end_call(pixel, c, outcome);
+  if (!ha_depth_valid(depth)) return HA_INVALID;
+  HaCarry c = ha_carry_begin(pixel, ha_depth_code(depth), rgba);
+  uint outcome = ha_insert_run(c);
+  return ha_end_run(pixel, c, outcome);
 }
-
-// Depth-only form (L32 records carry no payload).
-uint ha_insert(uvec2 pixel, float depth) { return ha_insert(pixel, depth, 0u); }

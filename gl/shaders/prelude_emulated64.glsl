@@ -4,11 +4,7 @@
 // enables GL_ARB_gpu_shader_int64).
 layout(std430, binding = HA_BINDING_TABLE) coherent buffer HaTable { uint64_t ha_table[]; };
 layout(std430, binding = HA_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
-// The same table as 32-bit words (little-endian: word 2s + 1 is slot s's
-// high half), for the one-load check of ha_slot_high.
-layout(std430, binding = HA_BINDING_TABLE) coherent buffer HaTableWords { uint ha_table_words[]; };
 
-uint ha_slot_high(ha_index s) { return ha_table_words[2u * s + 1u]; }
 
 // One attempt at the slot's lock; on success the max is done and `old` set.
 // The lock is taken and released inside this one call, so lanes of one SIMD

@@ -20,5 +20,6 @@ void main() {
   // Two statements: arguments are evaluated left to right, so one call would
   // pass the carry as it was before the run.
   uint outcome = ha_insert_run(c);
-  ha_end_call(c.p, c, outcome);
+  outcome = ha_end_run(c.p, c, outcome);
+  if (outcome != HA_PENDING) ha_counter_add(c.p, outcome, 1u);
 }

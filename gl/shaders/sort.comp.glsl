@@ -9,8 +9,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(p, ha_screen_size))) return;
-  uint base = ha_counter_stripe(p) * HA_COUNTER_STRIDE;
   uint merged = HA_TECHNIQUE_SORT(p);
-  if (merged != 0u) atomicAdd(ha_counters[base + HA_COUNTER_MERGED], merged);
-  atomicAdd(ha_counters[base + HA_COUNTER_SORT_DONE], 1u);
+  if (merged != 0u) ha_counter_add(p, HA_COUNTER_MERGED, merged);
+  ha_counter_add(p, HA_COUNTER_SORT_DONE, 1u);
 }

@@ -92,8 +92,6 @@ class HashKernel {
     }
   }
 
-  uint ha_slot_high(ha_index s) const { return static_cast<uint>(ha_load_slot(s) >> (ha_word_bits - 32)); }
-
   Word ha_load_slot(ha_index s) const {
     if constexpr (Concurrent) return std::atomic_ref<Word>(table_[s]).load(std::memory_order_relaxed);
     return table_[s];

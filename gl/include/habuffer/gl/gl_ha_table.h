@@ -45,6 +45,7 @@ class GlHaTable final : public GlTechnique {
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport& report, const GlFrameOptions& options) override;
+  [[nodiscard]] bool draws_at_frame_start() const override { return holds_frame_; }  // the clear pass
   void before_gather() override;
   void reset() override;
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;

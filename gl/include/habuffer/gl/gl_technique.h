@@ -44,6 +44,9 @@ class GlTechnique {
   // bound: count and empty what the previous frame left where the technique
   // does so (the HA-buffer's clear pass), and adapt the size (SPEC 8).
   virtual void begin_frame(FrameReport& report, const GlFrameOptions& options) = 0;
+  // Whether begin_frame will run a GL pass (the driver then guards the
+  // host's state and binds every buffer first).
+  [[nodiscard]] virtual bool draws_at_frame_start() const { return false; }
   // Right before every gather, the frame's first and its regathers.
   virtual void before_gather() = 0;
   // Empties what a gather inserted, for a regather of the same frame.

@@ -29,7 +29,7 @@ extern const char* const kHaEnv;
 extern const char* const kListsEnv;
 extern const char* const kArraysEnv;
 extern const char* const kSortedEnv;
-extern const char* const kSortedEntry;
+extern const char* const kInsertEntry;
 extern const char* const kSortCompute;
 extern const char* const kPreludeNative;
 extern const char* const kPreludeEmulated64;

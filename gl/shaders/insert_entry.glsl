@@ -1,0 +1,24 @@
+// The insertion entry of every technique on the GPU, for host fragment
+// shaders and our compute entry: HA_TECHNIQUE_CALL (the module assembly
+// names the technique's insert call) plus the outcome tallies (SPEC
+// invariant 1 on the GPU) and the capture of entry_common.glsl. A pixel
+// outside the screen cannot be inserted: it counts as invalid and is not
+// captured (a replay could not insert it either). Returns the outcome, or
+// HA_PENDING for a call deferred to the resume pass (counted there).
+uint ha_insert(uvec2 pixel, float depth, uint rgba) {
+#ifdef HA_STAGE_FRAGMENT
+  // Helper invocations' stores and atomics have no effect: skip the work.
+  if (gl_HelperInvocation) return HA_INVALID;
+#endif
+  uint outcome = HA_INVALID;
+  if (all(lessThan(pixel, ha_screen_size))) {
+    if (ha_capture_capacity > 0u) ha_capture(pixel, depth, rgba);
+    if (ha_capture_only != 0u) return HA_INVALID;
+    outcome = HA_TECHNIQUE_CALL(pixel, depth, rgba);
+  }
+  if (outcome != HA_PENDING) ha_counter_add(pixel, outcome, 1u);
+  return outcome;
+}
+
+// Depth-only form (L32 records carry no payload).
+uint ha_insert(uvec2 pixel, float depth) { return ha_insert(pixel, depth, 0u); }
