@@ -11,7 +11,7 @@
 #include "habuffer/hash_kernel.h"
 #include "habuffer/slot_storage.h"
 #include "habuffer/owner_computes.h"
-#include "habuffer/parallel.h"
+#include "technique_parallel.h"
 
 namespace habuffer {
 namespace {
@@ -27,11 +27,6 @@ KernelParams make_params(const BufferConfig& c, const MaxAgeTable& m) {
   p.cull_tau = c.early_cull_tau;
   return p;
 }
-
-// One cache line per work unit's counters, so threads never share one.
-struct alignas(64) PaddedCounters {
-  Counters c;
-};
 
 }  // namespace
 
@@ -68,13 +63,21 @@ struct HaBuffer::Impl {
     return const_cast<Impl*>(this)->with_kernel<false>(std::forward<F>(f));
   }
 
-  template <class Kernel>
-  static void insert_range(Kernel& k, std::span<const Fragment> frags, Counters& counters) {
-    // Outcomes are tallied in a local array: counters in memory could alias
-    // the table's words and force a store per fragment.
-    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
-    for (const Fragment& f : frags) ++tally[k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
-    counters.add_tally(tally);
+  // Contiguous slices of the stream, one per thread, all sharing the table
+  // through atomics (one slice and plain stores for one thread).
+  Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads) {
+    return std::visit(
+        [&](auto& st) {
+          using Word = std::remove_pointer_t<decltype(st.data())>;
+          return detail::insert_slices(
+              frags, threads,
+              [&](auto concurrent) {
+                return HashKernel<Word, decltype(concurrent)::value>(params, offsets.values().data(), st.data(),
+                                                                     max_age.data());
+              },
+              [](auto& k, const Fragment& f) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+        },
+        storage);
   }
 
   Counters insert_owner_computes(std::span<const Fragment> frags, const InsertOptions& options,
@@ -87,20 +90,6 @@ struct HaBuffer::Impl {
         storage);
   }
 
-  // Contiguous slices of the stream, one per thread, all sharing the table.
-  Counters insert_atomic(std::span<const Fragment> frags, std::uint32_t threads) {
-    std::vector<PaddedCounters> slice_counters(threads);
-    with_kernel<true>([&](auto& k) {
-      fork_join(threads, [&](std::uint32_t t) {
-        auto kernel = k;
-        const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
-        insert_range(kernel, frags.subspan(begin, end - begin), slice_counters[t].c);
-      });
-    });
-    Counters total;
-    for (const auto& c : slice_counters) total += c.c;
-    return total;
-  }
 };
 
 HaBuffer::HaBuffer(const BufferConfig& config, OffsetSequence offsets) {
@@ -131,18 +120,12 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
   const std::uint32_t threads = resolve_threads(options.threads);
   InsertMode mode = options.mode;
   if (mode == InsertMode::Auto) mode = threads == 1 ? InsertMode::Serial : InsertMode::Atomic;
-  if (mode == InsertMode::Serial) {
-    if (threads != 1) throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
-    Counters counters;
-    impl_->with_kernel<false>([&](auto& k) { Impl::insert_range(k, fragments, counters); });
-    return counters;
-  }
+  if (mode == InsertMode::Serial && threads != 1)
+    throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
+  if (mode != InsertMode::OwnerComputes) return impl_->insert_slices(fragments, threads);
   if (options.band_rows == 0) throw std::invalid_argument("band_rows must be at least 1");
   tbb::task_arena arena(static_cast<int>(threads));
-  return arena.execute([&] {
-    return mode == InsertMode::Atomic ? impl_->insert_atomic(fragments, threads)
-                                      : impl_->insert_owner_computes(fragments, options, threads);
-  });
+  return arena.execute([&] { return impl_->insert_owner_computes(fragments, options, threads); });
 }
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {
@@ -206,34 +189,20 @@ glm::vec4 HaBuffer::composite(std::uint32_t x, std::uint32_t y, glm::vec3 backgr
 }
 
 std::vector<glm::vec4> HaBuffer::composite_image(glm::vec3 background, std::uint32_t threads) const {
-  return composite_rows(threads, [&](std::uint64_t) { return background; });
+  return impl_->with_kernel([&](auto& k) {
+    return detail::composite_pixels(
+        screen(), threads, [&] { return k; },
+        [](auto& kernel, glm::uvec2 p, glm::vec3 bg) { return kernel.ha_composite(p, bg); },
+        [&](std::size_t) { return background; });
+  });
 }
 
 std::vector<glm::vec4> HaBuffer::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
-  if (backgrounds.size() != screen().area())
-    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
-                                screen().str());
-  return composite_rows(threads, [&](std::uint64_t p) { return backgrounds[p]; });
-}
-
-template <class Background>
-std::vector<glm::vec4> HaBuffer::composite_rows(std::uint32_t threads, Background background) const {
-  const Extent v = screen();
-  std::vector<glm::vec4> image(v.area());
-  const std::uint32_t parts = resolve_threads(threads);
-  tbb::task_arena arena(static_cast<int>(parts));
-  arena.execute([&] {
-    fork_join(parts, [&](std::uint32_t part) {
-      impl_->with_kernel([&](auto& k) {
-        for (std::uint32_t y = v.y * part / parts; y < v.y * (part + 1) / parts; ++y)
-          for (std::uint32_t x = 0; x < v.x; ++x) {
-            const std::uint64_t p = x + std::uint64_t{y} * v.x;
-            image[p] = k.ha_composite(glm::uvec2(x, y), background(p));
-          }
-      });
-    });
+  return impl_->with_kernel([&](auto& k) {
+    return detail::composite_image(
+        screen(), backgrounds, threads, [&] { return k; },
+        [](auto& kernel, glm::uvec2 p, glm::vec3 bg) { return kernel.ha_composite(p, bg); });
   });
-  return image;
 }
 
 std::vector<std::uint64_t> HaBuffer::age_histogram() const {

@@ -96,24 +96,31 @@ std::uint64_t sort_every_pixel(Extent screen, std::uint32_t threads, MakeKernel 
   return total;
 }
 
-// Each pixel composited over its own background by `make_kernel()`'s
-// composite(kernel, pixel, background), bands of rows in parallel.
-template <class MakeKernel, class Composite>
-std::vector<glm::vec4> composite_image(Extent screen, std::span<const glm::vec3> backgrounds, std::uint32_t threads,
-                                       MakeKernel make_kernel, Composite composite) {
-  if (backgrounds.size() != screen.area())
-    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
-                                screen.str());
+// Each pixel p composited over background(p) (row-major index) by
+// `make_kernel()`'s composite(kernel, pixel, background), bands of rows in parallel.
+template <class MakeKernel, class Composite, class Background>
+std::vector<glm::vec4> composite_pixels(Extent screen, std::uint32_t threads, MakeKernel make_kernel,
+                                        Composite composite, Background background) {
   std::vector<glm::vec4> image(screen.area());
   for_row_bands(screen, resolve_threads(threads), [&](std::uint32_t, std::uint32_t y0, std::uint32_t y1) {
     auto k = make_kernel();
     for (std::uint32_t y = y0; y < y1; ++y)
       for (std::uint32_t x = 0; x < screen.x; ++x) {
         const std::size_t p = x + std::size_t{y} * screen.x;
-        image[p] = composite(k, glm::uvec2(x, y), backgrounds[p]);
+        image[p] = composite(k, glm::uvec2(x, y), background(p));
       }
   });
   return image;
+}
+
+// The same over one background per pixel (throws for a wrong count).
+template <class MakeKernel, class Composite>
+std::vector<glm::vec4> composite_image(Extent screen, std::span<const glm::vec3> backgrounds, std::uint32_t threads,
+                                       MakeKernel make_kernel, Composite composite) {
+  if (backgrounds.size() != screen.area())
+    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
+                                screen.str());
+  return composite_pixels(screen, threads, make_kernel, composite, [&](std::size_t p) { return backgrounds[p]; });
 }
 
 }  // namespace habuffer::detail

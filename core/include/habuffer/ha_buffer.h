@@ -76,8 +76,6 @@ class HaBuffer final : public FragmentBuffer {
   [[nodiscard]] TechniqueConfig technique_config() const override { return {Technique::Ha, config(), 0, HA_DEFAULT_LAYERS}; }
 
  private:
-  template <class Background>
-  std::vector<glm::vec4> composite_rows(std::uint32_t threads, Background background) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
