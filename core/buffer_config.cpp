@@ -25,6 +25,8 @@ void BufferConfig::validate() const {
     throw std::invalid_argument("early-cull threshold " + std::to_string(early_cull_tau) + " outside (0, 1]");
   if (early_cull_tau > 0.0f && layout != Layout::L64)
     throw std::invalid_argument("early cull needs the L64 layout (it reads opacity from the colour data)");
+  if (saturation && early_cull_tau <= 0.0f)
+    throw std::invalid_argument("saturation depth needs early cull (a threshold in (0, 1])");
 }
 
 }  // namespace habuffer

@@ -15,6 +15,9 @@ void Counters::count(std::uint32_t outcome) {
     case HA_INVALID: ++invalid; break;
     case HA_DROPPED_POOL: ++dropped_pool; break;
     case HA_DROPPED_LAYERS: ++dropped_layers; break;
+    case HA_SATURATED: ++saturated_rejected; break;
+    case HA_OCCUPANCY_REJECTED: ++occupancy_rejected; break;
+    case HA_BLENDED: ++blended; break;
     default: break;
   }
 }
@@ -28,6 +31,9 @@ void Counters::add_tally(const std::uint64_t* tally) {
   invalid += tally[HA_INVALID];
   dropped_pool += tally[HA_DROPPED_POOL];
   dropped_layers += tally[HA_DROPPED_LAYERS];
+  saturated_rejected += tally[HA_SATURATED];
+  occupancy_rejected += tally[HA_OCCUPANCY_REJECTED];
+  blended += tally[HA_BLENDED];
 }
 
 Counters& Counters::operator+=(const Counters& o) {
@@ -39,6 +45,9 @@ Counters& Counters::operator+=(const Counters& o) {
   failed_iter += o.failed_iter;
   dropped_pool += o.dropped_pool;
   dropped_layers += o.dropped_layers;
+  saturated_rejected += o.saturated_rejected;
+  occupancy_rejected += o.occupancy_rejected;
+  blended += o.blended;
   return *this;
 }
 

@@ -25,6 +25,7 @@ KernelParams make_params(const BufferConfig& c, const MaxAgeTable& m) {
   p.max_age_cells_x = m.cells().x;
   p.iter_limit = c.iter_limit;
   p.cull_tau = c.early_cull_tau;
+  p.screen = c.screen;
   return p;
 }
 
@@ -36,12 +37,17 @@ struct HaBuffer::Impl {
   OffsetSequence offsets;
   MaxAgeTable max_age;
   KernelParams params;
+  std::vector<std::uint32_t> saturation;  // early cull with saturation: a code per pixel
   std::variant<SlotStorage<std::uint64_t>, SlotStorage<std::uint32_t>> storage;
 
   Impl(const BufferConfig& c, OffsetSequence o)
       : config(c), layout(c.record_layout()), offsets(std::move(o)), max_age(c.screen, c.block) {
     config.table = c.table_or_screen();
     params = make_params(config, max_age);
+    if (config.saturation) {
+      saturation.assign(config.screen.area(), 0);
+      params.saturation = saturation.data();
+    }
     if (layout.layout() == Layout::L64)
       storage = SlotStorage<std::uint64_t>(config.table.area());
     else
@@ -124,6 +130,8 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
     throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
   if (mode != InsertMode::OwnerComputes) return impl_->insert_slices(fragments, threads);
   if (options.band_rows == 0) throw std::invalid_argument("band_rows must be at least 1");
+  if (impl_->config.saturation)
+    throw std::invalid_argument("owner-computes insertion has no saturation depth (its owners share no atomics)");
   tbb::task_arena arena(static_cast<int>(threads));
   return arena.execute([&] { return impl_->insert_owner_computes(fragments, options, threads); });
 }
@@ -135,6 +143,7 @@ std::uint32_t HaBuffer::insert_one(const Fragment& f) {
 
 std::uint64_t HaBuffer::clear() {
   impl_->max_age.clear();
+  std::fill(impl_->saturation.begin(), impl_->saturation.end(), 0u);
   return std::visit([](auto& s) { return s.clear_and_count(); }, impl_->storage);
 }
 
@@ -217,7 +226,7 @@ std::vector<std::uint64_t> HaBuffer::age_histogram() const {
 
 std::uint64_t HaBuffer::memory_bytes() const {
   const std::uint64_t table = std::visit([](const auto& s) { return s.bytes(); }, impl_->storage);
-  return table + impl_->max_age.bytes() + impl_->offsets.size() * sizeof(glm::uvec2);
+  return table + impl_->max_age.bytes() + impl_->offsets.size() * sizeof(glm::uvec2) + impl_->saturation.size() * 4;
 }
 
 }  // namespace habuffer

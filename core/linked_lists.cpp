@@ -8,22 +8,37 @@
 #include "technique_parallel.h"
 
 namespace habuffer {
+namespace {
+Technique lists_technique(const TechniqueConfig& c) {
+  return c.technique == Technique::SortedLists ? Technique::SortedLists : Technique::Lists;
+}
+}  // namespace
+
 LinkedLists::LinkedLists(const TechniqueConfig& config)
-    : config_(validated_as(config, Technique::Lists)),
+    : config_(validated_as(config, lists_technique(config))),
       params_(make_technique_params(config_)),
       heads_(config_.buffer.screen.area(), 0),
       entries_(config_.pool_capacity),
-      next_(config_.pool_capacity, 0) {}
+      next_(config_.pool_capacity, 0),
+      saturation_(config_.buffer.saturation ? config_.buffer.screen.area() : 0, 0) {}
 
 Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, screen());
-  const std::uint32_t threads = detail::insert_threads(options, Technique::Lists);
+  const std::uint32_t threads = detail::insert_threads(options, technique());
   if (requested_ + fragments.size() > UINT32_MAX)
     throw std::invalid_argument("linked lists count nodes in 32 bits: " + std::to_string(requested_ + fragments.size()) +
                                 " fragments since the last clear are too many");
-  Counters c = detail::insert_slices(
-      fragments, threads, [&](auto concurrent) { return ListsKernel<decltype(concurrent)::value>(params_, buffers()); },
-      [](auto& k, const Fragment& f) { return k.ll_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+  const auto make = [&](auto concurrent) { return ListsKernel<decltype(concurrent)::value>(params_, buffers()); };
+  if (sorted_on_insert()) {
+    Counters c = detail::insert_slices(fragments, threads, make, [](auto& k, const Fragment& f) {
+      return k.sl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+    });
+    requested_ = counter_;
+    return c;
+  }
+  Counters c = detail::insert_slices(fragments, threads, make, [](auto& k, const Fragment& f) {
+    return k.ll_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+  });
   requested_ = counter_;
   // Sort every pixel's list (new nodes were prepended), merging identical entries.
   c.merge_duplicates(detail::sort_every_pixel(
@@ -35,12 +50,13 @@ Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOp
 ListsBuffers LinkedLists::buffers() const {
   // The kernel's read-only uses (length, composite) never write through these.
   auto* self = const_cast<LinkedLists*>(this);
-  return {self->heads_.data(), self->entries_.data(), self->next_.data(), &self->counter_};
+  return {self->heads_.data(), self->entries_.data(), self->next_.data(), &self->counter_, self->saturation_.data()};
 }
 
 std::uint64_t LinkedLists::clear() {
   const std::uint64_t held = count_stored();
   std::fill(heads_.begin(), heads_.end(), 0u);
+  std::fill(saturation_.begin(), saturation_.end(), 0u);
   counter_ = 0;
   requested_ = 0;
   return held;
@@ -70,7 +86,8 @@ std::vector<glm::vec4> LinkedLists::composite_image(std::span<const glm::vec3> b
 }
 
 std::uint64_t LinkedLists::memory_bytes() const {
-  return heads_.size() * 4 + entries_.size() * sizeof(glm::uvec2) + next_.size() * 4 + sizeof counter_;
+  return heads_.size() * 4 + entries_.size() * sizeof(glm::uvec2) + next_.size() * 4 + saturation_.size() * 4 +
+         sizeof counter_;
 }
 
 void LinkedLists::import_state(std::span<const std::uint32_t> heads, std::span<const glm::uvec2> entries,

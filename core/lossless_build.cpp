@@ -5,6 +5,8 @@
 
 #include "habuffer/fixed_arrays.h"
 #include "habuffer/linked_lists.h"
+#include "habuffer/kbuffer.h"
+#include "habuffer/blended_image.h"
 
 namespace habuffer {
 
@@ -15,7 +17,7 @@ OffsetSequence OffsetSource::make(Extent table, std::uint32_t count) const {
 
 BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::span<const Fragment> fragments,
                   const InsertOptions& options, const ResizePolicy& policy, std::uint32_t max_attempts) {
-  TechniqueBuild b = build_technique({Technique::Ha, config, 0, HA_DEFAULT_LAYERS}, offsets, fragments, options, policy,
+  TechniqueBuild b = build_technique(ha_technique_config(config), offsets, fragments, options, policy,
                                      max_attempts);
   return BuildResult{std::move(static_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts)};
 }
@@ -26,8 +28,12 @@ std::unique_ptr<FragmentBuffer> make_fragment_buffer(const TechniqueConfig& conf
       const Extent table = config.buffer.table_or_screen();
       return std::make_unique<HaBuffer>(config.buffer, offsets.make(table, config.buffer.record_layout().max_age()));
     }
-    case Technique::Lists: return std::make_unique<LinkedLists>(config);
+    case Technique::Lists:
+    case Technique::SortedLists: return std::make_unique<LinkedLists>(config);
     case Technique::Arrays: return std::make_unique<FixedArrays>(config);
+    case Technique::KBuffer: return std::make_unique<KBuffer>(config);
+    case Technique::Wboit:
+    case Technique::Blend: return std::make_unique<BlendedImage>(config);
   }
   throw std::invalid_argument("unknown technique");
 }

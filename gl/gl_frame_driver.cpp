@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <tuple>
 
@@ -85,7 +86,7 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
       resolve_fragment(technique_->technique(), mode(), bindings()), to_string(technique_->technique()) + " resolve pass");
   if (technique_->defers_calls())
     gpu_->resume = std::make_unique<ShaderProgram>(
-        ShaderProgram::compute(resume_compute(mode(), bindings()), "resume compute shader"));
+        ShaderProgram::compute(resume_compute(technique_->technique(), mode(), bindings()), "resume compute shader"));
   check_gl_errors("creating the GPU frame buffers");
 }
 
@@ -97,6 +98,7 @@ std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view hea
 
 void GlFrameDriver::write_params() const {
   GlParams p;
+  p.ha_gather_phase = gather_phase_;
   p.ha_lock_spin_limit = options_.lock_spin_limit;
   p.ha_screen_size[0] = screen().x;
   p.ha_screen_size[1] = screen().y;
@@ -199,6 +201,25 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
                                FrameReport& report) {
   reset_frame_state();
   technique_->before_gather();
+  double fill_ms = 0.0;
+  if (technique_->gather_passes() > 1) {
+    // A pass of the host's scene that inserts nothing (the k-buffer's
+    // occupancy fill), then the technique's own pass over what it gathered.
+    const auto t0 = std::chrono::steady_clock::now();
+    gather_phase_ = 1;
+    write_params();
+    {
+      const GlStateGuard fill_guard(bindings());
+      bind();
+      gather();
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      bind();  // the host's gather may have bound its own buffers at our points
+      technique_->between_passes();
+    }
+    gather_phase_ = 0;
+    if (options_.finish_timing) glFinish();
+    fill_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
   write_params();
   std::uint64_t unfinished = 0;
   {
@@ -210,6 +231,7 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
     unfinished = resume_deferred(report);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
+    report.gather.wall_ms += fill_ms;
     // A gather frame() will repeat (a buffer overflowed) is not worth sorting.
     if (options_.capture) report.captured = read_capture_count();
     const bool repeated = deferred_overflow_ > 0 || (options_.capture && report.captured > capture_capacity_);

@@ -24,10 +24,10 @@ std::uint64_t lock_words(std::uint64_t slots) { return (slots + (1u << HA_LOCK_S
 }  // namespace
 
 struct GlHaTable::Gpu {
-  GLuint table = 0, locks = 0, max_age = 0, offsets = 0, count = 0;
+  GLuint table = 0, locks = 0, max_age = 0, offsets = 0, count = 0, saturation = 0;
   std::unique_ptr<ClearPass> clear;
   ~Gpu() {
-    for (GLuint* b : {&table, &locks, &max_age, &offsets, &count}) delete_buffer(*b);
+    for (GLuint* b : {&table, &locks, &max_age, &offsets, &count, &saturation}) delete_buffer(*b);
   }
 };
 
@@ -55,6 +55,7 @@ GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMod
   if (const std::string why = table_limit(config_.table); !why.empty()) throw GlError(why);
   gpu_->max_age = create_buffer(std::uint64_t{cells_} * 4);
   gpu_->count = create_buffer(sizeof(std::uint64_t));
+  if (config_.saturation) gpu_->saturation = create_buffer(config_.screen.area() * 4);
   allocate_table(config_.table, false);
   gpu_->clear = std::make_unique<ClearPass>(mode, bindings);
 }
@@ -98,12 +99,14 @@ void GlHaTable::write_params(GlParams& p) const {
   p.ha_max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
   p.ha_iter_limit = config_.iter_limit;
   p.ha_cull_tau = config_.early_cull_tau;
+  p.ha_saturation = config_.saturation ? 1u : 0u;
 }
 
 void GlHaTable::bind() const {
   const GlBindings& b = bindings();
   for (const auto& [point, buffer] : {std::pair{b.table, gpu_->table}, std::pair{b.max_age, gpu_->max_age},
-                                      std::pair{b.offsets, gpu_->offsets}, std::pair{b.locks, gpu_->locks}})
+                                      std::pair{b.offsets, gpu_->offsets}, std::pair{b.locks, gpu_->locks},
+                                      std::pair{b.saturation, gpu_->saturation}})
     if (buffer != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, buffer);
 }
 
@@ -152,6 +155,7 @@ void GlHaTable::begin_frame(FrameReport& report, const GlFrameOptions& options) 
 
 void GlHaTable::before_gather() {
   zero_buffer(gpu_->max_age);
+  if (gpu_->saturation != 0) zero_buffer(gpu_->saturation);
   holds_frame_ = true;  // even if the gather throws halfway, the next frame clears what it inserted
 }
 
@@ -189,6 +193,7 @@ std::uint64_t GlHaTable::memory_bytes() const {
   std::uint64_t bytes = slots * config_.record_layout().word_bytes() + std::uint64_t{cells_} * 4 +
                         offsets_.size() * sizeof(glm::uvec2) + sizeof(std::uint64_t);
   if (mode() == AtomicMode::Emulated64) bytes += lock_words(slots) * 4;
+  if (config_.saturation) bytes += config_.screen.area() * 4;
   return bytes;
 }
 

@@ -18,23 +18,30 @@ constexpr std::uint64_t kNodeBytes = sizeof(glm::uvec2) + 4;  // entry and link
 }  // namespace
 
 struct GlLinkedLists::Gpu {
-  GLuint heads = 0, nodes = 0, links = 0;
+  GLuint heads = 0, nodes = 0, links = 0, saturation = 0;
   std::unique_ptr<SortPass> sort;
   ~Gpu() {
-    for (GLuint* b : {&heads, &nodes, &links}) delete_buffer(*b);
+    for (GLuint* b : {&heads, &nodes, &links, &saturation}) delete_buffer(*b);
   }
 };
 
+namespace {
+Technique lists_technique(const TechniqueConfig& c) {
+  return c.technique == Technique::SortedLists ? Technique::SortedLists : Technique::Lists;
+}
+}  // namespace
+
 GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(Technique::Lists, mode, bindings, validated_as(config, Technique::Lists).buffer.screen),
-      config_(validated_as(config, Technique::Lists)),
+    : GlTechnique(lists_technique(config), mode, bindings, validated_as(config, lists_technique(config)).buffer.screen),
+      config_(validated_as(config, lists_technique(config))),
       gpu_(std::make_unique<Gpu>()) {
   if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
     throw GlError("atomic mode " + to_string(mode) + " does not build " + to_string(config_.buffer.layout) + " lists");
   check_storage_fits(screen().area() * 4, "the head image of screen " + screen().str());
   gpu_->heads = create_buffer(screen().area() * 4);
   allocate_pool(config_.pool_capacity);
-  gpu_->sort = std::make_unique<SortPass>(Technique::Lists, mode, bindings);
+  if (config_.buffer.saturation) gpu_->saturation = create_buffer(screen().area() * 4);
+  if (!sorted_on_insert()) gpu_->sort = std::make_unique<SortPass>(Technique::Lists, mode, bindings);
 }
 
 GlLinkedLists::~GlLinkedLists() = default;
@@ -58,6 +65,9 @@ void GlLinkedLists::resize_pool(std::uint64_t nodes) {
 void GlLinkedLists::write_params(GlParams& p) const {
   p.ha_age_bits = config_.buffer.age_bits;
   p.ha_pool_capacity = static_cast<std::uint32_t>(config_.pool_capacity);
+  p.ha_iter_limit = config_.buffer.iter_limit;
+  p.ha_cull_tau = config_.buffer.early_cull_tau;
+  p.ha_saturation = config_.buffer.saturation ? 1u : 0u;
 }
 
 void GlLinkedLists::bind() const {
@@ -65,6 +75,7 @@ void GlLinkedLists::bind() const {
   bind_at(GL_SHADER_STORAGE_BUFFER, b.table, gpu_->heads);   // HA_BINDING_HEADS
   bind_at(GL_SHADER_STORAGE_BUFFER, b.max_age, gpu_->nodes);  // HA_BINDING_NODES
   bind_at(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HA_BINDING_LINKS
+  if (gpu_->saturation != 0) bind_at(GL_SHADER_STORAGE_BUFFER, b.saturation, gpu_->saturation);
 }
 
 std::string GlLinkedLists::pool_limit(std::uint64_t nodes) const {
@@ -91,9 +102,13 @@ void GlLinkedLists::begin_frame(FrameReport& report, const GlFrameOptions& optio
 
 void GlLinkedLists::before_gather() {
   zero_buffer(gpu_->heads);  // the node counter is zeroed with the driver's tallies
+  if (gpu_->saturation != 0) zero_buffer(gpu_->saturation);
 }
 
-PassTiming GlLinkedLists::after_gather(bool finish_timing) { return gpu_->sort->run(screen(), finish_timing); }
+PassTiming GlLinkedLists::after_gather(bool finish_timing) {
+  if (!gpu_->sort) return {};
+  return gpu_->sort->run(screen(), finish_timing);
+}
 
 void GlLinkedLists::gathered(const FrameReport& report) {
   last_requested_ = report.nodes_requested;
@@ -109,7 +124,7 @@ bool GlLinkedLists::grow(const FrameReport& report, const GlFrameOptions& option
 }
 
 std::uint64_t GlLinkedLists::memory_bytes() const {
-  return screen().area() * 4 + config_.pool_capacity * kNodeBytes;
+  return screen().area() * (config_.buffer.saturation ? 8 : 4) + config_.pool_capacity * kNodeBytes;
 }
 
 std::unique_ptr<FragmentBuffer> GlLinkedLists::read_back() const {

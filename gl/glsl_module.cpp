@@ -65,6 +65,7 @@ std::string GlBindings::glsl_defines() const {
   define("CAPTURE", capture);
   define("STREAM", stream);
   define("DEFERRED", deferred);
+  define("SATURATION", saturation);
   define("PARAMS", params);
   // The sorted techniques' buffers take the HA-buffer's points (one technique per module).
   define("HEADS", table);
@@ -88,8 +89,8 @@ std::string technique_parts(Technique technique, AtomicMode mode) {
   switch (technique) {
     case Technique::Ha:
       s += "#define HA_TECHNIQUE_CALL ha_call\n#define HA_TECHNIQUE_COMPOSITE ha_composite\n";
-      for (const char* part : {kHaEnv, mode_prelude(mode), kHaRecord, kHaProbe, kHaInsert, kHaBlend, kHaTraverse, kHaEntry,
-                               kInsertEntry})
+      for (const char* part : {kHaEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation, kHaProbe,
+                               kHaInsert, kHaBlend, kHaTraverse, kHaEntry, kInsertEntry})
         add(part);
       break;
     case Technique::Lists:
@@ -102,6 +103,22 @@ std::string technique_parts(Technique technique, AtomicMode mode) {
            "#define HA_TECHNIQUE_COMPOSITE fa_composite\n";
       for (const char* part : {kArraysEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaArrays, kInsertEntry}) add(part);
       break;
+    case Technique::SortedLists:
+      s += "#define HA_TECHNIQUE_CALL sl_insert_fragment\n#define HA_TECHNIQUE_COMPOSITE ll_composite\n";
+      for (const char* part : {kSortedListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kSaturationEnv,
+                               kHaSaturation, kHaSortedLists, kInsertEntry})
+        add(part);
+      break;
+    case Technique::KBuffer:
+      s += "#define HA_TECHNIQUE_CALL kb_call\n#define HA_TECHNIQUE_COMPOSITE kb_composite\n"
+           "#define HA_CARRY_RUN kb_insert_run\n";
+      for (const char* part : {kKBufferEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation,
+                               kHaBlend, kHaKBuffer, kHaEntry, kKBufferEntry, kInsertEntry})
+        add(part);
+      break;
+    case Technique::Wboit:
+    case Technique::Blend:
+      throw GlError("technique " + to_string(technique) + " has no GL module yet");
   }
   return s;
 }
@@ -137,7 +154,15 @@ std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings) {
 }
 
 std::string resume_compute(AtomicMode mode, const GlBindings& bindings) {
-  return ha_module(mode, bindings, ShaderStage::Compute) + kResumeCompute;
+  return resume_compute(Technique::Ha, mode, bindings);
+}
+
+std::string resume_compute(Technique technique, AtomicMode mode, const GlBindings& bindings) {
+  return technique_module(technique, mode, bindings, ShaderStage::Compute) + kResumeCompute;
+}
+
+std::string kbuffer_count_compute(AtomicMode mode, const GlBindings& bindings) {
+  return technique_module(Technique::KBuffer, mode, bindings, ShaderStage::Compute) + kKBufferCountCompute;
 }
 
 std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings& bindings) {
@@ -165,12 +190,15 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
                                     {"full-screen", "vert", full_screen_vertex()},
                                     {"clear", "frag", clear_pass_fragment(mode, bindings)},
                                     {"resolve", "frag", resolve_fragment(mode, bindings)}};
-  for (Technique t : {Technique::Lists, Technique::Arrays}) {
+  for (Technique t : {Technique::Lists, Technique::Arrays, Technique::SortedLists, Technique::KBuffer}) {
     const std::string name = to_string(t);
     shaders.push_back({name + "-insert", "comp", insert_stream_compute(t, mode, bindings)});
-    shaders.push_back({name + "-sort", "comp", sort_compute(t, mode, bindings)});
+    if (t == Technique::Lists || t == Technique::Arrays)
+      shaders.push_back({name + "-sort", "comp", sort_compute(t, mode, bindings)});
     shaders.push_back({name + "-resolve", "frag", resolve_fragment(t, mode, bindings)});
   }
+  shaders.push_back({"kbuffer-count", "comp", kbuffer_count_compute(mode, bindings)});
+  shaders.push_back({"kbuffer-resume", "comp", resume_compute(Technique::KBuffer, mode, bindings)});
   return shaders;
 }
 

@@ -35,8 +35,12 @@ void finish_stats(FrameStats& fs) {
 bool automatic_size(const RenderSettings& s) {
   switch (s.technique) {
     case Technique::Ha: return s.config.table.area() == 0;
-    case Technique::Lists: return s.pool == 0;
-    case Technique::Arrays: return false;
+    case Technique::Lists:
+    case Technique::SortedLists: return s.pool == 0;
+    case Technique::Arrays:
+    case Technique::KBuffer:
+    case Technique::Wboit:
+    case Technique::Blend: return false;
   }
   return false;
 }
@@ -50,6 +54,9 @@ TechniqueConfig technique_config(const RenderSettings& s) {
   c.buffer.table = s.config.table_or_screen();
   c.pool_capacity = s.pool != 0 ? s.pool : s.config.screen.area();  // auto: a placeholder until the counting pass
   c.layers = s.layers;
+  c.occupancy = s.occupancy;
+  c.occupancy_words = s.occupancy_words;
+  c.depth_range = s.depth_range;
   return c;
 }
 

@@ -35,6 +35,7 @@ inline gl::GlBindings host_bindings() {
   b.capture = 12;
   b.stream = 13;
   b.deferred = 14;
+  b.saturation = 15;
   b.params = 3;
   return b;
 }

@@ -37,6 +37,9 @@ int run_build_lists(const std::vector<std::string>& argv) {
   const std::string in = args.required("in");
   const std::string out = args.required("out");
   const HashOptions options = parse_hash_options(args, true, {"dump-table", "dump-max-age"});
+  if (!stores_lists(options.technique.technique))
+    throw UsageError("--technique " + to_string(options.technique.technique) +
+                     " stores no lists (it blends every fragment into the image): use habuffer render");
   FileRoles files;
   files.input("--in", in).output("--out", out);
   add_offsets_input(files, options);

@@ -28,10 +28,11 @@ namespace {
 
 constexpr const char* kHelp =
     "usage: habuffer render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json]\n"
-    "         [--size WxH] [--path gl|cpu] [--technique ha|lists|arrays] [--layers K] [--pool N|auto]\n"
-    "         [--layout 64|32] [--opacity A] [--early-cull TAU]\n"
+    "         [--size WxH] [--path gl|cpu] [--technique NAME] [--layers K] [--pool N|auto]\n"
+    "         [--occupancy on|off [--occupancy-words D]] [--depth-range NEAR,FAR]\n"
+    "         [--layout 64|32] [--opacity A] [--early-cull TAU [--saturation on|off]]\n"
     "         [--table WxH|auto] [--lossless [--max-attempts N]] [--frames N] [--yaw DEG] [--pitch DEG] [--fov DEG]\n"
-    "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE]\n"
+    "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE] [--error]\n"
     "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
     "         [--count N] [--spread S] [--order front|back] [--scene-seed N] [--opaque-meshes I,J,...] [--quiet]\n"
     "  scenes: engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file.\n"
@@ -40,10 +41,15 @@ constexpr const char* kHelp =
     "  (float) by extension.\n"
     "  --opaque-meshes: meshes (indices in file order) drawn opaque with the depth test; transparent\n"
     "  fragments behind them are rejected before insertion and counted.\n"
-    "  --technique: the HA-buffer (default), per-pixel linked lists (--pool: nodes, auto by default: sized\n"
-    "  from a counting pass, grown when a frame drops, adapted between frames) or fixed per-pixel arrays\n"
-    "  (--layers K, default 16: fragments beyond K in a pixel are dropped and counted). --table, --block,\n"
-    "  --iter-limit, --early-cull, --offsets and --seed are the HA-buffer's.\n"
+    "  --technique: ha (default); lists (linked lists sorted after the gather) and sorted-lists (kept sorted\n"
+    "  by a lock-free insertion, --early-cull TAU for early termination), --pool nodes, auto by default;\n"
+    "  arrays (fixed per-pixel arrays) and kbuffer (the K nearest; --occupancy on culls with an occupancy\n"
+    "  map of 32*D buckets per pixel over --depth-range), --layers K, default 16; wboit (weighted blended\n"
+    "  OIT, weights over --depth-range) and blend (unsorted over-blending): approximate, no lists.\n"
+    "  --saturation on: fragments behind a culled one are rejected before insertion (saturated_rejected).\n"
+    "  --table, --block, --offsets and --seed are the HA-buffer's; --early-cull and --iter-limit also sorted lists'.\n"
+    "  --reference IMAGE writes the exact reference; with it or --error the stats give psnr, rmse and\n"
+    "  max_error of the image against it.\n"
     "  --quiet: no summary and no progress bar (shown on a terminal for --frames above 1).\n"
     "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
     "  --lossless render that still lost fragments, 2 bad usage.\n";
@@ -134,6 +140,9 @@ RenderSettings parse_settings(const Args& args) {
   s.technique = technique.technique;
   s.layers = technique.layers;
   s.pool = technique.pool;
+  s.occupancy = technique.occupancy;
+  s.occupancy_words = technique.occupancy_words;
+  s.depth_range = technique.depth_range;
   const std::string table = args.str("table", "auto");
   const Extent t = table == "auto" ? Extent{0, 0} : args.extent("table").value();
   s.config = parse_buffer_config(args, size, t);
@@ -277,8 +286,9 @@ int run_render(const std::vector<std::string>& argv) {
                   {"scene", "fragments", "size", "path", "layout", "opacity", "early-cull", "table", "max-attempts",
                    "frames", "yaw", "pitch", "fov", "background", "out", "stats", "heatmap", "reference", "age-bits",
                    "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed",
-                   "opaque-meshes", "technique", "layers", "pool"},
-                  {"lossless", "quiet"});
+                   "opaque-meshes", "technique", "layers", "pool", "occupancy", "occupancy-words", "depth-range",
+                   "saturation"},
+                  {"lossless", "quiet", "error"});
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");
   RenderSettings s = parse_settings(args);
@@ -289,7 +299,7 @@ int run_render(const std::vector<std::string>& argv) {
   const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args, s.technique);
   check_render_files(args, s, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
-  s.keep_fragments = args.has("reference");
+  s.keep_fragments = args.has("reference") || args.has("error");
   SceneDescription described;
   RenderResult r;
   if (args.has("fragments")) {
@@ -317,10 +327,14 @@ int run_render(const std::vector<std::string>& argv) {
     write_image(outputs.image, r.image);
   }
   outputs.heatmaps = write_heatmaps(heatmaps, r, s.config.screen);
-  if (args.has("reference")) {
-    outputs.reference = args.required("reference");
-    write_image(outputs.reference, reference_image(r, s.config.screen));
-    if (!outputs.image.empty()) outputs.reference_difference = compare_images(outputs.image, outputs.reference);
+  if (args.has("reference") || args.has("error")) {
+    const Image reference = reference_image(r, s.config.screen);
+    outputs.error = compare_pixels(r.image, reference);
+    if (args.has("reference")) {
+      outputs.reference = args.required("reference");
+      write_image(outputs.reference, reference);
+      if (!outputs.image.empty()) outputs.reference_difference = compare_images(outputs.image, outputs.reference);
+    }
   }
   const RenderSummary summary = summarize_render(described, s, r, outputs);
   if (args.has("stats")) {

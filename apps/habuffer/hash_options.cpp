@@ -40,6 +40,12 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
                        args.str("early-cull", ""));
     c.early_cull_tau = tau;
   }
+  const std::string saturation = args.str("saturation", "off");
+  if (saturation != "on" && saturation != "off")
+    throw UsageError("option --saturation: '" + saturation + "' is not on or off");
+  c.saturation = saturation == "on";
+  if (c.saturation && c.early_cull_tau <= 0.0f)
+    throw UsageError("option --saturation on needs --early-cull TAU (it records where culling began)");
   try {
     c.validate();
   } catch (const std::invalid_argument& e) {
@@ -53,6 +59,9 @@ TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragm
   c.technique = options.technique.technique;
   c.buffer = options.config;
   c.layers = options.technique.layers;
+  c.occupancy = options.technique.occupancy;
+  c.occupancy_words = options.technique.occupancy_words;
+  c.depth_range = options.technique.depth_range;
   c.pool_capacity = options.technique.pool != 0 ? options.technique.pool : std::max<std::uint64_t>(fragments, 1);
   return c;
 }

@@ -4,7 +4,7 @@
 
 namespace habuffer::cli {
 
-std::uint64_t lost_fragments(const Counters& c) { return c.failures() + c.culled + c.invalid; }
+std::uint64_t lost_fragments(const Counters& c) { return c.failures() + c.culled + c.saturated_rejected + c.invalid; }
 
 std::string loss_summary(const Counters& c) {
   std::string s = std::to_string(lost_fragments(c)) + " of " + std::to_string(c.fragments) + " fragments not stored:";
@@ -12,7 +12,9 @@ std::string loss_summary(const Counters& c) {
                                                            {"failed_iter", c.failed_iter},
                                                            {"dropped_pool (node pool full)", c.dropped_pool},
                                                            {"dropped_layers (pixel's layers full)", c.dropped_layers},
+                                                           {"occupancy_rejected (beyond the k nearest)", c.occupancy_rejected},
                                                            {"culled (early cull)", c.culled},
+                                                           {"saturated_rejected (behind a culled fragment)", c.saturated_rejected},
                                                            {"invalid (depth NaN or outside [0, 1])", c.invalid}};
   bool first = true;
   for (const auto& [name, n] : reasons) {

@@ -27,7 +27,11 @@ inline const char* lossless_hint(Technique t) {
   switch (t) {
     case Technique::Ha: return kLosslessHint;
     case Technique::Lists: return "--lossless grows the node pool until they fit (or give a larger --pool)";
+    case Technique::SortedLists: return "--lossless grows the node pool until they fit (or give a larger --pool)";
     case Technique::Arrays: return "--lossless raises K to the deepest pixel (or give more --layers)";
+    case Technique::KBuffer: return "the k-buffer keeps the K nearest by design: --lossless doubles K until nothing drops";
+    case Technique::Wboit:
+    case Technique::Blend: return "";
   }
   return kLosslessHint;
 }

@@ -14,6 +14,8 @@ void counters(JsonWriter& json, const Counters& c) {
   json.field("fragments", c.fragments).field("stored", c.stored()).field("duplicates", c.duplicates);
   json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
   json.field("failed_iter", c.failed_iter).field("dropped_pool", c.dropped_pool).field("dropped_layers", c.dropped_layers);
+  json.field("saturated_rejected", c.saturated_rejected).field("occupancy_rejected", c.occupancy_rejected);
+  json.field("blended", c.blended);
 }
 
 void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
@@ -59,8 +61,17 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   write_extent(json, "size", set.config.screen);
   json.field("path", path_name(set.path)).field("technique", to_string(set.technique));
   json.field("device", r.device).field("layout", to_string(set.config.layout));
-  if (set.technique == Technique::Arrays) json.field("layers", static_cast<std::uint64_t>(last.capacity / set.config.screen.area()));
-  if (set.technique == Technique::Lists) json.field("pool_nodes", last.capacity);
+  if (uses_layers(set.technique))
+    json.field("layers", static_cast<std::uint64_t>(last.capacity / set.config.screen.area()));
+  if (uses_pool(set.technique)) json.field("pool_nodes", last.capacity);
+  if (set.technique == Technique::KBuffer) {
+    json.field("occupancy", set.occupancy);
+    if (set.occupancy) json.field("occupancy_words", set.occupancy_words);
+  }
+  if (set.technique == Technique::KBuffer || set.technique == Technique::Wboit)
+    json.key("depth_range").begin_array().value(static_cast<double>(set.depth_range.near_t))
+        .value(static_cast<double>(set.depth_range.far_t)).end_array();
+  json.field("saturation", set.config.saturation);
   json.field("age_bits", set.config.age_bits).field("block", set.config.block);
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
   json.field("table_mode", automatic_size(set) ? "auto" : (set.lossless ? "lossless" : "fixed"));
@@ -88,6 +99,12 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
     const ImageDifference& d = *s.outputs->reference_difference;
     json.key("reference").begin_object().field("path", s.outputs->reference).field("psnr", d.psnr);
     json.field("rmse", d.rmse).field("max_error", d.max_error).end_object();
+  }
+  if (s.outputs->error) {
+    // Against the exact reference (SPEC 7 in double precision over the
+    // frame's own fragments), in float, before any 8-bit file.
+    const ImageDifference& d = *s.outputs->error;
+    json.field("psnr", d.psnr).field("rmse", d.rmse).field("max_error", d.max_error);
   }
   json.key("frames").begin_array();
   for (const FrameStats& f : r.frames) frame(json, f, set.path == RenderPath::Gl);

@@ -28,6 +28,7 @@ struct RenderOutputs {
   std::string image, stats, reference;
   std::vector<HeatmapOutput> heatmaps;
   std::optional<ImageDifference> reference_difference;  // the image against the reference (8-bit files)
+  std::optional<ImageDifference> error;                 // the float image against the exact reference (--error, --reference)
 };
 
 struct RenderSummary {

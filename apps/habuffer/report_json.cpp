@@ -18,13 +18,20 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
   const auto* ha = dynamic_cast<const HaBuffer*>(&buffer);
   write_extent(json, "table", ha != nullptr ? ha->table() : Extent{});
   json.field("capacity", report.capacity);
-  if (technique == Technique::Arrays) json.field("layers", report.capacity / options.config.screen.area());
-  if (technique == Technique::Lists) json.field("pool_nodes", report.capacity);
+  if (uses_layers(technique)) json.field("layers", report.capacity / options.config.screen.area());
+  if (uses_pool(technique)) json.field("pool_nodes", report.capacity);
+  if (technique == Technique::KBuffer) {
+    json.field("occupancy", options.technique.occupancy);
+    if (options.technique.occupancy) json.field("occupancy_words", options.technique.occupancy_words);
+  }
+  json.field("saturation", options.config.saturation);
   json.field("offsets", options.offsets_name).field("seed", options.offsets.seed);
   json.field("early_cull", static_cast<double>(options.config.early_cull_tau));
   json.field("fragments", c.fragments).field("stored", report.stored).field("duplicates", c.duplicates);
   json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
   json.field("failed_iter", c.failed_iter).field("dropped_pool", c.dropped_pool).field("dropped_layers", c.dropped_layers);
+  json.field("saturated_rejected", c.saturated_rejected).field("occupancy_rejected", c.occupancy_rejected);
+  json.field("blended", c.blended);
   json.field("load_factor", report.load_factor);
   json.field("max_age", report.max_age).field("mean_age", report.mean_age);
   json.key("age_histogram").begin_array();

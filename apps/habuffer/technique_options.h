@@ -1,6 +1,7 @@
-// The options that pick a technique (--technique ha|lists|arrays, --layers K,
-// --pool N), shared by render and build-lists, and the refusal of options
-// that the chosen technique would ignore.
+// The options that pick a technique (--technique NAME, --layers K, --pool N,
+// --occupancy on|off, --occupancy-words D, --depth-range NEAR,FAR), shared
+// by render and build-lists, and the refusal of options that the chosen
+// technique would ignore.
 #pragma once
 
 #include <cstdint>
@@ -12,17 +13,23 @@ namespace habuffer::cli {
 
 struct TechniqueOptions {
   Technique technique = Technique::Ha;
-  std::uint32_t layers = HA_DEFAULT_LAYERS;  // arrays
-  std::uint64_t pool = 0;                    // lists; 0: auto (as many as the fragments need)
+  std::uint32_t layers = HA_DEFAULT_LAYERS;  // arrays, kbuffer
+  std::uint64_t pool = 0;                    // lists, sorted-lists; 0: auto (as many as the fragments need)
+  bool occupancy = false;                    // kbuffer
+  std::uint32_t occupancy_words = HA_DEFAULT_OCCUPANCY_WORDS;
+  DepthRange depth_range;                    // kbuffer, wboit
 };
 
 // Names to add to a command's accepted options.
-inline constexpr const char* kTechniqueValued[] = {"technique", "layers", "pool"};
+inline constexpr const char* kTechniqueValued[] = {"technique",       "layers",      "pool", "occupancy",
+                                                   "occupancy-words", "depth-range", "saturation"};
 
-// Parses --technique, --layers (arrays only) and --pool (lists only; "auto"
-// or a node count), and refuses the HA-buffer's own options (--table,
-// --block, --iter-limit, --early-cull, --offsets, --seed, and `more` given
-// by the command) with another technique.
+// Parses --technique, --layers (arrays, kbuffer), --pool (lists,
+// sorted-lists; "auto" or a node count), --occupancy and --occupancy-words
+// (kbuffer), --depth-range (kbuffer, wboit), and refuses options the
+// technique would ignore: the HA-buffer's own (--table, --block, --offsets,
+// --seed, and `more` given by the command), --early-cull, --iter-limit and
+// --saturation but for ha and sorted-lists.
 TechniqueOptions parse_technique_options(const Args& args, std::initializer_list<const char*> more = {});
 
 }  // namespace habuffer::cli

@@ -15,15 +15,29 @@
 #define HA_INVALID 5u
 #define HA_DROPPED_POOL 6u
 #define HA_DROPPED_LAYERS 7u
-#define HA_OUTCOME_COUNT 8u
+// Rejected before insertion: behind the pixel's saturation depth (a fragment
+// culled earlier lay in front of it, so it is hidden as surely), or beyond
+// the k-buffer's occupancy limit (at least k nearer fragments exist).
+#define HA_SATURATED 8u
+#define HA_OCCUPANCY_REJECTED 9u
+// Blended into the image without being stored (weighted blended OIT, plain blending).
+#define HA_BLENDED 10u
+#define HA_OUTCOME_COUNT 11u
 // Not outcomes: the insert call goes on (ha_insert_step), or it was cut short
 // by something other than the table and its carried state must be resumed
 // (GPU path only: an emulated atomic that gave up, the driver's loop budget).
-#define HA_PENDING 8u
-#define HA_CUT 9u
+// HA_UNCOUNTED: a call of a pass that inserts nothing (the k-buffer's
+// occupancy fill pass), not an insert call.
+#define HA_PENDING 11u
+#define HA_CUT 12u
+#define HA_UNCOUNTED 13u
 
 // Fixed arrays: default layers per pixel (Crassin 2010 uses 16).
 #define HA_DEFAULT_LAYERS 16u
+// The k-buffer's occupancy map: 32-bit words per pixel (32 buckets each)
+// by default and at most (seed 003 uses d = 32 words for k up to 32).
+#define HA_DEFAULT_OCCUPANCY_WORDS 4u
+#define HA_MAX_OCCUPANCY_WORDS 32u
 // The sort of lists and arrays: a pixel's entries up to this many are sorted
 // in a private array by insertion sort (registers on a GPU); longer ones in
 // place in the technique's buffer (merge sort of the linked list, heap sort
@@ -63,10 +77,10 @@
 // duplicates by the host); the pixels the sort pass finished (every pixel of
 // the screen must: a driver that ends an invocation early leaves the count
 // short, never silently).
-#define HA_COUNTER_SLOT_WRITES 8u
-#define HA_COUNTER_MERGED 9u
-#define HA_COUNTER_SORT_DONE 10u
-#define HA_GPU_COUNTER_COUNT 11u
+#define HA_COUNTER_SLOT_WRITES 11u
+#define HA_COUNTER_MERGED 12u
+#define HA_COUNTER_SORT_DONE 13u
+#define HA_GPU_COUNTER_COUNT 14u
 // Words after the stripes, on a cache line of their own, that are not sums:
 // the linked lists' node counter (one atomic add per fragment, the
 // technique's own hot spot) and the most fragments a fixed-array pixel

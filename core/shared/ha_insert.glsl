@@ -3,7 +3,8 @@
 // a host may run the steps in a loop (ha_insert_fragment) or hand a pending record to
 // whichever thread owns its next slot (the CPU path's owner-computes mode).
 //
-// Host environment provides, besides ha_record.glsl and ha_probe.glsl:
+// Host environment provides, besides ha_record.glsl, ha_carry.glsl,
+// ha_saturation.glsl and ha_probe.glsl:
 // ha_word ha_atomic_max_slot(ha_index s, ha_word r) (returns the old value),
 // uint ha_atomic_missed() (0 when the last slot atomic happened; an emulated
 // atomic that found its slot busy changed nothing and says HA_PENDING, probe
@@ -12,25 +13,6 @@
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
 // ha_cull_tau (0 = early cull off), ha_word ha_load_slot(ha_index s) (a
 // plain read), and HA_INOUT(T) (GLSL: inout T; C++: T&).
-
-// The state of one insert call between probes.
-struct HaCarry {
-  uvec2 p;      // pixel of the carried record (age equivalence gives it back after an eviction)
-  uint a;       // age about to be tried; may reach AMAX + 1, which no record can hold
-  ha_word r;    // the carried record, with age a while a <= AMAX
-  float acc;    // early cull: opacity accumulated in front of the carried record
-  uint iter;    // probes made so far by this call
-};
-
-HaCarry ha_carry_begin(uvec2 p, uint code, uint data) {
-  HaCarry c;
-  c.p = p;
-  c.a = 1u;
-  c.r = ha_pack(1u, code, data);
-  c.acc = 0.0f;
-  c.iter = 0u;
-  return c;
-}
 
 // HA_PENDING while the carried record may probe again, else the failure
 // that ends the call (SPEC 6 checks the age, then the iteration budget).
@@ -87,6 +69,9 @@ uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
     uint old_age = ha_age(old);
     c.r = old;
     c.p = ha_owner(h, old_age);
+    // An evicted record behind its pixel's saturation depth is hidden as
+    // surely as a new fragment there: it goes no further.
+    if (ha_saturated(c.p, ha_code(c.r))) return HA_SATURATED;
     // Same pixel under early cull: retry the evicted record at this slot so
     // it first accumulates the opacity of the record that evicted it.
     if (cull && old_age == c.a) return HA_PENDING;
@@ -95,7 +80,10 @@ uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
   } else if (cull && ha_age(old) == c.a) {
     // A record of the same pixel lies in front: it hides the carried one.
     c.acc += (1.0f - c.acc) * ha_alpha(old);
-    if (c.acc > ha_cull_tau) return HA_CULLED;
+    if (c.acc > ha_cull_tau) {
+      ha_saturate(c.p, ha_code(c.r));
+      return HA_CULLED;
+    }
   }
   c.a += 1u;
   c.r = ha_with_age(c.r, c.a);
@@ -120,6 +108,7 @@ uint ha_insert_run(HA_INOUT(HaCarry) c) {
 }
 
 uint ha_insert_code(uvec2 p, uint code, uint data) {
+  if (ha_saturated(p, code)) return HA_SATURATED;
   HaCarry c = ha_carry_begin(p, code, data);
   return ha_insert_run(c);
 }

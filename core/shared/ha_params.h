@@ -21,7 +21,15 @@ HA_PARAMS_BEGIN
   HA_PARAM_UINT(ha_count_writes)         // HA-buffer: 1: count slot writes (HA_COUNTER_SLOT_WRITES)
   HA_PARAM_UINT(ha_deferred_capacity)    // HA-buffer: calls cut short that the deferred-call buffer holds
   HA_PARAM_UINT(ha_pool_capacity)        // linked lists: nodes
-  HA_PARAM_UINT(ha_layers)               // fixed arrays: K
+  HA_PARAM_UINT(ha_layers)               // fixed arrays, k-buffer: K
+  HA_PARAM_UINT(ha_saturation)           // HA-buffer, sorted lists: 1: saturation depth (with early cull)
+  HA_PARAM_UINT(ha_gather_phase)         // k-buffer: 1 during the occupancy fill pass, else 0
+  HA_PARAM_UINT(ha_occupancy)            // k-buffer: 1: occupancy-map culling
+  HA_PARAM_UINT(ha_occupancy_words)      // k-buffer: 32-bit words of a pixel's map
+  HA_PARAM_UINT(ha_occupancy_near_code)  // k-buffer: the depth code of the range's near end
+  HA_PARAM_UINT(ha_occupancy_bucket_codes)  // k-buffer: depth codes per bucket
+  HA_PARAM_UINT(ha_params_pad0)          // std140 rounds the block to 16 bytes
+  HA_PARAM_UINT(ha_params_pad1)
 HA_PARAMS_END
 
 #endif

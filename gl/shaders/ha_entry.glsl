@@ -1,3 +1,6 @@
+#ifndef HA_CARRY_RUN
+#define HA_CARRY_RUN ha_insert_run
+#endif
 // The HA-buffer's part of the insertion entry on the GPU: the shared insert
 // (ha_insert_run) as insert_entry.glsl's call, and the deferral of calls cut
 // short: their carried state goes to a buffer that the frame's resume pass
@@ -50,12 +53,20 @@ uint ha_end_run(uvec2 pixel, HaCarry c, uint outcome) {
   return outcome;
 }
 
-// The HA-buffer's insert call for insert_entry.glsl's ha_insert: its outcome,
+// One insert call of a valid depth code through HA_CARRY_RUN (the
+// HA-buffer's ha_insert_run, or the k-buffer's kb_insert_run): its outcome,
 // or HA_PENDING for a call cut short and deferred to the resume pass.
-uint ha_call(uvec2 pixel, float depth, uint rgba) {
+uint ha_call_code(uvec2 pixel, uint code, uint rgba) {
   ha_call_writes = 0u;
-  if (!ha_depth_valid(depth)) return HA_INVALID;
-  HaCarry c = ha_carry_begin(pixel, ha_depth_code(depth), rgba);
-  uint outcome = ha_insert_run(c);
+  HaCarry c = ha_carry_begin(pixel, code, rgba);
+  uint outcome = HA_CARRY_RUN(c);
   return ha_end_run(pixel, c, outcome);
+}
+
+// The HA-buffer's insert call for insert_entry.glsl's ha_insert.
+uint ha_call(uvec2 pixel, float depth, uint rgba) {
+  if (!ha_depth_valid(depth)) return HA_INVALID;
+  uint code = ha_depth_code(depth);
+  if (ha_saturated(pixel, code)) return HA_SATURATED;
+  return ha_call_code(pixel, code, rgba);
 }

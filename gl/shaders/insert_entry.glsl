@@ -4,7 +4,8 @@
 // invariant 1 on the GPU) and the capture of entry_common.glsl. A pixel
 // outside the screen cannot be inserted: it counts as invalid and is not
 // captured (a replay could not insert it either). Returns the outcome, or
-// HA_PENDING for a call deferred to the resume pass (counted there).
+// HA_PENDING for a call deferred to the resume pass (counted there), or
+// HA_UNCOUNTED in a pass that inserts nothing (the k-buffer's fill pass).
 uint ha_insert(uvec2 pixel, float depth, uint rgba) {
 #ifdef HA_STAGE_FRAGMENT
   // Helper invocations' stores and atomics have no effect: skip the work.
@@ -12,11 +13,11 @@ uint ha_insert(uvec2 pixel, float depth, uint rgba) {
 #endif
   uint outcome = HA_INVALID;
   if (all(lessThan(pixel, ha_screen_size))) {
-    if (ha_capture_capacity > 0u) ha_capture(pixel, depth, rgba);
+    if (ha_capture_capacity > 0u && ha_gather_phase == 0u) ha_capture(pixel, depth, rgba);
     if (ha_capture_only != 0u) return HA_INVALID;
     outcome = HA_TECHNIQUE_CALL(pixel, depth, rgba);
   }
-  if (outcome != HA_PENDING) ha_counter_add(pixel, outcome, 1u);
+  if (outcome < HA_OUTCOME_COUNT) ha_counter_add(pixel, outcome, 1u);
   return outcome;
 }
 

@@ -17,6 +17,10 @@ struct BufferConfig {
   std::uint32_t block = HA_DEFAULT_BLOCK;
   std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT;
   float early_cull_tau = 0.0f;  // 0: off; else in (0, 1], L64 only
+  // With early cull: a culled fragment's depth code goes to a per-pixel
+  // saturation image (atomic max), and later fragments strictly behind it
+  // are rejected before insertion (saturated_rejected; guacamole, Fig. 6).
+  bool saturation = false;
 
   [[nodiscard]] Extent table_or_screen() const { return table.area() == 0 ? screen : table; }
   [[nodiscard]] RecordLayout record_layout() const { return {layout, age_bits}; }

@@ -30,9 +30,21 @@ struct Counters {
   std::uint64_t failed_iter = 0;
   std::uint64_t dropped_pool = 0;
   std::uint64_t dropped_layers = 0;
+  // Rejected before insertion behind a pixel's saturation depth (early cull
+  // with saturation): hidden like culled ones, not a loss beyond tau.
+  std::uint64_t saturated_rejected = 0;
+  // Rejected by the k-buffer's occupancy map: beyond the k nearest, lost as
+  // dropped_layers are.
+  std::uint64_t occupancy_rejected = 0;
+  // Blended into the image without being stored (wboit, blend).
+  std::uint64_t blended = 0;
 
-  [[nodiscard]] std::uint64_t failures() const { return failed_age + failed_iter + dropped_pool + dropped_layers; }
-  [[nodiscard]] std::uint64_t stored() const { return fragments - invalid - duplicates - culled - failures(); }
+  [[nodiscard]] std::uint64_t failures() const {
+    return failed_age + failed_iter + dropped_pool + dropped_layers + occupancy_rejected;
+  }
+  [[nodiscard]] std::uint64_t stored() const {
+    return fragments - invalid - duplicates - culled - saturated_rejected - blended - failures();
+  }
   // Records counted stored at insertion and found equal to another record of
   // their pixel when the lists were sorted: moved to duplicates.
   void merge_duplicates(std::uint64_t merged) { duplicates += merged; }

@@ -21,7 +21,10 @@
   using vec3 = glm::vec3;                                                  \
   using vec4 = glm::vec4;                                                  \
   static float ha_floor(float x) { return std::floor(x); }                 \
-  static uint ha_float_bits(float x) { return std::bit_cast<uint>(x); }
+  static uint ha_float_bits(float x) { return std::bit_cast<uint>(x); }   \
+  static uint min(uint a, uint b) { return a < b ? a : b; }                \
+  static float min(float a, float b) { return a < b ? a : b; }             \
+  static float max(float a, float b) { return a > b ? a : b; }
 
 // The private array of HA_SORT_LOCAL entries that ha_entries.glsl sorts in
 // (a GLSL shader's private array; here a member, so each kernel copy, one per

@@ -73,7 +73,7 @@ class HaBuffer final : public FragmentBuffer {
   [[nodiscard]] std::vector<std::uint64_t> age_histogram() const;
   // Bytes of T, M and O.
   [[nodiscard]] std::uint64_t memory_bytes() const override;
-  [[nodiscard]] TechniqueConfig technique_config() const override { return {Technique::Ha, config(), 0, HA_DEFAULT_LAYERS}; }
+  [[nodiscard]] TechniqueConfig technique_config() const override { return ha_technique_config(config()); }
 
  private:
   struct Impl;

@@ -21,6 +21,8 @@ struct KernelParams {
   std::uint32_t max_age_cells_x = 0;
   std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT;
   float cull_tau = 0.0f;  // 0: early cull off
+  Extent screen;
+  std::uint32_t* saturation = nullptr;  // early cull with saturation: a code per pixel (else nullptr: off)
 };
 
 // Word: std::uint64_t (L64) or std::uint32_t (L32). Concurrent: slots and
@@ -41,7 +43,10 @@ class HashKernel {
         ha_max_age_cells_x(params.max_age_cells_x),
         ha_iter_limit(params.iter_limit),
         ha_cull_tau(params.cull_tau),
+        ha_screen_size(params.screen.x, params.screen.y),
+        ha_saturation(params.saturation != nullptr ? 1u : 0u),
         block_(params.block),
+        saturation_(params.saturation),
         offsets_(offsets),
         table_(table),
         max_age_(max_age) {}
@@ -55,6 +60,8 @@ class HashKernel {
   uint ha_max_age_cells_x;
   uint ha_iter_limit;
   float ha_cull_tau;
+  uvec2 ha_screen_size;
+  uint ha_saturation;
 
   uvec2 ha_offset(uint i) const { return offsets_[i]; }
 
@@ -102,17 +109,35 @@ class HashKernel {
     return max_age_[cell];
   }
 
+  uint ha_load_saturation(uint pixel) const {
+    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(saturation_[pixel]).load(std::memory_order_relaxed);
+    return saturation_[pixel];
+  }
+  void ha_max_saturation(uint pixel, uint code) {
+    if constexpr (Concurrent) {
+      std::atomic_ref<std::uint32_t> m(saturation_[pixel]);
+      std::uint32_t cur = m.load(std::memory_order_relaxed);
+      while (cur < code && !m.compare_exchange_weak(cur, code, std::memory_order_relaxed)) {
+      }
+    } else if (saturation_[pixel] < code) {
+      saturation_[pixel] = code;
+    }
+  }
+
   [[nodiscard]] const Word* slots() const { return table_; }
 
   // --- the shared algorithm -------------------------------------------------
 #include "../../shared/ha_record.glsl"
 #include "../../shared/ha_probe.glsl"
+#include "../../shared/ha_carry.glsl"
+#include "../../shared/ha_saturation.glsl"
 #include "../../shared/ha_insert.glsl"
 #include "../../shared/ha_blend.glsl"
 #include "../../shared/ha_traverse.glsl"
 
  private:
   FastDivisor block_;
+  std::uint32_t* saturation_;
   const glm::uvec2* offsets_;
   Word* table_;
   std::uint32_t* max_age_;

@@ -1,5 +1,8 @@
-// Per-pixel linked lists on the CPU (seed 002): head pointers, a node pool
-// of fixed capacity with one atomic counter, sorted after each insert batch.
+// Per-pixel linked lists on the CPU: head pointers, a node pool of fixed
+// capacity with one atomic counter; either sorted after each insert batch
+// (technique lists, seed 002) or kept sorted by a lock-free insertion with
+// optional early termination and saturation depth (technique sorted-lists,
+// seed 001's PreSortLF and PreSortLF*).
 // A fragment arriving at a full pool is dropped and counted (dropped_pool);
 // requested() tells how many nodes the last gather wanted, so a caller can
 // size the next pool (adaptive sizing, lossless regathering).
@@ -16,10 +19,12 @@ namespace habuffer {
 
 class LinkedLists final : public FragmentBuffer {
  public:
-  // Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
+  // Technique sorted-lists when config.technique says so, else lists. Throws
+  // std::invalid_argument for a bad configuration (TechniqueConfig::validate).
   explicit LinkedLists(const TechniqueConfig& config);
 
-  [[nodiscard]] Technique technique() const override { return Technique::Lists; }
+  [[nodiscard]] Technique technique() const override { return config_.technique; }
+  [[nodiscard]] bool sorted_on_insert() const { return config_.technique == Technique::SortedLists; }
   [[nodiscard]] Extent screen() const override { return params_.screen; }
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
@@ -51,6 +56,7 @@ class LinkedLists final : public FragmentBuffer {
   std::vector<std::uint32_t> heads_;
   std::vector<glm::uvec2> entries_;
   std::vector<std::uint32_t> next_;
+  std::vector<std::uint32_t> saturation_;  // sorted lists with saturation: a code per pixel
   std::uint32_t counter_ = 0;
   std::uint64_t requested_ = 0;
 };

@@ -1,5 +1,7 @@
-// Per-pixel linked lists on the CPU: the shared GLSL of core/shared/ha_lists.glsl
-// compiled as member functions, over the buffers a shader would get.
+// Per-pixel linked lists on the CPU, sorted after the gather or kept sorted
+// while inserting: the shared GLSL of core/shared/ha_lists.glsl and
+// ha_sorted_lists.glsl compiled as member functions, over the buffers a
+// shader would get.
 #pragma once
 
 #include <atomic>
@@ -16,11 +18,12 @@ struct ListsBuffers {
   glm::uvec2* entries;     // (code, data) per node
   std::uint32_t* next;     // one link per node
   std::uint32_t* counter;  // nodes asked for
+  std::uint32_t* saturation;  // sorted lists with saturation: a code per pixel (else unused)
 };
 
-// Concurrent: the node counter and head pointers are updated atomically
-// (several inserters at once); the sort and compositing need no atomics
-// (one pixel per thread).
+// Concurrent: the node counter, head pointers and (sorted lists) links are
+// updated atomically (several inserters at once); the sort and compositing
+// need no atomics (one pixel per thread).
 template <bool Concurrent>
 class ListsKernel {
  public:
@@ -36,12 +39,18 @@ class ListsKernel {
         ha_payload_bits(params.payload_bits),
         ha_screen_size(params.screen.x, params.screen.y),
         ha_pool_capacity(params.pool_capacity),
+        ha_iter_limit(params.iter_limit),
+        ha_cull_tau(params.cull_tau),
+        ha_saturation(params.saturation ? 1u : 0u),
         b_(b) {}
 
   uint ha_age_bits;
   uint ha_payload_bits;
   uvec2 ha_screen_size;
   uint ha_pool_capacity;
+  uint ha_iter_limit;
+  float ha_cull_tau;
+  uint ha_saturation;
 
   uint ll_allocate_node() {
     if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(*b_.counter).fetch_add(1, std::memory_order_relaxed);
@@ -60,10 +69,44 @@ class ListsKernel {
   uint ll_load_next(uint node) const { return b_.next[node]; }
   void ll_store_next(uint node, uint link) { b_.next[node] = link; }
 
+  // Sorted lists: the link a walk reads (the head for where == 0) and the swap that links a node.
+  uint& sl_link(uint pixel, uint where) const { return where == 0 ? b_.heads[pixel] : b_.next[where - 1]; }
+  uint sl_load_link(uint pixel, uint where) const {
+    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(sl_link(pixel, where)).load(std::memory_order_acquire);
+    return sl_link(pixel, where);
+  }
+  uint sl_swap_link(uint pixel, uint where, uint expected, uint link) {
+    if constexpr (Concurrent) {
+      std::atomic_ref<std::uint32_t>(sl_link(pixel, where))
+          .compare_exchange_strong(expected, link, std::memory_order_acq_rel, std::memory_order_acquire);
+      return expected;
+    } else {
+      const uint found = sl_link(pixel, where);
+      if (found == expected) sl_link(pixel, where) = link;
+      return found;
+    }
+  }
+  uint ha_load_saturation(uint pixel) const {
+    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(b_.saturation[pixel]).load(std::memory_order_relaxed);
+    return b_.saturation[pixel];
+  }
+  void ha_max_saturation(uint pixel, uint code) {
+    if constexpr (Concurrent) {
+      std::atomic_ref<std::uint32_t> s(b_.saturation[pixel]);
+      std::uint32_t cur = s.load(std::memory_order_relaxed);
+      while (cur < code && !s.compare_exchange_weak(cur, code, std::memory_order_relaxed)) {
+      }
+    } else if (b_.saturation[pixel] < code) {
+      b_.saturation[pixel] = code;
+    }
+  }
+
 #include "../../shared/ha_record.glsl"
 #include "../../shared/ha_blend.glsl"
 #include "../../shared/ha_entries.glsl"
 #include "../../shared/ha_lists.glsl"
+#include "../../shared/ha_saturation.glsl"
+#include "../../shared/ha_sorted_lists.glsl"
 
  private:
   Buffers b_;

@@ -27,7 +27,8 @@ std::uint64_t memory_model_bytes(const FragmentBuffer& buffer);
 // Seed 000's Table 1 in bytes for `fragments` stored fragments on `pixels`
 // pixels: HA-buffer V/8 + 64F/L bits (L = load), linked lists 32V + 88F bits,
 // paged lists (pages of `page` fragments) at least 40V + F/K (56K + 32) bits;
-// fixed arrays (not in the table) 32V + 56KV bits.
+// fixed arrays (not in the table) 32V + 56KV bits; sorted lists as lists;
+// the k-buffer 56KV bits; wboit 160V bits (RGBA32F + R32F), blend 128V bits.
 double paper_memory_bytes(Technique technique, std::uint64_t pixels, std::uint64_t fragments, double load,
                           std::uint32_t layers);
 double paper_paged_lists_bytes(std::uint64_t pixels, std::uint64_t fragments, std::uint32_t page);

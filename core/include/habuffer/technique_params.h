@@ -16,8 +16,20 @@ struct TechniqueParams {
   std::uint32_t payload_bits = 32;               // 32 for L64, 0 for L32 (data stored as 0)
   Extent screen;
   std::uint32_t pool_capacity = 0;  // linked lists: nodes
-  std::uint32_t layers = HA_DEFAULT_LAYERS;  // fixed arrays: K
+  std::uint32_t layers = HA_DEFAULT_LAYERS;  // fixed arrays, k-buffer: K
+  std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT;  // sorted lists: steps of one insertion
+  float cull_tau = 0.0f;                             // sorted lists: early termination (0: off)
+  bool saturation = false;                           // sorted lists: saturation depth
+  bool occupancy = false;                            // k-buffer: occupancy-map culling
+  std::uint32_t occupancy_words = HA_DEFAULT_OCCUPANCY_WORDS;
+  std::uint32_t occupancy_near_code = 0;   // k-buffer: the depth code of depth_range.near_t
+  std::uint32_t occupancy_bucket_codes = 1;  // k-buffer: depth codes per occupancy bucket
+  DepthRange depth_range;                    // wboit's weights
 };
+
+// The occupancy buckets' integer geometry over the depth codes of `range`
+// (exact on both paths): bucket 0 holds near_t, the last one far_t.
+void occupancy_geometry(const TechniqueConfig& c, std::uint32_t& near_code, std::uint32_t& bucket_codes);
 
 inline TechniqueParams make_technique_params(const TechniqueConfig& c) {
   TechniqueParams p;
@@ -26,6 +38,13 @@ inline TechniqueParams make_technique_params(const TechniqueConfig& c) {
   p.screen = c.buffer.screen;
   p.pool_capacity = static_cast<std::uint32_t>(c.pool_capacity);
   p.layers = c.layers;
+  p.iter_limit = c.buffer.iter_limit;
+  p.cull_tau = c.buffer.early_cull_tau;
+  p.saturation = c.buffer.saturation;
+  p.occupancy = c.occupancy;
+  p.occupancy_words = c.occupancy_words;
+  occupancy_geometry(c, p.occupancy_near_code, p.occupancy_bucket_codes);
+  p.depth_range = c.depth_range;
   return p;
 }
 

@@ -19,11 +19,12 @@ struct GlBindings {
   unsigned capture = 5;
   unsigned stream = 6;   // the compute entry's input fragments, the resume pass's input calls
   unsigned deferred = 7; // insert calls cut short, appended for the resume pass
+  unsigned saturation = 8;  // the saturation depth image (early cull with saturation)
   // Uniform-buffer binding point of the parameters block.
   unsigned params = 0;
 
-  [[nodiscard]] std::array<unsigned, 8> storage_points() const {
-    return {table, max_age, offsets, counters, locks, capture, stream, deferred};
+  [[nodiscard]] std::array<unsigned, 9> storage_points() const {
+    return {table, max_age, offsets, counters, locks, capture, stream, deferred, saturation};
   }
   // Throws GlError when two storage points coincide or a point is at or beyond
   // the context's limits (GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS,

@@ -104,6 +104,7 @@ class GlFrameDriver {
   std::uint64_t deferred_overflow_ = 0;  // calls the last gather deferred, when more than the buffer held
   std::uint64_t frames_ = 0;
   bool sorted_ = false;  // the last gather ran the technique's sort pass
+  std::uint32_t gather_phase_ = 0;  // the parameter ha_gather_phase: 1 in a fill pass
   std::unique_ptr<Gpu> gpu_;
 };
 

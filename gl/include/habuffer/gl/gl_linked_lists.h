@@ -1,4 +1,6 @@
-// Per-pixel linked lists on the GPU (seed 002): the head-pointer image
+// Per-pixel linked lists on the GPU, sorted after the gather (seed 002) or
+// kept sorted while inserting (technique sorted-lists, seed 001's PreSortLF,
+// with early termination and saturation depth; no sort pass): the head-pointer image
 // (zeroed before every gather), the node pool's entries and links (the node
 // counter is a word of the driver's counters), and the sort pass after the
 // gather. A full pool drops and counts (dropped_pool); adaptive sizing grows
@@ -29,7 +31,8 @@ class GlLinkedLists final : public GlTechnique {
   void before_gather() override;
   void reset() override {}
   PassTiming after_gather(bool finish_timing) override;
-  [[nodiscard]] bool sorts() const override { return true; }
+  [[nodiscard]] bool sorts() const override { return !sorted_on_insert(); }
+  [[nodiscard]] bool sorted_on_insert() const { return config_.technique == Technique::SortedLists; }
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] std::uint64_t capacity() const override { return config_.pool_capacity; }
   [[nodiscard]] std::uint64_t memory_bytes() const override;

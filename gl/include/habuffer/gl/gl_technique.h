@@ -49,6 +49,12 @@ class GlTechnique {
   [[nodiscard]] virtual bool draws_at_frame_start() const { return false; }
   // Right before every gather, the frame's first and its regathers.
   virtual void before_gather() = 0;
+  // Passes of the host's gather per attempt: 2 when the technique first
+  // needs a pass that inserts nothing (the k-buffer's occupancy fill, the
+  // parameter ha_gather_phase 1), then between_passes() with every buffer
+  // bound, then the insertion pass.
+  [[nodiscard]] virtual std::uint32_t gather_passes() const { return 1; }
+  virtual void between_passes() {}
   // Empties what a gather inserted, for a regather of the same frame.
   virtual void reset() = 0;
   // After every gather, with every buffer bound: the sort pass, if any.

@@ -14,6 +14,15 @@ namespace habuffer::gl {
 
 extern const char* const kHaConstants;
 extern const char* const kHaRecord;
+extern const char* const kHaCarry;
+extern const char* const kHaSaturation;
+extern const char* const kHaSortedLists;
+extern const char* const kHaKBuffer;
+extern const char* const kSaturationEnv;
+extern const char* const kSortedListsEnv;
+extern const char* const kKBufferEnv;
+extern const char* const kKBufferEntry;
+extern const char* const kKBufferCountCompute;
 extern const char* const kHaProbe;
 extern const char* const kHaInsert;
 extern const char* const kHaBlend;
@@ -84,5 +93,8 @@ std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings&
 // The resume pass: runs deferred insert calls (cut short by a lock or the
 // driver's loop budget) on from their carried state.
 std::string resume_compute(AtomicMode mode, const GlBindings& bindings = {});
+std::string resume_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
+// The k-buffer's occupancy count pass.
+std::string kbuffer_count_compute(AtomicMode mode, const GlBindings& bindings = {});
 
 }  // namespace habuffer::gl

@@ -35,6 +35,11 @@ struct ImageDifference {
   int max_x = 0, max_y = 0, max_channel = 0;       // where the largest error is (top row 0)
 };
 
+// The float images' RGB compared in memory (no 8-bit quantization): rmse,
+// psnr = 20 log10(1 / rmse) (infinite when identical), the largest absolute
+// error and where (top row 0). Throws ImageError when the sizes differ.
+ImageDifference compare_pixels(const Image& image, const Image& reference);
+
 // OpenImageIO's comparison of the RGB channels. Throws ImageError when a file
 // cannot be read or the sizes differ (both sizes named).
 ImageDifference compare_images(const std::string& a, const std::string& b);

@@ -1,0 +1,89 @@
+#include "habuffer/blended_image.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "habuffer/blended_kernel.h"
+#include "technique_parallel.h"
+
+namespace habuffer {
+namespace {
+
+TechniqueConfig checked_blended(const TechniqueConfig& c) {
+  if (stores_lists(c.technique))
+    throw std::invalid_argument("a blended image is wboit or blend, not " + to_string(c.technique));
+  return validated_as(c, c.technique);
+}
+
+}  // namespace
+
+BlendedImage::BlendedImage(const TechniqueConfig& config)
+    : config_(checked_blended(config)), params_(make_technique_params(config_)) {
+  clear();
+}
+
+Counters BlendedImage::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
+  check_on_screen(fragments, screen());
+  const std::uint32_t threads = detail::insert_threads(options, technique());
+  std::vector<detail::SliceCounters> parts(threads);
+  const std::uint32_t width = screen().x;
+  detail::for_row_bands(screen(), threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
+    BlendedKernel k(params_);
+    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
+    for (const Fragment& f : fragments) {
+      if (f.y < y0 || f.y >= y1) continue;
+      if (!k.ha_depth_valid(f.depth)) {
+        ++tally[HA_INVALID];
+        continue;
+      }
+      ++tally[HA_BLENDED];
+      const std::size_t p = f.x + std::size_t{f.y} * width;
+      const glm::vec4 c = k.ha_unpack_rgba(f.rgba);
+      if (weighted()) {
+        accum_[p] += k.wb_accum_term(f.depth, c);
+        revealage_[p] *= 1.0f - c.a;
+      } else {
+        accum_[p] = k.bl_over(accum_[p], c);
+      }
+    }
+    parts[part].c.add_tally(tally);
+  });
+  Counters total;
+  for (const auto& part : parts) total += part.c;
+  return total;
+}
+
+std::uint64_t BlendedImage::clear() {
+  accum_.assign(screen().area(), weighted() ? glm::vec4(0.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  revealage_.assign(weighted() ? screen().area() : 0, 1.0f);
+  return 0;
+}
+
+std::uint32_t BlendedImage::list(std::uint32_t, std::uint32_t, std::vector<ListEntry>& out) const {
+  out.clear();
+  return 0;
+}
+
+std::vector<glm::vec4> BlendedImage::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+  const std::uint32_t width = screen().x;
+  return detail::composite_image(
+      screen(), backgrounds, threads, [&] { return BlendedKernel(params_); },
+      [&](BlendedKernel& k, glm::uvec2 p, glm::vec3 background) {
+        const std::size_t i = p.x + std::size_t{p.y} * width;
+        return weighted() ? k.wb_finish(accum_[i], revealage_[i], background) : k.bl_finish(accum_[i], background);
+      });
+}
+
+std::uint64_t BlendedImage::memory_bytes() const { return accum_.size() * sizeof(glm::vec4) + revealage_.size() * 4; }
+
+void BlendedImage::import_state(std::span<const glm::vec4> accum, std::span<const float> revealage) {
+  if (accum.size() != accum_.size() || revealage.size() != revealage_.size())
+    throw std::invalid_argument("imported accumulators have " + std::to_string(accum.size()) + " pixels and " +
+                                std::to_string(revealage.size()) + " revealages, the image " +
+                                std::to_string(accum_.size()) + " and " + std::to_string(revealage_.size()));
+  std::copy(accum.begin(), accum.end(), accum_.begin());
+  std::copy(revealage.begin(), revealage.end(), revealage_.begin());
+}
+
+}  // namespace habuffer

@@ -1,0 +1,62 @@
+// The k-buffer on the CPU (seed 003): the K nearest fragments of each pixel
+// kept sorted by atomic max, what falls behind the K-th dropped and counted
+// (dropped_layers); with the occupancy map on, each insert batch first fills
+// the map and counts each pixel's limit, then rejects fragments beyond it
+// (occupancy_rejected) before they touch the layers.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/kbuffer_kernel.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer {
+
+class KBuffer final : public FragmentBuffer {
+ public:
+  // Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
+  explicit KBuffer(const TechniqueConfig& config);
+
+  [[nodiscard]] Technique technique() const override { return Technique::KBuffer; }
+  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
+  [[nodiscard]] std::uint32_t layers() const { return params_.layers; }
+
+  Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  std::uint64_t clear() override;
+  [[nodiscard]] std::uint64_t count_stored() const override;
+  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.layers} * screen().area(); }
+
+  std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
+  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+                                                       std::uint32_t threads = 0) const override;
+  // Layers, and the occupancy map and limits when on.
+  [[nodiscard]] std::uint64_t memory_bytes() const override;
+
+  // The GPU path's read-back: the layers as record words (32-bit words,
+  // two per L64 record, low first), and the occupancy limits (occupancy on);
+  // throws std::invalid_argument when the sizes differ.
+  void import_state(std::span<const std::uint32_t> slot_words, std::span<const std::uint32_t> limits);
+  // Pixel (x, y)'s occupancy limit (the bucket of the k-th occupied one, or
+  // 32 * occupancy_words when fewer are occupied); throws std::logic_error when occupancy is off.
+  [[nodiscard]] std::uint32_t occupancy_limit(std::uint32_t x, std::uint32_t y) const;
+
+ private:
+  template <class Word>
+  Counters insert_words(std::span<const Fragment> fragments, std::uint32_t threads);
+  template <class Word>
+  [[nodiscard]] KBufferBuffers<Word> buffers() const;
+  [[nodiscard]] bool wide() const { return config_.buffer.layout == Layout::L64; }
+  [[nodiscard]] std::uint64_t record(std::uint64_t slot) const;
+
+  TechniqueConfig config_;
+  TechniqueParams params_;
+  std::vector<std::uint64_t> slots64_;  // L64
+  std::vector<std::uint32_t> slots32_;  // L32
+  std::vector<std::uint32_t> occupancy_;
+  std::vector<std::uint32_t> limits_;
+};
+
+}  // namespace habuffer

@@ -1,0 +1,93 @@
+// The k-buffer on the CPU: the shared GLSL of core/shared/ha_kbuffer.glsl
+// compiled as member functions over the buffers a shader would get.
+#pragma once
+
+#include <atomic>
+#include <bit>
+#include <cstdint>
+
+#include "habuffer/glsl_env.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer {
+
+template <class Word>
+struct KBufferBuffers {
+  Word* slots;               // K per pixel, layer-major
+  std::uint32_t* occupancy;  // occupancy_words per pixel (occupancy on)
+  std::uint32_t* limits;     // one bucket per pixel (occupancy on)
+};
+
+// Concurrent: slots and occupancy bits are updated atomically (several
+// inserters at once); the count pass and compositing need none.
+template <class Word, bool Concurrent>
+class KBufferKernel {
+ public:
+  HA_GLSL_CLASS_PRELUDE
+  using ha_word = Word;
+  using ha_index = std::uint64_t;
+  static constexpr uint ha_word_bits = sizeof(Word) * 8;
+
+  KBufferKernel(const TechniqueParams& params, const KBufferBuffers<Word>& b)
+      : ha_age_bits(params.age_bits),
+        ha_payload_bits(params.payload_bits),
+        ha_screen_size(params.screen.x, params.screen.y),
+        ha_layers(params.layers),
+        ha_occupancy(params.occupancy ? 1u : 0u),
+        ha_occupancy_words(params.occupancy_words),
+        ha_occupancy_near_code(params.occupancy_near_code),
+        ha_occupancy_bucket_codes(params.occupancy_bucket_codes),
+        b_(b) {}
+
+  uint ha_age_bits;
+  uint ha_payload_bits;
+  uvec2 ha_screen_size;
+  uint ha_layers;
+  uint ha_occupancy;
+  uint ha_occupancy_words;
+  uint ha_occupancy_near_code;
+  uint ha_occupancy_bucket_codes;
+
+  // atomicMax on a slot (the HA-buffer's compare-exchange loop: each failed
+  // exchange saw a strictly larger value, so it ends).
+  Word ha_atomic_max_slot(ha_index s, Word r) {
+    if constexpr (Concurrent) {
+      std::atomic_ref<Word> slot(b_.slots[s]);
+      Word cur = slot.load(std::memory_order_relaxed);
+      while (cur < r && !slot.compare_exchange_strong(cur, r, std::memory_order_relaxed)) {
+      }
+      return cur;
+    } else {
+      Word cur = b_.slots[s];
+      if (cur < r) b_.slots[s] = r;
+      return cur;
+    }
+  }
+  static uint ha_atomic_missed() { return 0u; }
+  Word ha_load_slot(ha_index s) const {
+    if constexpr (Concurrent) return std::atomic_ref<Word>(b_.slots[s]).load(std::memory_order_relaxed);
+    return b_.slots[s];
+  }
+  void kb_or_occupancy(uint word, uint bits) {
+    if constexpr (Concurrent) {
+      std::atomic_ref<std::uint32_t> w(b_.occupancy[word]);
+      if ((w.load(std::memory_order_relaxed) & bits) != bits) w.fetch_or(bits, std::memory_order_relaxed);
+    } else {
+      b_.occupancy[word] |= bits;
+    }
+  }
+  uint kb_load_occupancy(uint word) const { return b_.occupancy[word]; }
+  uint kb_load_limit(uint pixel) const { return b_.limits[pixel]; }
+  void kb_store_limit(uint pixel, uint bucket) { b_.limits[pixel] = bucket; }
+  static uint ha_lowest_bit(uint w) { return static_cast<uint>(std::countr_zero(w)); }
+
+#include "../../shared/ha_record.glsl"
+#include "../../shared/ha_carry.glsl"
+#include "../../shared/ha_blend.glsl"
+#include "../../shared/ha_kbuffer.glsl"
+
+ private:
+  KBufferBuffers<Word> b_;
+};
+
+}  // namespace habuffer

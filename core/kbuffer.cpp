@@ -1,0 +1,125 @@
+#include "habuffer/kbuffer.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "habuffer/kbuffer_kernel.h"
+#include "technique_parallel.h"
+
+namespace habuffer {
+
+KBuffer::KBuffer(const TechniqueConfig& config)
+    : config_(validated_as(config, Technique::KBuffer)), params_(make_technique_params(config_)) {
+  const std::uint64_t slots = std::uint64_t{config_.layers} * config_.buffer.screen.area();
+  if (wide()) slots64_.assign(slots, 0);
+  else slots32_.assign(slots, 0);
+  if (config_.occupancy) {
+    occupancy_.assign(std::uint64_t{config_.occupancy_words} * config_.buffer.screen.area(), 0);
+    limits_.assign(config_.buffer.screen.area(), 0);
+  }
+}
+
+template <class Word>
+KBufferBuffers<Word> KBuffer::buffers() const {
+  // The kernel's read-only uses (length, composite) never write through these.
+  auto* self = const_cast<KBuffer*>(this);
+  Word* slots = nullptr;
+  if constexpr (sizeof(Word) == 8) slots = self->slots64_.data();
+  else slots = self->slots32_.data();
+  return {slots, self->occupancy_.data(), self->limits_.data()};
+}
+
+template <class Word>
+Counters KBuffer::insert_words(std::span<const Fragment> fragments, std::uint32_t threads) {
+  const auto make = [&](auto concurrent) { return KBufferKernel<Word, decltype(concurrent)::value>(params_, buffers<Word>()); };
+  if (config_.occupancy) {
+    // Fill pass, then count pass: the limits cover every fragment of the
+    // frame so far (earlier batches' bits stay), so they only ever tighten.
+    detail::insert_slices(fragments, threads, make, [](auto& k, const Fragment& f) {
+      if (k.ha_depth_valid(f.depth)) k.kb_fill(glm::uvec2(f.x, f.y), k.ha_depth_code(f.depth));
+      return HA_STORED;  // not an insert call: the tally is dropped
+    });
+    detail::sort_every_pixel(
+        screen(), threads, [&] { return KBufferKernel<Word, false>(params_, buffers<Word>()); },
+        [](auto& k, glm::uvec2 p) {
+          k.kb_count_pixel(p);
+          return std::uint64_t{0};
+        });
+  }
+  return detail::insert_slices(fragments, threads, make, [](auto& k, const Fragment& f) {
+    return k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+  });
+}
+
+Counters KBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
+  check_on_screen(fragments, screen());
+  const std::uint32_t threads = detail::insert_threads(options, Technique::KBuffer);
+  return wide() ? insert_words<std::uint64_t>(fragments, threads) : insert_words<std::uint32_t>(fragments, threads);
+}
+
+std::uint64_t KBuffer::clear() {
+  const std::uint64_t held = count_stored();
+  std::fill(slots64_.begin(), slots64_.end(), 0);
+  std::fill(slots32_.begin(), slots32_.end(), 0u);
+  std::fill(occupancy_.begin(), occupancy_.end(), 0u);
+  std::fill(limits_.begin(), limits_.end(), 0u);
+  return held;
+}
+
+std::uint64_t KBuffer::record(std::uint64_t slot) const { return wide() ? slots64_[slot] : slots32_[slot]; }
+
+std::uint64_t KBuffer::count_stored() const {
+  std::uint64_t n = 0;
+  for (std::uint64_t s = 0; s < capacity(); ++s) n += record(s) != 0 ? 1 : 0;
+  return n;
+}
+
+std::uint32_t KBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  out.clear();
+  const RecordLayout layout = config_.buffer.record_layout();
+  const std::uint64_t pixel = x + std::uint64_t{y} * screen().x;
+  std::uint32_t reads = 0;
+  for (std::uint32_t k = 0; k < params_.layers; ++k) {
+    ++reads;
+    const std::uint64_t r = record(std::uint64_t{k} * screen().area() + pixel);
+    if (r == 0) break;
+    out.push_back({0, layout.code(r), layout.data(r)});
+  }
+  return reads;
+}
+
+std::vector<glm::vec4> KBuffer::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+  const auto composite = [](auto& k, glm::uvec2 p, glm::vec3 background) { return k.kb_composite(p, background); };
+  if (wide())
+    return detail::composite_image(
+        screen(), backgrounds, threads, [&] { return KBufferKernel<std::uint64_t, false>(params_, buffers<std::uint64_t>()); },
+        composite);
+  return detail::composite_image(
+      screen(), backgrounds, threads, [&] { return KBufferKernel<std::uint32_t, false>(params_, buffers<std::uint32_t>()); },
+      composite);
+}
+
+std::uint64_t KBuffer::memory_bytes() const {
+  return slots64_.size() * 8 + slots32_.size() * 4 + occupancy_.size() * 4 + limits_.size() * 4;
+}
+
+void KBuffer::import_state(std::span<const std::uint32_t> slot_words, std::span<const std::uint32_t> limits) {
+  const std::uint64_t words = wide() ? slots64_.size() * 2 : slots32_.size();
+  if (slot_words.size() != words || limits.size() != limits_.size())
+    throw std::invalid_argument("imported k-buffer has " + std::to_string(slot_words.size()) + " words and " +
+                                std::to_string(limits.size()) + " limits, the buffer " + std::to_string(words) +
+                                " and " + std::to_string(limits_.size()));
+  if (wide())
+    for (std::size_t s = 0; s < slots64_.size(); ++s)
+      slots64_[s] = slot_words[2 * s] | (std::uint64_t{slot_words[2 * s + 1]} << 32);
+  else
+    std::copy(slot_words.begin(), slot_words.end(), slots32_.begin());
+  std::copy(limits.begin(), limits.end(), limits_.begin());
+}
+
+std::uint32_t KBuffer::occupancy_limit(std::uint32_t x, std::uint32_t y) const {
+  if (!config_.occupancy) throw std::logic_error("the k-buffer's occupancy map is off");
+  return limits_[x + std::size_t{y} * screen().x];
+}
+
+}  // namespace habuffer

@@ -1,0 +1,135 @@
+// The k-buffer (the k nearest fragments of each pixel; Vasilakis and
+// Papaioannou 2015 improve it with occupancy maps), written once for both
+// paths. Insertion by atomic max (the HA-buffer's mechanism, without
+// hashing): a pixel's K layers are slots (layer-major), a record walks them
+// front to back, each slot keeping the larger of what it held and what
+// arrives and passing the smaller on; what leaves the K-th layer is dropped
+// (HA_DROPPED_LAYERS). Every slot only grows, so at any time the layers hold
+// the K largest records that reached them, in order: the K nearest entries,
+// sorted, without a sort pass. Records are SPEC 2 records with age 1 (never
+// 0, so 0 is an empty slot), comparing by (code, data) as every technique's
+// entries do. An insert call carries a HaCarry (a = layer + 1), so the GPU
+// path defers and resumes a call cut short as it does the HA-buffer's.
+//
+// Occupancy-map culling (seed 003): a fill pass sets one bit per occupied
+// depth bucket (32 * ha_occupancy_words buckets per pixel over the scene's
+// depth range), a count pass finds the bucket of the k-th occupied bit, and
+// the insertion rejects fragments in buckets beyond it (HA_OCCUPANCY_REJECTED):
+// at least k fragments lie in front (each occupied bucket holds one), so
+// the k nearest are never rejected (the paper's Lemma 2.1). Buckets divide
+// depth codes with integers, so both paths reject the same fragments.
+//
+// Host environment provides, besides ha_record.glsl, ha_carry.glsl and
+// ha_blend.glsl: uint ha_layers (K), uvec2 ha_screen_size, the slot atomics
+// of ha_insert.glsl's environment (ha_atomic_max_slot, ha_atomic_missed,
+// ha_load_slot), uint ha_occupancy (0: off), uint ha_occupancy_words, uint
+// ha_occupancy_near_code, uint ha_occupancy_bucket_codes, void
+// kb_or_occupancy(uint word, uint bits) (atomic or), uint
+// kb_load_occupancy(uint word), uint kb_load_limit(uint pixel), void
+// kb_store_limit(uint pixel, uint bucket), uint ha_lowest_bit(uint w)
+// (index of the lowest set bit of a non-zero word).
+
+uint kb_pixel(uvec2 p) { return p.x + p.y * ha_screen_size.x; }
+ha_index kb_slot(uint pixel, uint layer) { return ha_index(layer) * ha_index(ha_screen_size.x * ha_screen_size.y) + ha_index(pixel); }
+
+// --- occupancy map ----------------------------------------------------------
+uint kb_buckets() { return 32u * ha_occupancy_words; }
+
+uint kb_bucket(uint code) {
+  uint nearer = ha_occupancy_near_code - min(code, ha_occupancy_near_code);
+  return min(nearer / ha_occupancy_bucket_codes, kb_buckets() - 1u);
+}
+
+// Fill pass: the bucket of one fragment.
+void kb_fill(uvec2 p, uint code) {
+  uint b = kb_bucket(code);
+  kb_or_occupancy(kb_pixel(p) * ha_occupancy_words + b / 32u, 1u << (b & 31u));
+}
+
+// Count pass: the bucket holding the k-th occupied bit of pixel p (nearest
+// first), or kb_buckets() when fewer than K buckets are occupied (nothing is
+// rejected). O(K) bit clears (Kernighan), as the paper counts.
+void kb_count_pixel(uvec2 p) {
+  uint pixel = kb_pixel(p);
+  uint seen = 0u;
+  uint limit = kb_buckets();
+  for (uint w = 0u; w < ha_occupancy_words && limit == kb_buckets(); ++w) {
+    uint bits = kb_load_occupancy(pixel * ha_occupancy_words + w);
+    while (bits != 0u) {
+      seen += 1u;
+      if (seen == ha_layers) {
+        limit = w * 32u + ha_lowest_bit(bits);
+        break;
+      }
+      bits &= bits - 1u;
+    }
+  }
+  kb_store_limit(pixel, limit);
+}
+
+bool kb_occupancy_rejects(uvec2 p, uint code) {
+  return ha_occupancy != 0u && kb_bucket(code) > kb_load_limit(kb_pixel(p));
+}
+
+// --- insertion ---------------------------------------------------------------
+// One layer: HA_PENDING while the carried record goes on to the next layer
+// (or tries the same one again: an emulated atomic found it busy), HA_CUT
+// when that atomic gave up, else the call's outcome.
+uint kb_insert_step(HA_INOUT(HaCarry) c) {
+  if (c.a > ha_layers) return HA_DROPPED_LAYERS;
+  ha_index s = kb_slot(kb_pixel(c.p), c.a - 1u);
+  // Slots only grow: a larger value read is larger still (no atomic needed).
+  // The high 32 bits alone: a 64-bit read racing a write may mix halves, but
+  // its high half is one the slot held.
+  if (uint(ha_load_slot(s) >> (ha_word_bits - 32u)) > uint(c.r >> (ha_word_bits - 32u))) {
+    c.iter += 1u;
+    c.a += 1u;
+    return HA_PENDING;
+  }
+  ha_word old = ha_atomic_max_slot(s, c.r);
+  uint missed = ha_atomic_missed();
+  if (missed != 0u) return missed;
+  c.iter += 1u;
+  if (old == c.r) return HA_DUPLICATE;
+  if (old < c.r) {
+    if (old == ha_word(0)) return HA_STORED;
+    c.r = old;  // the displaced record goes on behind
+  }
+  c.a += 1u;
+  return HA_PENDING;
+}
+
+uint kb_insert_run(HA_INOUT(HaCarry) c) {
+  uint outcome = HA_PENDING;
+  while (outcome == HA_PENDING) outcome = kb_insert_step(c);
+  return outcome;
+}
+
+// The whole insert call on the CPU path (the occupancy test included; the
+// fill and count passes are the host's).
+uint kb_insert_fragment(uvec2 p, float t, uint data) {
+  if (!ha_depth_valid(t)) return HA_INVALID;
+  uint code = ha_depth_code(t);
+  if (kb_occupancy_rejects(p, code)) return HA_OCCUPANCY_REJECTED;
+  HaCarry c = ha_carry_begin(p, code, data);
+  return kb_insert_run(c);
+}
+
+// Pixel p's layers, nearest first, until the first empty one.
+uint kb_length(uvec2 p) {
+  uint pixel = kb_pixel(p);
+  uint n = 0u;
+  while (n < ha_layers && ha_load_slot(kb_slot(pixel, n)) != ha_word(0)) n += 1u;
+  return n;
+}
+
+vec4 kb_composite(uvec2 p, vec3 background) {
+  uint pixel = kb_pixel(p);
+  vec4 c = vec4(0.0f);
+  for (uint k = 0u; k < ha_layers; ++k) {
+    ha_word r = ha_load_slot(kb_slot(pixel, k));
+    if (r == ha_word(0)) break;
+    c = ha_blend_under(c, ha_unpack_rgba(ha_data(r)));
+  }
+  return ha_finish(c, background);
+}

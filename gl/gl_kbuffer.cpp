@@ -1,0 +1,130 @@
+#include "habuffer/gl/gl_kbuffer.h"
+
+#include <epoxy/gl.h>
+
+#include "gl_params.h"
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/shader_program.h"
+#include "habuffer/kbuffer.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer::gl {
+namespace {
+
+// Emulated64's lock words: one per 2^HA_LOCK_SHIFT slots (as the HA-buffer's table).
+std::uint64_t lock_words(std::uint64_t slots) { return (slots + (1u << HA_LOCK_SHIFT) - 1) >> HA_LOCK_SHIFT; }
+
+}  // namespace
+
+struct GlKBuffer::Gpu {
+  GLuint slots = 0, locks = 0, occupancy = 0, limits = 0, saturation = 0;
+  std::unique_ptr<ShaderProgram> count;
+  ~Gpu() {
+    for (GLuint* b : {&slots, &locks, &occupancy, &limits, &saturation}) delete_buffer(*b);
+  }
+};
+
+GlKBuffer::GlKBuffer(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
+    : GlTechnique(Technique::KBuffer, mode, bindings, validated_as(config, Technique::KBuffer).buffer.screen),
+      config_(validated_as(config, Technique::KBuffer)),
+      gpu_(std::make_unique<Gpu>()) {
+  if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
+    throw GlError("atomic mode " + to_string(mode) + " does not build an " + to_string(config_.buffer.layout) + " k-buffer");
+  const GlInfo info = query_gl_info();
+  if (mode != AtomicMode::Native32 && !info.int64_types)
+    throw GlError("atomic mode " + to_string(mode) + " needs 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  if (mode == AtomicMode::Native64 && !info.atomic_int64)
+    throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
+  allocate_layers(config_.layers);
+  const std::uint64_t pixels = screen().area();
+  if (config_.occupancy) {
+    check_storage_fits(pixels * config_.occupancy_words * 4, "an occupancy map of " +
+                                                                 std::to_string(config_.occupancy_words) + " words per pixel");
+    gpu_->occupancy = create_buffer(pixels * config_.occupancy_words * 4);
+    gpu_->limits = create_buffer(pixels * 4);
+    gpu_->count = std::make_unique<ShaderProgram>(
+        ShaderProgram::compute(kbuffer_count_compute(mode, bindings), "k-buffer count pass"));
+  }
+}
+
+GlKBuffer::~GlKBuffer() = default;
+
+std::uint64_t GlKBuffer::word_bytes() const { return config_.buffer.record_layout().word_bytes(); }
+
+void GlKBuffer::allocate_layers(std::uint32_t layers) {
+  TechniqueConfig c = config_;
+  c.layers = layers;
+  c.validate();
+  const std::uint64_t slots = std::uint64_t{layers} * screen().area();
+  check_storage_fits(slots * word_bytes(), std::to_string(layers) + " k-buffer layers of screen " + screen().str());
+  delete_buffer(gpu_->slots);
+  delete_buffer(gpu_->locks);
+  gpu_->slots = create_buffer(slots * word_bytes());
+  if (mode() == AtomicMode::Emulated64) {
+    gpu_->locks = create_buffer(lock_words(slots) * 4);
+    zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
+  }
+  config_.layers = layers;
+}
+
+void GlKBuffer::write_params(GlParams& p) const {
+  TechniqueParams t = make_technique_params(config_);
+  p.ha_age_bits = config_.buffer.age_bits;
+  p.ha_layers = config_.layers;
+  p.ha_occupancy = config_.occupancy ? 1u : 0u;
+  p.ha_occupancy_words = config_.occupancy_words;
+  p.ha_occupancy_near_code = t.occupancy_near_code;
+  p.ha_occupancy_bucket_codes = t.occupancy_bucket_codes;
+}
+
+void GlKBuffer::bind() const {
+  const GlBindings& b = bindings();
+  for (const auto& [point, buffer] : {std::pair{b.table, gpu_->slots}, std::pair{b.locks, gpu_->locks},
+                                      std::pair{b.max_age, gpu_->occupancy}, std::pair{b.offsets, gpu_->limits}})
+    if (buffer != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, buffer);
+}
+
+void GlKBuffer::before_gather() {
+  zero_buffer(gpu_->slots);
+  if (gpu_->occupancy != 0) zero_buffer(gpu_->occupancy);
+}
+
+void GlKBuffer::reset() { zero_buffer(gpu_->slots); }
+
+void GlKBuffer::between_passes() {
+  if (!gpu_->count) return;
+  glUseProgram(gpu_->count->id());
+  glDispatchCompute((screen().x + 7) / 8, (screen().y + 7) / 8, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+bool GlKBuffer::grow(const FrameReport& report, const GlFrameOptions& options) {
+  if (report.counters.failures() <= report.cut_short) {
+    reset();
+    return true;
+  }
+  const TechniqueConfig next = config_.grown(options.policy, 0, 0);
+  if (!next.limit().empty() || capacity() * 2 * word_bytes() > max_storage_bytes()) return false;
+  allocate_layers(next.layers);
+  return true;
+}
+
+std::uint64_t GlKBuffer::memory_bytes() const {
+  std::uint64_t bytes = capacity() * word_bytes();
+  if (mode() == AtomicMode::Emulated64) bytes += lock_words(capacity()) * 4;
+  if (config_.occupancy) bytes += screen().area() * (std::uint64_t{config_.occupancy_words} + 1) * 4;
+  return bytes;
+}
+
+std::unique_ptr<FragmentBuffer> GlKBuffer::read_back() const {
+  auto kb = std::make_unique<KBuffer>(config_);
+  const std::vector<std::uint32_t> words = read_words(gpu_->slots, capacity() * word_bytes() / 4);
+  const std::vector<std::uint32_t> limits =
+      config_.occupancy ? read_words(gpu_->limits, screen().area()) : std::vector<std::uint32_t>{};
+  kb->import_state(words, limits);
+  return kb;
+}
+
+}  // namespace habuffer::gl
