@@ -35,16 +35,13 @@ Counters KBuffer::insert_words(std::span<const Fragment> fragments, std::uint32_
   if (config_.occupancy) {
     // Fill pass, then count pass: the limits cover every fragment of the
     // frame so far (earlier batches' bits stay), so they only ever tighten.
-    detail::insert_slices(fragments, threads, make, [](auto& k, const Fragment& f) {
-      if (k.ha_depth_valid(f.depth)) k.kb_fill(glm::uvec2(f.x, f.y), k.ha_depth_code(f.depth));
-      return HA_STORED;  // not an insert call: the tally is dropped
+    detail::for_slices(fragments, threads, make, [](auto& k, std::span<const Fragment> slice, std::uint32_t) {
+      for (const Fragment& f : slice)
+        if (k.ha_depth_valid(f.depth)) k.kb_fill(glm::uvec2(f.x, f.y), k.ha_depth_code(f.depth));
     });
-    detail::sort_every_pixel(
+    detail::for_every_pixel(
         screen(), threads, [&] { return KBufferKernel<Word, false>(params_, buffers<Word>()); },
-        [](auto& k, glm::uvec2 p) {
-          k.kb_count_pixel(p);
-          return std::uint64_t{0};
-        });
+        [](auto& k, glm::uvec2 p, std::uint32_t) { k.kb_count_pixel(p); });
   }
   return detail::insert_slices(fragments, threads, make, [](auto& k, const Fragment& f) {
     return k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);

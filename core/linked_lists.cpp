@@ -8,14 +8,8 @@
 #include "technique_parallel.h"
 
 namespace habuffer {
-namespace {
-Technique lists_technique(const TechniqueConfig& c) {
-  return c.technique == Technique::SortedLists ? Technique::SortedLists : Technique::Lists;
-}
-}  // namespace
-
 LinkedLists::LinkedLists(const TechniqueConfig& config)
-    : config_(validated_as(config, lists_technique(config))),
+    : config_(validated_as(config, lists_flavour(config.technique))),
       params_(make_technique_params(config_)),
       heads_(config_.buffer.screen.area(), 0),
       entries_(config_.pool_capacity),

@@ -36,6 +36,7 @@ bool exact_technique(Technique t) { return stores_lists(t); }
 bool has_early_cull(Technique t) { return t == Technique::Ha || t == Technique::SortedLists; }
 bool uses_pool(Technique t) { return t == Technique::Lists || t == Technique::SortedLists; }
 bool uses_layers(Technique t) { return t == Technique::Arrays || t == Technique::KBuffer; }
+Technique lists_flavour(Technique t) { return t == Technique::SortedLists ? t : Technique::Lists; }
 
 std::string technique_names() {
   std::string s;

@@ -38,31 +38,36 @@ inline std::uint32_t insert_threads(const InsertOptions& options, Technique tech
   return threads;
 }
 
-// `make_kernel(concurrent)` is called once per thread with a bool_constant
-// telling whether atomics are needed; insert(kernel, fragment) returns the
-// HA_* outcome.
-template <class MakeKernel, class Insert>
-Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Insert insert) {
-  const auto run = [&](auto& k, std::span<const Fragment> slice, Counters& counters) {
-    // A local tally: counters in memory could alias the buffers and force a store per fragment.
-    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
-    for (const Fragment& f : slice) ++tally[insert(k, f)];
-    counters.add_tally(tally);
-  };
+// The stream split into contiguous slices, one per thread: each thread's
+// `make_kernel(concurrent)` (a bool_constant telling whether atomics are
+// needed: false for one thread) runs run(kernel, slice, thread).
+template <class MakeKernel, class Run>
+void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Run run) {
   if (threads == 1) {
-    Counters c;
     auto k = make_kernel(std::false_type{});
-    run(k, frags, c);
-    return c;
+    run(k, frags, 0u);
+    return;
   }
-  std::vector<SliceCounters> slices(threads);
   tbb::task_arena arena(static_cast<int>(threads));
   arena.execute([&] {
     fork_join(threads, [&](std::uint32_t t) {
       auto k = make_kernel(std::true_type{});
       const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
-      run(k, frags.subspan(begin, end - begin), slices[t].c);
+      run(k, frags.subspan(begin, end - begin), t);
     });
+  });
+}
+
+// Every fragment through insert(kernel, fragment), which returns the HA_*
+// outcome, on contiguous slices; returns the tallied outcomes.
+template <class MakeKernel, class Insert>
+Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Insert insert) {
+  std::vector<SliceCounters> slices(threads);
+  for_slices(frags, threads, make_kernel, [&](auto& k, std::span<const Fragment> slice, std::uint32_t t) {
+    // A local tally: counters in memory could alias the buffers and force a store per fragment.
+    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
+    for (const Fragment& f : slice) ++tally[insert(k, f)];
+    slices[t].c.add_tally(tally);
   });
   Counters total;
   for (const auto& s : slices) total += s.c;
@@ -81,16 +86,24 @@ void for_row_bands(Extent screen, std::uint32_t parts, Body body) {
   });
 }
 
+// visit(kernel, pixel) for every pixel, bands of rows in parallel, one
+// `make_kernel()` per band.
+template <class MakeKernel, class Visit>
+void for_every_pixel(Extent screen, std::uint32_t threads, MakeKernel make_kernel, Visit visit) {
+  for_row_bands(screen, threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
+    auto k = make_kernel();
+    for (std::uint32_t y = y0; y < y1; ++y)
+      for (std::uint32_t x = 0; x < screen.x; ++x) visit(k, glm::uvec2(x, y), part);
+  });
+}
+
 // Every pixel's list sorted by `make_kernel()`'s sort(kernel, pixel), which
 // returns the entries it merged; returns them all.
 template <class MakeKernel, class Sort>
 std::uint64_t sort_every_pixel(Extent screen, std::uint32_t threads, MakeKernel make_kernel, Sort sort) {
   std::vector<PartCount> merged(threads);
-  for_row_bands(screen, threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
-    auto k = make_kernel();
-    for (std::uint32_t y = y0; y < y1; ++y)
-      for (std::uint32_t x = 0; x < screen.x; ++x) merged[part].n += sort(k, glm::uvec2(x, y));
-  });
+  for_every_pixel(screen, threads, make_kernel,
+                  [&](auto& k, glm::uvec2 p, std::uint32_t part) { merged[part].n += sort(k, p); });
   std::uint64_t total = 0;
   for (const PartCount& m : merged) total += m.n;
   return total;
@@ -102,13 +115,9 @@ template <class MakeKernel, class Composite, class Background>
 std::vector<glm::vec4> composite_pixels(Extent screen, std::uint32_t threads, MakeKernel make_kernel,
                                         Composite composite, Background background) {
   std::vector<glm::vec4> image(screen.area());
-  for_row_bands(screen, resolve_threads(threads), [&](std::uint32_t, std::uint32_t y0, std::uint32_t y1) {
-    auto k = make_kernel();
-    for (std::uint32_t y = y0; y < y1; ++y)
-      for (std::uint32_t x = 0; x < screen.x; ++x) {
-        const std::size_t p = x + std::size_t{y} * screen.x;
-        image[p] = composite(k, glm::uvec2(x, y), background(p));
-      }
+  for_every_pixel(screen, resolve_threads(threads), make_kernel, [&](auto& k, glm::uvec2 p, std::uint32_t) {
+    const std::size_t i = p.x + std::size_t{p.y} * screen.x;
+    image[i] = composite(k, p, background(i));
   });
   return image;
 }

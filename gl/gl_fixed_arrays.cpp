@@ -23,8 +23,7 @@ GlFixedArrays::GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, con
     : GlTechnique(Technique::Arrays, mode, bindings, validated_as(config, Technique::Arrays).buffer.screen),
       config_(validated_as(config, Technique::Arrays)),
       gpu_(std::make_unique<Gpu>()) {
-  if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
-    throw GlError("atomic mode " + to_string(mode) + " does not build " + to_string(config_.buffer.layout) + " arrays");
+  check_atomic_mode(mode, config_.buffer.layout);
   check_storage_fits(screen().area() * 4, "the counters of screen " + screen().str());
   gpu_->counts = create_buffer(screen().area() * 4);
   allocate_layers(config_.layers);

@@ -186,6 +186,12 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
     }
     report.attempts.push_back({technique_->table(), report.counters, technique_->capacity()});
     if (report.counters.failures() == 0 || report.attempts.size() >= options_.max_attempts) break;
+    // Failures that are all calls cut short (contention or the driver, not
+    // the technique's size): the same buffers, emptied, again.
+    if (report.counters.failures() <= report.cut_short) {
+      technique_->reset();
+      continue;
+    }
     // Lossless mode: the same frame again, with room for what was dropped.
     if (!technique_->grow(report, options_)) {
       report.growth_limited = true;

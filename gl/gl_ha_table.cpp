@@ -18,9 +18,6 @@ BufferConfig validated(BufferConfig c) {
   return c;
 }
 
-// Emulated64's lock words: one per 2^HA_LOCK_SHIFT slots.
-std::uint64_t lock_words(std::uint64_t slots) { return (slots + (1u << HA_LOCK_SHIFT) - 1) >> HA_LOCK_SHIFT; }
-
 }  // namespace
 
 struct GlHaTable::Gpu {
@@ -39,15 +36,7 @@ GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMod
       offsets_(source_.make(config_.table, config_.record_layout().max_age())),
       clear_tile_(clear_tile),
       gpu_(std::make_unique<Gpu>()) {
-  if (mode == AtomicMode::Native32 && config_.layout != Layout::L32)
-    throw GlError("atomic mode native32 holds L32 records only");
-  if (mode != AtomicMode::Native32 && config_.layout != Layout::L64)
-    throw GlError("atomic mode " + to_string(mode) + " holds L64 records only");
-  const GlInfo info = query_gl_info();
-  if (mode != AtomicMode::Native32 && !info.int64_types)
-    throw GlError("atomic mode " + to_string(mode) + " needs 64-bit shader types (GL_ARB_gpu_shader_int64)");
-  if (mode == AtomicMode::Native64 && !info.atomic_int64)
-    throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
+  check_atomic_mode(mode, config_.layout);
   const std::uint64_t cells = std::uint64_t{(config_.screen.x - 1) / config_.block + 1} *
                               std::uint64_t{(config_.screen.y - 1) / config_.block + 1};
   if (cells > UINT32_MAX) throw GlError("max-age table of " + std::to_string(cells) + " cells is too large");
@@ -83,7 +72,7 @@ void GlHaTable::allocate_table(Extent table, bool new_offsets) {
   gpu_->table = create_buffer(slots * config_.record_layout().word_bytes());
   zero_buffer(gpu_->table);
   if (mode() == AtomicMode::Emulated64) {
-    gpu_->locks = create_buffer(lock_words(slots) * 4);
+    gpu_->locks = create_buffer(emulated64_lock_words(slots) * 4);
     zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
   }
   gpu_->offsets = create_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
@@ -161,13 +150,7 @@ void GlHaTable::before_gather() {
 
 void GlHaTable::reset() { zero_buffer(gpu_->table); }
 
-bool GlHaTable::grow(const FrameReport& report, const GlFrameOptions& options) {
-  // Failures of the table need a larger one; calls cut short alone
-  // (contention or the driver, not load) retry the same table.
-  if (report.counters.failures() <= report.cut_short) {
-    reset();
-    return true;
-  }
+bool GlHaTable::grow(const FrameReport&, const GlFrameOptions& options) {
   const Extent grown = options.policy.grown(config_.table);
   if (!table_limit(grown).empty()) return false;
   allocate_table(grown);
@@ -192,7 +175,7 @@ std::uint64_t GlHaTable::memory_bytes() const {
   const std::uint64_t slots = config_.table.area();
   std::uint64_t bytes = slots * config_.record_layout().word_bytes() + std::uint64_t{cells_} * 4 +
                         offsets_.size() * sizeof(glm::uvec2) + sizeof(std::uint64_t);
-  if (mode() == AtomicMode::Emulated64) bytes += lock_words(slots) * 4;
+  if (mode() == AtomicMode::Emulated64) bytes += emulated64_lock_words(slots) * 4;
   if (config_.saturation) bytes += config_.screen.area() * 4;
   return bytes;
 }

@@ -11,13 +11,6 @@
 #include "habuffer/technique_params.h"
 
 namespace habuffer::gl {
-namespace {
-
-// Emulated64's lock words: one per 2^HA_LOCK_SHIFT slots (as the HA-buffer's table).
-std::uint64_t lock_words(std::uint64_t slots) { return (slots + (1u << HA_LOCK_SHIFT) - 1) >> HA_LOCK_SHIFT; }
-
-}  // namespace
-
 struct GlKBuffer::Gpu {
   GLuint slots = 0, locks = 0, occupancy = 0, limits = 0, saturation = 0;
   std::unique_ptr<ShaderProgram> count;
@@ -30,13 +23,7 @@ GlKBuffer::GlKBuffer(const TechniqueConfig& config, AtomicMode mode, const GlBin
     : GlTechnique(Technique::KBuffer, mode, bindings, validated_as(config, Technique::KBuffer).buffer.screen),
       config_(validated_as(config, Technique::KBuffer)),
       gpu_(std::make_unique<Gpu>()) {
-  if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
-    throw GlError("atomic mode " + to_string(mode) + " does not build an " + to_string(config_.buffer.layout) + " k-buffer");
-  const GlInfo info = query_gl_info();
-  if (mode != AtomicMode::Native32 && !info.int64_types)
-    throw GlError("atomic mode " + to_string(mode) + " needs 64-bit shader types (GL_ARB_gpu_shader_int64)");
-  if (mode == AtomicMode::Native64 && !info.atomic_int64)
-    throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
+  check_atomic_mode(mode, config_.buffer.layout);
   allocate_layers(config_.layers);
   const std::uint64_t pixels = screen().area();
   if (config_.occupancy) {
@@ -63,7 +50,7 @@ void GlKBuffer::allocate_layers(std::uint32_t layers) {
   delete_buffer(gpu_->locks);
   gpu_->slots = create_buffer(slots * word_bytes());
   if (mode() == AtomicMode::Emulated64) {
-    gpu_->locks = create_buffer(lock_words(slots) * 4);
+    gpu_->locks = create_buffer(emulated64_lock_words(slots) * 4);
     zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
   }
   config_.layers = layers;
@@ -100,20 +87,17 @@ void GlKBuffer::between_passes() {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-bool GlKBuffer::grow(const FrameReport& report, const GlFrameOptions& options) {
-  if (report.counters.failures() <= report.cut_short) {
-    reset();
-    return true;
-  }
+bool GlKBuffer::grow(const FrameReport&, const GlFrameOptions& options) {
   const TechniqueConfig next = config_.grown(options.policy, 0, 0);
-  if (!next.limit().empty() || capacity() * 2 * word_bytes() > max_storage_bytes()) return false;
+  if (!next.limit().empty() || std::uint64_t{next.layers} * screen().area() * word_bytes() > max_storage_bytes())
+    return false;
   allocate_layers(next.layers);
   return true;
 }
 
 std::uint64_t GlKBuffer::memory_bytes() const {
   std::uint64_t bytes = capacity() * word_bytes();
-  if (mode() == AtomicMode::Emulated64) bytes += lock_words(capacity()) * 4;
+  if (mode() == AtomicMode::Emulated64) bytes += emulated64_lock_words(capacity()) * 4;
   if (config_.occupancy) bytes += screen().area() * (std::uint64_t{config_.occupancy_words} + 1) * 4;
   return bytes;
 }

@@ -25,18 +25,11 @@ struct GlLinkedLists::Gpu {
   }
 };
 
-namespace {
-Technique lists_technique(const TechniqueConfig& c) {
-  return c.technique == Technique::SortedLists ? Technique::SortedLists : Technique::Lists;
-}
-}  // namespace
-
 GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(lists_technique(config), mode, bindings, validated_as(config, lists_technique(config)).buffer.screen),
-      config_(validated_as(config, lists_technique(config))),
+    : GlTechnique(lists_flavour(config.technique), mode, bindings, validated_as(config, lists_flavour(config.technique)).buffer.screen),
+      config_(validated_as(config, lists_flavour(config.technique))),
       gpu_(std::make_unique<Gpu>()) {
-  if ((mode == AtomicMode::Native32) != (config_.buffer.layout == Layout::L32))
-    throw GlError("atomic mode " + to_string(mode) + " does not build " + to_string(config_.buffer.layout) + " lists");
+  check_atomic_mode(mode, config_.buffer.layout);
   check_storage_fits(screen().area() * 4, "the head image of screen " + screen().str());
   gpu_->heads = create_buffer(screen().area() * 4);
   allocate_pool(config_.pool_capacity);

@@ -19,6 +19,21 @@ PassTiming GlTechnique::after_gather(bool) { return {}; }
 
 void GlTechnique::gathered(const FrameReport&) {}
 
+void check_atomic_mode(AtomicMode mode, Layout layout) {
+  if ((mode == AtomicMode::Native32) != (layout == Layout::L32))
+    throw GlError("atomic mode " + to_string(mode) + " does not hold " + to_string(layout) + " records");
+  if (mode == AtomicMode::Native32) return;
+  const GlInfo info = query_gl_info();
+  if (!info.int64_types)
+    throw GlError("atomic mode " + to_string(mode) + " needs 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  if (mode == AtomicMode::Native64 && !info.atomic_int64)
+    throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
+}
+
+std::uint64_t emulated64_lock_words(std::uint64_t slots) {
+  return (slots + (1u << HA_LOCK_SHIFT) - 1) >> HA_LOCK_SHIFT;
+}
+
 std::uint64_t max_storage_bytes() {
   GLint64 bytes = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);

@@ -104,8 +104,9 @@ std::string technique_parts(Technique technique, AtomicMode mode) {
       for (const char* part : {kArraysEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaArrays, kInsertEntry}) add(part);
       break;
     case Technique::SortedLists:
-      s += "#define HA_TECHNIQUE_CALL sl_insert_fragment\n#define HA_TECHNIQUE_COMPOSITE ll_composite\n";
-      for (const char* part : {kSortedListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kSaturationEnv,
+      s += "#define HA_TECHNIQUE_CALL sl_insert_fragment\n#define HA_TECHNIQUE_COMPOSITE ll_composite\n"
+           "#define HA_LISTS_QUALIFIER coherent\n";
+      for (const char* part : {kListsEnv, kSortedListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kSaturationEnv,
                                kHaSaturation, kHaSortedLists, kInsertEntry})
         add(part);
       break;

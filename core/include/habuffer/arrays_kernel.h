@@ -50,12 +50,8 @@ class ArraysKernel {
   void fa_store_count(uint pixel, uint n) { b_.counts[pixel] = n; }
   uvec2 fa_load_layer(uint slot) const { return b_.layers[slot]; }
   void fa_store_layer(uint slot, uvec2 e) { b_.layers[slot] = e; }
-  void fa_note_overflow(uint arrived) {
-    std::atomic_ref<std::uint32_t> m(*b_.max_arrived);
-    std::uint32_t cur = m.load(std::memory_order_relaxed);
-    while (cur < arrived && !m.compare_exchange_weak(cur, arrived, std::memory_order_relaxed)) {
-    }
-  }
+  // Atomic even for one inserter: the sort pass runs its rows on several threads.
+  void fa_note_overflow(uint arrived) { ha_fetch_max<true>(*b_.max_arrived, arrived); }
 
 #include "../../shared/ha_record.glsl"
 #include "../../shared/ha_blend.glsl"

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -33,3 +34,33 @@
   std::array<glm::uvec2, HA_SORT_LOCAL> ha_local_{};                       \
   glm::uvec2 ha_local_get(std::uint32_t k) const { return ha_local_[k]; }  \
   void ha_local_set(std::uint32_t k, glm::uvec2 e) { ha_local_[k] = e; }
+
+namespace habuffer {
+
+// GLSL's atomicMax on the CPU, for every kernel's slots, cells and images:
+// returns the old value, leaves max(old, x). Each failed strong exchange saw
+// a strictly larger value, so the loop ends after at most as many rounds as
+// other threads raised this very word. Without Concurrent: plain loads and stores.
+template <bool Concurrent, class T>
+T ha_fetch_max(T& v, T x) {
+  if constexpr (Concurrent) {
+    std::atomic_ref<T> a(v);
+    T cur = a.load(std::memory_order_relaxed);
+    while (cur < x && !a.compare_exchange_strong(cur, x, std::memory_order_relaxed)) {
+    }
+    return cur;
+  } else {
+    const T cur = v;
+    if (cur < x) v = x;
+    return cur;
+  }
+}
+
+// A plain read of a word other threads may write (relaxed atomic when Concurrent).
+template <bool Concurrent, class T>
+T ha_fetch(const T& v) {
+  if constexpr (Concurrent) return std::atomic_ref<T>(const_cast<T&>(v)).load(std::memory_order_relaxed);
+  return v;
+}
+
+}  // namespace habuffer

@@ -68,61 +68,14 @@ class HashKernel {
   // v / B by multiplication: a hardware divide per placement costs more than the probe.
   uint ha_div_block(uint v) const { return block_.div(v); }
 
-  // atomicMax on a slot: returns the old value, leaves max(old, r). Each
-  // failed strong exchange observed a strictly larger value, so the loop ends
-  // after at most as many rounds as other threads raised this very slot.
-  Word ha_atomic_max_slot(ha_index s, Word r) {
-    if constexpr (Concurrent) {
-      std::atomic_ref<Word> slot(table_[s]);
-      Word cur = slot.load(std::memory_order_relaxed);
-      while (cur < r && !slot.compare_exchange_strong(cur, r, std::memory_order_relaxed)) {
-      }
-      return cur;
-    } else {
-      Word cur = table_[s];
-      if (cur < r) table_[s] = r;
-      return cur;
-    }
-  }
-
+  Word ha_atomic_max_slot(ha_index s, Word r) { return ha_fetch_max<Concurrent>(table_[s], r); }
   // CPU atomics always happen (the compare-exchange loop is lock-free).
   static uint ha_atomic_missed() { return 0u; }
-
-  void ha_atomic_max_age(uint cell, uint age) {
-    if constexpr (Concurrent) {
-      std::atomic_ref<std::uint32_t> m(max_age_[cell]);
-      std::uint32_t cur = m.load(std::memory_order_relaxed);
-      while (cur < age && !m.compare_exchange_strong(cur, age, std::memory_order_relaxed)) {
-      }
-    } else {
-      if (max_age_[cell] < age) max_age_[cell] = age;
-    }
-  }
-
-  Word ha_load_slot(ha_index s) const {
-    if constexpr (Concurrent) return std::atomic_ref<Word>(table_[s]).load(std::memory_order_relaxed);
-    return table_[s];
-  }
-
-  uint ha_load_max_age(uint cell) const {
-    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(max_age_[cell]).load(std::memory_order_relaxed);
-    return max_age_[cell];
-  }
-
-  uint ha_load_saturation(uint pixel) const {
-    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(saturation_[pixel]).load(std::memory_order_relaxed);
-    return saturation_[pixel];
-  }
-  void ha_max_saturation(uint pixel, uint code) {
-    if constexpr (Concurrent) {
-      std::atomic_ref<std::uint32_t> m(saturation_[pixel]);
-      std::uint32_t cur = m.load(std::memory_order_relaxed);
-      while (cur < code && !m.compare_exchange_weak(cur, code, std::memory_order_relaxed)) {
-      }
-    } else if (saturation_[pixel] < code) {
-      saturation_[pixel] = code;
-    }
-  }
+  void ha_atomic_max_age(uint cell, uint age) { ha_fetch_max<Concurrent>(max_age_[cell], age); }
+  Word ha_load_slot(ha_index s) const { return ha_fetch<Concurrent>(table_[s]); }
+  uint ha_load_max_age(uint cell) const { return ha_fetch<Concurrent>(max_age_[cell]); }
+  uint ha_load_saturation(uint pixel) const { return ha_fetch<Concurrent>(saturation_[pixel]); }
+  void ha_max_saturation(uint pixel, uint code) { ha_fetch_max<Concurrent>(saturation_[pixel], code); }
 
   [[nodiscard]] const Word* slots() const { return table_; }
 

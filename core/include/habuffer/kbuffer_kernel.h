@@ -48,26 +48,9 @@ class KBufferKernel {
   uint ha_occupancy_near_code;
   uint ha_occupancy_bucket_codes;
 
-  // atomicMax on a slot (the HA-buffer's compare-exchange loop: each failed
-  // exchange saw a strictly larger value, so it ends).
-  Word ha_atomic_max_slot(ha_index s, Word r) {
-    if constexpr (Concurrent) {
-      std::atomic_ref<Word> slot(b_.slots[s]);
-      Word cur = slot.load(std::memory_order_relaxed);
-      while (cur < r && !slot.compare_exchange_strong(cur, r, std::memory_order_relaxed)) {
-      }
-      return cur;
-    } else {
-      Word cur = b_.slots[s];
-      if (cur < r) b_.slots[s] = r;
-      return cur;
-    }
-  }
+  Word ha_atomic_max_slot(ha_index s, Word r) { return ha_fetch_max<Concurrent>(b_.slots[s], r); }
   static uint ha_atomic_missed() { return 0u; }
-  Word ha_load_slot(ha_index s) const {
-    if constexpr (Concurrent) return std::atomic_ref<Word>(b_.slots[s]).load(std::memory_order_relaxed);
-    return b_.slots[s];
-  }
+  Word ha_load_slot(ha_index s) const { return ha_fetch<Concurrent>(b_.slots[s]); }
   void kb_or_occupancy(uint word, uint bits) {
     if constexpr (Concurrent) {
       std::atomic_ref<std::uint32_t> w(b_.occupancy[word]);

@@ -86,20 +86,8 @@ class ListsKernel {
       return found;
     }
   }
-  uint ha_load_saturation(uint pixel) const {
-    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(b_.saturation[pixel]).load(std::memory_order_relaxed);
-    return b_.saturation[pixel];
-  }
-  void ha_max_saturation(uint pixel, uint code) {
-    if constexpr (Concurrent) {
-      std::atomic_ref<std::uint32_t> s(b_.saturation[pixel]);
-      std::uint32_t cur = s.load(std::memory_order_relaxed);
-      while (cur < code && !s.compare_exchange_weak(cur, code, std::memory_order_relaxed)) {
-      }
-    } else if (b_.saturation[pixel] < code) {
-      b_.saturation[pixel] = code;
-    }
-  }
+  uint ha_load_saturation(uint pixel) const { return ha_fetch<Concurrent>(b_.saturation[pixel]); }
+  void ha_max_saturation(uint pixel, uint code) { ha_fetch_max<Concurrent>(b_.saturation[pixel], code); }
 
 #include "../../shared/ha_record.glsl"
 #include "../../shared/ha_blend.glsl"

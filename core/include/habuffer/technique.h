@@ -41,6 +41,8 @@ bool exact_technique(Technique t);  // lists equal the HA-buffer's when nothing 
 bool has_early_cull(Technique t);   // ha, sorted-lists
 bool uses_pool(Technique t);        // lists, sorted-lists
 bool uses_layers(Technique t);      // arrays, kbuffer
+// The linked-list container's technique for `t`: sorted-lists stays, anything else is lists.
+Technique lists_flavour(Technique t);
 
 // The depth interval the scene's fragments lie in (window depth t): the
 // k-buffer's occupancy buckets divide it, wboit's weight is normalized to

@@ -64,7 +64,8 @@ class GlTechnique {
   // After every gather's counters are read (the report holds them).
   virtual void gathered(const FrameReport& report);
   // Lossless mode: room for what the last gather dropped (the report's
-  // counters and counts); false when this context cannot hold more.
+  // counters and counts; the driver retries calls cut short itself); false
+  // when this context cannot hold more.
   virtual bool grow(const FrameReport& report, const GlFrameOptions& options) = 0;
   // Whether insert calls can be cut short and deferred (the HA-buffer's probe loop).
   [[nodiscard]] virtual bool defers_calls() const { return false; }
@@ -90,6 +91,13 @@ class GlTechnique {
 std::unique_ptr<GlTechnique> make_gl_technique(const TechniqueConfig& config, const OffsetSource& offsets,
                                                AtomicMode mode, const GlBindings& bindings = {},
                                                std::uint32_t clear_tile = 0);
+
+// Throws GlError unless `mode` holds `layout`'s records (native32: L32;
+// native64, emulated64: L64) and this context has what the mode needs
+// (64-bit shader types; native64 also 64-bit atomics).
+void check_atomic_mode(AtomicMode mode, Layout layout);
+// Emulated64's lock words for `slots` slots: one per 2^HA_LOCK_SHIFT.
+std::uint64_t emulated64_lock_words(std::uint64_t slots);
 
 // Throws GlError unless a buffer of `bytes` fits one shader-storage buffer
 // of this context (the message names `what` and the sizes).
