@@ -56,6 +56,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
     g.count = static_cast<std::int32_t>(m.indices.size());
     g.colour = m.colour;
     g.opacity = m.opacity;
+    g.opaque = m.opaque();
     g.vertices = gl::create_buffer(m.positions.size() * sizeof(glm::vec3), m.positions.data());
     g.indices = gl::create_buffer(m.indices.size() * 4, m.indices.data());
     glCreateVertexArrays(1, &g.vertex_array);
@@ -117,7 +118,7 @@ void SceneRenderer::draw_meshes(const gl::ShaderProgram& program, const Camera& 
   program.set("r_near", camera.near_plane);
   program.set("r_far", camera.far_plane);
   for (const GpuMesh& g : meshes_) {
-    if ((g.opacity >= 1.0f) != opaque) continue;
+    if (g.opaque != opaque) continue;
     program.set("r_colour", g.colour.x, g.colour.y, g.colour.z);
     program.set("r_opacity", g.opacity);
     glBindVertexArray(g.vertex_array);

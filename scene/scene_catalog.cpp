@@ -49,7 +49,9 @@ bool is_scene_name(const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-Scene make_scene(const std::string& name_or_path, const SceneOptions& o) {
+namespace {
+
+Scene make_scene_meshes(const std::string& name_or_path, const SceneOptions& o) {
   if (!(o.opacity > 0.0f && o.opacity <= 1.0f))
     throw SceneError("--opacity " + std::to_string(o.opacity) + " is not in (0, 1]");
   if (!(o.spread >= 0.0f && o.spread <= 1.0f)) throw SceneError("--spread " + std::to_string(o.spread) + " is not in [0, 1]");
@@ -75,6 +77,14 @@ Scene make_scene(const std::string& name_or_path, const SceneOptions& o) {
   std::string names;
   for (const std::string& n : scene_names()) names += (names.empty() ? "" : ", ") + n;
   throw SceneError("unknown scene '" + name_or_path + "': neither a scene name (" + names + ") nor an existing mesh file");
+}
+
+}  // namespace
+
+Scene make_scene(const std::string& name_or_path, const SceneOptions& o) {
+  Scene s = make_scene_meshes(name_or_path, o);
+  for (Mesh& m : s.meshes) m.insert_opaque = o.insert_opaque;
+  return s;
 }
 
 }  // namespace habuffer

@@ -15,5 +15,7 @@ int run_info(const std::vector<std::string>& args);
 int run_stats(const std::vector<std::string>& args);
 int run_render(const std::vector<std::string>& args);
 int run_compare(const std::vector<std::string>& args);
+int run_sweep(const std::vector<std::string>& args);
+int run_bench(const std::vector<std::string>& args);
 
 }  // namespace habuffer::cli

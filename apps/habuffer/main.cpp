@@ -22,6 +22,8 @@ constexpr const char* kUsage =
     "  offsets      write an offsets CSV (random or farthest) and its quality\n"
     "  stats        experiments on age vs load (probing, policy, offsets) with confidence intervals\n"
     "  demo         build lists for a generated stream and print its stats\n"
+    "  sweep        throughput, probes and ages of one view against the load factor\n"
+    "  bench        techniques x scenes x sizes, interleaved, with floors and error vs the exact reference\n"
     "  info         version, build type and available paths\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
 
@@ -45,7 +47,8 @@ int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
       {"build-lists", cli::run_build_lists}, {"generate", cli::run_generate}, {"offsets", cli::run_offsets},
       {"demo", cli::run_demo},               {"info", cli::run_info},         {"stats", cli::run_stats},
-      {"render", cli::run_render},           {"compare", cli::run_compare}};
+      {"render", cli::run_render},           {"compare", cli::run_compare},
+      {"sweep", cli::run_sweep},             {"bench", cli::run_bench}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

@@ -19,6 +19,8 @@ struct SceneOptions {
   std::uint32_t count = 0;   // tubes, quads or planes; 0: the scene's default
   float spread = 1.0f;       // quads: 1 anywhere, 0 stacked exactly
   PlaneOrder order = PlaneOrder::BackToFront;
+  // Opacity-1 meshes go through the buffer instead of the opaque pass.
+  bool insert_opaque = false;
 };
 
 // Where the named meshes live: $HABUFFER_ASSIMP_MODELS, else

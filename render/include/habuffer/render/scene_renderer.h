@@ -65,6 +65,7 @@ class SceneRenderer {
     std::int32_t count = 0;
     glm::vec3 colour;
     float opacity;
+    bool opaque;  // drawn in the opaque pass
   };
   void draw_meshes(const gl::ShaderProgram& program, const Camera& camera, bool opaque) const;
   void run_gather(const Camera& camera, bool count_only);

@@ -1,0 +1,36 @@
+// What the harness commands (sweep, bench, figure, plan) share on the
+// command line: lists of scenes, techniques and sizes, the output files, the
+// GL context, progress and the provenance every table carries.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli_args.h"
+#include "habuffer/gl/egl_context.h"
+#include "habuffer/harness/result_table.h"
+#include "habuffer/harness/technique_spec.h"
+#include "habuffer/harness/workload.h"
+
+namespace habuffer::cli {
+
+// --path gl|cpu (default gl).
+RenderPath parse_path(const Args& args);
+// --size WxH[,WxH...]: at least one, each positive.
+std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback);
+std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name, const std::string& fallback);
+std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name);
+// --out F.json[,F.csv]: checked (extensions, writable, not an input) before any work.
+std::vector<std::string> parse_outputs(const Args& args, const std::vector<std::string>& inputs);
+
+// A context when any scene needs one (streams do not); DataError when none can be made.
+std::unique_ptr<gl::EglContext> context_for(bool needed, const char* command);
+// "habuffer CMD ARGS..." as typed, and the machine.
+harness::Provenance provenance(const char* command, const std::vector<std::string>& argv);
+// Writes the table and prints one line per output.
+void write_outputs(const char* command, harness::ResultTable& table, const std::vector<std::string>& outputs,
+                   const std::vector<std::string>& argv);
+
+}  // namespace habuffer::cli

@@ -1,0 +1,39 @@
+// `habuffer bench`: techniques x scenes x sizes in one run, repetitions
+// interleaved (every combination once per round, round after round) so the
+// machine's drift hits all alike, the two floors measured in every round
+// beside them, and each image measured against the exact reference. One row
+// per combination: seed 000's Table 2, seed 001's and seed 002's Table 1 on
+// our scenes.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "habuffer/harness/result_table.h"
+#include "habuffer/harness/technique_spec.h"
+#include "habuffer/harness/workload.h"
+
+namespace habuffer::harness {
+
+struct BenchSettings {
+  RenderPath path = RenderPath::Gl;
+  std::vector<WorkloadSpec> scenes;
+  std::vector<TechniqueSpec> techniques;
+  std::vector<Extent> sizes;
+  std::uint32_t repeats = 3;
+  std::uint32_t threads = 0;  // CPU path
+  std::uint64_t seed = 1;     // the HA-buffer's offsets
+  bool floors = true;
+  std::function<void(std::uint64_t, std::uint64_t)> on_progress;  // (runs done, runs)
+};
+
+// Throws std::invalid_argument for empty lists, zero repeats, or a
+// technique the path cannot render (wboit and blend on GL).
+void validate_bench(const BenchSettings& s);
+
+// Needs a current GL context for scenes.
+ResultTable run_bench(const BenchSettings& s);
+
+}  // namespace habuffer::harness

@@ -1,0 +1,78 @@
+// What a harness command renders: a scene (by name or mesh file, with its
+// options) or a recorded fragment stream, at one screen size; made once and
+// rendered many times through render_scene / render_fragments with a fixed
+// view (the scene's default camera).
+//
+// Scene words for lists on the command line: NAME[:KEY=VALUE]... with keys
+// count, order (front|back), opacity, seed and spread, e.g.
+// "planes:order=front:count=32"; a word ending in .csv is a fragment stream.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "habuffer/fragment.h"
+#include "habuffer/render/image.h"
+#include "habuffer/render/render_job.h"
+#include "habuffer/scene.h"
+#include "habuffer/scene_catalog.h"
+
+namespace habuffer::harness {
+
+struct WorkloadSpec {
+  std::string scene;      // name or mesh file; empty for a stream
+  std::string fragments;  // fragment CSV; empty for a scene
+  SceneOptions options;
+  std::string word;       // as given
+};
+
+// Throws std::invalid_argument naming the word and key.
+WorkloadSpec parse_workload_spec(const std::string& word);
+
+// The exact result of a workload (lossless HA-buffer, no cull): what every
+// other render is measured against.
+struct ExactCapture {
+  std::uint64_t fragments = 0;  // reaching insertion (after opaque rejection)
+  std::vector<std::uint32_t> pixel_fragments;  // depth complexity, row-major, row 0 at the bottom
+  std::vector<Fragment> stream;                // the fragments themselves
+  std::vector<glm::vec3> backgrounds;          // per pixel: the opaque pass's colour
+  Image reference;                             // SPEC 7 in double precision, as float
+};
+
+class Workload {
+ public:
+  // Makes the scene or reads the stream (throws SceneError, DataError).
+  Workload(const WorkloadSpec& spec, Extent size);
+
+  [[nodiscard]] const std::string& label() const { return spec_.word; }
+  [[nodiscard]] Extent size() const { return size_; }
+  [[nodiscard]] bool is_stream() const { return !scene_; }
+  [[nodiscard]] const Scene* scene() const { return scene_ ? &*scene_ : nullptr; }
+
+  // One frame of the scene (the scene's default view) or of the stream (CPU
+  // path only: throws std::invalid_argument for the GL path) with `s`'s
+  // technique; s.config.screen and the camera are set here. Needs a current
+  // GL context for scenes.
+  [[nodiscard]] RenderResult render(RenderSettings s) const;
+  // The exact capture (a lossless CPU-path render keeping the fragments).
+  [[nodiscard]] ExactCapture capture() const;
+
+ private:
+  WorkloadSpec spec_;
+  Extent size_;
+  std::optional<Scene> scene_;
+  std::vector<Fragment> stream_;
+};
+
+// The exact reference image of captured fragments over their backgrounds.
+Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds);
+
+// Median, smallest and largest of `v` (empty: zeros).
+struct Spread {
+  double median = 0.0, min = 0.0, max = 0.0;
+};
+Spread spread_of(std::vector<double> v);
+
+}  // namespace habuffer::harness

@@ -1,0 +1,203 @@
+#include "habuffer/harness/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "habuffer/age_experiment.h"
+#include "habuffer/ha_buffer.h"
+#include "habuffer/probe_simulator.h"
+
+namespace habuffer::harness {
+namespace {
+
+bool sized_by_load(Technique t) { return t == Technique::Ha || uses_pool(t) || uses_layers(t); }
+
+// The settings of one run: the technique sized for `load` of `fragments`.
+RenderSettings run_settings(const SweepSettings& s, Extent screen, std::uint64_t fragments, double load,
+                            std::uint32_t repeat) {
+  RenderSettings r;
+  r.path = s.path;
+  r.threads = s.threads;
+  r.config.screen = screen;
+  r.offsets.generator = s.offsets;
+  r.offsets.seed = s.seed + repeat;
+  TechniqueSpec t = s.technique;
+  t.load.reset();
+  t.layers.reset();
+  if (uses_layers(t.technique))
+    t.layers = static_cast<std::uint32_t>(
+        std::max<std::uint64_t>(1, capacity_for_load(fragments, load * static_cast<double>(screen.area()))));
+  else
+    t.load = load;
+  t.apply(r, fragments);
+  return r;
+}
+
+// Slots probed per insert call by SPEC 3's coherent Robin Hood insertion of
+// the same fragments into the same table with the same offsets (the stats
+// library's instrumented model builds the very table of the HA-buffer).
+double simulated_probes(const ExactCapture& c, const RenderSettings& r) {
+  SimulatorConfig sc;
+  sc.screen = r.config.screen;
+  sc.table = r.config.table_or_screen();
+  sc.age_bits = r.config.age_bits;
+  sc.block = r.config.block;
+  sc.seed = r.offsets.seed;
+  sc.offsets = r.offsets.generator;
+  sc.iter_limit = r.config.iter_limit;
+  ProbeSimulator sim(sc);
+  sim.insert(c.stream);
+  const SimulatorTotals t = sim.totals();
+  return t.counters.fragments ? static_cast<double>(t.probes) / static_cast<double>(t.counters.fragments) : 0.0;
+}
+
+struct LoadRuns {
+  std::vector<double> mfrag_per_s, gather_ms, mean_age;
+  std::vector<std::uint64_t> histogram;
+  std::vector<std::uint32_t> max_age;
+  Counters counters;  // summed over the runs
+  std::uint64_t slot_writes = 0, memory_bytes = 0, capacity = 0;
+  double measured_load = 0.0;
+  Extent table;
+  double probes = -1.0;
+};
+
+void add_histogram(std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& h) {
+  if (into.size() < h.size()) into.resize(h.size(), 0);
+  for (std::size_t i = 0; i < h.size(); ++i) into[i] += h[i];
+}
+
+void put_counters(ResultRow& row, const Counters& c) {
+  row.set("fragments", c.fragments).set("stored", c.stored()).set("invalid", c.invalid).set("duplicates", c.duplicates)
+      .set("culled", c.culled).set("saturated_rejected", c.saturated_rejected).set("blended", c.blended)
+      .set("failed_age", c.failed_age).set("failed_iter", c.failed_iter).set("dropped_pool", c.dropped_pool)
+      .set("dropped_layers", c.dropped_layers).set("occupancy_rejected", c.occupancy_rejected)
+      .set("failures", c.failures());
+}
+
+ResultRow make_row(const SweepSettings& s, double load, const LoadRuns& r) {
+  ResultRow row;
+  row.set("load", load).set("measured_load", r.measured_load).set("technique", s.technique.label())
+      .set("repeats", s.repeats).set("capacity", r.capacity);
+  if (r.table.area() != 0) row.set("table", r.table.str());
+  const Spread m = spread_of(r.mfrag_per_s), g = spread_of(r.gather_ms);
+  row.set("mfrag_per_s", m.median).set("mfrag_per_s_min", m.min).set("mfrag_per_s_max", m.max)
+      .set("gather_ms", g.median).set("gather_ms_min", g.min).set("gather_ms_max", g.max);
+  const double calls = static_cast<double>(r.counters.fragments);
+  if (s.path == RenderPath::Gl && calls > 0) row.set("slot_writes_per_fragment", static_cast<double>(r.slot_writes) / calls);
+  if (r.probes >= 0.0) row.set("probes_per_fragment", r.probes);
+  if (!r.histogram.empty()) {
+    const double n = static_cast<double>(r.mean_age.size());
+    double mean = 0.0, var = 0.0;
+    for (const double a : r.mean_age) mean += a / n;
+    for (const double a : r.mean_age) var += (a - mean) * (a - mean) / std::max(1.0, n - 1.0);
+    row.set("mean_age", histogram_mean(r.histogram))
+        .set("mean_age_ci95", n > 1 ? student_t95(static_cast<std::uint32_t>(n - 1)) * std::sqrt(var / n) : 0.0)
+        .set("p99_age", histogram_quantile(r.histogram, 0.99))
+        .set("max_age", *std::max_element(r.max_age.begin(), r.max_age.end()))
+        .set("age_histogram", r.histogram);
+  }
+  put_counters(row, r.counters);
+  row.set("memory_bytes", r.memory_bytes);
+  return row;
+}
+
+}  // namespace
+
+std::vector<std::uint64_t> age_histogram(const FragmentBuffer& buffer) {
+  std::vector<std::uint64_t> h;
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < buffer.screen().y; ++y)
+    for (std::uint32_t x = 0; x < buffer.screen().x; ++x) {
+      buffer.list(x, y, list);
+      for (const ListEntry& e : list) {
+        if (h.size() <= e.age) h.resize(e.age + 1, 0);
+        ++h[e.age];
+      }
+    }
+  return h;
+}
+
+double histogram_mean(const std::vector<std::uint64_t>& h) {
+  double sum = 0.0, n = 0.0;
+  for (std::size_t a = 0; a < h.size(); ++a) {
+    sum += static_cast<double>(a) * static_cast<double>(h[a]);
+    n += static_cast<double>(h[a]);
+  }
+  return n > 0 ? sum / n : 0.0;
+}
+
+std::uint32_t histogram_quantile(const std::vector<std::uint64_t>& h, double q) {
+  std::uint64_t total = 0;
+  for (const std::uint64_t c : h) total += c;
+  const double want = q * static_cast<double>(total);
+  std::uint64_t seen = 0;
+  for (std::size_t a = 0; a < h.size(); ++a) {
+    seen += h[a];
+    if (static_cast<double>(seen) >= want && h[a] > 0) return static_cast<std::uint32_t>(a);
+  }
+  return h.empty() ? 0 : static_cast<std::uint32_t>(h.size() - 1);
+}
+
+void validate_sweep(const SweepSettings& s) {
+  if (!sized_by_load(s.technique.technique))
+    throw std::invalid_argument("technique " + to_string(s.technique.technique) +
+                                " has no size to sweep (ha, lists, sorted-lists, arrays and kbuffer have)");
+  if (s.loads.empty()) throw std::invalid_argument("--loads is empty");
+  for (std::size_t i = 0; i < s.loads.size(); ++i) {
+    if (!(s.loads[i] > 0.0 && s.loads[i] <= 1.0))
+      throw std::invalid_argument("--loads: " + std::to_string(s.loads[i]) + " is not in (0, 1]");
+    if (i > 0 && !(s.loads[i] > s.loads[i - 1]))
+      throw std::invalid_argument("--loads must increase: " + std::to_string(s.loads[i]) + " follows " +
+                                  std::to_string(s.loads[i - 1]));
+  }
+  if (s.repeats == 0) throw std::invalid_argument("--repeats must be at least 1");
+}
+
+ResultTable run_sweep(const Workload& workload, const SweepSettings& s) {
+  validate_sweep(s);
+  const ExactCapture capture = workload.capture();
+  if (capture.fragments == 0) throw std::invalid_argument("scene '" + workload.label() + "' puts no fragment on the screen");
+  for (const double load : s.loads) (void)run_settings(s, workload.size(), capture.fragments, load, 0);  // throws early
+  std::vector<LoadRuns> runs(s.loads.size());
+  const std::uint64_t total = std::uint64_t{s.repeats} * s.loads.size();
+  std::uint64_t done = 0;
+  ResultTable table;
+  for (std::uint32_t rep = 0; rep < s.repeats; ++rep)
+    for (std::size_t i = 0; i < s.loads.size(); ++i) {
+      const RenderSettings rs = run_settings(s, workload.size(), capture.fragments, s.loads[i], rep);
+      const RenderResult r = workload.render(rs);
+      const FrameStats& f = r.frames.back();
+      LoadRuns& l = runs[i];
+      l.gather_ms.push_back(f.gather_ms);
+      l.mfrag_per_s.push_back(f.gather_ms > 0 ? static_cast<double>(f.counters.fragments) / (f.gather_ms * 1e3) : 0.0);
+      l.counters += f.counters;
+      l.slot_writes += f.slot_writes;
+      l.memory_bytes = r.memory_bytes;
+      l.capacity = f.capacity;
+      l.table = f.table;
+      l.measured_load = f.load_factor;
+      table.provenance.renderer = r.device;
+      if (rs.technique == Technique::Ha && r.buffer) {
+        const std::vector<std::uint64_t> h = age_histogram(*r.buffer);
+        add_histogram(l.histogram, h);
+        l.mean_age.push_back(histogram_mean(h));
+        l.max_age.push_back(f.max_age);
+        if (rep == 0) l.probes = simulated_probes(capture, rs);
+      }
+      if (s.on_progress) s.on_progress(++done, total);
+    }
+  table.title = "sweep";
+  table.notes["workload"] = workload.label() + " at " + workload.size().str();
+  table.notes["fragments"] = std::to_string(capture.fragments);
+  table.notes["mfrag_per_s"] = "fragments reaching insertion / gather time, median over repeats (min, max beside)";
+  table.notes["probes_per_fragment"] =
+      "slots probed per insert call by the instrumented model of SPEC 3 (stats library) on the same fragments, "
+      "table and offsets as repetition 0";
+  table.notes["mean_age_ci95"] = "half-width of the 95% Student-t interval of the repetitions' mean ages";
+  for (std::size_t i = 0; i < s.loads.size(); ++i) table.rows.push_back(make_row(s, s.loads[i], runs[i]));
+  return table;
+}
+
+}  // namespace habuffer::harness

@@ -1,0 +1,135 @@
+#include "habuffer/harness/technique_spec.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace habuffer::harness {
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string part;
+  std::istringstream in(s);
+  while (std::getline(in, part, sep)) out.push_back(part);
+  if (!s.empty() && s.back() == sep) out.emplace_back();
+  return out;
+}
+
+double real(const std::string& word, const std::string& key, const std::string& text) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+    throw std::invalid_argument("technique '" + word + "': " + key + "=" + text + " is not a number");
+  return v;
+}
+
+std::uint32_t whole(const std::string& word, const std::string& key, const std::string& text) {
+  std::uint32_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || v == 0)
+    throw std::invalid_argument("technique '" + word + "': " + key + "=" + text + " is not a positive integer");
+  return v;
+}
+
+std::string number_text(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+void require(bool ok, const std::string& word, const std::string& what) {
+  if (!ok) throw std::invalid_argument("technique '" + word + "': " + what);
+}
+
+}  // namespace
+
+std::string TechniqueSpec::label() const {
+  std::string s = to_string(technique);
+  if (cull > 0.0f) s += ":cull=" + number_text(cull);
+  if (saturation) s += ":sat";
+  if (load) s += ":load=" + number_text(*load);
+  if (age_bits) s += ":age=" + std::to_string(*age_bits);
+  if (layers) s += ":k=" + std::to_string(*layers);
+  if (occupancy) s += ":occ";
+  if (occupancy_words) s += ":words=" + std::to_string(*occupancy_words);
+  return s;
+}
+
+bool TechniqueSpec::exact() const { return exact_technique(technique) && cull == 0.0f; }
+
+TechniqueSpec parse_technique_spec(const std::string& word) {
+  const std::vector<std::string> parts = split(word, ':');
+  TechniqueSpec t;
+  const std::optional<Technique> technique = parse_technique(parts.empty() ? "" : parts[0]);
+  if (!technique) throw std::invalid_argument("technique '" + word + "': unknown name '" + (parts.empty() ? "" : parts[0]) + "'");
+  t.technique = *technique;
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    const std::size_t eq = parts[i].find('=');
+    const std::string key = parts[i].substr(0, eq), value = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
+    const bool flag = eq == std::string::npos;
+    if (key == "cull" && !flag) {
+      t.cull = static_cast<float>(real(word, key, value));
+      require(t.cull > 0.0f && t.cull <= 1.0f, word, "cull must be in (0, 1]");
+    } else if (key == "sat" && flag) {
+      t.saturation = true;
+    } else if (key == "load" && !flag) {
+      t.load = real(word, key, value);
+      require(*t.load > 0.0 && *t.load <= 1.0, word, "load must be in (0, 1]");
+    } else if (key == "age" && !flag) {
+      t.age_bits = whole(word, key, value);
+    } else if (key == "k" && !flag) {
+      t.layers = whole(word, key, value);
+    } else if (key == "occ" && flag) {
+      t.occupancy = true;
+    } else if (key == "words" && !flag) {
+      t.occupancy_words = whole(word, key, value);
+    } else {
+      throw std::invalid_argument("technique '" + word + "': unknown knob '" + parts[i] +
+                                  "' (cull=TAU, sat, load=L, age=A, k=K, occ, words=D)");
+    }
+  }
+  const Technique k = t.technique;
+  require(t.cull == 0.0f || has_early_cull(k), word, "cull applies to ha and sorted-lists");
+  require(!t.saturation || t.cull > 0.0f, word, "sat needs cull=TAU");
+  require(!t.load || k == Technique::Ha || uses_pool(k), word, "load applies to ha, lists and sorted-lists");
+  require(!t.age_bits || k == Technique::Ha, word, "age applies to ha");
+  require(!t.layers || uses_layers(k), word, "k applies to arrays and kbuffer");
+  require(!t.occupancy || k == Technique::KBuffer, word, "occ applies to kbuffer");
+  require(!t.occupancy_words || t.occupancy, word, "words needs occ");
+  return t;
+}
+
+Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
+  const double slots = std::ceil(static_cast<double>(fragments) / load);
+  const double scale = std::sqrt(slots / static_cast<double>(screen.area()));
+  const Extent table{static_cast<std::uint32_t>(std::ceil(screen.x * scale)),
+                     static_cast<std::uint32_t>(std::ceil(screen.y * scale))};
+  if (table.x < screen.x || table.y < screen.y)
+    throw std::invalid_argument("load " + number_text(load) + " of " + std::to_string(fragments) +
+                                " fragments needs a table smaller than the screen " + screen.str() +
+                                " (SPEC 1's geometry rule): the largest load this scene allows is " +
+                                number_text(static_cast<double>(fragments) / static_cast<double>(screen.area())));
+  return table;
+}
+
+std::uint64_t capacity_for_load(std::uint64_t fragments, double load) {
+  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / load)));
+}
+
+void TechniqueSpec::apply(RenderSettings& s, std::uint64_t fragments) const {
+  s.technique = technique;
+  s.config.early_cull_tau = cull;
+  s.config.saturation = saturation;
+  if (age_bits) s.config.age_bits = *age_bits;
+  if (layers) s.layers = *layers;
+  s.occupancy = occupancy;
+  if (occupancy_words) s.occupancy_words = *occupancy_words;
+  s.config.table = {};
+  s.pool = 0;
+  if (load && technique == Technique::Ha) s.config.table = table_for_load(s.config.screen, fragments, *load);
+  if (load && uses_pool(technique)) s.pool = capacity_for_load(fragments, *load);
+}
+
+}  // namespace habuffer::harness
