@@ -22,7 +22,8 @@ gl::GlFrameOptions capture_options() {
 BufferConfig capture_config(const RenderSettings& s) {
   BufferConfig c = s.config;
   c.table = c.screen;
-  c.early_cull_tau = 0.0f;
+  c.early_cull_tau = 0.0f;  // the capture keeps every fragment: the CPU builder culls
+  c.saturation = false;
   return c;
 }
 

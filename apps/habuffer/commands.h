@@ -17,5 +17,7 @@ int run_render(const std::vector<std::string>& args);
 int run_compare(const std::vector<std::string>& args);
 int run_sweep(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
+int run_figure(const std::vector<std::string>& args);
+int run_plan(const std::vector<std::string>& args);
 
 }  // namespace habuffer::cli

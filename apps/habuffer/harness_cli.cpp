@@ -35,9 +35,13 @@ std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std
 }
 
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name) {
+  return parse_scenes_or(args, name, "");
+}
+
+std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::string& name, const std::string& fallback) {
   std::vector<harness::WorkloadSpec> out;
   try {
-    for (const std::string& w : args.list(name, "")) out.push_back(harness::parse_workload_spec(w));
+    for (const std::string& w : args.list(name, fallback)) out.push_back(harness::parse_workload_spec(w));
   } catch (const std::invalid_argument& e) {
     throw UsageError("--" + name + ": " + e.what());
   }

@@ -22,6 +22,8 @@ RenderPath parse_path(const Args& args);
 std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback);
 std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name, const std::string& fallback);
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name);
+// The same with a default list.
+std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::string& name, const std::string& fallback);
 // --out F.json[,F.csv]: checked (extensions, writable, not an input) before any work.
 std::vector<std::string> parse_outputs(const Args& args, const std::vector<std::string>& inputs);
 

@@ -24,6 +24,8 @@ constexpr const char* kUsage =
     "  demo         build lists for a generated stream and print its stats\n"
     "  sweep        throughput, probes and ages of one view against the load factor\n"
     "  bench        techniques x scenes x sizes, interleaved, with floors and error vs the exact reference\n"
+    "  figure       seed 000's Fig. 2, Fig. 8, Table 1, seed 001's Fig. 10, the speed-accuracy frontier\n"
+    "  plan         predict memory, max age, overflow and error per technique from one counting pass\n"
     "  info         version, build type and available paths\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
 
@@ -48,7 +50,8 @@ int main(int argc, char** argv) {
       {"build-lists", cli::run_build_lists}, {"generate", cli::run_generate}, {"offsets", cli::run_offsets},
       {"demo", cli::run_demo},               {"info", cli::run_info},         {"stats", cli::run_stats},
       {"render", cli::run_render},           {"compare", cli::run_compare},
-      {"sweep", cli::run_sweep},             {"bench", cli::run_bench}};
+      {"sweep", cli::run_sweep},             {"bench", cli::run_bench},
+      {"figure", cli::run_figure},           {"plan", cli::run_plan}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

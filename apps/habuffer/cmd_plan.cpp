@@ -1,0 +1,55 @@
+// habuffer plan: from one counting pass, predict each technique's memory,
+// max age, overflow, failure risk and PSNR, and recommend one (harness/plan.h).
+#include <cstdio>
+
+#include "commands.h"
+#include "harness_cli.h"
+#include "habuffer/harness/plan.h"
+
+namespace habuffer::cli {
+namespace {
+
+constexpr const char* kHelp =
+    "usage: habuffer plan (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [--size WxH (256x256)]\n"
+    "         [--target-psnr DB] [--loads L,.. (0.5,0.6,0.7,0.8,0.9,0.95)] [--trials N (3)] [--seed S] [--age-bits A]\n"
+    "  One counting pass (the exact capture) gives the fragment count and the depth complexity per pixel;\n"
+    "  from them: memory of every technique and setting, the HA-buffer's max age and failure risk (SPEC 3's\n"
+    "  insertion of a stream with the same per-pixel counts over N seeds), the layers' overflow and the\n"
+    "  PSNR of the truncating ones. Recommends the cheapest lossless configuration, or the cheapest that\n"
+    "  meets --target-psnr.\n";
+
+}  // namespace
+
+int run_plan(const std::vector<std::string>& argv) {
+  if (print_help(argv, kHelp)) return 0;
+  const Args args(argv, {"scene", "fragments", "size", "target-psnr", "loads", "trials", "seed", "age-bits", "out"}, {});
+  if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
+  harness::PlanSettings s;
+  if (args.has("target-psnr")) s.target_psnr = args.real("target-psnr", 0.0);
+  s.trials = args.u32("trials", 3, 1, 1000);
+  s.seed = args.u64("seed", 1);
+  s.age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, 4, 12);
+  s.loads.clear();
+  for (const std::string& w : args.list("loads", "0.5,0.6,0.7,0.8,0.9,0.95")) {
+    char* end = nullptr;
+    const double v = std::strtod(w.c_str(), &end);
+    if (end != w.c_str() + w.size() || !(v > 0.0 && v <= 1.0)) throw UsageError("--loads: '" + w + "' is not in (0, 1]");
+    s.loads.push_back(v);
+  }
+  const std::vector<Extent> sizes = parse_sizes(args, "256x256");
+  if (sizes.size() != 1) throw UsageError("--size takes one WxH");
+  const harness::WorkloadSpec w =
+      harness::parse_workload_spec(args.has("fragments") ? args.required("fragments") : args.required("scene"));
+  const std::vector<std::string> outputs =
+      parse_outputs(args, w.fragments.empty() ? std::vector<std::string>{} : std::vector<std::string>{w.fragments});
+  const auto context = context_for(w.fragments.empty(), "plan");
+  const harness::Workload workload(w, sizes[0]);
+  harness::ResultTable table = harness::run_plan(workload, s);
+  write_outputs("plan", table, outputs, argv);
+  std::printf("habuffer plan: recommended %s (%s fragments, depth complexity up to %s)\n",
+              table.notes["recommendation"].c_str(), table.notes["fragments"].c_str(),
+              table.notes["max_depth_complexity"].c_str());
+  return 0;
+}
+
+}  // namespace habuffer::cli

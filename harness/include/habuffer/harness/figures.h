@@ -1,0 +1,46 @@
+// Seed 000's figures as runs of the harness, each a table:
+//   Fig. 2  early cull vs opacity: stored fragments, gather time and fill rate
+//           with and without cull, opacity 1 inserted like the rest;
+//   Fig. 8  the stress test: quads pulled together over frames (spread 1 to
+//           0) into a table fixed at one load; time and max age per frame,
+//           with and without cull;
+//   Table 1 memory by formula (the paper's and ours), allocated by the CPU
+//           containers, and the paper's published values, at its fragment
+//           counts and loads.
+// (Seed 001's Fig. 10, planes front vs back with and without saturation, is
+// a bench preset: fig10_bench_settings.)
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "habuffer/harness/bench.h"
+#include "habuffer/harness/result_table.h"
+#include "habuffer/harness/workload.h"
+
+namespace habuffer::harness {
+
+struct FigureSettings {
+  RenderPath path = RenderPath::Gl;
+  Extent size{256, 256};
+  std::uint32_t repeats = 3;
+  std::uint32_t threads = 0;
+  float tau = 0.99f;
+  std::function<void(std::uint64_t, std::uint64_t)> on_progress;
+};
+
+// Fig. 2 on `scene` (default hairball) at each opacity.
+ResultTable run_fig2(const WorkloadSpec& scene, const std::vector<float>& opacities, const FigureSettings& s);
+// Fig. 8: `quads` scene words (count, seed, opacity kept; spread set per
+// frame), `frames` frames, the table sized for `load` of frame 0's fragments.
+ResultTable run_fig8(const WorkloadSpec& quads, std::uint32_t frames, double load, const FigureSettings& s);
+// Seed 001's Fig. 10 as bench settings: planes (count) front and back, the
+// HA-buffer and sorted lists, exact, with cull, with cull and saturation.
+BenchSettings fig10_bench_settings(std::uint32_t planes, const FigureSettings& s);
+// Table 1 at `pixels` (the paper: 1024x1024) for each fragment count and load.
+ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fragments, const std::vector<double>& loads,
+                             bool allocate);
+
+}  // namespace habuffer::harness

@@ -1,0 +1,37 @@
+// `habuffer plan`: model only what a scene requires. From one counting pass
+// (the exact capture: fragment count, depth complexity per pixel, and the
+// fragments' colours for the lossy techniques) predict, per technique and
+// setting, the memory, the HA-buffer's max age and failure risk (SPEC 3's
+// insertion modelled on a synthetic stream with the same per-pixel counts
+// and random depths, over several seeds), the layers' overflow, and the PSNR
+// of the truncating techniques; then recommend the cheapest configuration
+// that is lossless, or that meets a target PSNR.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "habuffer/harness/result_table.h"
+#include "habuffer/harness/workload.h"
+
+namespace habuffer::harness {
+
+struct PlanSettings {
+  std::optional<double> target_psnr;  // dB; none: the cheapest lossless configuration
+  std::vector<double> loads{0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
+  std::uint32_t trials = 3;           // synthetic streams per HA-buffer load
+  std::uint64_t seed = 1;
+  std::uint32_t age_bits = HA_DEFAULT_AGE_BITS;
+};
+
+// One row per configuration: technique, memory_bytes, predicted_max_age
+// (mean over trials) and its largest, predicted_failures (fragments lost),
+// failure_risk (share of trials losing any), predicted_psnr (inf when
+// exact), lossless, meets_target, recommended. Notes give the depth
+// complexity and the recommendation.
+ResultTable run_plan(const Workload& workload, const PlanSettings& s);
+// The same from a capture already made.
+ResultTable plan_from_capture(const ExactCapture& capture, Extent screen, const PlanSettings& s);
+
+}  // namespace habuffer::harness
