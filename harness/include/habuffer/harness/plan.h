@@ -4,7 +4,8 @@
 // setting, the memory, the HA-buffer's max age and failure risk (SPEC 3's
 // insertion modelled on a synthetic stream with the same per-pixel counts
 // and random depths, over several seeds), the layers' overflow, and the PSNR
-// of the truncating techniques; then recommend the cheapest configuration
+// of the truncating techniques (fixed arrays keep the first K in stream
+// order, which parallel insertion only approximates); then recommend the cheapest configuration
 // that is lossless, or that meets a target PSNR.
 #pragma once
 

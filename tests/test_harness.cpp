@@ -1,0 +1,287 @@
+// The research harness (harness/): sweep, bench, figures, frontier and plan
+// on tiny scenes. Structure and invariants of their tables, and the plan's
+// predictions against measured renders.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "gl_test_support.h"
+#include "habuffer/harness/bench.h"
+#include "habuffer/harness/figures.h"
+#include "habuffer/harness/frontier.h"
+#include "habuffer/harness/plan.h"
+#include "habuffer/harness/sweep.h"
+
+namespace habuffer::harness {
+namespace {
+
+using test::gl_context;
+
+double num(const ResultRow& r, const std::string& c) { return r.number(c); }
+
+std::string text(const ResultRow& r, const std::string& c) {
+  const Cell* cell = r.find(c);
+  return cell && std::holds_alternative<std::string>(*cell) ? std::get<std::string>(*cell) : std::string();
+}
+
+// Every fragment is stored or counted once under one reason.
+void expect_accounting_identity(const ResultRow& r) {
+  const double accounted = num(r, "stored") + num(r, "invalid") + num(r, "duplicates") + num(r, "culled") +
+                           num(r, "saturated_rejected") + num(r, "blended") + num(r, "failures");
+  EXPECT_EQ(num(r, "fragments"), accounted) << text(r, "technique");
+  EXPECT_EQ(num(r, "failures"), num(r, "failed_age") + num(r, "failed_iter") + num(r, "dropped_pool") +
+                                    num(r, "dropped_layers") + num(r, "occupancy_rejected"));
+}
+
+SweepSettings small_sweep(RenderPath path) {
+  SweepSettings s;
+  s.path = path;
+  s.loads = {0.3, 0.6, 0.9};
+  s.repeats = 3;
+  s.threads = 2;
+  return s;
+}
+
+TEST(Harness, SweepGivesOneRowPerLoadInOrderWithTheAccountingIdentityAndAgesGrowingWithLoad) {
+  gl_context();
+  const Workload w(parse_workload_spec("quads:count=24"), {48, 40});
+  for (const RenderPath path : {RenderPath::Cpu, RenderPath::Gl}) {
+    const ResultTable t = run_sweep(w, small_sweep(path));
+    ASSERT_EQ(t.rows.size(), 3u);
+    for (std::size_t i = 0; i < t.rows.size(); ++i) {
+      const ResultRow& r = t.rows[i];
+      EXPECT_DOUBLE_EQ(num(r, "load"), small_sweep(path).loads[i]);
+      EXPECT_NEAR(num(r, "measured_load"), num(r, "load"), 0.05);  // table sides rounded up
+      expect_accounting_identity(r);
+      EXPECT_EQ(num(r, "failures"), 0.0);
+      EXPECT_GT(num(r, "mfrag_per_s"), 0.0);
+      EXPECT_LE(num(r, "mfrag_per_s_min"), num(r, "mfrag_per_s"));
+      EXPECT_GE(num(r, "mfrag_per_s_max"), num(r, "mfrag_per_s"));
+      EXPECT_GE(num(r, "probes_per_fragment"), 1.0);
+      EXPECT_LE(num(r, "p99_age"), num(r, "max_age"));
+      const auto& h = std::get<std::vector<std::uint64_t>>(*r.find("age_histogram"));
+      EXPECT_EQ(static_cast<double>(std::accumulate(h.begin(), h.end(), std::uint64_t{0})), num(r, "stored"));
+      if (path == RenderPath::Gl) {
+        EXPECT_GE(num(r, "slot_writes_per_fragment"), 1.0);
+      }
+      if (i > 0) {
+        // Mean age does not fall with load beyond the two 95% intervals (about 99.7% jointly).
+        const ResultRow& p = t.rows[i - 1];
+        EXPECT_GE(num(r, "mean_age") + num(r, "mean_age_ci95") + num(p, "mean_age_ci95"), num(p, "mean_age"));
+        EXPECT_LE(num(r, "memory_bytes"), num(p, "memory_bytes"));
+      }
+    }
+  }
+}
+
+TEST(Harness, SweepIsReproducibleFromItsSeedAndFreshOffsetsChangeTheAges) {
+  gl_context();
+  const Workload w(parse_workload_spec("quads:count=24"), {48, 40});
+  SweepSettings s = small_sweep(RenderPath::Cpu);
+  s.repeats = 1;
+  s.loads = {0.9};
+  const ResultTable a = run_sweep(w, s), b = run_sweep(w, s);
+  s.seed = 7;
+  const ResultTable c = run_sweep(w, s);
+  const auto hist = [](const ResultTable& t) { return std::get<std::vector<std::uint64_t>>(*t.rows[0].find("age_histogram")); };
+  EXPECT_EQ(hist(a), hist(b));
+  EXPECT_NE(hist(a), hist(c));
+}
+
+TEST(Harness, SweepRefusesLoadsOutOfOrderAndLoadsNoTableCanGive) {
+  gl_context();
+  SweepSettings s = small_sweep(RenderPath::Cpu);
+  s.loads = {0.6, 0.3};
+  EXPECT_THROW(validate_sweep(s), std::invalid_argument);
+  s.loads = {0.5};
+  s.technique = parse_technique_spec("wboit");
+  EXPECT_THROW(validate_sweep(s), std::invalid_argument);
+  // 4 quads on 48x40 cover under a third of the screen once: no table at load 0.9 can be that small.
+  const Workload w(parse_workload_spec("quads:count=4"), {48, 40});
+  s = small_sweep(RenderPath::Cpu);
+  try {
+    (void)run_sweep(w, s);
+    ADD_FAILURE() << "a load below the screen's slots was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("geometry rule"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Harness, BenchGivesEveryCombinationWithFloorsAndTheErrorOfEachTechnique) {
+  gl_context();
+  BenchSettings s;
+  s.path = RenderPath::Cpu;
+  s.scenes = {parse_workload_spec("quads:count=12"), parse_workload_spec("planes:order=front:count=6")};
+  for (const char* t : {"ha", "lists", "kbuffer:k=1", "blend"}) s.techniques.push_back(parse_technique_spec(t));
+  s.sizes = {{32, 24}, {40, 40}};
+  s.repeats = 2;
+  const ResultTable t = run_bench(s);
+  ASSERT_EQ(t.rows.size(), 2u * 2u * 4u);
+  for (const ResultRow& r : t.rows) {
+    expect_accounting_identity(r);
+    EXPECT_GT(num(r, "atomic_floor_ms"), 0.0);
+    EXPECT_GT(num(r, "blend_floor_ms"), 0.0);
+    EXPECT_GT(num(r, "memory_bytes"), 0.0);
+    EXPECT_DOUBLE_EQ(num(r, "total_ms"), num(r, "total_ms"));
+    const std::string tech = text(r, "technique");
+    if (tech == "ha" || tech == "lists") {  // float vs double compositing
+      EXPECT_GT(num(r, "psnr"), 60.0) << tech;
+    }
+    if (tech == "kbuffer:k=1") {  // the nearest layer alone of overlapping quads
+      EXPECT_LT(num(r, "psnr"), 40.0);
+    }
+    if (tech == "blend") {
+      EXPECT_EQ(num(r, "blended"), num(r, "fragments"));
+    }
+  }
+  s.path = RenderPath::Gl;
+  EXPECT_THROW(validate_bench(s), std::invalid_argument);  // blend has no GL form yet
+}
+
+TEST(Harness, Fig10SaturationRejectsFrontToBackPlanesOnBothPaths) {
+  gl_context();
+  FigureSettings f;
+  f.size = {32, 32};
+  f.repeats = 1;
+  for (const RenderPath path : {RenderPath::Cpu, RenderPath::Gl}) {
+    f.path = path;
+    BenchSettings b = fig10_bench_settings(12, f);
+    const ResultTable t = run_bench(b);
+    ASSERT_EQ(t.rows.size(), 12u);
+    for (const ResultRow& r : t.rows) {
+      expect_accounting_identity(r);
+      const bool sat = text(r, "technique").find(":sat") != std::string::npos;
+      const bool front = text(r, "scene").find("front") != std::string::npos;
+      if (sat && front) {
+        EXPECT_GT(num(r, "saturated_rejected"), 0.0) << text(r, "technique");
+      }
+      if (!sat) {
+        EXPECT_EQ(num(r, "saturated_rejected"), 0.0);
+      }
+    }
+  }
+}
+
+TEST(Harness, Fig2InsertsOpacityOneAndCullingStoresLessAsOpacityGrows) {
+  gl_context();
+  FigureSettings f;
+  f.size = {40, 40};
+  f.repeats = 1;
+  f.path = RenderPath::Cpu;
+  const ResultTable t = run_fig2(parse_workload_spec("hairball:count=80"), {0.25f, 1.0f}, f);
+  ASSERT_EQ(t.rows.size(), 4u);
+  for (const ResultRow& r : t.rows) EXPECT_GT(num(r, "fragments"), 0.0);  // opacity 1 reached the buffer
+  EXPECT_EQ(num(t.rows[2], "stored"), num(t.rows[2], "fragments"));      // opacity 1, no cull: all stored
+  EXPECT_LT(num(t.rows[3], "stored"), num(t.rows[1], "stored"));         // cull stores less at opacity 1
+}
+
+TEST(Harness, Fig8KeepsTheTableAndTheFragmentCountWhileTheQuadsStack) {
+  gl_context();
+  FigureSettings f;
+  f.size = {32, 32};
+  f.path = RenderPath::Cpu;
+  const ResultTable t = run_fig8(parse_workload_spec("quads:count=32"), 3, 0.64, f);
+  ASSERT_EQ(t.rows.size(), 6u);
+  for (const ResultRow& r : t.rows) {
+    EXPECT_EQ(text(r, "table"), text(t.rows[0], "table"));
+    EXPECT_EQ(num(r, "fragments"), num(t.rows[0], "fragments"));
+  }
+  EXPECT_DOUBLE_EQ(num(t.rows.back(), "spread"), 0.0);
+  EXPECT_GT(num(t.rows[4], "max_age"), num(t.rows[0], "max_age"));  // stacked: every pixel deep
+}
+
+TEST(Harness, TheMemoryTableMatchesThePapersPublishedValuesAndTheContainers) {
+  const ResultTable t = run_memory_table({1024, 1024}, {850000, 1500000}, {0.8, 0.5}, true);
+  int published = 0;
+  for (const ResultRow& r : t.rows) {
+    if (r.find("paper_table_mib")) {
+      ++published;
+      EXPECT_NEAR(num(r, "paper_formula_mib"), num(r, "paper_table_mib"), 0.06) << text(r, "technique");
+    }
+    if (r.find("allocated_mib")) {
+      EXPECT_DOUBLE_EQ(num(r, "allocated_mib"), num(r, "model_mib")) << text(r, "technique");
+    }
+  }
+  EXPECT_EQ(published, 2 * 3);  // lists, ha 80% and ha 50% at both counts
+}
+
+TEST(Harness, ParetoMarksOnlyUndominatedRowsPerScene) {
+  ResultTable t;
+  const auto row = [&](const char* scene, const char* tech, double ms, double mem, double psnr) {
+    ResultRow r;
+    r.set("scene", scene).set("size", "8x8").set("path", "cpu").set("technique", tech).set("total_ms", ms)
+        .set("memory_bytes", mem).set("psnr", psnr);
+    t.rows.push_back(r);
+  };
+  row("a", "fast-bad", 1.0, 100.0, 20.0);
+  row("a", "slow-good", 5.0, 50.0, INFINITY);
+  row("a", "dominated", 6.0, 200.0, 19.0);
+  row("b", "alone", 9.0, 9.0, 10.0);
+  mark_pareto(t);
+  const auto mark = [&](std::size_t i, const char* c) { return std::get<bool>(*t.rows[i].find(c)); };
+  EXPECT_TRUE(mark(0, "pareto_time"));
+  EXPECT_TRUE(mark(1, "pareto_time"));
+  EXPECT_FALSE(mark(2, "pareto_time"));
+  EXPECT_FALSE(mark(0, "pareto_memory"));  // slow-good uses less memory and is exact
+  EXPECT_TRUE(mark(1, "pareto_memory"));
+  EXPECT_TRUE(mark(3, "pareto_time"));
+  const ResultTable picks = frontier_picks(t, {15.0, 30.0});
+  EXPECT_EQ(text(picks.rows[0], "technique"), "fast-bad");
+  EXPECT_EQ(text(picks.rows[1], "technique"), "slow-good");
+}
+
+TEST(Harness, TechniqueWordsReadBackToTheirLabelsAndBadKnobsAreRefusedByName) {
+  for (const char* w : {"ha", "ha:cull=0.99:sat", "ha:load=0.8:age=6", "kbuffer:k=8:occ:words=2", "lists:load=0.5",
+                        "sorted-lists:cull=0.9", "arrays:k=16", "wboit", "blend"})
+    EXPECT_EQ(parse_technique_spec(w).label(), w);
+  for (const char* bad : {"hb", "ha:k=4", "kbuffer:cull=0.9", "ha:sat", "ha:load=1.5", "arrays:k=0", "ha:cull=x",
+                          "lists:occ", "kbuffer:words=2"})
+    EXPECT_THROW((void)parse_technique_spec(bad), std::invalid_argument) << bad;
+  EXPECT_THROW((void)parse_workload_spec("planes:order=up"), std::invalid_argument);
+  EXPECT_THROW((void)parse_workload_spec("planes:depth=3"), std::invalid_argument);
+}
+
+// The plan's predictions for engine at 256x256 against measured renders:
+// memory exactly (the model is what the containers allocate), the
+// HA-buffer's max age within 15% (its model inserts a synthetic stream with
+// the same per-pixel counts under other offsets), the k-buffer's and the
+// arrays' PSNR within 0.1 dB (the same fragments kept, float vs double).
+TEST(Harness, ThePlanPredictsEnginesMemoryMaxAgeAndTruncationErrorWithinItsTolerance) {
+  gl_context();
+  const Workload w(parse_workload_spec("engine"), {256, 256});
+  const ExactCapture capture = w.capture();
+  PlanSettings ps;
+  ps.loads = {0.5, 0.8};
+  const ResultTable plan = plan_from_capture(capture, w.size(), ps);
+  int checked = 0;
+  for (const ResultRow& p : plan.rows) {
+    const std::string tech = text(p, "technique");
+    if (tech != "ha:load=0.5" && tech != "ha:load=0.8" && tech != "kbuffer:k=4" && tech != "arrays:k=4") continue;
+    RenderSettings s;
+    s.path = RenderPath::Cpu;
+    s.threads = 1;  // fixed arrays keep the first K to arrive: stream order, as the plan assumes
+    s.config.screen = w.size();
+    parse_technique_spec(tech).apply(s, capture.fragments);
+    const RenderResult r = w.render(s);
+    EXPECT_EQ(num(p, "memory_bytes"), static_cast<double>(r.memory_model_bytes)) << tech;
+    if (tech.rfind("ha", 0) == 0) {
+      const double measured = r.frames[0].max_age;
+      EXPECT_NEAR(num(p, "predicted_max_age"), measured, 0.15 * measured) << tech;
+      EXPECT_EQ(r.frames[0].counters.failures(), 0u);
+      EXPECT_EQ(num(p, "failure_risk"), 0.0);
+    } else {
+      EXPECT_NEAR(num(p, "predicted_psnr"), compare_pixels(r.image, capture.reference).psnr, 0.1) << tech;
+      // The plan counts every fragment beyond K; the technique first merges identical records as duplicates.
+      const Counters& c = r.frames[0].counters;
+      EXPECT_GE(num(p, "predicted_failures"), static_cast<double>(c.failures())) << tech;
+      EXPECT_LE(num(p, "predicted_failures"), static_cast<double>(c.failures() + c.duplicates)) << tech;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4);
+  EXPECT_NE(plan.notes.at("recommendation"), "none meets the target");
+}
+
+}  // namespace
+}  // namespace habuffer::harness
