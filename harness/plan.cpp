@@ -184,7 +184,10 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
 }
 
 ResultTable run_plan(const Workload& workload, const PlanSettings& s) {
-  return plan_from_capture(workload.capture(), workload.size(), s);
+  ResultTable t = plan_from_capture(workload.capture(), workload.size(), s);
+  t.notes["scene"] = workload.label();
+  t.notes["size"] = workload.size().str();
+  return t;
 }
 
 }  // namespace habuffer::harness

@@ -11,6 +11,7 @@ packages=(
   pkg-config libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri
   libassimp-dev assimp-testmodels libopenimageio-dev
   glslang-tools
+  python3-matplotlib
 )
 
 missing=()
