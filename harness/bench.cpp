@@ -26,14 +26,6 @@ struct Cell3 {  // one technique on one case, over the rounds
   std::string device;
 };
 
-void put_counters(ResultRow& row, const Counters& c) {
-  row.set("fragments", c.fragments).set("stored", c.stored()).set("culled", c.culled)
-      .set("saturated_rejected", c.saturated_rejected).set("blended", c.blended).set("duplicates", c.duplicates)
-      .set("invalid", c.invalid).set("failed_age", c.failed_age).set("failed_iter", c.failed_iter)
-      .set("dropped_pool", c.dropped_pool).set("dropped_layers", c.dropped_layers)
-      .set("occupancy_rejected", c.occupancy_rejected).set("failures", c.failures());
-}
-
 ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c, const Cell3& r) {
   ResultRow row;
   row.set("technique", t.label()).set("scene", c.workload->label()).set("size", c.workload->size().str())
@@ -44,7 +36,7 @@ ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c
   row.set("memory_bytes", r.memory_bytes).set("memory_model_bytes", r.memory_model_bytes);
   const double frags = static_cast<double>(c.capture.fragments);
   row.set("bytes_per_fragment", frags > 0 ? static_cast<double>(r.memory_bytes) / frags : 0.0);
-  put_counters(row, r.last.counters);
+  set_counters(row, r.last.counters);
   if (t.technique == Technique::Ha) row.set("max_age", r.last.max_age).set("table", r.last.table.str());
   row.set("load_factor", r.last.load_factor);
   row.set("psnr", r.error.psnr).set("rmse", r.error.rmse).set("max_error", r.error.max_error);

@@ -141,6 +141,14 @@ double ResultRow::number(const std::string& column) const {
   throw std::out_of_range("result row has no number in column '" + column + "'");
 }
 
+void set_counters(ResultRow& row, const Counters& c) {
+  row.set("fragments", c.fragments).set("stored", c.stored()).set("invalid", c.invalid).set("duplicates", c.duplicates)
+      .set("culled", c.culled).set("saturated_rejected", c.saturated_rejected).set("blended", c.blended)
+      .set("failed_age", c.failed_age).set("failed_iter", c.failed_iter).set("dropped_pool", c.dropped_pool)
+      .set("dropped_layers", c.dropped_layers).set("occupancy_rejected", c.occupancy_rejected)
+      .set("failures", c.failures());
+}
+
 std::vector<std::string> ResultTable::columns() const {
   std::vector<std::string> out;
   for (const ResultRow& r : rows)

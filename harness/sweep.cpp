@@ -68,14 +68,6 @@ void add_histogram(std::vector<std::uint64_t>& into, const std::vector<std::uint
   for (std::size_t i = 0; i < h.size(); ++i) into[i] += h[i];
 }
 
-void put_counters(ResultRow& row, const Counters& c) {
-  row.set("fragments", c.fragments).set("stored", c.stored()).set("invalid", c.invalid).set("duplicates", c.duplicates)
-      .set("culled", c.culled).set("saturated_rejected", c.saturated_rejected).set("blended", c.blended)
-      .set("failed_age", c.failed_age).set("failed_iter", c.failed_iter).set("dropped_pool", c.dropped_pool)
-      .set("dropped_layers", c.dropped_layers).set("occupancy_rejected", c.occupancy_rejected)
-      .set("failures", c.failures());
-}
-
 ResultRow make_row(const SweepSettings& s, double load, const LoadRuns& r) {
   ResultRow row;
   row.set("load", load).set("measured_load", r.measured_load).set("technique", s.technique.label())
@@ -98,7 +90,7 @@ ResultRow make_row(const SweepSettings& s, double load, const LoadRuns& r) {
         .set("max_age", *std::max_element(r.max_age.begin(), r.max_age.end()))
         .set("age_histogram", r.histogram);
   }
-  put_counters(row, r.counters);
+  set_counters(row, r.counters);
   row.set("memory_bytes", r.memory_bytes);
   return row;
 }

@@ -26,17 +26,6 @@ constexpr const char* kHelp =
     "  frontier  techniques and knobs on [--scenes S,.. (engine,hairball)]: time, memory and psnr, Pareto rows\n"
     "            marked; [--picks F.json[,F.csv]] the fastest configuration at [--targets DB,.. (30,40,50)]\n";
 
-std::vector<double> reals(const Args& args, const std::string& name, const std::string& fallback) {
-  std::vector<double> out;
-  for (const std::string& w : args.list(name, fallback)) {
-    char* end = nullptr;
-    const double v = std::strtod(w.c_str(), &end);
-    if (end != w.c_str() + w.size() || w.empty()) throw UsageError("--" + name + ": '" + w + "' is not a number");
-    out.push_back(v);
-  }
-  return out;
-}
-
 }  // namespace
 
 int run_figure(const std::vector<std::string>& argv) {
@@ -72,13 +61,13 @@ int run_figure(const std::vector<std::string>& argv) {
     allowed({"fragments", "loads", "no-allocate"});
     const std::vector<Extent> size = parse_sizes(args, "1024x1024");
     std::vector<std::uint64_t> counts;
-    for (const double f : reals(args, "fragments", "850000,1500000,10000000")) {
+    for (const double f : parse_reals(args, "fragments", "850000,1500000,10000000")) {
       if (!(f >= 1.0) || f != std::floor(f)) throw UsageError("--fragments: counts must be positive integers");
       counts.push_back(static_cast<std::uint64_t>(f));
     }
     outputs = parse_outputs(args, {});
     try {
-      table = harness::run_memory_table(size.at(0), counts, reals(args, "loads", "0.9,0.8,0.5"), !args.has("no-allocate"));
+      table = harness::run_memory_table(size.at(0), counts, parse_reals(args, "loads", "0.9,0.8,0.5"), !args.has("no-allocate"));
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }
@@ -89,7 +78,7 @@ int run_figure(const std::vector<std::string>& argv) {
       allowed({"scene", "opacities"});
       const std::vector<harness::WorkloadSpec> scene = parse_scenes_or(args, "scene", "hairball");
       std::vector<float> opacities;
-      for (const double o : reals(args, "opacities", "0.125,0.25,0.5,1")) opacities.push_back(static_cast<float>(o));
+      for (const double o : parse_reals(args, "opacities", "0.125,0.25,0.5,1")) opacities.push_back(static_cast<float>(o));
       outputs = parse_outputs(args, {});
       const auto context = context_for(true, "figure");
       table = harness::run_fig2(scene.at(0), opacities, s);
@@ -129,7 +118,7 @@ int run_figure(const std::vector<std::string>& argv) {
       if (name == "frontier") {
         harness::mark_pareto(table);
         if (!picks.empty()) {
-          harness::ResultTable p = harness::frontier_picks(table, reals(args, "targets", "30,40,50"));
+          harness::ResultTable p = harness::frontier_picks(table, parse_reals(args, "targets", "30,40,50"));
           write_outputs(("figure " + name).c_str(), p, picks, argv);
         }
       }

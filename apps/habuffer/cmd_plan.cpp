@@ -29,13 +29,7 @@ int run_plan(const std::vector<std::string>& argv) {
   s.trials = args.u32("trials", 3, 1, 1000);
   s.seed = args.u64("seed", 1);
   s.age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, 4, 12);
-  s.loads.clear();
-  for (const std::string& w : args.list("loads", "0.5,0.6,0.7,0.8,0.9,0.95")) {
-    char* end = nullptr;
-    const double v = std::strtod(w.c_str(), &end);
-    if (end != w.c_str() + w.size() || !(v > 0.0 && v <= 1.0)) throw UsageError("--loads: '" + w + "' is not in (0, 1]");
-    s.loads.push_back(v);
-  }
+  s.loads = parse_reals(args, "loads", "0.5,0.6,0.7,0.8,0.9,0.95", 1e-9, 1.0);
   const std::vector<Extent> sizes = parse_sizes(args, "256x256");
   if (sizes.size() != 1) throw UsageError("--size takes one WxH");
   const harness::WorkloadSpec w =

@@ -37,13 +37,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   const std::vector<harness::TechniqueSpec> t = parse_techniques(args, "technique", "ha");
   if (t.size() != 1) throw UsageError("--technique takes one technique (bench compares several)");
   s.technique = t[0];
-  s.loads.clear();
-  for (const std::string& l : args.list("loads", "0.5,0.6,0.7,0.8,0.9,0.95")) {
-    char* end = nullptr;
-    const double v = std::strtod(l.c_str(), &end);
-    if (end != l.c_str() + l.size()) throw UsageError("--loads: '" + l + "' is not a number");
-    s.loads.push_back(v);
-  }
+  s.loads = parse_reals(args, "loads", "0.5,0.6,0.7,0.8,0.9,0.95");
   s.repeats = args.u32("repeats", 3, 1, 1000);
   s.seed = args.u64("seed", 1);
   const std::string offsets = args.str("offsets", "random");

@@ -7,6 +7,20 @@
 
 namespace habuffer::cli {
 
+std::vector<double> parse_reals(const Args& args, const std::string& name, const std::string& fallback, double lo,
+                                double hi) {
+  std::vector<double> out;
+  for (const std::string& w : args.list(name, fallback)) {
+    char* end = nullptr;
+    const double v = std::strtod(w.c_str(), &end);
+    if (end != w.c_str() + w.size() || !(v >= lo && v <= hi))
+      throw UsageError("--" + name + ": '" + w + "' is not a number" +
+                       (lo > -1e300 || hi < 1e300 ? " in [" + shortest(lo) + ", " + shortest(hi) + "]" : std::string()));
+    out.push_back(v);
+  }
+  return out;
+}
+
 RenderPath parse_path(const Args& args) {
   const std::string p = args.str("path", "gl");
   if (p != "gl" && p != "cpu") throw UsageError("--path must be gl or cpu, not '" + p + "'");

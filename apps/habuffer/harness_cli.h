@@ -16,6 +16,9 @@
 
 namespace habuffer::cli {
 
+// A comma-separated list of numbers, each in [lo, hi].
+std::vector<double> parse_reals(const Args& args, const std::string& name, const std::string& fallback,
+                                double lo = -1e300, double hi = 1e300);
 // --path gl|cpu (default gl).
 RenderPath parse_path(const Args& args);
 // --size WxH[,WxH...]: at least one, each positive.

@@ -10,6 +10,8 @@
 #include <variant>
 #include <vector>
 
+#include "habuffer/fragment.h"
+
 namespace habuffer::harness {
 
 // Nothing (JSON null, CSV empty), an integer, a real, text or a histogram.
@@ -34,6 +36,9 @@ class ResultRow {
  private:
   std::vector<std::pair<std::string, Cell>> cells_;  // in the order first set
 };
+
+// Every counter of a run as columns (fragments, stored, each reason, failures).
+void set_counters(ResultRow& row, const Counters& c);
 
 // What produced a table: printed in the JSON and named by every figure.
 struct Provenance {
