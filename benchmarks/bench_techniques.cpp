@@ -12,9 +12,9 @@
 #include <string>
 
 #include "habuffer/gl/egl_context.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/render/gl_floors.h"
 #include "habuffer/render/render_job.h"
-#include "habuffer/render/scene_renderer.h"
 #include "habuffer/scene_catalog.h"
 
 namespace habuffer::bench {
@@ -100,31 +100,15 @@ void run_technique(benchmark::State& state, const std::string& name, RenderPath 
 
 void run_floor(benchmark::State& state, const std::string& name, bool blend) {
   context();
-  const Scene scene = bench_scene(name);
-  const Extent screen{kSide, kSide};
-  BufferConfig c;
-  c.screen = screen;
-  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
-  if (!mode) {
-    state.SkipWithError("this OpenGL has no 64-bit shader types");
+  std::optional<GlFloors> floors;
+  try {
+    floors.emplace(bench_scene(name), Extent{kSide, kSide});
+  } catch (const gl::GlError& e) {
+    state.SkipWithError(e.what());
     return;
   }
-  gl::GlHaBuffer module_owner(c, OffsetSource{}, *mode);  // the gather shader's module
-  SceneRenderer renderer(scene, screen, module_owner);
-  const Camera camera = frame_scene(scene, {scene.default_yaw, scene.default_pitch, 45.0f}, screen);
-  std::uint64_t fragments = 0;
-  // llvmpipe compiles a shader's code at its first draw: not part of the floor.
-  renderer.draw_opaque(camera, glm::vec3(1.0f));
-  module_owner.bind();
-  (void)(blend ? renderer.blend_floor(camera) : renderer.atomic_floor(camera));
-  for (auto _ : state) {
-    renderer.draw_opaque(camera, glm::vec3(1.0f));
-    module_owner.bind();
-    const double ms = blend ? renderer.blend_floor(camera) : renderer.atomic_floor(camera);
-    state.SetIterationTime(ms * 1e-3);
-    if (!blend) fragments = renderer.inserted();  // the blend floor counts nothing
-  }
-  if (!blend) state.counters["fragments"] = static_cast<double>(fragments);
+  for (auto _ : state) state.SetIterationTime((blend ? floors->blend_ms() : floors->atomic_ms()) * 1e-3);
+  if (!blend) state.counters["fragments"] = static_cast<double>(floors->fragments());  // the blend floor counts nothing
 }
 
 const bool registered = [] {

@@ -4,12 +4,8 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "habuffer/gl/gl_error.h"
-#include "habuffer/gl/gl_ha_buffer.h"
-#include "habuffer/gl/gl_info.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/parallel.h"
-#include "habuffer/render/scene_renderer.h"
 
 namespace habuffer::harness {
 namespace {
@@ -32,38 +28,17 @@ double cpu_blend_floor_ms(const ExactCapture& c, Extent screen, std::uint32_t th
 
 }  // namespace
 
-struct FloorMeter::Gl {
-  Camera camera;
-  gl::GlHaBuffer module_owner;  // the gather shader's module and uniform block
-  SceneRenderer renderer;
-  Gl(const Scene& scene, Extent screen, const BufferConfig& c, gl::AtomicMode mode)
-      : camera(frame_scene(scene, {scene.default_yaw, scene.default_pitch, 45.0f}, screen)),
-        module_owner(c, OffsetSource{}, mode),
-        renderer(scene, screen, module_owner) {}
-  double pass(bool blend) {
-    renderer.draw_opaque(camera, glm::vec3(1.0f));
-    module_owner.bind();
-    return blend ? renderer.blend_floor(camera) : renderer.atomic_floor(camera);
-  }
-};
-
 FloorMeter::FloorMeter(const Workload& workload, const ExactCapture& capture, RenderPath path, std::uint32_t threads)
     : capture_(capture), threads_(threads) {
   if (path != RenderPath::Gl) return;
   if (workload.scene() == nullptr) throw std::invalid_argument("a fragment stream has no GL floor: use the CPU path");
-  BufferConfig c;
-  c.screen = workload.size();
-  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
-  if (!mode) throw gl::GlError("the GL floors need 64-bit shader types (GL_ARB_gpu_shader_int64)");
-  gl_ = std::make_unique<Gl>(*workload.scene(), workload.size(), c, *mode);
-  (void)gl_->pass(true);  // llvmpipe compiles a shader at its first draw: not part of the floor
-  (void)gl_->pass(false);
+  gl_ = std::make_unique<GlFloors>(*workload.scene(), workload.size());
 }
 
 FloorMeter::~FloorMeter() = default;
 
 Floors FloorMeter::measure() {
-  if (gl_) return {gl_->pass(false), gl_->pass(true)};
+  if (gl_) return {gl_->atomic_ms(), gl_->blend_ms()};
   const Extent screen = capture_.reference.size;
   return {cpu_atomic_floor_ms(capture_.stream, screen, threads_), cpu_blend_floor_ms(capture_, screen, threads_)};
 }

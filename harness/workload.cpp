@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "habuffer/interchange.h"
-#include "habuffer/reference_compositor.h"
 
 namespace habuffer::harness {
 namespace {
@@ -82,8 +81,10 @@ RenderResult Workload::render(RenderSettings s) const {
 ExactCapture Workload::capture() const {
   RenderSettings s;
   s.path = RenderPath::Cpu;
-  s.technique = Technique::Ha;
-  s.lossless = true;
+  // The CPU path keeps the captured fragments whatever the technique: the
+  // cheapest one (unsorted blending, one pass, nothing to grow or regather)
+  // gives them, their count and the backgrounds.
+  s.technique = Technique::Blend;
   s.keep_fragments = true;
   RenderResult r = render(s);
   ExactCapture c;
@@ -93,13 +94,6 @@ ExactCapture Workload::capture() const {
   c.backgrounds = std::move(r.backgrounds);
   c.reference = reference_image(c.stream, size_, c.backgrounds);
   return c;
-}
-
-Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds) {
-  const std::vector<glm::dvec4> exact = reference_composite(fragments, size, backgrounds);
-  Image image{size, std::vector<glm::vec4>(exact.size())};
-  for (std::size_t i = 0; i < exact.size(); ++i) image.pixels[i] = glm::vec4(exact[i]);
-  return image;
 }
 
 Spread spread_of(std::vector<double> v) {

@@ -1,5 +1,7 @@
 #include "habuffer/render/image.h"
 
+#include "habuffer/reference_compositor.h"
+
 #include <cmath>
 #include <limits>
 
@@ -114,6 +116,13 @@ ImageDifference compare_pixels(const Image& image, const Image& reference) {
   d.rmse = n > 0 ? std::sqrt(sum / n) : 0.0;
   d.psnr = d.rmse > 0 ? 20.0 * std::log10(1.0 / d.rmse) : std::numeric_limits<double>::infinity();
   return d;
+}
+
+Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds) {
+  const std::vector<glm::dvec4> exact = reference_composite(fragments, size, backgrounds);
+  Image image{size, std::vector<glm::vec4>(exact.size())};
+  for (std::size_t i = 0; i < exact.size(); ++i) image.pixels[i] = glm::vec4(exact[i]);
+  return image;
 }
 
 }  // namespace habuffer

@@ -11,7 +11,6 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/interchange.h"
 #include "habuffer/json_writer.h"
-#include "habuffer/reference_compositor.h"
 #include "habuffer/render/heatmap.h"
 #include "habuffer/render/render_job.h"
 #include "habuffer/scene_catalog.h"
@@ -246,13 +245,6 @@ std::vector<HeatmapOutput> write_heatmaps(const std::vector<HeatmapRequest>& req
   return out;
 }
 
-Image reference_image(const RenderResult& r, Extent size) {
-  const std::vector<glm::dvec4> exact = reference_composite(r.fragments, size, r.backgrounds);
-  Image image{size, std::vector<glm::vec4>(exact.size())};
-  for (std::size_t i = 0; i < exact.size(); ++i) image.pixels[i] = glm::vec4(exact[i]);
-  return image;
-}
-
 // One warning line for fragments lost over all frames; exit 1 when lossless
 // mode could not keep them; a warning when nothing reached the screen.
 int report_render_losses(const RenderSettings& s, const RenderResult& r) {
@@ -328,7 +320,7 @@ int run_render(const std::vector<std::string>& argv) {
   }
   outputs.heatmaps = write_heatmaps(heatmaps, r, s.config.screen);
   if (args.has("reference") || args.has("error")) {
-    const Image reference = reference_image(r, s.config.screen);
+    const Image reference = reference_image(r.fragments, s.config.screen, r.backgrounds);
     outputs.error = compare_pixels(r.image, reference);
     if (args.has("reference")) {
       outputs.reference = args.required("reference");

@@ -1,14 +1,15 @@
 // The floors every technique is measured against, in the same run: one
 // atomic add per fragment (the least an A-buffer can do) and plain unsorted
-// blending (no lists at all). GL path: the scene's transparent meshes drawn
-// by SceneRenderer's floor passes; CPU path: the captured fragments through
-// a per-pixel atomic counter and through the `blend` technique's insertion.
+// blending (no lists at all). GL path: GlFloors (render library); CPU path:
+// the captured fragments through a per-pixel atomic counter and through the
+// `blend` technique's insertion.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
 #include "habuffer/harness/workload.h"
+#include "habuffer/render/gl_floors.h"
 
 namespace habuffer::harness {
 
@@ -28,10 +29,9 @@ class FloorMeter {
   Floors measure();
 
  private:
-  struct Gl;
   const ExactCapture& capture_;
   std::uint32_t threads_;
-  std::unique_ptr<Gl> gl_;
+  std::unique_ptr<GlFloors> gl_;  // GL path only
 };
 
 // Milliseconds of one atomic add per fragment to per-pixel counters on

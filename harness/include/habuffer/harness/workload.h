@@ -31,8 +31,8 @@ struct WorkloadSpec {
 // Throws std::invalid_argument naming the word and key.
 WorkloadSpec parse_workload_spec(const std::string& word);
 
-// The exact result of a workload (lossless HA-buffer, no cull): what every
-// other render is measured against.
+// The fragments of a workload's view and their exact composite: what every
+// render is measured against.
 struct ExactCapture {
   std::uint64_t fragments = 0;  // reaching insertion (after opaque rejection)
   std::vector<std::uint32_t> pixel_fragments;  // depth complexity, row-major, row 0 at the bottom
@@ -56,7 +56,7 @@ class Workload {
   // technique; s.config.screen and the camera are set here. Needs a current
   // GL context for scenes.
   [[nodiscard]] RenderResult render(RenderSettings s) const;
-  // The exact capture (a lossless CPU-path render keeping the fragments).
+  // The exact capture (the CPU path's fragments, composited by reference_image).
   [[nodiscard]] ExactCapture capture() const;
 
  private:
@@ -65,9 +65,6 @@ class Workload {
   std::optional<Scene> scene_;
   std::vector<Fragment> stream_;
 };
-
-// The exact reference image of captured fragments over their backgrounds.
-Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds);
 
 // Median, smallest and largest of `v` (empty: zeros).
 struct Spread {

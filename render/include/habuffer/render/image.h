@@ -7,9 +7,13 @@
 #include <string>
 #include <vector>
 
+#include <span>
+
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "habuffer/extent.h"
+#include "habuffer/fragment.h"
 
 namespace habuffer {
 
@@ -29,6 +33,10 @@ struct Image {
 void write_image(const std::string& path, const Image& image);
 // Reads RGB(A) as floats; alpha 1 when the file has none.
 Image read_image(const std::string& path);
+
+// The exact reference of `fragments` (SPEC 7 in double precision, each pixel
+// over its own background), as a float image.
+Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds);
 
 struct ImageDifference {
   double rmse = 0.0, psnr = 0.0, max_error = 0.0;  // over RGB, values in [0, 1]
