@@ -34,7 +34,7 @@ struct Variant {
   Technique technique;
   float cull_tau = 0.0f;
   bool saturation = false;
-  std::uint32_t layers = HA_DEFAULT_LAYERS;
+  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;
   bool occupancy = false;
 };
 

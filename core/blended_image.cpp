@@ -30,14 +30,14 @@ Counters BlendedImage::insert(std::span<const Fragment> fragments, const InsertO
   const std::uint32_t width = screen().x;
   detail::for_row_bands(screen(), threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
     BlendedKernel k(params_);
-    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
+    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
     for (const Fragment& f : fragments) {
       if (f.y < y0 || f.y >= y1) continue;
       if (!k.ha_depth_valid(f.depth)) {
-        ++tally[HA_INVALID];
+        ++tally[HABUFFER_INVALID];
         continue;
       }
-      ++tally[HA_BLENDED];
+      ++tally[HABUFFER_BLENDED];
       const std::size_t p = f.x + std::size_t{f.y} * width;
       const glm::vec4 c = k.ha_unpack_rgba(f.rgba);
       if (weighted()) {

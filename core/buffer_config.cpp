@@ -18,9 +18,9 @@ void BufferConfig::validate() const {
   if (h.x > (1u << 31) || h.y > (1u << 31))
     throw std::invalid_argument("table " + h.str() + " has a side above 2^31 slots");
   if (block == 0) throw std::invalid_argument("max-age block size must be at least 1");
-  if (iter_limit == 0 || iter_limit > HA_MAX_ITER_LIMIT)
+  if (iter_limit == 0 || iter_limit > HABUFFER_MAX_ITER_LIMIT)
     throw std::invalid_argument("iteration limit " + std::to_string(iter_limit) + " is not in [1, " +
-                                std::to_string(HA_MAX_ITER_LIMIT) + "]");
+                                std::to_string(HABUFFER_MAX_ITER_LIMIT) + "]");
   if (!(early_cull_tau >= 0.0f && early_cull_tau <= 1.0f))
     throw std::invalid_argument("early-cull threshold " + std::to_string(early_cull_tau) + " outside (0, 1]");
   if (early_cull_tau > 0.0f && layout != Layout::L64)

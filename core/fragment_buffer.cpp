@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include <tbb/info.h>
+#include "habuffer/parallel.h"
 
 namespace habuffer {
 
@@ -17,7 +17,7 @@ void check_on_screen(std::span<const Fragment> fragments, Extent screen) {
 }
 
 std::uint32_t resolve_threads(std::uint32_t threads) {
-  return threads != 0 ? threads : static_cast<std::uint32_t>(tbb::info::default_concurrency());
+  return threads != 0 ? threads : default_concurrency();
 }
 
 }  // namespace habuffer

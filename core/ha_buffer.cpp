@@ -6,11 +6,11 @@
 #include <string>
 #include <variant>
 
-#include <tbb/task_arena.h>
 
 #include "habuffer/hash_kernel.h"
 #include "habuffer/slot_storage.h"
 #include "habuffer/owner_computes.h"
+#include "habuffer/parallel.h"
 #include "technique_parallel.h"
 
 namespace habuffer {
@@ -132,8 +132,9 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
   if (options.band_rows == 0) throw std::invalid_argument("band_rows must be at least 1");
   if (impl_->config.saturation)
     throw std::invalid_argument("owner-computes insertion has no saturation depth (its owners share no atomics)");
-  tbb::task_arena arena(static_cast<int>(threads));
-  return arena.execute([&] { return impl_->insert_owner_computes(fragments, options, threads); });
+  Counters counters;
+  run_with_threads(threads, [&] { counters = impl_->insert_owner_computes(fragments, options, threads); });
+  return counters;
 }
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {
@@ -186,8 +187,8 @@ std::uint32_t HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListE
       const auto r = k.ha_load_slot(k.ha_slot(k.ha_probe(p, a)));
       ++reads;
       const std::uint32_t v = k.ha_visit(r, a);
-      if (v == HA_VISIT_STOP) break;
-      if (v == HA_VISIT_EMIT) out.push_back({a, k.ha_code(r), k.ha_data(r)});
+      if (v == HABUFFER_VISIT_STOP) break;
+      if (v == HABUFFER_VISIT_EMIT) out.push_back({a, k.ha_code(r), k.ha_data(r)});
     }
     return reads;
   });

@@ -18,7 +18,7 @@ class OwnerComputes {
   struct alignas(64) Owner {
     std::vector<std::uint32_t> max_age;            // private copy of M
     std::vector<std::vector<Carry>> outbox[2];     // [round parity][destination]
-    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
+    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
   };
 
  public:
@@ -78,7 +78,7 @@ class OwnerComputes {
     Owner& me = owners_[t];
     for (;;) {
       std::uint32_t outcome = k.ha_insert_limit(c);
-      if (outcome == HA_PENDING) {
+      if (outcome == HABUFFER_PENDING) {
         const glm::uvec2 h = k.ha_probe(c.p, c.a);
         const std::uint32_t dest = owner_of_row(h.y);
         if (dest != t) {
@@ -87,7 +87,7 @@ class OwnerComputes {
         }
         outcome = k.ha_insert_step_at(c, h);
       }
-      if (outcome != HA_PENDING) {
+      if (outcome != HABUFFER_PENDING) {
         ++me.tally[outcome];
         return;
       }
@@ -102,7 +102,7 @@ class OwnerComputes {
       const glm::uvec2 p(f.x, f.y);
       if (owner_of_row(k.ha_probe(p, 1).y) != t) continue;
       if (!k.ha_depth_valid(f.depth)) {
-        ++owners_[t].tally[HA_INVALID];
+        ++owners_[t].tally[HABUFFER_INVALID];
         continue;
       }
       drive(t, k, k.ha_carry_begin(p, k.ha_depth_code(f.depth), f.rgba), 0);

@@ -10,13 +10,13 @@ namespace {
 // The record functions of the shared GLSL, for one word size.
 template <class Word>
 struct RecordCodec {
-  HA_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_PRELUDE
   using ha_word = Word;
   uint ha_age_bits;
   static constexpr uint ha_word_bits = sizeof(Word) * 8;
   static constexpr uint ha_payload_bits = sizeof(Word) == 8 ? 32u : 0u;
   explicit RecordCodec(uint age_bits) : ha_age_bits(age_bits) {}
-#include "../shared/ha_record.glsl"
+#include "habuffer/shared/ha_record.glsl"
 };
 
 template <class F>
@@ -32,9 +32,9 @@ std::string to_string(Layout layout) { return layout == Layout::L64 ? "L64" : "L
 RecordLayout::RecordLayout(Layout layout, std::uint32_t age_bits) : layout_(layout), age_bits_(age_bits) {
   if (layout != Layout::L64 && layout != Layout::L32)
     throw std::invalid_argument("record layout must be 64 or 32 bits");
-  if (age_bits < HA_MIN_AGE_BITS || age_bits > HA_MAX_AGE_BITS)
+  if (age_bits < HABUFFER_MIN_AGE_BITS || age_bits > HABUFFER_MAX_AGE_BITS)
     throw std::invalid_argument("age bits " + std::to_string(age_bits) + " outside " +
-                                std::to_string(HA_MIN_AGE_BITS) + ".." + std::to_string(HA_MAX_AGE_BITS));
+                                std::to_string(HABUFFER_MIN_AGE_BITS) + ".." + std::to_string(HABUFFER_MAX_AGE_BITS));
 }
 
 std::uint64_t RecordLayout::pack(std::uint32_t age, std::uint32_t code, std::uint32_t data) const {
@@ -54,7 +54,7 @@ std::uint64_t RecordLayout::with_age(std::uint64_t r, std::uint32_t age) const {
     return std::uint64_t{c.ha_with_age(static_cast<typename decltype(c)::ha_word>(r), age)};
   });
 }
-bool RecordLayout::depth_valid(float t) { return RecordCodec<std::uint64_t>(HA_DEFAULT_AGE_BITS).ha_depth_valid(t); }
+bool RecordLayout::depth_valid(float t) { return RecordCodec<std::uint64_t>(HABUFFER_DEFAULT_AGE_BITS).ha_depth_valid(t); }
 std::uint32_t RecordLayout::depth_code(float t) const {
   return RecordCodec<std::uint64_t>(age_bits_).ha_depth_code(t);
 }

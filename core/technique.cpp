@@ -51,9 +51,9 @@ void TechniqueConfig::validate() const {
                                 " has none");
   if (occupancy && technique != Technique::KBuffer)
     throw std::invalid_argument("occupancy maps are the k-buffer's, not " + to_string(technique) + "'s");
-  if (occupancy_words == 0 || occupancy_words > HA_MAX_OCCUPANCY_WORDS)
+  if (occupancy_words == 0 || occupancy_words > HABUFFER_MAX_OCCUPANCY_WORDS)
     throw std::invalid_argument("occupancy words " + std::to_string(occupancy_words) + " outside [1, " +
-                                std::to_string(HA_MAX_OCCUPANCY_WORDS) + "]");
+                                std::to_string(HABUFFER_MAX_OCCUPANCY_WORDS) + "]");
   if (!(depth_range.near_t >= 0.0f && depth_range.near_t < depth_range.far_t && depth_range.far_t <= 1.0f))
     throw std::invalid_argument("depth range [" + std::to_string(depth_range.near_t) + ", " +
                                 std::to_string(depth_range.far_t) + "] is not an interval within [0, 1]");

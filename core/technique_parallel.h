@@ -10,8 +10,6 @@
 #include <string>
 #include <vector>
 
-#include <tbb/task_arena.h>
-
 #include "habuffer/fragment_buffer.h"
 #include "habuffer/parallel.h"
 
@@ -48,8 +46,7 @@ void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKern
     run(k, frags, 0u);
     return;
   }
-  tbb::task_arena arena(static_cast<int>(threads));
-  arena.execute([&] {
+  run_with_threads(threads, [&] {
     fork_join(threads, [&](std::uint32_t t) {
       auto k = make_kernel(std::true_type{});
       const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
@@ -65,7 +62,7 @@ Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, M
   std::vector<SliceCounters> slices(threads);
   for_slices(frags, threads, make_kernel, [&](auto& k, std::span<const Fragment> slice, std::uint32_t t) {
     // A local tally: counters in memory could alias the buffers and force a store per fragment.
-    std::uint64_t tally[HA_OUTCOME_COUNT] = {};
+    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
     for (const Fragment& f : slice) ++tally[insert(k, f)];
     slices[t].c.add_tally(tally);
   });
@@ -77,8 +74,7 @@ Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, M
 // body(part, y_begin, y_end) over `parts` bands of rows, in parallel.
 template <class Body>
 void for_row_bands(Extent screen, std::uint32_t parts, Body body) {
-  tbb::task_arena arena(static_cast<int>(parts));
-  arena.execute([&] {
+  run_with_threads(parts, [&] {
     fork_join(parts, [&](std::uint32_t part) {
       body(part, static_cast<std::uint32_t>(std::uint64_t{screen.y} * part / parts),
            static_cast<std::uint32_t>(std::uint64_t{screen.y} * (part + 1) / parts));

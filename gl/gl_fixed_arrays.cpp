@@ -49,8 +49,8 @@ void GlFixedArrays::write_params(GlParams& p) const {
 }
 
 void GlFixedArrays::bind() const {
-  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->counts);    // HA_BINDING_COUNTS
-  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->layers);  // HA_BINDING_LAYERS
+  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->counts);    // HABUFFER_BINDING_COUNTS
+  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->layers);  // HABUFFER_BINDING_LAYERS
 }
 
 void GlFixedArrays::before_gather() { zero_buffer(gpu_->counts); }

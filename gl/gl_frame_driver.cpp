@@ -20,9 +20,9 @@
 namespace habuffer::gl {
 namespace {
 
-constexpr std::uint64_t kCounterWords = HA_COUNTER_WORDS;
-static_assert(HA_GPU_COUNTER_COUNT <= HA_COUNTER_STRIDE, "a stripe's counters fit its cache line");
-constexpr std::uint64_t kAppendHeaderBytes = HA_APPEND_HEADER_WORDS * 4;
+constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
+static_assert(HABUFFER_GPU_COUNTER_COUNT <= HABUFFER_COUNTER_STRIDE, "a stripe's counters fit its cache line");
+constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
 constexpr std::uint64_t kDeferredCallBytes = 32;  // std430 HaDeferred of ha_entry.glsl
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
 
@@ -302,21 +302,21 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
 
 void GlFrameDriver::read_counters(FrameReport& report) const {
   const auto words = read_words(gpu_->counters, kCounterWords);
-  std::uint64_t tally[HA_GPU_COUNTER_COUNT] = {};
-  for (std::uint32_t stripe = 0; stripe < HA_COUNTER_STRIPES; ++stripe)
-    for (std::uint32_t k = 0; k < HA_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HA_COUNTER_STRIDE + k];
+  std::uint64_t tally[HABUFFER_GPU_COUNTER_COUNT] = {};
+  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
+    for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
   const std::uint64_t pixels = screen().area();
-  if (sorted_ && tally[HA_COUNTER_SORT_DONE] != pixels)
-    throw GlError("the driver ended " + std::to_string(pixels - tally[HA_COUNTER_SORT_DONE]) + " of " +
+  if (sorted_ && tally[HABUFFER_COUNTER_SORT_DONE] != pixels)
+    throw GlError("the driver ended " + std::to_string(pixels - tally[HABUFFER_COUNTER_SORT_DONE]) + " of " +
                   std::to_string(pixels) +
                   " per-pixel sorts early (its loop budget): the lists are too long for this driver's sort pass");
   Counters c;
   c.add_tally(tally);
-  c.merge_duplicates(tally[HA_COUNTER_MERGED]);
+  c.merge_duplicates(tally[HABUFFER_COUNTER_MERGED]);
   report.counters = c;
-  report.slot_writes = tally[HA_COUNTER_SLOT_WRITES];
-  report.nodes_requested = words[HA_COUNTER_NODES];
-  report.most_arrived = words[HA_COUNTER_MOST_ARRIVED];
+  report.slot_writes = tally[HABUFFER_COUNTER_SLOT_WRITES];
+  report.nodes_requested = words[HABUFFER_COUNTER_NODES];
+  report.most_arrived = words[HABUFFER_COUNTER_MOST_ARRIVED];
 }
 
 PassTiming GlFrameDriver::resolve(glm::vec3 background, unsigned background_texture) {

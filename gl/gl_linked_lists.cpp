@@ -65,9 +65,9 @@ void GlLinkedLists::write_params(GlParams& p) const {
 
 void GlLinkedLists::bind() const {
   const GlBindings& b = bindings();
-  bind_at(GL_SHADER_STORAGE_BUFFER, b.table, gpu_->heads);   // HA_BINDING_HEADS
-  bind_at(GL_SHADER_STORAGE_BUFFER, b.max_age, gpu_->nodes);  // HA_BINDING_NODES
-  bind_at(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HA_BINDING_LINKS
+  bind_at(GL_SHADER_STORAGE_BUFFER, b.table, gpu_->heads);   // HABUFFER_BINDING_HEADS
+  bind_at(GL_SHADER_STORAGE_BUFFER, b.max_age, gpu_->nodes);  // HABUFFER_BINDING_NODES
+  bind_at(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HABUFFER_BINDING_LINKS
   if (gpu_->saturation != 0) bind_at(GL_SHADER_STORAGE_BUFFER, b.saturation, gpu_->saturation);
 }
 

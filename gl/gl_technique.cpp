@@ -31,7 +31,7 @@ void check_atomic_mode(AtomicMode mode, Layout layout) {
 }
 
 std::uint64_t emulated64_lock_words(std::uint64_t slots) {
-  return (slots + (1u << HA_LOCK_SHIFT) - 1) >> HA_LOCK_SHIFT;
+  return (slots + (1u << HABUFFER_LOCK_SHIFT) - 1) >> HABUFFER_LOCK_SHIFT;
 }
 
 std::uint64_t max_storage_bytes() {

@@ -30,6 +30,38 @@ const char* word_defines(AtomicMode mode) {
 
 const char* mode_prelude(AtomicMode mode) { return mode == AtomicMode::Emulated64 ? kPreludeEmulated64 : kPreludeNative; }
 
+// The parameter block of ha_params.h, read here as a list of (GLSL type, name).
+struct ParamField {
+  const char* type;
+  const char* name;
+};
+#define HABUFFER_PARAMS_BEGIN constexpr ParamField kParamFields[] = {
+#define HABUFFER_PARAMS_END };
+#define HABUFFER_PARAM_UINT(name) {"uint", #name},
+#define HABUFFER_PARAM_FLOAT(name) {"float", #name},
+#define HABUFFER_PARAM_UVEC2(name) {"uvec2", #name},
+#include "habuffer/shared/ha_params.h"
+#undef HABUFFER_PARAMS_BEGIN
+#undef HABUFFER_PARAMS_END
+#undef HABUFFER_PARAM_UINT
+#undef HABUFFER_PARAM_FLOAT
+#undef HABUFFER_PARAM_UVEC2
+
+// The parameters as one std140 uniform block with an instance name, so its
+// members are not globals of the host's shader: `habuffer_params.table_size`,
+// spelled ha_table_size (a macro) in the shared sources. A host shader needs
+// no uniforms of ours, only our buffers bound.
+std::string parameter_block() {
+  std::string block = "layout(std140, binding = HABUFFER_BINDING_PARAMS) uniform HabufferParams {\n";
+  std::string names;
+  for (const ParamField& f : kParamFields) {
+    const std::string member = std::string(f.name).substr(3);  // without "ha_"
+    block += "  " + std::string(f.type) + " " + member + ";\n";
+    names += "#define " + std::string(f.name) + " habuffer_params." + member + "\n";
+  }
+  return block + "} habuffer_params;\n" + names;
+}
+
 }  // namespace
 
 void GlBindings::validate() const {
@@ -50,12 +82,23 @@ void GlBindings::validate() const {
                   std::to_string(max_uniform) + " points");
 }
 
-std::string GlBindings::glsl_defines() const {
+GlBindings GlBindings::from_base(unsigned storage_base, unsigned uniform_base) {
+  GlBindings b;
+  unsigned next = storage_base;
+  for (unsigned* point : {&b.table, &b.max_age, &b.offsets, &b.counters, &b.locks, &b.capture, &b.stream, &b.deferred,
+                          &b.saturation})
+    *point = next++;
+  b.params = uniform_base;
+  return b;
+}
+
+std::string GlBindings::glsl_defines(bool overridable) const {
   std::string s;
   const auto define = [&](const char* name, unsigned v) {
-    s += "#define HA_BINDING_";
-    s += name;
-    s += ' ' + std::to_string(v) + '\n';
+    const std::string macro = std::string("HABUFFER_BINDING_") + name;
+    if (overridable) s += "#ifndef " + macro + '\n';
+    s += "#define " + macro + ' ' + std::to_string(v) + '\n';
+    if (overridable) s += "#endif\n";
   };
   define("TABLE", table);
   define("MAX_AGE", max_age);
@@ -88,31 +131,31 @@ std::string technique_parts(Technique technique, AtomicMode mode) {
   };
   switch (technique) {
     case Technique::Ha:
-      s += "#define HA_TECHNIQUE_CALL ha_call\n#define HA_TECHNIQUE_COMPOSITE ha_composite\n";
+      s += "#define HABUFFER_TECHNIQUE_CALL ha_call\n#define HABUFFER_TECHNIQUE_COMPOSITE ha_composite\n";
       for (const char* part : {kHaEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation, kHaProbe,
                                kHaInsert, kHaBlend, kHaTraverse, kHaEntry, kInsertEntry})
         add(part);
       break;
     case Technique::Lists:
-      s += "#define HA_TECHNIQUE_CALL ll_insert_fragment\n#define HA_TECHNIQUE_SORT ll_sort_pixel\n"
-           "#define HA_TECHNIQUE_COMPOSITE ll_composite\n";
+      s += "#define HABUFFER_TECHNIQUE_CALL ll_insert_fragment\n#define HABUFFER_TECHNIQUE_SORT ll_sort_pixel\n"
+           "#define HABUFFER_TECHNIQUE_COMPOSITE ll_composite\n";
       for (const char* part : {kListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kInsertEntry}) add(part);
       break;
     case Technique::Arrays:
-      s += "#define HA_TECHNIQUE_CALL fa_insert_fragment\n#define HA_TECHNIQUE_SORT fa_sort_pixel\n"
-           "#define HA_TECHNIQUE_COMPOSITE fa_composite\n";
+      s += "#define HABUFFER_TECHNIQUE_CALL fa_insert_fragment\n#define HABUFFER_TECHNIQUE_SORT fa_sort_pixel\n"
+           "#define HABUFFER_TECHNIQUE_COMPOSITE fa_composite\n";
       for (const char* part : {kArraysEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaArrays, kInsertEntry}) add(part);
       break;
     case Technique::SortedLists:
-      s += "#define HA_TECHNIQUE_CALL sl_insert_fragment\n#define HA_TECHNIQUE_COMPOSITE ll_composite\n"
-           "#define HA_LISTS_QUALIFIER coherent\n";
+      s += "#define HABUFFER_TECHNIQUE_CALL sl_insert_fragment\n#define HABUFFER_TECHNIQUE_COMPOSITE ll_composite\n"
+           "#define HABUFFER_LISTS_QUALIFIER coherent\n";
       for (const char* part : {kListsEnv, kSortedListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kSaturationEnv,
                                kHaSaturation, kHaSortedLists, kInsertEntry})
         add(part);
       break;
     case Technique::KBuffer:
-      s += "#define HA_TECHNIQUE_CALL kb_call\n#define HA_TECHNIQUE_COMPOSITE kb_composite\n"
-           "#define HA_CARRY_RUN kb_insert_run\n";
+      s += "#define HABUFFER_TECHNIQUE_CALL kb_call\n#define HABUFFER_TECHNIQUE_COMPOSITE kb_composite\n"
+           "#define HABUFFER_CARRY_RUN kb_insert_run\n";
       for (const char* part : {kKBufferEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation,
                                kHaBlend, kHaKBuffer, kHaEntry, kKBufferEntry, kInsertEntry})
         add(part);
@@ -126,20 +169,31 @@ std::string technique_parts(Technique technique, AtomicMode mode) {
 
 }  // namespace
 
+std::string module_extensions(AtomicMode mode) { return mode_extensions(mode); }
+
+std::string technique_module_body(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
+                                  bool overridable_bindings) {
+  std::string s;
+  if (stage == ShaderStage::Fragment) s += "#define HABUFFER_STAGE_FRAGMENT\n";
+  s += bindings.glsl_defines(overridable_bindings);
+  s += word_defines(mode);
+  s += kHaConstants;
+  s += '\n';
+  s += parameter_block();
+  for (const char* part : {kGlslEnv, kEntryCommon}) {
+    s += part;
+    s += '\n';
+  }
+  return s + technique_parts(technique, mode);
+}
+
 std::string technique_module(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
                              std::string_view header) {
   std::string s = "#version 450 core\n";
   s += mode_extensions(mode);
   s += header;
   if (!header.empty() && header.back() != '\n') s += '\n';
-  if (stage == ShaderStage::Fragment) s += "#define HA_STAGE_FRAGMENT\n";
-  s += bindings.glsl_defines();
-  s += word_defines(mode);
-  for (const char* part : {kHaConstants, kPreludeCommon, kHaParams, kGlslEnv, kEntryCommon}) {
-    s += part;
-    s += '\n';
-  }
-  return s + technique_parts(technique, mode);
+  return s + technique_module_body(technique, mode, bindings, stage);
 }
 
 std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header) {
@@ -201,6 +255,40 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
   shaders.push_back({"kbuffer-count", "comp", kbuffer_count_compute(mode, bindings)});
   shaders.push_back({"kbuffer-resume", "comp", resume_compute(Technique::KBuffer, mode, bindings)});
   return shaders;
+}
+
+}  // namespace habuffer::gl
+
+namespace habuffer::gl {
+
+std::vector<GlslFile> host_glsl_files() {
+  const GlBindings defaults;
+  std::vector<GlslFile> files;
+  for (AtomicMode mode : {AtomicMode::Native32, AtomicMode::Native64, AtomicMode::Emulated64}) {
+    const std::string dir = to_string(mode) + "/";
+    const std::string layout = mode == AtomicMode::Native32 ? "L32" : "L64";
+    files.push_back({dir + "extensions.glsl",
+                     "// habuffer " HABUFFER_VERSION ": the #extension lines of atomic mode " + to_string(mode) +
+                         ", right after the shader's #version 450 line and before any code.\n" +
+                         module_extensions(mode)});
+    for (Technique t : {Technique::Ha, Technique::Lists, Technique::Arrays, Technique::SortedLists, Technique::KBuffer})
+      for (ShaderStage stage : {ShaderStage::Fragment, ShaderStage::Compute}) {
+        const bool fragment = stage == ShaderStage::Fragment;
+        std::string head = "// habuffer " HABUFFER_VERSION ": technique " + to_string(t) + ", atomic mode " +
+                           to_string(mode) + " (" + layout + " records), for " +
+                           (fragment ? "fragment" : "compute") + " shaders.\n";
+        head +=
+            "// Place after `#version 450 core` and the lines of extensions.glsl, anywhere at global scope\n"
+            "// (after the host's own declarations too), then call\n"
+            "//   uint ha_insert(uvec2 pixel, float depth, uint rgba)  // rgba: packUnorm4x8, straight alpha\n"
+            "// once per fragment. Binding points: #define HABUFFER_BINDING_* before this file to move them\n"
+            "// (the same numbers as the host's habuffer::gl::GlBindings), defaults from 16 up.\n"
+            "// Reserved names: ha_*, Ha*, habuffer_*, HABUFFER_*, ll_*, fa_*, sl_*, kb_*.\n";
+        files.push_back({dir + to_string(t) + (fragment ? ".frag.glsl" : ".comp.glsl"),
+                         head + technique_module_body(t, mode, defaults, stage, true)});
+      }
+  }
+  return files;
 }
 
 }  // namespace habuffer::gl

@@ -179,7 +179,7 @@ ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fr
         } catch (const std::invalid_argument&) {
           allocatable = false;
         }
-      c.layers = t.layers.value_or(HA_DEFAULT_LAYERS);
+      c.layers = t.layers.value_or(HABUFFER_DEFAULT_LAYERS);
       const std::uint64_t capacity = t.technique == Technique::Ha ? (allocatable ? c.buffer.table.area()
                                                                                  : capacity_for_load(f, *t.load))
                                      : uses_pool(t.technique)    ? f

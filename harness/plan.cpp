@@ -41,7 +41,7 @@ std::vector<Fragment> synthetic_stream(const std::vector<std::uint32_t>& counts,
 Prediction predict_ha(const ExactCapture& c, Extent screen, double load, const PlanSettings& s) {
   Prediction p;
   p.spec.load = load;
-  if (s.age_bits != HA_DEFAULT_AGE_BITS) p.spec.age_bits = s.age_bits;
+  if (s.age_bits != HABUFFER_DEFAULT_AGE_BITS) p.spec.age_bits = s.age_bits;
   TechniqueConfig config;
   config.buffer.screen = screen;
   config.buffer.age_bits = s.age_bits;

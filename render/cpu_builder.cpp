@@ -72,7 +72,7 @@ std::vector<std::uint32_t> culled_per_pixel(const HaBuffer& like, std::span<cons
   HaBuffer replay(BufferConfig(like.config()), like.offsets());
   std::vector<std::uint32_t> culled(like.screen().area(), 0);
   for (const Fragment& f : fragments)
-    if (replay.insert_one(f) == HA_CULLED) ++culled[f.x + std::size_t{f.y} * like.screen().x];
+    if (replay.insert_one(f) == HABUFFER_CULLED) ++culled[f.x + std::size_t{f.y} * like.screen().x];
   return culled;
 }
 

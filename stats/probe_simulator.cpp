@@ -51,20 +51,20 @@ std::uint32_t ProbeSimulator::cell(std::uint32_t pixel) const {
 std::uint32_t ProbeSimulator::insert_one(std::uint32_t pixel, std::uint32_t code) {
   Entry carry{1, code, pixel};
   std::uint32_t probes = 0;
-  std::uint32_t outcome = HA_STORED;
+  std::uint32_t outcome = HABUFFER_STORED;
   for (;;) {
     if (carry.age > amax_) {
-      outcome = HA_FAILED_AGE;
+      outcome = HABUFFER_FAILED_AGE;
       break;
     }
     if (probes >= config_.iter_limit) {
-      outcome = HA_FAILED_ITER;
+      outcome = HABUFFER_FAILED_ITER;
       break;
     }
     ++probes;
     Entry& slot = table_[probe(carry.pixel, carry.age)];
     if (slot == carry) {
-      outcome = HA_DUPLICATE;
+      outcome = HABUFFER_DUPLICATE;
       break;
     }
     const bool place = config_.policy == Policy::RobinHood ? slot < carry : slot.age == 0;
@@ -87,7 +87,7 @@ void ProbeSimulator::insert(std::span<const Fragment> fragments) {
   for (const Fragment& f : fragments) {
     if (f.x >= config_.screen.x || f.y >= config_.screen.y) throw std::out_of_range("fragment outside the screen");
     if (!RecordLayout::depth_valid(f.depth)) {
-      totals_.counters.count(HA_INVALID);
+      totals_.counters.count(HABUFFER_INVALID);
       continue;
     }
     totals_.counters.count(insert_one(f.x + f.y * config_.screen.x, layout.depth_code(f.depth)));

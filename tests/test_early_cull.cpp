@@ -56,7 +56,7 @@ TEST(EarlyCull, ThresholdOneKeepsWhatLiesBehindAnOpaqueFragment) {
   // Just below 1, the same opaque front culls.
   HaBuffer below = cull_buffer({4, 4}, {8, 8}, std::nextafter(1.0f, 0.0f));
   below.insert_one({2, 1, 0.2f, rgba(255)});
-  EXPECT_EQ(below.insert_one({2, 1, 0.7f, rgba(255)}), HA_CULLED);
+  EXPECT_EQ(below.insert_one({2, 1, 0.7f, rgba(255)}), HABUFFER_CULLED);
 }
 
 TEST(EarlyCull, ThresholdOneAndOpacityZeroNeverCull) {

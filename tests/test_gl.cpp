@@ -62,7 +62,7 @@ TEST(Gl, SharedGlslCompilesForTheRunnableModes) {
     for (const gl::GlBindings& b : {gl::GlBindings{}, moved}) {
       EXPECT_NO_THROW(gl::ShaderProgram::compute(gl::insert_stream_compute(mode, b), "insert " + gl::to_string(mode)));
       const std::string module = gl::ha_module(mode, b, gl::ShaderStage::Fragment);
-      EXPECT_NE(module.find("#define HA_BINDING_TABLE " + std::to_string(b.table) + "\n"), std::string::npos);
+      EXPECT_NE(module.find("#define HABUFFER_BINDING_TABLE " + std::to_string(b.table) + "\n"), std::string::npos);
     }
 }
 
@@ -213,7 +213,7 @@ TEST(Gl, EarlyCullImageErrorIsBoundedByOneMinusTau) {
   }
 }
 
-// The outcome tallies are striped over HA_COUNTER_STRIPES cache lines by
+// The outcome tallies are striped over HABUFFER_COUNTER_STRIPES cache lines by
 // pixel; the host's sum is exact: stored, duplicates and invalid fragments of
 // a stream over every stripe equal the CPU path's counts, in every mode.
 TEST(Gl, StripedOutcomeCountersSumToTheCpuPathsCounters) {

@@ -134,7 +134,7 @@ TEST_F(GlTechniques, ListsLongerThanThePrivateArrayAreSortedOnTheGpu) {
     gl::GlFrameDriver gpu(gl_technique(c, gl::AtomicMode::Emulated64));
     const gl::FrameReport r = gl::ComputeInserter(gpu).insert(frags);
     const ExactLists expected = test::exact_lists(frags, RecordLayout(Layout::L64, 8));
-    ASSERT_GT(expected.at({2, 1}).size(), HA_SORT_LOCAL);
+    ASSERT_GT(expected.at({2, 1}).size(), HABUFFER_SORT_LOCAL);
     EXPECT_EQ(test::traversed_lists(*gpu.technique().read_back()), expected) << to_string(t);
     EXPECT_EQ(r.counters.duplicates, frags.size() - expected.at({2, 1}).size()) << to_string(t);
   }

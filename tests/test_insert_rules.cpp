@@ -11,7 +11,7 @@ namespace habuffer {
 namespace {
 
 // A 4x4 screen on a 4x4 table with offsets O[i] = (i mod 4, i / 4): easy to trace.
-HaBuffer traced_buffer(std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT, std::uint32_t block = 2) {
+HaBuffer traced_buffer(std::uint32_t iter_limit = HABUFFER_DEFAULT_ITER_LIMIT, std::uint32_t block = 2) {
   BufferConfig c = test::config({4, 4}, {4, 4}, Layout::L64, 4, block);
   c.iter_limit = iter_limit;
   std::vector<glm::uvec2> rows;
@@ -23,7 +23,7 @@ std::uint64_t slot_of(std::uint32_t x, std::uint32_t y) { return x + 4u * y; }
 
 TEST(Insert, FirstFragmentTakesItsAgeOneSlot) {
   HaBuffer b = traced_buffer();
-  EXPECT_EQ(b.insert_one({1, 2, 0.5f, 0xAABBCCDDu}), HA_STORED);
+  EXPECT_EQ(b.insert_one({1, 2, 0.5f, 0xAABBCCDDu}), HABUFFER_STORED);
   const RecordLayout& l = b.record_layout();
   EXPECT_EQ(b.slot(slot_of(1, 2)), l.pack(1, l.depth_code(0.5f), 0xAABBCCDDu));  // O[0] = (0,0)
   EXPECT_EQ(b.max_age().at(0, 1), 1u);
@@ -34,7 +34,7 @@ TEST(Insert, NearerFragmentEvictsFartherOneOfItsPixelWhichMovesToTheNextAge) {
   HaBuffer b = traced_buffer();
   const RecordLayout& l = b.record_layout();
   b.insert_one({0, 0, 0.75f, 1});
-  EXPECT_EQ(b.insert_one({0, 0, 0.25f, 2}), HA_STORED);
+  EXPECT_EQ(b.insert_one({0, 0, 0.25f, 2}), HABUFFER_STORED);
   EXPECT_EQ(b.slot(slot_of(0, 0)), l.pack(1, l.depth_code(0.25f), 2));
   EXPECT_EQ(b.slot(slot_of(1, 0)), l.pack(2, l.depth_code(0.75f), 1));  // h_2((0,0)) = (1,0)
   std::vector<ListEntry> list;
@@ -108,9 +108,9 @@ TEST(Insert, AgeOverflowDropsTheFarthestRecordsAndCountsThemWithoutHanging) {
 
 TEST(Insert, IterationLimitFailsTheCallAndIsCounted) {
   HaBuffer b = traced_buffer(/*iter_limit=*/1);
-  EXPECT_EQ(b.insert_one({0, 0, 0.5f, 1}), HA_STORED);
+  EXPECT_EQ(b.insert_one({0, 0, 0.5f, 1}), HABUFFER_STORED);
   // Needs two probes (age 1 taken by a nearer record, then age 2): over the limit.
-  EXPECT_EQ(b.insert_one({0, 0, 0.9f, 1}), HA_FAILED_ITER);
+  EXPECT_EQ(b.insert_one({0, 0, 0.9f, 1}), HABUFFER_FAILED_ITER);
   EXPECT_EQ(b.count_stored(), 1u);
 }
 
@@ -130,7 +130,7 @@ TEST(Insert, EvictedRecordMayBeTheOneLostAndTheCountersSayAFragmentWasLost) {
 }
 
 TEST(Insert, MaxAgeTableCellsCoverBlocksOfPixels) {
-  HaBuffer b = traced_buffer(HA_DEFAULT_ITER_LIMIT, /*block=*/3);
+  HaBuffer b = traced_buffer(HABUFFER_DEFAULT_ITER_LIMIT, /*block=*/3);
   EXPECT_EQ(b.max_age().cells(), (Extent{2, 2}));
   b.insert(std::vector<Fragment>{{3, 3, 0.1f, 0}, {3, 3, 0.2f, 0}, {3, 3, 0.3f, 0}});
   EXPECT_EQ(b.max_age().at(1, 1), 3u);
@@ -194,10 +194,10 @@ TEST(Traverse, EachVisitStepEmitsSkipsOrStops) {
   using Kernel = HashKernel<std::uint64_t, false>;
   KernelParams params;
   Kernel k(params, nullptr, nullptr, nullptr);
-  EXPECT_EQ(k.ha_visit(age3, 3), HA_VISIT_EMIT);
-  EXPECT_EQ(k.ha_visit(age3, 2), HA_VISIT_SKIP) << "an older record of another pixel: walk on";
-  EXPECT_EQ(k.ha_visit(age3, 4), HA_VISIT_STOP) << "a younger record: nothing of this pixel lies beyond";
-  EXPECT_EQ(k.ha_visit(0, 1), HA_VISIT_STOP) << "an empty slot";
+  EXPECT_EQ(k.ha_visit(age3, 3), HABUFFER_VISIT_EMIT);
+  EXPECT_EQ(k.ha_visit(age3, 2), HABUFFER_VISIT_SKIP) << "an older record of another pixel: walk on";
+  EXPECT_EQ(k.ha_visit(age3, 4), HABUFFER_VISIT_STOP) << "a younger record: nothing of this pixel lies beyond";
+  EXPECT_EQ(k.ha_visit(0, 1), HABUFFER_VISIT_STOP) << "an empty slot";
 }
 
 TEST(Config, TableSmallerThanScreenIsRejectedNamingBothSizes) {

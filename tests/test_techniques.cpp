@@ -79,7 +79,7 @@ INSTANTIATE_TEST_SUITE_P(Streams, ExactTechniques,
 
 TEST(Techniques, ListsLongerThanThePrivateArrayAreSortedInPlaceAndMerged) {
   // One pixel receives hundreds of fragments, many identical: the merge sort
-  // (lists) and heap sort (arrays) paths, beyond HA_SORT_LOCAL entries.
+  // (lists) and heap sort (arrays) paths, beyond HABUFFER_SORT_LOCAL entries.
   const Extent screen{3, 2};
   std::vector<Fragment> frags;
   SplitMix64 rng(7);
@@ -87,7 +87,7 @@ TEST(Techniques, ListsLongerThanThePrivateArrayAreSortedInPlaceAndMerged) {
     frags.push_back({1, 1, static_cast<float>(rng.below(90)) / 97.0f, 0x10203000u + static_cast<std::uint32_t>(rng.below(3))});
   frags.push_back({0, 0, 0.5f, 0x11223344u});
   const ExactLists expected = test::exact_lists(frags, RecordLayout(Layout::L64, 8));
-  ASSERT_GT(expected.at({1, 1}).size(), HA_SORT_LOCAL);
+  ASSERT_GT(expected.at({1, 1}).size(), HABUFFER_SORT_LOCAL);
   TechniqueConfig lc = technique_config(Technique::Lists, screen);
   lc.pool_capacity = frags.size();
   LinkedLists lists(lc);

@@ -2,11 +2,10 @@
 #include <algorithm>
 #include <cstdio>
 
-#include <tbb/info.h>
-#include <tbb/version.h>
 
 #include "cli_args.h"
 #include "commands.h"
+#include "habuffer/parallel.h"
 #include "habuffer/technique.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
@@ -23,8 +22,8 @@ int run_info(const std::vector<std::string>& argv) {
   std::printf("compiler: %s\n", __VERSION__);
   std::printf("techniques: %s (every one on both paths; --technique)\n", technique_names().c_str());
   std::printf("paths:\n");
-  std::printf("  cpu: available (oneTBB %d.%d, %d hardware threads; layouts L64 and L32; age bits 4..12)\n",
-              TBB_VERSION_MAJOR, TBB_VERSION_MINOR, tbb::info::default_concurrency());
+  std::printf("  cpu: available (%s, %u hardware threads; layouts L64 and L32; age bits 4..12)\n",
+              parallel_runtime().c_str(), default_concurrency());
   try {
     const gl::EglContext context;
     const gl::GlInfo info = gl::query_gl_info();

@@ -19,7 +19,7 @@ int run_offsets(const std::vector<std::string>& argv) {
   const auto table = args.extent("table");
   if (!table) throw UsageError("option --table is required");
   if (args.has("age-bits") && args.has("count")) throw UsageError("give at most one of --age-bits and --count");
-  const std::uint32_t age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, HA_MIN_AGE_BITS, HA_MAX_AGE_BITS);
+  const std::uint32_t age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   const std::uint32_t count = args.u32("count", (1u << age_bits) - 1, 1, 1u << 20);
   FileRoles files;
   for (const char* o : {"out", "quality"})

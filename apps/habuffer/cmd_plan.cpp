@@ -28,7 +28,7 @@ int run_plan(const std::vector<std::string>& argv) {
   if (args.has("target-psnr")) s.target_psnr = args.real("target-psnr", 0.0);
   s.trials = args.u32("trials", 3, 1, 1000);
   s.seed = args.u64("seed", 1);
-  s.age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, 4, 12);
+  s.age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, 4, 12);
   s.loads = parse_reals(args, "loads", "0.5,0.6,0.7,0.8,0.9,0.95", 1e-9, 1.0);
   const std::vector<Extent> sizes = parse_sizes(args, "256x256");
   if (sizes.size() != 1) throw UsageError("--size takes one WxH");

@@ -27,9 +27,9 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   const std::string layout = args.str("layout", "64");
   if (layout != "64" && layout != "32") throw UsageError("option --layout: '" + layout + "' is not 64 or 32");
   c.layout = layout == "64" ? Layout::L64 : Layout::L32;
-  c.age_bits = args.u32("age-bits", HA_DEFAULT_AGE_BITS, HA_MIN_AGE_BITS, HA_MAX_AGE_BITS);
-  c.block = args.u32("block", HA_DEFAULT_BLOCK, 1, 1u << 16);
-  c.iter_limit = args.u32("iter-limit", HA_DEFAULT_ITER_LIMIT, 1, HA_MAX_ITER_LIMIT);
+  c.age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
+  c.block = args.u32("block", HABUFFER_DEFAULT_BLOCK, 1, 1u << 16);
+  c.iter_limit = args.u32("iter-limit", HABUFFER_DEFAULT_ITER_LIMIT, 1, HABUFFER_MAX_ITER_LIMIT);
   if (args.has("early-cull")) {
     // The threshold is used as a float32 on both paths; below the smallest
     // normal float32 a GPU may flush it to 0, which turns cull off.

@@ -22,14 +22,14 @@ TechniqueOptions parse_technique_options(const Args& args, std::initializer_list
                      on + " (early cull is the HA-buffer's and sorted lists')");
   args.refuse_unless(tech == Technique::Ha, {"table", "block", "offsets", "seed"}, on + " (the HA-buffer's own)");
   for (const char* m : more) args.refuse_unless(tech == Technique::Ha, {m}, on + " (the HA-buffer's own)");
-  o.layers = args.u32("layers", HA_DEFAULT_LAYERS, 1, 1u << 16);
+  o.layers = args.u32("layers", HABUFFER_DEFAULT_LAYERS, 1, 1u << 16);
   const std::string pool = args.str("pool", "auto");
   o.pool = pool == "auto" ? 0 : args.u64("pool", 0, 1, UINT32_MAX - 1);
   const std::string occupancy = args.str("occupancy", "off");
   if (occupancy != "on" && occupancy != "off")
     throw UsageError("option --occupancy: '" + occupancy + "' is not on or off");
   o.occupancy = occupancy == "on";
-  o.occupancy_words = args.u32("occupancy-words", HA_DEFAULT_OCCUPANCY_WORDS, 1, HA_MAX_OCCUPANCY_WORDS);
+  o.occupancy_words = args.u32("occupancy-words", HABUFFER_DEFAULT_OCCUPANCY_WORDS, 1, HABUFFER_MAX_OCCUPANCY_WORDS);
   args.refuse_unless(o.occupancy, {"occupancy-words"}, "with --occupancy off");
   if (args.has("depth-range")) {
     const std::string v = args.required("depth-range");

@@ -13,10 +13,10 @@ namespace habuffer::cli {
 
 struct TechniqueOptions {
   Technique technique = Technique::Ha;
-  std::uint32_t layers = HA_DEFAULT_LAYERS;  // arrays, kbuffer
+  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  // arrays, kbuffer
   std::uint64_t pool = 0;                    // lists, sorted-lists; 0: auto (as many as the fragments need)
   bool occupancy = false;                    // kbuffer
-  std::uint32_t occupancy_words = HA_DEFAULT_OCCUPANCY_WORDS;
+  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;
   DepthRange depth_range;                    // kbuffer, wboit
 };
 

@@ -10,8 +10,8 @@ struct HaFragment {
   uint rgba;
 };
 
-layout(std430, binding = HA_BINDING_COUNTERS) buffer HaCounters { uint ha_counters[]; };
-layout(std430, binding = HA_BINDING_CAPTURE) buffer HaCapture {
+layout(std430, binding = HABUFFER_BINDING_COUNTERS) buffer HaCounters { uint ha_counters[]; };
+layout(std430, binding = HABUFFER_BINDING_CAPTURE) buffer HaCapture {
   uint ha_capture_count;  // may exceed the capacity: the host sees the overflow and gathers again
   uint ha_capture_pad0;
   uint ha_capture_pad1;
@@ -26,9 +26,9 @@ void ha_capture(uvec2 pixel, float depth, uint rgba) {
 
 // The counter stripe of a call: neighbouring pixels (the lanes of one SIMD
 // group) add to different cache lines; the host sums the stripes.
-uint ha_counter_stripe(uvec2 p) { return (p.x + p.y * 5u) & (HA_COUNTER_STRIPES - 1u); }
+uint ha_counter_stripe(uvec2 p) { return (p.x + p.y * 5u) & (HABUFFER_COUNTER_STRIPES - 1u); }
 
-// Adds n to counter `counter` (an outcome or HA_COUNTER_*) in the stripe of `pixel`.
+// Adds n to counter `counter` (an outcome or HABUFFER_COUNTER_*) in the stripe of `pixel`.
 void ha_counter_add(uvec2 pixel, uint counter, uint n) {
-  atomicAdd(ha_counters[ha_counter_stripe(pixel) * HA_COUNTER_STRIDE + counter], n);
+  atomicAdd(ha_counters[ha_counter_stripe(pixel) * HABUFFER_COUNTER_STRIDE + counter], n);
 }

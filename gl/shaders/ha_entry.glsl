@@ -1,5 +1,5 @@
-#ifndef HA_CARRY_RUN
-#define HA_CARRY_RUN ha_insert_run
+#ifndef HABUFFER_CARRY_RUN
+#define HABUFFER_CARRY_RUN ha_insert_run
 #endif
 // The HA-buffer's part of the insertion entry on the GPU: the shared insert
 // (ha_insert_run) as insert_entry.glsl's call, and the deferral of calls cut
@@ -17,7 +17,7 @@ struct HaDeferred {
   uvec2 r;  // (low, high) words; high is 0 for L32
 };
 
-layout(std430, binding = HA_BINDING_DEFERRED) buffer HaDeferredCalls {
+layout(std430, binding = HABUFFER_BINDING_DEFERRED) buffer HaDeferredCalls {
   uint ha_deferred_count;  // may exceed the capacity: the host sees the overflow and gathers again
   uint ha_deferred_pad0;
   uint ha_deferred_pad1;
@@ -41,32 +41,32 @@ HaCarry ha_carry_from(HaDeferred d) {
 }
 
 // Ends one run of a call (the call itself or a resumption): adds its slot
-// writes, and defers a call cut short, returning HA_PENDING (its outcome is
+// writes, and defers a call cut short, returning HABUFFER_PENDING (its outcome is
 // counted when the resume pass ends it); any other outcome is returned for
 // the caller to count.
 uint ha_end_run(uvec2 pixel, HaCarry c, uint outcome) {
-  if (ha_count_writes != 0u && ha_call_writes != 0u) ha_counter_add(pixel, HA_COUNTER_SLOT_WRITES, ha_call_writes);
-  if (outcome == HA_CUT) {
+  if (ha_count_writes != 0u && ha_call_writes != 0u) ha_counter_add(pixel, HABUFFER_COUNTER_SLOT_WRITES, ha_call_writes);
+  if (outcome == HABUFFER_CUT) {
     ha_defer(c);
-    return HA_PENDING;
+    return HABUFFER_PENDING;
   }
   return outcome;
 }
 
-// One insert call of a valid depth code through HA_CARRY_RUN (the
+// One insert call of a valid depth code through HABUFFER_CARRY_RUN (the
 // HA-buffer's ha_insert_run, or the k-buffer's kb_insert_run): its outcome,
-// or HA_PENDING for a call cut short and deferred to the resume pass.
+// or HABUFFER_PENDING for a call cut short and deferred to the resume pass.
 uint ha_call_code(uvec2 pixel, uint code, uint rgba) {
   ha_call_writes = 0u;
   HaCarry c = ha_carry_begin(pixel, code, rgba);
-  uint outcome = HA_CARRY_RUN(c);
+  uint outcome = HABUFFER_CARRY_RUN(c);
   return ha_end_run(pixel, c, outcome);
 }
 
 // The HA-buffer's insert call for insert_entry.glsl's ha_insert.
 uint ha_call(uvec2 pixel, float depth, uint rgba) {
-  if (!ha_depth_valid(depth)) return HA_INVALID;
+  if (!ha_depth_valid(depth)) return HABUFFER_INVALID;
   uint code = ha_depth_code(depth);
-  if (ha_saturated(pixel, code)) return HA_SATURATED;
+  if (ha_saturated(pixel, code)) return HABUFFER_SATURATED;
   return ha_call_code(pixel, code, rgba);
 }

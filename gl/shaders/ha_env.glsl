@@ -5,8 +5,8 @@
 // Slot writes of the current insert call (the atomics raise it).
 uint ha_call_writes = 0u;
 
-layout(std430, binding = HA_BINDING_MAX_AGE) buffer HaMaxAge { uint ha_max_ages[]; };
-layout(std430, binding = HA_BINDING_OFFSETS) readonly buffer HaOffsets { uvec2 ha_offsets[]; };
+layout(std430, binding = HABUFFER_BINDING_MAX_AGE) buffer HaMaxAge { uint ha_max_ages[]; };
+layout(std430, binding = HABUFFER_BINDING_OFFSETS) readonly buffer HaOffsets { uvec2 ha_offsets[]; };
 
 uvec2 ha_offset(uint i) { return ha_offsets[i]; }
 uint ha_div_block(uint v) { return v / ha_block; }

@@ -1,23 +1,23 @@
 // The insertion entry of every technique on the GPU, for host fragment
-// shaders and our compute entry: HA_TECHNIQUE_CALL (the module assembly
+// shaders and our compute entry: HABUFFER_TECHNIQUE_CALL (the module assembly
 // names the technique's insert call) plus the outcome tallies (SPEC
 // invariant 1 on the GPU) and the capture of entry_common.glsl. A pixel
 // outside the screen cannot be inserted: it counts as invalid and is not
 // captured (a replay could not insert it either). Returns the outcome, or
-// HA_PENDING for a call deferred to the resume pass (counted there), or
-// HA_UNCOUNTED in a pass that inserts nothing (the k-buffer's fill pass).
+// HABUFFER_PENDING for a call deferred to the resume pass (counted there), or
+// HABUFFER_UNCOUNTED in a pass that inserts nothing (the k-buffer's fill pass).
 uint ha_insert(uvec2 pixel, float depth, uint rgba) {
-#ifdef HA_STAGE_FRAGMENT
+#ifdef HABUFFER_STAGE_FRAGMENT
   // Helper invocations' stores and atomics have no effect: skip the work.
-  if (gl_HelperInvocation) return HA_INVALID;
+  if (gl_HelperInvocation) return HABUFFER_INVALID;
 #endif
-  uint outcome = HA_INVALID;
+  uint outcome = HABUFFER_INVALID;
   if (all(lessThan(pixel, ha_screen_size))) {
     if (ha_capture_capacity > 0u && ha_gather_phase == 0u) ha_capture(pixel, depth, rgba);
-    if (ha_capture_only != 0u) return HA_INVALID;
-    outcome = HA_TECHNIQUE_CALL(pixel, depth, rgba);
+    if (ha_capture_only != 0u) return HABUFFER_INVALID;
+    outcome = HABUFFER_TECHNIQUE_CALL(pixel, depth, rgba);
   }
-  if (outcome < HA_OUTCOME_COUNT) ha_counter_add(pixel, outcome, 1u);
+  if (outcome < HABUFFER_OUTCOME_COUNT) ha_counter_add(pixel, outcome, 1u);
   return outcome;
 }
 

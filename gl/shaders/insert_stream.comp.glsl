@@ -4,7 +4,7 @@
 // shares its loop budget on drivers that limit it, such as llvmpipe).
 layout(local_size_x = 64) in;
 
-layout(std430, binding = HA_BINDING_STREAM) readonly buffer HaStream { HaFragment ha_stream[]; };
+layout(std430, binding = HABUFFER_BINDING_STREAM) readonly buffer HaStream { HaFragment ha_stream[]; };
 uniform uint ha_stream_count;
 
 void main() {

@@ -1,15 +1,15 @@
 // The k-buffer's insert call for insert_entry.glsl: in the occupancy fill
-// pass it only sets its bucket's bit (not an insert call: HA_UNCOUNTED);
+// pass it only sets its bucket's bit (not an insert call: HABUFFER_UNCOUNTED);
 // then the occupancy test, and the insertion through ha_entry.glsl's run
-// with deferral (HA_CARRY_RUN is kb_insert_run).
+// with deferral (HABUFFER_CARRY_RUN is kb_insert_run).
 uint kb_call(uvec2 pixel, float depth, uint rgba) {
   bool valid = ha_depth_valid(depth);
   if (ha_gather_phase != 0u) {
     if (valid) kb_fill(pixel, ha_depth_code(depth));
-    return HA_UNCOUNTED;
+    return HABUFFER_UNCOUNTED;
   }
-  if (!valid) return HA_INVALID;
+  if (!valid) return HABUFFER_INVALID;
   uint code = ha_depth_code(depth);
-  if (kb_occupancy_rejects(pixel, code)) return HA_OCCUPANCY_REJECTED;
+  if (kb_occupancy_rejects(pixel, code)) return HABUFFER_OCCUPANCY_REJECTED;
   return ha_call_code(pixel, code, rgba);
 }

@@ -1,18 +1,18 @@
-// Linked lists' environment on the GPU (core/shared/ha_lists.glsl): the head
+// Linked lists' environment on the GPU (core/include/habuffer/shared/ha_lists.glsl): the head
 // image, the node pool's entries and links, and the node counter (one word of
 // the counters buffer, zeroed with the tallies before every gather). No
 // invocation of lists sorted after the gather reads another's plain stores
 // within a pass (the sort and resolve passes follow a barrier), so their
-// buffers need not be coherent; sorted lists define HA_LISTS_QUALIFIER as
+// buffers need not be coherent; sorted lists define HABUFFER_LISTS_QUALIFIER as
 // coherent (sorted_lists_env.glsl says why).
-#ifndef HA_LISTS_QUALIFIER
-#define HA_LISTS_QUALIFIER
+#ifndef HABUFFER_LISTS_QUALIFIER
+#define HABUFFER_LISTS_QUALIFIER
 #endif
-layout(std430, binding = HA_BINDING_HEADS) HA_LISTS_QUALIFIER buffer HaHeads { uint ha_heads[]; };
-layout(std430, binding = HA_BINDING_NODES) HA_LISTS_QUALIFIER buffer HaNodes { uvec2 ha_nodes[]; };
-layout(std430, binding = HA_BINDING_LINKS) HA_LISTS_QUALIFIER buffer HaLinks { uint ha_links[]; };
+layout(std430, binding = HABUFFER_BINDING_HEADS) HABUFFER_LISTS_QUALIFIER buffer HaHeads { uint ha_heads[]; };
+layout(std430, binding = HABUFFER_BINDING_NODES) HABUFFER_LISTS_QUALIFIER buffer HaNodes { uvec2 ha_nodes[]; };
+layout(std430, binding = HABUFFER_BINDING_LINKS) HABUFFER_LISTS_QUALIFIER buffer HaLinks { uint ha_links[]; };
 
-uint ll_allocate_node() { return atomicAdd(ha_counters[HA_COUNTER_NODES], 1u); }
+uint ll_allocate_node() { return atomicAdd(ha_counters[HABUFFER_COUNTER_NODES], 1u); }
 uint ll_exchange_head(uint pixel, uint link) { return atomicExchange(ha_heads[pixel], link); }
 uint ll_load_head(uint pixel) { return ha_heads[pixel]; }
 void ll_store_head(uint pixel, uint link) { ha_heads[pixel] = link; }

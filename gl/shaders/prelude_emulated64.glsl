@@ -1,9 +1,9 @@
 // Atomic mode emulated64: L64 records on drivers with 64-bit types but no
 // 64-bit atomics (Mesa llvmpipe); atomicMax on a 64-bit slot is emulated with
-// a 32-bit lock per 2^HA_LOCK_SHIFT slots (the module assembly defines ha_word as uint64_t and
+// a 32-bit lock per 2^HABUFFER_LOCK_SHIFT slots (the module assembly defines ha_word as uint64_t and
 // enables GL_ARB_gpu_shader_int64).
-layout(std430, binding = HA_BINDING_TABLE) coherent buffer HaTable { uint64_t ha_table[]; };
-layout(std430, binding = HA_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
+layout(std430, binding = HABUFFER_BINDING_TABLE) coherent buffer HaTable { uint64_t ha_table[]; };
+layout(std430, binding = HABUFFER_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
 
 
 // One attempt at the slot's lock; on success the max is done and `old` set.
@@ -11,7 +11,7 @@ layout(std430, binding = HA_BINDING_LOCKS) coherent buffer HaLocks { uint ha_loc
 // group that contend for the same slot cannot deadlock: the lane that wins
 // runs its critical section while the others try again.
 bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
-  uint lock = s >> HA_LOCK_SHIFT;
+  uint lock = s >> HABUFFER_LOCK_SHIFT;
   if (atomicCompSwap(ha_locks[lock], 0u, 1u) != 0u) return false;
   memoryBarrierBuffer();
   old = ha_table[s];
@@ -31,12 +31,12 @@ uint ha_missed = 0u;
 uint ha_atomic_missed() { return ha_missed; }
 
 // One attempt per call, no loop of its own: a busy slot makes the insert step
-// return HA_PENDING with its carry unchanged, so the step's own loop is the
+// return HABUFFER_PENDING with its carry unchanged, so the step's own loop is the
 // spin. That keeps the insertion a single loop, whose back edge is the only
 // place a driver's loop budget can stop it (llvmpipe gives an invocation about
 // 65535 iterations in all): a nested spin loop stopped there was seen to leave
 // lanes whose write had happened looking as if it had not. After
-// ha_lock_spin_limit busy attempts in a row the call is cut short (HA_CUT) and
+// ha_lock_spin_limit busy attempts in a row the call is cut short (HABUFFER_CUT) and
 // the frame's resume pass goes on with it.
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
   ha_word old = ha_word(0);
@@ -46,8 +46,8 @@ ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
     return old;
   }
   ha_busy_attempts += 1u;
-  ha_missed = ha_busy_attempts >= ha_lock_spin_limit ? HA_CUT : HA_PENDING;
-  if (ha_missed == HA_CUT) ha_busy_attempts = 0u;
+  ha_missed = ha_busy_attempts >= ha_lock_spin_limit ? HABUFFER_CUT : HABUFFER_PENDING;
+  if (ha_missed == HABUFFER_CUT) ha_busy_attempts = 0u;
   return ha_word(0);
 }
 ha_word ha_load_slot(ha_index s) { return ha_table[s]; }

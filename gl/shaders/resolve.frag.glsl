@@ -12,5 +12,5 @@ void main() {
   if (any(greaterThanEqual(p, ha_screen_size))) discard;
   vec3 background = ha_background;
   if (ha_background_from_image != 0u) background = texelFetch(ha_background_image, ivec2(p), 0).rgb;
-  ha_color = HA_TECHNIQUE_COMPOSITE(p, background);
+  ha_color = HABUFFER_TECHNIQUE_COMPOSITE(p, background);
 }

@@ -5,7 +5,7 @@
 // deferred again, into the other buffer, for the next round.
 layout(local_size_x = 64) in;
 
-layout(std430, binding = HA_BINDING_STREAM) readonly buffer HaResumeCalls {
+layout(std430, binding = HABUFFER_BINDING_STREAM) readonly buffer HaResumeCalls {
   uint ha_resume_header[4];
   HaDeferred ha_resume[];
 };
@@ -19,7 +19,7 @@ void main() {
   ha_call_writes = 0u;
   // Two statements: arguments are evaluated left to right, so one call would
   // pass the carry as it was before the run.
-  uint outcome = HA_CARRY_RUN(c);
+  uint outcome = HABUFFER_CARRY_RUN(c);
   outcome = ha_end_run(c.p, c, outcome);
-  if (outcome != HA_PENDING) ha_counter_add(c.p, outcome, 1u);
+  if (outcome != HABUFFER_PENDING) ha_counter_add(c.p, outcome, 1u);
 }

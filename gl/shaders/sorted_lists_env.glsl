@@ -1,6 +1,6 @@
-// Sorted lists' part of the environment on the GPU (core/shared/ha_sorted_lists.glsl),
+// Sorted lists' part of the environment on the GPU (core/include/habuffer/shared/ha_sorted_lists.glsl),
 // after lists_env.glsl, whose buffers the module assembly makes coherent
-// (HA_LISTS_QUALIFIER): an insertion reads the links and entries other
+// (HABUFFER_LISTS_QUALIFIER): an insertion reads the links and entries other
 // invocations wrote in the same gather. A node's entry and link are
 // written, then a buffer barrier, then the compare-and-swap that links it,
 // so whoever reads the link reads them too.

@@ -25,5 +25,5 @@ void main() {
   uint i = p.x + p.y * r_screen_width;
   atomicAdd(r_pixel_fragments[i], 1u);
   if (r_count_only != 0u) return;
-  if (ha_insert(p, t, rgba) == HA_CULLED) atomicAdd(r_pixel_culled[i], 1u);
+  if (ha_insert(p, t, rgba) == HABUFFER_CULLED) atomicAdd(r_pixel_culled[i], 1u);
 }

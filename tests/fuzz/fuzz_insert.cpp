@@ -39,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   c.layout = (data[4] & 1) ? Layout::L64 : Layout::L32;
   c.age_bits = 4 + (data[4] >> 1) % 3;
   c.block = 1 + (data[4] >> 3) % 4;
-  c.iter_limit = (data[5] & 0x80) ? 3 + data[5] % 16 : HA_DEFAULT_ITER_LIMIT;
+  c.iter_limit = (data[5] & 0x80) ? 3 + data[5] % 16 : HABUFFER_DEFAULT_ITER_LIMIT;
   const std::uint32_t mode = data[6] % 3;
   const OffsetSequence offsets = OffsetSequence::random(c.table, c.record_layout().max_age(), data[7]);
 

@@ -1,4 +1,4 @@
-// Fixed per-pixel arrays on the CPU: the shared GLSL of core/shared/ha_arrays.glsl
+// Fixed per-pixel arrays on the CPU: the shared GLSL of core/include/habuffer/shared/ha_arrays.glsl
 // compiled as member functions, over the buffers a shader would get.
 #pragma once
 
@@ -23,8 +23,8 @@ struct ArraysBuffers {
 template <bool Concurrent>
 class ArraysKernel {
  public:
-  HA_GLSL_CLASS_PRELUDE
-  HA_GLSL_CLASS_LOCAL_ARRAY
+  HABUFFER_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_LOCAL_ARRAY
   using ha_word = std::uint64_t;
   static constexpr uint ha_word_bits = 64;
 
@@ -53,10 +53,10 @@ class ArraysKernel {
   // Atomic even for one inserter: the sort pass runs its rows on several threads.
   void fa_note_overflow(uint arrived) { ha_fetch_max<true>(*b_.max_arrived, arrived); }
 
-#include "../../shared/ha_record.glsl"
-#include "../../shared/ha_blend.glsl"
-#include "../../shared/ha_entries.glsl"
-#include "../../shared/ha_arrays.glsl"
+#include "shared/ha_record.glsl"
+#include "shared/ha_blend.glsl"
+#include "shared/ha_entries.glsl"
+#include "shared/ha_arrays.glsl"
 
  private:
   Buffers b_;

@@ -1,5 +1,5 @@
 // Weighted blended OIT and plain blending on the CPU: the shared GLSL of
-// core/shared/ha_blended.glsl compiled as member functions.
+// core/include/habuffer/shared/ha_blended.glsl compiled as member functions.
 #pragma once
 
 #include "habuffer/glsl_env.h"
@@ -9,7 +9,7 @@ namespace habuffer {
 
 class BlendedKernel {
  public:
-  HA_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_PRELUDE
   using ha_word = std::uint64_t;
   static constexpr uint ha_word_bits = 64;
 
@@ -24,9 +24,9 @@ class BlendedKernel {
   float ha_depth_near;
   float ha_depth_far;
 
-#include "../../shared/ha_record.glsl"
-#include "../../shared/ha_blend.glsl"
-#include "../../shared/ha_blended.glsl"
+#include "shared/ha_record.glsl"
+#include "shared/ha_blend.glsl"
+#include "shared/ha_blended.glsl"
 };
 
 }  // namespace habuffer

@@ -5,7 +5,7 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/record_layout.h"
-#include "../../shared/ha_constants.h"
+#include "shared/ha_constants.h"
 
 namespace habuffer {
 
@@ -13,9 +13,9 @@ struct BufferConfig {
   Extent screen;
   Extent table;  // zero: the screen size
   Layout layout = Layout::L64;
-  std::uint32_t age_bits = HA_DEFAULT_AGE_BITS;
-  std::uint32_t block = HA_DEFAULT_BLOCK;
-  std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT;
+  std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;
+  std::uint32_t block = HABUFFER_DEFAULT_BLOCK;
+  std::uint32_t iter_limit = HABUFFER_DEFAULT_ITER_LIMIT;
   float early_cull_tau = 0.0f;  // 0: off; else in (0, 1], L64 only
   // With early cull: a culled fragment's depth code goes to a per-pixel
   // saturation image (atomic max), and later fragments strictly behind it

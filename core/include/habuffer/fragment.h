@@ -50,7 +50,7 @@ struct Counters {
   void merge_duplicates(std::uint64_t merged) { duplicates += merged; }
   // Counts one insert outcome (an HA_* constant of ha_constants.h).
   void count(std::uint32_t outcome);
-  // Adds per-outcome totals, indexed by HA_* outcome (HA_OUTCOME_COUNT entries).
+  // Adds per-outcome totals, indexed by HA_* outcome (HABUFFER_OUTCOME_COUNT entries).
   void add_tally(const std::uint64_t* tally);
 
   Counters& operator+=(const Counters& o);

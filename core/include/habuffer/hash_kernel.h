@@ -1,5 +1,5 @@
 // The coherent Robin Hood hash on the CPU: the shared GLSL sources of
-// core/shared/ compiled as member functions of this class template, with the
+// core/include/habuffer/shared/ compiled as member functions of this class template, with the
 // storage and atomics a GLSL shader would get from its buffers.
 #pragma once
 
@@ -14,12 +14,12 @@ namespace habuffer {
 
 // Everything a kernel reads besides its buffers: the GLSL "uniforms".
 struct KernelParams {
-  std::uint32_t age_bits = HA_DEFAULT_AGE_BITS;
+  std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;
   std::uint32_t payload_bits = 32;  // 32 for L64, 0 for L32
   Extent table;
-  std::uint32_t block = HA_DEFAULT_BLOCK;
+  std::uint32_t block = HABUFFER_DEFAULT_BLOCK;
   std::uint32_t max_age_cells_x = 0;
-  std::uint32_t iter_limit = HA_DEFAULT_ITER_LIMIT;
+  std::uint32_t iter_limit = HABUFFER_DEFAULT_ITER_LIMIT;
   float cull_tau = 0.0f;  // 0: early cull off
   Extent screen;
   std::uint32_t* saturation = nullptr;  // early cull with saturation: a code per pixel (else nullptr: off)
@@ -31,7 +31,7 @@ struct KernelParams {
 template <class Word, bool Concurrent>
 class HashKernel {
  public:
-  HA_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_PRELUDE
   using ha_word = Word;
   using ha_index = std::uint64_t;
 
@@ -80,13 +80,13 @@ class HashKernel {
   [[nodiscard]] const Word* slots() const { return table_; }
 
   // --- the shared algorithm -------------------------------------------------
-#include "../../shared/ha_record.glsl"
-#include "../../shared/ha_probe.glsl"
-#include "../../shared/ha_carry.glsl"
-#include "../../shared/ha_saturation.glsl"
-#include "../../shared/ha_insert.glsl"
-#include "../../shared/ha_blend.glsl"
-#include "../../shared/ha_traverse.glsl"
+#include "shared/ha_record.glsl"
+#include "shared/ha_probe.glsl"
+#include "shared/ha_carry.glsl"
+#include "shared/ha_saturation.glsl"
+#include "shared/ha_insert.glsl"
+#include "shared/ha_blend.glsl"
+#include "shared/ha_traverse.glsl"
 
  private:
   FastDivisor block_;

@@ -1,4 +1,4 @@
-// The k-buffer on the CPU: the shared GLSL of core/shared/ha_kbuffer.glsl
+// The k-buffer on the CPU: the shared GLSL of core/include/habuffer/shared/ha_kbuffer.glsl
 // compiled as member functions over the buffers a shader would get.
 #pragma once
 
@@ -23,7 +23,7 @@ struct KBufferBuffers {
 template <class Word, bool Concurrent>
 class KBufferKernel {
  public:
-  HA_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_PRELUDE
   using ha_word = Word;
   using ha_index = std::uint64_t;
   static constexpr uint ha_word_bits = sizeof(Word) * 8;
@@ -64,10 +64,10 @@ class KBufferKernel {
   void kb_store_limit(uint pixel, uint bucket) { b_.limits[pixel] = bucket; }
   static uint ha_lowest_bit(uint w) { return static_cast<uint>(std::countr_zero(w)); }
 
-#include "../../shared/ha_record.glsl"
-#include "../../shared/ha_carry.glsl"
-#include "../../shared/ha_blend.glsl"
-#include "../../shared/ha_kbuffer.glsl"
+#include "shared/ha_record.glsl"
+#include "shared/ha_carry.glsl"
+#include "shared/ha_blend.glsl"
+#include "shared/ha_kbuffer.glsl"
 
  private:
   KBufferBuffers<Word> b_;

@@ -1,5 +1,5 @@
 // Per-pixel linked lists on the CPU, sorted after the gather or kept sorted
-// while inserting: the shared GLSL of core/shared/ha_lists.glsl and
+// while inserting: the shared GLSL of core/include/habuffer/shared/ha_lists.glsl and
 // ha_sorted_lists.glsl compiled as member functions, over the buffers a
 // shader would get.
 #pragma once
@@ -27,8 +27,8 @@ struct ListsBuffers {
 template <bool Concurrent>
 class ListsKernel {
  public:
-  HA_GLSL_CLASS_PRELUDE
-  HA_GLSL_CLASS_LOCAL_ARRAY
+  HABUFFER_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_LOCAL_ARRAY
   using ha_word = std::uint64_t;
   static constexpr uint ha_word_bits = 64;
 
@@ -89,12 +89,12 @@ class ListsKernel {
   uint ha_load_saturation(uint pixel) const { return ha_fetch<Concurrent>(b_.saturation[pixel]); }
   void ha_max_saturation(uint pixel, uint code) { ha_fetch_max<Concurrent>(b_.saturation[pixel], code); }
 
-#include "../../shared/ha_record.glsl"
-#include "../../shared/ha_blend.glsl"
-#include "../../shared/ha_entries.glsl"
-#include "../../shared/ha_lists.glsl"
-#include "../../shared/ha_saturation.glsl"
-#include "../../shared/ha_sorted_lists.glsl"
+#include "shared/ha_record.glsl"
+#include "shared/ha_blend.glsl"
+#include "shared/ha_entries.glsl"
+#include "shared/ha_lists.glsl"
+#include "shared/ha_saturation.glsl"
+#include "shared/ha_sorted_lists.glsl"
 
  private:
   Buffers b_;

@@ -17,7 +17,7 @@ namespace habuffer {
 //   HA-buffer:    slots * word + max-age cells * 4 + AMAX offsets * 8
 //   linked lists: pixels * 4 (heads) + nodes * 12 (code, data, link) + 4 (counter)
 //   fixed arrays: pixels * 4 (counters) + K * pixels * 8 (code, data) + 4 (overflow note)
-// The GPU path adds, for the HA-buffer, a 32-bit lock per 2^HA_LOCK_SHIFT
+// The GPU path adds, for the HA-buffer, a 32-bit lock per 2^HABUFFER_LOCK_SHIFT
 // slots in atomic mode emulated64 and 8 bytes of query result; and for every technique the
 // frame's tallies, parameters, capture and deferred-call buffers.
 std::uint64_t memory_model_bytes(const TechniqueConfig& config, std::uint64_t capacity);

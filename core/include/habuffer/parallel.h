@@ -1,42 +1,29 @@
-// Fork-join over indices 0..n-1 on oneTBB, visible to ThreadSanitizer.
-//
-// Debian's libtbb is not instrumented, so ThreadSanitizer cannot see that a
-// parallel_for's tasks start after the caller's writes and finish before the
-// caller continues, and it reports those accesses as races. Under
-// -fsanitize=thread the fork and the join are announced explicitly; in every
-// other build the annotations compile to nothing.
+/// @file
+/// Fork-join over indices 0..n-1, the only parallel primitive of the CPU
+/// path. Built on oneTBB when the library was configured with it
+/// (HABUFFER_WITH_TBB, the default), on std::thread otherwise; the header
+/// names neither, so a host never needs oneTBB's headers.
 #pragma once
 
 #include <cstdint>
-
-#include <tbb/parallel_for.h>
-
-#if defined(__SANITIZE_THREAD__)
-#include <sanitizer/tsan_interface.h>
-#define HABUFFER_TSAN_RELEASE(p) __tsan_release(p)
-#define HABUFFER_TSAN_ACQUIRE(p) __tsan_acquire(p)
-#else
-#define HABUFFER_TSAN_RELEASE(p) ((void)(p))
-#define HABUFFER_TSAN_ACQUIRE(p) ((void)(p))
-#endif
+#include <functional>
+#include <string>
 
 namespace habuffer {
 
-// Calls body(i) for every i in [0, n), one task per index (static split), in
-// the current task arena; returns when all have finished.
-template <class Index, class Body>
-void fork_join(Index n, Body&& body) {
-  int sync = 0;  // only its address matters: the happens-before token
-  HABUFFER_TSAN_RELEASE(&sync);
-  tbb::parallel_for(
-      Index{0}, n,
-      [&](Index i) {
-        HABUFFER_TSAN_ACQUIRE(&sync);
-        body(i);
-        HABUFFER_TSAN_RELEASE(&sync);
-      },
-      tbb::static_partitioner());
-  HABUFFER_TSAN_ACQUIRE(&sync);
-}
+/// Calls body(i) for every i in [0, n), one task per index (static split),
+/// and returns when all have finished. Inside run_with_threads the tasks
+/// share that many threads. An exception thrown by a task is rethrown here.
+void fork_join(std::uint32_t n, const std::function<void(std::uint32_t)>& body);
+
+/// Runs `work` with at most `threads` threads available to the fork_joins
+/// inside it (a oneTBB task arena; std::thread builds run `work` directly).
+void run_with_threads(std::uint32_t threads, const std::function<void()>& work);
+
+/// The threads the parallel runtime uses by default (hardware threads).
+std::uint32_t default_concurrency();
+
+/// The parallel runtime, for reports: "oneTBB 2021.8" or "std::thread".
+std::string parallel_runtime();
 
 }  // namespace habuffer

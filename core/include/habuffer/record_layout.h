@@ -12,7 +12,7 @@ std::string to_string(Layout layout);
 
 // A runtime description of a record layout, with pack/unpack on 64-bit
 // integers for both layouts (an L32 record fits in the low 32 bits). The
-// arithmetic is the shared code of core/shared/ha_record.glsl.
+// arithmetic is the shared code of core/include/habuffer/shared/ha_record.glsl.
 class RecordLayout {
  public:
   // Throws std::invalid_argument unless 4 <= age_bits <= 12.

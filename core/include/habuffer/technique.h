@@ -60,12 +60,12 @@ struct TechniqueConfig {
   // block, iteration limit and early cull are the HA-buffer's.
   BufferConfig buffer;
   std::uint64_t pool_capacity = 0;          // linked lists, sorted lists: nodes (at least 1)
-  std::uint32_t layers = HA_DEFAULT_LAYERS;  // fixed arrays, k-buffer: K (at least 1)
+  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  // fixed arrays, k-buffer: K (at least 1)
   // k-buffer: occupancy-map culling (a fill pass, a count pass, then
   // insertion rejecting what lies beyond the k-th occupied bucket) with
   // 32 * occupancy_words buckets per pixel over depth_range.
   bool occupancy = false;
-  std::uint32_t occupancy_words = HA_DEFAULT_OCCUPANCY_WORDS;
+  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;
   DepthRange depth_range;  // k-buffer's occupancy, wboit's weights
 
   // Throws std::invalid_argument naming the field: the buffer's own rules,

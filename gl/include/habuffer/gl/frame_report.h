@@ -19,7 +19,7 @@ struct GlFrameOptions {
   bool adaptive = false;
   ResizePolicy policy;    // also the growth step of lossless mode
   std::uint32_t max_attempts = 1;  // above 1: lossless mode, gather again into a grown table on failure
-  std::uint32_t lock_spin_limit = HA_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before a call is cut short
+  std::uint32_t lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before a call is cut short
   // Calls cut short (a lock given up, the driver's loop budget spent: never
   // the table's fault) are deferred with their carried state and resumed by
   // the resume pass, round after round while any remain, at most this many

@@ -1,7 +1,8 @@
-// Where the GPU path's buffers are bound. Host apps choose the points so our
-// buffers do not collide with theirs; the GLSL module is assembled with the
-// same numbers (#define HA_BINDING_*), so a host shader and GlHaBuffer::bind()
-// always agree.
+/// @file
+/// Where the GPU path's buffers are bound. Host apps choose the points so our
+/// buffers do not collide with theirs; the GLSL module is assembled with the
+/// same numbers (#define HABUFFER_BINDING_*), so a host shader and bind()
+/// always agree.
 #pragma once
 
 #include <array>
@@ -9,29 +10,40 @@
 
 namespace habuffer::gl {
 
+/// Binding points of the GPU path's buffers. The defaults start at 16
+/// (kDefaultStorageBase, kDefaultUniformBase), above the points hosts use
+/// first; from_base() moves them as a block. Every point is checked against
+/// the context's limits when a frame driver is made (validate()).
 struct GlBindings {
+  static constexpr unsigned kDefaultStorageBase = 16;
+  static constexpr unsigned kDefaultUniformBase = 16;
   // Shader-storage binding points.
-  unsigned table = 0;
-  unsigned max_age = 1;
-  unsigned offsets = 2;
-  unsigned counters = 3;
-  unsigned locks = 4;    // emulated64 only
-  unsigned capture = 5;
-  unsigned stream = 6;   // the compute entry's input fragments, the resume pass's input calls
-  unsigned deferred = 7; // insert calls cut short, appended for the resume pass
-  unsigned saturation = 8;  // the saturation depth image (early cull with saturation)
-  // Uniform-buffer binding point of the parameters block.
-  unsigned params = 0;
+  unsigned table = kDefaultStorageBase;           ///< the HA table, list heads, array counts
+  unsigned max_age = kDefaultStorageBase + 1;     ///< the max-age table, list nodes, array layers
+  unsigned offsets = kDefaultStorageBase + 2;     ///< the HA offsets, list links
+  unsigned counters = kDefaultStorageBase + 3;    ///< the outcome tallies
+  unsigned locks = kDefaultStorageBase + 4;       ///< emulated64's lock words
+  unsigned capture = kDefaultStorageBase + 5;     ///< captured fragments (GlFrameOptions::capture)
+  unsigned stream = kDefaultStorageBase + 6;      ///< the compute entry's fragments, the resume pass's calls
+  unsigned deferred = kDefaultStorageBase + 7;    ///< insert calls cut short, for the resume pass
+  unsigned saturation = kDefaultStorageBase + 8;  ///< the saturation depth image
+  /// Uniform-buffer binding point of the parameter block (HabufferParams).
+  unsigned params = kDefaultUniformBase;
+
+  /// Nine consecutive storage points from `storage_base` (in the order of
+  /// the members) and the parameter block at `uniform_base`.
+  [[nodiscard]] static GlBindings from_base(unsigned storage_base, unsigned uniform_base);
 
   [[nodiscard]] std::array<unsigned, 9> storage_points() const {
     return {table, max_age, offsets, counters, locks, capture, stream, deferred, saturation};
   }
-  // Throws GlError when two storage points coincide or a point is at or beyond
-  // the context's limits (GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS,
-  // GL_MAX_UNIFORM_BUFFER_BINDINGS); needs a current context.
+  /// Throws GlError when two storage points coincide or a point is at or beyond
+  /// the context's limits (GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS,
+  /// GL_MAX_UNIFORM_BUFFER_BINDINGS); needs a current context.
   void validate() const;
-  // "#define HA_BINDING_TABLE 0\n..." for the module assembly.
-  [[nodiscard]] std::string glsl_defines() const;
+  /// "#define HABUFFER_BINDING_TABLE 16\n..." for the module assembly; with
+  /// `overridable`, each inside #ifndef (the installed GLSL files).
+  [[nodiscard]] std::string glsl_defines(bool overridable = false) const;
 };
 
 }  // namespace habuffer::gl

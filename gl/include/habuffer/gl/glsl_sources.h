@@ -1,4 +1,4 @@
-// The shared algorithm as GLSL text (embedded from core/shared/ and
+// The shared algorithm as GLSL text (embedded from core/include/habuffer/shared/ and
 // gl/shaders/ at build time) and the assembly of complete shaders from it.
 #pragma once
 
@@ -30,8 +30,6 @@ extern const char* const kHaTraverse;
 extern const char* const kHaEntries;
 extern const char* const kHaLists;
 extern const char* const kHaArrays;
-extern const char* const kHaParams;
-extern const char* const kPreludeCommon;
 extern const char* const kGlslEnv;
 extern const char* const kEntryCommon;
 extern const char* const kHaEnv;
@@ -51,18 +49,43 @@ extern const char* const kResolveFragment;
 
 enum class ShaderStage { Compute, Fragment };
 
-// The HA-buffer module a shader appends its own code to: the #version line,
-// the extensions the atomic mode needs, `header` (the host's own #extension
-// lines and defines, which must precede any code), the binding points, the
-// parameters block and buffers, the shared constants, record, probe, insert
-// and traversal, and the entry ha_insert(uvec2 pixel, float depth, uint rgba)
-// (and ha_insert(uvec2 pixel, float depth) for L32). Do not repeat #version.
+/// The HA-buffer module a shader appends its own code to: the #version line,
+/// the extensions the atomic mode needs, `header` (the host's own #extension
+/// lines and defines, which must precede any code), then
+/// technique_module_body(). Do not repeat #version.
 std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header = {});
-// The same for any technique: its buffers and algorithm, and the same entry
-// ha_insert(pixel, depth, rgba) (outcomes HA_*, counted). The atomic mode
-// fixes the record layout (native32: L32, else L64) for every technique.
+/// The same for any technique: its buffers and algorithm, and the same entry
+/// ha_insert(pixel, depth, rgba) (outcomes HABUFFER_*, counted). The atomic
+/// mode fixes the record layout (native32: L32, else L64) for every technique.
 std::string technique_module(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
                              std::string_view header = {});
+
+/// The #extension lines `mode` needs ("" for native32). They must come before
+/// any code of the shader, so a host that places the module after its own
+/// declarations puts these right after its #version line.
+std::string module_extensions(AtomicMode mode);
+/// The module without #version and #extension lines, to follow a host's own
+/// declarations anywhere at global scope: the binding points
+/// (HABUFFER_BINDING_*; with `overridable_bindings`, each inside #ifndef so a
+/// host may #define it first), the shared constants (HABUFFER_*), the
+/// parameter block `HabufferParams habuffer_params`, the technique's buffers
+/// and algorithm, and the entries ha_insert(uvec2 pixel, float depth, uint
+/// rgba) and ha_insert(uvec2 pixel, float depth). Every name it declares
+/// starts with ha_, Ha, habuffer_, HABUFFER_ or a technique's prefix (ll_,
+/// fa_, sl_, kb_).
+std::string technique_module_body(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
+                                  bool overridable_bindings = false);
+
+/// A file of the GLSL a host's file-based shader pipeline includes, as
+/// installed under share/habuffer/glsl: `path` relative to that directory.
+struct GlslFile {
+  std::string path, text;
+};
+/// Every such file: for each atomic mode, <mode>/extensions.glsl, and for each
+/// technique with a GL path <mode>/<technique>.frag.glsl and .comp.glsl
+/// (technique_module_body at the default, overridable bindings), with a
+/// comment header saying how to use them. Needs no GL context.
+std::vector<GlslFile> host_glsl_files();
 
 // The compute shader that inserts a fragment stream held in a buffer.
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});

@@ -23,7 +23,7 @@ struct PlanSettings {
   std::vector<double> loads{0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
   std::uint32_t trials = 3;           // synthetic streams per HA-buffer load
   std::uint64_t seed = 1;
-  std::uint32_t age_bits = HA_DEFAULT_AGE_BITS;
+  std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;
 };
 
 // One row per configuration: technique, memory_bytes, predicted_max_age

@@ -32,9 +32,9 @@ enum class RenderPath { Gl, Cpu };
 struct RenderSettings {
   RenderPath path = RenderPath::Gl;
   Technique technique = Technique::Ha;
-  std::uint32_t layers = HA_DEFAULT_LAYERS;  // fixed arrays, k-buffer: K
+  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  // fixed arrays, k-buffer: K
   bool occupancy = false;                    // k-buffer: occupancy-map culling
-  std::uint32_t occupancy_words = HA_DEFAULT_OCCUPANCY_WORDS;
+  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;
   DepthRange depth_range;                    // k-buffer's occupancy buckets, wboit's weights
   // Linked lists: nodes in the pool; 0 means auto: sized from a counting pass
   // (to grow_at use), grown at once when a frame drops, adapted between frames.

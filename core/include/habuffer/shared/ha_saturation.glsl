@@ -3,7 +3,7 @@
 // saturated raises the pixel's saturation code to its own (atomic max of
 // depth codes: larger is nearer), and a later fragment strictly behind it
 // (a smaller code) is hidden by the same opacity, so it is rejected before
-// insertion (HA_SATURATED). A code equal to the saturation code may still
+// insertion (HABUFFER_SATURATED). A code equal to the saturation code may still
 // sort in front of the culled record (by its data), so it is inserted.
 //
 // Host environment provides: uint ha_saturation (0: off), uvec2

@@ -12,13 +12,13 @@
 //
 // Early termination (PreSortLF*): with ha_cull_tau > 0, the walk composites
 // the nodes it passes (the SPEC's accumulator, acc += (1 - acc) * alpha) and
-// stops with HA_CULLED once acc > tau: the fragment lies behind that much
-// opacity, which only grows. Identical entries are kept once (HA_DUPLICATE),
+// stops with HABUFFER_CULLED once acc > tau: the fragment lies behind that much
+// opacity, which only grows. Identical entries are kept once (HABUFFER_DUPLICATE),
 // as the HA-buffer keeps them.
 //
 // Host environment provides, besides ha_record.glsl, ha_entries.glsl,
 // ha_saturation.glsl and ha_lists.glsl's: uint ha_iter_limit (steps of one
-// insertion; beyond, HA_FAILED_ITER), float ha_cull_tau, uint
+// insertion; beyond, HABUFFER_FAILED_ITER), float ha_cull_tau, uint
 // sl_load_link(uint pixel, uint where) (where 0: the pixel's head, else
 // node `where` - 1's link; an acquire read) and uint sl_swap_link(uint
 // pixel, uint where, uint expected, uint link) (compare-and-swap with release
@@ -30,7 +30,7 @@ float sl_alpha(uint data) { return float(data & 255u) * (1.0f / 255.0f); }
 uint sl_insert_code(uvec2 p, uint code, uint data) {
   uvec2 e = uvec2(code, data);
   uint pixel = ha_pixel_index(p);
-  if (ha_saturated(p, code)) return HA_SATURATED;
+  if (ha_saturated(p, code)) return HABUFFER_SATURATED;
   uint node = 0u;  // the new node (1-based), taken when first needed
   uint where = 0u;
   uint next = sl_load_link(pixel, 0u);
@@ -40,13 +40,13 @@ uint sl_insert_code(uvec2 p, uint code, uint data) {
   for (uint step = 0u; step < ha_iter_limit; ++step) {
     if (next != 0u) {
       uvec2 n = ll_load_entry(next - 1u);
-      if (n == e) return HA_DUPLICATE;
+      if (n == e) return HABUFFER_DUPLICATE;
       if (ha_entry_before(n, e)) {
         if (ha_cull_tau > 0.0f) {
           acc += (1.0f - acc) * sl_alpha(n.y);
           if (acc > ha_cull_tau) {
             ha_saturate(p, code);
-            return HA_CULLED;
+            return HABUFFER_CULLED;
           }
         }
         where = next;
@@ -56,19 +56,19 @@ uint sl_insert_code(uvec2 p, uint code, uint data) {
     }
     if (node == 0u) {
       uint n = ll_allocate_node();
-      if (n >= ha_pool_capacity) return HA_DROPPED_POOL;
+      if (n >= ha_pool_capacity) return HABUFFER_DROPPED_POOL;
       node = n + 1u;
       ll_store_entry(n, e);
     }
     ll_store_next(node - 1u, next);
     uint found = sl_swap_link(pixel, where, next, node);
-    if (found == next) return HA_STORED;
+    if (found == next) return HABUFFER_STORED;
     next = found;  // a node was linked here meanwhile: it may lie in front
   }
-  return HA_FAILED_ITER;
+  return HABUFFER_FAILED_ITER;
 }
 
 uint sl_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HA_INVALID;
+  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
   return sl_insert_code(p, ha_depth_code(t), ha_payload_bits == 0u ? 0u : data);
 }

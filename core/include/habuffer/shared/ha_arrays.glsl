@@ -1,6 +1,6 @@
 // Fixed per-pixel arrays (Crassin 2010), written once for both paths: K
 // layers per pixel and a per-pixel atomic counter; a fragment beyond the
-// K-th of its pixel is dropped and counted (HA_DROPPED_LAYERS). Sorted after
+// K-th of its pixel is dropped and counted (HABUFFER_DROPPED_LAYERS). Sorted after
 // the gather (fa_sort_pixel), which leaves in the counter the pixel's sorted
 // length, identical entries merged. Layer k of every pixel is contiguous
 // (slot k * pixels + pixel), so neighbouring pixels writing their k-th
@@ -19,13 +19,13 @@ uint fa_slot(uint pixel, uint layer) { return layer * (ha_screen_size.x * ha_scr
 uint fa_insert_code(uvec2 p, uint code, uint data) {
   uint pixel = ha_pixel_index(p);
   uint k = fa_count_add(pixel);
-  if (k >= ha_layers) return HA_DROPPED_LAYERS;
+  if (k >= ha_layers) return HABUFFER_DROPPED_LAYERS;
   fa_store_layer(fa_slot(pixel, k), uvec2(code, data));
-  return HA_STORED;
+  return HABUFFER_STORED;
 }
 
 uint fa_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HA_INVALID;
+  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
   return fa_insert_code(p, ha_depth_code(t), ha_payload_bits == 0u ? 0u : data);
 }
 
@@ -84,7 +84,7 @@ uint fa_sort_pixel(uvec2 p) {
   uint n = arrived > ha_layers ? ha_layers : arrived;
   if (n == 0u) return 0u;
   uint m = 0u;
-  if (n > HA_SORT_LOCAL) {
+  if (n > HABUFFER_SORT_LOCAL) {
     fa_heap_sort(pixel, n);
     m = fa_merge_layers(pixel, n);
   } else {

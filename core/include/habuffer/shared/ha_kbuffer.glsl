@@ -4,7 +4,7 @@
 // hashing): a pixel's K layers are slots (layer-major), a record walks them
 // front to back, each slot keeping the larger of what it held and what
 // arrives and passing the smaller on; what leaves the K-th layer is dropped
-// (HA_DROPPED_LAYERS). Every slot only grows, so at any time the layers hold
+// (HABUFFER_DROPPED_LAYERS). Every slot only grows, so at any time the layers hold
 // the K largest records that reached them, in order: the K nearest entries,
 // sorted, without a sort pass. Records are SPEC 2 records with age 1 (never
 // 0, so 0 is an empty slot), comparing by (code, data) as every technique's
@@ -14,7 +14,7 @@
 // Occupancy-map culling (seed 003): a fill pass sets one bit per occupied
 // depth bucket (32 * ha_occupancy_words buckets per pixel over the scene's
 // depth range), a count pass finds the bucket of the k-th occupied bit, and
-// the insertion rejects fragments in buckets beyond it (HA_OCCUPANCY_REJECTED):
+// the insertion rejects fragments in buckets beyond it (HABUFFER_OCCUPANCY_REJECTED):
 // at least k fragments lie in front (each occupied bucket holds one), so
 // the k nearest are never rejected (the paper's Lemma 2.1). Buckets divide
 // depth codes with integers, so both paths reject the same fragments.
@@ -72,11 +72,11 @@ bool kb_occupancy_rejects(uvec2 p, uint code) {
 }
 
 // --- insertion ---------------------------------------------------------------
-// One layer: HA_PENDING while the carried record goes on to the next layer
-// (or tries the same one again: an emulated atomic found it busy), HA_CUT
+// One layer: HABUFFER_PENDING while the carried record goes on to the next layer
+// (or tries the same one again: an emulated atomic found it busy), HABUFFER_CUT
 // when that atomic gave up, else the call's outcome.
-uint kb_insert_step(HA_INOUT(HaCarry) c) {
-  if (c.a > ha_layers) return HA_DROPPED_LAYERS;
+uint kb_insert_step(HABUFFER_INOUT(HaCarry) c) {
+  if (c.a > ha_layers) return HABUFFER_DROPPED_LAYERS;
   ha_index s = kb_slot(kb_pixel(c.p), c.a - 1u);
   // Slots only grow: a larger value read is larger still (no atomic needed).
   // The high 32 bits alone: a 64-bit read racing a write may mix halves, but
@@ -84,33 +84,33 @@ uint kb_insert_step(HA_INOUT(HaCarry) c) {
   if (uint(ha_load_slot(s) >> (ha_word_bits - 32u)) > uint(c.r >> (ha_word_bits - 32u))) {
     c.iter += 1u;
     c.a += 1u;
-    return HA_PENDING;
+    return HABUFFER_PENDING;
   }
   ha_word old = ha_atomic_max_slot(s, c.r);
   uint missed = ha_atomic_missed();
   if (missed != 0u) return missed;
   c.iter += 1u;
-  if (old == c.r) return HA_DUPLICATE;
+  if (old == c.r) return HABUFFER_DUPLICATE;
   if (old < c.r) {
-    if (old == ha_word(0)) return HA_STORED;
+    if (old == ha_word(0)) return HABUFFER_STORED;
     c.r = old;  // the displaced record goes on behind
   }
   c.a += 1u;
-  return HA_PENDING;
+  return HABUFFER_PENDING;
 }
 
-uint kb_insert_run(HA_INOUT(HaCarry) c) {
-  uint outcome = HA_PENDING;
-  while (outcome == HA_PENDING) outcome = kb_insert_step(c);
+uint kb_insert_run(HABUFFER_INOUT(HaCarry) c) {
+  uint outcome = HABUFFER_PENDING;
+  while (outcome == HABUFFER_PENDING) outcome = kb_insert_step(c);
   return outcome;
 }
 
 // The whole insert call on the CPU path (the occupancy test included; the
 // fill and count passes are the host's).
 uint kb_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HA_INVALID;
+  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
   uint code = ha_depth_code(t);
-  if (kb_occupancy_rejects(p, code)) return HA_OCCUPANCY_REJECTED;
+  if (kb_occupancy_rejects(p, code)) return HABUFFER_OCCUPANCY_REJECTED;
   HaCarry c = ha_carry_begin(p, code, data);
   return kb_insert_run(c);
 }

@@ -7,8 +7,8 @@
 // paper's Proposition A that p has no record at this age or beyond (stop).
 uint ha_visit(ha_word r, uint age) {
   uint ra = ha_age(r);
-  if (ra == age) return HA_VISIT_EMIT;
-  return ra < age ? HA_VISIT_STOP : HA_VISIT_SKIP;
+  if (ra == age) return HABUFFER_VISIT_EMIT;
+  return ra < age ? HABUFFER_VISIT_STOP : HABUFFER_VISIT_SKIP;
 }
 
 // Composite every record of pixel p over the background.
@@ -18,8 +18,8 @@ vec4 ha_composite(uvec2 p, vec3 background) {
   for (uint a = 1u; a <= amax; ++a) {
     ha_word r = ha_load_slot(ha_slot(ha_probe(p, a)));
     uint v = ha_visit(r, a);
-    if (v == HA_VISIT_STOP) break;
-    if (v == HA_VISIT_EMIT) c = ha_blend_under(c, ha_unpack_rgba(ha_data(r)));
+    if (v == HABUFFER_VISIT_STOP) break;
+    if (v == HABUFFER_VISIT_EMIT) c = ha_blend_under(c, ha_unpack_rgba(ha_data(r)));
   }
   return ha_finish(c, background);
 }

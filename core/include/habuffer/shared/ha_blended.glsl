@@ -1,6 +1,6 @@
 // The two baselines that store no lists, written once for both paths: each
 // fragment is blended into per-pixel accumulators as it arrives (outcome
-// HA_BLENDED), and the resolve turns them into the pixel's colour.
+// HABUFFER_BLENDED), and the resolve turns them into the pixel's colour.
 //
 // Plain blending ("blend"): the over operator in submission order, unsorted,
 // as the fixed-function blender does with (SRC_ALPHA, ONE_MINUS_SRC_ALPHA)

@@ -18,16 +18,16 @@
 
 uint ll_insert_code(uvec2 p, uint code, uint data) {
   uint n = ll_allocate_node();
-  if (n >= ha_pool_capacity) return HA_DROPPED_POOL;
+  if (n >= ha_pool_capacity) return HABUFFER_DROPPED_POOL;
   ll_store_entry(n, uvec2(code, data));
   ll_store_next(n, ll_exchange_head(ha_pixel_index(p), n + 1u));
-  return HA_STORED;
+  return HABUFFER_STORED;
 }
 
 // The whole insert call of one fragment (identical entries are merged when
 // the lists are sorted, and counted as duplicates then).
 uint ll_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HA_INVALID;
+  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
   return ll_insert_code(p, ha_depth_code(t), ha_payload_bits == 0u ? 0u : data);
 }
 
@@ -95,7 +95,7 @@ uint ll_sort_pixel(uvec2 p) {
   uint pixel = ha_pixel_index(p);
   uint head = ll_load_head(pixel);
   uint n = ll_length(head);
-  if (n > HA_SORT_LOCAL) {
+  if (n > HABUFFER_SORT_LOCAL) {
     head = ll_merge_sort(head, n);
     ll_store_head(pixel, head);
     return ll_merge_duplicates(head);

@@ -5,7 +5,7 @@
 // identical entries, which the HA-buffer stores once.
 //
 // Host environment provides: uvec2 ha_screen_size, and a private array of
-// HA_SORT_LOCAL entries through uvec2 ha_local_get(uint k) and
+// HABUFFER_SORT_LOCAL entries through uvec2 ha_local_get(uint k) and
 // void ha_local_set(uint k, uvec2 e).
 
 uint ha_pixel_index(uvec2 p) { return p.x + p.y * ha_screen_size.x; }
@@ -13,7 +13,7 @@ uint ha_pixel_index(uvec2 p) { return p.x + p.y * ha_screen_size.x; }
 // Whether entry a lies in front of entry b in a pixel's list.
 bool ha_entry_before(uvec2 a, uvec2 b) { return a.x > b.x || (a.x == b.x && a.y > b.y); }
 
-// Stable insertion sort of the first n (at most HA_SORT_LOCAL) private entries.
+// Stable insertion sort of the first n (at most HABUFFER_SORT_LOCAL) private entries.
 void ha_sort_local(uint n) {
   for (uint k = 1u; k < n; ++k) {
     uvec2 e = ha_local_get(k);

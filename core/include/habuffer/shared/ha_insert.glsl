@@ -7,25 +7,25 @@
 // ha_saturation.glsl and ha_probe.glsl:
 // ha_word ha_atomic_max_slot(ha_index s, ha_word r) (returns the old value),
 // uint ha_atomic_missed() (0 when the last slot atomic happened; an emulated
-// atomic that found its slot busy changed nothing and says HA_PENDING, probe
-// again, or HA_CUT once it has been busy too long; always 0 where atomics are
+// atomic that found its slot busy changed nothing and says HABUFFER_PENDING, probe
+// again, or HABUFFER_CUT once it has been busy too long; always 0 where atomics are
 // native),
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
 // ha_cull_tau (0 = early cull off), ha_word ha_load_slot(ha_index s) (a
-// plain read), and HA_INOUT(T) (GLSL: inout T; C++: T&).
+// plain read), and HABUFFER_INOUT(T) (GLSL: inout T; C++: T&).
 
-// HA_PENDING while the carried record may probe again, else the failure
+// HABUFFER_PENDING while the carried record may probe again, else the failure
 // that ends the call (SPEC 6 checks the age, then the iteration budget).
 uint ha_insert_limit(HaCarry c) {
-  if (c.a > ha_max_age()) return HA_FAILED_AGE;
-  if (c.iter >= ha_iter_limit) return HA_FAILED_ITER;
-  return HA_PENDING;
+  if (c.a > ha_max_age()) return HABUFFER_FAILED_AGE;
+  if (c.iter >= ha_iter_limit) return HABUFFER_FAILED_ITER;
+  return HABUFFER_PENDING;
 }
 
-// One probe at h = ha_probe(c.p, c.a), within the limits. Returns HA_PENDING
+// One probe at h = ha_probe(c.p, c.a), within the limits. Returns HABUFFER_PENDING
 // while a record (the same or an evicted one) must go on (the same probe
 // again, carry unchanged, when an emulated atomic found its slot busy),
-// HA_CUT when that atomic gave up (carry unchanged: the probe is made when the
+// HABUFFER_CUT when that atomic gave up (carry unchanged: the probe is made when the
 // call resumes), else the HA_* outcome of the whole call.
 // The slot's high 32 bits (the whole slot for L32). A 64-bit slot read
 // while another invocation writes it may mix halves, but its high half is
@@ -45,7 +45,7 @@ bool ha_slot_known_larger(ha_index s, HaCarry c) {
   return ha_cull_tau <= 0.0f || (high >> (32u - ha_age_bits)) > c.a;
 }
 
-uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
+uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h) {
   ha_index s = ha_slot(h);
   // A slot that loses to a record in place costs one plain load, not an
   // atomic (and, in emulated64, not a lock): at high depth complexity most
@@ -54,27 +54,27 @@ uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
     c.iter += 1u;
     c.a += 1u;
     c.r = ha_with_age(c.r, c.a);
-    return HA_PENDING;
+    return HABUFFER_PENDING;
   }
   ha_word old = ha_atomic_max_slot(s, c.r);
   uint missed = ha_atomic_missed();
   if (missed != 0u) return missed;
   c.iter += 1u;
-  if (old == c.r) return HA_DUPLICATE;
+  if (old == c.r) return HABUFFER_DUPLICATE;
   bool cull = ha_cull_tau > 0.0f;
   if (old < c.r) {
     ha_atomic_max_age(ha_cell(c.p), c.a);
-    if (old == ha_word(0)) return HA_STORED;
+    if (old == ha_word(0)) return HABUFFER_STORED;
     // Carry the evicted record on: its pixel follows from its age alone.
     uint old_age = ha_age(old);
     c.r = old;
     c.p = ha_owner(h, old_age);
     // An evicted record behind its pixel's saturation depth is hidden as
     // surely as a new fragment there: it goes no further.
-    if (ha_saturated(c.p, ha_code(c.r))) return HA_SATURATED;
+    if (ha_saturated(c.p, ha_code(c.r))) return HABUFFER_SATURATED;
     // Same pixel under early cull: retry the evicted record at this slot so
     // it first accumulates the opacity of the record that evicted it.
-    if (cull && old_age == c.a) return HA_PENDING;
+    if (cull && old_age == c.a) return HABUFFER_PENDING;
     c.acc = 0.0f;
     c.a = old_age;
   } else if (cull && ha_age(old) == c.a) {
@@ -82,33 +82,33 @@ uint ha_insert_step_at(HA_INOUT(HaCarry) c, uvec2 h) {
     c.acc += (1.0f - c.acc) * ha_alpha(old);
     if (c.acc > ha_cull_tau) {
       ha_saturate(c.p, ha_code(c.r));
-      return HA_CULLED;
+      return HABUFFER_CULLED;
     }
   }
   c.a += 1u;
   c.r = ha_with_age(c.r, c.a);
-  return HA_PENDING;
+  return HABUFFER_PENDING;
 }
 
-uint ha_insert_step(HA_INOUT(HaCarry) c) {
+uint ha_insert_step(HABUFFER_INOUT(HaCarry) c) {
   uint limit = ha_insert_limit(c);
-  if (limit != HA_PENDING) return limit;
+  if (limit != HABUFFER_PENDING) return limit;
   return ha_insert_step_at(c, ha_probe(c.p, c.a));
 }
 
-// Runs a call's steps until it ends. HA_CUT: cut short by something other
+// Runs a call's steps until it ends. HABUFFER_CUT: cut short by something other
 // than the table, with `c` holding the state to resume from: an emulated
 // atomic gave up on a contended lock, or the driver ended the loop (Mesa
 // llvmpipe gives a shader invocation about 65535 loop iterations in all, every
 // loop together). Neither happens on the CPU path.
-uint ha_insert_run(HA_INOUT(HaCarry) c) {
-  uint outcome = HA_PENDING;
-  while (outcome == HA_PENDING) outcome = ha_insert_step(c);
-  return outcome == HA_PENDING ? HA_CUT : outcome;
+uint ha_insert_run(HABUFFER_INOUT(HaCarry) c) {
+  uint outcome = HABUFFER_PENDING;
+  while (outcome == HABUFFER_PENDING) outcome = ha_insert_step(c);
+  return outcome == HABUFFER_PENDING ? HABUFFER_CUT : outcome;
 }
 
 uint ha_insert_code(uvec2 p, uint code, uint data) {
-  if (ha_saturated(p, code)) return HA_SATURATED;
+  if (ha_saturated(p, code)) return HABUFFER_SATURATED;
   HaCarry c = ha_carry_begin(p, code, data);
   return ha_insert_run(c);
 }
@@ -116,6 +116,6 @@ uint ha_insert_code(uvec2 p, uint code, uint data) {
 // The whole insert call of one fragment on the CPU path (the GL entry
 // ha_insert adds counting, capture and the deferral of calls cut short).
 uint ha_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HA_INVALID;
+  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
   return ha_insert_code(p, ha_depth_code(t), data);
 }

@@ -1,75 +1,75 @@
 // Constants shared verbatim by the C++ path and the GLSL path.
 // Only preprocessor definitions live here, so the file is valid C++ and GLSL.
-#ifndef HA_CONSTANTS_H
-#define HA_CONSTANTS_H
+#ifndef HABUFFER_CONSTANTS_H
+#define HABUFFER_CONSTANTS_H
 
 // Outcome of one insert call (SPEC 6, invariant 1): exactly one per call, for
 // every technique. The drop reasons are the technique's own: the HA-buffer
 // fails by age or iterations, linked lists by an exhausted node pool, fixed
 // arrays by a full pixel (docs/spec-notes.md, "Techniques").
-#define HA_STORED 0u
-#define HA_DUPLICATE 1u
-#define HA_CULLED 2u
-#define HA_FAILED_AGE 3u
-#define HA_FAILED_ITER 4u
-#define HA_INVALID 5u
-#define HA_DROPPED_POOL 6u
-#define HA_DROPPED_LAYERS 7u
+#define HABUFFER_STORED 0u
+#define HABUFFER_DUPLICATE 1u
+#define HABUFFER_CULLED 2u
+#define HABUFFER_FAILED_AGE 3u
+#define HABUFFER_FAILED_ITER 4u
+#define HABUFFER_INVALID 5u
+#define HABUFFER_DROPPED_POOL 6u
+#define HABUFFER_DROPPED_LAYERS 7u
 // Rejected before insertion: behind the pixel's saturation depth (a fragment
 // culled earlier lay in front of it, so it is hidden as surely), or beyond
 // the k-buffer's occupancy limit (at least k nearer fragments exist).
-#define HA_SATURATED 8u
-#define HA_OCCUPANCY_REJECTED 9u
+#define HABUFFER_SATURATED 8u
+#define HABUFFER_OCCUPANCY_REJECTED 9u
 // Blended into the image without being stored (weighted blended OIT, plain blending).
-#define HA_BLENDED 10u
-#define HA_OUTCOME_COUNT 11u
+#define HABUFFER_BLENDED 10u
+#define HABUFFER_OUTCOME_COUNT 11u
 // Not outcomes: the insert call goes on (ha_insert_step), or it was cut short
 // by something other than the table and its carried state must be resumed
 // (GPU path only: an emulated atomic that gave up, the driver's loop budget).
-// HA_UNCOUNTED: a call of a pass that inserts nothing (the k-buffer's
+// HABUFFER_UNCOUNTED: a call of a pass that inserts nothing (the k-buffer's
 // occupancy fill pass), not an insert call.
-#define HA_PENDING 11u
-#define HA_CUT 12u
-#define HA_UNCOUNTED 13u
+#define HABUFFER_PENDING 11u
+#define HABUFFER_CUT 12u
+#define HABUFFER_UNCOUNTED 13u
 
 // Fixed arrays: default layers per pixel (Crassin 2010 uses 16).
-#define HA_DEFAULT_LAYERS 16u
+#define HABUFFER_DEFAULT_LAYERS 16u
 // The k-buffer's occupancy map: 32-bit words per pixel (32 buckets each)
 // by default and at most (seed 003 uses d = 32 words for k up to 32).
-#define HA_DEFAULT_OCCUPANCY_WORDS 4u
-#define HA_MAX_OCCUPANCY_WORDS 32u
+#define HABUFFER_DEFAULT_OCCUPANCY_WORDS 4u
+#define HABUFFER_MAX_OCCUPANCY_WORDS 32u
 // The sort of lists and arrays: a pixel's entries up to this many are sorted
 // in a private array by insertion sort (registers on a GPU); longer ones in
 // place in the technique's buffer (merge sort of the linked list, heap sort
 // of the array), as GP5's post-sort variants switch algorithms by length.
-#define HA_SORT_LOCAL 32u
+#define HABUFFER_SORT_LOCAL 32u
 
 // Traversal step results (SPEC 7).
-#define HA_VISIT_STOP 0u
-#define HA_VISIT_SKIP 1u
-#define HA_VISIT_EMIT 2u
+#define HABUFFER_VISIT_STOP 0u
+#define HABUFFER_VISIT_SKIP 1u
+#define HABUFFER_VISIT_EMIT 2u
 
 // Record layouts (SPEC 2).
-#define HA_LAYOUT_64 64u
-#define HA_LAYOUT_32 32u
-#define HA_MIN_AGE_BITS 4u
-#define HA_MAX_AGE_BITS 12u
-#define HA_DEFAULT_AGE_BITS 8u
+#define HABUFFER_LAYOUT_64 64u
+#define HABUFFER_LAYOUT_32 32u
+#define HABUFFER_MIN_AGE_BITS 4u
+#define HABUFFER_MAX_AGE_BITS 12u
+#define HABUFFER_DEFAULT_AGE_BITS 8u
 
 // Defaults of SPEC 5, 6 and 8.
-#define HA_DEFAULT_BLOCK 8u
-#define HA_DEFAULT_ITER_LIMIT 65536u
+#define HABUFFER_DEFAULT_BLOCK 8u
+#define HABUFFER_DEFAULT_ITER_LIMIT 65536u
 // The largest iteration limit: no insert call may probe longer than this
 // (about 2^28 probes) on either path.
-#define HA_MAX_ITER_LIMIT 268431359u
+#define HABUFFER_MAX_ITER_LIMIT 268431359u
 
-// GPU path: the outcome tallies are striped: HA_COUNTER_STRIPES copies of
-// the counters, one cache line (HA_COUNTER_STRIDE words) each, a call adding
+// GPU path: the outcome tallies are striped: HABUFFER_COUNTER_STRIPES copies of
+// the counters, one cache line (HABUFFER_COUNTER_STRIDE words) each, a call adding
 // to the stripe of its pixel (ha_counter_stripe) and the host summing them,
 // so the fragments of a frame do not all hit the same few addresses (exact:
 // every call still adds once).
-#define HA_COUNTER_STRIDE 16u
-#define HA_COUNTER_STRIPES 64u
+#define HABUFFER_COUNTER_STRIDE 16u
+#define HABUFFER_COUNTER_STRIPES 64u
 // GPU counters after the outcomes in each stripe: the slot writes, when asked
 // for (atomicMax calls that raised a slot, including records later evicted:
 // the work an insertion order costs); the records the sort pass of lists and
@@ -77,35 +77,35 @@
 // duplicates by the host); the pixels the sort pass finished (every pixel of
 // the screen must: a driver that ends an invocation early leaves the count
 // short, never silently).
-#define HA_COUNTER_SLOT_WRITES 11u
-#define HA_COUNTER_MERGED 12u
-#define HA_COUNTER_SORT_DONE 13u
-#define HA_GPU_COUNTER_COUNT 14u
+#define HABUFFER_COUNTER_SLOT_WRITES 11u
+#define HABUFFER_COUNTER_MERGED 12u
+#define HABUFFER_COUNTER_SORT_DONE 13u
+#define HABUFFER_GPU_COUNTER_COUNT 14u
 // Words after the stripes, on a cache line of their own, that are not sums:
 // the linked lists' node counter (one atomic add per fragment, the
 // technique's own hot spot) and the most fragments a fixed-array pixel
 // received when some pixel overflowed.
-#define HA_COUNTER_NODES (HA_COUNTER_STRIPES * HA_COUNTER_STRIDE)
-#define HA_COUNTER_MOST_ARRIVED (HA_COUNTER_NODES + 1u)
-#define HA_COUNTER_WORDS (HA_COUNTER_NODES + HA_COUNTER_STRIDE)
+#define HABUFFER_COUNTER_NODES (HABUFFER_COUNTER_STRIPES * HABUFFER_COUNTER_STRIDE)
+#define HABUFFER_COUNTER_MOST_ARRIVED (HABUFFER_COUNTER_NODES + 1u)
+#define HABUFFER_COUNTER_WORDS (HABUFFER_COUNTER_NODES + HABUFFER_COUNTER_STRIDE)
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.
-#define HA_APPEND_HEADER_WORDS 4u
+#define HABUFFER_APPEND_HEADER_WORDS 4u
 // An emulated 64-bit atomic tries a contended slot lock this many times in a
 // row before the insert call is cut short and deferred to the frame's resume
 // pass (2^24 attempts, a fraction of a second: long enough to outlast a lock
 // holder the OS preempted, where the driver lets a loop run that long).
-#define HA_DEFAULT_LOCK_SPIN_LIMIT 16777216u
+#define HABUFFER_DEFAULT_LOCK_SPIN_LIMIT 16777216u
 
-// Emulated64: one lock word guards 2^HA_LOCK_SHIFT neighbouring slots (each
+// Emulated64: one lock word guards 2^HABUFFER_LOCK_SHIFT neighbouring slots (each
 // critical section takes one lock and releases it in the same call, so
 // sharing cannot deadlock): 0.5 byte a slot instead of 4, which keeps the
 // GPU HA-buffer below linked lists' memory at load 0.8.
-#define HA_LOCK_SHIFT 3u
+#define HABUFFER_LOCK_SHIFT 3u
 
 // IEEE-754 binary32 bit patterns used by the depth-validity test: a float is
 // in [0, 1] exactly when its bits are in [0, 0x3F800000] or it is -0.
-#define HA_FLOAT_ONE_BITS 0x3F800000u
-#define HA_FLOAT_NEG_ZERO_BITS 0x80000000u
+#define HABUFFER_FLOAT_ONE_BITS 0x3F800000u
+#define HABUFFER_FLOAT_NEG_ZERO_BITS 0x80000000u
 
 #endif

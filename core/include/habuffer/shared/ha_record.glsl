@@ -34,7 +34,7 @@ float ha_alpha(ha_word r) { return float(ha_data(r) & 255u) * (1.0f / 255.0f); }
 // assume NaN never happens, but integer compares are always honoured.
 bool ha_depth_valid(float t) {
   uint bits = ha_float_bits(t);
-  return bits <= HA_FLOAT_ONE_BITS || bits == HA_FLOAT_NEG_ZERO_BITS;
+  return bits <= HABUFFER_FLOAT_ONE_BITS || bits == HABUFFER_FLOAT_NEG_ZERO_BITS;
 }
 
 // code(t) = (2^D - 1) - min(2^D - 1, floor(t * 2^D)); t * 2^D is exact in

@@ -1,0 +1,61 @@
+# Install rules: the libraries a host links (habuffer::offsets, ::core and,
+# with the GL path, ::gl), their headers (the shared C++/GLSL sources
+# included), the host GLSL files, the CMake package habufferConfig.cmake
+# with its version file, and pkg-config files habuffer-core.pc and
+# habuffer-gl.pc.
+include(CMakePackageConfigHelpers)
+
+set(_habuffer_targets habuffer_offsets habuffer_core)
+set(_habuffer_components offsets core)
+if(HABUFFER_WITH_GL)
+  list(APPEND _habuffer_targets habuffer_gl)
+  list(APPEND _habuffer_components gl)
+endif()
+get_target_property(_habuffer_type habuffer_core TYPE)
+
+install(TARGETS ${_habuffer_targets} EXPORT habufferTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY offsets/include/ core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+if(HABUFFER_WITH_GL)
+  install(DIRECTORY gl/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY ${HABUFFER_GLSL_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/habuffer/glsl PATTERN stamp EXCLUDE)
+endif()
+
+set(HABUFFER_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/habuffer)
+install(EXPORT habufferTargets NAMESPACE habuffer:: DESTINATION ${HABUFFER_CMAKE_DIR})
+# What the package's config must find for a consumer: static libraries carry
+# their private dependencies (oneTBB) into the consumer's link.
+set(HABUFFER_PACKAGE_STATIC OFF)
+if(_habuffer_type STREQUAL "STATIC_LIBRARY")
+  set(HABUFFER_PACKAGE_STATIC ON)
+endif()
+set(HABUFFER_PACKAGE_WITH_TBB ${HABUFFER_WITH_TBB})
+set(HABUFFER_PACKAGE_COMPONENTS ${_habuffer_components})
+configure_package_config_file(cmake/habufferConfig.cmake.in ${PROJECT_BINARY_DIR}/habufferConfig.cmake
+                              INSTALL_DESTINATION ${HABUFFER_CMAKE_DIR}
+                              PATH_VARS CMAKE_INSTALL_INCLUDEDIR CMAKE_INSTALL_DATADIR)
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/habufferConfigVersion.cmake
+                                 VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/habufferConfig.cmake ${PROJECT_BINARY_DIR}/habufferConfigVersion.cmake
+        DESTINATION ${HABUFFER_CMAKE_DIR})
+
+# pkg-config: for a static build the dependencies are public (a consumer that
+# does not pass --static still links what the archives need).
+if(HABUFFER_PACKAGE_STATIC)
+  set(_pc_requires_field "Requires")
+else()
+  set(_pc_requires_field "Requires.private")
+endif()
+set(_pc_core_requires "glm")
+if(HABUFFER_WITH_TBB)
+  string(APPEND _pc_core_requires ", tbb")
+endif()
+set(HABUFFER_PC_CORE_REQUIRES "${_pc_requires_field}: ${_pc_core_requires}")
+set(HABUFFER_PC_GL_REQUIRES "Requires: habuffer-core = ${PROJECT_VERSION}, epoxy")
+configure_file(cmake/habuffer-core.pc.in ${PROJECT_BINARY_DIR}/habuffer-core.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/habuffer-core.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+if(HABUFFER_WITH_GL)
+  configure_file(cmake/habuffer-gl.pc.in ${PROJECT_BINARY_DIR}/habuffer-gl.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/habuffer-gl.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endif()

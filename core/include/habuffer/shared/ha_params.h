@@ -1,0 +1,35 @@
+// The GPU path's parameter block, declared once for C++ and GLSL (as
+// nvpro-samples' common.h does): the reader defines HABUFFER_PARAMS_BEGIN,
+// HABUFFER_PARAMS_END and HABUFFER_PARAM_UINT / HABUFFER_PARAM_FLOAT / HABUFFER_PARAM_UVEC2 before
+// including it (gl/gl_params.h: a C++ struct; prelude assembly: a std140
+// uniform block, whose members are GLSL globals). Keep every uvec2 at an
+// offset that is a multiple of 8 (std140); gl_params.h checks the offsets.
+#ifndef HABUFFER_PARAMS_H
+#define HABUFFER_PARAMS_H
+
+HABUFFER_PARAMS_BEGIN
+  HABUFFER_PARAM_UVEC2(ha_table_size)          // HA-buffer: the table H
+  HABUFFER_PARAM_UINT(ha_age_bits)             // every technique: the depth code's bits (SPEC 2)
+  HABUFFER_PARAM_UINT(ha_block)                // HA-buffer: max-age block B
+  HABUFFER_PARAM_UINT(ha_max_age_cells_x)      // HA-buffer: max-age cells per row
+  HABUFFER_PARAM_UINT(ha_iter_limit)           // HA-buffer: probes per insert call
+  HABUFFER_PARAM_FLOAT(ha_cull_tau)            // HA-buffer: early cull (0: off)
+  HABUFFER_PARAM_UINT(ha_lock_spin_limit)      // HA-buffer, emulated64: busy attempts before a call is cut short
+  HABUFFER_PARAM_UVEC2(ha_screen_size)         // every technique
+  HABUFFER_PARAM_UINT(ha_capture_capacity)     // fragments the capture buffer holds; 0: capture off
+  HABUFFER_PARAM_UINT(ha_capture_only)         // 1: capture, insert nothing, count nothing
+  HABUFFER_PARAM_UINT(ha_count_writes)         // HA-buffer: 1: count slot writes (HABUFFER_COUNTER_SLOT_WRITES)
+  HABUFFER_PARAM_UINT(ha_deferred_capacity)    // HA-buffer: calls cut short that the deferred-call buffer holds
+  HABUFFER_PARAM_UINT(ha_pool_capacity)        // linked lists: nodes
+  HABUFFER_PARAM_UINT(ha_layers)               // fixed arrays, k-buffer: K
+  HABUFFER_PARAM_UINT(ha_saturation)           // HA-buffer, sorted lists: 1: saturation depth (with early cull)
+  HABUFFER_PARAM_UINT(ha_gather_phase)         // k-buffer: 1 during the occupancy fill pass, else 0
+  HABUFFER_PARAM_UINT(ha_occupancy)            // k-buffer: 1: occupancy-map culling
+  HABUFFER_PARAM_UINT(ha_occupancy_words)      // k-buffer: 32-bit words of a pixel's map
+  HABUFFER_PARAM_UINT(ha_occupancy_near_code)  // k-buffer: the depth code of the range's near end
+  HABUFFER_PARAM_UINT(ha_occupancy_bucket_codes)  // k-buffer: depth codes per bucket
+  HABUFFER_PARAM_UINT(ha_params_pad0)          // std140 rounds the block to 16 bytes
+  HABUFFER_PARAM_UINT(ha_params_pad1)
+HABUFFER_PARAMS_END
+
+#endif
