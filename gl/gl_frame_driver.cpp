@@ -320,6 +320,12 @@ void GlFrameDriver::read_counters(FrameReport& report) const {
 }
 
 PassTiming GlFrameDriver::resolve(glm::vec3 background, unsigned background_texture) {
+  return run_resolve(background, background_texture, false);
+}
+
+PassTiming GlFrameDriver::resolve_over() { return run_resolve(glm::vec3(0.0f), 0, true); }
+
+PassTiming GlFrameDriver::run_resolve(glm::vec3 background, unsigned background_texture, bool over) {
   const GlStateGuard guard(bindings());
   const GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -329,7 +335,8 @@ PassTiming GlFrameDriver::resolve(glm::vec3 background, unsigned background_text
                   " is not complete (status 0x" + std::to_string(status) + "); bind one with a colour attachment");
   }
   bind();
-  const auto [wall, gpu] = gpu_->resolve->run(screen(), background, background_texture, options_.finish_timing);
+  const auto [wall, gpu] = over ? gpu_->resolve->run_over(screen(), options_.finish_timing)
+                                : gpu_->resolve->run(screen(), background, background_texture, options_.finish_timing);
   check_gl_errors("the resolve pass");
   return {wall, gpu};
 }

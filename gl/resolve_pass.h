@@ -24,9 +24,18 @@ class ResolvePass {
 
   // Needs the buffers bound and the caller's state guard. Returns {wall ms, GPU ms}.
   // background_texture: 0 for the uniform background, else a 2D texture read per pixel.
+  // Writes draw buffer 0 with every colour channel (the host's write mask
+  // and blend setup of draw buffer 0 restored afterwards).
   std::pair<double, double> run(Extent screen, glm::vec3 background, unsigned background_texture, bool finish);
+  // The same over what the framebuffer holds: premultiplied (C, 1 - T)
+  // blended with (GL_ONE, GL_ONE_MINUS_SRC_ALPHA), so a pixel with nothing
+  // stored keeps its colour exactly.
+  std::pair<double, double> run_over(Extent screen, bool finish);
 
  private:
+  std::pair<double, double> draw(Extent screen, glm::vec3 background, unsigned background_texture, bool over,
+                                 bool finish);
+
   ShaderProgram program_;
   GpuTimer timer_;
   unsigned vertex_array_ = 0;

@@ -5,6 +5,10 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <map>
+#include <string>
+#include <vector>
+
 #include "gl_test_support.h"
 
 namespace habuffer {
@@ -218,6 +222,240 @@ TEST(GlHost, TheGatherSeesTheHostsOwnGenericBufferBindings) {
   }
   glDeleteBuffers(1, &host_ubo);
   glDeleteBuffers(1, &host_ssbo);
+}
+
+
+// Host binding points 0..15, storage and uniform, hold the host's buffers
+// inside the gather and after every pass: the library's defaults start at 16.
+TEST(GlHost, HostBindingsZeroToFifteenAreNeverTouched) {
+  HostContext host;
+  constexpr GLuint kPoints = 16;
+  GLuint buffers[kPoints];
+  glCreateBuffers(kPoints, buffers);
+  for (GLuint i = 0; i < kPoints; ++i) {
+    glNamedBufferData(buffers[i], 512, nullptr, GL_DYNAMIC_DRAW);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, i, buffers[i], 0, 256);
+    glBindBufferRange(GL_UNIFORM_BUFFER, i, buffers[kPoints - 1 - i], 256, 256);
+  }
+  const auto bound = [&] {
+    std::vector<GLint64> v;
+    for (GLuint i = 0; i < kPoints; ++i) {
+      GLint b = 0;
+      GLint64 start = 0;
+      glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, i, &b);
+      glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, i, &start);
+      v.insert(v.end(), {b, start});
+      glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, i, &b);
+      glGetInteger64i_v(GL_UNIFORM_BUFFER_START, i, &start);
+      v.insert(v.end(), {b, start});
+    }
+    return v;
+  };
+  const std::vector<GLint64> before = bound();
+  for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info())) {
+    SCOPED_TRACE(gl::to_string(mode));
+    const BufferConfig c = test::config({24, 24}, {30, 30}, test::layout_of(mode), 6);
+    gl::GlFrameOptions o;
+    o.capture = true;
+    gl::GlHaBuffer gpu(c, test::random_offsets(4), mode, o);
+    for (unsigned p : gpu.bindings().storage_points()) EXPECT_GE(p, kPoints);
+    EXPECT_GE(gpu.bindings().params, kPoints);
+    const auto f = test::stream(c.screen, StreamKind::Coherent, 400, 4);
+    gl::ComputeInserter inserter(gpu);
+    inserter.upload(f);
+    std::vector<GLint64> inside;
+    gpu.frame([&] {
+      inside = bound();
+      inserter.dispatch();
+    });
+    EXPECT_EQ(inside, before);
+    EXPECT_EQ(bound(), before);
+    test::resolve_to_image(gpu, {0.2f, 0.3f, 0.4f});
+    EXPECT_EQ(bound(), before);
+  }
+  glDeleteBuffers(kPoints, buffers);
+}
+
+// A host's raster gather: three overlapping triangles at depths 0.2, 0.45 and
+// 0.7 with translucent colours, into an attachment-less framebuffer.
+constexpr const char* kHostVertex = R"(#version 450 core
+out vec4 host_colour;
+void main() {
+  int tri = gl_VertexID / 3, k = gl_VertexID % 3;
+  vec2 p = k == 0 ? vec2(-1.0, -1.0) : k == 1 ? vec2(3.0, -1.0) : vec2(-1.0, 3.0);
+  p = p * (0.4 + 0.2 * float(tri)) + vec2(0.15 * float(tri), -0.1 * float(tri));
+  gl_Position = vec4(p, 2.0 * (0.2 + 0.25 * float(tri)) - 1.0, 1.0);
+  host_colour = vec4(tri == 0 ? 0.9 : 0.1, tri == 1 ? 0.8 : 0.2, tri == 2 ? 0.7 : 0.3, 0.4 + 0.15 * float(tri));
+}
+)";
+constexpr const char* kHostDeclarations = R"(layout(std140, binding = 0) uniform HostBlock { vec4 host_tint; };
+layout(std430, binding = 1) buffer HostCounts { uint host_count; };
+in vec4 host_colour;
+layout(location = 0) out vec4 host_output;
+vec4 host_shade(vec4 c) { return c; }
+)";
+constexpr const char* kHostMain = R"(void main() {
+  atomicAdd(host_count, 1u);
+  ha_insert_here(host_shade(host_colour));
+  host_output = vec4(0.0);
+}
+)";
+
+struct HostRaster {
+  GLuint framebuffer = 0, vertex_array = 0;
+  HostRaster() {
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, 24);
+    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, 24);
+    glCreateVertexArrays(1, &vertex_array);
+  }
+  ~HostRaster() {
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteVertexArrays(1, &vertex_array);
+  }
+  HostRaster(const HostRaster&) = delete;
+  HostRaster& operator=(const HostRaster&) = delete;
+  // One frame of `gpu` with `program` drawing the triangles; the resolved image.
+  std::vector<glm::vec4> render(gl::GlFrameDriver& gpu, const gl::ShaderProgram& program, gl::FrameReport& report) const {
+    report = gpu.frame([&] {
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+      glViewport(0, 0, 24, 24);
+      glUseProgram(program.id());
+      glBindVertexArray(vertex_array);
+      glDrawArrays(GL_TRIANGLES, 0, 9);
+    });
+    return test::resolve_to_image(gpu, {0.1f, 0.2f, 0.3f});
+  }
+};
+
+// The module placed after the host's own declarations (its uniform block,
+// storage buffer, inputs, outputs and functions), as the runtime assembles
+// it and as the installed GLSL files give it (at the host's binding points,
+// defined before the file), compiles and renders what the module placed
+// first renders, bit for bit.
+TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
+  HostContext host;
+  GLuint host_buffers[2];
+  glCreateBuffers(2, host_buffers);
+  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostRaster raster;
+  const gl::GlBindings bindings = test::host_bindings();  // not the defaults the files carry
+  std::map<std::string, std::string> files;
+  for (const gl::GlslFile& f : gl::host_glsl_files()) files[f.path] = f.text;
+  for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info()))
+    for (Technique t : {Technique::Ha, Technique::Lists, Technique::KBuffer}) {
+      SCOPED_TRACE(gl::to_string(mode) + " " + to_string(t));
+      TechniqueConfig c;
+      c.technique = t;
+      c.buffer = test::config({24, 24}, {64, 64}, test::layout_of(mode), 8);
+      c.pool_capacity = 4096;
+      gl::GlFrameDriver gpu(gl::make_gl_technique(c, test::random_offsets(5), mode, bindings));
+      const std::string first = gpu.module_source(gl::ShaderStage::Fragment) + kHostDeclarations + kHostMain;
+      const std::string after = "#version 450 core\n" + gl::module_extensions(mode) + kHostDeclarations +
+                                gl::technique_module_body(t, mode, bindings, gl::ShaderStage::Fragment) + kHostMain;
+      const std::string dir = gl::to_string(mode) + "/";
+      ASSERT_EQ(files.count(dir + to_string(t) + ".frag.glsl"), 1u);
+      const std::string from_files = "#version 450 core\n" + files[dir + "extensions.glsl"] + kHostDeclarations +
+                                     bindings.glsl_defines() + files[dir + to_string(t) + ".frag.glsl"] + kHostMain;
+      std::vector<std::vector<glm::vec4>> images;
+      std::vector<Counters> counters;
+      for (const std::string* fragment : {&first, &after, &from_files}) {
+        const auto program = gl::ShaderProgram::graphics(kHostVertex, *fragment, "host gather");
+        gl::FrameReport report;
+        images.push_back(raster.render(gpu, program, report));
+        counters.push_back(report.counters);
+      }
+      EXPECT_GT(counters[0].stored(), 24u * 24u);  // the triangles overlap
+      for (std::size_t i = 1; i < images.size(); ++i) {
+        EXPECT_TRUE(counters[i] == counters[0]) << i;
+        EXPECT_TRUE(images[i] == images[0]) << i;
+      }
+    }
+  std::uint32_t host_count = 0;
+  glGetNamedBufferSubData(host_buffers[1], 0, 4, &host_count);
+  EXPECT_GT(host_count, 0u);  // the host's own buffer, written by its own code
+  glDeleteBuffers(2, host_buffers);
+}
+
+// resolve_over composites onto the host's image: C + T * destination in
+// colour and 1 - T + T * destination alpha in alpha, pixels with nothing
+// stored unchanged bit for bit; resolve writes despite the host's colour
+// mask; the host's blend setup and mask of draw buffer 0 come back.
+TEST(GlHost, ResolveOverBlendsOntoTheHostsFramebuffer) {
+  HostContext host;
+  const Extent screen{24, 24};
+  GLuint texture = 0, framebuffer = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, GL_RGBA32F, 24, 24);
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+  std::vector<glm::vec4> opaque(screen.area());
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x)
+      opaque[x + y * screen.x] = {float(x) / 24.0f, float(y) / 24.0f, 0.25f, 0.75f};
+  const auto upload = [&] {
+    glTextureSubImage2D(texture, 0, 0, 0, 24, 24, GL_RGBA, GL_FLOAT, opaque.data());
+  };
+  const auto read = [&] {
+    std::vector<glm::vec4> image(screen.area());
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.size() * sizeof(glm::vec4)),
+                      image.data());
+    return image;
+  };
+  glBlendFuncSeparatei(0, GL_SRC_COLOR, GL_DST_COLOR, GL_ZERO, GL_SRC_ALPHA);
+  glBlendEquationSeparatei(0, GL_FUNC_SUBTRACT, GL_MAX);
+  glColorMaski(0, GL_FALSE, GL_TRUE, GL_FALSE, GL_FALSE);
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  const BufferConfig c = test::config(screen, {30, 30}, test::layout_of(mode), 8);
+  gl::GlHaBuffer gpu(c, test::random_offsets(6), mode);
+  const auto f = test::stream(screen, StreamKind::Random, 300, 6);  // leaves many pixels empty
+  gl::ComputeInserter(gpu).insert(f);
+  const std::vector<glm::vec4> premultiplied = test::resolve_to_image(gpu, glm::vec3(0.0f));  // (C, 1 - T)
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  upload();
+  gpu.resolve_over();
+  const std::vector<glm::vec4> over = read();
+  std::size_t empty = 0;
+  for (std::size_t i = 0; i < over.size(); ++i) {
+    const glm::vec4 s = premultiplied[i], d = opaque[i];
+    if (s == glm::vec4(0.0f)) {
+      ++empty;
+      EXPECT_TRUE(over[i] == d) << i;
+      continue;
+    }
+    const glm::vec4 expected = s + (1.0f - s.a) * d;
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(over[i][k], expected[k], 1e-6f) << i << " " << k;
+  }
+  EXPECT_GT(empty, 0u);
+  EXPECT_LT(empty, over.size());
+  // The replacing resolve writes despite the host's mask, and its alpha is 1 - T.
+  upload();
+  gpu.resolve({0.5f, 0.5f, 0.5f});
+  const std::vector<glm::vec4> replaced = read();
+  for (std::size_t i = 0; i < replaced.size(); ++i) {
+    EXPECT_NEAR(replaced[i].a, premultiplied[i].a, 1e-7f) << i;
+    EXPECT_NEAR(replaced[i].r, premultiplied[i].r + (1.0f - premultiplied[i].a) * 0.5f, 1e-6f) << i;
+  }
+  GLint blend[6] = {};
+  const GLenum names[6] = {GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA, GL_BLEND_DST_ALPHA,
+                           GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA};
+  for (int i = 0; i < 6; ++i) glGetIntegeri_v(names[i], 0, &blend[i]);
+  EXPECT_EQ(blend[0], GL_SRC_COLOR);
+  EXPECT_EQ(blend[1], GL_DST_COLOR);
+  EXPECT_EQ(blend[2], GL_ZERO);
+  EXPECT_EQ(blend[3], GL_SRC_ALPHA);
+  EXPECT_EQ(blend[4], GL_FUNC_SUBTRACT);
+  EXPECT_EQ(blend[5], GL_MAX);
+  GLboolean mask[4] = {};
+  glGetBooleani_v(GL_COLOR_WRITEMASK, 0, mask);
+  EXPECT_TRUE(mask[0] == GL_FALSE && mask[1] == GL_TRUE && mask[2] == GL_FALSE && mask[3] == GL_FALSE);
+  EXPECT_FALSE(glIsEnabledi(GL_BLEND, 0));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteTextures(1, &texture);
 }
 
 }  // namespace

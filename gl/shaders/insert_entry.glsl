@@ -23,3 +23,13 @@ uint ha_insert(uvec2 pixel, float depth, uint rgba) {
 
 // Depth-only form (L32 records carry no payload).
 uint ha_insert(uvec2 pixel, float depth) { return ha_insert(pixel, depth, 0u); }
+
+// A straight-alpha colour in the module's rgba packing (R<<24 | G<<16 |
+// B<<8 | A, each round(clamp(c, 0, 1) * 255) as packUnorm4x8 rounds).
+uint ha_pack_rgba(vec4 colour) { return packUnorm4x8(colour.abgr); }
+
+#ifdef HABUFFER_STAGE_FRAGMENT
+// The current fragment at its pixel and window depth gl_FragCoord.z (the
+// default depth range: 0 nearest), with a straight-alpha colour.
+uint ha_insert_here(vec4 colour) { return ha_insert(uvec2(gl_FragCoord.xy), gl_FragCoord.z, ha_pack_rgba(colour)); }
+#endif

@@ -64,10 +64,19 @@ class GlFrameDriver {
   // and cut short, and retried like the others, so nothing goes uncounted.
   FrameReport frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls = {});
 
-  // Composites every screen pixel over `background` into the framebuffer
-  // bound at the call, at viewport (0, 0, screen). With a background texture
-  // (2D, at least the screen), each pixel's background is its texel instead.
+  /// Composites every screen pixel over `background` into the framebuffer
+  /// bound at the call, at viewport (0, 0, screen), replacing its colour:
+  /// colour C + T * background and alpha 1 - T (T: the pixel's transmittance).
+  /// With a background texture (2D, at least the screen, bound to texture
+  /// unit 0 for the pass), each pixel's background is its texel instead.
   PassTiming resolve(glm::vec3 background, unsigned background_texture = 0);
+  /// Composites every screen pixel over what the framebuffer bound at the
+  /// call already holds (the host's opaque image), at viewport (0, 0,
+  /// screen): the pass outputs premultiplied colour C and alpha 1 - T and
+  /// blends it with (GL_ONE, GL_ONE_MINUS_SRC_ALPHA) for colour and alpha, so
+  /// the result is C + T * destination, and a pixel with nothing stored keeps
+  /// its colour exactly. The host's blend setup is restored afterwards.
+  PassTiming resolve_over();
 
   // The fragments the last frame captured, in arrival order.
   [[nodiscard]] std::vector<Fragment> read_capture() const;
@@ -92,6 +101,7 @@ class GlFrameDriver {
   // the calls still deferred after the last round; none are run when the
   // gather deferred more than the buffer holds (deferred_overflow_).
   std::uint64_t resume_deferred(FrameReport& report);
+  PassTiming run_resolve(glm::vec3 background, unsigned background_texture, bool over);
   void run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
                   FrameReport& report);
   [[nodiscard]] std::uint64_t read_capture_count() const;
