@@ -51,6 +51,9 @@ set(_pc_core_requires "glm")
 if(HABUFFER_WITH_TBB)
   string(APPEND _pc_core_requires ", tbb")
 endif()
+# Relocatable: the prefix is found from the .pc file's own directory, so a
+# `cmake --install --prefix` anywhere gives working files.
+file(RELATIVE_PATH HABUFFER_PC_PREFIX_FROM_PCDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 set(HABUFFER_PC_CORE_REQUIRES "${_pc_requires_field}: ${_pc_core_requires}")
 set(HABUFFER_PC_GL_REQUIRES "Requires: habuffer-core = ${PROJECT_VERSION}, epoxy")
 configure_file(cmake/habuffer-core.pc.in ${PROJECT_BINARY_DIR}/habuffer-core.pc @ONLY)

@@ -1,0 +1,218 @@
+// A host OpenGL app: its own headless EGL context, its own shaders, its own
+// framebuffer (RGBA8 colour, 24-bit depth). It draws an opaque floor and an
+// opaque box, then three translucent panes, submitted in no particular order.
+//
+// Order-independent transparency comes from habuffer through the lines
+// marked [habuffer] (grep -c '\[habuffer\]' main.cpp): a GPU HA-buffer, the
+// GLSL module in the panes' fragment shader, the panes' draw wrapped in one
+// frame, and a resolve that blends the sorted panes over the opaque image.
+//
+// Exits 0 when the pixels read back match the front-to-back blend computed
+// by hand here (within 1.5/255), 1 otherwise.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include <habuffer/gl.h>  // [habuffer]
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+// One axis-aligned rectangle in normalized device coordinates at a depth,
+// with a straight-alpha colour.
+struct Quad {
+  float x0, y0, x1, y1, depth;
+  float r, g, b, a;
+};
+const Quad kFloor{-1.0f, -1.0f, 1.0f, 1.0f, 0.9f, 0.2f, 0.2f, 0.2f, 1.0f};
+const Quad kBox{0.5f, -0.5f, 0.9f, 0.5f, 0.1f, 0.9f, 0.9f, 0.1f, 1.0f};  // in front of every pane
+const Quad kPanes[3] = {{-0.6f, -0.6f, 0.8f, 0.6f, 0.3f, 1.0f, 0.0f, 0.0f, 0.6f},   // nearest
+                        {-0.8f, -0.4f, 0.6f, 0.8f, 0.7f, 0.0f, 0.0f, 1.0f, 0.6f},   // farthest
+                        {-0.7f, -0.8f, 0.7f, 0.4f, 0.5f, 0.0f, 1.0f, 0.0f, 0.6f}};  // middle
+
+const char* const kVertex = R"(#version 450 core
+uniform vec4 rect;   // x0 y0 x1 y1
+uniform float depth; // NDC z in [-1, 1]
+void main() {
+  vec2 corner = vec2(gl_VertexID & 1, gl_VertexID >> 1);
+  gl_Position = vec4(mix(rect.xy, rect.zw, corner), depth, 1.0);
+}
+)";
+const char* const kOpaqueFragment = R"(#version 450 core
+uniform vec4 colour;
+layout(location = 0) out vec4 out_colour;
+void main() { out_colour = colour; }
+)";
+// The panes' fragment shader: the module first (it starts with #version),
+// then the host's code; early depth tests so panes behind the opaque
+// surfaces never reach ha_insert.
+const char* const kPaneMain = R"(                            // [habuffer]
+layout(early_fragment_tests) in;                             // [habuffer]
+uniform vec4 colour;                                         // [habuffer]
+void main() { ha_insert_here(colour); }                      // [habuffer]
+)";
+
+void check(bool ok, const std::string& what) {
+  if (!ok) throw std::runtime_error(what);
+}
+
+// A headless OpenGL 4.5 core context (Mesa's surfaceless platform, else the
+// first EGL device: NVIDIA's driver).
+void make_context() {
+  EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) {
+    EGLDeviceEXT device = nullptr;
+    EGLint n = 0;
+    check(eglQueryDevicesEXT(1, &device, &n) && n > 0, "no EGL display or device");
+    display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+    check(display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr), "EGL device display failed");
+  }
+  check(eglBindAPI(EGL_OPENGL_API), "no desktop OpenGL through EGL");
+  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  const EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
+  check(context != EGL_NO_CONTEXT, "no OpenGL 4.5 core context");
+  check(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context), "eglMakeCurrent failed");
+}
+
+GLuint compile(GLenum stage, const std::string& source) {
+  const GLuint shader = glCreateShader(stage);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    throw std::runtime_error(std::string("shader compile failed: ") + log);
+  }
+  return shader;
+}
+
+GLuint link_program(const std::string& vertex, const std::string& fragment) {
+  const GLuint program = glCreateProgram();
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex), fs = compile(GL_FRAGMENT_SHADER, fragment);
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  check(ok != 0, "program link failed");
+  return program;
+}
+
+void draw(GLuint program, const Quad& q) {
+  glUseProgram(program);
+  glUniform4f(glGetUniformLocation(program, "rect"), q.x0, q.y0, q.x1, q.y1);
+  glUniform1f(glGetUniformLocation(program, "depth"), 2.0f * q.depth - 1.0f);
+  glUniform4f(glGetUniformLocation(program, "colour"), q.r, q.g, q.b, q.a);
+  glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+}
+
+bool inside(const Quad& q, float x, float y) { return x >= q.x0 && x < q.x1 && y >= q.y0 && y < q.y1; }
+
+// What pixel (px, py) must show: the panes in front of the opaque surface
+// there, sorted near to far, blended front to back over it.
+std::vector<float> expected_pixel(int px, int py) {
+  const float x = (static_cast<float>(px) + 0.5f) / kWidth * 2.0f - 1.0f;
+  const float y = (static_cast<float>(py) + 0.5f) / kHeight * 2.0f - 1.0f;
+  const Quad& opaque = inside(kBox, x, y) ? kBox : kFloor;
+  std::vector<const Quad*> panes;
+  for (const Quad& q : kPanes)
+    if (inside(q, x, y) && q.depth < opaque.depth) panes.push_back(&q);
+  std::sort(panes.begin(), panes.end(), [](const Quad* a, const Quad* b) { return a->depth < b->depth; });
+  float c[3] = {0, 0, 0}, transmittance = 1.0f;
+  for (const Quad* q : panes) {
+    const float a = std::round(q->a * 255.0f) / 255.0f, w = transmittance * a;
+    c[0] += w * q->r;
+    c[1] += w * q->g;
+    c[2] += w * q->b;
+    transmittance *= 1.0f - a;
+  }
+  return {c[0] + transmittance * opaque.r, c[1] + transmittance * opaque.g, c[2] + transmittance * opaque.b};
+}
+
+}  // namespace
+
+int main() {
+  try {
+    make_context();
+    // The host's framebuffer, shaders and vertex array.
+    GLuint colour = 0, depth = 0, framebuffer = 0, vertex_array = 0;
+    glCreateRenderbuffers(1, &colour);
+    glNamedRenderbufferStorage(colour, GL_RGBA8, kWidth, kHeight);
+    glCreateRenderbuffers(1, &depth);
+    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, kWidth, kHeight);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+    glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    check(glCheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE, "framebuffer");
+    glCreateVertexArrays(1, &vertex_array);
+    const GLuint opaque = link_program(kVertex, kOpaqueFragment);
+
+    namespace hb = habuffer;                                                                  // [habuffer]
+    const auto mode = hb::gl::chosen_atomic_mode(hb::gl::query_gl_info(), hb::Layout::L64);  // [habuffer]
+    check(mode.has_value(), "this OpenGL has no 64-bit shader integers");                    // [habuffer]
+    hb::BufferConfig config;                                                                  // [habuffer]
+    config.screen = {kWidth, kHeight};                                                        // [habuffer]
+    hb::gl::GlFrameOptions options;                                                           // [habuffer]
+    options.adaptive = true;      // the table follows the fragment count            // [habuffer]
+    options.max_attempts = 4;     // lossless: a frame that drops anything is redone // [habuffer]
+    hb::gl::GlHaBuffer oit(config, hb::OffsetSource{}, *mode, options);                      // [habuffer]
+    const GLuint panes = link_program(kVertex, oit.module_source(hb::gl::ShaderStage::Fragment) + kPaneMain);  // [habuffer]
+
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    glBindVertexArray(vertex_array);
+    glViewport(0, 0, kWidth, kHeight);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    draw(opaque, kFloor);
+    draw(opaque, kBox);
+    // The translucent panes: depth tested against the opaque surfaces, no
+    // depth or colour writes.
+    glDepthMask(GL_FALSE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const hb::gl::FrameReport report = oit.frame([&] {                                        // [habuffer]
+      for (const Quad& q : kPanes) draw(panes, q);
+    });                                                                                       // [habuffer]
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    oit.resolve_over();  // the sorted panes over the opaque image                            // [habuffer]
+    std::printf("habuffer: %llu fragments, %llu stored, %llu lost, table %s\n",               // [habuffer]
+                static_cast<unsigned long long>(report.counters.fragments),                   // [habuffer]
+                static_cast<unsigned long long>(report.counters.stored()),                    // [habuffer]
+                static_cast<unsigned long long>(report.counters.failures()), report.table.str().c_str());  // [habuffer]
+
+    std::vector<unsigned char> pixels(4 * kWidth * kHeight);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    int wrong = 0;
+    float worst = 0.0f;
+    for (int py = 0; py < kHeight; ++py)
+      for (int px = 0; px < kWidth; ++px) {
+        const std::vector<float> want = expected_pixel(px, py);
+        for (int k = 0; k < 3; ++k) {
+          const float got = pixels[4 * (px + py * kWidth) + k] / 255.0f, error = std::fabs(got - want[k]);
+          worst = std::max(worst, error);
+          if (error > 1.5f / 255.0f && ++wrong <= 3)
+            std::fprintf(stderr, "pixel (%d, %d) channel %d: %.4f, expected %.4f\n", px, py, k, got, want[k]);
+        }
+      }
+    std::printf("host_app: %d x %d pixels, largest error %.5f, %d channels off\n", kWidth, kHeight, worst, wrong);
+    return wrong == 0 && report.counters.failures() == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "host_app: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# Install-and-consume test: installs the build tree into a temporary prefix,
+# then, as a host project would:
+#  - configures examples/ out of tree with find_package(habuffer CONFIG) and a
+#    C++17 default (the package's targets must raise it to C++20), builds it
+#    and runs both examples headless (each checks its own pixels);
+#  - builds the CPU example again through pkg-config alone;
+#  - compiles every installed header on its own;
+#  - checks that the installed headers define no macro outside HABUFFER_*;
+#  - checks the installed GLSL files and the package's version check.
+# Usage: consume.sh BUILD_DIR SOURCE_DIR WORK_DIR
+set -euo pipefail
+build=$1 source=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+prefix=$work/prefix
+fail() { echo "consume: $*" >&2; exit 1; }
+
+cmake --install "$build" --prefix "$prefix" >"$work/install.log"
+echo "installed into $prefix:"
+(cd "$prefix" && find . -type f | sed -E 's#/[^/]+\.(h|glsl)$#/*.\1#' | sort | uniq -c)
+
+echo "== CMake package"
+cmake -S "$source/examples" -B "$work/examples" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_STANDARD=17 -DCMAKE_CXX_EXTENSIONS=ON >"$work/configure.log" ||
+  { cat "$work/configure.log"; fail "configuring the examples failed"; }
+cmake --build "$work/examples" >"$work/build.log" 2>&1 || { cat "$work/build.log"; fail "building the examples failed"; }
+"$work/examples/cpu_only" || fail "cpu_only failed"
+"$work/examples/host_app" || fail "host_app failed"
+
+echo "== a version the package must refuse"
+mkdir -p "$work/too_new"
+cat >"$work/too_new/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.22)
+project(too_new LANGUAGES CXX)
+find_package(habuffer 99.0 CONFIG REQUIRED COMPONENTS core)
+CMAKE
+if cmake -S "$work/too_new" -B "$work/too_new/build" -DCMAKE_PREFIX_PATH="$prefix" >"$work/too_new.log" 2>&1; then
+  fail "find_package(habuffer 99.0) succeeded"
+fi
+cat >"$work/too_new/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.22)
+project(no_component LANGUAGES CXX)
+find_package(habuffer CONFIG REQUIRED COMPONENTS vulkan)
+CMAKE
+if cmake -S "$work/too_new" -B "$work/too_new/build2" -DCMAKE_PREFIX_PATH="$prefix" >"$work/no_component.log" 2>&1; then
+  fail "find_package(habuffer COMPONENTS vulkan) succeeded"
+fi
+grep -q "no component 'vulkan'" "$work/no_component.log" || fail "the missing component is not named"
+
+echo "== pkg-config"
+export PKG_CONFIG_PATH=$prefix/lib/pkgconfig:$prefix/lib/x86_64-linux-gnu/pkgconfig
+pkg-config --exists habuffer-core habuffer-gl || fail "pkg-config does not find habuffer-core and habuffer-gl"
+# shellcheck disable=SC2046
+c++ -std=c++20 -O1 "$source/examples/cpu_only/main.cpp" -o "$work/cpu_only_pc" $(pkg-config --cflags --libs habuffer-core)
+"$work/cpu_only_pc" >/dev/null || fail "cpu_only built through pkg-config failed"
+[ -d "$(pkg-config --variable=glsldir habuffer-gl)" ] || fail "habuffer-gl's glsldir does not exist"
+
+echo "== every installed header compiles on its own"
+find "$prefix/include/habuffer" -name '*.h' ! -path '*/shared/*' | sort >"$work/headers.txt"
+[ -s "$work/headers.txt" ] || fail "no headers installed"
+xargs -P 2 -I{} sh -c 'echo "#include \"{}\"" | c++ -std=c++20 -fsyntax-only -I"$1" -x c++ - || { echo "not self-contained: {}"; exit 255; }' \
+  _ "$prefix/include" <"$work/headers.txt" || fail "a header does not compile on its own"
+echo "$(wc -l <"$work/headers.txt") headers"
+
+echo "== no macros outside HABUFFER_*"
+baseline='#include <algorithm>
+#include <array>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+#include <glm/glm.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>'
+macros() { c++ -std=c++20 -dM -E -I"$prefix/include" -x c++ - | awk '{print $2}' | sed 's/(.*//' | sort -u; }
+echo "$baseline" | macros >"$work/macros_baseline.txt"
+printf '%s\n#include <habuffer/habuffer.h>\n#include <habuffer/gl.h>\n#include <habuffer/hash_kernel.h>\n#include <habuffer/lists_kernel.h>\n#include <habuffer/arrays_kernel.h>\n#include <habuffer/kbuffer_kernel.h>\n#include <habuffer/blended_kernel.h>\n' "$baseline" |
+  macros >"$work/macros_ours.txt"
+comm -13 "$work/macros_baseline.txt" "$work/macros_ours.txt" | grep -v '^HABUFFER_' | grep -v '^_' >"$work/leaked.txt" || true
+[ ! -s "$work/leaked.txt" ] || { cat "$work/leaked.txt"; fail "macros outside HABUFFER_* leak from the headers"; }
+
+echo "== GLSL files"
+for mode in native32 native64 emulated64; do
+  for t in ha lists arrays sorted-lists kbuffer; do
+    for stage in frag comp; do
+      f=$prefix/share/habuffer/glsl/$mode/$t.$stage.glsl
+      [ -s "$f" ] || fail "missing $f"
+      ! grep -q '^#version' "$f" || fail "$f has a #version line"
+    done
+  done
+  [ -f "$prefix/share/habuffer/glsl/$mode/extensions.glsl" ] || fail "missing $mode/extensions.glsl"
+done
+echo "consume: all passed"
