@@ -10,7 +10,7 @@
 #  - checks the installed GLSL files and the package's version check.
 # Usage: consume.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -euo pipefail
-build=$1 source=$2 work=$3
+build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) work=$3
 rm -rf "$work"
 mkdir -p "$work"
 prefix=$work/prefix
@@ -47,6 +47,32 @@ if cmake -S "$work/too_new" -B "$work/too_new/build2" -DCMAKE_PREFIX_PATH="$pref
   fail "find_package(habuffer COMPONENTS vulkan) succeeded"
 fi
 grep -q "no component 'vulkan'" "$work/no_component.log" || fail "the missing component is not named"
+
+echo "== add_subdirectory into a C++17 host project"
+mkdir -p "$work/subdir"
+cat >"$work/subdir/CMakeLists.txt" <<CMAKE
+cmake_minimum_required(VERSION 3.22)
+project(host LANGUAGES CXX)
+set(CMAKE_CXX_STANDARD 17)
+add_subdirectory("$source" habuffer)
+foreach(t habuffer habuffer_tests habuffer_gl_tests habuffer_bench habuffer_scene habuffer_render habuffer_harness)
+  if(TARGET \${t})
+    message(FATAL_ERROR "add_subdirectory made \${t}")
+  endif()
+endforeach()
+if(CMAKE_BUILD_TYPE)
+  message(FATAL_ERROR "the host's build type became \${CMAKE_BUILD_TYPE}")
+endif()
+add_executable(cpu_only "$source/examples/cpu_only/main.cpp")
+target_link_libraries(cpu_only PRIVATE habuffer::core)
+add_executable(host_app "$source/examples/host_app/main.cpp")
+target_link_libraries(host_app PRIVATE habuffer::gl)
+CMAKE
+cmake -S "$work/subdir" -B "$work/subdir/build" -G Ninja >"$work/subdir.log" 2>&1 ||
+  { cat "$work/subdir.log"; fail "add_subdirectory: configuring failed"; }
+cmake --build "$work/subdir/build" >>"$work/subdir.log" 2>&1 || { tail -40 "$work/subdir.log"; fail "add_subdirectory: build failed"; }
+"$work/subdir/build/cpu_only" >/dev/null || fail "add_subdirectory: cpu_only failed"
+"$work/subdir/build/host_app" >/dev/null || fail "add_subdirectory: host_app failed"
 
 echo "== pkg-config"
 export PKG_CONFIG_PATH=$prefix/lib/pkgconfig:$prefix/lib/x86_64-linux-gnu/pkgconfig
