@@ -4,10 +4,14 @@
 #  - configures examples/ out of tree with find_package(habuffer CONFIG) and a
 #    C++17 default (the package's targets must raise it to C++20), builds it
 #    and runs both examples headless (each checks its own pixels);
+#  - checks the package refuses a newer version and an unknown component;
+#  - adds the source tree to a C++17 host project by add_subdirectory, with
+#    shared libraries and without oneTBB: only the libraries are made, the
+#    host's build type is kept, both examples build and run;
 #  - builds the CPU example again through pkg-config alone;
 #  - compiles every installed header on its own;
 #  - checks that the installed headers define no macro outside HABUFFER_*;
-#  - checks the installed GLSL files and the package's version check.
+#  - checks the installed GLSL files.
 # Usage: consume.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) work=$3
@@ -48,12 +52,14 @@ if cmake -S "$work/too_new" -B "$work/too_new/build2" -DCMAKE_PREFIX_PATH="$pref
 fi
 grep -q "no component 'vulkan'" "$work/no_component.log" || fail "the missing component is not named"
 
-echo "== add_subdirectory into a C++17 host project"
+echo "== add_subdirectory into a C++17 host project (shared libraries, std::thread instead of oneTBB)"
 mkdir -p "$work/subdir"
 cat >"$work/subdir/CMakeLists.txt" <<CMAKE
 cmake_minimum_required(VERSION 3.22)
 project(host LANGUAGES CXX)
 set(CMAKE_CXX_STANDARD 17)
+set(BUILD_SHARED_LIBS ON)
+set(HABUFFER_WITH_TBB OFF CACHE BOOL "")
 add_subdirectory("$source" habuffer)
 foreach(t habuffer habuffer_tests habuffer_gl_tests habuffer_bench habuffer_scene habuffer_render habuffer_harness)
   if(TARGET \${t})
@@ -72,6 +78,8 @@ cmake -S "$work/subdir" -B "$work/subdir/build" -G Ninja >"$work/subdir.log" 2>&
   { cat "$work/subdir.log"; fail "add_subdirectory: configuring failed"; }
 cmake --build "$work/subdir/build" >>"$work/subdir.log" 2>&1 || { tail -40 "$work/subdir.log"; fail "add_subdirectory: build failed"; }
 "$work/subdir/build/cpu_only" >/dev/null || fail "add_subdirectory: cpu_only failed"
+ldd "$work/subdir/build/cpu_only" | grep -q libhabuffer_core.so || fail "add_subdirectory: libhabuffer_core is not shared"
+! ldd "$work/subdir/build/cpu_only" | grep -q libtbb || fail "add_subdirectory: oneTBB linked with HABUFFER_WITH_TBB=OFF"
 "$work/subdir/build/host_app" >/dev/null || fail "add_subdirectory: host_app failed"
 
 echo "== pkg-config"
