@@ -1,5 +1,6 @@
-// Fixed per-pixel arrays on the CPU: the shared GLSL of core/include/habuffer/shared/ha_arrays.glsl
-// compiled as member functions, over the buffers a shader would get.
+/// @file
+/// Fixed per-pixel arrays on the CPU: the shared GLSL of core/include/habuffer/shared/ha_arrays.glsl
+/// compiled as member functions, over the buffers a shader would get.
 #pragma once
 
 #include <atomic>
@@ -10,16 +11,16 @@
 
 namespace habuffer {
 
-// The buffers a kernel works on (what a shader gets bound).
+/// The buffers a kernel works on (what a shader gets bound).
 struct ArraysBuffers {
-  std::uint32_t* counts;       // one per pixel
-  glm::uvec2* layers;          // K per pixel, layer-major
-  std::uint32_t* max_arrived;  // the largest count of a pixel that overflowed
+  std::uint32_t* counts;       ///< one per pixel
+  glm::uvec2* layers;          ///< K per pixel, layer-major
+  std::uint32_t* max_arrived;  ///< the largest count of a pixel that overflowed
 };
 
-// Concurrent: the per-pixel counters are incremented atomically (several
-// inserters at once); the sort and compositing need no atomics (one pixel
-// per thread), except the note of the largest overflow.
+/// Concurrent: the per-pixel counters are incremented atomically (several
+/// inserters at once); the sort and compositing need no atomics (one pixel
+/// per thread), except the note of the largest overflow.
 template <bool Concurrent>
 class ArraysKernel {
  public:
@@ -50,7 +51,7 @@ class ArraysKernel {
   void fa_store_count(uint pixel, uint n) { b_.counts[pixel] = n; }
   uvec2 fa_load_layer(uint slot) const { return b_.layers[slot]; }
   void fa_store_layer(uint slot, uvec2 e) { b_.layers[slot] = e; }
-  // Atomic even for one inserter: the sort pass runs its rows on several threads.
+  /// Atomic even for one inserter: the sort pass runs its rows on several threads.
   void fa_note_overflow(uint arrived) { ha_fetch_max<true>(*b_.max_arrived, arrived); }
 
 #include "shared/ha_record.glsl"

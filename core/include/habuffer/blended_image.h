@@ -1,10 +1,11 @@
-// The two baselines that store no lists, on the CPU: weighted blended OIT
-// (McGuire and Bavoil 2013) and plain over-blending in submission order.
-// Every valid fragment is blended into per-pixel accumulators (outcome
-// blended); nothing is stored, so there are no lists to read and nothing is
-// ever dropped. Each pixel sees its fragments in stream order whatever the
-// threads (threads own bands of rows and each scans the whole stream), so
-// the image is the serial one bit for bit.
+/// @file
+/// The two baselines that store no lists, on the CPU: weighted blended OIT
+/// (McGuire and Bavoil 2013) and plain over-blending in submission order.
+/// Every valid fragment is blended into per-pixel accumulators (outcome
+/// blended); nothing is stored, so there are no lists to read and nothing is
+/// ever dropped. Each pixel sees its fragments in stream order whatever the
+/// threads (threads own bands of rows and each scans the whole stream), so
+/// the image is the serial one bit for bit.
 #pragma once
 
 #include <cstdint>
@@ -17,8 +18,8 @@ namespace habuffer {
 
 class BlendedImage final : public FragmentBuffer {
  public:
-  // config.technique wboit or blend; throws std::invalid_argument otherwise
-  // or for a bad configuration.
+  /// config.technique wboit or blend; throws std::invalid_argument otherwise
+  /// or for a bad configuration.
   explicit BlendedImage(const TechniqueConfig& config);
 
   [[nodiscard]] Technique technique() const override { return config_.technique; }
@@ -26,19 +27,19 @@ class BlendedImage final : public FragmentBuffer {
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
 
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
-  // Resets the accumulators; returns 0 (nothing is stored).
+  /// Resets the accumulators; returns 0 (nothing is stored).
   std::uint64_t clear() override;
   [[nodiscard]] std::uint64_t count_stored() const override { return 0; }
   [[nodiscard]] std::uint64_t capacity() const override { return 0; }
-  // No lists: `out` is left empty; returns 0.
+  /// No lists: `out` is left empty; returns 0.
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
-  // The accumulators: 16 bytes per pixel (blend), 20 (wboit: RGBA and revealage, float32).
+  /// The accumulators: 16 bytes per pixel (blend), 20 (wboit: RGBA and revealage, float32).
   [[nodiscard]] std::uint64_t memory_bytes() const override;
 
-  // The GPU path's read-back: RGBA accumulators (and wboit's revealage) per
-  // pixel; throws std::invalid_argument when the sizes differ.
+  /// The GPU path's read-back: RGBA accumulators (and wboit's revealage) per
+  /// pixel; throws std::invalid_argument when the sizes differ.
   void import_state(std::span<const glm::vec4> accum, std::span<const float> revealage);
 
  private:
@@ -46,8 +47,8 @@ class BlendedImage final : public FragmentBuffer {
 
   TechniqueConfig config_;
   TechniqueParams params_;
-  std::vector<glm::vec4> accum_;    // blend: (C, T); wboit: the weighted sums
-  std::vector<float> revealage_;    // wboit
+  std::vector<glm::vec4> accum_;    ///< blend: (C, T); wboit: the weighted sums
+  std::vector<float> revealage_;    ///< wboit
 };
 
 }  // namespace habuffer

@@ -1,5 +1,6 @@
-// Weighted blended OIT and plain blending on the CPU: the shared GLSL of
-// core/include/habuffer/shared/ha_blended.glsl compiled as member functions.
+/// @file
+/// Weighted blended OIT and plain blending on the CPU: the shared GLSL of
+/// core/include/habuffer/shared/ha_blended.glsl compiled as member functions.
 #pragma once
 
 #include "habuffer/glsl_env.h"

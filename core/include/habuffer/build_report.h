@@ -1,5 +1,6 @@
-// The numbers that describe one build: counters (SPEC invariant 1), load,
-// ages and memory. The CLI writes them as stats JSON.
+/// @file
+/// The numbers that describe one build: counters (SPEC invariant 1), load,
+/// ages and memory. The CLI writes them as stats JSON.
 #pragma once
 
 #include <cstdint>
@@ -11,16 +12,16 @@ namespace habuffer {
 
 struct BuildReport {
   Counters counters;
-  std::uint64_t stored = 0;        // records held, measured on the buffer (the HA-buffer's non-empty slots)
-  std::uint64_t capacity = 0;      // records it could hold (slots, nodes, layers of every pixel)
-  double load_factor = 0.0;        // stored / capacity
-  // The HA-buffer's ages (zero and empty for other techniques).
-  std::uint32_t max_age = 0;       // largest age of a stored record
-  double mean_age = 0.0;           // over stored records
-  std::vector<std::uint64_t> age_histogram;  // [a] = stored records of age a, a = 0..max_age
-  std::uint32_t max_age_table_max = 0;       // largest cell of M
+  std::uint64_t stored = 0;        ///< records held, measured on the buffer (the HA-buffer's non-empty slots)
+  std::uint64_t capacity = 0;      ///< records it could hold (slots, nodes, layers of every pixel)
+  double load_factor = 0.0;        ///< stored / capacity
+  /// The HA-buffer's ages (zero and empty for other techniques).
+  std::uint32_t max_age = 0;       ///< largest age of a stored record
+  double mean_age = 0.0;           ///< over stored records
+  std::vector<std::uint64_t> age_histogram;  ///< [a] = stored records of age a, a = 0..max_age
+  std::uint32_t max_age_table_max = 0;       ///< largest cell of M
   std::uint64_t memory_bytes = 0;
-  std::uint64_t memory_model_bytes = 0;  // memory_model.h, for the buffer as it is
+  std::uint64_t memory_model_bytes = 0;  ///< memory_model.h, for the buffer as it is
 };
 
 BuildReport summarize(const FragmentBuffer& buffer, const Counters& counters);

@@ -1,6 +1,7 @@
-// Division and remainder of 32-bit values by a runtime constant without a
-// hardware divide (Lemire, Kaser and Kurz, "Faster remainder by direct
-// computation", 2019): exact for every 32-bit dividend and divisor >= 1.
+/// @file
+/// Division and remainder of 32-bit values by a runtime constant without a
+/// hardware divide (Lemire, Kaser and Kurz, "Faster remainder by direct
+/// computation", 2019): exact for every 32-bit dividend and divisor >= 1.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +14,7 @@ class FastDivisor {
  public:
   explicit FastDivisor(std::uint32_t d = 1) : magic_(~std::uint64_t{0} / d + 1), d_(d) {}
 
-  // For d = 1 the magic wraps to 0, which div() special-cases and mod() gets right.
+  /// For d = 1 the magic wraps to 0, which div() special-cases and mod() gets right.
   [[nodiscard]] std::uint32_t div(std::uint32_t v) const {
     if (magic_ == 0) return v;
     return static_cast<std::uint32_t>((static_cast<Uint128>(magic_) * v) >> 64);

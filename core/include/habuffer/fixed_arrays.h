@@ -1,9 +1,10 @@
-// Fixed per-pixel arrays on the CPU (seed 004): K layers per pixel and a
-// per-pixel atomic counter, sorted after each insert batch. A fragment
-// arriving at a pixel whose K layers are taken is dropped and counted
-// (dropped_layers); largest_overflow() gives the most fragments a pixel
-// received, so a caller can size K for a lossless regather. With K at least
-// the depth complexity the lists are exact.
+/// @file
+/// Fixed per-pixel arrays on the CPU (seed 004): K layers per pixel and a
+/// per-pixel atomic counter, sorted after each insert batch. A fragment
+/// arriving at a pixel whose K layers are taken is dropped and counted
+/// (dropped_layers); largest_overflow() gives the most fragments a pixel
+/// received, so a caller can size K for a lossless regather. With K at least
+/// the depth complexity the lists are exact.
 #pragma once
 
 #include <cstdint>
@@ -17,7 +18,7 @@ namespace habuffer {
 
 class FixedArrays final : public FragmentBuffer {
  public:
-  // Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
+  /// Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
   explicit FixedArrays(const TechniqueConfig& config);
 
   [[nodiscard]] Technique technique() const override { return Technique::Arrays; }
@@ -30,19 +31,19 @@ class FixedArrays final : public FragmentBuffer {
   std::uint64_t clear() override;
   [[nodiscard]] std::uint64_t count_stored() const override;
   [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.layers} * screen().area(); }
-  // The most fragments one pixel received since the last clear, when some
-  // pixel received more than K; else 0.
+  /// The most fragments one pixel received since the last clear, when some
+  /// pixel received more than K; else 0.
   [[nodiscard]] std::uint32_t largest_overflow() const { return max_arrived_; }
 
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
-  // Counters and layers.
+  /// Counters and layers.
   [[nodiscard]] std::uint64_t memory_bytes() const override;
 
-  // The GPU path's read-back (after its sort pass): per-pixel sorted lengths,
-  // layers, and the largest overflow; throws std::invalid_argument when the
-  // sizes differ or a length exceeds K.
+  /// The GPU path's read-back (after its sort pass): per-pixel sorted lengths,
+  /// layers, and the largest overflow; throws std::invalid_argument when the
+  /// sizes differ or a length exceeds K.
   void import_state(std::span<const std::uint32_t> counts, std::span<const glm::uvec2> layers,
                     std::uint32_t largest_overflow);
 

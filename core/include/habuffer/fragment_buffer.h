@@ -1,8 +1,9 @@
-// The one interface every technique's CPU container implements: insert a
-// stream (counting every outcome, SPEC invariant 1), read each pixel's sorted
-// list, composite, clear and say its memory. Lists of every technique are
-// the same (code, data) entries in the same order, identical entries merged,
-// so an exact technique's lists equal the HA-buffer's when nothing is dropped.
+/// @file
+/// The one interface every technique's CPU container implements: insert a
+/// stream (counting every outcome, SPEC invariant 1), read each pixel's sorted
+/// list, composite, clear and say its memory. Lists of every technique are
+/// the same (code, data) entries in the same order, identical entries merged,
+/// so an exact technique's lists equal the HA-buffer's when nothing is dropped.
 #pragma once
 
 #include <cstdint>
@@ -18,23 +19,23 @@
 
 namespace habuffer {
 
-// Every mode builds the same result (SPEC 9); they differ in speed only.
-// docs/performance.md compares them.
+/// Every mode builds the same result (SPEC 9); they differ in speed only.
+/// docs/performance.md compares them.
 enum class InsertMode {
-  Auto,           // Serial for one thread, Atomic for several (fastest measured)
-  Serial,         // one thread, input order, plain loads and stores
-  Atomic,         // the GPU's model: threads split the stream and share every slot through atomics
-  OwnerComputes,  // HA-buffer only: no atomics, table rows dealt out to threads (owner_computes.h)
+  Auto,           ///< Serial for one thread, Atomic for several (fastest measured)
+  Serial,         ///< one thread, input order, plain loads and stores
+  Atomic,         ///< the GPU's model: threads split the stream and share every slot through atomics
+  OwnerComputes,  ///< HA-buffer only: no atomics, table rows dealt out to threads (owner_computes.h)
 };
 
 struct InsertOptions {
-  std::uint32_t threads = 1;  // 0: every hardware thread
+  std::uint32_t threads = 1;  ///< 0: every hardware thread
   InsertMode mode = InsertMode::Auto;
-  std::uint32_t band_rows = 16;  // OwnerComputes: table rows per band
+  std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band
 };
 
-// One record of a pixel's list, front to back. `age` is the HA-buffer's
-// (1-based probe count); other techniques give 0.
+/// One record of a pixel's list, front to back. `age` is the HA-buffer's
+/// (1-based probe count); other techniques give 0.
 struct ListEntry {
   std::uint32_t age = 0;
   std::uint32_t code = 0;
@@ -49,31 +50,31 @@ class FragmentBuffer {
   [[nodiscard]] virtual Technique technique() const = 0;
   [[nodiscard]] virtual Extent screen() const = 0;
 
-  // Inserts a batch (and, for techniques that sort afterwards, sorts the
-  // touched lists, merging identical entries as duplicates). Throws
-  // std::out_of_range naming the first fragment off the screen, before
-  // inserting anything.
+  /// Inserts a batch (and, for techniques that sort afterwards, sorts the
+  /// touched lists, merging identical entries as duplicates). Throws
+  /// std::out_of_range naming the first fragment off the screen, before
+  /// inserting anything.
   virtual Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) = 0;
-  // Empties the buffer; returns the records it held.
+  /// Empties the buffer; returns the records it held.
   virtual std::uint64_t clear() = 0;
   [[nodiscard]] virtual std::uint64_t count_stored() const = 0;
-  // Records the buffer can hold in all (slots, nodes, layers of every pixel).
+  /// Records the buffer can hold in all (slots, nodes, layers of every pixel).
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
 
-  // Pixel (x, y)'s list, nearest first; returns the storage words read to find it.
+  /// Pixel (x, y)'s list, nearest first; returns the storage words read to find it.
   virtual std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const = 0;
-  // Each pixel over its own background (row-major, screen area entries).
+  /// Each pixel over its own background (row-major, screen area entries).
   [[nodiscard]] virtual std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                                std::uint32_t threads = 0) const = 0;
-  // Bytes of every buffer the technique allocated.
+  /// Bytes of every buffer the technique allocated.
   [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
-  // The configuration it holds now (sizes grown by lossless builds included).
+  /// The configuration it holds now (sizes grown by lossless builds included).
   [[nodiscard]] virtual TechniqueConfig technique_config() const = 0;
 };
 
-// Throws std::out_of_range naming the first fragment outside `screen`.
+/// Throws std::out_of_range naming the first fragment outside `screen`.
 void check_on_screen(std::span<const Fragment> fragments, Extent screen);
-// The threads `threads` means (0: every hardware thread).
+/// The threads `threads` means (0: every hardware thread).
 std::uint32_t resolve_threads(std::uint32_t threads);
 
 }  // namespace habuffer

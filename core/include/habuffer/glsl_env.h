@@ -1,6 +1,7 @@
-// The C++ side of the shared GLSL sources in core/include/habuffer/shared/: the types and
-// builtins a .glsl file expects, provided at class scope so that a class
-// template can #include a shared file and turn its functions into members.
+/// @file
+/// The C++ side of the shared GLSL sources in core/include/habuffer/shared/: the types and
+/// builtins a .glsl file expects, provided at class scope so that a class
+/// template can #include a shared file and turn its functions into members.
 #pragma once
 
 #include <array>
@@ -13,7 +14,7 @@
 
 #include "shared/ha_constants.h"
 
-// GLSL's inout parameters are C++ references.
+/// GLSL's inout parameters are C++ references.
 #define HABUFFER_INOUT(T) T&
 
 #define HABUFFER_GLSL_CLASS_PRELUDE                                              \
@@ -27,9 +28,9 @@
   static float min(float a, float b) { return a < b ? a : b; }             \
   static float max(float a, float b) { return a > b ? a : b; }
 
-// The private array of HABUFFER_SORT_LOCAL entries that ha_entries.glsl sorts in
-// (a GLSL shader's private array; here a member, so each kernel copy, one per
-// thread, has its own).
+/// The private array of HABUFFER_SORT_LOCAL entries that ha_entries.glsl sorts in
+/// (a GLSL shader's private array; here a member, so each kernel copy, one per
+/// thread, has its own).
 #define HABUFFER_GLSL_CLASS_LOCAL_ARRAY                                          \
   std::array<glm::uvec2, HABUFFER_SORT_LOCAL> ha_local_{};                       \
   glm::uvec2 ha_local_get(std::uint32_t k) const { return ha_local_[k]; }  \
@@ -37,10 +38,10 @@
 
 namespace habuffer {
 
-// GLSL's atomicMax on the CPU, for every kernel's slots, cells and images:
-// returns the old value, leaves max(old, x). Each failed strong exchange saw
-// a strictly larger value, so the loop ends after at most as many rounds as
-// other threads raised this very word. Without Concurrent: plain loads and stores.
+/// GLSL's atomicMax on the CPU, for every kernel's slots, cells and images:
+/// returns the old value, leaves max(old, x). Each failed strong exchange saw
+/// a strictly larger value, so the loop ends after at most as many rounds as
+/// other threads raised this very word. Without Concurrent: plain loads and stores.
 template <bool Concurrent, class T>
 T ha_fetch_max(T& v, T x) {
   if constexpr (Concurrent) {
@@ -56,7 +57,7 @@ T ha_fetch_max(T& v, T x) {
   }
 }
 
-// A plain read of a word other threads may write (relaxed atomic when Concurrent).
+/// A plain read of a word other threads may write (relaxed atomic when Concurrent).
 template <bool Concurrent, class T>
 T ha_fetch(const T& v) {
   if constexpr (Concurrent) return std::atomic_ref<T>(const_cast<T&>(v)).load(std::memory_order_relaxed);

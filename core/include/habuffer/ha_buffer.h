@@ -1,6 +1,7 @@
-// The HA-buffer on the CPU: table T, max-age table M and offsets O of one
-// configuration, with concurrent insertion (SPEC 6), traversal and
-// compositing (SPEC 7) and clear-with-count (SPEC 8).
+/// @file
+/// The HA-buffer on the CPU: table T, max-age table M and offsets O of one
+/// configuration, with concurrent insertion (SPEC 6), traversal and
+/// compositing (SPEC 7) and clear-with-count (SPEC 8).
 #pragma once
 
 #include <cstdint>
@@ -21,8 +22,8 @@ namespace habuffer {
 
 class HaBuffer final : public FragmentBuffer {
  public:
-  // Validates the configuration (BufferConfig::validate) and that the offsets
-  // were made for this table with one offset per age (AMAX of them).
+  /// Validates the configuration (BufferConfig::validate) and that the offsets
+  /// were made for this table with one offset per age (AMAX of them).
   HaBuffer(const BufferConfig& config, OffsetSequence offsets);
   ~HaBuffer() override;
   HaBuffer(HaBuffer&&) noexcept;
@@ -35,43 +36,43 @@ class HaBuffer final : public FragmentBuffer {
   [[nodiscard]] Extent screen() const override;
   [[nodiscard]] Extent table() const;
 
-  // Inserts a batch; throws std::out_of_range (naming the index and pixel) if
-  // any fragment lies off the screen, before inserting anything.
+  /// Inserts a batch; throws std::out_of_range (naming the index and pixel) if
+  /// any fragment lies off the screen, before inserting anything.
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
-  // Inserts one fragment and returns its HA_* outcome. Not thread-safe
-  // against other calls on this buffer.
+  /// Inserts one fragment and returns its HA_* outcome. Not thread-safe
+  /// against other calls on this buffer.
   std::uint32_t insert_one(const Fragment& fragment);
 
-  // Zeroes T and M; returns the number of records T held.
+  /// Zeroes T and M; returns the number of records T held.
   std::uint64_t clear() override;
   [[nodiscard]] std::uint64_t count_stored() const override;
   [[nodiscard]] std::uint64_t capacity() const override { return slot_count(); }
   [[nodiscard]] std::uint64_t slot_count() const;
-  // Slot s as an unsigned integer (L32 records in the low 32 bits).
+  /// Slot s as an unsigned integer (L32 records in the low 32 bits).
   [[nodiscard]] std::uint64_t slot(std::uint64_t s) const;
   [[nodiscard]] const MaxAgeTable& max_age() const;
 
-  // Replaces T and M with state built elsewhere (the GPU path's read-back),
-  // so traversal, compositing and the dumps work on it. Throws
-  // std::invalid_argument when the sizes differ from this buffer's or an L32
-  // buffer is given a word above 32 bits.
+  /// Replaces T and M with state built elsewhere (the GPU path's read-back),
+  /// so traversal, compositing and the dumps work on it. Throws
+  /// std::invalid_argument when the sizes differ from this buffer's or an L32
+  /// buffer is given a word above 32 bits.
   void import_state(std::span<const std::uint64_t> table_words, std::span<const std::uint32_t> max_ages);
 
-  // Pixel (x, y)'s list, nearest first, by traversal (SPEC 7). Returns the
-  // slots read: the walk stops at the first age whose slot holds a younger
-  // record (Proposition A), before the cell's max age when it can.
+  /// Pixel (x, y)'s list, nearest first, by traversal (SPEC 7). Returns the
+  /// slots read: the walk stops at the first age whose slot holds a younger
+  /// record (Proposition A), before the cell's max age when it can.
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
-  // Front-to-back float32 compositing of pixel (x, y) over `background`.
+  /// Front-to-back float32 compositing of pixel (x, y) over `background`.
   [[nodiscard]] glm::vec4 composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const;
-  // The whole screen, row-major.
+  /// The whole screen, row-major.
   [[nodiscard]] std::vector<glm::vec4> composite_image(glm::vec3 background, std::uint32_t threads = 0) const;
-  // Each pixel over its own background (row-major, screen area entries).
+  /// Each pixel over its own background (row-major, screen area entries).
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
 
-  // Stored records per age: result[a] for a = 0..AMAX (result[0] is 0).
+  /// Stored records per age: result[a] for a = 0..AMAX (result[0] is 0).
   [[nodiscard]] std::vector<std::uint64_t> age_histogram() const;
-  // Bytes of T, M and O.
+  /// Bytes of T, M and O.
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] TechniqueConfig technique_config() const override { return ha_technique_config(config()); }
 

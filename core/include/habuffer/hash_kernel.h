@@ -1,6 +1,7 @@
-// The coherent Robin Hood hash on the CPU: the shared GLSL sources of
-// core/include/habuffer/shared/ compiled as member functions of this class template, with the
-// storage and atomics a GLSL shader would get from its buffers.
+/// @file
+/// The coherent Robin Hood hash on the CPU: the shared GLSL sources of
+/// core/include/habuffer/shared/ compiled as member functions of this class template, with the
+/// storage and atomics a GLSL shader would get from its buffers.
 #pragma once
 
 #include <atomic>
@@ -12,22 +13,22 @@
 
 namespace habuffer {
 
-// Everything a kernel reads besides its buffers: the GLSL "uniforms".
+/// Everything a kernel reads besides its buffers: the GLSL "uniforms".
 struct KernelParams {
   std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;
-  std::uint32_t payload_bits = 32;  // 32 for L64, 0 for L32
+  std::uint32_t payload_bits = 32;  ///< 32 for L64, 0 for L32
   Extent table;
   std::uint32_t block = HABUFFER_DEFAULT_BLOCK;
   std::uint32_t max_age_cells_x = 0;
   std::uint32_t iter_limit = HABUFFER_DEFAULT_ITER_LIMIT;
-  float cull_tau = 0.0f;  // 0: early cull off
+  float cull_tau = 0.0f;  ///< 0: early cull off
   Extent screen;
-  std::uint32_t* saturation = nullptr;  // early cull with saturation: a code per pixel (else nullptr: off)
+  std::uint32_t* saturation = nullptr;  ///< early cull with saturation: a code per pixel (else nullptr: off)
 };
 
-// Word: std::uint64_t (L64) or std::uint32_t (L32). Concurrent: slots and
-// max-age cells are updated with atomics (several inserters at once); the
-// serial form uses plain loads and stores and must own the table alone.
+/// Word: std::uint64_t (L64) or std::uint32_t (L32). Concurrent: slots and
+/// max-age cells are updated with atomics (several inserters at once); the
+/// serial form uses plain loads and stores and must own the table alone.
 template <class Word, bool Concurrent>
 class HashKernel {
  public:
@@ -51,7 +52,7 @@ class HashKernel {
         table_(table),
         max_age_(max_age) {}
 
-  // --- the environment the shared GLSL expects -----------------------------
+  /// --- the environment the shared GLSL expects -----------------------------
   static constexpr uint ha_word_bits = sizeof(Word) * 8;
   uint ha_age_bits;
   uint ha_payload_bits;
@@ -65,11 +66,11 @@ class HashKernel {
 
   uvec2 ha_offset(uint i) const { return offsets_[i]; }
 
-  // v / B by multiplication: a hardware divide per placement costs more than the probe.
+  /// v / B by multiplication: a hardware divide per placement costs more than the probe.
   uint ha_div_block(uint v) const { return block_.div(v); }
 
   Word ha_atomic_max_slot(ha_index s, Word r) { return ha_fetch_max<Concurrent>(table_[s], r); }
-  // CPU atomics always happen (the compare-exchange loop is lock-free).
+  /// CPU atomics always happen (the compare-exchange loop is lock-free).
   static uint ha_atomic_missed() { return 0u; }
   void ha_atomic_max_age(uint cell, uint age) { ha_fetch_max<Concurrent>(max_age_[cell], age); }
   Word ha_load_slot(ha_index s) const { return ha_fetch<Concurrent>(table_[s]); }
@@ -79,7 +80,7 @@ class HashKernel {
 
   [[nodiscard]] const Word* slots() const { return table_; }
 
-  // --- the shared algorithm -------------------------------------------------
+  /// --- the shared algorithm -------------------------------------------------
 #include "shared/ha_record.glsl"
 #include "shared/ha_probe.glsl"
 #include "shared/ha_carry.glsl"

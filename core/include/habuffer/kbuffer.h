@@ -1,8 +1,9 @@
-// The k-buffer on the CPU (seed 003): the K nearest fragments of each pixel
-// kept sorted by atomic max, what falls behind the K-th dropped and counted
-// (dropped_layers); with the occupancy map on, each insert batch first fills
-// the map and counts each pixel's limit, then rejects fragments beyond it
-// (occupancy_rejected) before they touch the layers.
+/// @file
+/// The k-buffer on the CPU (seed 003): the K nearest fragments of each pixel
+/// kept sorted by atomic max, what falls behind the K-th dropped and counted
+/// (dropped_layers); with the occupancy map on, each insert batch first fills
+/// the map and counts each pixel's limit, then rejects fragments beyond it
+/// (occupancy_rejected) before they touch the layers.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +17,7 @@ namespace habuffer {
 
 class KBuffer final : public FragmentBuffer {
  public:
-  // Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
+  /// Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
   explicit KBuffer(const TechniqueConfig& config);
 
   [[nodiscard]] Technique technique() const override { return Technique::KBuffer; }
@@ -32,15 +33,15 @@ class KBuffer final : public FragmentBuffer {
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
-  // Layers, and the occupancy map and limits when on.
+  /// Layers, and the occupancy map and limits when on.
   [[nodiscard]] std::uint64_t memory_bytes() const override;
 
-  // The GPU path's read-back: the layers as record words (32-bit words,
-  // two per L64 record, low first), and the occupancy limits (occupancy on);
-  // throws std::invalid_argument when the sizes differ.
+  /// The GPU path's read-back: the layers as record words (32-bit words,
+  /// two per L64 record, low first), and the occupancy limits (occupancy on);
+  /// throws std::invalid_argument when the sizes differ.
   void import_state(std::span<const std::uint32_t> slot_words, std::span<const std::uint32_t> limits);
-  // Pixel (x, y)'s occupancy limit (the bucket of the k-th occupied one, or
-  // 32 * occupancy_words when fewer are occupied); throws std::logic_error when occupancy is off.
+  /// Pixel (x, y)'s occupancy limit (the bucket of the k-th occupied one, or
+  /// 32 * occupancy_words when fewer are occupied); throws std::logic_error when occupancy is off.
   [[nodiscard]] std::uint32_t occupancy_limit(std::uint32_t x, std::uint32_t y) const;
 
  private:
@@ -53,8 +54,8 @@ class KBuffer final : public FragmentBuffer {
 
   TechniqueConfig config_;
   TechniqueParams params_;
-  std::vector<std::uint64_t> slots64_;  // L64
-  std::vector<std::uint32_t> slots32_;  // L32
+  std::vector<std::uint64_t> slots64_;  ///< L64
+  std::vector<std::uint32_t> slots32_;  ///< L32
   std::vector<std::uint32_t> occupancy_;
   std::vector<std::uint32_t> limits_;
 };

@@ -1,5 +1,6 @@
-// The k-buffer on the CPU: the shared GLSL of core/include/habuffer/shared/ha_kbuffer.glsl
-// compiled as member functions over the buffers a shader would get.
+/// @file
+/// The k-buffer on the CPU: the shared GLSL of core/include/habuffer/shared/ha_kbuffer.glsl
+/// compiled as member functions over the buffers a shader would get.
 #pragma once
 
 #include <atomic>
@@ -13,13 +14,13 @@ namespace habuffer {
 
 template <class Word>
 struct KBufferBuffers {
-  Word* slots;               // K per pixel, layer-major
-  std::uint32_t* occupancy;  // occupancy_words per pixel (occupancy on)
-  std::uint32_t* limits;     // one bucket per pixel (occupancy on)
+  Word* slots;               ///< K per pixel, layer-major
+  std::uint32_t* occupancy;  ///< occupancy_words per pixel (occupancy on)
+  std::uint32_t* limits;     ///< one bucket per pixel (occupancy on)
 };
 
-// Concurrent: slots and occupancy bits are updated atomically (several
-// inserters at once); the count pass and compositing need none.
+/// Concurrent: slots and occupancy bits are updated atomically (several
+/// inserters at once); the count pass and compositing need none.
 template <class Word, bool Concurrent>
 class KBufferKernel {
  public:

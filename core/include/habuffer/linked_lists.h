@@ -1,11 +1,12 @@
-// Per-pixel linked lists on the CPU: head pointers, a node pool of fixed
-// capacity with one atomic counter; either sorted after each insert batch
-// (technique lists, seed 002) or kept sorted by a lock-free insertion with
-// optional early termination and saturation depth (technique sorted-lists,
-// seed 001's PreSortLF and PreSortLF*).
-// A fragment arriving at a full pool is dropped and counted (dropped_pool);
-// requested() tells how many nodes the last gather wanted, so a caller can
-// size the next pool (adaptive sizing, lossless regathering).
+/// @file
+/// Per-pixel linked lists on the CPU: head pointers, a node pool of fixed
+/// capacity with one atomic counter; either sorted after each insert batch
+/// (technique lists, seed 002) or kept sorted by a lock-free insertion with
+/// optional early termination and saturation depth (technique sorted-lists,
+/// seed 001's PreSortLF and PreSortLF*).
+/// A fragment arriving at a full pool is dropped and counted (dropped_pool);
+/// requested() tells how many nodes the last gather wanted, so a caller can
+/// size the next pool (adaptive sizing, lossless regathering).
 #pragma once
 
 #include <cstdint>
@@ -19,8 +20,8 @@ namespace habuffer {
 
 class LinkedLists final : public FragmentBuffer {
  public:
-  // Technique sorted-lists when config.technique says so, else lists. Throws
-  // std::invalid_argument for a bad configuration (TechniqueConfig::validate).
+  /// Technique sorted-lists when config.technique says so, else lists. Throws
+  /// std::invalid_argument for a bad configuration (TechniqueConfig::validate).
   explicit LinkedLists(const TechniqueConfig& config);
 
   [[nodiscard]] Technique technique() const override { return config_.technique; }
@@ -33,18 +34,18 @@ class LinkedLists final : public FragmentBuffer {
   std::uint64_t clear() override;
   [[nodiscard]] std::uint64_t count_stored() const override;
   [[nodiscard]] std::uint64_t capacity() const override { return params_.pool_capacity; }
-  // Nodes asked for since the last clear, including those the pool could not give.
+  /// Nodes asked for since the last clear, including those the pool could not give.
   [[nodiscard]] std::uint64_t requested() const { return requested_; }
 
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
-  // Head pointers, nodes (entry and link) and the counter.
+  /// Head pointers, nodes (entry and link) and the counter.
   [[nodiscard]] std::uint64_t memory_bytes() const override;
 
-  // The GPU path's read-back: heads, node entries and links, and the nodes
-  // asked for; throws std::invalid_argument when the sizes differ from this
-  // buffer's or a link points outside the pool.
+  /// The GPU path's read-back: heads, node entries and links, and the nodes
+  /// asked for; throws std::invalid_argument when the sizes differ from this
+  /// buffer's or a link points outside the pool.
   void import_state(std::span<const std::uint32_t> heads, std::span<const glm::uvec2> entries,
                     std::span<const std::uint32_t> next, std::uint64_t requested);
 
@@ -56,7 +57,7 @@ class LinkedLists final : public FragmentBuffer {
   std::vector<std::uint32_t> heads_;
   std::vector<glm::uvec2> entries_;
   std::vector<std::uint32_t> next_;
-  std::vector<std::uint32_t> saturation_;  // sorted lists with saturation: a code per pixel
+  std::vector<std::uint32_t> saturation_;  ///< sorted lists with saturation: a code per pixel
   std::uint32_t counter_ = 0;
   std::uint64_t requested_ = 0;
 };

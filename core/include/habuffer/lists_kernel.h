@@ -1,7 +1,8 @@
-// Per-pixel linked lists on the CPU, sorted after the gather or kept sorted
-// while inserting: the shared GLSL of core/include/habuffer/shared/ha_lists.glsl and
-// ha_sorted_lists.glsl compiled as member functions, over the buffers a
-// shader would get.
+/// @file
+/// Per-pixel linked lists on the CPU, sorted after the gather or kept sorted
+/// while inserting: the shared GLSL of core/include/habuffer/shared/ha_lists.glsl and
+/// ha_sorted_lists.glsl compiled as member functions, over the buffers a
+/// shader would get.
 #pragma once
 
 #include <atomic>
@@ -12,18 +13,18 @@
 
 namespace habuffer {
 
-// The buffers a kernel works on (what a shader gets bound).
+/// The buffers a kernel works on (what a shader gets bound).
 struct ListsBuffers {
-  std::uint32_t* heads;    // one link per pixel
-  glm::uvec2* entries;     // (code, data) per node
-  std::uint32_t* next;     // one link per node
-  std::uint32_t* counter;  // nodes asked for
-  std::uint32_t* saturation;  // sorted lists with saturation: a code per pixel (else unused)
+  std::uint32_t* heads;    ///< one link per pixel
+  glm::uvec2* entries;     ///< (code, data) per node
+  std::uint32_t* next;     ///< one link per node
+  std::uint32_t* counter;  ///< nodes asked for
+  std::uint32_t* saturation;  ///< sorted lists with saturation: a code per pixel (else unused)
 };
 
-// Concurrent: the node counter, head pointers and (sorted lists) links are
-// updated atomically (several inserters at once); the sort and compositing
-// need no atomics (one pixel per thread).
+/// Concurrent: the node counter, head pointers and (sorted lists) links are
+/// updated atomically (several inserters at once); the sort and compositing
+/// need no atomics (one pixel per thread).
 template <bool Concurrent>
 class ListsKernel {
  public:
@@ -69,7 +70,7 @@ class ListsKernel {
   uint ll_load_next(uint node) const { return b_.next[node]; }
   void ll_store_next(uint node, uint link) { b_.next[node] = link; }
 
-  // Sorted lists: the link a walk reads (the head for where == 0) and the swap that links a node.
+  /// Sorted lists: the link a walk reads (the head for where == 0) and the swap that links a node.
   uint& sl_link(uint pixel, uint where) const { return where == 0 ? b_.heads[pixel] : b_.next[where - 1]; }
   uint sl_load_link(uint pixel, uint where) const {
     if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(sl_link(pixel, where)).load(std::memory_order_acquire);

@@ -1,7 +1,8 @@
-// Lossless mode (SPEC 8, ours): a build that reports any failure is gathered
-// again into a grown table, a bounded number of times, so no fragment is ever
-// lost silently: either every fragment is accounted for without failure, or
-// the result says how many attempts failed and why.
+/// @file
+/// Lossless mode (SPEC 8, ours): a build that reports any failure is gathered
+/// again into a grown table, a bounded number of times, so no fragment is ever
+/// lost silently: either every fragment is accounted for without failure, or
+/// the result says how many attempts failed and why.
 #pragma once
 
 #include <cstdint>
@@ -16,44 +17,44 @@
 
 namespace habuffer {
 
-// Where the offsets of each attempt come from: a generator regenerated for
-// every table size (SPEC 8), or a fixed list, which stays valid for any
-// larger table since its offsets lie inside the first one.
+/// Where the offsets of each attempt come from: a generator regenerated for
+/// every table size (SPEC 8), or a fixed list, which stays valid for any
+/// larger table since its offsets lie inside the first one.
 struct OffsetSource {
   OffsetGenerator generator = OffsetGenerator::Random;
   std::uint64_t seed = 1;
-  std::vector<glm::uvec2> list;  // used when generator == List
+  std::vector<glm::uvec2> list;  ///< used when generator == List
 
   [[nodiscard]] OffsetSequence make(Extent table, std::uint32_t count) const;
 };
 
 struct BuildAttempt {
-  Extent table;  // the HA-buffer's table; zero for other techniques
+  Extent table;  ///< the HA-buffer's table; zero for other techniques
   Counters counters;
-  std::uint64_t capacity = 0;  // records the technique could hold (slots, nodes, layers of every pixel)
+  std::uint64_t capacity = 0;  ///< records the technique could hold (slots, nodes, layers of every pixel)
 };
 
 struct BuildResult {
   HaBuffer buffer;
-  Counters counters;                  // of the final attempt
-  std::vector<BuildAttempt> attempts;  // every attempt, in order
+  Counters counters;                  ///< of the final attempt
+  std::vector<BuildAttempt> attempts;  ///< every attempt, in order
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 
-// One build (max_attempts = 1), or lossless mode: on failure grow the table by
-// `policy` and gather the whole stream again, at most `max_attempts` times.
+/// One build (max_attempts = 1), or lossless mode: on failure grow the table by
+/// `policy` and gather the whole stream again, at most `max_attempts` times.
 BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::span<const Fragment> fragments,
                   const InsertOptions& options, const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
 
-// Any technique's build, lossless mode included: the HA-buffer's table grows
-// by `policy`; the linked lists' pool to at least the nodes the attempt asked
-// for (and by the policy's step); the fixed arrays' K to the most fragments a
-// pixel received.
+/// Any technique's build, lossless mode included: the HA-buffer's table grows
+/// by `policy`; the linked lists' pool to at least the nodes the attempt asked
+/// for (and by the policy's step); the fixed arrays' K to the most fragments a
+/// pixel received.
 struct TechniqueBuild {
   std::unique_ptr<FragmentBuffer> buffer;
-  Counters counters;                   // of the final attempt
-  std::vector<BuildAttempt> attempts;  // every attempt, in order
-  bool growth_limited = false;         // lossless mode stopped: the next size cannot be built
+  Counters counters;                   ///< of the final attempt
+  std::vector<BuildAttempt> attempts;  ///< every attempt, in order
+  bool growth_limited = false;         ///< lossless mode stopped: the next size cannot be built
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 
@@ -61,7 +62,7 @@ TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource
                                std::span<const Fragment> fragments, const InsertOptions& options,
                                const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
 
-// An empty container of the configured technique (offsets for the HA-buffer's table).
+/// An empty container of the configured technique (offsets for the HA-buffer's table).
 std::unique_ptr<FragmentBuffer> make_fragment_buffer(const TechniqueConfig& config, const OffsetSource& offsets);
 
 }  // namespace habuffer

@@ -1,5 +1,6 @@
-// The max-age table M of SPEC 5: one cell per B x B block of pixels, holding
-// the largest age at which a record of one of its pixels was placed.
+/// @file
+/// The max-age table M of SPEC 5: one cell per B x B block of pixels, holding
+/// the largest age at which a record of one of its pixels was placed.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +13,7 @@ namespace habuffer {
 class MaxAgeTable {
  public:
   MaxAgeTable() = default;
-  // Throws std::invalid_argument when block is 0.
+  /// Throws std::invalid_argument when block is 0.
   MaxAgeTable(Extent screen, std::uint32_t block);
 
   [[nodiscard]] Extent cells() const { return cells_; }

@@ -1,15 +1,16 @@
-// Parallel insertion without atomics: the table's rows are dealt out to
-// owners in interleaved bands, and only a slot's owner ever touches it.
-//
-// A thread runs the shared insert steps (ha_insert_step) while the carried
-// record probes slots of its own bands, and hands the record over (a message
-// with the whole insert state, HaCarry) as soon as it probes another owner's
-// slot. Messages are exchanged in rounds until none is left. Since each slot
-// keeps the largest record proposed to it, the final table does not depend on
-// the order of proposals (SPEC 9), so this gives the very table a serial
-// build gives, with plain loads and stores, and threads share a cache line
-// only at band edges. Each owner keeps a private max-age table; they are
-// merged by maximum at the end.
+/// @file
+/// Parallel insertion without atomics: the table's rows are dealt out to
+/// owners in interleaved bands, and only a slot's owner ever touches it.
+///
+/// A thread runs the shared insert steps (ha_insert_step) while the carried
+/// record probes slots of its own bands, and hands the record over (a message
+/// with the whole insert state, HaCarry) as soon as it probes another owner's
+/// slot. Messages are exchanged in rounds until none is left. Since each slot
+/// keeps the largest record proposed to it, the final table does not depend on
+/// the order of proposals (SPEC 9), so this gives the very table a serial
+/// build gives, with plain loads and stores, and threads share a cache line
+/// only at band edges. Each owner keeps a private max-age table; they are
+/// merged by maximum at the end.
 #pragma once
 
 #include <cstdint>
@@ -22,8 +23,8 @@
 namespace habuffer {
 
 struct OwnerComputesOptions {
-  std::uint32_t owners = 2;      // logical owners (one task each per round)
-  std::uint32_t band_rows = 16;  // table rows per band; bands go round-robin to owners
+  std::uint32_t owners = 2;      ///< logical owners (one task each per round)
+  std::uint32_t band_rows = 16;  ///< table rows per band; bands go round-robin to owners
 };
 
 template <class Word>

@@ -1,4 +1,5 @@
-// Record layouts of SPEC 2: L64 = age | depth code | data, L32 = age | depth code.
+/// @file
+/// Record layouts of SPEC 2: L64 = age | depth code | data, L32 = age | depth code.
 #pragma once
 
 #include <cstdint>
@@ -10,12 +11,12 @@ enum class Layout : std::uint32_t { L64 = 64, L32 = 32 };
 
 std::string to_string(Layout layout);
 
-// A runtime description of a record layout, with pack/unpack on 64-bit
-// integers for both layouts (an L32 record fits in the low 32 bits). The
-// arithmetic is the shared code of core/include/habuffer/shared/ha_record.glsl.
+/// A runtime description of a record layout, with pack/unpack on 64-bit
+/// integers for both layouts (an L32 record fits in the low 32 bits). The
+/// arithmetic is the shared code of core/include/habuffer/shared/ha_record.glsl.
 class RecordLayout {
  public:
-  // Throws std::invalid_argument unless 4 <= age_bits <= 12.
+  /// Throws std::invalid_argument unless 4 <= age_bits <= 12.
   RecordLayout(Layout layout, std::uint32_t age_bits);
 
   [[nodiscard]] Layout layout() const { return layout_; }
@@ -33,7 +34,7 @@ class RecordLayout {
   [[nodiscard]] std::uint32_t data(std::uint64_t record) const;
   [[nodiscard]] std::uint64_t with_age(std::uint64_t record, std::uint32_t age) const;
 
-  // SPEC 2: NaN and t outside [0, 1] (as float32) are invalid, never clamped.
+  /// SPEC 2: NaN and t outside [0, 1] (as float32) are invalid, never clamped.
   [[nodiscard]] static bool depth_valid(float t);
   [[nodiscard]] std::uint32_t depth_code(float t) const;
 

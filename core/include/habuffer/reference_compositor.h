@@ -1,6 +1,7 @@
-// The exact reference of SPEC 7: every valid fragment of a pixel, fully
-// sorted by unquantized depth (nearest first, ties by larger data first),
-// composited front to back in double precision, with no cull and no loss.
+/// @file
+/// The exact reference of SPEC 7: every valid fragment of a pixel, fully
+/// sorted by unquantized depth (nearest first, ties by larger data first),
+/// composited front to back in double precision, with no cull and no loss.
 #pragma once
 
 #include <span>
@@ -16,7 +17,7 @@ namespace habuffer {
 
 std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
                                             glm::dvec3 background);
-// Each pixel over its own background (row-major, screen.area() entries).
+/// Each pixel over its own background (row-major, screen.area() entries).
 std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
                                             std::span<const glm::vec3> backgrounds);
 

@@ -1,5 +1,6 @@
-// Adaptive table sizing of SPEC 8: grow the area by `step` above `grow_at`
-// load, shrink it by `step` below `shrink_at`, never below the screen.
+/// @file
+/// Adaptive table sizing of SPEC 8: grow the area by `step` above `grow_at`
+/// load, shrink it by `step` below `shrink_at`, never below the screen.
 #pragma once
 
 #include <cstdint>
@@ -13,20 +14,20 @@ struct ResizePolicy {
   double shrink_at = 0.30;
   double step = 0.25;
 
-  // Throws std::invalid_argument unless 0 <= shrink_at < grow_at <= 1 and 0 < step < 1.
+  /// Throws std::invalid_argument unless 0 <= shrink_at < grow_at <= 1 and 0 < step < 1.
   void validate() const;
 
-  // The table for the next frame, given this frame's stored-record count.
+  /// The table for the next frame, given this frame's stored-record count.
   [[nodiscard]] Extent next(Extent table, Extent screen, std::uint64_t stored) const;
-  // Area times (1 + step), aspect ratio kept, sides rounded up.
+  /// Area times (1 + step), aspect ratio kept, sides rounded up.
   [[nodiscard]] Extent grown(Extent table) const;
 
-  // The same rules for a capacity counted in records (the linked lists'
-  // pool), at least 1: the next frame's from the records `used` this frame,
-  // and lossless growth to at least `needed` and at least one step.
+  /// The same rules for a capacity counted in records (the linked lists'
+  /// pool), at least 1: the next frame's from the records `used` this frame,
+  /// and lossless growth to at least `needed` and at least one step.
   [[nodiscard]] std::uint64_t next(std::uint64_t capacity, std::uint64_t used) const;
   [[nodiscard]] std::uint64_t grown(std::uint64_t capacity, std::uint64_t needed) const;
-  // Area times (1 - step), aspect ratio kept, sides rounded up, at least the screen.
+  /// Area times (1 - step), aspect ratio kept, sides rounded up, at least the screen.
   [[nodiscard]] Extent shrunk(Extent table, Extent screen) const;
 };
 

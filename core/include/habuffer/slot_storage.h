@@ -1,7 +1,8 @@
-// The hash table's slots: one zero-initialized, page-aligned anonymous
-// mapping. Up to 4 GiB it is committed at once; beyond, pages are committed
-// on first touch, so a table of more than 2^32 slots can exist (and be
-// indexed) while only the touched pages cost memory.
+/// @file
+/// The hash table's slots: one zero-initialized, page-aligned anonymous
+/// mapping. Up to 4 GiB it is committed at once; beyond, pages are committed
+/// on first touch, so a table of more than 2^32 slots can exist (and be
+/// indexed) while only the touched pages cost memory.
 #pragma once
 
 #include <cstddef>
@@ -27,8 +28,8 @@ class SlotStorage {
   [[nodiscard]] std::uint64_t bytes() const { return slots_ * sizeof(Word); }
   [[nodiscard]] std::span<const Word> slots() const { return {data_, static_cast<std::size_t>(slots_)}; }
 
-  // Zeroes every slot; returns how many were non-empty (the CPU counterpart
-  // of the GL clear pass under an occlusion query).
+  /// Zeroes every slot; returns how many were non-empty (the CPU counterpart
+  /// of the GL clear pass under an occlusion query).
   std::uint64_t clear_and_count();
   [[nodiscard]] std::uint64_t count_nonempty() const;
   void clear();

@@ -1,4 +1,5 @@
-// A 2D size in pixels, slots or cells, and its parsing from "WxH".
+/// @file
+/// A 2D size in pixels, slots or cells, and its parsing from "WxH".
 #pragma once
 
 #include <cstdint>
@@ -17,7 +18,7 @@ struct Extent {
   friend bool operator==(const Extent&, const Extent&) = default;
 };
 
-// Parses "WxH" with both sides positive decimal integers below 2^32.
+/// Parses "WxH" with both sides positive decimal integers below 2^32.
 std::optional<Extent> parse_extent(std::string_view text);
 
 }  // namespace habuffer

@@ -1,4 +1,5 @@
-// The per-age offsets O[0..AMAX-1] of SPEC 3, shared by every pixel.
+/// @file
+/// The per-age offsets O[0..AMAX-1] of SPEC 3, shared by every pixel.
 #pragma once
 
 #include <cstdint>
@@ -16,15 +17,15 @@ enum class OffsetGenerator { Random, Farthest, List };
 
 class OffsetSequence {
  public:
-  // `count` offsets (AMAX) for table `table`: pairwise distinct when the table
-  // has at least `count` slots, else the table's slots repeated cyclically.
+  /// `count` offsets (AMAX) for table `table`: pairwise distinct when the table
+  /// has at least `count` slots, else the table's slots repeated cyclically.
   static OffsetSequence random(Extent table, std::uint32_t count, std::uint64_t seed);
-  // Greedy max-min toroidal distance: each offset as far as possible from all
-  // earlier ones (ties: smallest slot index). The seed picks the first offset.
+  /// Greedy max-min toroidal distance: each offset as far as possible from all
+  /// earlier ones (ties: smallest slot index). The seed picks the first offset.
   static OffsetSequence farthest(Extent table, std::uint32_t count, std::uint64_t seed);
-  // Explicit offsets (an offsets file). Throws std::invalid_argument naming the
-  // offending row when an offset lies outside the table, offsets that must be
-  // distinct repeat, or fewer than min(count, table slots) rows are given.
+  /// Explicit offsets (an offsets file). Throws std::invalid_argument naming the
+  /// offending row when an offset lies outside the table, offsets that must be
+  /// distinct repeat, or fewer than min(count, table slots) rows are given.
   static OffsetSequence from_list(Extent table, std::uint32_t count, std::span<const glm::uvec2> rows);
   static OffsetSequence make(OffsetGenerator gen, Extent table, std::uint32_t count, std::uint64_t seed);
 
@@ -42,15 +43,15 @@ class OffsetSequence {
   std::vector<glm::uvec2> values_;
 };
 
-// Largest table (in slots) the exact farthest-point generator accepts: its
-// distance field holds 4 bytes per slot.
+/// Largest table (in slots) the exact farthest-point generator accepts: its
+/// distance field holds 4 bytes per slot.
 inline constexpr std::uint64_t kFarthestMaxSlots = std::uint64_t{1} << 28;
 
-// Squared toroidal distance between two cells of `table`.
+/// Squared toroidal distance between two cells of `table`.
 std::uint64_t toroidal_distance2(glm::uvec2 a, glm::uvec2 b, Extent table);
 
-// Minimum pairwise toroidal distance among the first k offsets, for every
-// k = 2..n (result[k-2]); O(n^2).
+/// Minimum pairwise toroidal distance among the first k offsets, for every
+/// k = 2..n (result[k-2]); O(n^2).
 std::vector<double> min_pairwise_distances(std::span<const glm::uvec2> offsets, Extent table);
 
 std::string to_string(OffsetGenerator gen);

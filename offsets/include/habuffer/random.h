@@ -1,12 +1,13 @@
-// A small, fully specified PRNG (SplitMix64) so that offsets and generated
-// streams are identical on every platform and standard library.
+/// @file
+/// A small, fully specified PRNG (SplitMix64) so that offsets and generated
+/// streams are identical on every platform and standard library.
 #pragma once
 
 #include <cstdint>
 
 namespace habuffer {
 
-__extension__ using Uint128 = unsigned __int128;  // GCC/Clang builtin, for Lemire's method
+__extension__ using Uint128 = unsigned __int128;  ///< GCC/Clang builtin, for Lemire's method
 
 class SplitMix64 {
  public:
@@ -19,7 +20,7 @@ class SplitMix64 {
     return z ^ (z >> 31);
   }
 
-  // Uniform in [0, bound), bound > 0, without modulo bias (Lemire 2019).
+  /// Uniform in [0, bound), bound > 0, without modulo bias (Lemire 2019).
   std::uint64_t below(std::uint64_t bound) {
     Uint128 m = static_cast<Uint128>(next()) * bound;
     auto low = static_cast<std::uint64_t>(m);
@@ -33,7 +34,7 @@ class SplitMix64 {
     return static_cast<std::uint64_t>(m >> 64);
   }
 
-  // Uniform float in [0, 1) with 24 random bits.
+  /// Uniform float in [0, 1) with 24 random bits.
   float unit_float() { return static_cast<float>(next() >> 40) * 0x1.0p-24f; }
 
  private:

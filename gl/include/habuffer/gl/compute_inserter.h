@@ -1,6 +1,7 @@
-// The GPU path's compute entry: a compute shader that inserts a fragment
-// stream held in a buffer through the same ha_insert host fragment shaders
-// call (tests, sweeps and `build-lists --path gl` use it).
+/// @file
+/// The GPU path's compute entry: a compute shader that inserts a fragment
+/// stream held in a buffer through the same ha_insert host fragment shaders
+/// call (tests, sweeps and `build-lists --path gl` use it).
 #pragma once
 
 #include <span>
@@ -14,23 +15,23 @@ namespace habuffer::gl {
 
 class ComputeInserter {
  public:
-  // Compiles the entry for `buffer`'s atomic mode and binding points (throws
-  // GlError with the log on shader errors). `buffer` must outlive this.
-  // max_chunk: fragments per stream buffer (0: as many as one shader-storage
-  // buffer holds).
+  /// Compiles the entry for `buffer`'s atomic mode and binding points (throws
+  /// GlError with the log on shader errors). `buffer` must outlive this.
+  /// max_chunk: fragments per stream buffer (0: as many as one shader-storage
+  /// buffer holds).
   explicit ComputeInserter(GlFrameDriver& buffer, std::size_t max_chunk = 0);
   ~ComputeInserter();
   ComputeInserter(const ComputeInserter&) = delete;
   ComputeInserter& operator=(const ComputeInserter&) = delete;
 
-  // Uploads the stream (kept for later dispatches), in several buffers when
-  // it exceeds one. Throws GlError naming the first fragment outside the
-  // screen, as the CPU path does.
+  /// Uploads the stream (kept for later dispatches), in several buffers when
+  /// it exceeds one. Throws GlError naming the first fragment outside the
+  /// screen, as the CPU path does.
   void upload(std::span<const Fragment> fragments);
   [[nodiscard]] std::size_t uploaded() const;
-  // Inserts the uploaded stream; call inside GlFrameDriver::frame's gather.
+  /// Inserts the uploaded stream; call inside GlFrameDriver::frame's gather.
   void dispatch() const;
-  // One frame whose gather is the stream: upload, then buffer.frame(dispatch).
+  /// One frame whose gather is the stream: upload, then buffer.frame(dispatch).
   FrameReport insert(std::span<const Fragment> fragments);
 
  private:

@@ -1,8 +1,9 @@
-// KHR_debug routing for contexts the library creates (EglContext): driver
-// messages go to a log sink (stderr by default), and GL errors are collected
-// so check_gl_errors() can raise them as GlError. Raising is on by default in
-// debug builds and can be switched at run time. Host contexts are left
-// untouched: the library never installs a callback on a context it did not make.
+/// @file
+/// KHR_debug routing for contexts the library creates (EglContext): driver
+/// messages go to a log sink (stderr by default), and GL errors are collected
+/// so check_gl_errors() can raise them as GlError. Raising is on by default in
+/// debug builds and can be switched at run time. Host contexts are left
+/// untouched: the library never installs a callback on a context it did not make.
 #pragma once
 
 #include <functional>
@@ -14,12 +15,12 @@ using LogSink = std::function<void(const std::string& message)>;
 void set_log_sink(LogSink sink);
 void set_throw_on_gl_error(bool enabled);
 
-// Installs the callback on the current context (needs KHR_debug / GL 4.3).
+/// Installs the callback on the current context (needs KHR_debug / GL 4.3).
 void install_debug_output();
-// Throws GlError naming `where` and the collected error messages when raising
-// is enabled; clears the collected errors either way.
+/// Throws GlError naming `where` and the collected error messages when raising
+/// is enabled; clears the collected errors either way.
 void check_gl_errors(const char* where);
-// Forgets collected errors already reported another way (a shader's log).
+/// Forgets collected errors already reported another way (a shader's log).
 void discard_gl_errors();
 
 }  // namespace habuffer::gl

@@ -1,8 +1,9 @@
-// A headless OpenGL 4.5 core context through EGL: the device platform
-// (EGL_EXT_platform_device; device index from the constructor or the
-// HABUFFER_EGL_DEVICE environment variable), else Mesa's surfaceless
-// platform. No window and no X server. The library never assumes it owns
-// the current context: host apps make their own and skip this class.
+/// @file
+/// A headless OpenGL 4.5 core context through EGL: the device platform
+/// (EGL_EXT_platform_device; device index from the constructor or the
+/// HABUFFER_EGL_DEVICE environment variable), else Mesa's surfaceless
+/// platform. No window and no X server. The library never assumes it owns
+/// the current context: host apps make their own and skip this class.
 #pragma once
 
 #include <optional>
@@ -12,15 +13,15 @@ namespace habuffer::gl {
 
 class EglContext {
  public:
-  // Creates the context and makes it current on this thread. Throws GlError
-  // with one line saying what was missing (EGL, a display, GL 4.5 core).
+  /// Creates the context and makes it current on this thread. Throws GlError
+  /// with one line saying what was missing (EGL, a display, GL 4.5 core).
   explicit EglContext(std::optional<int> device = std::nullopt);
   ~EglContext();
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;
 
   void make_current();
-  // e.g. "EGL device 0 (EGL_EXT_platform_device)" or "Mesa surfaceless".
+  /// e.g. "EGL device 0 (EGL_EXT_platform_device)" or "Mesa surfaceless".
   [[nodiscard]] const std::string& description() const { return description_; }
 
  private:

@@ -1,5 +1,6 @@
-// What a GPU frame is asked to do (GlFrameOptions) and what it reports
-// (FrameReport), for every technique.
+/// @file
+/// What a GPU frame is asked to do (GlFrameOptions) and what it reports
+/// (FrameReport), for every technique.
 #pragma once
 
 #include <cstdint>
@@ -14,81 +15,81 @@
 namespace habuffer::gl {
 
 struct GlFrameOptions {
-  // Resize by `policy` from the previous frame's count (SPEC 8): the
-  // HA-buffer's table, the linked lists' node pool (fixed arrays keep K).
+  /// Resize by `policy` from the previous frame's count (SPEC 8): the
+  /// HA-buffer's table, the linked lists' node pool (fixed arrays keep K).
   bool adaptive = false;
-  ResizePolicy policy;    // also the growth step of lossless mode
-  std::uint32_t max_attempts = 1;  // above 1: lossless mode, gather again into a grown table on failure
-  std::uint32_t lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;  // emulated64: attempts before a call is cut short
-  // Calls cut short (a lock given up, the driver's loop budget spent: never
-  // the table's fault) are deferred with their carried state and resumed by
-  // the resume pass, round after round while any remain, at most this many
-  // rounds; only calls still cut short after the last round count failed_iter.
+  ResizePolicy policy;    ///< also the growth step of lossless mode
+  std::uint32_t max_attempts = 1;  ///< above 1: lossless mode, gather again into a grown table on failure
+  std::uint32_t lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;  ///< emulated64: attempts before a call is cut short
+  /// Calls cut short (a lock given up, the driver's loop budget spent: never
+  /// the table's fault) are deferred with their carried state and resumed by
+  /// the resume pass, round after round while any remain, at most this many
+  /// rounds; only calls still cut short after the last round count failed_iter.
   std::uint32_t resume_rounds = 256;
-  // First capacity of the two deferred-call buffers (32 bytes a call); grows
-  // (and the frame gathers again) on overflow.
+  /// First capacity of the two deferred-call buffers (32 bytes a call); grows
+  /// (and the frame gathers again) on overflow.
   std::uint64_t deferred_capacity = 1u << 12;
-  // Gathers repeated into the same table when calls stayed cut short after
-  // every resume round, or a driver ended calls without an outcome (nothing
-  // to resume), before the frame reports them as failed_iter. Not counted as
-  // lossless attempts.
+  /// Gathers repeated into the same table when calls stayed cut short after
+  /// every resume round, or a driver ended calls without an outcome (nothing
+  /// to resume), before the frame reports them as failed_iter. Not counted as
+  /// lossless attempts.
   std::uint32_t cut_short_retries = 3;
-  bool capture = false;                 // append every incoming fragment (read_capture())
-  bool capture_only = false;            // capture without inserting (the CPU path replays the capture)
-  std::uint64_t capture_capacity = 1u << 20;  // first capacity; grows (and the frame regathers) on overflow
-  std::uint32_t clear_tile = 0;  // side of the clear pass's tiles; 0: the framebuffer limits
-  bool finish_timing = true;     // glFinish after each pass so wall_ms is the pass's whole time
-  bool count_writes = false;     // tally slot writes (FrameReport::slot_writes): one more atomic per insert
+  bool capture = false;                 ///< append every incoming fragment (read_capture())
+  bool capture_only = false;            ///< capture without inserting (the CPU path replays the capture)
+  std::uint64_t capture_capacity = 1u << 20;  ///< first capacity; grows (and the frame regathers) on overflow
+  std::uint32_t clear_tile = 0;  ///< side of the clear pass's tiles; 0: the framebuffer limits
+  bool finish_timing = true;     ///< glFinish after each pass so wall_ms is the pass's whole time
+  bool count_writes = false;     ///< tally slot writes (FrameReport::slot_writes): one more atomic per insert
 };
 
-// Time of one pass: wall clock from submission to completion (glFinish when
-// GlFrameOptions::finish_timing, else submission only), and the driver's
-// GL_TIME_ELAPSED. Use wall_ms on Mesa llvmpipe: its timer queries measure
-// command recording, not rasterization (0.2 ms for an 11 ms gather here).
+/// Time of one pass: wall clock from submission to completion (glFinish when
+/// GlFrameOptions::finish_timing, else submission only), and the driver's
+/// GL_TIME_ELAPSED. Use wall_ms on Mesa llvmpipe: its timer queries measure
+/// command recording, not rasterization (0.2 ms for an 11 ms gather here).
 struct PassTiming {
   double wall_ms = 0.0;
   double gpu_ms = 0.0;
 };
 
 struct FrameReport {
-  std::uint64_t index = 0;  // frames since construction
-  Extent table;             // HA-buffer: the table this frame was gathered into
-  std::uint64_t capacity = 0;  // records the technique could hold in this frame (slots, nodes, layers of every pixel)
-  std::uint64_t nodes_requested = 0;  // linked lists: nodes the final gather asked for (dropped ones included)
-  std::uint32_t most_arrived = 0;     // fixed arrays: the most fragments a pixel received, when some pixel overflowed
-  bool resized = false;     // adaptive sizing changed the table before the gather
-  // Whether this frame began with the clear pass (every frame after one that
-  // gathered); its occlusion count goes to a query buffer and is read at the
-  // next frame's start, one frame late, without a stall (SPEC 8).
+  std::uint64_t index = 0;  ///< frames since construction
+  Extent table;             ///< HA-buffer: the table this frame was gathered into
+  std::uint64_t capacity = 0;  ///< records the technique could hold in this frame (slots, nodes, layers of every pixel)
+  std::uint64_t nodes_requested = 0;  ///< linked lists: nodes the final gather asked for (dropped ones included)
+  std::uint32_t most_arrived = 0;     ///< fixed arrays: the most fragments a pixel received, when some pixel overflowed
+  bool resized = false;     ///< adaptive sizing changed the table before the gather
+  /// Whether this frame began with the clear pass (every frame after one that
+  /// gathered); its occlusion count goes to a query buffer and is read at the
+  /// next frame's start, one frame late, without a stall (SPEC 8).
   bool cleared = false;
-  // The count read at this frame's start: the records the previous frame's
-  // clear pass found (those of the frame before it), in `counted_table`;
-  // none on the first two frames. Adaptive sizing decides from it when
-  // counted_table is still the table (a table resized since then is not
-  // judged by a count it did not hold).
+  /// The count read at this frame's start: the records the previous frame's
+  /// clear pass found (those of the frame before it), in `counted_table`;
+  /// none on the first two frames. Adaptive sizing decides from it when
+  /// counted_table is still the table (a table resized since then is not
+  /// judged by a count it did not hold).
   std::optional<std::uint64_t> counted_stored;
   Extent counted_table;
-  Counters counters;                   // of the final gather
-  std::vector<BuildAttempt> attempts;  // every gather of lossless mode, in order
-  // Insert calls cut short by something other than the table (an emulated64
-  // lock given up, the driver's loop budget spent) and resumed by the resume
-  // pass, summed over its rounds (a call cut twice counts twice).
+  Counters counters;                   ///< of the final gather
+  std::vector<BuildAttempt> attempts;  ///< every gather of lossless mode, in order
+  /// Insert calls cut short by something other than the table (an emulated64
+  /// lock given up, the driver's loop budget spent) and resumed by the resume
+  /// pass, summed over its rounds (a call cut twice counts twice).
   std::uint64_t deferred = 0;
-  std::uint32_t resume_rounds = 0;  // resume passes run in the final gather
-  // Calls of the final gather that never ended: still cut short after the
-  // last resume round, or ended by the driver without an outcome (counted
-  // failed_iter; lossless mode gathers them again into the same table).
+  std::uint32_t resume_rounds = 0;  ///< resume passes run in the final gather
+  /// Calls of the final gather that never ended: still cut short after the
+  /// last resume round, or ended by the driver without an outcome (counted
+  /// failed_iter; lossless mode gathers them again into the same table).
   std::uint64_t cut_short = 0;
-  std::uint64_t slot_writes = 0;    // with count_writes: slot raises, evicted records included
-  std::uint32_t cut_short_retries = 0;  // gathers repeated because calls were cut short
-  std::uint32_t deferred_regathers = 0;  // gathers repeated because the deferred-call buffer overflowed
-  bool resize_limited = false;      // adaptive sizing wanted a table beyond this context's limits
-  bool growth_limited = false;      // lossless mode stopped: the next table would exceed the limits
-  std::uint32_t capture_regathers = 0;  // gathers repeated because the capture buffer overflowed
-  std::uint64_t captured = 0;           // fragments in the capture buffer
-  PassTiming clear;   // the clear pass (zero on the first frame)
-  PassTiming gather;  // the final gather, its resume rounds included
-  PassTiming sort;    // linked lists, fixed arrays: the sort pass after the final gather
+  std::uint64_t slot_writes = 0;    ///< with count_writes: slot raises, evicted records included
+  std::uint32_t cut_short_retries = 0;  ///< gathers repeated because calls were cut short
+  std::uint32_t deferred_regathers = 0;  ///< gathers repeated because the deferred-call buffer overflowed
+  bool resize_limited = false;      ///< adaptive sizing wanted a table beyond this context's limits
+  bool growth_limited = false;      ///< lossless mode stopped: the next table would exceed the limits
+  std::uint32_t capture_regathers = 0;  ///< gathers repeated because the capture buffer overflowed
+  std::uint64_t captured = 0;           ///< fragments in the capture buffer
+  PassTiming clear;   ///< the clear pass (zero on the first frame)
+  PassTiming gather;  ///< the final gather, its resume rounds included
+  PassTiming sort;    ///< linked lists, fixed arrays: the sort pass after the final gather
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 

@@ -17,7 +17,7 @@ namespace habuffer::gl {
 struct GlBindings {
   static constexpr unsigned kDefaultStorageBase = 16;
   static constexpr unsigned kDefaultUniformBase = 16;
-  // Shader-storage binding points.
+  /// Shader-storage binding points.
   unsigned table = kDefaultStorageBase;           ///< the HA table, list heads, array counts
   unsigned max_age = kDefaultStorageBase + 1;     ///< the max-age table, list nodes, array layers
   unsigned offsets = kDefaultStorageBase + 2;     ///< the HA offsets, list links

@@ -1,7 +1,8 @@
-// Buffer objects as the library uses them: created with their size checked
-// (a failed allocation in a host context would otherwise leave a short buffer
-// that shaders silently read past; the host's errors are not ours to consume
-// with glGetError), zeroed, and read back as 32-bit words.
+/// @file
+/// Buffer objects as the library uses them: created with their size checked
+/// (a failed allocation in a host context would otherwise leave a short buffer
+/// that shaders silently read past; the host's errors are not ours to consume
+/// with glGetError), zeroed, and read back as 32-bit words.
 #pragma once
 
 #include <cstdint>
@@ -9,13 +10,13 @@
 
 namespace habuffer::gl {
 
-// Throws GlError naming the size when OpenGL cannot allocate it.
+/// Throws GlError naming the size when OpenGL cannot allocate it.
 unsigned create_buffer(std::uint64_t bytes, const void* data = nullptr);
 void zero_buffer(unsigned buffer);
-// Binds `buffer` at indexed `point` of `target` (glBindBuffersBase, which,
-// unlike glBindBufferBase, leaves the target's generic binding, the host's, as it is).
+/// Binds `buffer` at indexed `point` of `target` (glBindBuffersBase, which,
+/// unlike glBindBufferBase, leaves the target's generic binding, the host's, as it is).
 void bind_at(unsigned target, unsigned point, unsigned buffer);
-// Deletes the buffer (if any) and sets the name to 0.
+/// Deletes the buffer (if any) and sets the name to 0.
 void delete_buffer(unsigned& buffer);
 std::vector<std::uint32_t> read_words(unsigned buffer, std::uint64_t words);
 

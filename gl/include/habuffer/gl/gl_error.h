@@ -1,5 +1,6 @@
-// Errors of the GPU path: a missing context or capability, a shader that does
-// not compile (with its log), or a GL error reported through KHR_debug.
+/// @file
+/// Errors of the GPU path: a missing context or capability, a shader that does
+/// not compile (with its log), or a GL error reported through KHR_debug.
 #pragma once
 
 #include <stdexcept>

@@ -1,8 +1,9 @@
-// Fixed per-pixel arrays on the GPU (seed 004): per-pixel counters (zeroed
-// before every gather) and K layers per pixel, layer-major, sorted by the
-// sort pass after the gather. A full pixel drops and counts
-// (dropped_layers); lossless mode regathers with K raised to the most
-// fragments a pixel received.
+/// @file
+/// Fixed per-pixel arrays on the GPU (seed 004): per-pixel counters (zeroed
+/// before every gather) and K layers per pixel, layer-major, sorted by the
+/// sort pass after the gather. A full pixel drops and counts
+/// (dropped_layers); lossless mode regathers with K raised to the most
+/// fragments a pixel received.
 #pragma once
 
 #include <memory>
@@ -13,7 +14,7 @@ namespace habuffer::gl {
 
 class GlFixedArrays final : public GlTechnique {
  public:
-  // Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
+  /// Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
   GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
   ~GlFixedArrays() override;
 

@@ -1,18 +1,19 @@
-// The GPU path's frame machinery, the same for every technique: around a
-// host's gather pass it restores the host's GL state, writes the parameter
-// block, binds the buffers, tallies every insert call's outcome (SPEC
-// invariant 1 on the GPU), captures the incoming fragments when asked,
-// resumes calls cut short (the HA-buffer's deferred calls), regathers when a
-// capture or deferral buffer overflowed or calls stayed cut short, runs the
-// lossless loop that asks the technique to grow, resolves, and times every
-// pass. The technique (GlTechnique: the HA-buffer's table, linked lists,
-// fixed arrays) owns its buffers and its own passes. Works in whatever
-// OpenGL 4.5 core context is current (it never creates or assumes one).
-//
-// Host use: compile fragment shaders from module_source(ShaderStage::Fragment)
-// followed by code that calls ha_insert(pixel, depth, rgba); each frame call
-// frame([&] { draw the scene }) and then resolve(background) into the bound
-// framebuffer.
+/// @file
+/// The GPU path's frame machinery, the same for every technique: around a
+/// host's gather pass it restores the host's GL state, writes the parameter
+/// block, binds the buffers, tallies every insert call's outcome (SPEC
+/// invariant 1 on the GPU), captures the incoming fragments when asked,
+/// resumes calls cut short (the HA-buffer's deferred calls), regathers when a
+/// capture or deferral buffer overflowed or calls stayed cut short, runs the
+/// lossless loop that asks the technique to grow, resolves, and times every
+/// pass. The technique (GlTechnique: the HA-buffer's table, linked lists,
+/// fixed arrays) owns its buffers and its own passes. Works in whatever
+/// OpenGL 4.5 core context is current (it never creates or assumes one).
+///
+/// Host use: compile fragment shaders from module_source(ShaderStage::Fragment)
+/// followed by code that calls ha_insert(pixel, depth, rgba); each frame call
+/// frame([&] { draw the scene }) and then resolve(background) into the bound
+/// framebuffer.
 #pragma once
 
 #include <cstdint>
@@ -32,8 +33,8 @@ namespace habuffer::gl {
 
 class GlFrameDriver {
  public:
-  // Throws std::invalid_argument for bad options, GlError when the screen or
-  // a binding point exceeds the context's limits.
+  /// Throws std::invalid_argument for bad options, GlError when the screen or
+  /// a binding point exceeds the context's limits.
   GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options = {});
   virtual ~GlFrameDriver();
   GlFrameDriver(const GlFrameDriver&) = delete;
@@ -46,22 +47,22 @@ class GlFrameDriver {
   [[nodiscard]] Extent screen() const { return technique_->screen(); }
   [[nodiscard]] const GlFrameOptions& options() const { return options_; }
 
-  // The GLSL module for this technique, atomic mode and binding points.
+  /// The GLSL module for this technique, atomic mode and binding points.
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
 
-  // Binds our buffers to their points, leaving the generic
-  // GL_SHADER_STORAGE_BUFFER and GL_UNIFORM_BUFFER bindings as they were
-  // (frame() does this around the gather; a host binding them itself
-  // restores its own indexed bindings afterwards).
+  /// Binds our buffers to their points, leaving the generic
+  /// GL_SHADER_STORAGE_BUFFER and GL_UNIFORM_BUFFER bindings as they were
+  /// (frame() does this around the gather; a host binding them itself
+  /// restores its own indexed bindings afterwards).
   void bind() const;
 
-  // One frame around `gather`, which draws or dispatches shaders calling
-  // ha_insert with our buffers bound, in the GL state the host had when it
-  // called frame() (restored before every gather and after the frame).
-  // `calls`, when the host can tell, returns how many ha_insert calls the
-  // gather made: calls a driver ended without an outcome (llvmpipe's loop
-  // budget can stop a SIMD group's lanes) are then counted as failed_iter
-  // and cut short, and retried like the others, so nothing goes uncounted.
+  /// One frame around `gather`, which draws or dispatches shaders calling
+  /// ha_insert with our buffers bound, in the GL state the host had when it
+  /// called frame() (restored before every gather and after the frame).
+  /// `calls`, when the host can tell, returns how many ha_insert calls the
+  /// gather made: calls a driver ended without an outcome (llvmpipe's loop
+  /// budget can stop a SIMD group's lanes) are then counted as failed_iter
+  /// and cut short, and retried like the others, so nothing goes uncounted.
   FrameReport frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls = {});
 
   /// Composites every screen pixel over `background` into the framebuffer
@@ -78,16 +79,16 @@ class GlFrameDriver {
   /// its colour exactly. The host's blend setup is restored afterwards.
   PassTiming resolve_over();
 
-  // The fragments the last frame captured, in arrival order.
+  /// The fragments the last frame captured, in arrival order.
   [[nodiscard]] std::vector<Fragment> read_capture() const;
-  // Every buffer: the technique's and the frame's (tallies, parameters,
-  // capture and deferred-call buffers).
+  /// Every buffer: the technique's and the frame's (tallies, parameters,
+  /// capture and deferred-call buffers).
   [[nodiscard]] std::uint64_t memory_bytes() const;
-  // Of those, the capture buffer's (a tool of the CPU path and the reference, not the technique's).
+  /// Of those, the capture buffer's (a tool of the CPU path and the reference, not the technique's).
   [[nodiscard]] std::uint64_t capture_bytes() const;
 
  protected:
-  // Writes the parameter block (the frame's fields and the technique's).
+  /// Writes the parameter block (the frame's fields and the technique's).
   void write_params() const;
 
  private:
@@ -95,11 +96,11 @@ class GlFrameDriver {
   void reset_frame_state() const;
   void grow_capture(std::uint64_t needed);
   void grow_deferred(std::uint64_t needed);
-  // Reads the tallies into the report (merged duplicates moved, sort checked).
+  /// Reads the tallies into the report (merged duplicates moved, sort checked).
   void read_counters(FrameReport& report) const;
-  // Resume rounds while deferred calls remain (at most resume_rounds): returns
-  // the calls still deferred after the last round; none are run when the
-  // gather deferred more than the buffer holds (deferred_overflow_).
+  /// Resume rounds while deferred calls remain (at most resume_rounds): returns
+  /// the calls still deferred after the last round; none are run when the
+  /// gather deferred more than the buffer holds (deferred_overflow_).
   std::uint64_t resume_deferred(FrameReport& report);
   PassTiming run_resolve(glm::vec3 background, unsigned background_texture, bool over);
   void run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
@@ -111,10 +112,10 @@ class GlFrameDriver {
   GlFrameOptions options_;
   std::uint64_t capture_capacity_ = 0;
   std::uint64_t deferred_capacity_ = 0;
-  std::uint64_t deferred_overflow_ = 0;  // calls the last gather deferred, when more than the buffer held
+  std::uint64_t deferred_overflow_ = 0;  ///< calls the last gather deferred, when more than the buffer held
   std::uint64_t frames_ = 0;
-  bool sorted_ = false;  // the last gather ran the technique's sort pass
-  std::uint32_t gather_phase_ = 0;  // the parameter ha_gather_phase: 1 in a fill pass
+  bool sorted_ = false;  ///< the last gather ran the technique's sort pass
+  std::uint32_t gather_phase_ = 0;  ///< the parameter ha_gather_phase: 1 in a fill pass
   std::unique_ptr<Gpu> gpu_;
 };
 

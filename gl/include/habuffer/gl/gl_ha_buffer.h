@@ -1,6 +1,7 @@
-// The HA-buffer on the GPU: the frame driver (gl_frame_driver.h) running the
-// HA-buffer's container (gl_ha_table.h), with the table's accessors at hand.
-// Other techniques run in a GlFrameDriver with their own container.
+/// @file
+/// The HA-buffer on the GPU: the frame driver (gl_frame_driver.h) running the
+/// HA-buffer's container (gl_ha_table.h), with the table's accessors at hand.
+/// Other techniques run in a GlFrameDriver with their own container.
 #pragma once
 
 #include <cstdint>
@@ -14,9 +15,9 @@ namespace habuffer::gl {
 
 class GlHaBuffer : public GlFrameDriver {
  public:
-  // Throws std::invalid_argument for a bad config, GlError when the mode cannot
-  // hold the layout, the context lacks what the mode needs, or a buffer would
-  // exceed the context's limits (the message names the sizes).
+  /// Throws std::invalid_argument for a bad config, GlError when the mode cannot
+  /// hold the layout, the context lacks what the mode needs, or a buffer would
+  /// exceed the context's limits (the message names the sizes).
   GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlFrameOptions& options = {},
              const GlBindings& bindings = {});
 
@@ -24,14 +25,14 @@ class GlHaBuffer : public GlFrameDriver {
   [[nodiscard]] Extent table() const { return table_.table(); }
   [[nodiscard]] const OffsetSequence& offsets() const { return table_.offsets(); }
 
-  // Sets the table for the next frame (at least the screen; offsets
-  // regenerated), e.g. from a host's own estimate before the first frame.
-  // Throws std::invalid_argument or GlError (beyond the context's limits).
+  /// Sets the table for the next frame (at least the screen; offsets
+  /// regenerated), e.g. from a host's own estimate before the first frame.
+  /// Throws std::invalid_argument or GlError (beyond the context's limits).
   void resize(Extent table);
-  // Runs the counting pass without clearing: the records in the table, by
-  // occlusion query.
+  /// Runs the counting pass without clearing: the records in the table, by
+  /// occlusion query.
   std::uint64_t count_stored();
-  // Slots widened to 64 bits (L32 records in the low half), row-major.
+  /// Slots widened to 64 bits (L32 records in the low half), row-major.
   [[nodiscard]] std::vector<std::uint64_t> read_table() const { return table_.read_table(); }
   [[nodiscard]] std::vector<std::uint32_t> read_max_age() const { return table_.read_max_age(); }
 

@@ -1,9 +1,10 @@
-// The HA-buffer's container on the GPU: table, per-slot locks (emulated64),
-// max-age table and offsets in shader-storage buffers; the paper's clear
-// pass, which counts the previous frame's records under an occlusion query
-// into a query buffer read one frame later without a stall; adaptive sizing
-// of SPEC 8 from that count (offsets regenerated for every new size); and
-// lossless growth of the table.
+/// @file
+/// The HA-buffer's container on the GPU: table, per-slot locks (emulated64),
+/// max-age table and offsets in shader-storage buffers; the paper's clear
+/// pass, which counts the previous frame's records under an occlusion query
+/// into a query buffer read one frame later without a stall; adaptive sizing
+/// of SPEC 8 from that count (offsets regenerated for every new size); and
+/// lossless growth of the table.
 #pragma once
 
 #include <cstdint>
@@ -21,9 +22,9 @@ namespace habuffer::gl {
 
 class GlHaTable final : public GlTechnique {
  public:
-  // Throws std::invalid_argument for a bad config, GlError when the mode
-  // cannot hold the layout, the context lacks what the mode needs, or the
-  // table exceeds the context's limits (the message names the sizes).
+  /// Throws std::invalid_argument for a bad config, GlError when the mode
+  /// cannot hold the layout, the context lacks what the mode needs, or the
+  /// table exceeds the context's limits (the message names the sizes).
   GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlBindings& bindings,
             std::uint32_t clear_tile = 0);
   ~GlHaTable() override;
@@ -32,11 +33,11 @@ class GlHaTable final : public GlTechnique {
   [[nodiscard]] Extent table() const override { return config_.table; }
   [[nodiscard]] const OffsetSequence& offsets() const { return offsets_; }
 
-  // Sets the table for the next frame (at least the screen; offsets regenerated).
+  /// Sets the table for the next frame (at least the screen; offsets regenerated).
   void resize(Extent table);
-  // Why `table` cannot be allocated here (slot indices, buffer size), or empty.
+  /// Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
-  // The counting pass without clearing (needs the buffers bound and a state guard).
+  /// The counting pass without clearing (needs the buffers bound and a state guard).
   std::uint64_t count_stored();
 
   [[nodiscard]] std::vector<std::uint64_t> read_table() const;
@@ -56,7 +57,7 @@ class GlHaTable final : public GlTechnique {
 
  private:
   struct Gpu;
-  // Fresh zeroed table (and locks); offsets regenerated for it unless new_offsets is false.
+  /// Fresh zeroed table (and locks); offsets regenerated for it unless new_offsets is false.
   void allocate_table(Extent table, bool new_offsets = true);
 
   BufferConfig config_;
@@ -64,8 +65,8 @@ class GlHaTable final : public GlTechnique {
   OffsetSequence offsets_;
   std::uint32_t cells_ = 0;
   std::uint32_t clear_tile_ = 0;
-  bool holds_frame_ = false;  // the table holds a gathered frame the next clear pass must count
-  std::optional<Extent> pending_count_table_;  // the table a count in the query buffer was measured in
+  bool holds_frame_ = false;  ///< the table holds a gathered frame the next clear pass must count
+  std::optional<Extent> pending_count_table_;  ///< the table a count in the query buffer was measured in
   std::unique_ptr<Gpu> gpu_;
 };
 

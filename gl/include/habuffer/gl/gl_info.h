@@ -1,5 +1,6 @@
-// What the current GL context offers the GPU path, and which atomic modes of
-// the HA-buffer it can run.
+/// @file
+/// What the current GL context offers the GPU path, and which atomic modes of
+/// the HA-buffer it can run.
 #pragma once
 
 #include <optional>
@@ -11,17 +12,17 @@
 namespace habuffer::gl {
 
 enum class AtomicMode {
-  Native32,    // L32 records, atomicMax on uint
-  Native64,    // L64 records, atomicMax on uint64_t (GL_NV_shader_atomic_int64)
-  Emulated64,  // L64 records on drivers without 64-bit atomics (per-slot lock from 32-bit atomics)
+  Native32,    ///< L32 records, atomicMax on uint
+  Native64,    ///< L64 records, atomicMax on uint64_t (GL_NV_shader_atomic_int64)
+  Emulated64,  ///< L64 records on drivers without 64-bit atomics (per-slot lock from 32-bit atomics)
 };
 
 std::string to_string(AtomicMode mode);
 
 struct GlInfo {
   std::string vendor, renderer, version, glsl_version;
-  bool int64_types = false;    // GL_ARB_gpu_shader_int64
-  bool atomic_int64 = false;   // GL_NV_shader_atomic_int64
+  bool int64_types = false;    ///< GL_ARB_gpu_shader_int64
+  bool atomic_int64 = false;   ///< GL_NV_shader_atomic_int64
   bool khr_debug = false;
   bool occlusion_query2 = false;
   long long max_ssbo_bytes = 0;
@@ -29,23 +30,23 @@ struct GlInfo {
   int max_compute_work_groups_x = 0;
 };
 
-// Needs a current OpenGL 4.5 core context.
+/// Needs a current OpenGL 4.5 core context.
 GlInfo query_gl_info();
 
-// Modes this build can run on this context, in order of preference.
+/// Modes this build can run on this context, in order of preference.
 std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info);
 
-// The mode named by the environment variable HABUFFER_ATOMIC_MODE (native32,
-// native64 or emulated64), for tests and benchmarks that compare modes on one
-// GPU (emulated64 forced on a GPU with 64-bit atomics); none when unset.
-// Throws GlError naming the variable for any other value.
+/// The mode named by the environment variable HABUFFER_ATOMIC_MODE (native32,
+/// native64 or emulated64), for tests and benchmarks that compare modes on one
+/// GPU (emulated64 forced on a GPU with 64-bit atomics); none when unset.
+/// Throws GlError naming the variable for any other value.
 std::optional<AtomicMode> atomic_mode_override();
 
-// The mode the library runs a layout in: the override when it holds the
-// layout (native32 for L32; native64 or emulated64 for L64); else L32
-// native32, L64 native64 where the driver has 64-bit atomics, else
-// emulated64; none without 64-bit types. Throws GlError when the override
-// cannot run here, never falling back silently.
+/// The mode the library runs a layout in: the override when it holds the
+/// layout (native32 for L32; native64 or emulated64 for L64); else L32
+/// native32, L64 native64 where the driver has 64-bit atomics, else
+/// emulated64; none without 64-bit types. Throws GlError when the override
+/// cannot run here, never falling back silently.
 std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout);
 
 }  // namespace habuffer::gl

@@ -1,13 +1,14 @@
-// The k-buffer on the GPU (seed 003): K layers per pixel, layer-major, in the
-// atomic mode's slot table (native32: L32 records, native64: 64-bit
-// atomicMax, emulated64: the HA-buffer's lock words and its deferral of
-// calls cut short, resumed by the frame driver), kept sorted by atomic max
-// (no sort pass). With occupancy on, each gather is two passes of the host's
-// scene: a fill pass setting one bit per occupied depth bucket, then this
-// technique's count pass (the bucket of each pixel's k-th occupied bit),
-// then the insertion, which rejects fragments beyond it
-// (occupancy_rejected). What falls behind the K-th layer is dropped and
-// counted (dropped_layers); lossless mode doubles K.
+/// @file
+/// The k-buffer on the GPU (seed 003): K layers per pixel, layer-major, in the
+/// atomic mode's slot table (native32: L32 records, native64: 64-bit
+/// atomicMax, emulated64: the HA-buffer's lock words and its deferral of
+/// calls cut short, resumed by the frame driver), kept sorted by atomic max
+/// (no sort pass). With occupancy on, each gather is two passes of the host's
+/// scene: a fill pass setting one bit per occupied depth bucket, then this
+/// technique's count pass (the bucket of each pixel's k-th occupied bit),
+/// then the insertion, which rejects fragments beyond it
+/// (occupancy_rejected). What falls behind the K-th layer is dropped and
+/// counted (dropped_layers); lossless mode doubles K.
 #pragma once
 
 #include <memory>
@@ -18,7 +19,7 @@ namespace habuffer::gl {
 
 class GlKBuffer final : public GlTechnique {
  public:
-  // Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
+  /// Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
   GlKBuffer(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
   ~GlKBuffer() override;
 

@@ -1,12 +1,13 @@
-// Per-pixel linked lists on the GPU, sorted after the gather (seed 002) or
-// kept sorted while inserting (technique sorted-lists, seed 001's PreSortLF,
-// with early termination and saturation depth; no sort pass): the head-pointer image
-// (zeroed before every gather), the node pool's entries and links (the node
-// counter is a word of the driver's counters), and the sort pass after the
-// gather. A full pool drops and counts (dropped_pool); adaptive sizing grows
-// the pool by the policy's step past grow_at use of the previous frame's
-// request and shrinks it below shrink_at (SPEC 8's rule on nodes); lossless
-// mode regathers into a pool of at least the nodes the gather asked for.
+/// @file
+/// Per-pixel linked lists on the GPU, sorted after the gather (seed 002) or
+/// kept sorted while inserting (technique sorted-lists, seed 001's PreSortLF,
+/// with early termination and saturation depth; no sort pass): the head-pointer image
+/// (zeroed before every gather), the node pool's entries and links (the node
+/// counter is a word of the driver's counters), and the sort pass after the
+/// gather. A full pool drops and counts (dropped_pool); adaptive sizing grows
+/// the pool by the policy's step past grow_at use of the previous frame's
+/// request and shrinks it below shrink_at (SPEC 8's rule on nodes); lossless
+/// mode regathers into a pool of at least the nodes the gather asked for.
 #pragma once
 
 #include <memory>
@@ -17,12 +18,12 @@ namespace habuffer::gl {
 
 class GlLinkedLists final : public GlTechnique {
  public:
-  // Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
+  /// Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
   GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
   ~GlLinkedLists() override;
 
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
-  // Sets the pool for the next frame (a host's own estimate).
+  /// Sets the pool for the next frame (a host's own estimate).
   void resize_pool(std::uint64_t nodes);
 
   void write_params(GlParams& params) const override;
@@ -42,7 +43,7 @@ class GlLinkedLists final : public GlTechnique {
  private:
   struct Gpu;
   void allocate_pool(std::uint64_t nodes);
-  // Why a pool of `nodes` cannot be allocated here, or empty.
+  /// Why a pool of `nodes` cannot be allocated here, or empty.
   [[nodiscard]] std::string pool_limit(std::uint64_t nodes) const;
 
   TechniqueConfig config_;

@@ -1,9 +1,10 @@
-// One technique's buffers and passes on the GPU (its "container"), behind
-// the interface the technique-neutral frame driver (GlFrameDriver) runs:
-// the driver owns the frame (state guard, parameters, outcome tallies,
-// capture, deferred calls, retries, lossless regathers, resolve, timers) and
-// asks the technique to empty itself, to sort after the gather, to grow when
-// it dropped fragments, and for its memory.
+/// @file
+/// One technique's buffers and passes on the GPU (its "container"), behind
+/// the interface the technique-neutral frame driver (GlFrameDriver) runs:
+/// the driver owns the frame (state guard, parameters, outcome tallies,
+/// capture, deferred calls, retries, lossless regathers, resolve, timers) and
+/// asks the technique to empty itself, to sort after the gather, to grow when
+/// it dropped fragments, and for its memory.
 #pragma once
 
 #include <cstdint>
@@ -33,50 +34,50 @@ class GlTechnique {
   [[nodiscard]] AtomicMode mode() const { return mode_; }
   [[nodiscard]] const GlBindings& bindings() const { return bindings_; }
   [[nodiscard]] Extent screen() const { return screen_; }
-  // The GLSL module host shaders append their code to (technique_module).
+  /// The GLSL module host shaders append their code to (technique_module).
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
 
-  // The technique's fields of the parameter block.
+  /// The technique's fields of the parameter block.
   virtual void write_params(GlParams& params) const = 0;
-  // Binds the technique's storage buffers at their points.
+  /// Binds the technique's storage buffers at their points.
   virtual void bind() const = 0;
-  // At a frame's start, inside the driver's state guard with every buffer
-  // bound: count and empty what the previous frame left where the technique
-  // does so (the HA-buffer's clear pass), and adapt the size (SPEC 8).
+  /// At a frame's start, inside the driver's state guard with every buffer
+  /// bound: count and empty what the previous frame left where the technique
+  /// does so (the HA-buffer's clear pass), and adapt the size (SPEC 8).
   virtual void begin_frame(FrameReport& report, const GlFrameOptions& options) = 0;
-  // Whether begin_frame will run a GL pass (the driver then guards the
-  // host's state and binds every buffer first).
+  /// Whether begin_frame will run a GL pass (the driver then guards the
+  /// host's state and binds every buffer first).
   [[nodiscard]] virtual bool draws_at_frame_start() const { return false; }
-  // Right before every gather, the frame's first and its regathers.
+  /// Right before every gather, the frame's first and its regathers.
   virtual void before_gather() = 0;
-  // Passes of the host's gather per attempt: 2 when the technique first
-  // needs a pass that inserts nothing (the k-buffer's occupancy fill, the
-  // parameter ha_gather_phase 1), then between_passes() with every buffer
-  // bound, then the insertion pass.
+  /// Passes of the host's gather per attempt: 2 when the technique first
+  /// needs a pass that inserts nothing (the k-buffer's occupancy fill, the
+  /// parameter ha_gather_phase 1), then between_passes() with every buffer
+  /// bound, then the insertion pass.
   [[nodiscard]] virtual std::uint32_t gather_passes() const { return 1; }
   virtual void between_passes() {}
-  // Empties what a gather inserted, for a regather of the same frame.
+  /// Empties what a gather inserted, for a regather of the same frame.
   virtual void reset() = 0;
-  // After every gather, with every buffer bound: the sort pass, if any.
+  /// After every gather, with every buffer bound: the sort pass, if any.
   virtual PassTiming after_gather(bool finish_timing);
-  // Whether after_gather sorts every pixel (its sort pass counts each one).
+  /// Whether after_gather sorts every pixel (its sort pass counts each one).
   [[nodiscard]] virtual bool sorts() const { return false; }
-  // After every gather's counters are read (the report holds them).
+  /// After every gather's counters are read (the report holds them).
   virtual void gathered(const FrameReport& report);
-  // Lossless mode: room for what the last gather dropped (the report's
-  // counters and counts; the driver retries calls cut short itself); false
-  // when this context cannot hold more.
+  /// Lossless mode: room for what the last gather dropped (the report's
+  /// counters and counts; the driver retries calls cut short itself); false
+  /// when this context cannot hold more.
   virtual bool grow(const FrameReport& report, const GlFrameOptions& options) = 0;
-  // Whether insert calls can be cut short and deferred (the HA-buffer's probe loop).
+  /// Whether insert calls can be cut short and deferred (the HA-buffer's probe loop).
   [[nodiscard]] virtual bool defers_calls() const { return false; }
-  // Records the technique can hold now.
+  /// Records the technique can hold now.
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
-  // The HA-buffer's current table (zero for other techniques).
+  /// The HA-buffer's current table (zero for other techniques).
   [[nodiscard]] virtual Extent table() const { return {}; }
-  // Bytes of the technique's own buffers.
+  /// Bytes of the technique's own buffers.
   [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
-  // The last frame's state as a CPU container of the same technique (lists,
-  // dumps, compositing on the CPU), its insert counters left to the caller.
+  /// The last frame's state as a CPU container of the same technique (lists,
+  /// dumps, compositing on the CPU), its insert counters left to the caller.
   [[nodiscard]] virtual std::unique_ptr<FragmentBuffer> read_back() const = 0;
 
  private:
@@ -86,23 +87,23 @@ class GlTechnique {
   Extent screen_;
 };
 
-// The container of config.technique on the GPU (offsets and the clear
-// pass's tile side are the HA-buffer's; GlFrameOptions::clear_tile).
+/// The container of config.technique on the GPU (offsets and the clear
+/// pass's tile side are the HA-buffer's; GlFrameOptions::clear_tile).
 std::unique_ptr<GlTechnique> make_gl_technique(const TechniqueConfig& config, const OffsetSource& offsets,
                                                AtomicMode mode, const GlBindings& bindings = {},
                                                std::uint32_t clear_tile = 0);
 
-// Throws GlError unless `mode` holds `layout`'s records (native32: L32;
-// native64, emulated64: L64) and this context has what the mode needs
-// (64-bit shader types; native64 also 64-bit atomics).
+/// Throws GlError unless `mode` holds `layout`'s records (native32: L32;
+/// native64, emulated64: L64) and this context has what the mode needs
+/// (64-bit shader types; native64 also 64-bit atomics).
 void check_atomic_mode(AtomicMode mode, Layout layout);
-// Emulated64's lock words for `slots` slots: one per 2^HABUFFER_LOCK_SHIFT.
+/// Emulated64's lock words for `slots` slots: one per 2^HABUFFER_LOCK_SHIFT.
 std::uint64_t emulated64_lock_words(std::uint64_t slots);
 
-// Throws GlError unless a buffer of `bytes` fits one shader-storage buffer
-// of this context (the message names `what` and the sizes).
+/// Throws GlError unless a buffer of `bytes` fits one shader-storage buffer
+/// of this context (the message names `what` and the sizes).
 void check_storage_fits(std::uint64_t bytes, const std::string& what);
-// GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+/// GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
 std::uint64_t max_storage_bytes();
 
 }  // namespace habuffer::gl

@@ -1,5 +1,6 @@
-// The shared algorithm as GLSL text (embedded from core/include/habuffer/shared/ and
-// gl/shaders/ at build time) and the assembly of complete shaders from it.
+/// @file
+/// The shared algorithm as GLSL text (embedded from core/include/habuffer/shared/ and
+/// gl/shaders/ at build time) and the assembly of complete shaders from it.
 #pragma once
 
 #include <string>
@@ -87,37 +88,37 @@ struct GlslFile {
 /// comment header saying how to use them. Needs no GL context.
 std::vector<GlslFile> host_glsl_files();
 
-// The compute shader that inserts a fragment stream held in a buffer.
+/// The compute shader that inserts a fragment stream held in a buffer.
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});
 std::string insert_stream_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
 
-// A complete shader as the library compiles it, for checks by a reference
-// compiler: `name` is unique per mode ("insert", "clear", ...), `stage` the
-// file extension glslangValidator reads the stage from ("comp", "frag", "vert").
+/// A complete shader as the library compiles it, for checks by a reference
+/// compiler: `name` is unique per mode ("insert", "clear", ...), `stage` the
+/// file extension glslangValidator reads the stage from ("comp", "frag", "vert").
 struct ShaderSource {
   std::string name, stage, source;
 };
-// Every shader the library compiles for `mode` (the HA-buffer's compute
-// entry, resume, clear and resolve passes; every other technique's compute
-// entry, sort and resolve passes, named "lists-insert", ...). Needs no GL context.
+/// Every shader the library compiles for `mode` (the HA-buffer's compute
+/// entry, resume, clear and resolve passes; every other technique's compute
+/// entry, sort and resolve passes, named "lists-insert", ...). Needs no GL context.
 std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings = {});
 
-// The full-screen passes' shaders: one vertex shader, and the clear pass's
-// and resolve pass's fragment shaders (the module plus their own code).
+/// The full-screen passes' shaders: one vertex shader, and the clear pass's
+/// and resolve pass's fragment shaders (the module plus their own code).
 std::string full_screen_vertex();
 std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings);
 std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings);
 std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings);
 
-// The sort pass of the techniques that sort after the gather (one
-// invocation per pixel); throws GlError for the HA-buffer.
+/// The sort pass of the techniques that sort after the gather (one
+/// invocation per pixel); throws GlError for the HA-buffer.
 std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
 
-// The resume pass: runs deferred insert calls (cut short by a lock or the
-// driver's loop budget) on from their carried state.
+/// The resume pass: runs deferred insert calls (cut short by a lock or the
+/// driver's loop budget) on from their carried state.
 std::string resume_compute(AtomicMode mode, const GlBindings& bindings = {});
 std::string resume_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
-// The k-buffer's occupancy count pass.
+/// The k-buffer's occupancy count pass.
 std::string kbuffer_count_compute(AtomicMode mode, const GlBindings& bindings = {});
 
 }  // namespace habuffer::gl

@@ -1,5 +1,6 @@
-// A linked GL program, built from source with every compile and link checked:
-// failures throw GlError carrying the driver's log.
+/// @file
+/// A linked GL program, built from source with every compile and link checked:
+/// failures throw GlError carrying the driver's log.
 #pragma once
 
 #include <string>
@@ -8,7 +9,7 @@ namespace habuffer::gl {
 
 class ShaderProgram {
  public:
-  // `name` labels errors ("insert compute shader: 0:12(3): error: ...").
+  /// `name` labels errors ("insert compute shader: 0:12(3): error: ...").
   static ShaderProgram compute(const std::string& source, const std::string& name);
   static ShaderProgram graphics(const std::string& vertex, const std::string& fragment, const std::string& name);
   ~ShaderProgram();
@@ -18,7 +19,7 @@ class ShaderProgram {
   ShaderProgram& operator=(const ShaderProgram&) = delete;
 
   [[nodiscard]] unsigned id() const { return id_; }
-  // Sets a uniform when the program uses it (unused ones are optimized away).
+  /// Sets a uniform when the program uses it (unused ones are optimized away).
   void set(const char* name, unsigned value) const;
   void set(const char* name, unsigned x, unsigned y) const;
   void set(const char* name, float value) const;
