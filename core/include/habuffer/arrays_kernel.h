@@ -24,13 +24,19 @@ struct ArraysBuffers {
 template <bool Concurrent>
 class ArraysKernel {
  public:
+  /// GLSL's types and builtins (glsl_env.h).
   HABUFFER_GLSL_CLASS_PRELUDE
+  /// The private array ha_entries.glsl sorts a pixel's entries in (glsl_env.h).
   HABUFFER_GLSL_CLASS_LOCAL_ARRAY
+  /// The word ha_record.glsl packs records in: 64 bits.
   using ha_word = std::uint64_t;
-  static constexpr uint ha_word_bits = 64;
+  static constexpr uint ha_word_bits = 64;  ///< bits of ha_word
 
+  /// The buffers the kernel works on.
   using Buffers = ArraysBuffers;
 
+  /// Reads the record layout, the screen and K from `params`; works on the
+  /// caller's buffers `b`, which it does not own.
   ArraysKernel(const TechniqueParams& params, const Buffers& b)
       : ha_age_bits(params.age_bits),
         ha_payload_bits(params.payload_bits),
@@ -38,18 +44,23 @@ class ArraysKernel {
         ha_layers(params.layers),
         b_(b) {}
 
-  uint ha_age_bits;
-  uint ha_payload_bits;
-  uvec2 ha_screen_size;
-  uint ha_layers;
+  uint ha_age_bits;  ///< A, the age bits that fix the depth code (SPEC 2)
+  uint ha_payload_bits;  ///< 32 for L64, 0 for L32
+  uvec2 ha_screen_size;  ///< V, in pixels
+  uint ha_layers;  ///< K, layers per pixel
 
+  /// Increments the pixel's counter; returns the old count (it keeps counting past K).
   uint fa_count_add(uint pixel) {
     if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(b_.counts[pixel]).fetch_add(1, std::memory_order_relaxed);
     return b_.counts[pixel]++;
   }
+  /// The pixel's counter: fragments arrived, or after the sort its sorted length.
   uint fa_load_count(uint pixel) const { return b_.counts[pixel]; }
+  /// Sets the pixel's counter to n.
   void fa_store_count(uint pixel, uint n) { b_.counts[pixel] = n; }
+  /// The (code, data) entry of layer slot `slot` (layer k of a pixel: k * pixels + pixel).
   uvec2 fa_load_layer(uint slot) const { return b_.layers[slot]; }
+  /// Writes entry e to layer slot `slot`.
   void fa_store_layer(uint slot, uvec2 e) { b_.layers[slot] = e; }
   /// Atomic even for one inserter: the sort pass runs its rows on several threads.
   void fa_note_overflow(uint arrived) { ha_fetch_max<true>(*b_.max_arrived, arrived); }

@@ -16,23 +16,33 @@
 
 namespace habuffer {
 
+/// The wboit and blend baselines: per-pixel accumulators, no stored records.
 class BlendedImage final : public FragmentBuffer {
  public:
   /// config.technique wboit or blend; throws std::invalid_argument otherwise
   /// or for a bad configuration.
   explicit BlendedImage(const TechniqueConfig& config);
 
+  /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return config_.technique; }
   [[nodiscard]] Extent screen() const override { return params_.screen; }
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
 
+  /// FragmentBuffer interface: blends every valid fragment into its pixel (counted
+  /// blended), one band of rows per thread. Throws std::invalid_argument for
+  /// InsertMode::OwnerComputes or Serial with more than one thread.
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// Resets the accumulators; returns 0 (nothing is stored).
   std::uint64_t clear() override;
+  /// Always 0: nothing is stored.
   [[nodiscard]] std::uint64_t count_stored() const override { return 0; }
+  /// Always 0: nothing is stored.
   [[nodiscard]] std::uint64_t capacity() const override { return 0; }
   /// No lists: `out` is left empty; returns 0.
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
+  /// FragmentBuffer interface: resolves each pixel's accumulators over its
+  /// background; throws std::invalid_argument unless `backgrounds` has screen
+  /// area entries.
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
   /// The accumulators: 16 bytes per pixel (blend), 20 (wboit: RGBA and revealage, float32).

@@ -10,8 +10,9 @@
 
 namespace habuffer {
 
+/// What summarize() measures on one built container.
 struct BuildReport {
-  Counters counters;
+  Counters counters;  ///< the build's counters, as given to summarize()
   std::uint64_t stored = 0;        ///< records held, measured on the buffer (the HA-buffer's non-empty slots)
   std::uint64_t capacity = 0;      ///< records it could hold (slots, nodes, layers of every pixel)
   double load_factor = 0.0;        ///< stored / capacity
@@ -20,10 +21,12 @@ struct BuildReport {
   double mean_age = 0.0;           ///< over stored records
   std::vector<std::uint64_t> age_histogram;  ///< [a] = stored records of age a, a = 0..max_age
   std::uint32_t max_age_table_max = 0;       ///< largest cell of M
-  std::uint64_t memory_bytes = 0;
+  std::uint64_t memory_bytes = 0;  ///< bytes the container allocated (FragmentBuffer::memory_bytes)
   std::uint64_t memory_model_bytes = 0;  ///< memory_model.h, for the buffer as it is
 };
 
+/// The report of `buffer` after a build that returned `counters`: stored records,
+/// capacity, load and memory measured on the buffer, and the HA-buffer's ages.
 BuildReport summarize(const FragmentBuffer& buffer, const Counters& counters);
 
 }  // namespace habuffer

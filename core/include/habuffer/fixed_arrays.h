@@ -16,26 +16,41 @@
 
 namespace habuffer {
 
+/// Fixed per-pixel arrays of K layers (see above).
 class FixedArrays final : public FragmentBuffer {
  public:
   /// Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
   explicit FixedArrays(const TechniqueConfig& config);
 
+  /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return Technique::Arrays; }
   [[nodiscard]] Extent screen() const override { return params_.screen; }
+  /// The configuration, validated as technique arrays.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  /// FragmentBuffer interface: the same configuration.
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
+  /// K, layers per pixel.
   [[nodiscard]] std::uint32_t layers() const { return params_.layers; }
 
+  /// FragmentBuffer interface: counts each pixel's fragments atomically, then
+  /// sorts every pixel's layers. Throws std::invalid_argument for
+  /// InsertMode::OwnerComputes, Serial with more than one thread, or a batch
+  /// that could overflow a pixel's 32-bit counter.
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  /// FragmentBuffer interface: zeroes the counters and largest_overflow().
   std::uint64_t clear() override;
+  /// The sum of the pixels' sorted lengths.
   [[nodiscard]] std::uint64_t count_stored() const override;
+  /// K per pixel.
   [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.layers} * screen().area(); }
   /// The most fragments one pixel received since the last clear, when some
   /// pixel received more than K; else 0.
   [[nodiscard]] std::uint32_t largest_overflow() const { return max_arrived_; }
 
+  /// FragmentBuffer interface; returns 1 + the list's length (the counter, then the layers).
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
+  /// FragmentBuffer interface; throws std::invalid_argument unless `backgrounds`
+  /// has screen area entries.
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
   /// Counters and layers.

@@ -28,26 +28,32 @@ enum class InsertMode {
   OwnerComputes,  ///< HA-buffer only: no atomics, table rows dealt out to threads (owner_computes.h)
 };
 
+/// How FragmentBuffer::insert runs a batch.
 struct InsertOptions {
   std::uint32_t threads = 1;  ///< 0: every hardware thread
-  InsertMode mode = InsertMode::Auto;
+  InsertMode mode = InsertMode::Auto;  ///< how the threads share the buffer
   std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band
 };
 
 /// One record of a pixel's list, front to back. `age` is the HA-buffer's
 /// (1-based probe count); other techniques give 0.
 struct ListEntry {
-  std::uint32_t age = 0;
-  std::uint32_t code = 0;
-  std::uint32_t data = 0;
+  std::uint32_t age = 0;  ///< HA-buffer: the record's age; 0 for other techniques
+  std::uint32_t code = 0;  ///< depth code (SPEC 2): larger is nearer
+  std::uint32_t data = 0;  ///< data word (0 for L32)
+  /// Memberwise equality.
   friend bool operator==(const ListEntry&, const ListEntry&) = default;
 };
 
+/// A technique's CPU container, used through this interface (see above).
 class FragmentBuffer {
  public:
+  /// Containers are deleted through this interface.
   virtual ~FragmentBuffer() = default;
 
+  /// The technique this container implements.
   [[nodiscard]] virtual Technique technique() const = 0;
+  /// The screen, in pixels.
   [[nodiscard]] virtual Extent screen() const = 0;
 
   /// Inserts a batch (and, for techniques that sort afterwards, sorts the
@@ -57,6 +63,7 @@ class FragmentBuffer {
   virtual Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) = 0;
   /// Empties the buffer; returns the records it held.
   virtual std::uint64_t clear() = 0;
+  /// The records held now, counted on the buffer.
   [[nodiscard]] virtual std::uint64_t count_stored() const = 0;
   /// Records the buffer can hold in all (slots, nodes, layers of every pixel).
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;

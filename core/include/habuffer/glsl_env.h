@@ -17,6 +17,8 @@
 /// GLSL's inout parameters are C++ references.
 #define HABUFFER_INOUT(T) T&
 
+/// GLSL's types (uint, uvec2, vec3, vec4) and the builtins the shared sources
+/// call (ha_floor, ha_float_bits, min, max), declared at class scope.
 #define HABUFFER_GLSL_CLASS_PRELUDE                                              \
   using uint = std::uint32_t;                                              \
   using uvec2 = glm::uvec2;                                                \

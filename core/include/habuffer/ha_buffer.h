@@ -20,20 +20,27 @@
 
 namespace habuffer {
 
+/// The HA-buffer's CPU container (see above); move-only.
 class HaBuffer final : public FragmentBuffer {
  public:
   /// Validates the configuration (BufferConfig::validate) and that the offsets
   /// were made for this table with one offset per age (AMAX of them).
   HaBuffer(const BufferConfig& config, OffsetSequence offsets);
+  /// Releases T, M and O.
   ~HaBuffer() override;
   HaBuffer(HaBuffer&&) noexcept;
   HaBuffer& operator=(HaBuffer&&) noexcept;
 
+  /// The configuration, with `table` resolved (never zero).
   [[nodiscard]] const BufferConfig& config() const;
+  /// The configuration's record layout.
   [[nodiscard]] const RecordLayout& record_layout() const;
+  /// The offsets O, one per age.
   [[nodiscard]] const OffsetSequence& offsets() const;
+  /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return Technique::Ha; }
   [[nodiscard]] Extent screen() const override;
+  /// The table H, in slots.
   [[nodiscard]] Extent table() const;
 
   /// Inserts a batch; throws std::out_of_range (naming the index and pixel) if
@@ -45,11 +52,15 @@ class HaBuffer final : public FragmentBuffer {
 
   /// Zeroes T and M; returns the number of records T held.
   std::uint64_t clear() override;
+  /// FragmentBuffer interface: T's non-empty slots, counted.
   [[nodiscard]] std::uint64_t count_stored() const override;
+  /// FragmentBuffer interface: slot_count().
   [[nodiscard]] std::uint64_t capacity() const override { return slot_count(); }
+  /// The slots of T: Hx * Hy.
   [[nodiscard]] std::uint64_t slot_count() const;
   /// Slot s as an unsigned integer (L32 records in the low 32 bits).
   [[nodiscard]] std::uint64_t slot(std::uint64_t s) const;
+  /// The max-age table M.
   [[nodiscard]] const MaxAgeTable& max_age() const;
 
   /// Replaces T and M with state built elsewhere (the GPU path's read-back),
@@ -74,6 +85,7 @@ class HaBuffer final : public FragmentBuffer {
   [[nodiscard]] std::vector<std::uint64_t> age_histogram() const;
   /// Bytes of T, M and O.
   [[nodiscard]] std::uint64_t memory_bytes() const override;
+  /// FragmentBuffer interface: config() as a technique configuration.
   [[nodiscard]] TechniqueConfig technique_config() const override { return ha_technique_config(config()); }
 
  private:

@@ -15,22 +15,35 @@
 
 namespace habuffer {
 
+/// The k-buffer's CPU container (see above).
 class KBuffer final : public FragmentBuffer {
  public:
   /// Throws std::invalid_argument for a bad configuration (TechniqueConfig::validate).
   explicit KBuffer(const TechniqueConfig& config);
 
+  /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return Technique::KBuffer; }
   [[nodiscard]] Extent screen() const override { return params_.screen; }
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
+  /// K, layers per pixel.
   [[nodiscard]] std::uint32_t layers() const { return params_.layers; }
 
+  /// FragmentBuffer interface: with the occupancy map on, a fill pass and a count
+  /// pass come first; the layers stay sorted without a sort pass. Throws
+  /// std::invalid_argument for InsertMode::OwnerComputes or Serial with more
+  /// than one thread.
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  /// FragmentBuffer interface: zeroes the layers, the occupancy map and the limits.
   std::uint64_t clear() override;
+  /// The non-empty layer slots.
   [[nodiscard]] std::uint64_t count_stored() const override;
+  /// K per pixel.
   [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.layers} * screen().area(); }
 
+  /// FragmentBuffer interface; returns the layers read (up to the first empty one, at most K).
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
+  /// FragmentBuffer interface; throws std::invalid_argument unless `backgrounds`
+  /// has screen area entries.
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
   /// Layers, and the occupancy map and limits when on.

@@ -12,6 +12,8 @@
 
 namespace habuffer {
 
+/// The buffers a kernel works on (what a shader gets bound); Word: std::uint64_t
+/// (L64) or std::uint32_t (L32).
 template <class Word>
 struct KBufferBuffers {
   Word* slots;               ///< K per pixel, layer-major
@@ -24,11 +26,16 @@ struct KBufferBuffers {
 template <class Word, bool Concurrent>
 class KBufferKernel {
  public:
+  /// GLSL's types and builtins (glsl_env.h).
   HABUFFER_GLSL_CLASS_PRELUDE
+  /// The slot word.
   using ha_word = Word;
+  /// Slot index: 64 bits.
   using ha_index = std::uint64_t;
-  static constexpr uint ha_word_bits = sizeof(Word) * 8;
+  static constexpr uint ha_word_bits = sizeof(Word) * 8;  ///< bits of Word
 
+  /// Reads the record layout, the screen, K and the occupancy geometry from
+  /// `params`; works on the caller's buffers `b`, which it does not own.
   KBufferKernel(const TechniqueParams& params, const KBufferBuffers<Word>& b)
       : ha_age_bits(params.age_bits),
         ha_payload_bits(params.payload_bits),
@@ -40,18 +47,22 @@ class KBufferKernel {
         ha_occupancy_bucket_codes(params.occupancy_bucket_codes),
         b_(b) {}
 
-  uint ha_age_bits;
-  uint ha_payload_bits;
-  uvec2 ha_screen_size;
-  uint ha_layers;
-  uint ha_occupancy;
-  uint ha_occupancy_words;
-  uint ha_occupancy_near_code;
-  uint ha_occupancy_bucket_codes;
+  uint ha_age_bits;  ///< A, the age bits that fix the depth code (SPEC 2)
+  uint ha_payload_bits;  ///< 32 for L64, 0 for L32
+  uvec2 ha_screen_size;  ///< V, in pixels
+  uint ha_layers;  ///< K, layers per pixel
+  uint ha_occupancy;  ///< 1: occupancy map on, 0: off
+  uint ha_occupancy_words;  ///< 32-bit occupancy words per pixel (32 buckets each)
+  uint ha_occupancy_near_code;  ///< the depth code of depth_range.near_t
+  uint ha_occupancy_bucket_codes;  ///< depth codes per occupancy bucket
 
+  /// atomicMax on slot s: returns the old value, leaves max(old, r).
   Word ha_atomic_max_slot(ha_index s, Word r) { return ha_fetch_max<Concurrent>(b_.slots[s], r); }
+  /// CPU atomics always happen: always 0.
   static uint ha_atomic_missed() { return 0u; }
+  /// Slot s (a relaxed atomic read when Concurrent).
   Word ha_load_slot(ha_index s) const { return ha_fetch<Concurrent>(b_.slots[s]); }
+  /// Sets `bits` in occupancy word `word` (an atomic or when Concurrent and not all set yet).
   void kb_or_occupancy(uint word, uint bits) {
     if constexpr (Concurrent) {
       std::atomic_ref<std::uint32_t> w(b_.occupancy[word]);
@@ -60,9 +71,13 @@ class KBufferKernel {
       b_.occupancy[word] |= bits;
     }
   }
+  /// Occupancy word `word`.
   uint kb_load_occupancy(uint word) const { return b_.occupancy[word]; }
+  /// The pixel's limit bucket.
   uint kb_load_limit(uint pixel) const { return b_.limits[pixel]; }
+  /// Sets the pixel's limit bucket.
   void kb_store_limit(uint pixel, uint bucket) { b_.limits[pixel] = bucket; }
+  /// Index of the lowest set bit of a non-zero word.
   static uint ha_lowest_bit(uint w) { return static_cast<uint>(std::countr_zero(w)); }
 
 #include "shared/ha_record.glsl"

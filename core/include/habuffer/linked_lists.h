@@ -18,26 +18,42 @@
 
 namespace habuffer {
 
+/// Per-pixel linked lists, sorted after the gather or kept sorted (see above).
 class LinkedLists final : public FragmentBuffer {
  public:
   /// Technique sorted-lists when config.technique says so, else lists. Throws
   /// std::invalid_argument for a bad configuration (TechniqueConfig::validate).
   explicit LinkedLists(const TechniqueConfig& config);
 
+  /// FragmentBuffer interface (see fragment_buffer.h): lists or sorted-lists.
   [[nodiscard]] Technique technique() const override { return config_.technique; }
+  /// Whether fragments are linked in at their place (technique sorted-lists).
   [[nodiscard]] bool sorted_on_insert() const { return config_.technique == Technique::SortedLists; }
+  /// FragmentBuffer interface: the screen, in pixels.
   [[nodiscard]] Extent screen() const override { return params_.screen; }
+  /// The configuration, validated as lists or sorted-lists.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  /// FragmentBuffer interface: the same configuration.
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
 
+  /// FragmentBuffer interface: lists sort every pixel's list after the batch;
+  /// sorted-lists link each fragment in at its place. Throws std::invalid_argument
+  /// for InsertMode::OwnerComputes, Serial with more than one thread, or more than
+  /// 2^32 - 1 fragments since the last clear.
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  /// FragmentBuffer interface: empties every list and resets the node counter and requested().
   std::uint64_t clear() override;
+  /// The nodes linked into the lists.
   [[nodiscard]] std::uint64_t count_stored() const override;
+  /// The pool's nodes.
   [[nodiscard]] std::uint64_t capacity() const override { return params_.pool_capacity; }
   /// Nodes asked for since the last clear, including those the pool could not give.
   [[nodiscard]] std::uint64_t requested() const { return requested_; }
 
+  /// FragmentBuffer interface; returns 1 + 2 per node (the head, then each node's entry and link).
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
+  /// FragmentBuffer interface; throws std::invalid_argument unless `backgrounds`
+  /// has screen area entries.
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
   /// Head pointers, nodes (entry and link) and the counter.

@@ -28,13 +28,19 @@ struct ListsBuffers {
 template <bool Concurrent>
 class ListsKernel {
  public:
+  /// GLSL's types and builtins (glsl_env.h).
   HABUFFER_GLSL_CLASS_PRELUDE
+  /// The private array ha_entries.glsl sorts a pixel's entries in (glsl_env.h).
   HABUFFER_GLSL_CLASS_LOCAL_ARRAY
+  /// The word ha_record.glsl packs records in: 64 bits.
   using ha_word = std::uint64_t;
-  static constexpr uint ha_word_bits = 64;
+  static constexpr uint ha_word_bits = 64;  ///< bits of ha_word
 
+  /// The buffers the kernel works on.
   using Buffers = ListsBuffers;
 
+  /// Reads the record layout, the screen, the pool and the sorted lists' options
+  /// from `params`; works on the caller's buffers `b`, which it does not own.
   ListsKernel(const TechniqueParams& params, const Buffers& b)
       : ha_age_bits(params.age_bits),
         ha_payload_bits(params.payload_bits),
@@ -45,37 +51,48 @@ class ListsKernel {
         ha_saturation(params.saturation ? 1u : 0u),
         b_(b) {}
 
-  uint ha_age_bits;
-  uint ha_payload_bits;
-  uvec2 ha_screen_size;
-  uint ha_pool_capacity;
-  uint ha_iter_limit;
-  float ha_cull_tau;
-  uint ha_saturation;
+  uint ha_age_bits;  ///< A, the age bits that fix the depth code (SPEC 2)
+  uint ha_payload_bits;  ///< 32 for L64, 0 for L32
+  uvec2 ha_screen_size;  ///< V, in pixels
+  uint ha_pool_capacity;  ///< nodes in the pool
+  uint ha_iter_limit;  ///< sorted lists: steps of one insertion
+  float ha_cull_tau;  ///< sorted lists: early termination (0: off)
+  uint ha_saturation;  ///< 1: saturation depth on, 0: off
 
+  /// Increments the node counter; returns its old value (it keeps counting past the capacity).
   uint ll_allocate_node() {
     if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(*b_.counter).fetch_add(1, std::memory_order_relaxed);
     return (*b_.counter)++;
   }
+  /// Replaces the pixel's head by `link`; returns the old head (atomic when Concurrent).
   uint ll_exchange_head(uint pixel, uint link) {
     if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(b_.heads[pixel]).exchange(link, std::memory_order_relaxed);
     const uint old = b_.heads[pixel];
     b_.heads[pixel] = link;
     return old;
   }
+  /// The pixel's head link (0: empty list).
   uint ll_load_head(uint pixel) const { return b_.heads[pixel]; }
+  /// Sets the pixel's head link.
   void ll_store_head(uint pixel, uint link) { b_.heads[pixel] = link; }
+  /// The (code, data) entry of node index `node` (link - 1).
   uvec2 ll_load_entry(uint node) const { return b_.entries[node]; }
+  /// Writes the entry of node index `node`.
   void ll_store_entry(uint node, uvec2 e) { b_.entries[node] = e; }
+  /// The link of node index `node` (0: end of list).
   uint ll_load_next(uint node) const { return b_.next[node]; }
+  /// Sets the link of node index `node`.
   void ll_store_next(uint node, uint link) { b_.next[node] = link; }
 
   /// Sorted lists: the link a walk reads (the head for where == 0) and the swap that links a node.
   uint& sl_link(uint pixel, uint where) const { return where == 0 ? b_.heads[pixel] : b_.next[where - 1]; }
+  /// The link at `where` (see sl_link): an acquire read when Concurrent.
   uint sl_load_link(uint pixel, uint where) const {
     if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(sl_link(pixel, where)).load(std::memory_order_acquire);
     return sl_link(pixel, where);
   }
+  /// Compare-and-swap of the link at `where` from `expected` to `link`
+  /// (acquire-release when Concurrent); returns the link it found.
   uint sl_swap_link(uint pixel, uint where, uint expected, uint link) {
     if constexpr (Concurrent) {
       std::atomic_ref<std::uint32_t>(sl_link(pixel, where))
@@ -87,7 +104,9 @@ class ListsKernel {
       return found;
     }
   }
+  /// The pixel's saturation code (saturation on only).
   uint ha_load_saturation(uint pixel) const { return ha_fetch<Concurrent>(b_.saturation[pixel]); }
+  /// Raises the pixel's saturation code to at least `code` (atomic max).
   void ha_max_saturation(uint pixel, uint code) { ha_fetch_max<Concurrent>(b_.saturation[pixel], code); }
 
 #include "shared/ha_record.glsl"

@@ -21,23 +21,28 @@ namespace habuffer {
 /// every table size (SPEC 8), or a fixed list, which stays valid for any
 /// larger table since its offsets lie inside the first one.
 struct OffsetSource {
-  OffsetGenerator generator = OffsetGenerator::Random;
-  std::uint64_t seed = 1;
+  OffsetGenerator generator = OffsetGenerator::Random;  ///< random, farthest or list
+  std::uint64_t seed = 1;  ///< for random and farthest
   std::vector<glm::uvec2> list;  ///< used when generator == List
 
+  /// `count` offsets for `table`, generated or from `list` (OffsetSequence::from_list);
+  /// throws std::invalid_argument as those do.
   [[nodiscard]] OffsetSequence make(Extent table, std::uint32_t count) const;
 };
 
+/// One attempt of a build: its size, its counters and its capacity.
 struct BuildAttempt {
   Extent table;  ///< the HA-buffer's table; zero for other techniques
-  Counters counters;
+  Counters counters;  ///< the attempt's counters
   std::uint64_t capacity = 0;  ///< records the technique could hold (slots, nodes, layers of every pixel)
 };
 
+/// An HA-buffer build: the final attempt's buffer and every attempt.
 struct BuildResult {
-  HaBuffer buffer;
+  HaBuffer buffer;  ///< the final attempt's buffer
   Counters counters;                  ///< of the final attempt
   std::vector<BuildAttempt> attempts;  ///< every attempt, in order
+  /// Whether the final attempt lost no fragment.
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 
@@ -51,13 +56,19 @@ BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::
 /// for (and by the policy's step); the fixed arrays' K to the most fragments a
 /// pixel received.
 struct TechniqueBuild {
-  std::unique_ptr<FragmentBuffer> buffer;
+  std::unique_ptr<FragmentBuffer> buffer;  ///< the final attempt's container
   Counters counters;                   ///< of the final attempt
   std::vector<BuildAttempt> attempts;  ///< every attempt, in order
   bool growth_limited = false;         ///< lossless mode stopped: the next size cannot be built
+  /// Whether the final attempt lost no fragment.
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 
+/// One build of any technique (max_attempts = 1), or lossless mode: on failure
+/// grow the configuration (TechniqueConfig::grown) and gather the whole stream
+/// again, at most `max_attempts` times, stopping early (growth_limited) when the
+/// next size cannot be built. Throws std::invalid_argument for max_attempts 0 or
+/// a bad policy or configuration, std::out_of_range for a fragment off the screen.
 TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource& offsets,
                                std::span<const Fragment> fragments, const InsertOptions& options,
                                const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);

@@ -32,6 +32,8 @@ std::uint64_t memory_model_bytes(const FragmentBuffer& buffer);
 /// the k-buffer 56KV bits; wboit 160V bits (RGBA32F + R32F), blend 128V bits.
 double paper_memory_bytes(Technique technique, std::uint64_t pixels, std::uint64_t fragments, double load,
                           std::uint32_t layers);
+/// Seed 000's paged lists in bytes: 40V + F/K (56K + 32) bits, K = `page`
+/// fragments per page.
 double paper_paged_lists_bytes(std::uint64_t pixels, std::uint64_t fragments, std::uint32_t page);
 
 }  // namespace habuffer

@@ -22,11 +22,15 @@
 
 namespace habuffer {
 
+/// How insert_owner_computes deals out the table.
 struct OwnerComputesOptions {
   std::uint32_t owners = 2;      ///< logical owners (one task each per round)
   std::uint32_t band_rows = 16;  ///< table rows per band; bands go round-robin to owners
 };
 
+/// Inserts `fragments` into `table` and `max_age` by owner-computes (see above),
+/// with `params` and `offsets` as HashKernel takes them; returns the counters.
+/// Throws std::invalid_argument when options.owners or options.band_rows is 0.
 template <class Word>
 Counters insert_owner_computes(const KernelParams& params, const glm::uvec2* offsets, Word* table,
                                MaxAgeTable& max_age, std::span<const Fragment> fragments,

@@ -15,6 +15,8 @@
 
 namespace habuffer {
 
+/// Every pixel over one `background` (row-major, screen.area() entries); invalid
+/// fragments are left out. Throws std::out_of_range for a fragment off the screen.
 std::vector<glm::dvec4> reference_composite(std::span<const Fragment> fragments, Extent screen,
                                             glm::dvec3 background);
 /// Each pixel over its own background (row-major, screen.area() entries).

@@ -9,10 +9,11 @@
 
 namespace habuffer {
 
+/// The thresholds and step of adaptive sizing (SPEC 8); load = stored / capacity.
 struct ResizePolicy {
-  double grow_at = 0.80;
-  double shrink_at = 0.30;
-  double step = 0.25;
+  double grow_at = 0.80;  ///< grow above this load
+  double shrink_at = 0.30;  ///< shrink below this load
+  double step = 0.25;  ///< fraction of the area (or capacity) to grow or shrink by
 
   /// Throws std::invalid_argument unless 0 <= shrink_at < grow_at <= 1 and 0 < step < 1.
   void validate() const;
@@ -26,6 +27,7 @@ struct ResizePolicy {
   /// pool), at least 1: the next frame's from the records `used` this frame,
   /// and lossless growth to at least `needed` and at least one step.
   [[nodiscard]] std::uint64_t next(std::uint64_t capacity, std::uint64_t used) const;
+  /// Lossless growth of a capacity: the largest of `needed`, capacity times (1 + step) rounded up, and capacity + 1.
   [[nodiscard]] std::uint64_t grown(std::uint64_t capacity, std::uint64_t needed) const;
   /// Area times (1 - step), aspect ratio kept, sides rounded up, at least the screen.
   [[nodiscard]] Extent shrunk(Extent table, Extent screen) const;

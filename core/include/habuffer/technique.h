@@ -18,6 +18,7 @@
 
 namespace habuffer {
 
+/// The techniques the library builds (see above).
 enum class Technique {
   Ha,      ///< the coherent Robin Hood hash (SPEC): pointer-free, always sorted
   Lists,   ///< per-pixel linked lists (Yang et al. 2010), sorted after the gather
@@ -28,6 +29,7 @@ enum class Technique {
   Blend,        ///< unsorted over-blending in submission order: no lists, the floor of time
 };
 
+/// The technique's name, as parse_technique reads it.
 std::string to_string(Technique t);
 /// "ha", "lists", "arrays", "sorted-lists", "kbuffer", "wboit", "blend"; nullopt for anything else.
 std::optional<Technique> parse_technique(std::string_view name);
@@ -49,13 +51,15 @@ Technique lists_flavour(Technique t);
 /// k-buffer's occupancy buckets divide it, wboit's weight is normalized to
 /// it. Fragments outside still count (clamped to the nearest end).
 struct DepthRange {
-  float near_t = 0.0f;
-  float far_t = 1.0f;
+  float near_t = 0.0f;  ///< the nearest end, in [0, far_t)
+  float far_t = 1.0f;  ///< the farthest end, at most 1
+  /// Memberwise equality.
   friend bool operator==(const DepthRange&, const DepthRange&) = default;
 };
 
+/// Everything that fixes one technique's container besides the HA-buffer's offsets.
 struct TechniqueConfig {
-  Technique technique = Technique::Ha;
+  Technique technique = Technique::Ha;  ///< which container
   /// Screen and record layout for every technique (the layout and age bits fix
   /// the depth code, so lists of every technique compare bit for bit); table,
   /// block, iteration limit and early cull are the HA-buffer's.
@@ -66,7 +70,7 @@ struct TechniqueConfig {
   /// insertion rejecting what lies beyond the k-th occupied bucket) with
   /// 32 * occupancy_words buckets per pixel over depth_range.
   bool occupancy = false;
-  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;
+  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< k-buffer: 32-bit occupancy words per pixel
   DepthRange depth_range;  ///< k-buffer's occupancy, wboit's weights
 
   /// Throws std::invalid_argument naming the field: the buffer's own rules,

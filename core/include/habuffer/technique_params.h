@@ -12,17 +12,18 @@
 
 namespace habuffer {
 
+/// The list, array, k-buffer and blended kernels' parameters (make_technique_params).
 struct TechniqueParams {
   std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;  ///< fixes the depth code's bits (SPEC 2)
   std::uint32_t payload_bits = 32;               ///< 32 for L64, 0 for L32 (data stored as 0)
-  Extent screen;
+  Extent screen;  ///< V, in pixels
   std::uint32_t pool_capacity = 0;  ///< linked lists: nodes
   std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< fixed arrays, k-buffer: K
   std::uint32_t iter_limit = HABUFFER_DEFAULT_ITER_LIMIT;  ///< sorted lists: steps of one insertion
   float cull_tau = 0.0f;                             ///< sorted lists: early termination (0: off)
   bool saturation = false;                           ///< sorted lists: saturation depth
   bool occupancy = false;                            ///< k-buffer: occupancy-map culling
-  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;
+  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< k-buffer: 32-bit occupancy words per pixel
   std::uint32_t occupancy_near_code = 0;   ///< k-buffer: the depth code of depth_range.near_t
   std::uint32_t occupancy_bucket_codes = 1;  ///< k-buffer: depth codes per occupancy bucket
   DepthRange depth_range;                    ///< wboit's weights
@@ -32,6 +33,8 @@ struct TechniqueParams {
 /// (exact on both paths): bucket 0 holds near_t, the last one far_t.
 void occupancy_geometry(const TechniqueConfig& c, std::uint32_t& near_code, std::uint32_t& bucket_codes);
 
+/// The kernels' parameters for configuration `c`; throws std::invalid_argument
+/// for age bits outside 4..12.
 inline TechniqueParams make_technique_params(const TechniqueConfig& c) {
   TechniqueParams p;
   p.age_bits = c.buffer.age_bits;

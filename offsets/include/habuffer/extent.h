@@ -9,12 +9,16 @@
 
 namespace habuffer {
 
+/// A 2D size: x columns by y rows of pixels, slots or cells.
 struct Extent {
-  std::uint32_t x = 0;
-  std::uint32_t y = 0;
+  std::uint32_t x = 0;  ///< width
+  std::uint32_t y = 0;  ///< height
 
+  /// x * y, in 64 bits.
   [[nodiscard]] std::uint64_t area() const { return std::uint64_t{x} * y; }
+  /// "WxH", as parse_extent reads it.
   [[nodiscard]] std::string str() const { return std::to_string(x) + "x" + std::to_string(y); }
+  /// Memberwise equality.
   friend bool operator==(const Extent&, const Extent&) = default;
 };
 

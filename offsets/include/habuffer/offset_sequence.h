@@ -13,8 +13,11 @@
 
 namespace habuffer {
 
+/// How offsets are made (SPEC 3): Random (uniform, seeded), Farthest (greedy
+/// max-min toroidal distance, seeded) or List (given, an offsets file).
 enum class OffsetGenerator { Random, Farthest, List };
 
+/// The offsets O of one table, one per age (see above).
 class OffsetSequence {
  public:
   /// `count` offsets (AMAX) for table `table`: pairwise distinct when the table
@@ -27,12 +30,19 @@ class OffsetSequence {
   /// offending row when an offset lies outside the table, offsets that must be
   /// distinct repeat, or fewer than min(count, table slots) rows are given.
   static OffsetSequence from_list(Extent table, std::uint32_t count, std::span<const glm::uvec2> rows);
+  /// random() or farthest() by `gen`; throws std::invalid_argument for List, which
+  /// must be given (from_list).
   static OffsetSequence make(OffsetGenerator gen, Extent table, std::uint32_t count, std::uint64_t seed);
 
+  /// O[0..size()-1].
   [[nodiscard]] std::span<const glm::uvec2> values() const { return values_; }
+  /// O[i], unchecked.
   [[nodiscard]] const glm::uvec2& operator[](std::size_t i) const { return values_[i]; }
+  /// The number of offsets (`count`).
   [[nodiscard]] std::size_t size() const { return values_.size(); }
+  /// The table the offsets were made for.
   [[nodiscard]] Extent table() const { return table_; }
+  /// How the offsets were made.
   [[nodiscard]] OffsetGenerator generator() const { return generator_; }
 
  private:
@@ -54,6 +64,7 @@ std::uint64_t toroidal_distance2(glm::uvec2 a, glm::uvec2 b, Extent table);
 /// k = 2..n (result[k-2]); O(n^2).
 std::vector<double> min_pairwise_distances(std::span<const glm::uvec2> offsets, Extent table);
 
+/// "random", "farthest" or "list".
 std::string to_string(OffsetGenerator gen);
 
 }  // namespace habuffer

@@ -9,10 +9,13 @@ namespace habuffer {
 
 __extension__ using Uint128 = unsigned __int128;  ///< GCC/Clang builtin, for Lemire's method
 
+/// The SplitMix64 generator: 64 bits of state, the same stream for a seed everywhere.
 class SplitMix64 {
  public:
+  /// Starts from state `seed`.
   explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
 
+  /// The next 64-bit output.
   std::uint64_t next() {
     std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;

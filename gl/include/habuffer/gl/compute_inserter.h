@@ -13,6 +13,8 @@
 
 namespace habuffer::gl {
 
+/// The GPU path's compute entry for one frame driver: uploads a fragment stream
+/// and inserts it through the same ha_insert host fragment shaders call.
 class ComputeInserter {
  public:
   /// Compiles the entry for `buffer`'s atomic mode and binding points (throws
@@ -20,6 +22,7 @@ class ComputeInserter {
   /// max_chunk: fragments per stream buffer (0: as many as one shader-storage
   /// buffer holds).
   explicit ComputeInserter(GlFrameDriver& buffer, std::size_t max_chunk = 0);
+  /// Deletes the stream buffers.
   ~ComputeInserter();
   ComputeInserter(const ComputeInserter&) = delete;
   ComputeInserter& operator=(const ComputeInserter&) = delete;
@@ -28,6 +31,7 @@ class ComputeInserter {
   /// it exceeds one. Throws GlError naming the first fragment outside the
   /// screen, as the CPU path does.
   void upload(std::span<const Fragment> fragments);
+  /// Fragments in the uploaded stream, over all its buffers.
   [[nodiscard]] std::size_t uploaded() const;
   /// Inserts the uploaded stream; call inside GlFrameDriver::frame's gather.
   void dispatch() const;

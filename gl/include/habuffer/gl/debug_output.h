@@ -11,8 +11,13 @@
 
 namespace habuffer::gl {
 
+/// Receives every driver message except notifications, with " (id N)" appended.
 using LogSink = std::function<void(const std::string& message)>;
+/// Replaces the sink (default: stderr, prefixed "habuffer gl: "); an empty sink
+/// drops the messages.
 void set_log_sink(LogSink sink);
+/// Whether check_gl_errors() throws (default: on in debug builds, off with
+/// NDEBUG); errors are collected either way.
 void set_throw_on_gl_error(bool enabled);
 
 /// Installs the callback on the current context (needs KHR_debug / GL 4.3).

@@ -11,15 +11,18 @@
 
 namespace habuffer::gl {
 
+/// A headless OpenGL 4.5 core context made through EGL (see the file comment).
 class EglContext {
  public:
   /// Creates the context and makes it current on this thread. Throws GlError
   /// with one line saying what was missing (EGL, a display, GL 4.5 core).
   explicit EglContext(std::optional<int> device = std::nullopt);
+  /// Releases and destroys the context, then terminates the display.
   ~EglContext();
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;
 
+  /// Makes the context current on this thread; throws GlError when EGL refuses.
   void make_current();
   /// e.g. "EGL device 0 (EGL_EXT_platform_device)" or "Mesa surfaceless".
   [[nodiscard]] const std::string& description() const { return description_; }

@@ -14,6 +14,9 @@
 
 namespace habuffer::gl {
 
+/// Options of every frame of a GlFrameDriver; its constructor throws
+/// std::invalid_argument for bad ones (an invalid policy, max_attempts or
+/// lock_spin_limit 0, capture_only without capture).
 struct GlFrameOptions {
   /// Resize by `policy` from the previous frame's count (SPEC 8): the
   /// HA-buffer's table, the linked lists' node pool (fixed arrays keep K).
@@ -47,10 +50,12 @@ struct GlFrameOptions {
 /// GL_TIME_ELAPSED. Use wall_ms on Mesa llvmpipe: its timer queries measure
 /// command recording, not rasterization (0.2 ms for an 11 ms gather here).
 struct PassTiming {
-  double wall_ms = 0.0;
-  double gpu_ms = 0.0;
+  double wall_ms = 0.0;  ///< wall clock (ms)
+  double gpu_ms = 0.0;   ///< GL_TIME_ELAPSED (ms)
 };
 
+/// What one GlFrameDriver::frame did: sizes, outcome tallies, gathers repeated,
+/// and the time of each pass.
 struct FrameReport {
   std::uint64_t index = 0;  ///< frames since construction
   Extent table;             ///< HA-buffer: the table this frame was gathered into
@@ -68,7 +73,7 @@ struct FrameReport {
   /// counted_table is still the table (a table resized since then is not
   /// judged by a count it did not hold).
   std::optional<std::uint64_t> counted_stored;
-  Extent counted_table;
+  Extent counted_table;  ///< the table counted_stored was measured in
   Counters counters;                   ///< of the final gather
   std::vector<BuildAttempt> attempts;  ///< every gather of lossless mode, in order
   /// Insert calls cut short by something other than the table (an emulated64
@@ -90,6 +95,7 @@ struct FrameReport {
   PassTiming clear;   ///< the clear pass (zero on the first frame)
   PassTiming gather;  ///< the final gather, its resume rounds included
   PassTiming sort;    ///< linked lists, fixed arrays: the sort pass after the final gather
+  /// Whether the final gather dropped nothing (no failures in its counters).
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
 

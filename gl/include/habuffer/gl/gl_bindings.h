@@ -15,8 +15,8 @@ namespace habuffer::gl {
 /// first; from_base() moves them as a block. Every point is checked against
 /// the context's limits when a frame driver is made (validate()).
 struct GlBindings {
-  static constexpr unsigned kDefaultStorageBase = 16;
-  static constexpr unsigned kDefaultUniformBase = 16;
+  static constexpr unsigned kDefaultStorageBase = 16;  ///< the first shader-storage point by default
+  static constexpr unsigned kDefaultUniformBase = 16;  ///< the uniform-buffer point by default
   /// Shader-storage binding points.
   unsigned table = kDefaultStorageBase;           ///< the HA table, list heads, array counts
   unsigned max_age = kDefaultStorageBase + 1;     ///< the max-age table, list nodes, array layers
@@ -34,6 +34,7 @@ struct GlBindings {
   /// the members) and the parameter block at `uniform_base`.
   [[nodiscard]] static GlBindings from_base(unsigned storage_base, unsigned uniform_base);
 
+  /// The nine shader-storage points, in the order of the members.
   [[nodiscard]] std::array<unsigned, 9> storage_points() const {
     return {table, max_age, offsets, counters, locks, capture, stream, deferred, saturation};
   }

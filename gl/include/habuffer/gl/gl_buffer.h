@@ -12,12 +12,14 @@ namespace habuffer::gl {
 
 /// Throws GlError naming the size when OpenGL cannot allocate it.
 unsigned create_buffer(std::uint64_t bytes, const void* data = nullptr);
+/// Sets every byte of `buffer` to zero.
 void zero_buffer(unsigned buffer);
 /// Binds `buffer` at indexed `point` of `target` (glBindBuffersBase, which,
 /// unlike glBindBufferBase, leaves the target's generic binding, the host's, as it is).
 void bind_at(unsigned target, unsigned point, unsigned buffer);
 /// Deletes the buffer (if any) and sets the name to 0.
 void delete_buffer(unsigned& buffer);
+/// Reads the first `words` 32-bit words of `buffer` back.
 std::vector<std::uint32_t> read_words(unsigned buffer, std::uint64_t words);
 
 }  // namespace habuffer::gl

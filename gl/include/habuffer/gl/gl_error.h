@@ -7,8 +7,11 @@
 
 namespace habuffer::gl {
 
+/// The exception of the GPU path; what() says what failed (a shader's error
+/// carries the driver's log).
 class GlError : public std::runtime_error {
  public:
+  /// Constructs from a message, as std::runtime_error does.
   using std::runtime_error::runtime_error;
 };
 

@@ -12,14 +12,21 @@
 
 namespace habuffer::gl {
 
+/// Fixed per-pixel arrays' container on the GPU (see the file comment).
 class GlFixedArrays final : public GlTechnique {
  public:
   /// Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
   GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
+  /// Deletes the counters, the layers and the sort pass.
   ~GlFixedArrays() override;
 
+  /// The configuration, validated; `layers` is the current K.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
 
+  /// GlTechnique interface (see gl_technique.h). before_gather zeroes the
+  /// counters; after_gather runs the sort pass; grow raises K to the most
+  /// fragments a pixel received (at least one more), false beyond the context's
+  /// limits; gathered keeps that most for read_back.
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport&, const GlFrameOptions&) override {}

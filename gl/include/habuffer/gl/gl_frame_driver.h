@@ -31,20 +31,29 @@
 
 namespace habuffer::gl {
 
+/// Runs frames of one technique's container on the GPU (see the file comment);
+/// GlHaBuffer is the HA-buffer's.
 class GlFrameDriver {
  public:
   /// Throws std::invalid_argument for bad options, GlError when the screen or
   /// a binding point exceeds the context's limits.
   GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options = {});
+  /// Deletes the frame's buffers and passes, and the technique with its own.
   virtual ~GlFrameDriver();
   GlFrameDriver(const GlFrameDriver&) = delete;
   GlFrameDriver& operator=(const GlFrameDriver&) = delete;
 
+  /// The technique's container, which the driver owns.
   [[nodiscard]] GlTechnique& technique() { return *technique_; }
+  /// The same, read-only.
   [[nodiscard]] const GlTechnique& technique() const { return *technique_; }
+  /// The technique's atomic mode.
   [[nodiscard]] AtomicMode mode() const { return technique_->mode(); }
+  /// The binding points of every buffer (checked by the constructor).
   [[nodiscard]] const GlBindings& bindings() const { return technique_->bindings(); }
+  /// The screen, in pixels.
   [[nodiscard]] Extent screen() const { return technique_->screen(); }
+  /// The options every frame runs with.
   [[nodiscard]] const GlFrameOptions& options() const { return options_; }
 
   /// The GLSL module for this technique, atomic mode and binding points.

@@ -13,6 +13,7 @@
 
 namespace habuffer::gl {
 
+/// The HA-buffer on the GPU: a GlFrameDriver running a GlHaTable.
 class GlHaBuffer : public GlFrameDriver {
  public:
   /// Throws std::invalid_argument for a bad config, GlError when the mode cannot
@@ -21,8 +22,11 @@ class GlHaBuffer : public GlFrameDriver {
   GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlFrameOptions& options = {},
              const GlBindings& bindings = {});
 
+  /// The configuration, validated.
   [[nodiscard]] const BufferConfig& config() const { return table_.config(); }  // config().table: the current table
+  /// The current table.
   [[nodiscard]] Extent table() const { return table_.table(); }
+  /// The offsets of the current table.
   [[nodiscard]] const OffsetSequence& offsets() const { return table_.offsets(); }
 
   /// Sets the table for the next frame (at least the screen; offsets
@@ -34,6 +38,7 @@ class GlHaBuffer : public GlFrameDriver {
   std::uint64_t count_stored();
   /// Slots widened to 64 bits (L32 records in the low half), row-major.
   [[nodiscard]] std::vector<std::uint64_t> read_table() const { return table_.read_table(); }
+  /// The max-age table: one word per cell of block x block pixels, row-major.
   [[nodiscard]] std::vector<std::uint32_t> read_max_age() const { return table_.read_max_age(); }
 
  private:

@@ -20,6 +20,7 @@
 
 namespace habuffer::gl {
 
+/// The HA-buffer's container on the GPU (see the file comment).
 class GlHaTable final : public GlTechnique {
  public:
   /// Throws std::invalid_argument for a bad config, GlError when the mode
@@ -27,10 +28,14 @@ class GlHaTable final : public GlTechnique {
   /// table exceeds the context's limits (the message names the sizes).
   GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlBindings& bindings,
             std::uint32_t clear_tile = 0);
+  /// Deletes the table's buffers and the clear pass.
   ~GlHaTable() override;
 
+  /// The configuration, validated.
   [[nodiscard]] const BufferConfig& config() const { return config_; }  // config().table: the current table
+  /// The current table (GlTechnique interface).
   [[nodiscard]] Extent table() const override { return config_.table; }
+  /// The offsets of the current table.
   [[nodiscard]] const OffsetSequence& offsets() const { return offsets_; }
 
   /// Sets the table for the next frame (at least the screen; offsets regenerated).
@@ -40,9 +45,17 @@ class GlHaTable final : public GlTechnique {
   /// The counting pass without clearing (needs the buffers bound and a state guard).
   std::uint64_t count_stored();
 
+  /// Slots widened to 64 bits (L32 records in the low half), row-major.
   [[nodiscard]] std::vector<std::uint64_t> read_table() const;
+  /// The max-age table: one word per cell of block x block pixels, row-major.
   [[nodiscard]] std::vector<std::uint32_t> read_max_age() const;
 
+  /// GlTechnique interface (see gl_technique.h). Once a gather filled the
+  /// table, begin_frame reads the count the previous clear pass left, runs this
+  /// frame's clear pass and adapts the table; before_gather zeroes the max-age
+  /// table and saturation codes; reset zeroes the table; grow enlarges it by
+  /// the policy's step, false beyond the context's limits; insert calls are
+  /// deferred.
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport& report, const GlFrameOptions& options) override;

@@ -11,23 +11,29 @@
 
 namespace habuffer::gl {
 
+/// How the GPU path raises slots by atomicMax; it fixes the record layout.
 enum class AtomicMode {
   Native32,    ///< L32 records, atomicMax on uint
   Native64,    ///< L64 records, atomicMax on uint64_t (GL_NV_shader_atomic_int64)
   Emulated64,  ///< L64 records on drivers without 64-bit atomics (per-slot lock from 32-bit atomics)
 };
 
+/// "native32", "native64" or "emulated64".
 std::string to_string(AtomicMode mode);
 
+/// What query_gl_info() read from the current context.
 struct GlInfo {
+  /// The strings GL_VENDOR, GL_RENDERER, GL_VERSION and
+  /// GL_SHADING_LANGUAGE_VERSION (empty when missing).
   std::string vendor, renderer, version, glsl_version;
   bool int64_types = false;    ///< GL_ARB_gpu_shader_int64
   bool atomic_int64 = false;   ///< GL_NV_shader_atomic_int64
-  bool khr_debug = false;
-  bool occlusion_query2 = false;
-  long long max_ssbo_bytes = 0;
+  bool khr_debug = false;  ///< GL_KHR_debug or GL 4.3
+  bool occlusion_query2 = false;  ///< GL_ARB_occlusion_query2 or GL 3.3
+  long long max_ssbo_bytes = 0;  ///< GL_MAX_SHADER_STORAGE_BLOCK_SIZE (bytes)
+  /// GL_MAX_FRAMEBUFFER_WIDTH and GL_MAX_FRAMEBUFFER_HEIGHT (pixels).
   int max_framebuffer_width = 0, max_framebuffer_height = 0;
-  int max_compute_work_groups_x = 0;
+  int max_compute_work_groups_x = 0;  ///< GL_MAX_COMPUTE_WORK_GROUP_COUNT in x
 };
 
 /// Needs a current OpenGL 4.5 core context.

@@ -17,14 +17,21 @@
 
 namespace habuffer::gl {
 
+/// The k-buffer's container on the GPU (see the file comment).
 class GlKBuffer final : public GlTechnique {
  public:
   /// Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
   GlKBuffer(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
+  /// Deletes the layers, lock words, occupancy buffers and count pass.
   ~GlKBuffer() override;
 
+  /// The configuration, validated; `layers` is the current K.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
 
+  /// GlTechnique interface (see gl_technique.h). With occupancy a gather is two
+  /// passes, and between_passes runs the count pass; before_gather zeroes the
+  /// layers and the occupancy map, reset the layers; grow doubles K, false
+  /// beyond the context's limits; insert calls are deferred in emulated64 only.
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport&, const GlFrameOptions&) override {}

@@ -16,16 +16,26 @@
 
 namespace habuffer::gl {
 
+/// Per-pixel linked lists' container on the GPU, for techniques lists and
+/// sorted-lists (see the file comment).
 class GlLinkedLists final : public GlTechnique {
  public:
   /// Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
   GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
+  /// Deletes the head image, node pool, saturation codes and sort pass.
   ~GlLinkedLists() override;
 
+  /// The configuration, validated; `pool_capacity` is the current pool (nodes).
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
   /// Sets the pool for the next frame (a host's own estimate).
   void resize_pool(std::uint64_t nodes);
 
+  /// GlTechnique interface (see gl_technique.h). With adaptive sizing,
+  /// begin_frame resizes the pool from the nodes the previous gather asked for;
+  /// before_gather zeroes the head image and saturation codes; after_gather
+  /// runs the sort pass unless sorted on insert; grow makes the pool at least
+  /// the nodes the gather asked for (and one step), false beyond the context's
+  /// limits; gathered keeps that request.
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport& report, const GlFrameOptions& options) override;
@@ -33,6 +43,7 @@ class GlLinkedLists final : public GlTechnique {
   void reset() override {}
   PassTiming after_gather(bool finish_timing) override;
   [[nodiscard]] bool sorts() const override { return !sorted_on_insert(); }
+  /// Whether this is sorted-lists: kept sorted while inserting, no sort pass.
   [[nodiscard]] bool sorted_on_insert() const { return config_.technique == Technique::SortedLists; }
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] std::uint64_t capacity() const override { return config_.pool_capacity; }

@@ -23,16 +23,24 @@ namespace habuffer::gl {
 
 struct GlParams;
 
+/// One technique's container on the GPU, run by GlFrameDriver (see the file
+/// comment); make_gl_technique makes one.
 class GlTechnique {
  public:
+  /// Records what every container shares (no GL calls).
   GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen);
+  /// Virtual: frame drivers own containers through this base.
   virtual ~GlTechnique();
   GlTechnique(const GlTechnique&) = delete;
   GlTechnique& operator=(const GlTechnique&) = delete;
 
+  /// The technique this container runs.
   [[nodiscard]] Technique technique() const { return technique_; }
+  /// The atomic mode, which fixes the record layout.
   [[nodiscard]] AtomicMode mode() const { return mode_; }
+  /// The binding points of its buffers.
   [[nodiscard]] const GlBindings& bindings() const { return bindings_; }
+  /// The screen, in pixels.
   [[nodiscard]] Extent screen() const { return screen_; }
   /// The GLSL module host shaders append their code to (technique_module).
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
@@ -55,6 +63,7 @@ class GlTechnique {
   /// parameter ha_gather_phase 1), then between_passes() with every buffer
   /// bound, then the insertion pass.
   [[nodiscard]] virtual std::uint32_t gather_passes() const { return 1; }
+  /// Between the two passes of such a gather (nothing by default).
   virtual void between_passes() {}
   /// Empties what a gather inserted, for a regather of the same frame.
   virtual void reset() = 0;

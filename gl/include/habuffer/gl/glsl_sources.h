@@ -13,41 +13,42 @@
 
 namespace habuffer::gl {
 
-extern const char* const kHaConstants;
-extern const char* const kHaRecord;
-extern const char* const kHaCarry;
-extern const char* const kHaSaturation;
-extern const char* const kHaSortedLists;
-extern const char* const kHaKBuffer;
-extern const char* const kSaturationEnv;
-extern const char* const kSortedListsEnv;
-extern const char* const kKBufferEnv;
-extern const char* const kKBufferEntry;
-extern const char* const kKBufferCountCompute;
-extern const char* const kHaProbe;
-extern const char* const kHaInsert;
-extern const char* const kHaBlend;
-extern const char* const kHaTraverse;
-extern const char* const kHaEntries;
-extern const char* const kHaLists;
-extern const char* const kHaArrays;
-extern const char* const kGlslEnv;
-extern const char* const kEntryCommon;
-extern const char* const kHaEnv;
-extern const char* const kListsEnv;
-extern const char* const kArraysEnv;
-extern const char* const kSortedEnv;
-extern const char* const kInsertEntry;
-extern const char* const kSortCompute;
-extern const char* const kPreludeNative;
-extern const char* const kPreludeEmulated64;
-extern const char* const kHaEntry;
-extern const char* const kInsertStreamCompute;
-extern const char* const kResumeCompute;
-extern const char* const kFullScreenVertex;
-extern const char* const kClearPassFragment;
-extern const char* const kResolveFragment;
+extern const char* const kHaConstants;          ///< shared/ha_constants.h: constants shared verbatim with the C++ path
+extern const char* const kHaRecord;             ///< shared/ha_record.glsl: record packing (SPEC 2)
+extern const char* const kHaCarry;              ///< shared/ha_carry.glsl: an insert call's state between steps
+extern const char* const kHaSaturation;         ///< shared/ha_saturation.glsl: saturation depth
+extern const char* const kHaSortedLists;        ///< shared/ha_sorted_lists.glsl: lists kept sorted while inserting
+extern const char* const kHaKBuffer;            ///< shared/ha_kbuffer.glsl: the k-buffer
+extern const char* const kSaturationEnv;        ///< gl/shaders/saturation_env.glsl: saturation depth's environment
+extern const char* const kSortedListsEnv;       ///< gl/shaders/sorted_lists_env.glsl: sorted lists' environment
+extern const char* const kKBufferEnv;           ///< gl/shaders/kbuffer_env.glsl: the k-buffer's environment
+extern const char* const kKBufferEntry;         ///< gl/shaders/kbuffer_entry.glsl: the k-buffer's insert call
+extern const char* const kKBufferCountCompute;  ///< gl/shaders/kb_count.comp.glsl: the k-buffer's count pass
+extern const char* const kHaProbe;              ///< shared/ha_probe.glsl: coherent probing (SPEC 3-5)
+extern const char* const kHaInsert;             ///< shared/ha_insert.glsl: insertion (SPEC 6)
+extern const char* const kHaBlend;              ///< shared/ha_blend.glsl: front-to-back compositing (SPEC 7)
+extern const char* const kHaTraverse;           ///< shared/ha_traverse.glsl: traversal (SPEC 7)
+extern const char* const kHaEntries;            ///< shared/ha_entries.glsl: a pixel's entries, sorted after the gather
+extern const char* const kHaLists;              ///< shared/ha_lists.glsl: per-pixel linked lists
+extern const char* const kHaArrays;             ///< shared/ha_arrays.glsl: fixed per-pixel arrays
+extern const char* const kGlslEnv;              ///< gl/shaders/glsl_env.glsl: GLSL spellings for the shared sources
+extern const char* const kEntryCommon;          ///< gl/shaders/entry_common.glsl: outcome tallies and capture
+extern const char* const kHaEnv;                ///< gl/shaders/ha_env.glsl: the HA-buffer's environment
+extern const char* const kListsEnv;             ///< gl/shaders/lists_env.glsl: linked lists' environment
+extern const char* const kArraysEnv;            ///< gl/shaders/arrays_env.glsl: fixed arrays' environment
+extern const char* const kSortedEnv;            ///< gl/shaders/sorted_env.glsl: the private array of the sort
+extern const char* const kInsertEntry;          ///< gl/shaders/insert_entry.glsl: every technique's insertion entry
+extern const char* const kSortCompute;          ///< gl/shaders/sort.comp.glsl: the sort pass
+extern const char* const kPreludeNative;        ///< gl/shaders/prelude_native.glsl: atomic modes native32 and native64
+extern const char* const kPreludeEmulated64;    ///< gl/shaders/prelude_emulated64.glsl: atomic mode emulated64
+extern const char* const kHaEntry;              ///< gl/shaders/ha_entry.glsl: the HA-buffer's insert call and deferral
+extern const char* const kInsertStreamCompute;  ///< gl/shaders/insert_stream.comp.glsl: the compute entry
+extern const char* const kResumeCompute;        ///< gl/shaders/resume.comp.glsl: the resume pass
+extern const char* const kFullScreenVertex;     ///< gl/shaders/clear_pass.vert.glsl: one triangle covering the viewport
+extern const char* const kClearPassFragment;    ///< gl/shaders/clear_pass.frag.glsl: the clear pass
+extern const char* const kResolveFragment;      ///< gl/shaders/resolve.frag.glsl: the resolve pass
 
+/// The stage a module is for (Fragment defines HABUFFER_STAGE_FRAGMENT).
 enum class ShaderStage { Compute, Fragment };
 
 /// The HA-buffer module a shader appends its own code to: the #version line,
@@ -80,6 +81,7 @@ std::string technique_module_body(Technique technique, AtomicMode mode, const Gl
 /// A file of the GLSL a host's file-based shader pipeline includes, as
 /// installed under share/habuffer/glsl: `path` relative to that directory.
 struct GlslFile {
+  /// The path under share/habuffer/glsl and the file's text.
   std::string path, text;
 };
 /// Every such file: for each atomic mode, <mode>/extensions.glsl, and for each
@@ -90,12 +92,14 @@ std::vector<GlslFile> host_glsl_files();
 
 /// The compute shader that inserts a fragment stream held in a buffer.
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});
+/// The same for any technique (the overload above is the HA-buffer's).
 std::string insert_stream_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
 
 /// A complete shader as the library compiles it, for checks by a reference
 /// compiler: `name` is unique per mode ("insert", "clear", ...), `stage` the
 /// file extension glslangValidator reads the stage from ("comp", "frag", "vert").
 struct ShaderSource {
+  /// The name, the stage's file extension and the complete source.
   std::string name, stage, source;
 };
 /// Every shader the library compiles for `mode` (the HA-buffer's compute
@@ -106,8 +110,11 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
 /// The full-screen passes' shaders: one vertex shader, and the clear pass's
 /// and resolve pass's fragment shaders (the module plus their own code).
 std::string full_screen_vertex();
+/// The clear pass's fragment shader (the HA-buffer's module plus its code).
 std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings);
+/// The HA-buffer's resolve pass fragment shader.
 std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings);
+/// The same for any technique.
 std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings);
 
 /// The sort pass of the techniques that sort after the gather (one
@@ -117,6 +124,7 @@ std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings&
 /// The resume pass: runs deferred insert calls (cut short by a lock or the
 /// driver's loop budget) on from their carried state.
 std::string resume_compute(AtomicMode mode, const GlBindings& bindings = {});
+/// The same for any technique (the overload above is the HA-buffer's).
 std::string resume_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
 /// The k-buffer's occupancy count pass.
 std::string kbuffer_count_compute(AtomicMode mode, const GlBindings& bindings = {});
