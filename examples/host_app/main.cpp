@@ -2,10 +2,11 @@
 // framebuffer (RGBA8 colour, 24-bit depth). It draws an opaque floor and an
 // opaque box, then three translucent panes, submitted in no particular order.
 //
-// Order-independent transparency comes from habuffer through the lines
-// marked [habuffer] (grep -c '\[habuffer\]' main.cpp): a GPU HA-buffer, the
-// GLSL module in the panes' fragment shader, the panes' draw wrapped in one
-// frame, and a resolve that blends the sorted panes over the opaque image.
+// Order-independent transparency comes from habuffer through the lines that
+// end in the habuffer tag (grep -c '// \[habuffer\]$' main.cpp counts them):
+// a GPU HA-buffer, the GLSL module in the panes' fragment shader, the panes'
+// draw wrapped in one frame, and a resolve that blends the sorted panes over
+// the opaque image.
 //
 // Exits 0 when the pixels read back match the front-to-back blend computed
 // by hand here (within 1.5/255), 1 otherwise.
