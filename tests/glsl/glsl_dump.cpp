@@ -1,6 +1,8 @@
 // Writes every shader the library and the renderer compile, for every atomic
 // mode (native64 too, which llvmpipe cannot run), as files a reference
-// compiler reads: DIR/MODE-NAME.STAGE. No GL context is needed.
+// compiler reads: DIR/MODE-NAME.STAGE; and the installed host GLSL files
+// (host_glsl_files) as a host includes them, after its own declarations.
+// No GL context is needed.
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -33,6 +35,33 @@ int main(int argc, char** argv) {
       }
       ++written;
     }
+  }
+  // The installed files after a host's declarations, with a host main.
+  const std::vector<gl::GlslFile> files = gl::host_glsl_files();
+  for (const gl::GlslFile& f : files) {
+    const std::string name = f.path.substr(f.path.find('/') + 1);
+    if (name == "extensions.glsl") continue;
+    const std::string mode = f.path.substr(0, f.path.find('/'));
+    std::string ext;
+    for (const gl::GlslFile& e : files)
+      if (e.path == mode + "/extensions.glsl") ext = e.text;
+    const bool fragment = name.find(".frag.") != std::string::npos;
+    std::string source = "#version 450 core\n" + ext;
+    source += fragment ? "layout(std140, binding = 0) uniform HostBlock { vec4 host_tint; };\nin vec4 host_colour;\n"
+                       : "layout(local_size_x = 64) in;\nlayout(std430, binding = 0) buffer HostIn { vec4 host_in[]; };\n";
+    source += f.text;
+    source += fragment ? "void main() { ha_insert_here(host_colour * host_tint); }\n"
+                       : "void main() { uint i = gl_GlobalInvocationID.x;\n"
+                         "  ha_insert(uvec2(i % 16u, i / 16u), host_in[i].w, ha_pack_rgba(vec4(host_in[i].rgb, 0.5))); }\n";
+    const std::string base = name.substr(0, name.find('.'));
+    const std::string path = dir + "/" + mode + "-host-" + base + "." + (fragment ? "frag" : "comp");
+    std::ofstream out(path);
+    out << source;
+    if (!out) {
+      std::fprintf(stderr, "habuffer_glsl_dump: cannot write %s\n", path.c_str());
+      return 1;
+    }
+    ++written;
   }
   std::printf("%d shaders written to %s\n", written, dir.c_str());
   return 0;
