@@ -19,6 +19,11 @@ std::vector<std::pair<GLenum, GLint>> pass_capabilities() {
   return caps;
 }
 
+// Draw buffer 0's blend setup, in the order glBlendFuncSeparatei and
+// glBlendEquationSeparatei take it.
+constexpr GLenum kBlend0[6] = {GL_BLEND_SRC_RGB,   GL_BLEND_DST_RGB,      GL_BLEND_SRC_ALPHA,
+                               GL_BLEND_DST_ALPHA, GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA};
+
 void set_capability(GLenum cap, GLint index, bool enabled) {
   if (index < 0)
     (enabled ? glEnable : glDisable)(cap);
@@ -31,6 +36,7 @@ void set_capability(GLenum cap, GLint index, bool enabled) {
 void GlStateGuard::prepare_full_screen_pass() {
   for (const auto& [cap, index] : pass_capabilities()) set_capability(cap, index, false);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glBindBuffer(GL_QUERY_BUFFER, 0);
 }
 
@@ -52,6 +58,8 @@ GlStateGuard::GlStateGuard(const GlBindings& bindings) {
   glGetIntegerv(GL_QUERY_BUFFER_BINDING, &query_buffer_);
   glGetFloati_v(GL_VIEWPORT, 0, viewport_);
   glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
+  glGetBooleani_v(GL_COLOR_WRITEMASK, 0, colour_mask0_);
+  for (int i = 0; i < 6; ++i) glGetIntegeri_v(kBlend0[i], 0, &blend0_[i]);
   for (const auto& [cap, index] : pass_capabilities())
     capabilities_.push_back({cap, index, index < 0 ? glIsEnabled(cap) : glIsEnabledi(cap, static_cast<GLuint>(index))});
   for (unsigned p : bindings.storage_points()) indexed_.push_back({GL_SHADER_STORAGE_BUFFER, p});
@@ -73,6 +81,10 @@ GlStateGuard::~GlStateGuard() {
   glBindBuffer(GL_QUERY_BUFFER, static_cast<GLuint>(query_buffer_));
   glViewportIndexedfv(0, viewport_);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
+  glColorMaski(0, colour_mask0_[0], colour_mask0_[1], colour_mask0_[2], colour_mask0_[3]);
+  glBlendFuncSeparatei(0, static_cast<GLenum>(blend0_[0]), static_cast<GLenum>(blend0_[1]),
+                       static_cast<GLenum>(blend0_[2]), static_cast<GLenum>(blend0_[3]));
+  glBlendEquationSeparatei(0, static_cast<GLenum>(blend0_[4]), static_cast<GLenum>(blend0_[5]));
   for (const Capability& c : capabilities_) set_capability(c.cap, c.index, c.enabled != GL_FALSE);
   // A buffer the library replaced meanwhile (a grown capture, a resized
   // table bound at our points before the guard) no longer exists: GL unbinds

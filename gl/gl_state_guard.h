@@ -1,6 +1,7 @@
 // Saves the GL state the library's passes touch and restores it on scope
 // exit, so a host app's context is left as it was: current program, vertex
-// array, draw framebuffer, viewport 0, polygon mode, the capabilities a
+// array, draw framebuffer, viewport 0, polygon mode, draw buffer 0's colour
+// mask and blend setup, the capabilities a
 // full-screen pass must switch off (per draw buffer and per viewport where GL
 // keeps them so, and the clip distances), the query-buffer binding, and the
 // buffer bindings at our points.
@@ -24,7 +25,9 @@ class GlStateGuard {
 
   // Disables what would alter a full-screen pass (blend, depth, stencil,
   // cull, scissor, rasterizer discard, clip distances), sets polygon mode to
-  // fill, and unbinds the query buffer so query results come back to memory.
+  // fill, enables every colour channel of draw buffer 0 (a mask the host left
+  // off would make the resolve write nothing), and unbinds the query buffer
+  // so query results come back to memory.
   static void prepare_full_screen_pass();
   // Viewport 0 only (glViewport would reset every viewport of the host's array).
   static void set_viewport(GLsizei width, GLsizei height);
@@ -44,6 +47,8 @@ class GlStateGuard {
   GLint program_ = 0, vertex_array_ = 0, draw_framebuffer_ = 0, query_buffer_ = 0;
   GLfloat viewport_[4] = {};
   GLint polygon_mode_[2] = {};
+  GLboolean colour_mask0_[4] = {};  // draw buffer 0's colour write mask
+  GLint blend0_[6] = {};            // draw buffer 0's blend functions and equations
   std::vector<Capability> capabilities_;
   std::vector<IndexedBuffer> indexed_;
   GLint storage_generic_ = 0, uniform_generic_ = 0;

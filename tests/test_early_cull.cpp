@@ -111,13 +111,7 @@ TEST(EarlyCull, NeverDropsAFragmentInFrontOfOpacityAtMostTauParallelToo) {
 // grid so quantization cannot reorder them).
 TEST(EarlyCull, ImageErrorAgainstExactReferenceIsBoundedByOneMinusTau) {
   const Extent screen{32, 32};
-  SplitMix64 rng(11);
-  std::vector<Fragment> f;
-  for (int i = 0; i < 12000; ++i) {
-    const auto x = static_cast<std::uint32_t>(rng.below(screen.x)), y = static_cast<std::uint32_t>(rng.below(screen.y));
-    const float t = static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f;
-    f.push_back({x, y, t, static_cast<std::uint32_t>(rng.next() & 0xFFFFFF00u) | static_cast<std::uint32_t>(64 + rng.below(192))});
-  }
+  const std::vector<Fragment> f = test::grid_stream(screen, 12000, 11, 64);
   const glm::dvec3 bg(0.2, 0.5, 0.9);
   const auto reference = reference_composite(f, screen, bg);
   for (float tau : {0.5f, 0.9f, 0.99f}) {

@@ -13,10 +13,7 @@ namespace {
 using test::ExactLists;
 
 TechniqueConfig peer_config(Technique t, Extent screen, gl::AtomicMode mode) {
-  TechniqueConfig c;
-  c.technique = t;
-  c.buffer = test::config(screen, screen, test::layout_of(mode), 8);
-  return c;
+  return test::technique_config(t, screen, test::layout_of(mode));
 }
 
 class GlPeers : public ::testing::Test {

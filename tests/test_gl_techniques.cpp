@@ -19,10 +19,7 @@ namespace {
 using test::ExactLists;
 
 TechniqueConfig technique_config(Technique t, Extent screen, gl::AtomicMode mode, std::uint32_t age_bits = 8) {
-  TechniqueConfig c;
-  c.technique = t;
-  c.buffer = test::config(screen, screen, test::layout_of(mode), age_bits);
-  return c;
+  return test::technique_config(t, screen, test::layout_of(mode), age_bits);
 }
 
 std::unique_ptr<gl::GlTechnique> gl_technique(const TechniqueConfig& c, gl::AtomicMode mode,

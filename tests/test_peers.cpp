@@ -22,13 +22,6 @@ namespace {
 
 using test::ExactLists;
 
-TechniqueConfig peer_config(Technique t, Extent screen, Layout layout = Layout::L64, std::uint32_t age_bits = 8) {
-  TechniqueConfig c;
-  c.technique = t;
-  c.buffer = test::config(screen, screen, layout, age_bits);
-  return c;
-}
-
 ExactLists first_k(ExactLists lists, std::size_t k) {
   for (auto& [p, list] : lists)
     if (list.size() > k) list.resize(k);
@@ -72,7 +65,7 @@ TEST(SortedLists, GiveTheHaBuffersListsByteForByteOverSeedsStreamsAndThreads) {
       ASSERT_TRUE(ha.lossless());
       const ExactLists expected = test::traversed_lists(ha.buffer);
       for (std::uint32_t n : {1u, 4u}) {
-        TechniqueConfig c = peer_config(Technique::SortedLists, screen, layout);
+        TechniqueConfig c = test::technique_config(Technique::SortedLists, screen, layout);
         c.pool_capacity = frags.size();
         LinkedLists sorted(c);
         const Counters counters = sorted.insert(test::shuffled(frags, seed + n), threads(n));
@@ -87,7 +80,7 @@ TEST(SortedLists, AFullPoolDropsAndCountsAndDuplicatesTakeNoNode) {
   const Extent screen{8, 8};
   std::vector<Fragment> frags = test::stream(screen, StreamKind::Coherent, 300, 5);
   frags.insert(frags.end(), frags.begin(), frags.begin() + 50);  // 50 exact duplicates
-  TechniqueConfig c = peer_config(Technique::SortedLists, screen);
+  TechniqueConfig c = test::technique_config(Technique::SortedLists, screen);
   c.pool_capacity = 100;
   LinkedLists lists(c);
   const Counters n = lists.insert(frags);
@@ -102,13 +95,7 @@ TEST(SortedLists, AFullPoolDropsAndCountsAndDuplicatesTakeNoNode) {
 // tau is lost, and the image is within (1 - tau) of the exact reference.
 TEST(EarlyTermination, RespectsInvariant5WithAndWithoutSaturationOnBothTechniques) {
   const Extent screen{24, 24};
-  SplitMix64 rng(17);
-  std::vector<Fragment> f;
-  for (int i = 0; i < 9000; ++i) {
-    const auto x = static_cast<std::uint32_t>(rng.below(screen.x)), y = static_cast<std::uint32_t>(rng.below(screen.y));
-    const float t = static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f;  // on the code grid: no reordering
-    f.push_back({x, y, t, static_cast<std::uint32_t>(rng.next() & 0xFFFFFF00u) | static_cast<std::uint32_t>(40 + rng.below(216))});
-  }
+  const std::vector<Fragment> f = test::grid_stream(screen, 9000, 17, 40);
   const glm::dvec3 bg(0.2, 0.5, 0.9);
   const auto reference = reference_composite(f, screen, bg);
   for (Technique t : {Technique::Ha, Technique::SortedLists})
@@ -117,7 +104,7 @@ TEST(EarlyTermination, RespectsInvariant5WithAndWithoutSaturationOnBothTechnique
         for (std::uint32_t n : {1u, 2u}) {
           SCOPED_TRACE(to_string(t) + " tau " + std::to_string(tau) + " saturation " + std::to_string(saturation) +
                        " threads " + std::to_string(n));
-          TechniqueConfig c = peer_config(t, screen);
+          TechniqueConfig c = test::technique_config(t, screen);
           c.buffer.table = {120, 120};
           c.buffer.early_cull_tau = tau;
           c.buffer.saturation = saturation;
@@ -153,7 +140,7 @@ TEST(EarlyTermination, FrontToBackPlanesStoreFarFewerThanBackToFrontAndSaturatio
   for (Technique t : {Technique::SortedLists, Technique::Ha}) {
     SCOPED_TRACE(to_string(t));
     const auto stored = [&](bool front_first, bool saturation) {
-      TechniqueConfig c = peer_config(t, screen);
+      TechniqueConfig c = test::technique_config(t, screen);
       c.buffer.table = {64, 64};
       c.buffer.early_cull_tau = 0.99f;
       c.buffer.saturation = saturation;
@@ -191,7 +178,7 @@ TEST(KBuffer, KeepsExactlyTheKNearestOfEachPixelWithAndWithoutOccupancy) {
           for (std::uint32_t n : {1u, 3u}) {
             SCOPED_TRACE("k " + std::to_string(k) + " occupancy " + std::to_string(occupancy) + " seed " +
                          std::to_string(seed) + " threads " + std::to_string(n));
-            TechniqueConfig c = peer_config(Technique::KBuffer, screen, layout);
+            TechniqueConfig c = test::technique_config(Technique::KBuffer, screen, layout);
             c.layers = k;
             c.occupancy = occupancy;
             c.occupancy_words = 1;
@@ -210,7 +197,7 @@ TEST(KBuffer, KeepsExactlyTheKNearestOfEachPixelWithAndWithoutOccupancy) {
 
 TEST(KBuffer, TheOccupancyLimitIsTheBucketOfTheKthOccupiedOne) {
   const Extent screen{2, 1};
-  TechniqueConfig c = peer_config(Technique::KBuffer, screen);
+  TechniqueConfig c = test::technique_config(Technique::KBuffer, screen);
   c.layers = 3;
   c.occupancy = true;
   c.occupancy_words = 1;  // 32 buckets over [0, 1]
@@ -240,7 +227,7 @@ TEST(Blended, WboitAndBlendMatchTheirFormulasComputedInDoubleWithinFloatToleranc
   const std::vector<glm::vec3> backgrounds(screen.area(), bg);
   for (Technique t : {Technique::Wboit, Technique::Blend}) {
     SCOPED_TRACE(to_string(t));
-    TechniqueConfig c = peer_config(t, screen);
+    TechniqueConfig c = test::technique_config(t, screen);
     c.depth_range = {0.0f, 1.0f};
     BlendedImage image(c);
     const Counters n = image.insert(f);
@@ -283,7 +270,7 @@ TEST(Blended, WboitAndBlendMatchTheirFormulasComputedInDoubleWithinFloatToleranc
 
 TEST(Peers, TheMemoryModelGivesWhatTheCpuContainersAllocateToTheByte) {
   for (const Extent screen : {Extent{64, 48}, Extent{17, 3}}) {
-    TechniqueConfig c = peer_config(Technique::SortedLists, screen);
+    TechniqueConfig c = test::technique_config(Technique::SortedLists, screen);
     c.pool_capacity = 333;
     c.buffer.early_cull_tau = 0.5f;
     for (bool saturation : {false, true}) {
@@ -313,7 +300,7 @@ TEST(Peers, TheMemoryModelGivesWhatTheCpuContainersAllocateToTheByte) {
 }
 
 TEST(Peers, BadConfigurationsAreRefusedNamingTheField) {
-  TechniqueConfig c = peer_config(Technique::Lists, {8, 8});
+  TechniqueConfig c = test::technique_config(Technique::Lists, {8, 8});
   c.pool_capacity = 10;
   c.buffer.early_cull_tau = 0.5f;
   EXPECT_THROW(c.validate(), std::invalid_argument);  // lists have no early cull
@@ -322,7 +309,7 @@ TEST(Peers, BadConfigurationsAreRefusedNamingTheField) {
   c.buffer.early_cull_tau = 0.0f;
   c.buffer.saturation = true;
   EXPECT_THROW(c.validate(), std::invalid_argument);  // saturation without cull
-  c = peer_config(Technique::Arrays, {8, 8});
+  c = test::technique_config(Technique::Arrays, {8, 8});
   c.occupancy = true;
   EXPECT_THROW(c.validate(), std::invalid_argument);  // occupancy is the k-buffer's
   c.technique = Technique::KBuffer;
@@ -332,7 +319,7 @@ TEST(Peers, BadConfigurationsAreRefusedNamingTheField) {
   c.occupancy_words = 4;
   c.depth_range = {0.5f, 0.5f};
   EXPECT_THROW(c.validate(), std::invalid_argument);
-  c = peer_config(Technique::Lists, {8, 8});
+  c = test::technique_config(Technique::Lists, {8, 8});
   c.pool_capacity = 10;
   EXPECT_THROW(BlendedImage{c}, std::invalid_argument);
 }

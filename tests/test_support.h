@@ -10,6 +10,7 @@
 #include "habuffer/fragment_streams.h"
 #include "habuffer/ha_buffer.h"
 #include "habuffer/random.h"
+#include "habuffer/technique.h"
 
 namespace habuffer::test {
 
@@ -22,6 +23,32 @@ inline BufferConfig config(Extent screen, Extent table, Layout layout = Layout::
   c.age_bits = age_bits;
   c.block = block;
   return c;
+}
+
+// Technique `t` over `screen` (the HA-buffer's table the screen itself).
+inline TechniqueConfig technique_config(Technique t, Extent screen, Layout layout = Layout::L64,
+                                        std::uint32_t age_bits = 8) {
+  TechniqueConfig c;
+  c.technique = t;
+  c.buffer = config(screen, screen, layout, age_bits);
+  return c;
+}
+
+// `count` fragments at random pixels, depths on the 2^-20 grid (depth
+// quantization cannot reorder them), random colours with alpha in
+// [min_alpha, 255].
+inline std::vector<Fragment> grid_stream(Extent screen, std::size_t count, std::uint64_t seed, std::uint32_t min_alpha) {
+  SplitMix64 rng(seed);
+  std::vector<Fragment> f;
+  f.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto x = static_cast<std::uint32_t>(rng.below(screen.x)), y = static_cast<std::uint32_t>(rng.below(screen.y));
+    const float t = static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f;
+    const auto colour = static_cast<std::uint32_t>(rng.next() & 0xFFFFFF00u);
+    const auto alpha = static_cast<std::uint32_t>(min_alpha + rng.below(256 - min_alpha));
+    f.push_back({x, y, t, colour | alpha});
+  }
+  return f;
 }
 
 inline HaBuffer make_buffer(const BufferConfig& c, std::uint64_t seed = 1,

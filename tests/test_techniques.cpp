@@ -18,13 +18,6 @@ namespace {
 
 using test::ExactLists;
 
-TechniqueConfig technique_config(Technique t, Extent screen, Layout layout = Layout::L64, std::uint32_t age_bits = 8) {
-  TechniqueConfig c;
-  c.technique = t;
-  c.buffer = test::config(screen, screen, layout, age_bits);
-  return c;
-}
-
 BuildResult lossless_ha(const BufferConfig& c, const std::vector<Fragment>& frags) {
   BuildResult r = build(c, OffsetSource{}, frags, InsertOptions{}, ResizePolicy{}, 32);
   EXPECT_TRUE(r.lossless());
@@ -48,7 +41,7 @@ TEST_P(ExactTechniques, ListsAndArraysGiveTheHaBuffersListsByteForByteOverSeeds)
     const ExactLists expected = test::traversed_lists(ha.buffer);
     ASSERT_EQ(expected, test::exact_lists(frags, ha.buffer.record_layout())) << "seed " << seed;
 
-    TechniqueConfig lc = technique_config(Technique::Lists, screen, p.layout, p.age_bits);
+    TechniqueConfig lc = test::technique_config(Technique::Lists, screen, p.layout, p.age_bits);
     lc.pool_capacity = frags.size();
     LinkedLists lists(lc);
     const Counters cl = lists.insert(frags);
@@ -56,7 +49,7 @@ TEST_P(ExactTechniques, ListsAndArraysGiveTheHaBuffersListsByteForByteOverSeeds)
     EXPECT_EQ(cl.failures(), 0u);
     EXPECT_EQ(cl.stored(), lists.count_stored());
 
-    TechniqueConfig ac = technique_config(Technique::Arrays, screen, p.layout, p.age_bits);
+    TechniqueConfig ac = test::technique_config(Technique::Arrays, screen, p.layout, p.age_bits);
     ac.layers = test::depth_complexity(frags, screen);
     FixedArrays arrays(ac);
     const Counters ca = arrays.insert(frags);
@@ -88,13 +81,13 @@ TEST(Techniques, ListsLongerThanThePrivateArrayAreSortedInPlaceAndMerged) {
   frags.push_back({0, 0, 0.5f, 0x11223344u});
   const ExactLists expected = test::exact_lists(frags, RecordLayout(Layout::L64, 8));
   ASSERT_GT(expected.at({1, 1}).size(), HABUFFER_SORT_LOCAL);
-  TechniqueConfig lc = technique_config(Technique::Lists, screen);
+  TechniqueConfig lc = test::technique_config(Technique::Lists, screen);
   lc.pool_capacity = frags.size();
   LinkedLists lists(lc);
   const Counters cl = lists.insert(frags);
   EXPECT_EQ(test::traversed_lists(lists), expected);
   EXPECT_EQ(cl.duplicates, frags.size() - 1 - expected.at({1, 1}).size());
-  TechniqueConfig ac = technique_config(Technique::Arrays, screen);
+  TechniqueConfig ac = test::technique_config(Technique::Arrays, screen);
   ac.layers = 700;
   FixedArrays arrays(ac);
   const Counters ca = arrays.insert(frags);
@@ -106,7 +99,7 @@ TEST(Techniques, ParallelInsertionBuildsTheSameListsAsOneThread) {
   const Extent screen{64, 48};
   const std::vector<Fragment> frags = test::stream(screen, StreamKind::Coherent, 20000, 3);
   for (Technique t : {Technique::Lists, Technique::Arrays}) {
-    TechniqueConfig c = technique_config(t, screen);
+    TechniqueConfig c = test::technique_config(t, screen);
     c.pool_capacity = frags.size();
     c.layers = test::depth_complexity(frags, screen);
     const std::unique_ptr<FragmentBuffer> serial = make_fragment_buffer(c, OffsetSource{});
@@ -126,7 +119,7 @@ TEST(Techniques, ArraysWithFewLayersKeepTheFirstKOfEachPixelSortedAndCountTheRes
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     const std::vector<Fragment> frags = test::stream(screen, StreamKind::Hot, 1500, seed);
     const std::uint32_t k = 3;
-    TechniqueConfig c = technique_config(Technique::Arrays, screen);
+    TechniqueConfig c = test::technique_config(Technique::Arrays, screen);
     c.layers = k;
     FixedArrays arrays(c);
     const Counters counters = arrays.insert(frags);
@@ -150,7 +143,7 @@ TEST(Techniques, ArraysWithFewLayersKeepTheFirstKOfEachPixelSortedAndCountTheRes
 TEST(Techniques, AFullPoolDropsAndCountsEveryFragmentBeyondIt) {
   const Extent screen{16, 16};
   const std::vector<Fragment> frags = test::stream(screen, StreamKind::Random, 900, 5);
-  TechniqueConfig c = technique_config(Technique::Lists, screen);
+  TechniqueConfig c = test::technique_config(Technique::Lists, screen);
   c.pool_capacity = 500;
   LinkedLists lists(c);
   const Counters counters = lists.insert(frags);
@@ -166,7 +159,7 @@ TEST(Techniques, TwoBatchesEqualOneAndClearEmptiesEverything) {
   const std::vector<Fragment> frags = test::stream(screen, StreamKind::Coherent, 3000, 9);
   const std::span<const Fragment> all(frags);
   for (Technique t : {Technique::Lists, Technique::Arrays}) {
-    TechniqueConfig c = technique_config(t, screen);
+    TechniqueConfig c = test::technique_config(t, screen);
     c.pool_capacity = frags.size();
     c.layers = test::depth_complexity(frags, screen);
     const std::unique_ptr<FragmentBuffer> one = make_fragment_buffer(c, OffsetSource{});
@@ -189,12 +182,12 @@ TEST(Techniques, ExactTechniquesCompositeTheHaBuffersImageBitForBit) {
   std::vector<glm::vec3> backgrounds(screen.area());
   for (std::size_t i = 0; i < backgrounds.size(); ++i) backgrounds[i] = glm::vec3(float(i % 7) / 7.0f, 0.25f, 1.0f);
   const std::vector<glm::vec4> expected = ha.composite_image(backgrounds, 2);
-  TechniqueConfig lc = technique_config(Technique::Lists, screen);
+  TechniqueConfig lc = test::technique_config(Technique::Lists, screen);
   lc.pool_capacity = frags.size();
   LinkedLists lists(lc);
   lists.insert(frags);
   EXPECT_EQ(lists.composite_image(backgrounds, 2), expected);
-  TechniqueConfig ac = technique_config(Technique::Arrays, screen);
+  TechniqueConfig ac = test::technique_config(Technique::Arrays, screen);
   ac.layers = test::depth_complexity(frags, screen);
   FixedArrays arrays(ac);
   arrays.insert(frags);
@@ -204,7 +197,7 @@ TEST(Techniques, ExactTechniquesCompositeTheHaBuffersImageBitForBit) {
 TEST(Techniques, InvalidDepthsAndOffScreenFragmentsAreRefusedOrCountedNeverStored) {
   const Extent screen{4, 4};
   const std::vector<Fragment> frags{{0, 0, -0.5f, 1}, {1, 1, 2.0f, 1}, {2, 2, std::nanf(""), 1}, {3, 3, 0.25f, 7}};
-  TechniqueConfig c = technique_config(Technique::Lists, screen);
+  TechniqueConfig c = test::technique_config(Technique::Lists, screen);
   c.pool_capacity = 8;
   LinkedLists lists(c);
   const Counters counters = lists.insert(frags);
@@ -212,20 +205,20 @@ TEST(Techniques, InvalidDepthsAndOffScreenFragmentsAreRefusedOrCountedNeverStore
   EXPECT_EQ(counters.stored(), 1u);
   const std::vector<Fragment> off{{4, 0, 0.5f, 1}};
   EXPECT_THROW(lists.insert(off), std::out_of_range);
-  TechniqueConfig a = technique_config(Technique::Arrays, screen);
+  TechniqueConfig a = test::technique_config(Technique::Arrays, screen);
   FixedArrays arrays(a);
   EXPECT_EQ(arrays.insert(frags).invalid, 3u);
   EXPECT_THROW(arrays.insert(off), std::out_of_range);
 }
 
 TEST(Techniques, BadConfigurationsAreRefusedNamingTheField) {
-  TechniqueConfig c = technique_config(Technique::Lists, {8, 8});
+  TechniqueConfig c = test::technique_config(Technique::Lists, {8, 8});
   c.pool_capacity = 0;
   EXPECT_THROW(LinkedLists{c}, std::invalid_argument);
   c.pool_capacity = 10;
   c.buffer.early_cull_tau = 0.5f;
   EXPECT_THROW(LinkedLists{c}, std::invalid_argument);
-  TechniqueConfig a = technique_config(Technique::Arrays, {8, 8});
+  TechniqueConfig a = test::technique_config(Technique::Arrays, {8, 8});
   a.layers = 0;
   EXPECT_THROW(FixedArrays{a}, std::invalid_argument);
   a.layers = 1u << 28;
@@ -244,7 +237,7 @@ TEST(Techniques, LosslessBuildsGrowThePoolAndTheLayersUntilNothingIsDropped) {
   const std::vector<Fragment> frags = test::stream(screen, StreamKind::Hot, 4000, 12);
   const ExactLists expected = test::exact_lists(frags, RecordLayout(Layout::L64, 8));
   for (Technique t : {Technique::Lists, Technique::Arrays}) {
-    TechniqueConfig c = technique_config(t, screen);
+    TechniqueConfig c = test::technique_config(t, screen);
     c.pool_capacity = 100;
     c.layers = 2;
     const TechniqueBuild lossy = build_technique(c, OffsetSource{}, frags, InsertOptions{});
@@ -259,7 +252,7 @@ TEST(Techniques, LosslessBuildsGrowThePoolAndTheLayersUntilNothingIsDropped) {
 TEST(Techniques, TheMemoryModelGivesWhatTheCpuContainersAllocateToTheByte) {
   for (const Extent screen : {Extent{64, 48}, Extent{1000, 3}, Extent{17, 17}})
     for (std::uint32_t block : {1u, 8u, 5u}) {
-      TechniqueConfig c = technique_config(Technique::Ha, screen);
+      TechniqueConfig c = test::technique_config(Technique::Ha, screen);
       c.buffer.block = block;
       c.buffer.table = Extent{screen.x + 3, screen.y + 1};
       const HaBuffer ha = test::make_buffer(c.buffer);

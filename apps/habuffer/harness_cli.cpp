@@ -37,15 +37,26 @@ std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback) {
   return out;
 }
 
-std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name,
-                                                     const std::string& fallback) {
-  std::vector<harness::TechniqueSpec> out;
+namespace {
+
+// Each word of the list option `name` through `parse`; a word it refuses
+// becomes a UsageError naming the option.
+template <class Parse>
+auto parse_words(const Args& args, const std::string& name, const std::string& fallback, Parse parse) {
+  std::vector<decltype(parse(std::string{}))> out;
   try {
-    for (const std::string& w : args.list(name, fallback)) out.push_back(harness::parse_technique_spec(w));
+    for (const std::string& w : args.list(name, fallback)) out.push_back(parse(w));
   } catch (const std::invalid_argument& e) {
     throw UsageError("--" + name + ": " + e.what());
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name,
+                                                     const std::string& fallback) {
+  return parse_words(args, name, fallback, harness::parse_technique_spec);
 }
 
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name) {
@@ -53,13 +64,7 @@ std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::str
 }
 
 std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::string& name, const std::string& fallback) {
-  std::vector<harness::WorkloadSpec> out;
-  try {
-    for (const std::string& w : args.list(name, fallback)) out.push_back(harness::parse_workload_spec(w));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("--" + name + ": " + e.what());
-  }
-  return out;
+  return parse_words(args, name, fallback, harness::parse_workload_spec);
 }
 
 std::vector<std::string> parse_outputs(const Args& args, const std::vector<std::string>& inputs) {

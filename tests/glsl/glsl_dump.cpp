@@ -5,6 +5,7 @@
 // No GL context is needed.
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -38,13 +39,14 @@ int main(int argc, char** argv) {
   }
   // The installed files after a host's declarations, with a host main.
   const std::vector<gl::GlslFile> files = gl::host_glsl_files();
+  std::map<std::string, std::string> extensions;  // by mode
+  for (const gl::GlslFile& f : files)
+    if (f.path.ends_with("/extensions.glsl")) extensions[f.path.substr(0, f.path.find('/'))] = f.text;
   for (const gl::GlslFile& f : files) {
     const std::string name = f.path.substr(f.path.find('/') + 1);
     if (name == "extensions.glsl") continue;
     const std::string mode = f.path.substr(0, f.path.find('/'));
-    std::string ext;
-    for (const gl::GlslFile& e : files)
-      if (e.path == mode + "/extensions.glsl") ext = e.text;
+    const std::string& ext = extensions.at(mode);
     const bool fragment = name.find(".frag.") != std::string::npos;
     std::string source = "#version 450 core\n" + ext;
     source += fragment ? "layout(std140, binding = 0) uniform HostBlock { vec4 host_tint; };\nin vec4 host_colour;\n"

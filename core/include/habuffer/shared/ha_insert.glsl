@@ -27,11 +27,6 @@ uint ha_insert_limit(HaCarry c) {
 // again, carry unchanged, when an emulated atomic found its slot busy),
 // HABUFFER_CUT when that atomic gave up (carry unchanged: the probe is made when the
 // call resumes), else the HA_* outcome of the whole call.
-// The slot's high 32 bits (the whole slot for L32). A 64-bit slot read
-// while another invocation writes it may mix halves, but its high half is
-// one value the slot held, which is all the comparison below uses.
-uint ha_slot_high(ha_index s) { return uint(ha_load_slot(s) >> (ha_word_bits - 32u)); }
-
 // Whether the slot is known to hold a larger record than the carried one
 // without an atomic: slots only grow during a gather, so a high word read
 // above the carried record's belongs to a smaller value than the slot's
@@ -40,8 +35,8 @@ uint ha_slot_high(ha_index s) { return uint(ha_load_slot(s) >> (ha_word_bits - 3
 // which only a slot record of the carried age can be (age equivalence): that
 // case still takes the atomic.
 bool ha_slot_known_larger(ha_index s, HaCarry c) {
-  uint high = ha_slot_high(s);
-  if (high <= uint(c.r >> (ha_word_bits - 32u))) return false;
+  uint high = ha_high(ha_load_slot(s));
+  if (high <= ha_high(c.r)) return false;
   return ha_cull_tau <= 0.0f || (high >> (32u - ha_age_bits)) > c.a;
 }
 

@@ -79,9 +79,7 @@ uint kb_insert_step(HABUFFER_INOUT(HaCarry) c) {
   if (c.a > ha_layers) return HABUFFER_DROPPED_LAYERS;
   ha_index s = kb_slot(kb_pixel(c.p), c.a - 1u);
   // Slots only grow: a larger value read is larger still (no atomic needed).
-  // The high 32 bits alone: a 64-bit read racing a write may mix halves, but
-  // its high half is one the slot held.
-  if (uint(ha_load_slot(s) >> (ha_word_bits - 32u)) > uint(c.r >> (ha_word_bits - 32u))) {
+  if (ha_high(ha_load_slot(s)) > ha_high(c.r)) {
     c.iter += 1u;
     c.a += 1u;
     return HABUFFER_PENDING;

@@ -14,6 +14,11 @@ ha_word ha_pack(uint age, uint code, uint data) {
 }
 
 uint ha_age(ha_word r) { return uint(r >> ha_age_shift()); }
+// The record's high 32 bits (age and depth code; the whole record for L32).
+// Records order as their high words do where those differ, and a 64-bit slot
+// read while another invocation writes it may mix halves, but its high half
+// is one value the slot held: the read-first checks compare these alone.
+uint ha_high(ha_word r) { return uint(r >> (ha_word_bits - 32u)); }
 
 uint ha_code(ha_word r) {
   return uint((r >> ha_payload_bits) & ha_word(ha_max_code()));
