@@ -115,7 +115,6 @@ const bool registered = [] {
   for (const char* scene : {"engine", "hairball", "planes-front", "planes-back"}) {
     for (const auto& [path, path_name] : {std::pair{RenderPath::Gl, "gl"}, std::pair{RenderPath::Cpu, "cpu"}})
       for (const Variant& v : kVariants) {
-        if (path == RenderPath::Gl && !stores_lists(v.technique)) continue;  // CPU path only so far
         benchmark::RegisterBenchmark(("BM_Technique/" + std::string(scene) + "/" + path_name + "/" + v.label).c_str(),
                                      [=](benchmark::State& st) { run_technique(st, scene, path, v); })
             ->UseManualTime()

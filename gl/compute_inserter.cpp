@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "compute_grid.h"
+#include "gl_state_guard.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_technique.h"
@@ -12,13 +13,31 @@
 
 namespace habuffer::gl {
 
+namespace {
+
+// The blended baselines need the blender: their stream is drawn as points.
+ShaderProgram entry_program(const GlFrameDriver& buffer) {
+  const Technique t = buffer.technique().technique();
+  if (stores_lists(t))
+    return ShaderProgram::compute(insert_stream_compute(t, buffer.mode(), buffer.bindings()), "insert compute shader");
+  const auto [vertex, fragment] = insert_stream_points(t, buffer.mode(), buffer.bindings());
+  return ShaderProgram::graphics(vertex, fragment, to_string(t) + " insert points");
+}
+
+}  // namespace
+
 ComputeInserter::ComputeInserter(GlFrameDriver& buffer, std::size_t max_chunk)
     : buffer_(buffer),
-      program_(ShaderProgram::compute(insert_stream_compute(buffer.technique().technique(), buffer.mode(), buffer.bindings()),
-                                      "insert compute shader")),
-      max_chunk_(max_chunk) {}
+      program_(entry_program(buffer)),
+      points_(!stores_lists(buffer.technique().technique())),
+      max_chunk_(max_chunk) {
+  if (points_) glCreateVertexArrays(1, &vertex_array_);
+}
 
-ComputeInserter::~ComputeInserter() { release(); }
+ComputeInserter::~ComputeInserter() {
+  release();
+  glDeleteVertexArrays(1, &vertex_array_);
+}
 
 void ComputeInserter::release() {
   for (const Chunk& c : chunks_) glDeleteBuffers(1, &c.buffer);
@@ -46,10 +65,20 @@ void ComputeInserter::upload(std::span<const Fragment> fragments) {
 
 void ComputeInserter::dispatch() const {
   glUseProgram(program_.id());
+  if (points_) {
+    // Inside the frame's gather: the driver bound the technique's framebuffer
+    // and blend setup; the points cover one pixel each of a screen viewport.
+    glBindVertexArray(vertex_array_);
+    GlStateGuard::set_viewport(static_cast<GLsizei>(buffer_.screen().x), static_cast<GLsizei>(buffer_.screen().y));
+  }
   for (const Chunk& c : chunks_) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, buffer_.bindings().stream, c.buffer);
-    program_.set("ha_stream_count", static_cast<unsigned>(c.count));
-    dispatch_grid(c.count, 64);
+    if (points_) {
+      glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(c.count));
+    } else {
+      program_.set("ha_stream_count", static_cast<unsigned>(c.count));
+      dispatch_grid(c.count, 64);
+    }
   }
 }
 

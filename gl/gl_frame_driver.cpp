@@ -217,6 +217,7 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     {
       const GlStateGuard fill_guard(bindings());
       bind();
+      technique_->enter_gather();
       gather();
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
       bind();  // the host's gather may have bound its own buffers at our points
@@ -231,10 +232,12 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
   {
     const GlStateGuard attempt_guard(bindings());
     bind();
+    technique_->enter_gather();
     PassClock clock(gpu_->gather_timer);
     gather();
     // Resolve, read-backs and the next clear see every insert.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+    technique_->leave_gather();
     unfinished = resume_deferred(report);
     std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
     report.gather.wall_ms += fill_ms;

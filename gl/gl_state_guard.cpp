@@ -19,9 +19,13 @@ std::vector<std::pair<GLenum, GLint>> pass_capabilities() {
   return caps;
 }
 
-// Draw buffer 0's blend setup, in the order glBlendFuncSeparatei and
+// The pixel-store parameters of packing (reads into memory or a buffer).
+constexpr GLenum kPackParameters[8] = {GL_PACK_SWAP_BYTES, GL_PACK_LSB_FIRST,   GL_PACK_ROW_LENGTH,   GL_PACK_IMAGE_HEIGHT,
+                                       GL_PACK_SKIP_ROWS,  GL_PACK_SKIP_PIXELS, GL_PACK_SKIP_IMAGES, GL_PACK_ALIGNMENT};
+
+// A draw buffer's blend setup, in the order glBlendFuncSeparatei and
 // glBlendEquationSeparatei take it.
-constexpr GLenum kBlend0[6] = {GL_BLEND_SRC_RGB,   GL_BLEND_DST_RGB,      GL_BLEND_SRC_ALPHA,
+constexpr GLenum kBlend[6] = {GL_BLEND_SRC_RGB,   GL_BLEND_DST_RGB,      GL_BLEND_SRC_ALPHA,
                                GL_BLEND_DST_ALPHA, GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA};
 
 void set_capability(GLenum cap, GLint index, bool enabled) {
@@ -38,6 +42,10 @@ void GlStateGuard::prepare_full_screen_pass() {
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glBindBuffer(GL_QUERY_BUFFER, 0);
+}
+
+void GlStateGuard::prepare_pack() {
+  for (GLenum p : kPackParameters) glPixelStorei(p, p == GL_PACK_ALIGNMENT ? 4 : 0);
 }
 
 void GlStateGuard::set_viewport(GLsizei width, GLsizei height) {
@@ -58,8 +66,12 @@ GlStateGuard::GlStateGuard(const GlBindings& bindings) {
   glGetIntegerv(GL_QUERY_BUFFER_BINDING, &query_buffer_);
   glGetFloati_v(GL_VIEWPORT, 0, viewport_);
   glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
-  glGetBooleani_v(GL_COLOR_WRITEMASK, 0, colour_mask0_);
-  for (int i = 0; i < 6; ++i) glGetIntegeri_v(kBlend0[i], 0, &blend0_[i]);
+  for (GLuint d = 0; d < kGuardedDrawBuffers; ++d) {
+    glGetBooleani_v(GL_COLOR_WRITEMASK, d, colour_masks_[d]);
+    for (int i = 0; i < 6; ++i) glGetIntegeri_v(kBlend[i], d, &blends_[d][i]);
+  }
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer_);
+  for (std::size_t i = 0; i < pack_.size(); ++i) glGetIntegerv(kPackParameters[i], &pack_[i]);
   for (const auto& [cap, index] : pass_capabilities())
     capabilities_.push_back({cap, index, index < 0 ? glIsEnabled(cap) : glIsEnabledi(cap, static_cast<GLuint>(index))});
   for (unsigned p : bindings.storage_points()) indexed_.push_back({GL_SHADER_STORAGE_BUFFER, p});
@@ -81,10 +93,15 @@ GlStateGuard::~GlStateGuard() {
   glBindBuffer(GL_QUERY_BUFFER, static_cast<GLuint>(query_buffer_));
   glViewportIndexedfv(0, viewport_);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
-  glColorMaski(0, colour_mask0_[0], colour_mask0_[1], colour_mask0_[2], colour_mask0_[3]);
-  glBlendFuncSeparatei(0, static_cast<GLenum>(blend0_[0]), static_cast<GLenum>(blend0_[1]),
-                       static_cast<GLenum>(blend0_[2]), static_cast<GLenum>(blend0_[3]));
-  glBlendEquationSeparatei(0, static_cast<GLenum>(blend0_[4]), static_cast<GLenum>(blend0_[5]));
+  for (GLuint d = 0; d < kGuardedDrawBuffers; ++d) {
+    const GLboolean* m = colour_masks_[d];
+    const GLint* b = blends_[d];
+    glColorMaski(d, m[0], m[1], m[2], m[3]);
+    glBlendFuncSeparatei(d, static_cast<GLenum>(b[0]), static_cast<GLenum>(b[1]), static_cast<GLenum>(b[2]),
+                         static_cast<GLenum>(b[3]));
+    glBlendEquationSeparatei(d, static_cast<GLenum>(b[4]), static_cast<GLenum>(b[5]));
+  }
+  for (std::size_t i = 0; i < pack_.size(); ++i) glPixelStorei(kPackParameters[i], pack_[i]);
   for (const Capability& c : capabilities_) set_capability(c.cap, c.index, c.enabled != GL_FALSE);
   // A buffer the library replaced meanwhile (a grown capture, a resized
   // table bound at our points before the guard) no longer exists: GL unbinds
@@ -99,6 +116,7 @@ GlStateGuard::~GlStateGuard() {
   }
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, existing(storage_generic_));
   glBindBuffer(GL_UNIFORM_BUFFER, existing(uniform_generic_));
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, existing(pack_buffer_));
 }
 
 }  // namespace habuffer::gl

@@ -1,7 +1,9 @@
 // Saves the GL state the library's passes touch and restores it on scope
 // exit, so a host app's context is left as it was: current program, vertex
-// array, draw framebuffer, viewport 0, polygon mode, draw buffer 0's colour
-// mask and blend setup, the capabilities a
+// array, draw framebuffer, viewport 0, polygon mode, the colour masks and
+// blend setup of draw buffers 0 and 1 (the resolve writes buffer 0, wboit's
+// gather buffers 0 and 1), the pixel-pack buffer and pack parameters (the
+// blended baselines' copies), the capabilities a
 // full-screen pass must switch off (per draw buffer and per viewport where GL
 // keeps them so, and the clip distances), the query-buffer binding, and the
 // buffer bindings at our points.
@@ -31,6 +33,11 @@ class GlStateGuard {
   static void prepare_full_screen_pass();
   // Viewport 0 only (glViewport would reset every viewport of the host's array).
   static void set_viewport(GLsizei width, GLsizei height);
+  // GL's initial pack parameters (tightly packed rows, no skips), so a read
+  // into a buffer object lays the pixels out as they are.
+  static void prepare_pack();
+  // The draw buffers whose colour mask and blend setup the guard keeps.
+  static constexpr GLuint kGuardedDrawBuffers = 2;
 
  private:
   struct IndexedBuffer {
@@ -47,8 +54,10 @@ class GlStateGuard {
   GLint program_ = 0, vertex_array_ = 0, draw_framebuffer_ = 0, query_buffer_ = 0;
   GLfloat viewport_[4] = {};
   GLint polygon_mode_[2] = {};
-  GLboolean colour_mask0_[4] = {};  // draw buffer 0's colour write mask
-  GLint blend0_[6] = {};            // draw buffer 0's blend functions and equations
+  GLboolean colour_masks_[kGuardedDrawBuffers][4] = {};  // colour write masks
+  GLint blends_[kGuardedDrawBuffers][6] = {};            // blend functions and equations
+  GLint pack_buffer_ = 0;
+  std::array<GLint, 8> pack_ = {};  // the pack parameters, in the order of kPackParameters
   std::vector<Capability> capabilities_;
   std::vector<IndexedBuffer> indexed_;
   GLint storage_generic_ = 0, uniform_generic_ = 0;

@@ -116,6 +116,8 @@ std::string GlBindings::glsl_defines(bool overridable) const {
   define("LINKS", offsets);
   define("COUNTS", table);
   define("LAYERS", max_age);
+  define("ACCUM", table);
+  define("REVEALAGE", max_age);
   return s;
 }
 
@@ -162,7 +164,11 @@ std::string technique_parts(Technique technique, AtomicMode mode) {
       break;
     case Technique::Wboit:
     case Technique::Blend:
-      throw GlError("technique " + to_string(technique) + " has no GL module yet");
+      if (technique == Technique::Wboit) s += "#define HABUFFER_WBOIT\n";
+      s += "#define HABUFFER_TECHNIQUE_BEGIN bl_begin_call\n#define HABUFFER_TECHNIQUE_CALL bl_insert_fragment\n"
+           "#define HABUFFER_TECHNIQUE_COMPOSITE bl_composite\n";
+      for (const char* part : {kBlendedEnv, kHaRecord, kHaBlend, kHaBlended, kBlendedEntry, kInsertEntry}) add(part);
+      break;
   }
   return s;
 }
@@ -232,7 +238,15 @@ std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings) {
 }
 
 std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings) {
-  return technique_module(technique, mode, bindings, ShaderStage::Fragment) + kResolveFragment;
+  return technique_module(technique, mode, bindings, ShaderStage::Fragment, "#define HABUFFER_RESOLVE_PASS\n") +
+         kResolveFragment;
+}
+
+std::pair<std::string, std::string> insert_stream_points(Technique technique, AtomicMode mode,
+                                                         const GlBindings& bindings) {
+  // The vertex stage takes the compute module for HaFragment and the parameters.
+  return {technique_module(technique, mode, bindings, ShaderStage::Compute) + kPointStreamVertex,
+          technique_module(technique, mode, bindings, ShaderStage::Fragment) + kPointStreamFragment};
 }
 
 std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings) {
@@ -250,6 +264,13 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
     shaders.push_back({name + "-insert", "comp", insert_stream_compute(t, mode, bindings)});
     if (t == Technique::Lists || t == Technique::Arrays)
       shaders.push_back({name + "-sort", "comp", sort_compute(t, mode, bindings)});
+    shaders.push_back({name + "-resolve", "frag", resolve_fragment(t, mode, bindings)});
+  }
+  for (Technique t : {Technique::Wboit, Technique::Blend}) {
+    const std::string name = to_string(t);
+    const auto [vertex, fragment] = insert_stream_points(t, mode, bindings);
+    shaders.push_back({name + "-insert", "vert", vertex});
+    shaders.push_back({name + "-insert", "frag", fragment});
     shaders.push_back({name + "-resolve", "frag", resolve_fragment(t, mode, bindings)});
   }
   shaders.push_back({"kbuffer-count", "comp", kbuffer_count_compute(mode, bindings)});

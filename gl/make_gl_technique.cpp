@@ -1,5 +1,6 @@
 #include <stdexcept>
 
+#include "habuffer/gl/gl_blended_image.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_fixed_arrays.h"
 #include "habuffer/gl/gl_ha_table.h"
@@ -17,9 +18,7 @@ std::unique_ptr<GlTechnique> make_gl_technique(const TechniqueConfig& c, const O
     case Technique::SortedLists: return std::make_unique<GlLinkedLists>(c, mode, bindings);
     case Technique::KBuffer: return std::make_unique<GlKBuffer>(c, mode, bindings);
     case Technique::Wboit:
-    case Technique::Blend:
-      throw GlError("technique " + to_string(c.technique) +
-                    " blends with the fixed-function blender, not through the frame driver's buffers");
+    case Technique::Blend: return std::make_unique<GlBlendedImage>(c, mode, bindings);
   }
   throw std::invalid_argument("unknown technique");
 }

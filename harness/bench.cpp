@@ -57,9 +57,6 @@ void validate_bench(const BenchSettings& s) {
   if (s.techniques.empty()) throw std::invalid_argument("--techniques is empty");
   if (s.sizes.empty()) throw std::invalid_argument("--size is empty");
   if (s.repeats == 0) throw std::invalid_argument("--repeats must be at least 1");
-  for (const TechniqueSpec& t : s.techniques)
-    if (s.path == RenderPath::Gl && !stores_lists(t.technique))
-      throw std::invalid_argument("technique " + t.label() + " renders on the CPU path only (--path cpu)");
   for (const WorkloadSpec& w : s.scenes)
     if (s.path == RenderPath::Gl && !w.fragments.empty())
       throw std::invalid_argument("fragment stream '" + w.word + "' renders on the CPU path only (--path cpu)");

@@ -62,10 +62,6 @@ TechniqueConfig technique_config(const RenderSettings& s) {
 
 RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   validate(s);
-  if (s.path == RenderPath::Gl && !stores_lists(s.technique))
-    throw std::invalid_argument("--technique " + to_string(s.technique) +
-                                " renders on the CPU path only (--path cpu): its GPU form needs the fixed-function "
-                                "blender, which the frame driver does not drive yet");
   const Extent screen = s.config.screen;
   const gl::GlInfo info = gl::query_gl_info();
   const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(info, s.config.layout);

@@ -50,7 +50,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
           render::kSceneVertex,
           std::string("#version 450 core\n#define R_BINDING_PIXEL_FRAGMENTS 10\n") + render::kShading +
               render::kAtomicFloorFragment,
-          "atomic floor")) {
+          "atomic floor")),
+      technique_framebuffer_(buffer.technique().gather_framebuffer()) {
   for (const Mesh& m : scene.meshes) {
     GpuMesh g;
     g.count = static_cast<std::int32_t>(m.indices.size());
@@ -173,7 +174,10 @@ void SceneRenderer::run_gather(const Camera& camera, bool count_only) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelCulledBinding, pixel_culled_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRejectedBinding, rejected_);
-  draw_transparent(gather_program_, camera, gather_framebuffer_);
+  // The blended baselines' inserts blend into the technique's framebuffer; the
+  // counting pass writes no colour (it discards every fragment).
+  const bool blends = technique_framebuffer_ != 0 && !count_only;
+  draw_transparent(gather_program_, camera, blends ? technique_framebuffer_ : gather_framebuffer_);
 }
 
 namespace {

@@ -5,6 +5,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -175,6 +176,98 @@ TEST(GlHost, EveryPassRestoresTheStateOfTheHostsOwnContext) {
   glDeleteFramebuffers(1, &framebuffer);
   glDeleteRenderbuffers(1, &renderbuffer);
   glDeleteBuffers(2, buffers);
+}
+
+// What the blended baselines change around their gather: the draw buffers'
+// blend setup and colour masks, the pixel-pack binding and parameters.
+struct BlendedState {
+  GLint blends[2][6];
+  GLboolean masks[2][4];
+  GLboolean blend_enabled[2];
+  GLint pack_buffer, pack_alignment, pack_row_length, pack_skip_rows, draw_framebuffer;
+  bool operator==(const BlendedState& o) const {
+    for (int d = 0; d < 2; ++d)
+      if (!std::equal(blends[d], blends[d] + 6, o.blends[d]) || !std::equal(masks[d], masks[d] + 4, o.masks[d]) ||
+          blend_enabled[d] != o.blend_enabled[d])
+        return false;
+    return pack_buffer == o.pack_buffer && pack_alignment == o.pack_alignment && pack_row_length == o.pack_row_length &&
+           pack_skip_rows == o.pack_skip_rows && draw_framebuffer == o.draw_framebuffer;
+  }
+};
+
+BlendedState blended_state() {
+  BlendedState s{};
+  const GLenum names[6] = {GL_BLEND_SRC_RGB,   GL_BLEND_DST_RGB,      GL_BLEND_SRC_ALPHA,
+                           GL_BLEND_DST_ALPHA, GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA};
+  for (GLuint d = 0; d < 2; ++d) {
+    for (int i = 0; i < 6; ++i) glGetIntegeri_v(names[i], d, &s.blends[d][i]);
+    glGetBooleani_v(GL_COLOR_WRITEMASK, d, s.masks[d]);
+    s.blend_enabled[d] = glIsEnabledi(GL_BLEND, d);
+  }
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &s.pack_buffer);
+  glGetIntegerv(GL_PACK_ALIGNMENT, &s.pack_alignment);
+  glGetIntegerv(GL_PACK_ROW_LENGTH, &s.pack_row_length);
+  glGetIntegerv(GL_PACK_SKIP_ROWS, &s.pack_skip_rows);
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s.draw_framebuffer);
+  return s;
+}
+
+// wboit and blend bind their framebuffer and blend setup for the gather
+// only: the host's blend functions, equations, masks and enables of draw
+// buffers 0 and 1, its pixel-pack buffer and pack parameters, and its
+// framebuffer are as they were after frames and the resolve (and the host
+// state of the other test too); inside the gather the technique's
+// framebuffer is bound, as gather_framebuffer() names it.
+TEST(GlHost, TheBlendedBaselinesLeaveTheHostsBlendSetupPackStateAndFramebufferAlone) {
+  HostContext host;
+  GLuint pack = 0, renderbuffer = 0, framebuffer = 0;
+  glCreateBuffers(1, &pack);
+  glNamedBufferData(pack, 64, nullptr, GL_STREAM_READ);
+  glCreateRenderbuffers(1, &renderbuffer);
+  glNamedRenderbufferStorage(renderbuffer, GL_RGBA8, 20, 14);
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  glBlendFuncSeparatei(0, GL_DST_COLOR, GL_SRC_COLOR, GL_ONE, GL_ZERO);
+  glBlendFuncSeparatei(1, GL_CONSTANT_COLOR, GL_ONE_MINUS_DST_ALPHA, GL_SRC_ALPHA, GL_DST_ALPHA);
+  glBlendEquationSeparatei(0, GL_MAX, GL_FUNC_SUBTRACT);
+  glBlendEquationSeparatei(1, GL_FUNC_REVERSE_SUBTRACT, GL_MIN);
+  glColorMaski(0, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
+  glColorMaski(1, GL_TRUE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDisablei(GL_BLEND, 0);
+  glEnablei(GL_BLEND, 1);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, pack);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 7);
+  glPixelStorei(GL_PACK_SKIP_ROWS, 2);
+  const BlendedState before = blended_state();
+  const HostState host_before = host_state();
+  const Extent screen{20, 14};
+  for (Technique t : {Technique::Wboit, Technique::Blend}) {
+    const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).front();
+    TechniqueConfig c = test::technique_config(t, screen, test::layout_of(mode));
+    gl::GlFrameDriver gpu(gl::make_gl_technique(c, OffsetSource{}, mode));
+    gl::ComputeInserter inserter(gpu);
+    const gl::FrameReport r = inserter.insert(test::stream(screen, StreamKind::Coherent, 400, 3));
+    EXPECT_EQ(r.counters.blended, 400u) << to_string(t);
+    EXPECT_TRUE(blended_state() == before) << to_string(t);
+    EXPECT_TRUE(host_state() == host_before) << to_string(t);
+    GLint inside = -1;
+    gpu.frame([&] { glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &inside); });
+    EXPECT_EQ(static_cast<unsigned>(inside), gpu.technique().gather_framebuffer()) << to_string(t);
+    EXPECT_NE(inside, 0) << to_string(t);
+    gpu.resolve({0.1f, 0.2f, 0.3f});
+    EXPECT_TRUE(blended_state() == before) << to_string(t);
+    EXPECT_TRUE(host_state() == host_before) << to_string(t);
+  }
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+  glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteRenderbuffers(1, &renderbuffer);
+  glDeleteBuffers(1, &pack);
 }
 
 // Inside the gather the host's generic GL_UNIFORM_BUFFER and

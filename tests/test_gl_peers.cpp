@@ -1,8 +1,13 @@
 // The peers on the GPU path (sorted lists, the k-buffer with and without its
 // occupancy map, early termination and saturation depth): the same lists
 // and counters as their CPU builds on the same stream, in every atomic mode
-// llvmpipe runs, and the exact ones resolve the HA-buffer's image.
+// llvmpipe runs, and the exact ones resolve the HA-buffer's image; the
+// blended baselines (wboit, blend) give the CPU's images.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "gl_test_support.h"
 #include "habuffer/lossless_build.h"
@@ -103,6 +108,47 @@ TEST_F(GlPeers, EarlyTerminationAndSaturationCountAsTheCpuOnOrderedPlanes) {
         EXPECT_EQ(r.counters.saturated_rejected, 0u) << to_string(t);
       }
     }
+}
+
+// The largest absolute difference over the RGBA of two images.
+float largest_difference(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+  float most = 0.0f;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 4; ++c) most = std::max(most, std::abs(a[i][c] - b[i][c]));
+  return most;
+}
+
+// wboit and blend on the GPU: the stream drawn as points in stream order
+// through the fixed-function blender gives the CPU's counters exactly and
+// its accumulators (read back) and resolved image within float rounding
+// (the blender may fuse or reorder its multiply-adds); invalid depths count
+// invalid and blend nothing; a second frame starts from cleared accumulators.
+TEST_F(GlPeers, WboitAndBlendOnTheGpuGiveTheCpuImagesAndCountersInStreamOrder) {
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const Extent screen{19 + 4 * static_cast<std::uint32_t>(seed), 13};
+    std::vector<Fragment> frags = test::stream(screen, seed == 2 ? StreamKind::Hot : StreamKind::Coherent, 3000, seed);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (float bad : {nan, 1.5f, -0.25f}) frags.push_back({3, 2, bad, 0xFF8040C0u});
+    const std::vector<glm::vec3> backgrounds(screen.area(), glm::vec3(0.2f, 0.3f, 0.4f));
+    for (Technique t : {Technique::Wboit, Technique::Blend}) {
+      TechniqueConfig c = peer_config(t, screen, gl::AtomicMode::Emulated64);
+      c.depth_range = {0.05f, 0.95f};
+      gl::GlFrameDriver gpu(gl::make_gl_technique(c, OffsetSource{}, gl::AtomicMode::Emulated64, test::host_bindings()));
+      gl::ComputeInserter inserter(gpu);
+      const auto cpu = make_fragment_buffer(c, OffsetSource{});
+      const Counters expected = cpu->insert(frags);
+      const std::string what = to_string(t) + " seed " + std::to_string(seed);
+      for (int frame = 0; frame < 2; ++frame) {
+        const gl::FrameReport report = inserter.insert(frags);
+        EXPECT_EQ(report.counters, expected) << what;
+        EXPECT_EQ(report.counters.invalid, 3u) << what;
+        EXPECT_EQ(report.counters.blended, frags.size() - 3) << what;
+        const std::vector<glm::vec4> want = cpu->composite_image(backgrounds);
+        EXPECT_LT(largest_difference(gpu.technique().read_back()->composite_image(backgrounds), want), 2e-5f) << what;
+        EXPECT_LT(largest_difference(test::resolve_to_image(gpu, backgrounds[0]), want), 2e-5f) << what;
+      }
+    }
+  }
 }
 
 }  // namespace

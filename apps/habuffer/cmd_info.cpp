@@ -6,6 +6,7 @@
 #include "cli_args.h"
 #include "commands.h"
 #include "habuffer/parallel.h"
+#include "habuffer/render/image.h"
 #include "habuffer/technique.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
@@ -21,6 +22,7 @@ int run_info(const std::vector<std::string>& argv) {
               HABUFFER_SANITIZE_NAME);
   std::printf("compiler: %s\n", __VERSION__);
   std::printf("techniques: %s (every one on both paths; --technique)\n", technique_names().c_str());
+  std::printf("image files: %s\n", image_support().c_str());
   std::printf("paths:\n");
   std::printf("  cpu: available (%s, %u hardware threads; layouts L64 and L32; age bits 4..12)\n",
               parallel_runtime().c_str(), default_concurrency());

@@ -101,6 +101,11 @@ void refuse_scene_options_that_do_not_apply(const Args& args) {
 
 // Every file the command reads or writes, checked before any work.
 void check_render_files(const Args& args, const RenderSettings& s, const std::vector<HeatmapRequest>& heatmaps) {
+  if (!has_image_support())
+    for (const char* image : {"out", "reference", "heatmap"})
+      if (args.has(image))
+        throw UsageError(std::string("option --") + image + ": this habuffer was built without image files (" +
+                         image_support() + "); give --stats only");
   FileRoles files;
   if (args.has("fragments")) files.input("--fragments", args.required("fragments"));
   if (args.has("scene") && !is_scene_name(args.required("scene"))) files.input("--scene", args.required("scene"));

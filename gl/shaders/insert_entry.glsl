@@ -11,6 +11,9 @@ uint ha_insert(uvec2 pixel, float depth, uint rgba) {
   // Helper invocations' stores and atomics have no effect: skip the work.
   if (gl_HelperInvocation) return HABUFFER_INVALID;
 #endif
+#ifdef HABUFFER_TECHNIQUE_BEGIN
+  HABUFFER_TECHNIQUE_BEGIN();  // the blended baselines: no contribution unless the call blends
+#endif
   uint outcome = HABUFFER_INVALID;
   if (all(lessThan(pixel, ha_screen_size))) {
     if (ha_capture_capacity > 0u && ha_gather_phase == 0u) ha_capture(pixel, depth, rgba);

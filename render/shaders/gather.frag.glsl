@@ -1,7 +1,8 @@
 // Gather pass: every transparent fragment in front of the opaque surfaces
 // goes through ha_insert; those behind are rejected first and counted. Per
 // pixel, the fragments inserted (depth complexity) and those culled are
-// counted for the heat maps.
+// counted for the heat maps. Fragments that insert nothing discard, so a
+// technique that blends its inserts (wboit, blend) gets no output from them.
 layout(std430, binding = R_BINDING_PIXEL_FRAGMENTS) buffer RPixelFragments { uint r_pixel_fragments[]; };
 layout(std430, binding = R_BINDING_PIXEL_CULLED) buffer RPixelCulled { uint r_pixel_culled[]; };
 layout(std430, binding = R_BINDING_REJECTED) buffer RRejected { uint r_rejected; };
@@ -20,10 +21,10 @@ void main() {
   float t = r_depth();
   if (t >= texelFetch(r_opaque_depth, ivec2(p), 0).r) {
     atomicAdd(r_rejected, 1u);
-    return;
+    discard;
   }
   uint i = p.x + p.y * r_screen_width;
   atomicAdd(r_pixel_fragments[i], 1u);
-  if (r_count_only != 0u) return;
+  if (r_count_only != 0u) discard;
   if (ha_insert(p, t, rgba) == HABUFFER_CULLED) atomicAdd(r_pixel_culled[i], 1u);
 }

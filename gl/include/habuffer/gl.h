@@ -13,6 +13,7 @@
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/frame_report.h"
 #include "habuffer/gl/gl_bindings.h"
+#include "habuffer/gl/gl_blended_image.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_fixed_arrays.h"
 #include "habuffer/gl/gl_frame_driver.h"

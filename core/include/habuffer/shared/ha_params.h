@@ -28,8 +28,8 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UINT(ha_occupancy_words)      // k-buffer: 32-bit words of a pixel's map
   HABUFFER_PARAM_UINT(ha_occupancy_near_code)  // k-buffer: the depth code of the range's near end
   HABUFFER_PARAM_UINT(ha_occupancy_bucket_codes)  // k-buffer: depth codes per bucket
-  HABUFFER_PARAM_UINT(ha_params_pad0)          // std140 rounds the block to 16 bytes
-  HABUFFER_PARAM_UINT(ha_params_pad1)
+  HABUFFER_PARAM_FLOAT(ha_depth_near)         // wboit: the depth range its weights span
+  HABUFFER_PARAM_FLOAT(ha_depth_far)          // (block size a multiple of 16 bytes, as std140 rounds it)
 HABUFFER_PARAMS_END
 
 #endif

@@ -1,7 +1,9 @@
 /// @file
 /// The GPU path's compute entry: a compute shader that inserts a fragment
 /// stream held in a buffer through the same ha_insert host fragment shaders
-/// call (tests, sweeps and `build-lists --path gl` use it).
+/// call (tests, sweeps and `build-lists --path gl` use it). For the blended
+/// baselines (wboit, blend), whose insert needs the fixed-function blender,
+/// the same stream is drawn as points instead, one per fragment in stream order.
 #pragma once
 
 #include <span>
@@ -41,6 +43,8 @@ class ComputeInserter {
  private:
   GlFrameDriver& buffer_;
   ShaderProgram program_;
+  bool points_ = false;         ///< the stream is drawn as points (the blended baselines)
+  unsigned vertex_array_ = 0;   ///< the empty vertex array the point draw needs
   struct Chunk {
     unsigned buffer;
     std::size_t count;

@@ -58,6 +58,20 @@ class GlTechnique {
   [[nodiscard]] virtual bool draws_at_frame_start() const { return false; }
   /// Right before every gather, the frame's first and its regathers.
   virtual void before_gather() = 0;
+  /// Inside the gather's state guard, right before the host's gather (and its
+  /// fill pass): the GL state its insert calls need beyond the buffers. The
+  /// blended baselines bind their framebuffer and blend setup here; the guard
+  /// gives the host's state back afterwards. Nothing by default.
+  virtual void enter_gather() const {}
+  /// Right after the host's gather, still inside that guard, before any
+  /// resume or sort pass (the blended baselines copy their framebuffer into
+  /// the storage buffers the resolve reads). Nothing by default.
+  virtual void leave_gather() const {}
+  /// The framebuffer the host's gather must draw into, for the techniques
+  /// that blend there (wboit, blend; enter_gather binds it, so a host that
+  /// leaves the binding alone needs nothing); 0 for the others, which draw
+  /// nothing and leave the framebuffer to the host.
+  [[nodiscard]] virtual unsigned gather_framebuffer() const { return 0; }
   /// Passes of the host's gather per attempt: 2 when the technique first
   /// needs a pass that inserts nothing (the k-buffer's occupancy fill, the
   /// parameter ha_gather_phase 1), then between_passes() with every buffer

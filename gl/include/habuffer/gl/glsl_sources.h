@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <string_view>
 #include <vector>
 
@@ -31,6 +32,11 @@ extern const char* const kHaTraverse;           ///< shared/ha_traverse.glsl: tr
 extern const char* const kHaEntries;            ///< shared/ha_entries.glsl: a pixel's entries, sorted after the gather
 extern const char* const kHaLists;              ///< shared/ha_lists.glsl: per-pixel linked lists
 extern const char* const kHaArrays;             ///< shared/ha_arrays.glsl: fixed per-pixel arrays
+extern const char* const kHaBlended;            ///< shared/ha_blended.glsl: wboit's and blend's formulas
+extern const char* const kBlendedEnv;           ///< gl/shaders/blended_env.glsl: the blended baselines' outputs and accumulators
+extern const char* const kBlendedEntry;         ///< gl/shaders/blended_entry.glsl: their insert call and composite
+extern const char* const kPointStreamVertex;    ///< gl/shaders/point_stream.vert.glsl: a stream drawn as points
+extern const char* const kPointStreamFragment;  ///< gl/shaders/point_stream.frag.glsl: their insert
 extern const char* const kGlslEnv;              ///< gl/shaders/glsl_env.glsl: GLSL spellings for the shared sources
 extern const char* const kEntryCommon;          ///< gl/shaders/entry_common.glsl: outcome tallies and capture
 extern const char* const kHaEnv;                ///< gl/shaders/ha_env.glsl: the HA-buffer's environment
@@ -94,6 +100,11 @@ std::vector<GlslFile> host_glsl_files();
 std::string insert_stream_compute(AtomicMode mode, const GlBindings& bindings = {});
 /// The same for any technique (the overload above is the HA-buffer's).
 std::string insert_stream_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});
+/// The compute entry's form for the blended baselines (wboit, blend), whose
+/// insert needs the fixed-function blender: vertex and fragment shaders that
+/// draw the stream as points, one per fragment in stream order.
+std::pair<std::string, std::string> insert_stream_points(Technique technique, AtomicMode mode,
+                                                         const GlBindings& bindings = {});
 
 /// A complete shader as the library compiles it, for checks by a reference
 /// compiler: `name` is unique per mode ("insert", "clear", ...), `stage` the

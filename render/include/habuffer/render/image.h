@@ -28,6 +28,12 @@ struct Image {
   std::vector<glm::vec4> pixels;
 };
 
+// "OpenImageIO 2.4.7.1", or "none (...)" in a build without image files
+// (HABUFFER_WITH_IMAGES=OFF), where the file functions below and
+// write_heatmap throw ImageError naming the file.
+std::string image_support();
+bool has_image_support();
+
 // Writes RGB (the image is already composited over its background), top row
 // first. Throws ImageError naming the file.
 void write_image(const std::string& path, const Image& image);

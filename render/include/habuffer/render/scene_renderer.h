@@ -77,6 +77,7 @@ class SceneRenderer {
   gl::ShaderProgram opaque_program_, gather_program_, blend_program_, atomic_floor_program_;
   unsigned opaque_framebuffer_ = 0, colour_ = 0, depth_ = 0, depth_buffer_ = 0;
   unsigned gather_framebuffer_ = 0, blend_framebuffer_ = 0;
+  unsigned technique_framebuffer_ = 0;  // where the technique blends (wboit, blend), else 0
   unsigned pixel_fragments_ = 0, pixel_culled_ = 0, rejected_ = 0;
 };
 

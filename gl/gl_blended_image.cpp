@@ -1,0 +1,154 @@
+#include "habuffer/gl/gl_blended_image.h"
+
+#include <epoxy/gl.h>
+
+#include <cstring>
+
+#include "gl_params.h"
+#include "gl_state_guard.h"
+#include "habuffer/blended_image.h"
+#include "habuffer/gl/debug_output.h"
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer::gl {
+
+struct GlBlendedImage::Gpu {
+  GLuint framebuffer = 0;
+  GLuint accum = 0, revealage = 0;              // attachments 0 and 1 (revealage: wboit only)
+  GLuint accum_copy = 0, revealage_copy = 0;    // their storage-buffer copies, read by the resolve
+  ~Gpu() {
+    glDeleteFramebuffers(1, &framebuffer);
+    for (GLuint* t : {&accum, &revealage}) glDeleteTextures(1, t);
+    for (GLuint* b : {&accum_copy, &revealage_copy}) delete_buffer(*b);
+  }
+};
+
+namespace {
+
+TechniqueConfig checked_blended(const TechniqueConfig& c) {
+  if (stores_lists(c.technique))
+    throw std::invalid_argument("a blended image is wboit or blend, not " + to_string(c.technique));
+  return validated_as(c, c.technique);
+}
+
+GLuint make_target(GLenum format, Extent screen) {
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, format, static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
+  return texture;
+}
+
+void check_framebuffer_fits(Extent screen) {
+  GLint width = 0, height = 0;
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &width);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &height);
+  if (screen.x > static_cast<std::uint32_t>(width) || screen.y > static_cast<std::uint32_t>(height))
+    throw GlError("the blended accumulators of screen " + screen.str() + " exceed this OpenGL's largest framebuffer " +
+                  std::to_string(width) + "x" + std::to_string(height));
+}
+
+// One attachment into its storage-buffer copy, row after row as the resolve
+// indexes it (x + y * width).
+void copy_target(GLuint texture, GLenum format, GLuint buffer, Extent screen, std::uint32_t bytes_per_pixel) {
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+  glGetTextureImage(texture, 0, format, GL_FLOAT, static_cast<GLsizei>(screen.area() * bytes_per_pixel), nullptr);
+}
+
+}  // namespace
+
+GlBlendedImage::GlBlendedImage(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
+    : GlTechnique(checked_blended(config).technique, mode, bindings, checked_blended(config).buffer.screen),
+      config_(checked_blended(config)),
+      gpu_(std::make_unique<Gpu>()) {
+  check_framebuffer_fits(screen());
+  const std::uint64_t pixels = screen().area();
+  check_storage_fits(pixels * 16, "the blended accumulators of screen " + screen().str());
+  gpu_->accum = make_target(GL_RGBA32F, screen());
+  gpu_->accum_copy = create_buffer(pixels * 16);
+  glCreateFramebuffers(1, &gpu_->framebuffer);
+  glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, gpu_->accum, 0);
+  GLenum draw[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
+  if (weighted()) {
+    gpu_->revealage = make_target(GL_R32F, screen());
+    gpu_->revealage_copy = create_buffer(pixels * 4);
+    glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, gpu_->revealage, 0);
+    draw[1] = GL_COLOR_ATTACHMENT1;
+  } else {
+    gpu_->revealage_copy = create_buffer(4);  // bound for the resolve's block; never read
+  }
+  glNamedFramebufferDrawBuffers(gpu_->framebuffer, 2, draw);
+  if (const GLenum status = glCheckNamedFramebufferStatus(gpu_->framebuffer, GL_DRAW_FRAMEBUFFER);
+      status != GL_FRAMEBUFFER_COMPLETE)
+    throw GlError("the " + to_string(technique()) + " accumulators' framebuffer is not complete (status " +
+                  std::to_string(status) + ")");
+  reset();
+  check_gl_errors("creating the blended accumulators");
+}
+
+GlBlendedImage::~GlBlendedImage() = default;
+
+void GlBlendedImage::write_params(GlParams& p) const {
+  p.ha_age_bits = config_.buffer.age_bits;
+  p.ha_depth_near = config_.depth_range.near_t;
+  p.ha_depth_far = config_.depth_range.far_t;
+}
+
+void GlBlendedImage::bind() const {
+  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->accum_copy);
+  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->revealage_copy);
+}
+
+void GlBlendedImage::reset() {
+  // glClearTexImage ignores the colour masks and the scissor the host may have set.
+  const float accum[4] = {0.0f, 0.0f, 0.0f, weighted() ? 0.0f : 1.0f};
+  glClearTexImage(gpu_->accum, 0, GL_RGBA, GL_FLOAT, accum);
+  if (weighted()) {
+    const float revealage = 1.0f;
+    glClearTexImage(gpu_->revealage, 0, GL_RED, GL_FLOAT, &revealage);
+  }
+}
+
+void GlBlendedImage::enter_gather() const {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->framebuffer);
+  for (GLuint d = 0; d < (weighted() ? 2u : 1u); ++d) {
+    glEnablei(GL_BLEND, d);
+    glColorMaski(d, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glBlendEquationSeparatei(d, GL_FUNC_ADD, GL_FUNC_ADD);
+  }
+  if (weighted()) {
+    glBlendFunci(0, GL_ONE, GL_ONE);                   // accum += (c a w, a w)
+    glBlendFunci(1, GL_ZERO, GL_ONE_MINUS_SRC_COLOR);  // revealage *= 1 - a
+  } else {
+    // (C, T) = (a c + (1 - a) C, (1 - a) T) from the output (a c, a).
+    glBlendFuncSeparatei(0, GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE_MINUS_SRC_ALPHA);
+  }
+}
+
+void GlBlendedImage::leave_gather() const {
+  GlStateGuard::prepare_pack();  // inside the driver's guard, which restores the host's
+  copy_target(gpu_->accum, GL_RGBA, gpu_->accum_copy, screen(), 16);
+  if (weighted()) copy_target(gpu_->revealage, GL_RED, gpu_->revealage_copy, screen(), 4);
+}
+
+unsigned GlBlendedImage::gather_framebuffer() const { return gpu_->framebuffer; }
+
+std::uint64_t GlBlendedImage::memory_bytes() const { return screen().area() * (weighted() ? 40u : 32u); }
+
+std::unique_ptr<FragmentBuffer> GlBlendedImage::read_back() const {
+  const std::uint64_t pixels = screen().area();
+  const std::vector<std::uint32_t> accum_words = read_words(gpu_->accum_copy, pixels * 4);
+  std::vector<glm::vec4> accum(pixels);
+  std::memcpy(accum.data(), accum_words.data(), pixels * 16);
+  std::vector<float> revealage(weighted() ? pixels : 0);
+  if (weighted()) {
+    const std::vector<std::uint32_t> words = read_words(gpu_->revealage_copy, pixels);
+    std::memcpy(revealage.data(), words.data(), pixels * 4);
+  }
+  auto image = std::make_unique<BlendedImage>(config_);
+  image->import_state(accum, revealage);
+  return image;
+}
+
+}  // namespace habuffer::gl

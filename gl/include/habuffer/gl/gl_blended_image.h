@@ -1,0 +1,62 @@
+/// @file
+/// The blended baselines on the GPU: weighted blended OIT (wboit) and plain
+/// over-blending in submission order (blend). No lists: the insert call
+/// writes each fragment's term to fragment outputs and the fixed-function
+/// blender accumulates it, in primitive order, into this container's
+/// framebuffer (an RGBA32F accumulator; wboit adds an R32F revealage), which
+/// the frame driver binds around the host's gather together with the blend
+/// setup (GlStateGuard restores the host's). After each gather the
+/// attachments are copied into storage buffers for the resolve and the
+/// read-back (a CPU BlendedImage). Host shaders call ha_insert at most once
+/// per invocation and discard where they call none
+/// (gl/shaders/blended_env.glsl); the compute entry draws a stream as points.
+#pragma once
+
+#include <memory>
+
+#include "habuffer/gl/gl_technique.h"
+
+namespace habuffer::gl {
+
+/// The wboit and blend containers on the GPU (see the file comment).
+class GlBlendedImage final : public GlTechnique {
+ public:
+  /// config.technique wboit or blend; throws std::invalid_argument for a bad
+  /// config, GlError beyond the context's limits (its largest framebuffer).
+  GlBlendedImage(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
+  /// Deletes the framebuffer, its textures and the copies.
+  ~GlBlendedImage() override;
+
+  /// The configuration, validated.
+  [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+
+  /// GlTechnique interface (see gl_technique.h). before_gather and reset
+  /// clear the accumulators (blend: colour 0, transmittance 1; wboit: sums
+  /// 0, revealage 1); enter_gather binds the framebuffer and the blend setup;
+  /// leave_gather copies the attachments into the storage buffers; nothing
+  /// is ever dropped, so grow is never needed and returns false.
+  void write_params(GlParams& params) const override;
+  void bind() const override;
+  void begin_frame(FrameReport&, const GlFrameOptions&) override {}
+  void before_gather() override { reset(); }
+  void reset() override;
+  void enter_gather() const override;
+  void leave_gather() const override;
+  [[nodiscard]] unsigned gather_framebuffer() const override;
+  bool grow(const FrameReport&, const GlFrameOptions&) override { return false; }
+  /// Always 0: nothing is stored.
+  [[nodiscard]] std::uint64_t capacity() const override { return 0; }
+  /// The attachments and their storage-buffer copies: 32 bytes per pixel
+  /// (blend), 40 (wboit).
+  [[nodiscard]] std::uint64_t memory_bytes() const override;
+  [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
+
+ private:
+  struct Gpu;
+  [[nodiscard]] bool weighted() const { return config_.technique == Technique::Wboit; }
+
+  TechniqueConfig config_;
+  std::unique_ptr<Gpu> gpu_;
+};
+
+}  // namespace habuffer::gl

@@ -1,0 +1,30 @@
+// The blended baselines on the GPU (core/include/habuffer/shared/ha_blended.glsl):
+// no lists, each fragment blended into per-pixel accumulators by the
+// fixed-function blender in primitive order, the only order-keeping
+// accumulation a GPU has (wboit's sums would also go through float atomics,
+// which core GL lacks). The insert call writes the fragment's term to the
+// fragment outputs, and the container's framebuffer (bound by the frame
+// driver around the gather) blends it:
+//   blend:  output 0 (a c, a), colour (ONE, ONE_MINUS_SRC_ALPHA), alpha
+//           (ZERO, ONE_MINUS_SRC_ALPHA): C = a c + (1 - a) C, T = (1 - a) T;
+//   wboit:  output 0 wb_accum_term, (ONE, ONE); output 1 (a), revealage
+//           (ZERO, ONE_MINUS_SRC_COLOR): r = (1 - a) r.
+// Every ha_insert call first zeroes the outputs (a call that blends nothing
+// leaves the pixel as it was), so a host shader calls ha_insert at most once
+// per invocation and discards where it calls none. After the gather the
+// container copies the attachments into its storage buffers, which the
+// resolve reads. Outputs are declared in fragment modules except the
+// resolve's (HABUFFER_RESOLVE_PASS); HABUFFER_BLENDED_LOCATION moves them.
+#if defined(HABUFFER_STAGE_FRAGMENT) && !defined(HABUFFER_RESOLVE_PASS)
+#define HABUFFER_BLENDED_OUTPUTS
+#ifndef HABUFFER_BLENDED_LOCATION
+#define HABUFFER_BLENDED_LOCATION 0
+#endif
+layout(location = HABUFFER_BLENDED_LOCATION) out vec4 ha_blended_accum;
+#ifdef HABUFFER_WBOIT
+layout(location = HABUFFER_BLENDED_LOCATION + 1) out vec4 ha_blended_revealage;
+#endif
+#endif
+
+layout(std430, binding = HABUFFER_BINDING_ACCUM) readonly buffer HaAccum { vec4 ha_accum[]; };
+layout(std430, binding = HABUFFER_BINDING_REVEALAGE) readonly buffer HaRevealage { float ha_revealage[]; };
