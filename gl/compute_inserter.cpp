@@ -44,22 +44,31 @@ void ComputeInserter::release() {
   chunks_.clear();
 }
 
-void ComputeInserter::upload(std::span<const Fragment> fragments) {
+void ComputeInserter::upload(std::span<const Fragment> fragments, std::span<const std::size_t> chunk_ends) {
   const Extent screen = buffer_.screen();
   for (std::size_t i = 0; i < fragments.size(); ++i)
     if (fragments[i].x >= screen.x || fragments[i].y >= screen.y)
       throw GlError("fragment " + std::to_string(i) + " at (" + std::to_string(fragments[i].x) + ", " +
                     std::to_string(fragments[i].y) + ") lies outside screen " + screen.str());
+  for (std::size_t k = 0; k < chunk_ends.size(); ++k)
+    if (chunk_ends[k] > fragments.size() || (k > 0 && chunk_ends[k] < chunk_ends[k - 1]))
+      throw GlError("chunk end " + std::to_string(k) + " (" + std::to_string(chunk_ends[k]) +
+                    ") is not in order within the stream of " + std::to_string(fragments.size()));
   release();
   // Streams beyond one shader-storage buffer (128 MiB, 8 M fragments on
   // llvmpipe) go in several, dispatched one after the other.
   std::size_t per_chunk =
       std::min<std::size_t>(static_cast<std::size_t>(max_storage_bytes()) / sizeof(Fragment), std::size_t{1} << 26);
   if (max_chunk_ > 0) per_chunk = std::min(per_chunk, max_chunk_);
-  for (std::size_t first = 0; first < fragments.size() || first == 0; first += per_chunk) {
-    const std::size_t n = std::min(per_chunk, fragments.size() - first);
+  std::size_t next_end = 0;
+  for (std::size_t first = 0; first < fragments.size() || first == 0;) {
+    while (next_end < chunk_ends.size() && chunk_ends[next_end] <= first) ++next_end;
+    const std::size_t end = std::min({fragments.size(), first + per_chunk,
+                                      next_end < chunk_ends.size() ? chunk_ends[next_end] : fragments.size()});
+    const std::size_t n = end - first;
     chunks_.push_back({create_buffer(n * sizeof(Fragment), n > 0 ? fragments.data() + first : nullptr), n});
     if (fragments.empty()) break;
+    first = end;
   }
 }
 
@@ -78,6 +87,8 @@ void ComputeInserter::dispatch() const {
     } else {
       program_.set("ha_stream_count", static_cast<unsigned>(c.count));
       dispatch_grid(c.count, 64);
+      // Chunks run in stream order: the next sees every write of this one.
+      if (&c != &chunks_.back()) glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }
 }
@@ -88,8 +99,8 @@ std::size_t ComputeInserter::uploaded() const {
   return n;
 }
 
-FrameReport ComputeInserter::insert(std::span<const Fragment> fragments) {
-  upload(fragments);
+FrameReport ComputeInserter::insert(std::span<const Fragment> fragments, std::span<const std::size_t> chunk_ends) {
+  upload(fragments, chunk_ends);
   // frame() reconciles its tallies with the call count: every fragment ends counted.
   return buffer_.frame([&] { dispatch(); }, [&] { return std::uint64_t{uploaded()}; });
 }

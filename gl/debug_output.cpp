@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <mutex>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "habuffer/gl/gl_error.h"
@@ -20,6 +22,7 @@ struct DebugState {
   bool raise = true;
 #endif
   std::vector<std::string> errors;
+  std::set<std::pair<GLenum, GLuint>> noted;  // warnings already passed to the sink
 };
 
 DebugState& state() {
@@ -34,7 +37,11 @@ void GLAPIENTRY on_message(GLenum, GLenum type, GLuint id, GLenum severity, GLsi
                               " (id " + std::to_string(id) + ")";
   DebugState& s = state();
   const std::lock_guard lock(s.mutex);
-  if (type == GL_DEBUG_TYPE_ERROR) s.errors.push_back(message);
+  if (type == GL_DEBUG_TYPE_ERROR) {
+    s.errors.push_back(message);
+  } else if (!s.noted.insert({type, id}).second) {
+    return;  // each warning once per process: a driver repeats its performance notes every frame
+  }
   if (s.sink) s.sink(message);
 }
 

@@ -10,16 +10,25 @@
 namespace habuffer::gl {
 
 unsigned create_buffer(std::uint64_t bytes, const void* data) {
-  const std::uint64_t size = std::max<std::uint64_t>(bytes, 4);
+  const std::uint64_t size = std::max<std::uint64_t>((bytes + 3) / 4 * 4, 4);  // whole words, as zero_buffer clears
   GLuint b = 0;
   glCreateBuffers(1, &b);
-  glNamedBufferData(b, static_cast<GLsizeiptr>(size), data, GL_DYNAMIC_DRAW);
+  // Immutable storage with no client-access flags: the driver keeps it in
+  // device memory (with GL_DYNAMIC_DRAW data stores, the NVIDIA driver moved
+  // buffers we read back, the HA table among them, to host memory: "Buffer
+  // performance warning ... copied/moved from VIDEO memory to HOST memory").
+  // Sub-data updates (the parameter block) need GL_DYNAMIC_STORAGE_BIT.
+  glNamedBufferStorage(b, static_cast<GLsizeiptr>(size), data, GL_DYNAMIC_STORAGE_BIT);
   GLint64 got = 0;
   glGetNamedBufferParameteri64v(b, GL_BUFFER_SIZE, &got);
   if (static_cast<std::uint64_t>(got) != size) {
     glDeleteBuffers(1, &b);
     throw GlError("OpenGL could not allocate a buffer of " + std::to_string(size) + " bytes");
   }
+  // GL leaves a new store's contents undefined: zeros, so a read-back never
+  // sees another allocation's bytes (the NVIDIA driver hands them out; a
+  // node pool's unused links read back as links beyond the pool).
+  if (data == nullptr) zero_buffer(b);
   return b;
 }
 

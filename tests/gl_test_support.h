@@ -4,6 +4,11 @@
 
 #include <epoxy/gl.h>
 
+#include <map>
+#include <span>
+#include <utility>
+#include <vector>
+
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_ha_buffer.h"
@@ -38,6 +43,26 @@ inline gl::GlBindings host_bindings() {
   b.saturation = 15;
   b.params = 3;
   return b;
+}
+
+// The stream reordered into waves that hold each pixel at most once, every
+// pixel's fragments in their order, and where the waves end: inserted as
+// ComputeInserter chunks, a GPU of any width inserts it as the CPU path does
+// serially (no two calls of one pixel run at once).
+inline std::pair<std::vector<Fragment>, std::vector<std::size_t>> pixel_waves(std::span<const Fragment> stream) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> seen;
+  std::vector<std::vector<Fragment>> waves;
+  for (const Fragment& f : stream) {
+    const std::uint32_t wave = seen[{f.x, f.y}]++;
+    if (wave >= waves.size()) waves.resize(wave + 1);
+    waves[wave].push_back(f);
+  }
+  std::pair<std::vector<Fragment>, std::vector<std::size_t>> out;
+  for (const auto& w : waves) {
+    out.first.insert(out.first.end(), w.begin(), w.end());
+    out.second.push_back(out.first.size());
+  }
+  return out;
 }
 
 inline Layout layout_of(gl::AtomicMode mode) { return mode == gl::AtomicMode::Native32 ? Layout::L32 : Layout::L64; }

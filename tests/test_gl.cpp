@@ -198,7 +198,13 @@ TEST(Gl, EarlyCullImageErrorIsBoundedByOneMinusTau) {
     BufferConfig c = test::config(screen, {160, 160}, Layout::L64, 8);
     c.early_cull_tau = tau;
     gl::GlHaBuffer gpu(c, test::random_offsets(1), *l64);
-    const gl::FrameReport rep = gl::ComputeInserter(gpu).insert(f);
+    // In waves of one fragment per pixel: SPEC 6's bound is for an insertion
+    // order, and concurrent calls of one pixel can break it on the GPU (a
+    // call may pass a record, then meet it again after another call evicted
+    // it further along: counted twice; docs/spec-notes.md, "Early cull under
+    // concurrency"). The H100 gave 0.016 against 0.0101 here without waves.
+    const auto [waves, ends] = test::pixel_waves(f);
+    const gl::FrameReport rep = gl::ComputeInserter(gpu).insert(waves, ends);
     const Counters n = rep.counters;
     ASSERT_EQ(n.failures(), 0u) << "failed_age " << n.failed_age << " failed_iter " << n.failed_iter << " give-ups "
                                 << rep.cut_short;

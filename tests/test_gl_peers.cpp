@@ -97,10 +97,15 @@ TEST_F(GlPeers, EarlyTerminationAndSaturationCountAsTheCpuOnOrderedPlanes) {
       c.buffer.early_cull_tau = 0.99f;
       c.buffer.saturation = saturation;
       c.pool_capacity = planes.size();
-      // The compute entry runs the planes' fragments in parallel, so each
-      // pixel's order is only mostly front to back: the counts are bounds.
+      // Each plane its own chunk, in order (one fragment per pixel): the GPU
+      // inserts as the CPU does serially, whatever its width (a GPU running
+      // every plane at once would see no plane in front of another).
+      std::vector<std::size_t> ends;
+      for (std::size_t k = 1; k <= 24; ++k) ends.push_back(k * screen.area());
       gl::GlFrameDriver gpu(gl::make_gl_technique(c, OffsetSource{}, mode, test::host_bindings()));
-      const gl::FrameReport r = gl::ComputeInserter(gpu).insert(planes);
+      const gl::FrameReport r = gl::ComputeInserter(gpu).insert(planes, ends);
+      const Counters expected = make_fragment_buffer(c, OffsetSource{})->insert(planes);
+      EXPECT_EQ(r.counters, expected) << to_string(t) << " saturation " << saturation;
       EXPECT_EQ(r.counters.failures(), 0u);
       EXPECT_GE(r.counters.stored(), 7 * screen.area()) << to_string(t) << " saturation " << saturation;
       EXPECT_GT(r.counters.culled + r.counters.saturated_rejected, 0u);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <set>
 
@@ -43,12 +44,22 @@ std::vector<std::uint8_t> quantized(const Image& image) {
   return q;
 }
 
-// The image and the exact reference written as PNG and compared by OpenImageIO.
+// The image rounded to 8 bits per channel, as a PNG holds it.
+Image quantized_image(const Image& image) {
+  Image q = image;
+  for (glm::vec4& p : q.pixels)
+    for (int c = 0; c < 3; ++c) p[c] = std::round(std::clamp(p[c], 0.0f, 1.0f) * 255.0f) / 255.0f;
+  return q;
+}
+
+// The image and the exact reference written as PNG and compared by
+// OpenImageIO (in a build without image files, the same 8-bit comparison in memory).
 ImageDifference against_reference(const RenderResult& r, const std::string& name) {
   const Extent size = r.image.size;
   const std::vector<glm::dvec4> exact = reference_composite(r.fragments, size, r.backgrounds);
   Image reference{size, {}};
   for (const glm::dvec4& p : exact) reference.pixels.emplace_back(p);
+  if (!has_image_support()) return compare_pixels(quantized_image(r.image), quantized_image(reference));
   const std::string a = testing::TempDir() + "/" + name + ".png", b = testing::TempDir() + "/" + name + "-ref.png";
   write_image(a, r.image);
   write_image(b, reference);
@@ -162,7 +173,11 @@ TEST(Render, PlanesFrontToBackAndBackToFrontGiveTheSameImage) {
   const RenderResult fc = render(make_scene("planes", front), cull);
   const RenderResult bc = render(make_scene("planes", back), cull);
   EXPECT_LT(fc.frames[0].slot_writes * 3, bc.frames[0].slot_writes);
-  EXPECT_EQ(fc.frames[0].slot_writes, fc.frames[0].counters.stored());  // nothing written is later evicted
+  // Nothing written is later evicted where the planes' fragments run in
+  // order (llvmpipe); a GPU overlaps the shaders of consecutive planes, and
+  // the H100 evicted 32 of 12 288 records (slot writes 12 320).
+  EXPECT_GE(fc.frames[0].slot_writes, fc.frames[0].counters.stored());
+  EXPECT_LE(fc.frames[0].slot_writes, fc.frames[0].counters.stored() + fc.frames[0].counters.stored() / 50);
   EXPECT_GT(fc.frames[0].counters.culled, 0u);
   EXPECT_EQ(fc.frames[0].counters.fragments, bc.frames[0].counters.fragments);
 }
@@ -233,6 +248,7 @@ TEST(Render, ImagesAndHeatMapsKeepTheViewsOrientation) {
   const Extent size{40, 40};
   EXPECT_GT(r.pixel_fragments[5 + 35 * 40], 0u);  // GL row 35 is near the top
   EXPECT_EQ(r.pixel_fragments[35 + 5 * 40], 0u);
+  if (!has_image_support()) GTEST_SKIP() << "image files: " << image_support();
   const std::string png = testing::TempDir() + "/corner.png", heat = testing::TempDir() + "/corner-heat.png";
   write_image(png, r.image);
   const Image back = read_image(png);  // read_image returns bottom row first again

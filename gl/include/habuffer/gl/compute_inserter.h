@@ -30,15 +30,20 @@ class ComputeInserter {
   ComputeInserter& operator=(const ComputeInserter&) = delete;
 
   /// Uploads the stream (kept for later dispatches), in several buffers when
-  /// it exceeds one. Throws GlError naming the first fragment outside the
-  /// screen, as the CPU path does.
-  void upload(std::span<const Fragment> fragments);
+  /// it exceeds one, and also split at `chunk_ends` (increasing indices into
+  /// the stream). Chunks are inserted in order, each after every write of
+  /// the one before (a memory barrier between dispatches): a stream whose
+  /// chunks hold at most one fragment per pixel is inserted as the CPU path
+  /// inserts it serially, whatever the GPU's parallelism. Throws GlError
+  /// naming the first fragment outside the screen, as the CPU path does, or
+  /// chunk ends out of order.
+  void upload(std::span<const Fragment> fragments, std::span<const std::size_t> chunk_ends = {});
   /// Fragments in the uploaded stream, over all its buffers.
   [[nodiscard]] std::size_t uploaded() const;
   /// Inserts the uploaded stream; call inside GlFrameDriver::frame's gather.
   void dispatch() const;
   /// One frame whose gather is the stream: upload, then buffer.frame(dispatch).
-  FrameReport insert(std::span<const Fragment> fragments);
+  FrameReport insert(std::span<const Fragment> fragments, std::span<const std::size_t> chunk_ends = {});
 
  private:
   GlFrameDriver& buffer_;

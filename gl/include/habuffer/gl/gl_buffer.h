@@ -10,7 +10,9 @@
 
 namespace habuffer::gl {
 
-/// Throws GlError naming the size when OpenGL cannot allocate it.
+/// An immutable store of `bytes` (rounded up to whole 32-bit words) in device
+/// memory, holding `data` or zeros. Throws GlError naming the size when
+/// OpenGL cannot allocate it.
 unsigned create_buffer(std::uint64_t bytes, const void* data = nullptr);
 /// Sets every byte of `buffer` to zero.
 void zero_buffer(unsigned buffer);
