@@ -174,10 +174,11 @@ TEST(Render, PlanesFrontToBackAndBackToFrontGiveTheSameImage) {
   const RenderResult bc = render(make_scene("planes", back), cull);
   EXPECT_LT(fc.frames[0].slot_writes * 3, bc.frames[0].slot_writes);
   // Nothing written is later evicted where the planes' fragments run in
-  // order (llvmpipe); a GPU overlaps the shaders of consecutive planes, and
-  // the H100 evicted 32 of 12 288 records (slot writes 12 320).
+  // order (llvmpipe); a GPU overlaps the shaders of consecutive planes (the
+  // H100 gave 12 320 and 12 584 slot writes for 12 288 records), still far
+  // from back to front's (above).
   EXPECT_GE(fc.frames[0].slot_writes, fc.frames[0].counters.stored());
-  EXPECT_LE(fc.frames[0].slot_writes, fc.frames[0].counters.stored() + fc.frames[0].counters.stored() / 50);
+  EXPECT_LE(fc.frames[0].slot_writes, fc.frames[0].counters.stored() + fc.frames[0].counters.stored() / 10);
   EXPECT_GT(fc.frames[0].counters.culled, 0u);
   EXPECT_EQ(fc.frames[0].counters.fragments, bc.frames[0].counters.fragments);
 }

@@ -2,5 +2,9 @@
 // their host (the C++ side is core/include/habuffer/glsl_env.h).
 #define ha_index uint
 #define HABUFFER_INOUT(T) inout T
+// No fused multiply-add where a result must equal the CPU path's: the C++
+// side compiles with -ffp-contract=off, and the NVIDIA compiler fuses
+// (the H100 gave images one rounding apart without it).
+#define HABUFFER_PRECISE precise
 #define ha_floor floor
 #define ha_float_bits floatBitsToUint

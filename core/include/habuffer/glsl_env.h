@@ -16,6 +16,9 @@
 
 /// GLSL's inout parameters are C++ references.
 #define HABUFFER_INOUT(T) T&
+/// GLSL's `precise` (no fused multiply-add): the C++ side is compiled with
+/// -ffp-contract=off, so nothing to say here.
+#define HABUFFER_PRECISE
 
 /// GLSL's types (uint, uvec2, vec3, vec4) and the builtins the shared sources
 /// call (ha_floor, ha_float_bits, min, max), declared at class scope.

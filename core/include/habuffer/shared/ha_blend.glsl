@@ -8,11 +8,16 @@ vec4 ha_unpack_rgba(uint data) {
 }
 
 // Straight-alpha front-to-back "under" operator, float32.
+// HABUFFER_PRECISE (GLSL's precise) keeps every multiply and add apart, as
+// the C++ side computes them.
 vec4 ha_blend_under(vec4 c, vec4 f) {
-  float w = (1.0f - c.a) * f.a;
-  return vec4(vec3(c) + w * vec3(f), c.a + w);
+  HABUFFER_PRECISE float w = (1.0f - c.a) * f.a;
+  HABUFFER_PRECISE vec3 rgb = vec3(c) + w * vec3(f);
+  HABUFFER_PRECISE float a = c.a + w;
+  return vec4(rgb, a);
 }
 
 vec4 ha_finish(vec4 c, vec3 background) {
-  return vec4(vec3(c) + (1.0f - c.a) * background, c.a);
+  HABUFFER_PRECISE vec3 rgb = vec3(c) + (1.0f - c.a) * background;
+  return vec4(rgb, c.a);
 }

@@ -19,11 +19,13 @@
 // float ha_depth_far (the depth range).
 
 vec4 bl_over(vec4 acc, vec4 f) {
-  return vec4(f.a * vec3(f) + (1.0f - f.a) * vec3(acc), (1.0f - f.a) * acc.a);
+  HABUFFER_PRECISE vec3 rgb = f.a * vec3(f) + (1.0f - f.a) * vec3(acc);
+  return vec4(rgb, (1.0f - f.a) * acc.a);
 }
 
 vec4 bl_finish(vec4 acc, vec3 background) {
-  return vec4(vec3(acc) + acc.a * background, 1.0f - acc.a);
+  HABUFFER_PRECISE vec3 rgb = vec3(acc) + acc.a * background;
+  return vec4(rgb, 1.0f - acc.a);
 }
 
 float wb_weight(float t, float alpha) {
@@ -41,5 +43,6 @@ vec4 wb_accum_term(float t, vec4 f) {
 
 vec4 wb_finish(vec4 accum, float revealage, vec3 background) {
   vec3 average = vec3(accum) / min(max(accum.a, 1e-4f), 5e4f);
-  return vec4(average * (1.0f - revealage) + background * revealage, 1.0f - revealage);
+  HABUFFER_PRECISE vec3 rgb = average * (1.0f - revealage) + background * revealage;
+  return vec4(rgb, 1.0f - revealage);
 }

@@ -74,7 +74,8 @@ uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h) {
     c.a = old_age;
   } else if (cull && ha_age(old) == c.a) {
     // A record of the same pixel lies in front: it hides the carried one.
-    c.acc += (1.0f - c.acc) * ha_alpha(old);
+    HABUFFER_PRECISE float acc = c.acc + (1.0f - c.acc) * ha_alpha(old);  // culls as the CPU path does
+    c.acc = acc;
     if (c.acc > ha_cull_tau) {
       ha_saturate(c.p, ha_code(c.r));
       return HABUFFER_CULLED;

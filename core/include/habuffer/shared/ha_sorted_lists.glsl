@@ -43,7 +43,8 @@ uint sl_insert_code(uvec2 p, uint code, uint data) {
       if (n == e) return HABUFFER_DUPLICATE;
       if (ha_entry_before(n, e)) {
         if (ha_cull_tau > 0.0f) {
-          acc += (1.0f - acc) * sl_alpha(n.y);
+          HABUFFER_PRECISE float next_acc = acc + (1.0f - acc) * sl_alpha(n.y);  // as the CPU path computes it
+          acc = next_acc;
           if (acc > ha_cull_tau) {
             ha_saturate(p, code);
             return HABUFFER_CULLED;
