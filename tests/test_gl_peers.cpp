@@ -97,24 +97,33 @@ TEST_F(GlPeers, EarlyTerminationAndSaturationCountAsTheCpuOnOrderedPlanes) {
       c.buffer.early_cull_tau = 0.99f;
       c.buffer.saturation = saturation;
       c.pool_capacity = planes.size();
-      // Each plane its own chunk, in order (one fragment per pixel): the GPU
-      // inserts as the CPU does serially, whatever its width (a GPU running
-      // every plane at once would see no plane in front of another).
+      // Each plane its own chunk, in order (one fragment per pixel): a
+      // pixel's calls never run at once, whatever the GPU's width (one
+      // running every plane at once would see no plane in front of
+      // another). Sorted lists are per pixel, so they count as the CPU
+      // does serially. The HA-buffer's records of other pixels still move
+      // concurrently within a chunk (evictions), and an evicted record meets
+      // a saturation depth set meanwhile or not: the H100 stored 895 where
+      // the CPU stores 896. Its counts are held within 1 %.
       std::vector<std::size_t> ends;
       for (std::size_t k = 1; k <= 24; ++k) ends.push_back(k * screen.area());
       // Emulated64 cuts a call short after lock_spin_limit busy locks and
       // resumes it after the gather, out of order: a generous limit keeps
-      // every call in its chunk, and the comparison holds where none was cut.
+      // every call in its chunk.
       gl::GlFrameOptions o;
       o.lock_spin_limit = 1u << 20;
       gl::GlFrameDriver gpu(gl::make_gl_technique(c, OffsetSource{}, mode, test::host_bindings()), o);
       const gl::FrameReport r = gl::ComputeInserter(gpu).insert(planes, ends);
       const Counters expected = make_fragment_buffer(c, OffsetSource{})->insert(planes);
-      if (r.deferred == 0) {
-        EXPECT_EQ(r.counters, expected) << to_string(t) << " saturation " << saturation;
+      const std::string what = to_string(t) + " saturation " + std::to_string(saturation);
+      if (t == Technique::SortedLists && r.deferred == 0) {
+        EXPECT_EQ(r.counters, expected) << what;
       }
-      EXPECT_EQ(r.counters.failures(), 0u);
-      EXPECT_GE(r.counters.stored(), 7 * screen.area()) << to_string(t) << " saturation " << saturation;
+      const double stored = static_cast<double>(r.counters.stored()), want = static_cast<double>(expected.stored());
+      EXPECT_NEAR(stored, want, want / 100.0) << what;
+      EXPECT_EQ(r.counters.fragments, expected.fragments) << what;
+      EXPECT_EQ(r.counters.failures(), 0u) << what;
+      EXPECT_GE(expected.stored(), 7 * screen.area()) << what;
       EXPECT_GT(r.counters.culled + r.counters.saturated_rejected, 0u);
       if (!saturation) {
         EXPECT_EQ(r.counters.saturated_rejected, 0u) << to_string(t);
