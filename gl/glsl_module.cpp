@@ -292,9 +292,11 @@ std::vector<GlslFile> host_glsl_files() {
                      "// habuffer " HABUFFER_VERSION ": the #extension lines of atomic mode " + to_string(mode) +
                          ", right after the shader's #version 450 line and before any code.\n" +
                          module_extensions(mode)});
-    for (Technique t : {Technique::Ha, Technique::Lists, Technique::Arrays, Technique::SortedLists, Technique::KBuffer})
+    for (Technique t : {Technique::Ha, Technique::Lists, Technique::Arrays, Technique::SortedLists, Technique::KBuffer,
+                        Technique::Wboit, Technique::Blend})
       for (ShaderStage stage : {ShaderStage::Fragment, ShaderStage::Compute}) {
         const bool fragment = stage == ShaderStage::Fragment;
+        if (!fragment && !stores_lists(t)) continue;  // the blended baselines need the blender: fragment shaders only
         std::string head = "// habuffer " HABUFFER_VERSION ": technique " + to_string(t) + ", atomic mode " +
                            to_string(mode) + " (" + layout + " records), for " +
                            (fragment ? "fragment" : "compute") + " shaders.\n";
@@ -304,7 +306,13 @@ std::vector<GlslFile> host_glsl_files() {
             "//   uint ha_insert(uvec2 pixel, float depth, uint rgba)  // rgba: packUnorm4x8, straight alpha\n"
             "// once per fragment. Binding points: #define HABUFFER_BINDING_* before this file to move them\n"
             "// (the same numbers as the host's habuffer::gl::GlBindings), defaults from 16 up.\n"
-            "// Reserved names: ha_*, Ha*, habuffer_*, HABUFFER_*, ll_*, fa_*, sl_*, kb_*.\n";
+            "// Reserved names: ha_*, Ha*, habuffer_*, HABUFFER_*, ll_*, fa_*, sl_*, kb_*, bl_*, wb_*.\n";
+        if (!stores_lists(t))
+          head +=
+              "// This technique blends: it declares `out vec4 ha_blended_accum` at location 0 (wboit also\n"
+              "// ha_blended_revealage at 1; #define HABUFFER_BLENDED_LOCATION to move them). Call ha_insert at\n"
+              "// most once per invocation, discard where you call none, and draw into the technique's\n"
+              "// gather_framebuffer() (the frame driver binds it and the blend setup around your gather).\n";
         files.push_back({dir + to_string(t) + (fragment ? ".frag.glsl" : ".comp.glsl"),
                          head + technique_module_body(t, mode, defaults, stage, true)});
       }
