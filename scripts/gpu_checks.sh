@@ -27,17 +27,20 @@ if want info; then
   step 30 nvidia-smi nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
   step 60 info habuffer info
 fi
-want tests && step 240 gl-tests habuffer_gl_tests --gtest_brief=1
+if want tests; then  # every runnable mode: the default (native64 on NVIDIA) and emulated64 forced
+  step 240 gl-tests habuffer_gl_tests --gtest_brief=1
+  step 240 gl-tests-emulated64 env HABUFFER_ATOMIC_MODE=emulated64 habuffer_gl_tests --gtest_brief=1
+fi
 want render-tests && step 240 render-tests habuffer_render_tests --gtest_brief=1
 if want bench; then
-  step 300 gl-bench habuffer_bench --benchmark_filter='BM_GlInsert|BM_Render|BM_Technique/[a-z]+/gl/' \
+  step 300 gl-bench habuffer_bench --benchmark_filter='BM_GlInsert|BM_Render|BM_Technique/[a-z-]+/gl/' \
     --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
     --benchmark_out="$out/gl-bench.json" --benchmark_out_format=json
 fi
 if want harness; then
   step 300 harness habuffer bench --path gl --quiet --repeats 5 --size 512x512,1024x1024 \
     --scenes engine,hairball,planes:order=front:count=32,planes:order=back:count=32 \
-    --techniques ha,ha:cull=0.99,sorted-lists,sorted-lists:cull=0.99,lists,arrays:k=16,kbuffer:k=4,kbuffer:k=8,kbuffer:k=8:occ,kbuffer:k=16${HARNESS_EXTRA:-} \
+    --techniques ha,ha:cull=0.99,sorted-lists,sorted-lists:cull=0.99,lists,arrays:k=16,kbuffer:k=4,kbuffer:k=8,kbuffer:k=8:occ,kbuffer:k=16,wboit,blend \
     --out "$out/techniques.json,$out/techniques.csv"
 fi
 if want render; then
