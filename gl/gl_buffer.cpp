@@ -18,7 +18,8 @@ unsigned create_buffer(std::uint64_t bytes, const void* data) {
   // buffers we read back, the HA table among them, to host memory: "Buffer
   // performance warning ... copied/moved from VIDEO memory to HOST memory").
   // Sub-data updates (the parameter block) need GL_DYNAMIC_STORAGE_BIT.
-  glNamedBufferStorage(b, static_cast<GLsizeiptr>(size), data, GL_DYNAMIC_STORAGE_BIT);
+  // The data go in separately: the store may be up to 3 bytes longer than they are.
+  glNamedBufferStorage(b, static_cast<GLsizeiptr>(size), nullptr, GL_DYNAMIC_STORAGE_BIT);
   GLint64 got = 0;
   glGetNamedBufferParameteri64v(b, GL_BUFFER_SIZE, &got);
   if (static_cast<std::uint64_t>(got) != size) {
@@ -28,7 +29,8 @@ unsigned create_buffer(std::uint64_t bytes, const void* data) {
   // GL leaves a new store's contents undefined: zeros, so a read-back never
   // sees another allocation's bytes (the NVIDIA driver hands them out; a
   // node pool's unused links read back as links beyond the pool).
-  if (data == nullptr) zero_buffer(b);
+  if (data == nullptr || bytes < size) zero_buffer(b);
+  if (data != nullptr && bytes > 0) glNamedBufferSubData(b, 0, static_cast<GLsizeiptr>(bytes), data);
   return b;
 }
 
