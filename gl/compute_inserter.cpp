@@ -78,6 +78,7 @@ void ComputeInserter::dispatch() const {
     // Inside the frame's gather: the driver bound the technique's framebuffer
     // and blend setup; the points cover one pixel each of a screen viewport.
     glBindVertexArray(vertex_array_);
+    GlStateGuard::prepare_point_pass();  // the frame's guard restores the host's state
     GlStateGuard::set_viewport(static_cast<GLsizei>(buffer_.screen().x), static_cast<GLsizei>(buffer_.screen().y));
   }
   for (const Chunk& c : chunks_) {

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <mutex>
 #include <set>
-#include <utility>
 #include <vector>
 
 #include "habuffer/gl/gl_error.h"
@@ -22,7 +21,7 @@ struct DebugState {
   bool raise = true;
 #endif
   std::vector<std::string> errors;
-  std::set<std::pair<GLenum, GLuint>> noted;  // warnings already passed to the sink
+  std::set<std::string> noted;  // warnings already passed to the sink (their text and id)
 };
 
 DebugState& state() {
@@ -39,7 +38,7 @@ void GLAPIENTRY on_message(GLenum, GLenum type, GLuint id, GLenum severity, GLsi
   const std::lock_guard lock(s.mutex);
   if (type == GL_DEBUG_TYPE_ERROR) {
     s.errors.push_back(message);
-  } else if (!s.noted.insert({type, id}).second) {
+  } else if (!s.noted.insert(message).second) {
     return;  // each warning once per process: a driver repeats its performance notes every frame
   }
   if (s.sink) s.sink(message);

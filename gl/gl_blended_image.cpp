@@ -112,6 +112,7 @@ void GlBlendedImage::reset() {
 
 void GlBlendedImage::enter_gather() const {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, gpu_->framebuffer);
+  glDisable(GL_COLOR_LOGIC_OP);  // a logic op would replace blending
   for (GLuint d = 0; d < (weighted() ? 2u : 1u); ++d) {
     glEnablei(GL_BLEND, d);
     glColorMaski(d, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

@@ -12,7 +12,8 @@ GLint limit(GLenum name) {
 // Every capability a pass switches off, with the index GL keeps it per.
 std::vector<std::pair<GLenum, GLint>> pass_capabilities() {
   std::vector<std::pair<GLenum, GLint>> caps{
-      {GL_DEPTH_TEST, -1}, {GL_STENCIL_TEST, -1}, {GL_CULL_FACE, -1}, {GL_RASTERIZER_DISCARD, -1}};
+      {GL_DEPTH_TEST, -1},       {GL_STENCIL_TEST, -1},     {GL_CULL_FACE, -1},
+      {GL_RASTERIZER_DISCARD, -1}, {GL_COLOR_LOGIC_OP, -1}, {GL_PROGRAM_POINT_SIZE, -1}};
   for (GLint i = 0; i < limit(GL_MAX_DRAW_BUFFERS); ++i) caps.emplace_back(GL_BLEND, i);
   for (GLint i = 0; i < limit(GL_MAX_VIEWPORTS); ++i) caps.emplace_back(GL_SCISSOR_TEST, i);
   for (GLint i = 0; i < limit(GL_MAX_CLIP_DISTANCES); ++i) caps.emplace_back(GL_CLIP_DISTANCE0 + i, -1);
@@ -44,6 +45,12 @@ void GlStateGuard::prepare_full_screen_pass() {
   glBindBuffer(GL_QUERY_BUFFER, 0);
 }
 
+void GlStateGuard::prepare_point_pass() {
+  for (const auto& [cap, index] : pass_capabilities())
+    if (cap != GL_BLEND) set_capability(cap, index, false);
+  glPointSize(1.0f);
+}
+
 void GlStateGuard::prepare_pack() {
   for (GLenum p : kPackParameters) glPixelStorei(p, p == GL_PACK_ALIGNMENT ? 4 : 0);
 }
@@ -66,6 +73,7 @@ GlStateGuard::GlStateGuard(const GlBindings& bindings) {
   glGetIntegerv(GL_QUERY_BUFFER_BINDING, &query_buffer_);
   glGetFloati_v(GL_VIEWPORT, 0, viewport_);
   glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
+  glGetFloatv(GL_POINT_SIZE, &point_size_);
   for (GLuint d = 0; d < kGuardedDrawBuffers; ++d) {
     glGetBooleani_v(GL_COLOR_WRITEMASK, d, colour_masks_[d]);
     for (int i = 0; i < 6; ++i) glGetIntegeri_v(kBlend[i], d, &blends_[d][i]);
@@ -93,6 +101,7 @@ GlStateGuard::~GlStateGuard() {
   glBindBuffer(GL_QUERY_BUFFER, static_cast<GLuint>(query_buffer_));
   glViewportIndexedfv(0, viewport_);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
+  glPointSize(point_size_);
   for (GLuint d = 0; d < kGuardedDrawBuffers; ++d) {
     const GLboolean* m = colour_masks_[d];
     const GLint* b = blends_[d];

@@ -5,7 +5,7 @@
 // gather buffers 0 and 1), the pixel-pack buffer and pack parameters (the
 // blended baselines' copies), the capabilities a
 // full-screen pass must switch off (per draw buffer and per viewport where GL
-// keeps them so, and the clip distances), the query-buffer binding, and the
+// keeps them so, the clip distances, logic op, program point size), the point size, the query-buffer binding, and the
 // buffer bindings at our points.
 #pragma once
 
@@ -33,6 +33,9 @@ class GlStateGuard {
   static void prepare_full_screen_pass();
   // Viewport 0 only (glViewport would reset every viewport of the host's array).
   static void set_viewport(GLsizei width, GLsizei height);
+  // For a point draw that blends (the blended baselines' stream entry): what
+  // prepare_full_screen_pass switches off except blending, and points of size 1.
+  static void prepare_point_pass();
   // GL's initial pack parameters (tightly packed rows, no skips), so a read
   // into a buffer object lays the pixels out as they are.
   static void prepare_pack();
@@ -54,6 +57,7 @@ class GlStateGuard {
   GLint program_ = 0, vertex_array_ = 0, draw_framebuffer_ = 0, query_buffer_ = 0;
   GLfloat viewport_[4] = {};
   GLint polygon_mode_[2] = {};
+  GLfloat point_size_ = 1.0f;
   GLboolean colour_masks_[kGuardedDrawBuffers][4] = {};  // colour write masks
   GLint blends_[kGuardedDrawBuffers][6] = {};            // blend functions and equations
   GLint pack_buffer_ = 0;

@@ -310,9 +310,10 @@ std::vector<GlslFile> host_glsl_files() {
         if (!stores_lists(t))
           head +=
               "// This technique blends: it declares `out vec4 ha_blended_accum` at location 0 (wboit also\n"
-              "// ha_blended_revealage at 1; #define HABUFFER_BLENDED_LOCATION to move them). Call ha_insert at\n"
-              "// most once per invocation, discard where you call none, and draw into the technique's\n"
-              "// gather_framebuffer() (the frame driver binds it and the blend setup around your gather).\n";
+              "// ha_blended_revealage at 1; declare no outputs of your own there). Call ha_insert at most once\n"
+              "// per invocation with the invocation's own pixel (ha_insert_here), discard where you call none,\n"
+              "// and draw into the technique's gather_framebuffer() (the frame driver binds it and the blend\n"
+              "// setup around your gather).\n";
         files.push_back({dir + to_string(t) + (fragment ? ".frag.glsl" : ".comp.glsl"),
                          head + technique_module_body(t, mode, defaults, stage, true)});
       }

@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -248,8 +249,19 @@ TEST(GlHost, TheBlendedBaselinesLeaveTheHostsBlendSetupPackStateAndFramebufferAl
     TechniqueConfig c = test::technique_config(t, screen, test::layout_of(mode));
     gl::GlFrameDriver gpu(gl::make_gl_technique(c, OffsetSource{}, mode));
     gl::ComputeInserter inserter(gpu);
-    const gl::FrameReport r = inserter.insert(test::stream(screen, StreamKind::Coherent, 400, 3));
+    const std::vector<Fragment> stream = test::stream(screen, StreamKind::Coherent, 400, 3);
+    const gl::FrameReport r = inserter.insert(stream);
     EXPECT_EQ(r.counters.blended, 400u) << to_string(t);
+    // The copy ignored the host's pack parameters: the read-back is the CPU's image.
+    const auto cpu = make_fragment_buffer(c, OffsetSource{});
+    cpu->insert(stream);
+    const std::vector<glm::vec3> backgrounds(screen.area(), glm::vec3(0.1f, 0.2f, 0.3f));
+    const std::vector<glm::vec4> want = cpu->composite_image(backgrounds);
+    const std::vector<glm::vec4> got = gpu.technique().read_back()->composite_image(backgrounds);
+    float most = 0.0f;
+    for (std::size_t i = 0; i < want.size(); ++i)
+      for (int ch = 0; ch < 4; ++ch) most = std::max(most, std::abs(got[i][ch] - want[i][ch]));
+    EXPECT_LT(most, 2e-5f) << to_string(t);
     EXPECT_TRUE(blended_state() == before) << to_string(t);
     EXPECT_TRUE(host_state() == host_before) << to_string(t);
     GLint inside = -1;

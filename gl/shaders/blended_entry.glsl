@@ -13,6 +13,7 @@ void bl_begin_call() {
 uint bl_insert_fragment(uvec2 pixel, float depth, uint rgba) {
   if (!ha_depth_valid(depth)) return HABUFFER_INVALID;
 #ifdef HABUFFER_BLENDED_OUTPUTS
+  if (any(notEqual(pixel, uvec2(gl_FragCoord.xy)))) return HABUFFER_INVALID;  // the blender writes here only
   vec4 f = ha_unpack_rgba(rgba);
 #ifdef HABUFFER_WBOIT
   ha_blended_accum = wb_accum_term(depth, f);

@@ -14,15 +14,14 @@
 // per invocation and discards where it calls none. After the gather the
 // container copies the attachments into its storage buffers, which the
 // resolve reads. Outputs are declared in fragment modules except the
-// resolve's (HABUFFER_RESOLVE_PASS); HABUFFER_BLENDED_LOCATION moves them.
+// resolve's (HABUFFER_RESOLVE_PASS), at locations 0 and 1, the container's
+// draw buffers 0 and 1. A call blends at the invocation's own pixel: one
+// that names another pixel blends nothing and counts invalid.
 #if defined(HABUFFER_STAGE_FRAGMENT) && !defined(HABUFFER_RESOLVE_PASS)
 #define HABUFFER_BLENDED_OUTPUTS
-#ifndef HABUFFER_BLENDED_LOCATION
-#define HABUFFER_BLENDED_LOCATION 0
-#endif
-layout(location = HABUFFER_BLENDED_LOCATION) out vec4 ha_blended_accum;
+layout(location = 0) out vec4 ha_blended_accum;
 #ifdef HABUFFER_WBOIT
-layout(location = HABUFFER_BLENDED_LOCATION + 1) out vec4 ha_blended_revealage;
+layout(location = 1) out vec4 ha_blended_revealage;
 #endif
 #endif
 

@@ -32,9 +32,11 @@ class ComputeInserter {
   /// Uploads the stream (kept for later dispatches), in several buffers when
   /// it exceeds one, and also split at `chunk_ends` (increasing indices into
   /// the stream). Chunks are inserted in order, each after every write of
-  /// the one before (a memory barrier between dispatches): a stream whose
-  /// chunks hold at most one fragment per pixel is inserted as the CPU path
-  /// inserts it serially, whatever the GPU's parallelism. Throws GlError
+  /// the one before (a memory barrier between dispatches): with at most one
+  /// fragment per pixel in each chunk, no two calls of one pixel run at once,
+  /// whatever the GPU's width (the HA-buffer's evictions still move other
+  /// pixels' records concurrently, and emulated64 resumes calls it cut short
+  /// after the whole gather). Throws GlError
   /// naming the first fragment outside the screen, as the CPU path does, or
   /// chunk ends out of order.
   void upload(std::span<const Fragment> fragments, std::span<const std::size_t> chunk_ends = {});

@@ -1,7 +1,7 @@
 /// @file
 /// KHR_debug routing for contexts the library creates (EglContext): driver
 /// messages go to a log sink (stderr by default; every error, each other
-/// message once per process by type and id, notifications never), and GL
+/// message once per process, notifications never), and GL
 /// errors are collected
 /// so check_gl_errors() can raise them as GlError. Raising is on by default in
 /// debug builds and can be switched at run time. Host contexts are left
