@@ -78,8 +78,11 @@ cmake -S "$work/subdir" -B "$work/subdir/build" -G Ninja >"$work/subdir.log" 2>&
   { cat "$work/subdir.log"; fail "add_subdirectory: configuring failed"; }
 cmake --build "$work/subdir/build" >>"$work/subdir.log" 2>&1 || { tail -40 "$work/subdir.log"; fail "add_subdirectory: build failed"; }
 "$work/subdir/build/cpu_only" >/dev/null || fail "add_subdirectory: cpu_only failed"
-ldd "$work/subdir/build/cpu_only" | grep -q libhabuffer_core.so || fail "add_subdirectory: libhabuffer_core is not shared"
-! ldd "$work/subdir/build/cpu_only" | grep -q libtbb || fail "add_subdirectory: oneTBB linked with HABUFFER_WITH_TBB=OFF"
+# grep reads ldd's whole output (no -q): under pipefail, grep -q leaving early
+# could kill ldd with SIGPIPE and fail the pipeline on a match (seen once in CI load).
+ldd "$work/subdir/build/cpu_only" >"$work/ldd.txt"
+grep libhabuffer_core.so "$work/ldd.txt" >/dev/null || fail "add_subdirectory: libhabuffer_core is not shared"
+! grep libtbb "$work/ldd.txt" >/dev/null || fail "add_subdirectory: oneTBB linked with HABUFFER_WITH_TBB=OFF"
 "$work/subdir/build/host_app" >/dev/null || fail "add_subdirectory: host_app failed"
 
 echo "== pkg-config"
