@@ -8,18 +8,14 @@
 #include "technique_parallel.h"
 
 namespace habuffer {
-namespace {
-
-TechniqueConfig checked_blended(const TechniqueConfig& c) {
+TechniqueConfig BlendedImage::checked_config(const TechniqueConfig& c) {
   if (stores_lists(c.technique))
     throw std::invalid_argument("a blended image is wboit or blend, not " + to_string(c.technique));
   return validated_as(c, c.technique);
 }
 
-}  // namespace
-
 BlendedImage::BlendedImage(const TechniqueConfig& config)
-    : config_(checked_blended(config)), params_(make_technique_params(config_)) {
+    : config_(checked_config(config)), params_(make_technique_params(config_)) {
   clear();
 }
 

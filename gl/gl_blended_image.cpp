@@ -2,8 +2,6 @@
 
 #include <epoxy/gl.h>
 
-#include <cstring>
-
 #include "gl_params.h"
 #include "gl_state_guard.h"
 #include "habuffer/blended_image.h"
@@ -26,12 +24,6 @@ struct GlBlendedImage::Gpu {
 };
 
 namespace {
-
-TechniqueConfig checked_blended(const TechniqueConfig& c) {
-  if (stores_lists(c.technique))
-    throw std::invalid_argument("a blended image is wboit or blend, not " + to_string(c.technique));
-  return validated_as(c, c.technique);
-}
 
 GLuint make_target(GLenum format, Extent screen) {
   GLuint texture = 0;
@@ -59,8 +51,8 @@ void copy_target(GLuint texture, GLenum format, GLuint buffer, Extent screen, st
 }  // namespace
 
 GlBlendedImage::GlBlendedImage(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(checked_blended(config).technique, mode, bindings, checked_blended(config).buffer.screen),
-      config_(checked_blended(config)),
+    : GlTechnique(config.technique, mode, bindings, config.buffer.screen),  // records only: no GL yet
+      config_(BlendedImage::checked_config(config)),
       gpu_(std::make_unique<Gpu>()) {
   check_framebuffer_fits(screen());
   const std::uint64_t pixels = screen().area();
@@ -139,14 +131,11 @@ std::uint64_t GlBlendedImage::memory_bytes() const { return screen().area() * (w
 
 std::unique_ptr<FragmentBuffer> GlBlendedImage::read_back() const {
   const std::uint64_t pixels = screen().area();
-  const std::vector<std::uint32_t> accum_words = read_words(gpu_->accum_copy, pixels * 4);
   std::vector<glm::vec4> accum(pixels);
-  std::memcpy(accum.data(), accum_words.data(), pixels * 16);
+  glGetNamedBufferSubData(gpu_->accum_copy, 0, static_cast<GLsizeiptr>(pixels * sizeof(glm::vec4)), accum.data());
   std::vector<float> revealage(weighted() ? pixels : 0);
-  if (weighted()) {
-    const std::vector<std::uint32_t> words = read_words(gpu_->revealage_copy, pixels);
-    std::memcpy(revealage.data(), words.data(), pixels * 4);
-  }
+  if (weighted())
+    glGetNamedBufferSubData(gpu_->revealage_copy, 0, static_cast<GLsizeiptr>(pixels * sizeof(float)), revealage.data());
   auto image = std::make_unique<BlendedImage>(config_);
   image->import_state(accum, revealage);
   return image;

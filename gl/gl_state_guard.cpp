@@ -36,18 +36,22 @@ void set_capability(GLenum cap, GLint index, bool enabled) {
     (enabled ? glEnablei : glDisablei)(cap, static_cast<GLuint>(index));
 }
 
+void switch_off_pass_capabilities(bool keep_blend) {
+  for (const auto& [cap, index] : pass_capabilities())
+    if (!(keep_blend && cap == GL_BLEND)) set_capability(cap, index, false);
+}
+
 }  // namespace
 
 void GlStateGuard::prepare_full_screen_pass() {
-  for (const auto& [cap, index] : pass_capabilities()) set_capability(cap, index, false);
+  switch_off_pass_capabilities(false);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glBindBuffer(GL_QUERY_BUFFER, 0);
 }
 
 void GlStateGuard::prepare_point_pass() {
-  for (const auto& [cap, index] : pass_capabilities())
-    if (cap != GL_BLEND) set_capability(cap, index, false);
+  switch_off_pass_capabilities(true);
   glPointSize(1.0f);
 }
 

@@ -258,10 +258,7 @@ TEST(GlHost, TheBlendedBaselinesLeaveTheHostsBlendSetupPackStateAndFramebufferAl
     const std::vector<glm::vec3> backgrounds(screen.area(), glm::vec3(0.1f, 0.2f, 0.3f));
     const std::vector<glm::vec4> want = cpu->composite_image(backgrounds);
     const std::vector<glm::vec4> got = gpu.technique().read_back()->composite_image(backgrounds);
-    float most = 0.0f;
-    for (std::size_t i = 0; i < want.size(); ++i)
-      for (int ch = 0; ch < 4; ++ch) most = std::max(most, std::abs(got[i][ch] - want[i][ch]));
-    EXPECT_LT(most, 2e-5f) << to_string(t);
+    EXPECT_LT(test::largest_difference(got, want), 2e-5f) << to_string(t);
     EXPECT_TRUE(blended_state() == before) << to_string(t);
     EXPECT_TRUE(host_state() == host_before) << to_string(t);
     GLint inside = -1;

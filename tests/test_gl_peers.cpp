@@ -132,14 +132,6 @@ TEST_F(GlPeers, EarlyTerminationAndSaturationCountAsTheCpuOnOrderedPlanes) {
     }
 }
 
-// The largest absolute difference over the RGBA of two images.
-float largest_difference(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-  float most = 0.0f;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (int c = 0; c < 4; ++c) most = std::max(most, std::abs(a[i][c] - b[i][c]));
-  return most;
-}
-
 // wboit and blend on the GPU: the stream drawn as points in stream order
 // through the fixed-function blender gives the CPU's counters exactly and
 // its accumulators (read back) and resolved image within float rounding
@@ -166,8 +158,8 @@ TEST_F(GlPeers, WboitAndBlendOnTheGpuGiveTheCpuImagesAndCountersInStreamOrder) {
         EXPECT_EQ(report.counters.invalid, 3u) << what;
         EXPECT_EQ(report.counters.blended, frags.size() - 3) << what;
         const std::vector<glm::vec4> want = cpu->composite_image(backgrounds);
-        EXPECT_LT(largest_difference(gpu.technique().read_back()->composite_image(backgrounds), want), 2e-5f) << what;
-        EXPECT_LT(largest_difference(test::resolve_to_image(gpu, backgrounds[0]), want), 2e-5f) << what;
+        EXPECT_LT(test::largest_difference(gpu.technique().read_back()->composite_image(backgrounds), want), 2e-5f) << what;
+        EXPECT_LT(test::largest_difference(test::resolve_to_image(gpu, backgrounds[0]), want), 2e-5f) << what;
       }
     }
   }

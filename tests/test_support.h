@@ -3,6 +3,8 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <vector>
@@ -49,6 +51,14 @@ inline std::vector<Fragment> grid_stream(Extent screen, std::size_t count, std::
     f.push_back({x, y, t, colour | alpha});
   }
   return f;
+}
+
+// The largest absolute difference over the RGBA of two images of one size.
+inline float largest_difference(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+  float most = 0.0f;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+    for (int c = 0; c < 4; ++c) most = std::max(most, std::abs(a[i][c] - b[i][c]));
+  return a.size() == b.size() ? most : std::numeric_limits<float>::infinity();
 }
 
 inline HaBuffer make_buffer(const BufferConfig& c, std::uint64_t seed = 1,

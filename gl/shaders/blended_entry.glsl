@@ -19,7 +19,7 @@ uint bl_insert_fragment(uvec2 pixel, float depth, uint rgba) {
   ha_blended_accum = wb_accum_term(depth, f);
   ha_blended_revealage = vec4(f.a);
 #else
-  ha_blended_accum = vec4(f.a * vec3(f), f.a);
+  ha_blended_accum = bl_term(f);
 #endif
   return HABUFFER_BLENDED;
 #else

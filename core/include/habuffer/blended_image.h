@@ -23,6 +23,10 @@ class BlendedImage final : public FragmentBuffer {
   /// or for a bad configuration.
   explicit BlendedImage(const TechniqueConfig& config);
 
+  /// `c` validated as a blended image's (wboit or blend; throws
+  /// std::invalid_argument otherwise), for the GPU container too.
+  [[nodiscard]] static TechniqueConfig checked_config(const TechniqueConfig& c);
+
   /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return config_.technique; }
   [[nodiscard]] Extent screen() const override { return params_.screen; }

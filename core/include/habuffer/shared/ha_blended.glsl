@@ -18,9 +18,16 @@
 // Host environment provides, besides ha_blend.glsl: float ha_depth_near,
 // float ha_depth_far (the depth range).
 
+// A fragment's term for blend: premultiplied colour and alpha, what the
+// GPU's fragment output hands the blender.
+vec4 bl_term(vec4 f) { return vec4(f.a * vec3(f), f.a); }
+
+// The blender's equation on that term, (ONE, ONE_MINUS_SRC_ALPHA) on colour
+// and (ZERO, ONE_MINUS_SRC_ALPHA) on transmittance: the CPU path's step.
 vec4 bl_over(vec4 acc, vec4 f) {
-  HABUFFER_PRECISE vec3 rgb = f.a * vec3(f) + (1.0f - f.a) * vec3(acc);
-  return vec4(rgb, (1.0f - f.a) * acc.a);
+  vec4 s = bl_term(f);
+  HABUFFER_PRECISE vec3 rgb = vec3(s) + (1.0f - s.a) * vec3(acc);
+  return vec4(rgb, (1.0f - s.a) * acc.a);
 }
 
 vec4 bl_finish(vec4 acc, vec3 background) {
