@@ -63,13 +63,14 @@ class OwnerComputes {
   // taken in drive() and stays in registers there (measured: 2-3 ms of 15 ms
   // per 2^20 fragments).
   [[gnu::noinline]] static void send(std::vector<Carry>& box, glm::uvec2 p, std::uint32_t a, Word r, float acc,
-                                     std::uint32_t iter) {
+                                     std::uint32_t iter, Word front) {
     Carry c;
     c.p = p;
     c.a = a;
     c.r = r;
     c.acc = acc;
     c.iter = iter;
+    c.front = front;
     box.push_back(c);
   }
 
@@ -82,7 +83,7 @@ class OwnerComputes {
         const glm::uvec2 h = k.ha_probe(c.p, c.a);
         const std::uint32_t dest = owner_of_row(h.y);
         if (dest != t) {
-          send(me.outbox[parity][dest], c.p, c.a, c.r, c.acc, c.iter);
+          send(me.outbox[parity][dest], c.p, c.a, c.r, c.acc, c.iter, c.front);
           return;
         }
         outcome = k.ha_insert_step_at(c, h);

@@ -23,7 +23,7 @@ namespace {
 constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
 static_assert(HABUFFER_GPU_COUNTER_COUNT <= HABUFFER_COUNTER_STRIDE, "a stripe's counters fit its cache line");
 constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
-constexpr std::uint64_t kDeferredCallBytes = 32;  // std430 HaDeferred of ha_entry.glsl
+constexpr std::uint64_t kDeferredCallBytes = 40;  // std430 HaDeferred of ha_entry.glsl
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
 
 void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {

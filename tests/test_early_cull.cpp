@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "habuffer/hash_kernel.h"
 #include "habuffer/reference_compositor.h"
 #include "test_support.h"
 
@@ -104,6 +105,43 @@ TEST(EarlyCull, NeverDropsAFragmentInFrontOfOpacityAtMostTauParallelToo) {
           }
         }
       }
+}
+
+// The interleaving that broke SPEC 6's bound on two CPU threads and on an
+// H100, replayed step by step: call A passes front record R and counts it;
+// call B of the same pixel places Y in front of R, which moves R one probe
+// ahead of A; A meets R again. Counting R twice would make 0.75 > tau of
+// R's 0.5 and Y's 0.004 (true opacity 0.502) and cull X.
+TEST(EarlyCull, ACallCountsAFrontRecordOnceWhenAnotherCallMovesItAhead) {
+  using Kernel = HashKernel<std::uint64_t, false>;
+  KernelParams params;
+  params.table = {8, 1};
+  params.screen = {1, 1};
+  params.max_age_cells_x = 1;
+  params.cull_tau = 0.7f;
+  std::vector<glm::uvec2> offsets;
+  for (std::uint32_t i = 0; i < (1u << params.age_bits) - 1; ++i) offsets.emplace_back(i % 8, 0);
+  std::vector<std::uint64_t> table(8, 0);
+  std::uint32_t max_age = 0;
+  Kernel k(params, offsets.data(), table.data(), &max_age);
+  const glm::uvec2 p(0, 0);
+  const auto code = [&](float t) { return k.ha_depth_code(t); };
+
+  ASSERT_EQ(k.ha_insert_code(p, code(0.3f), rgba(128)), HABUFFER_STORED);  // R, age 1
+  Kernel::HaCarry a = k.ha_carry_begin(p, code(0.8f), rgba(255));         // X
+  ASSERT_EQ(k.ha_insert_step(a), HABUFFER_PENDING);
+  const float counted_r = a.acc;
+  EXPECT_FLOAT_EQ(counted_r, 128.0f / 255.0f) << "A passed R and counted it";
+  ASSERT_EQ(k.ha_insert_code(p, code(0.1f), rgba(1)), HABUFFER_STORED) << "B placed Y, R moved to age 2";
+  EXPECT_EQ(k.ha_age(table[1]), 2u);
+  EXPECT_EQ(k.ha_code(table[1]), code(0.3f));
+
+  std::uint32_t outcome = HABUFFER_PENDING;
+  while (outcome == HABUFFER_PENDING) outcome = k.ha_insert_step(a);
+  EXPECT_EQ(outcome, HABUFFER_STORED) << "X lies behind opacity 0.502 <= tau 0.7";
+  EXPECT_EQ(a.acc, counted_r) << "R was met a second time and counted again";
+  EXPECT_EQ(k.ha_age(table[2]), 3u);
+  EXPECT_EQ(k.ha_code(table[2]), code(0.8f));
 }
 
 // Invariant 5: the culled image differs from the exact reference by at most

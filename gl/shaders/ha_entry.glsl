@@ -7,14 +7,15 @@
 // (resume.comp.glsl) runs on until every call has ended, so contention and
 // the driver's loop budget lose nothing.
 
-// A HaCarry in a buffer (std430, 32 bytes): the record split in 32-bit halves.
+// A HaCarry in a buffer (std430, 40 bytes): the records split in 32-bit halves.
 struct HaDeferred {
   uvec2 p;
   uint a;
   float acc;
   uint iter;
   uint pad;
-  uvec2 r;  // (low, high) words; high is 0 for L32
+  uvec2 r;      // (low, high) words; high is 0 for L32
+  uvec2 front;  // the same split
 };
 
 layout(std430, binding = HABUFFER_BINDING_DEFERRED) buffer HaDeferredCalls {
@@ -27,7 +28,7 @@ layout(std430, binding = HABUFFER_BINDING_DEFERRED) buffer HaDeferredCalls {
 
 void ha_defer(HaCarry c) {
   uint i = atomicAdd(ha_deferred_count, 1u);
-  if (i < ha_deferred_capacity) ha_deferred[i] = HaDeferred(c.p, c.a, c.acc, c.iter, 0u, ha_word_split(c.r));
+  if (i < ha_deferred_capacity) ha_deferred[i] = HaDeferred(c.p, c.a, c.acc, c.iter, 0u, ha_word_split(c.r), ha_word_split(c.front));
 }
 
 HaCarry ha_carry_from(HaDeferred d) {
@@ -37,6 +38,7 @@ HaCarry ha_carry_from(HaDeferred d) {
   c.r = ha_word_join(d.r);
   c.acc = d.acc;
   c.iter = d.iter;
+  c.front = ha_word_join(d.front);
   return c;
 }
 

@@ -184,6 +184,7 @@ class HAModel(object):
         r = self.pack(1, code, data)
         it = 0
         acc = 0.0
+        front = None  # the last record counted into acc, without its age
         while True:
             if a > AMAX:
                 return "failed_age"
@@ -212,12 +213,19 @@ class HAModel(object):
                     r = old
                     continue
                 acc = 0.0
+                front = None
                 a = oa
                 r = old
                 ox, oy = O[a - 1]
                 px = (sx - ox) % Hx
                 py = (sy - oy) % Hy
             elif cull and (old >> sh) == a:
+                # One call alone meets its pixel's front records in strictly
+                # decreasing order, so the kernels' rule against counting a
+                # record twice under concurrency (ha_front_is_new) never
+                # leaves one out here.
+                assert front is None or (old & low) < front, (px, py, old, front)
+                front = old & low
                 alpha = f32((old & 255) / 255.0)
                 acc = f32(acc + f32(f32(1.0 - acc) * alpha))
                 if acc > tau:

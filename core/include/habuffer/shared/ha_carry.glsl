@@ -10,6 +10,7 @@ struct HaCarry {
   ha_word r;    // the carried record, with age a while a <= AMAX (k-buffer: age 1 always)
   float acc;    // early cull: opacity accumulated in front of the carried record
   uint iter;    // probes made so far by this call
+  ha_word front;  // early cull: the last record counted into acc (its age is ignored; see ha_front_is_new)
 };
 
 HaCarry ha_carry_begin(uvec2 p, uint code, uint data) {
@@ -19,5 +20,6 @@ HaCarry ha_carry_begin(uvec2 p, uint code, uint data) {
   c.r = ha_pack(1u, code, data);
   c.acc = 0.0f;
   c.iter = 0u;
+  c.front = ha_word(0);
   return c;
 }

@@ -29,7 +29,7 @@ struct GlFrameOptions {
   /// the resume pass, round after round while any remain, at most this many
   /// rounds; only calls still cut short after the last round count failed_iter.
   std::uint32_t resume_rounds = 256;
-  /// First capacity of the two deferred-call buffers (32 bytes a call); grows
+  /// First capacity of the two deferred-call buffers (40 bytes a call); grows
   /// (and the frame gathers again) on overflow.
   std::uint64_t deferred_capacity = 1u << 12;
   /// Gathers repeated into the same table when calls stayed cut short after
