@@ -86,7 +86,7 @@ class OwnerComputes {
           send(me.outbox[parity][dest], c.p, c.a, c.r, c.acc, c.iter, c.front);
           return;
         }
-        outcome = k.ha_insert_step_at(c, h);
+        outcome = k.ha_insert_step_at(c, h, k.ha_cull_tau > 0.0f);
       }
       if (outcome != HABUFFER_PENDING) {
         ++me.tally[outcome];

@@ -129,7 +129,7 @@ TEST(EarlyCull, ACallCountsAFrontRecordOnceWhenAnotherCallMovesItAhead) {
 
   ASSERT_EQ(k.ha_insert_code(p, code(0.3f), rgba(128)), HABUFFER_STORED);  // R, age 1
   Kernel::HaCarry a = k.ha_carry_begin(p, code(0.8f), rgba(255));         // X
-  ASSERT_EQ(k.ha_insert_step(a), HABUFFER_PENDING);
+  ASSERT_EQ(k.ha_insert_step(a, true), HABUFFER_PENDING);
   const float counted_r = a.acc;
   EXPECT_FLOAT_EQ(counted_r, 128.0f / 255.0f) << "A passed R and counted it";
   ASSERT_EQ(k.ha_insert_code(p, code(0.1f), rgba(1)), HABUFFER_STORED) << "B placed Y, R moved to age 2";
@@ -137,7 +137,7 @@ TEST(EarlyCull, ACallCountsAFrontRecordOnceWhenAnotherCallMovesItAhead) {
   EXPECT_EQ(k.ha_code(table[1]), code(0.3f));
 
   std::uint32_t outcome = HABUFFER_PENDING;
-  while (outcome == HABUFFER_PENDING) outcome = k.ha_insert_step(a);
+  while (outcome == HABUFFER_PENDING) outcome = k.ha_insert_step(a, true);
   EXPECT_EQ(outcome, HABUFFER_STORED) << "X lies behind opacity 0.502 <= tau 0.7";
   EXPECT_EQ(a.acc, counted_r) << "R was met a second time and counted again";
   EXPECT_EQ(k.ha_age(table[2]), 3u);

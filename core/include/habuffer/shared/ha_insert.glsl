@@ -34,10 +34,10 @@ uint ha_insert_limit(HaCarry c) {
 // nothing. Early cull needs the opacity of a front record of the same pixel,
 // which only a slot record of the carried age can be (age equivalence): that
 // case still takes the atomic.
-bool ha_slot_known_larger(ha_index s, HaCarry c) {
+bool ha_slot_known_larger(ha_index s, HaCarry c, bool cull) {
   uint high = ha_high(ha_load_slot(s));
   if (high <= ha_high(c.r)) return false;
-  return ha_cull_tau <= 0.0f || (high >> (32u - ha_age_bits)) > c.a;
+  return !cull || (high >> (32u - ha_age_bits)) > c.a;
 }
 
 // Whether the front record `old` (the carried pixel's, age c.a) may add its
@@ -52,12 +52,15 @@ bool ha_front_is_new(HaCarry c, ha_word old) {
   return c.acc == 0.0f || old < ha_with_age(c.front, c.a);
 }
 
-uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h) {
+// `cull`: ha_cull_tau > 0, an argument so that a run without early cull is
+// compiled without it (ha_insert_run): carrying the cull's record cost the
+// CPU path about 10 % of its inserts with the cull off.
+uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h, bool cull) {
   ha_index s = ha_slot(h);
   // A slot that loses to a record in place costs one plain load, not an
   // atomic (and, in emulated64, not a lock): at high depth complexity most
   // probes meet older, larger records.
-  if (ha_slot_known_larger(s, c)) {
+  if (ha_slot_known_larger(s, c, cull)) {
     c.iter += 1u;
     c.a += 1u;
     c.r = ha_with_age(c.r, c.a);
@@ -68,7 +71,6 @@ uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h) {
   if (missed != 0u) return missed;
   c.iter += 1u;
   if (old == c.r) return HABUFFER_DUPLICATE;
-  bool cull = ha_cull_tau > 0.0f;
   if (old < c.r) {
     ha_atomic_max_age(ha_cell(c.p), c.a);
     if (old == ha_word(0)) return HABUFFER_STORED;
@@ -99,10 +101,10 @@ uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h) {
   return HABUFFER_PENDING;
 }
 
-uint ha_insert_step(HABUFFER_INOUT(HaCarry) c) {
+uint ha_insert_step(HABUFFER_INOUT(HaCarry) c, bool cull) {
   uint limit = ha_insert_limit(c);
   if (limit != HABUFFER_PENDING) return limit;
-  return ha_insert_step_at(c, ha_probe(c.p, c.a));
+  return ha_insert_step_at(c, ha_probe(c.p, c.a), cull);
 }
 
 // Runs a call's steps until it ends. HABUFFER_CUT: cut short by something other
@@ -112,7 +114,11 @@ uint ha_insert_step(HABUFFER_INOUT(HaCarry) c) {
 // loop together). Neither happens on the CPU path.
 uint ha_insert_run(HABUFFER_INOUT(HaCarry) c) {
   uint outcome = HABUFFER_PENDING;
-  while (outcome == HABUFFER_PENDING) outcome = ha_insert_step(c);
+  if (ha_cull_tau > 0.0f) {
+    while (outcome == HABUFFER_PENDING) outcome = ha_insert_step(c, true);
+  } else {
+    while (outcome == HABUFFER_PENDING) outcome = ha_insert_step(c, false);
+  }
   return outcome == HABUFFER_PENDING ? HABUFFER_CUT : outcome;
 }
 
