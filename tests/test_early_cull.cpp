@@ -110,8 +110,8 @@ TEST(EarlyCull, NeverDropsAFragmentInFrontOfOpacityAtMostTauParallelToo) {
 // The interleaving that broke SPEC 6's bound on two CPU threads and on an
 // H100, replayed step by step: call A passes front record R and counts it;
 // call B of the same pixel places Y in front of R, which moves R one probe
-// ahead of A; A meets R again. Counting R twice would make 0.75 > tau of
-// R's 0.5 and Y's 0.004 (true opacity 0.502) and cull X.
+// ahead of A; A meets R again. Counting R twice would make 0.752 > tau,
+// though R's 0.502 and Y's 0.004 in front of X make 0.504, and cull X.
 TEST(EarlyCull, ACallCountsAFrontRecordOnceWhenAnotherCallMovesItAhead) {
   using Kernel = HashKernel<std::uint64_t, false>;
   KernelParams params;
@@ -138,7 +138,7 @@ TEST(EarlyCull, ACallCountsAFrontRecordOnceWhenAnotherCallMovesItAhead) {
 
   std::uint32_t outcome = HABUFFER_PENDING;
   while (outcome == HABUFFER_PENDING) outcome = k.ha_insert_step(a, true);
-  EXPECT_EQ(outcome, HABUFFER_STORED) << "X lies behind opacity 0.502 <= tau 0.7";
+  EXPECT_EQ(outcome, HABUFFER_STORED) << "X lies behind opacity 0.504 <= tau 0.7";
   EXPECT_EQ(a.acc, counted_r) << "R was met a second time and counted again";
   EXPECT_EQ(k.ha_age(table[2]), 3u);
   EXPECT_EQ(k.ha_code(table[2]), code(0.8f));

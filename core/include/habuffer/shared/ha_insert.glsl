@@ -41,13 +41,15 @@ bool ha_slot_known_larger(ha_index s, HaCarry c, bool cull) {
 }
 
 // Whether the front record `old` (the carried pixel's, age c.a) may add its
-// opacity to the carried one's. A call meets its pixel's records in
-// decreasing order, so one not below the last counted was counted already:
-// a concurrent call of the pixel evicted it ahead of this call (counting it
-// again broke SPEC 6's bound: 0.016 against 0.0101 on an H100, and dropped
-// fragments with 0.83 < tau = 0.9 in front on two CPU threads). Records
-// counted thus strictly decrease, so none counts twice; one left out only
-// culls less. While acc is 0, every record counted had opacity 0.
+// opacity to the carried one's. A call alone meets its pixel's records in
+// decreasing order. Under concurrency, one not below the last counted is
+// either that record moved ahead of this call by a concurrent call of the
+// pixel (counting it again broke SPEC 6's bound: 0.016 against 0.0101 on an
+// H100, and dropped fragments with 0.83 < tau = 0.9 in front on two CPU
+// threads), or a nearer record placed after this call passed its slot.
+// Records counted thus strictly decrease, so none counts twice; one left out
+// only culls less. While acc is 0, every record counted had opacity 0, and
+// counting it again adds nothing.
 bool ha_front_is_new(HaCarry c, ha_word old) {
   return c.acc == 0.0f || old < ha_with_age(c.front, c.a);
 }
