@@ -77,6 +77,7 @@ class OwnerComputes {
   // Runs insert steps while the carried record probes this owner's slots.
   void drive(std::uint32_t t, Kernel& k, Carry c, unsigned parity) {
     Owner& me = owners_[t];
+    const bool cull = k.ha_cull_tau > 0.0f;
     for (;;) {
       std::uint32_t outcome = k.ha_insert_limit(c);
       if (outcome == HABUFFER_PENDING) {
@@ -86,7 +87,7 @@ class OwnerComputes {
           send(me.outbox[parity][dest], c.p, c.a, c.r, c.acc, c.iter, c.front);
           return;
         }
-        outcome = k.ha_insert_step_at(c, h, k.ha_cull_tau > 0.0f);
+        outcome = k.ha_insert_step_at(c, h, cull);
       }
       if (outcome != HABUFFER_PENDING) {
         ++me.tally[outcome];
