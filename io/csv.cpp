@@ -8,6 +8,7 @@
 #include <fstream>
 #include <utility>
 
+#include "habuffer/atomic_file.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/printable.h"
 
@@ -186,18 +187,14 @@ float CsvReader::f32(std::string_view text, std::string_view field) const {
   return v;
 }
 
-CsvWriter::CsvWriter(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
-  if (file_ == nullptr) throw DataError(printable(path) + ": cannot open for writing: " + std::strerror(errno));
+CsvWriter::CsvWriter(const std::string& path) : file_(std::make_unique<AtomicFile>(path)) {
   buffer_.reserve(1 << 20);
 }
 
-CsvWriter::~CsvWriter() {
-  if (file_ != nullptr) std::fclose(file_);
-}
+CsvWriter::~CsvWriter() = default;
 
 void CsvWriter::flush() {
-  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-    throw DataError(path_ + ": write failed: " + std::strerror(errno));
+  file_->write(buffer_);
   buffer_.clear();
 }
 
@@ -226,9 +223,7 @@ CsvWriter& CsvWriter::hex(std::uint64_t v, int digits) {
 
 void CsvWriter::close() {
   flush();
-  const bool bad = std::fclose(file_) != 0;
-  file_ = nullptr;
-  if (bad) throw DataError(path_ + ": close failed: " + std::strerror(errno));
+  file_->commit();
 }
 
 }  // namespace habuffer

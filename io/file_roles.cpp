@@ -40,7 +40,17 @@ Identity identify(const std::string& path) {
 // creates parents, a writable nearest existing ancestor).
 std::string unwritable(const std::string& path, bool creates_parents) {
   std::error_code ec;
-  if (fs::exists(path, ec)) return ::access(path.c_str(), W_OK) == 0 ? "" : "is not writable";
+  if (fs::exists(path, ec)) {
+    if (::access(path.c_str(), W_OK) != 0) return "is not writable";
+    // A regular file is replaced by a temporary file written beside it
+    // (habuffer/atomic_file.h): its directory must take new files.
+    if (!fs::is_regular_file(path, ec)) return {};
+    const fs::path dir = fs::path(fs::weakly_canonical(fs::absolute(path, ec), ec)).parent_path();
+    if (::access(dir.c_str(), W_OK | X_OK) != 0)
+      return "cannot be replaced: directory " + printable(dir.string()) +
+             " is not writable (outputs are written beside the file and renamed over it)";
+    return {};
+  }
   fs::path dir = fs::absolute(path, ec).parent_path();
   if (!fs::is_directory(dir, ec)) {
     if (!creates_parents) return "cannot be created: directory " + printable(dir.string()) + " does not exist";

@@ -8,6 +8,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "habuffer/render/image.h"
+#include "image_files.h"
 
 namespace habuffer {
 namespace {
@@ -74,11 +75,7 @@ HeatmapRange write_heatmap(const std::string& path, Extent size, std::span<const
   OIIO::ImageBufAlgo::paste(out, 0, 0, 0, 0, coloured);
   OIIO::ImageBufAlgo::paste(out, 0, h, 0, 0, legend(w, range.max, title, colour_map));
   out.set_write_format(OIIO::TypeDesc::UINT8);
-  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-  }
-  if (!out.write(path)) throw ImageError("heat map '" + path + "' cannot be written: " + out.geterror());
+  write_atomically(path, out);
   return range;
 }
 

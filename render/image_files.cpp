@@ -9,6 +9,10 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "habuffer/atomic_file.h"
+#include "habuffer/csv.h"
+#include "image_files.h"
+
 namespace habuffer {
 
 std::string image_support() { return "OpenImageIO " OIIO_VERSION_STRING; }
@@ -37,6 +41,22 @@ OIIO::ImageBuf read_buffer(const std::string& path) {
 
 }  // namespace
 
+void write_atomically(const std::string& path, const OIIO::ImageBuf& buf) {
+  std::error_code ec;
+  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) std::filesystem::create_directories(dir, ec);
+  try {
+    AtomicFile out(path, AtomicFile::Access::ByName);
+    if (!buf.write(out.staging_path())) {
+      std::string why = buf.geterror();
+      if (why.empty()) why = "OpenImageIO gave no reason";
+      throw ImageError("image '" + path + "' cannot be written: " + why);
+    }
+    out.commit();
+  } catch (const DataError& e) {
+    throw ImageError(std::string("image ") + e.what());
+  }
+}
+
 void write_image(const std::string& path, const Image& image) {
   const Extent s = image.size;
   if (image.pixels.size() != s.area()) throw ImageError("image for '" + path + "' has the wrong number of pixels");
@@ -49,13 +69,7 @@ void write_image(const std::string& path, const Image& image) {
     }
   buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, rgb.data());
   buf.set_write_format(float_format(path) ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  std::error_code ec;
-  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) std::filesystem::create_directories(dir, ec);
-  if (!buf.write(path)) {
-    std::string why = buf.geterror();
-    if (why.empty()) why = std::filesystem::is_directory(path, ec) ? "it is a directory" : "OpenImageIO gave no reason";
-    throw ImageError("image '" + path + "' cannot be written: " + why);
-  }
+  write_atomically(path, buf);
 }
 
 Image read_image(const std::string& path) {

@@ -7,6 +7,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "habuffer/atomic_file.h"
 #include "habuffer/csv.h"
 #include "habuffer/printable.h"
 
@@ -63,6 +64,9 @@ int main(int argc, char** argv) {
                  excerpt(name).c_str());
     return 2;
   }
+  // An interrupted run removes its partial outputs; earlier files of the
+  // same names stay as they were.
+  remove_partial_outputs_on_signals();
   try {
     return it->second(std::vector<std::string>(argv + 2, argv + argc));
   } catch (const cli::UsageError& e) {

@@ -4,12 +4,15 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace habuffer {
+
+class AtomicFile;
 
 // Bad data in an input file (the CLI exits 1 on it).
 class DataError : public std::runtime_error {
@@ -68,7 +71,10 @@ class CsvReader {
   std::size_t columns_ = 0;
 };
 
-// Buffered writer with integer formatting through std::to_chars.
+// Buffered writer with integer formatting through std::to_chars. The file
+// appears whole at close() or not at all (habuffer/atomic_file.h): a writer
+// destroyed before close(), or a write error, leaves an earlier file of
+// that name as it was.
 class CsvWriter {
  public:
   // Throws DataError if the file cannot be created.
@@ -82,13 +88,12 @@ class CsvWriter {
   CsvWriter& hex(std::uint64_t v, int digits);  // 0x + zero-padded lowercase
   CsvWriter& comma() { return text(","); }
   CsvWriter& endl() { return text("\n"); }
-  // Flushes and closes; throws DataError on a write error.
+  // Flushes and replaces the target; throws DataError on a write error.
   void close();
 
  private:
   void flush();
-  std::string path_;
-  std::FILE* file_ = nullptr;
+  std::unique_ptr<AtomicFile> file_;
   std::string buffer_;
 };
 

@@ -1,0 +1,232 @@
+#include "habuffer/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include "habuffer/csv.h"
+#include "habuffer/printable.h"
+
+namespace habuffer {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The temporary files a signal handler removes. A handler may only use
+// lock-free atomics and async-signal-safe calls (unlink, _exit), so the
+// registry is a fixed array of paths, each published by its state:
+// 0 free, 1 being filled, 2 live.
+struct Slot {
+  std::atomic<int> state;
+  std::array<char, 4096> path;
+};
+constexpr int kSlots = 256;
+Slot g_slots[kSlots];
+static_assert(std::atomic<int>::is_always_lock_free, "signal handlers need a lock-free slot state");
+
+// A slot for `path`, or -1 when the registry is full or the path too long:
+// the file is then still written atomically, only not removed on a signal.
+int register_temporary(const std::string& path) {
+  if (path.size() >= std::tuple_size_v<decltype(Slot::path)>) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = 0;
+    if (!g_slots[i].state.compare_exchange_strong(expected, 1, std::memory_order_acquire)) continue;
+    std::memcpy(g_slots[i].path.data(), path.c_str(), path.size() + 1);
+    g_slots[i].state.store(2, std::memory_order_release);
+    return i;
+  }
+  return -1;
+}
+
+void unregister_temporary(int slot) {
+  if (slot >= 0) g_slots[slot].state.store(0, std::memory_order_release);
+}
+
+extern "C" void remove_temporaries_and_exit(int signal_number) {
+  for (Slot& s : g_slots)
+    if (s.state.load(std::memory_order_acquire) == 2) ::unlink(s.path.data());
+  ::_exit(128 + signal_number);
+}
+
+std::string random_tag() {
+  static thread_local std::mt19937_64 rng{std::random_device{}() ^ static_cast<std::uint64_t>(::getpid())};
+  constexpr char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  std::string tag(8, 'x');
+  for (char& c : tag) c = kChars[rng() % (sizeof kChars - 1)];
+  return tag;
+}
+
+// write(2) until done: partial writes continue, EINTR retries.
+int write_all(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, size);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    data += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return 0;
+}
+
+// Makes a rename durable; a directory that cannot be opened or synced
+// (some file systems) loses nothing but durability across a power cut.
+void sync_directory(const fs::path& dir) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  (void)::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(const std::string& path, Access access) : path_(path), target_(path), access_(access) {
+  if (path.empty()) throw DataError("empty output file name");
+  std::error_code ec;
+  if (fs::is_symlink(path, ec)) {
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    if (!ec) target_ = resolved.string();
+  }
+  struct stat st {};
+  const bool exists = ::stat(target_.c_str(), &st) == 0;
+  if (exists && S_ISDIR(st.st_mode)) throw DataError(printable(path_) + ": is a directory, not a file to write");
+  in_place_ = exists && !S_ISREG(st.st_mode);
+  if (in_place_ && access_ == Access::Stream) {
+    fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
+    if (fd_ < 0) fail("cannot open for writing", errno);
+    return;
+  }
+  create_staging(in_place_ ? fs::temp_directory_path(ec).string() : fs::path(target_).parent_path().string());
+  if (exists && !in_place_ && ::fchmod(fd_, st.st_mode & 07777) != 0) fail("cannot set the permissions of the temporary file", errno);
+  if (access_ == Access::ByName) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+}
+
+void AtomicFile::create_staging(const std::string& directory) {
+  const fs::path target(target_);
+  const std::string dir = directory.empty() ? "." : directory;
+  // The extension as the caller named the file: a format chosen by name
+  // (an image through a link to a device) must see the name given.
+  const std::string extension = fs::path(path_).extension().string();
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.
+    std::string name(1, '.');
+    name.append(target.stem().string()).append(1, '.').append(random_tag()).append(".tmp").append(extension);
+    const std::string candidate = (fs::path(dir) / name).string();
+    // Registered before it exists: a signal between the two removes nothing.
+    slot_ = register_temporary(candidate);
+    fd_ = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd_ >= 0) {
+      staging_ = candidate;
+      return;
+    }
+    const int error = errno;
+    unregister_temporary(slot_);
+    slot_ = -1;
+    if (error != EEXIST)
+      throw DataError(printable(path_) + ": cannot create a temporary file in " + printable(dir) + ": " +
+                      std::strerror(error));
+  }
+  throw DataError(printable(path_) + ": cannot create a temporary file in " + printable(dir) +
+                  ": 100 names taken");
+}
+
+AtomicFile::~AtomicFile() {
+  if (!done_) discard();
+}
+
+void AtomicFile::discard() noexcept {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!staging_.empty()) ::unlink(staging_.c_str());
+  unregister_temporary(slot_);
+  slot_ = -1;
+  done_ = true;
+}
+
+void AtomicFile::fail(const std::string& what, int error) {
+  discard();
+  throw DataError(printable(path_) + ": " + what + ": " + std::strerror(error));
+}
+
+void AtomicFile::write(std::string_view bytes) {
+  if (done_ || fd_ < 0) throw std::logic_error("AtomicFile::write on " + path_ + ": not a stream or already done");
+  if (const int error = write_all(fd_, bytes.data(), bytes.size()); error != 0) fail("write failed", error);
+}
+
+void AtomicFile::copy_staged_into_target() {
+  const int in = ::open(staging_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) fail("cannot read back the staged file", errno);
+  const int out = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
+  if (out < 0) {
+    const int error = errno;
+    ::close(in);
+    fail("cannot open for writing", error);
+  }
+  std::array<char, 1 << 16> buffer{};
+  int error = 0;
+  for (;;) {
+    const ssize_t n = ::read(in, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n < 0) error = errno;
+      break;
+    }
+    if ((error = write_all(out, buffer.data(), static_cast<std::size_t>(n))) != 0) break;
+  }
+  ::close(in);
+  if (::close(out) != 0 && error == 0) error = errno;
+  if (error != 0) fail("write failed", error);
+}
+
+void AtomicFile::commit() {
+  if (done_) throw std::logic_error("AtomicFile::commit on " + path_ + ": already done");
+  if (access_ == Access::ByName && in_place_) {
+    copy_staged_into_target();
+    discard();
+    return;
+  }
+  if (access_ == Access::ByName) {
+    fd_ = ::open(staging_.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) fail("cannot reopen the temporary file", errno);
+  }
+  // fsync before the rename: otherwise a crash can leave the new name on
+  // an empty file. Devices and pipes (in place) need none.
+  if (!in_place_ && ::fsync(fd_) != 0) fail("write failed", errno);
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) fail("write failed", errno);
+  if (in_place_) {
+    done_ = true;
+    return;
+  }
+  if (::rename(staging_.c_str(), target_.c_str()) != 0) fail("cannot replace the file", errno);
+  staging_.clear();
+  unregister_temporary(slot_);
+  slot_ = -1;
+  done_ = true;
+  sync_directory(fs::path(target_).parent_path());
+}
+
+void remove_partial_outputs_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = remove_temporaries_and_exit;
+  sigfillset(&action.sa_mask);  // one cleanup at a time
+  for (const int s : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(s, &action, nullptr);
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGXFSZ, &ignore, nullptr);
+}
+
+}  // namespace habuffer

@@ -1,0 +1,179 @@
+// Outputs appear whole or not at all (habuffer/atomic_file.h): an earlier
+// file survives every failure, and no temporary file is left behind.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+
+#include "habuffer/atomic_file.h"
+#include "habuffer/csv.h"
+
+namespace habuffer {
+namespace {
+
+namespace fs = std::filesystem;
+
+class AtomicOutput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("habuffer_atomic_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    old_ = (dir_ / "out.csv").string();
+    std::ofstream(old_) << "earlier contents\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  static std::string read(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), {}};
+  }
+  // Every file of the directory but the earlier output.
+  [[nodiscard]] std::vector<std::string> others() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_))
+      if (e.path().filename() != "out.csv") names.push_back(e.path().filename().string());
+    return names;
+  }
+  // Runs `body` in a child process; its exit status.
+  template <class Body>
+  static int in_child(Body body) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      body();
+      ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1000 + WTERMSIG(status);
+  }
+  fs::path dir_;
+  std::string old_;
+};
+
+TEST_F(AtomicOutput, ACommittedFileReplacesTheEarlierOneWhole) {
+  AtomicFile f(old_);
+  f.write("new ");
+  EXPECT_EQ(read(old_), "earlier contents\n") << "the target changed before the commit";
+  f.write("contents\n");
+  f.commit();
+  EXPECT_EQ(read(old_), "new contents\n");
+  EXPECT_TRUE(others().empty());
+}
+
+TEST_F(AtomicOutput, AFileDroppedBeforeItsCommitLeavesTheEarlierOneAndNoTemporary) {
+  {
+    AtomicFile f(old_);
+    f.write("partial");
+    EXPECT_EQ(others().size(), 1u) << "the bytes go to one temporary file beside the target";
+  }
+  EXPECT_EQ(read(old_), "earlier contents\n");
+  EXPECT_TRUE(others().empty());
+}
+
+TEST_F(AtomicOutput, ACsvWriterThatIsNotClosedLeavesTheEarlierFile) {
+  {
+    CsvWriter w(old_);
+    for (int i = 0; i < 200000; ++i) w.u64(static_cast<std::uint64_t>(i)).endl();  // past its 1 MiB buffer
+  }
+  EXPECT_EQ(read(old_), "earlier contents\n");
+  EXPECT_TRUE(others().empty());
+}
+
+TEST_F(AtomicOutput, AFileSizeLimitIsAWriteErrorNamingTheReasonAndTheEarlierFileStays) {
+  const std::string target = old_;
+  const int status = in_child([&] {
+    remove_partial_outputs_on_signals();  // SIGXFSZ ignored: the write fails instead of killing
+    const rlimit limit{4096, 4096};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      AtomicFile f(target);
+      f.write(std::string(100000, 'x'));
+      f.commit();
+    } catch (const DataError& e) {
+      ::_exit(std::string(e.what()).find("File too large") != std::string::npos ? 42 : 43);
+    }
+    ::_exit(44);
+  });
+  EXPECT_EQ(status, 42);
+  EXPECT_EQ(read(old_), "earlier contents\n");
+  EXPECT_TRUE(others().empty());
+}
+
+TEST_F(AtomicOutput, ADeviceIsWrittenInPlaceAndAFullOneSaysSo) {
+  if (::access("/dev/full", W_OK) != 0) GTEST_SKIP() << "no writable /dev/full";
+  AtomicFile null_device("/dev/null");
+  null_device.write("anything");
+  null_device.commit();
+  EXPECT_TRUE(fs::is_character_file("/dev/null")) << "a device must never be renamed over";
+  try {
+    AtomicFile full("/dev/full");
+    full.write(std::string(1 << 16, 'x'));
+    full.commit();
+    FAIL() << "no error writing /dev/full";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(AtomicOutput, ASymbolicLinkStaysALinkToTheReplacedFile) {
+  const std::string link = (dir_ / "link.csv").string();
+  fs::create_symlink("out.csv", link);
+  AtomicFile f(link);
+  f.write("through the link\n");
+  f.commit();
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read(old_), "through the link\n");
+}
+
+TEST_F(AtomicOutput, AReplacedFileKeepsItsPermissionBits) {
+  ::chmod(old_.c_str(), 0640);
+  AtomicFile f(old_);
+  f.write("x\n");
+  f.commit();
+  struct stat st {};
+  ASSERT_EQ(::stat(old_.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0640u);
+}
+
+TEST_F(AtomicOutput, AFileWrittenByNameIsStagedUnderTheTargetsExtension) {
+  const std::string image = (dir_ / "picture.png").string();
+  AtomicFile f(image, AtomicFile::Access::ByName);
+  EXPECT_EQ(fs::path(f.staging_path()).extension(), ".png");
+  EXPECT_EQ(fs::path(f.staging_path()).parent_path(), dir_);
+  std::ofstream(f.staging_path()) << "pixels";
+  EXPECT_FALSE(fs::exists(image));
+  f.commit();
+  EXPECT_EQ(read(image), "pixels");
+}
+
+TEST_F(AtomicOutput, ASignalMidWriteRemovesTheTemporaryAndExitsWith128PlusTheSignal) {
+  const std::string target = old_;
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const int status = in_child([&] {
+      remove_partial_outputs_on_signals();
+      AtomicFile f(target);
+      f.write("partial");
+      ::raise(sig);
+      ::_exit(1);
+    });
+    EXPECT_EQ(status, 128 + sig) << "signal " << sig;
+    EXPECT_EQ(read(old_), "earlier contents\n");
+    EXPECT_TRUE(others().empty()) << "signal " << sig << " left " << others().front();
+  }
+}
+
+TEST_F(AtomicOutput, ADirectoryOrAnEmptyNameIsRefusedNamingIt) {
+  EXPECT_THROW(AtomicFile(dir_.string()), DataError);
+  EXPECT_THROW(AtomicFile(""), DataError);
+  EXPECT_THROW(AtomicFile((dir_ / "missing" / "x.csv").string()), DataError);
+}
+
+}  // namespace
+}  // namespace habuffer
