@@ -17,6 +17,8 @@ void check_on_screen(std::span<const Fragment> fragments, Extent screen) {
 }
 
 std::uint32_t resolve_threads(std::uint32_t threads) {
+  if (threads > kMaxThreads)
+    throw std::invalid_argument(std::to_string(threads) + " threads: at most " + std::to_string(kMaxThreads));
   return threads != 0 ? threads : default_concurrency();
 }
 

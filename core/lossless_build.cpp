@@ -19,7 +19,7 @@ BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::
                   const InsertOptions& options, const ResizePolicy& policy, std::uint32_t max_attempts) {
   TechniqueBuild b = build_technique(ha_technique_config(config), offsets, fragments, options, policy,
                                      max_attempts);
-  return BuildResult{std::move(static_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts)};
+  return BuildResult{std::move(static_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts), b.too_deep};
 }
 
 std::unique_ptr<FragmentBuffer> make_fragment_buffer(const TechniqueConfig& config, const OffsetSource& offsets) {
@@ -49,6 +49,12 @@ TechniqueConfig next_attempt(const TechniqueConfig& c, const FragmentBuffer& buf
 
 }  // namespace
 
+std::optional<PixelDepth> pixel_beyond_every_table(const TechniqueConfig& c, std::span<const Fragment> fragments) {
+  if (c.technique != Technique::Ha || c.buffer.early_cull_tau > 0.0f) return std::nullopt;
+  const RecordLayout layout = c.buffer.record_layout();
+  return pixel_deeper_than(fragments, c.buffer.screen, layout, layout.max_age());
+}
+
 TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource& offsets,
                                std::span<const Fragment> fragments, const InsertOptions& options,
                                const ResizePolicy& policy, std::uint32_t max_attempts) {
@@ -62,10 +68,12 @@ TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource
     const Counters counters = buffer->insert(fragments, options);
     attempts.push_back({c.technique == Technique::Ha ? c.buffer.table : Extent{}, counters, buffer->capacity()});
     if (counters.failures() == 0 || attempts.size() >= max_attempts)
-      return {std::move(buffer), counters, std::move(attempts)};
+      return {std::move(buffer), counters, std::move(attempts), false, std::nullopt};
+    if (std::optional<PixelDepth> deep = counters.failed_age > 0 ? pixel_beyond_every_table(c, fragments) : std::nullopt)
+      return {std::move(buffer), counters, std::move(attempts), false, deep};
     const TechniqueConfig next = next_attempt(c, *buffer, policy);
     if (!next.limit().empty())  // no larger buffer can be built: the last attempt's result, marked
-      return {std::move(buffer), counters, std::move(attempts), true};
+      return {std::move(buffer), counters, std::move(attempts), true, std::nullopt};
     c = next;
   }
 }

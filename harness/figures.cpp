@@ -36,7 +36,23 @@ std::string tau_text(float tau) {
 
 }  // namespace
 
+void check_fig2_scene(const WorkloadSpec& scene) {
+  if (!scene.fragments.empty())
+    throw std::invalid_argument("fig2 sets the scene's opacity: '" + scene.word + "' is a fragment file (its colours are fixed)");
+  if (scene.word.find(":opacity=") != std::string::npos)
+    throw std::invalid_argument("fig2 sets the opacity from --opacities: drop opacity= from '" + scene.word + "'");
+}
+
+void check_fig8_scene(const WorkloadSpec& scene) {
+  if (!scene.fragments.empty() || !scene_takes(scene.scene, "spread"))
+    throw std::invalid_argument("fig8 pulls the quads together by their spread: '" + scene.word + "' has none (" +
+                                scenes_taking_text("spread") + ")");
+  if (scene.word.find(":spread=") != std::string::npos)
+    throw std::invalid_argument("fig8 sets the spread per frame: drop spread= from '" + scene.word + "'");
+}
+
 ResultTable run_fig2(const WorkloadSpec& scene, const std::vector<float>& opacities, const FigureSettings& s) {
+  check_fig2_scene(scene);
   if (opacities.empty()) throw std::invalid_argument("no opacity given");
   ResultTable table;
   table.title = "fig2";
@@ -67,10 +83,9 @@ ResultTable run_fig2(const WorkloadSpec& scene, const std::vector<float>& opacit
       const Spread g = spread_of(gather);
       const double frags = static_cast<double>(last.counters.fragments);
       ResultRow row;
-      row.set("opacity", static_cast<double>(opacity)).set("early_cull", tau > 0 ? tau_text(tau) : std::string("off"))
-          .set("fragments", last.counters.fragments).set("stored", last.counters.stored())
-          .set("culled", last.counters.culled).set("failures", last.counters.failures())
-          .set("gather_ms", g.median).set("gather_ms_min", g.min).set("gather_ms_max", g.max)
+      row.set("opacity", static_cast<double>(opacity)).set("early_cull", tau > 0 ? tau_text(tau) : std::string("off"));
+      set_counters(row, last.counters);
+      row.set("gather_ms", g.median).set("gather_ms_min", g.min).set("gather_ms_max", g.max)
           .set("fill_rate_mfrag_per_s", g.median > 0 ? frags / (g.median * 1e3) : 0.0)
           .set("stored_mfrag_per_s", g.median > 0 ? static_cast<double>(last.counters.stored()) / (g.median * 1e3) : 0.0)
           .set("max_age", last.max_age);
@@ -85,6 +100,7 @@ ResultTable run_fig2(const WorkloadSpec& scene, const std::vector<float>& opacit
 }
 
 ResultTable run_fig8(const WorkloadSpec& quads, std::uint32_t frames, double load, const FigureSettings& s) {
+  check_fig8_scene(quads);
   if (frames < 2) throw std::invalid_argument("fig8 needs at least 2 frames (spread 1 down to 0)");
   ResultTable table;
   table.title = "fig8";
@@ -104,9 +120,9 @@ ResultTable run_fig8(const WorkloadSpec& quads, std::uint32_t frames, double loa
       const FrameStats& f = res.frames.back();
       ResultRow row;
       row.set("frame", k).set("spread", static_cast<double>(w.options.spread))
-          .set("early_cull", tau > 0 ? tau_text(tau) : std::string("off")).set("table", f.table.str())
-          .set("fragments", f.counters.fragments).set("stored", f.counters.stored()).set("culled", f.counters.culled)
-          .set("failures", f.counters.failures()).set("gather_ms", f.gather_ms).set("resolve_ms", f.resolve_ms)
+          .set("early_cull", tau > 0 ? tau_text(tau) : std::string("off")).set("table", f.table.str());
+      set_counters(row, f.counters);
+      row.set("gather_ms", f.gather_ms).set("resolve_ms", f.resolve_ms)
           .set("max_age", f.max_age).set("load_factor", f.load_factor);
       table.rows.push_back(row);
       table.provenance.renderer = res.device;
@@ -134,8 +150,25 @@ BenchSettings fig10_bench_settings(std::uint32_t planes, const FigureSettings& s
   return b;
 }
 
+void validate_memory_table(Extent screen, const std::vector<std::uint64_t>& fragment_counts,
+                           const std::vector<double>& loads) {
+  if (screen.area() == 0) throw std::invalid_argument("--size " + screen.str() + " is empty");
+  if (fragment_counts.empty() || loads.empty()) throw std::invalid_argument("table1 needs fragment counts and loads");
+  for (const double l : loads)
+    if (!(l > 0.0 && l <= 1.0)) throw std::invalid_argument("--loads: " + tau_text(static_cast<float>(l)) + " is not in (0, 1]");
+  for (const std::uint64_t f : fragment_counts) {
+    if (f == 0 || f > kMaxTableFragments)
+      throw std::invalid_argument("--fragments: " + std::to_string(f) + " outside 1.." + std::to_string(kMaxTableFragments));
+    for (const double l : loads)
+      if (!(static_cast<double>(f) / l <= static_cast<double>(UINT32_MAX)))
+        throw std::invalid_argument("--loads: load " + tau_text(static_cast<float>(l)) + " of " + std::to_string(f) +
+                                    " fragments needs more than 2^32 - 1 slots: raise the load");
+  }
+}
+
 ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fragment_counts,
                              const std::vector<double>& loads, bool allocate) {
+  validate_memory_table(screen, fragment_counts, loads);
   // Seed 000's Table 1 (MiB, V = 1024^2) for F = 0.85 M, 1.5 M, 10 M, where it has the row.
   struct Published {
     std::string row;
@@ -188,12 +221,17 @@ ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fr
       ResultRow row;
       row.set("technique", t.label()).set("fragments", f).set("pixels", screen.area());
       row.set("paper_formula_mib", paper_memory_bytes(t.technique, screen.area(), f, t.load.value_or(1.0), c.layers) / mib);
-      row.set("model_mib", static_cast<double>(memory_model_bytes(c, capacity)) / mib);
-      if (allocate && allocatable) {
+      const std::uint64_t model = memory_model_bytes(c, capacity);
+      row.set("model_mib", static_cast<double>(model) / mib);
+      const bool affordable = model <= kMaxTableAllocationBytes;
+      if (allocate && allocatable && affordable) {
         const std::unique_ptr<FragmentBuffer> b = make_fragment_buffer(c, OffsetSource{});
         row.set("allocated_mib", static_cast<double>(b->memory_bytes()) / mib);
       }
       if (!allocatable) row.set("note", "table of F/L slots is below the screen (SPEC 1): model only");
+      else if (allocate && !affordable)
+        row.set("note", "model only: more than the " + std::to_string(kMaxTableAllocationBytes >> 30) +
+                            " GiB table1 allocates");
       const std::string paper_row = uses_pool(t.technique) && t.technique == Technique::Lists ? "linked-list" : t.label();
       if (const std::optional<double> p = published_value(paper_row, f)) row.set("paper_table_mib", *p);
       table.rows.push_back(row);

@@ -8,6 +8,7 @@
 
 #include "habuffer/harness/technique_spec.h"
 #include "habuffer/memory_model.h"
+#include "habuffer/pixel_depth.h"
 #include "habuffer/probe_simulator.h"
 
 namespace habuffer::harness {
@@ -48,6 +49,20 @@ Prediction predict_ha(const ExactCapture& c, Extent screen, double load, const P
   config.buffer.table = table_for_load(screen, c.fragments, load);
   p.memory = memory_model_bytes(config, config.buffer.table.area());
   double sum_max = 0.0, lost = 0.0, losing = 0.0;
+  const std::uint32_t amax = config.buffer.record_layout().max_age();
+  const std::uint32_t deepest = *std::max_element(c.pixel_fragments.begin(), c.pixel_fragments.end());
+  if (deepest > amax) {
+    // Simulating would probe AMAX slots for each fragment beyond it, for
+    // nothing: every trial loses at least the excess.
+    std::uint64_t excess = 0;
+    for (const std::uint32_t n : c.pixel_fragments) excess += n > amax ? n - amax : 0;
+    p.max_age = amax;
+    p.max_age_max = amax;
+    p.failures = static_cast<double>(excess);
+    p.risk = 1.0;
+    p.psnr = kInf;
+    return p;
+  }
   for (std::uint32_t t = 0; t < s.trials; ++t) {
     SimulatorConfig sc;
     sc.screen = screen;
@@ -131,8 +146,19 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
   std::vector<Prediction> preds;
   const std::uint32_t deepest = *std::max_element(c.pixel_fragments.begin(), c.pixel_fragments.end());
   const double max_load = static_cast<double>(c.fragments) / static_cast<double>(screen.area());
-  for (const double l : s.loads)
+  const RecordLayout layout(Layout::L64, s.age_bits);
+  std::string notes_too_deep;
+  if (deepest > layout.max_age()) {
+    const auto index = static_cast<std::uint32_t>(
+        std::max_element(c.pixel_fragments.begin(), c.pixel_fragments.end()) - c.pixel_fragments.begin());
+    notes_too_deep = too_deep_message(PixelDepth{{index % screen.x, index / screen.x}, deepest, false}, s.age_bits);
+  }
+  std::uint64_t done = 0;
+  const std::uint64_t total = s.loads.size();
+  for (const double l : s.loads) {
     if (l <= max_load) preds.push_back(predict_ha(c, screen, l, s));
+    if (s.on_progress) s.on_progress(++done, total);
+  }
   preds.push_back(predict_lists(c, screen, Technique::Lists));
   preds.push_back(predict_lists(c, screen, Technique::SortedLists));
   std::vector<std::uint32_t> ks{1, 2, 4, 8, 16};
@@ -172,6 +198,7 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
     if (depth[d]) hist += (hist.empty() ? "" : " ") + std::to_string(d) + ":" + std::to_string(depth[d]);
   table.notes["fragments"] = std::to_string(c.fragments);
   table.notes["max_depth_complexity"] = std::to_string(deepest);
+  if (!notes_too_deep.empty()) table.notes["ha_beyond_amax"] = notes_too_deep + "; the ha rows are predicted without simulation";
   table.notes["depth_complexity_histogram"] = hist + " (fragments per pixel : pixels)";
   table.notes["recommendation"] = best ? best->spec.label() : std::string("none meets the target");
   table.notes["model"] =

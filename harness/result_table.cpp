@@ -149,6 +149,24 @@ void set_counters(ResultRow& row, const Counters& c) {
       .set("failures", c.failures());
 }
 
+std::optional<Counters> counters_of(const ResultRow& row) {
+  if (row.find("fragments") == nullptr || row.find("failures") == nullptr) return std::nullopt;
+  const auto n = [&](const char* column) { return static_cast<std::uint64_t>(row.number(column)); };
+  Counters c;
+  c.fragments = n("fragments");
+  c.invalid = n("invalid");
+  c.duplicates = n("duplicates");
+  c.culled = n("culled");
+  c.saturated_rejected = n("saturated_rejected");
+  c.blended = n("blended");
+  c.failed_age = n("failed_age");
+  c.failed_iter = n("failed_iter");
+  c.dropped_pool = n("dropped_pool");
+  c.dropped_layers = n("dropped_layers");
+  c.occupancy_rejected = n("occupancy_rejected");
+  return c;
+}
+
 std::vector<std::string> ResultTable::columns() const {
   std::vector<std::string> out;
   for (const ResultRow& r : rows)

@@ -137,6 +137,11 @@ void validate_sweep(const SweepSettings& s) {
     throw std::invalid_argument("technique " + to_string(s.technique.technique) +
                                 " has no size to sweep (ha, lists, sorted-lists, arrays and kbuffer have)");
   if (s.loads.empty()) throw std::invalid_argument("--loads is empty");
+  // The sweep sizes the technique itself; a size in the word would be
+  // overridden yet kept in the rows' label.
+  if (s.technique.load || s.technique.layers)
+    throw std::invalid_argument("--technique " + s.technique.label() + ": sweep sets the " +
+                                (s.technique.load ? "load" : "layers (k)") + " from --loads; drop it from the word");
   for (std::size_t i = 0; i < s.loads.size(); ++i) {
     if (!(s.loads[i] > 0.0 && s.loads[i] <= 1.0))
       throw std::invalid_argument("--loads: " + std::to_string(s.loads[i]) + " is not in (0, 1]");

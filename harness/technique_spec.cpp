@@ -2,8 +2,12 @@
 
 #include <charconv>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "habuffer/number_text.h"
+#include "habuffer/option_rules.h"
 
 namespace habuffer::harness {
 namespace {
@@ -17,20 +21,20 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
-double real(const std::string& word, const std::string& key, const std::string& text) {
-  double v = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
-    throw std::invalid_argument("technique '" + word + "': " + key + "=" + text + " is not a number");
-  return v;
+// A knob's value by `parse` (one of the shared rules), its refusal naming
+// the word and the knob.
+template <class Parse>
+auto knob(const std::string& word, const std::string& key, const std::string& text, Parse parse) {
+  try {
+    return parse(text);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("technique '" + word + "': " + key + "=" + text + ": " + e.what());
+  }
 }
 
-std::uint32_t whole(const std::string& word, const std::string& key, const std::string& text) {
-  std::uint32_t v = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size() || v == 0)
-    throw std::invalid_argument("technique '" + word + "': " + key + "=" + text + " is not a positive integer");
-  return v;
+std::uint32_t whole(const std::string& word, const std::string& key, const std::string& text, std::uint32_t lo,
+                    std::uint32_t hi) {
+  return static_cast<std::uint32_t>(knob(word, key, text, [&](const std::string& t) { return parse_unsigned(t, lo, hi); }));
 }
 
 std::string number_text(double v) {
@@ -65,26 +69,26 @@ TechniqueSpec parse_technique_spec(const std::string& word) {
   const std::optional<Technique> technique = parse_technique(parts.empty() ? "" : parts[0]);
   if (!technique) throw std::invalid_argument("technique '" + word + "': unknown name '" + (parts.empty() ? "" : parts[0]) + "'");
   t.technique = *technique;
+  std::set<std::string> given;
   for (std::size_t i = 1; i < parts.size(); ++i) {
     const std::size_t eq = parts[i].find('=');
     const std::string key = parts[i].substr(0, eq), value = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
     const bool flag = eq == std::string::npos;
+    require(given.insert(key).second, word, key + " given twice");
     if (key == "cull" && !flag) {
-      t.cull = static_cast<float>(real(word, key, value));
-      require(t.cull > 0.0f && t.cull <= 1.0f, word, "cull must be in (0, 1]");
+      t.cull = knob(word, key, value, [](const std::string& v) { return parse_cull_threshold(v); });
     } else if (key == "sat" && flag) {
       t.saturation = true;
     } else if (key == "load" && !flag) {
-      t.load = real(word, key, value);
-      require(*t.load > 0.0 && *t.load <= 1.0, word, "load must be in (0, 1]");
+      t.load = knob(word, key, value, [](const std::string& v) { return parse_load_factor(v); });
     } else if (key == "age" && !flag) {
-      t.age_bits = whole(word, key, value);
+      t.age_bits = whole(word, key, value, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
     } else if (key == "k" && !flag) {
-      t.layers = whole(word, key, value);
+      t.layers = whole(word, key, value, 1, HABUFFER_MAX_LAYERS);
     } else if (key == "occ" && flag) {
       t.occupancy = true;
     } else if (key == "words" && !flag) {
-      t.occupancy_words = whole(word, key, value);
+      t.occupancy_words = whole(word, key, value, 1, HABUFFER_MAX_OCCUPANCY_WORDS);
     } else {
       throw std::invalid_argument("technique '" + word + "': unknown knob '" + parts[i] +
                                   "' (cull=TAU, sat, load=L, age=A, k=K, occ, words=D)");
@@ -104,8 +108,14 @@ TechniqueSpec parse_technique_spec(const std::string& word) {
 Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
   const double slots = std::ceil(static_cast<double>(fragments) / load);
   const double scale = std::sqrt(slots / static_cast<double>(screen.area()));
-  const Extent table{static_cast<std::uint32_t>(std::ceil(screen.x * scale)),
-                     static_cast<std::uint32_t>(std::ceil(screen.y * scale))};
+  const double x = std::ceil(screen.x * scale), y = std::ceil(screen.y * scale);
+  // Checked as doubles, before any cast: a tiny load makes them huge (or
+  // infinite), and a cast of those to an integer is undefined.
+  if (!(x * y <= static_cast<double>(UINT32_MAX) && x <= static_cast<double>(1u << 31) && y <= static_cast<double>(1u << 31)))
+    throw std::invalid_argument("load " + number_text(load) + " of " + std::to_string(fragments) +
+                                " fragments needs a table of " + number_text(x * y) +
+                                " slots, more than 2^32 - 1: raise the load");
+  const Extent table{static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)};
   if (table.x < screen.x || table.y < screen.y)
     throw std::invalid_argument("load " + number_text(load) + " of " + std::to_string(fragments) +
                                 " fragments needs a table smaller than the screen " + screen.str() +
@@ -115,7 +125,11 @@ Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
 }
 
 std::uint64_t capacity_for_load(std::uint64_t fragments, double load) {
-  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / load)));
+  const double nodes = std::ceil(static_cast<double>(fragments) / load);
+  if (!(nodes <= static_cast<double>(UINT32_MAX - 1)))
+    throw std::invalid_argument("load " + number_text(load) + " of " + std::to_string(fragments) + " fragments needs " +
+                                number_text(nodes) + " nodes or layers, more than 2^32 - 2: raise the load");
+  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(nodes));
 }
 
 void TechniqueSpec::apply(RenderSettings& s, std::uint64_t fragments) const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -15,49 +16,43 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-template <class T>
-T parse_number(const std::string& word, const std::string& key, const std::string& text) {
-  T v{};
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size())
-    throw std::invalid_argument("scene '" + word + "': " + key + "=" + text + " is not a number");
-  return v;
-}
-
 }  // namespace
 
 WorkloadSpec parse_workload_spec(const std::string& word) {
   WorkloadSpec w;
   w.word = word;
-  if (ends_with(word, ".csv")) {
-    w.fragments = word;
-    return w;
-  }
+  const auto refuse = [&](const std::string& why) { throw std::invalid_argument("scene '" + word + "': " + why); };
   std::istringstream in(word);
   std::string part;
   std::getline(in, w.scene, ':');
-  if (w.scene.empty()) throw std::invalid_argument("scene '" + word + "': no scene name");
+  if (w.scene.empty()) refuse("no scene name");
+  if (ends_with(w.scene, ".csv")) {
+    if (w.scene.size() != word.size()) refuse("a fragment file takes no options (they are the scenes')");
+    w.fragments = word;
+    w.scene.clear();
+    return w;
+  }
+  if (word.back() == ':') refuse("empty option after ':'");
+  std::set<std::string> given;
   while (std::getline(in, part, ':')) {
     const std::size_t eq = part.find('=');
-    if (eq == std::string::npos) throw std::invalid_argument("scene '" + word + "': '" + part + "' is not KEY=VALUE");
+    if (eq == std::string::npos) refuse("'" + part + "' is not KEY=VALUE");
     const std::string key = part.substr(0, eq), value = part.substr(eq + 1);
-    if (key == "count") {
-      w.options.count = parse_number<std::uint32_t>(word, key, value);
-    } else if (key == "seed") {
-      w.options.seed = parse_number<std::uint64_t>(word, key, value);
-    } else if (key == "opacity") {
-      w.options.opacity = parse_number<float>(word, key, value);
-    } else if (key == "spread") {
-      w.options.spread = parse_number<float>(word, key, value);
-    } else if (key == "order") {
-      if (value != "front" && value != "back")
-        throw std::invalid_argument("scene '" + word + "': order=" + value + " is not front or back");
-      w.options.order = value == "front" ? PlaneOrder::FrontToBack : PlaneOrder::BackToFront;
-    } else {
-      throw std::invalid_argument("scene '" + word + "': unknown key '" + key + "' (count, order, opacity, seed, spread)");
+    if (!given.insert(key).second) refuse(key + " given twice");
+    try {
+      if (!scene_takes(w.scene, key)) refuse("scene " + w.scene + " does not take " + key + " (" + scenes_taking_text(key) + ")");
+      set_scene_option(w.options, key, value);
+    } catch (const std::invalid_argument& e) {
+      if (std::string_view(e.what()).rfind("scene '", 0) == 0) throw;
+      refuse(key + "=" + value + ": " + e.what());
     }
   }
   return w;
+}
+
+std::string WorkloadSpec::input_file() const {
+  if (!fragments.empty()) return fragments;
+  return is_scene_name(scene) ? std::string() : scene;
 }
 
 Workload::Workload(const WorkloadSpec& spec, Extent size) : spec_(spec), size_(size) {

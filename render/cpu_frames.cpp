@@ -40,6 +40,7 @@ class CpuFrames final : public FramePath {
     std::vector<Fragment> fragments = capture_.read_capture();
     last_.emplace(builder_.build(fragments, fs));
     result.growth_limited = result.growth_limited || last_->growth_limited;
+    if (last_->too_deep) result.too_deep = last_->too_deep;
     const auto r0 = std::chrono::steady_clock::now();
     result.backgrounds = renderer.read_opaque_colour();
     result.image = Image{settings_.config.screen, last_->buffer->composite_image(result.backgrounds, settings_.threads)};

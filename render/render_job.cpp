@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -60,6 +61,24 @@ TechniqueConfig technique_config(const RenderSettings& s) {
   return c;
 }
 
+namespace {
+
+// The GPU path sees no records before inserting, only the counting pass: a
+// pixel with more fragments than AMAX (without early cull, which could cull
+// them) fails an HA-buffer at any table size unless they are duplicates, so
+// no frame grows the table for it (16 growths to a 4 GB table otherwise).
+void stop_growth_for_deep_pixels(const RenderSettings& s, const std::vector<std::uint32_t>& counts,
+                                 gl::GlFrameDriver& driver, RenderResult& result) {
+  if (s.technique != Technique::Ha || s.config.early_cull_tau > 0.0f || counts.empty()) return;
+  const auto deepest = std::max_element(counts.begin(), counts.end());
+  if (*deepest <= s.config.record_layout().max_age()) return;
+  const auto index = static_cast<std::uint32_t>(deepest - counts.begin());
+  result.too_deep = PixelDepth{{index % s.config.screen.x, index / s.config.screen.x}, *deepest, false};
+  driver.limit_attempts(1);
+}
+
+}  // namespace
+
 RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   validate(s);
   const Extent screen = s.config.screen;
@@ -87,6 +106,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
                           " fragments overflows the GPU path's 32-bit counters: render a smaller view or fewer layers");
       // Size the first table or pool from the count, so frame 0 need not fail its way up.
       path->size_for(fragments, result);
+      if (s.path == RenderPath::Gl) stop_growth_for_deep_pixels(s, renderer.read_pixel_fragments(), driver, result);
     }
     const gl::FrameReport report = driver.frame([&] { renderer.gather(camera); }, [&] { return renderer.inserted(); });
     fs.opaque_rejected = renderer.read_rejected();
@@ -111,6 +131,7 @@ RenderResult render_fragments(std::span<const Fragment> fragments, const RenderS
   const auto t0 = Clock::now();
   TechniqueBuild b = builder.build(fragments, fs);
   result.growth_limited = b.growth_limited;
+  result.too_deep = b.too_deep;
   const auto r0 = Clock::now();
   result.backgrounds.assign(s.config.screen.area(), s.background);
   result.image = Image{s.config.screen, b.buffer->composite_image(result.backgrounds, s.threads)};

@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <cmath>
 #include <map>
+#include <stdexcept>
 
 #include "habuffer/mesh_loader.h"
+#include "habuffer/number_text.h"
 #include "habuffer/procedural_scenes.h"
 
 namespace habuffer {
@@ -44,6 +47,58 @@ std::vector<std::string> scenes_taking(const std::string& option) {
   return it == takers.end() ? std::vector<std::string>{} : it->second;
 }
 
+const std::vector<SceneOptionRule>& scene_option_rules() {
+  static const std::vector<SceneOptionRule> rules{
+      {"count", "count", "an integer in 1..1048576"},
+      {"seed", "scene-seed", "a non-negative integer"},
+      {"opacity", "opacity", "a number in (0, 1] above 1/510"},
+      {"spread", "spread", "a number in [0, 1]"},
+      {"order", "order", "front or back"}};
+  return rules;
+}
+
+float smallest_opacity() { return std::nextafter(1.0f / 510.0f, 1.0f); }
+
+void set_scene_option(SceneOptions& o, const std::string& key, const std::string& text) {
+  if (key == "count") {
+    o.count = static_cast<std::uint32_t>(parse_unsigned(text, 1, kMaxSceneCount));
+  } else if (key == "seed") {
+    o.seed = parse_unsigned(text);
+  } else if (key == "opacity") {
+    const float a = parse_float32(text);
+    if (!(a >= smallest_opacity() && a <= 1.0f))
+      throw std::invalid_argument(text + " outside (0, 1], at least " + shortest_text(smallest_opacity()) +
+                                  " (just above 1/510: smaller rounds to alpha 0 in the 8-bit record)");
+    o.opacity = a;
+  } else if (key == "spread") {
+    const float v = parse_float32(text);
+    if (!(v >= 0.0f && v <= 1.0f)) throw std::invalid_argument(text + " outside [0, 1]");
+    o.spread = v;
+  } else if (key == "order") {
+    if (text != "front" && text != "back") throw std::invalid_argument("'" + text + "' is not front or back");
+    o.order = text == "front" ? PlaneOrder::FrontToBack : PlaneOrder::BackToFront;
+  } else {
+    throw std::invalid_argument("unknown scene option '" + key + "' (count, seed, opacity, spread, order)");
+  }
+}
+
+bool scene_takes(const std::string& name_or_path, const std::string& key) {
+  if (key == "opacity") return true;
+  if (std::none_of(scene_option_rules().begin(), scene_option_rules().end(),
+                   [&](const SceneOptionRule& r) { return key == r.key; }))
+    throw std::invalid_argument("unknown scene option '" + key + "' (count, seed, opacity, spread, order)");
+  const std::vector<std::string> takers = scenes_taking(key);
+  return std::find(takers.begin(), takers.end(), name_or_path) != takers.end();
+}
+
+std::string scenes_taking_text(const std::string& key) {
+  const std::vector<std::string> takers = scenes_taking(key);
+  std::string names;
+  for (const std::string& t : takers) names += (names.empty() ? "" : ", ") + t;
+  if (takers.empty()) return "no scene takes it";
+  return names + " take" + (takers.size() == 1 ? "s" : "") + " it";
+}
+
 bool is_scene_name(const std::string& name) {
   const std::vector<std::string> names = scene_names();
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -52,8 +107,10 @@ bool is_scene_name(const std::string& name) {
 namespace {
 
 Scene make_scene_meshes(const std::string& name_or_path, const SceneOptions& o) {
-  if (!(o.opacity > 0.0f && o.opacity <= 1.0f))
-    throw SceneError("--opacity " + std::to_string(o.opacity) + " is not in (0, 1]");
+  if (!(o.opacity >= smallest_opacity() && o.opacity <= 1.0f))
+    throw SceneError("opacity " + shortest_text(o.opacity) + " is not in (0, 1] above 1/510");
+  if (o.count > kMaxSceneCount)
+    throw SceneError("count " + std::to_string(o.count) + " is above " + std::to_string(kMaxSceneCount));
   if (!(o.spread >= 0.0f && o.spread <= 1.0f)) throw SceneError("--spread " + std::to_string(o.spread) + " is not in [0, 1]");
   if (const auto it = named_meshes().find(name_or_path); it != named_meshes().end()) {
     const std::string path = assimp_models_root() + "/" + it->second;

@@ -1,7 +1,10 @@
 // SPEC 8: resize policy and lossless mode.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "habuffer/lossless_build.h"
+#include "habuffer/pixel_depth.h"
 #include "test_support.h"
 
 namespace habuffer {
@@ -86,14 +89,57 @@ TEST(Lossless, GrowsAndRegathersUntilNothingFails) {
   EXPECT_EQ(test::traversed_lists(r.buffer), test::exact_lists(f, r.buffer.record_layout()));
 }
 
-TEST(Lossless, ReportsFailureWhenAPixelIsDeeperThanAmaxAfterBoundedAttempts) {
+TEST(Lossless, StopsAtOnceNamingThePixelWhenItIsDeeperThanAmaxAtAnyTableSize) {
   std::vector<Fragment> f;
-  for (int i = 0; i < 20; ++i) f.push_back({0, 0, static_cast<float>(i) / 20.0f, 0});
+  for (int i = 0; i < 20; ++i) f.push_back({1, 0, static_cast<float>(i) / 20.0f, 0});
   BufferConfig c = test::config({2, 2}, {2, 2}, Layout::L64, 4);
   const BuildResult r = build(c, OffsetSource{}, f, {}, ResizePolicy{}, 5);
   EXPECT_FALSE(r.lossless());
-  EXPECT_EQ(r.attempts.size(), 5u);
-  EXPECT_EQ(r.counters.failed_age, 5u);
+  EXPECT_EQ(r.attempts.size(), 1u) << "growing cannot hold 20 records at one pixel with AMAX 15";
+  EXPECT_EQ(r.counters.failed_age, 16u) << "the first table's 4 slots";
+  ASSERT_TRUE(r.too_deep.has_value());
+  EXPECT_EQ(r.too_deep->pixel, glm::uvec2(1, 0));
+  EXPECT_EQ(r.too_deep->records, 20u);
+  EXPECT_NE(too_deep_message(*r.too_deep, 4).find("use --age-bits 5"), std::string::npos);
+}
+
+TEST(Lossless, StillGrowsWhenADeepPixelsFragmentsAreDuplicatesWithinAmax) {
+  // 30 fragments at one pixel but 10 distinct records: AMAX 15 holds them,
+  // so a table too small for the other pixels' records must still grow.
+  std::vector<Fragment> f;
+  for (int i = 0; i < 30; ++i) f.push_back({0, 0, static_cast<float>(i % 10) / 10.0f, 7});
+  for (std::uint32_t y = 0; y < 4; ++y)
+    for (std::uint32_t x = 0; x < 4; ++x)
+      for (int k = 0; k < 3; ++k) f.push_back({x, y, 0.05f + 0.3f * static_cast<float>(k), 1});
+  BufferConfig c = test::config({4, 4}, {4, 4}, Layout::L64, 4);
+  const BuildResult r = build(c, OffsetSource{}, f, {}, ResizePolicy{}, 20);
+  EXPECT_FALSE(r.too_deep.has_value());
+  EXPECT_TRUE(r.lossless());
+  EXPECT_GT(r.attempts.size(), 1u);
+}
+
+TEST(PixelDepth, CountsDistinctRecordsSkippingInvalidAndOffScreenFragments) {
+  const RecordLayout l64(Layout::L64, 4), l32(Layout::L32, 4);
+  std::vector<Fragment> f;
+  for (int i = 0; i < 16; ++i) f.push_back({2, 1, 0.5f, static_cast<std::uint32_t>(i)});  // one depth, 16 colours
+  f.push_back({2, 1, std::nanf(""), 99});
+  f.push_back({2, 1, 1.5f, 98});
+  for (int i = 0; i < 40; ++i) f.push_back({9, 9, static_cast<float>(i) / 40.0f, 0});  // off a 4x4 screen
+  const std::optional<PixelDepth> d64 = pixel_deeper_than(f, {4, 4}, l64, 15);
+  ASSERT_TRUE(d64.has_value());
+  EXPECT_EQ(d64->pixel, glm::uvec2(2, 1));
+  EXPECT_EQ(d64->records, 16u);
+  EXPECT_FALSE(pixel_deeper_than(f, {4, 4}, l64, 16).has_value()) << "exactly the limit is not beyond it";
+  EXPECT_FALSE(pixel_deeper_than(f, {4, 4}, l32, 1).has_value()) << "L32 records carry no data: one record";
+}
+
+TEST(PixelDepth, NamesTheAgeBitsThatHoldAPixelOrSaysNoneDo) {
+  EXPECT_EQ(age_bits_for(15), std::optional<std::uint32_t>(4));
+  EXPECT_EQ(age_bits_for(16), std::optional<std::uint32_t>(5));
+  EXPECT_EQ(age_bits_for(4095), std::optional<std::uint32_t>(12));
+  EXPECT_FALSE(age_bits_for(4096).has_value());
+  EXPECT_NE(too_deep_message({{0, 0}, 5000, false}, 8).find("fragments (duplicates included)"), std::string::npos);
+  EXPECT_NE(too_deep_message({{0, 0}, 5000, true}, 8).find("another technique"), std::string::npos);
 }
 
 TEST(Lossless, KeepsAGivenOffsetListValidForLargerTables) {

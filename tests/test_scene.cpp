@@ -64,7 +64,10 @@ TEST(Scene, ErrorsNameTheSceneOrFile) {
   EXPECT_NE(message(bad).find(bad), std::string::npos);
   SceneOptions transparent_zero;
   transparent_zero.opacity = 0.0f;
-  EXPECT_NE(message("quads", transparent_zero).find("--opacity"), std::string::npos);
+  EXPECT_NE(message("quads", transparent_zero).find("opacity 0 is not in (0, 1]"), std::string::npos);
+  SceneOptions too_many;
+  too_many.count = kMaxSceneCount + 1;
+  EXPECT_NE(message("planes", too_many).find("count 1048577 is above 1048576"), std::string::npos);
 }
 
 // Depth t is linear eye depth between near and far (the paper's mapping):

@@ -5,21 +5,10 @@
 #include <cstdio>
 #include <limits>
 
+#include "habuffer/number_text.h"
 #include "habuffer/printable.h"
 
 namespace habuffer::cli {
-
-namespace {
-
-template <class T>
-std::string shortest_text(T v) {
-  char buf[32];
-  auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  (void)ec;
-  return std::string(buf, end);
-}
-
-}  // namespace
 
 std::string shortest(float v) { return shortest_text(v); }
 std::string shortest(double v) { return shortest_text(v); }
@@ -69,16 +58,11 @@ std::string Args::required(const std::string& name) const {
 std::uint64_t Args::u64(const std::string& name, std::uint64_t fallback, std::uint64_t min, std::uint64_t max) const {
   auto it = values_.find(name);
   if (it == values_.end()) return fallback;
-  const std::string& s = it->second;
-  const std::string range = std::to_string(min) + ".." + std::to_string(max);
-  std::uint64_t v = 0;
-  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec == std::errc::result_out_of_range && end == s.data() + s.size())
-    throw UsageError("option --" + name + ": " + excerpt(s) + " is too large (accepted: " + range + ")");
-  if (s.empty() || ec != std::errc() || end != s.data() + s.size())
-    throw UsageError("option --" + name + ": " + excerpt(s) + " is not a non-negative integer (accepted: " + range + ")");
-  if (v < min || v > max) throw UsageError("option --" + name + ": " + s + " outside " + range);
-  return v;
+  try {
+    return parse_unsigned(it->second, min, max);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("option --" + name + ": " + e.what());
+  }
 }
 
 std::uint32_t Args::u32(const std::string& name, std::uint32_t fallback, std::uint32_t min, std::uint32_t max) const {
@@ -87,31 +71,25 @@ std::uint32_t Args::u32(const std::string& name, std::uint32_t fallback, std::ui
 
 namespace {
 
-// A finite decimal read as T, rounded once; text beyond T's range (which
-// from_chars reports instead of rounding to 0 or infinity) is refused.
-template <class T>
-T finite_number(const std::string& name, const std::string& s, const char* type) {
-  T v = 0;
-  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (ec == std::errc::result_out_of_range && end == s.data() + s.size())
-    throw UsageError("option --" + name + ": " + excerpt(s) + " is outside " + type + "'s range (it would become 0 or " +
-                     "infinity; the smallest normal " + type + " is " +
-                     shortest(std::numeric_limits<T>::min()) + ")");
-  if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
-    throw UsageError("option --" + name + ": " + excerpt(s) + " is not a finite number");
-  return v;
+template <class Parse>
+auto parsed(const std::string& name, const std::string& text, Parse parse) {
+  try {
+    return parse(text);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("option --" + name + ": " + e.what());
+  }
 }
 
 }  // namespace
 
 double Args::real(const std::string& name, double fallback) const {
   auto it = values_.find(name);
-  return it == values_.end() ? fallback : finite_number<double>(name, it->second, "double");
+  return it == values_.end() ? fallback : parsed(name, it->second, [](const std::string& t) { return parse_float64(t); });
 }
 
 float Args::f32(const std::string& name, float fallback) const {
   auto it = values_.find(name);
-  return it == values_.end() ? fallback : finite_number<float>(name, it->second, "float32");
+  return it == values_.end() ? fallback : parsed(name, it->second, [](const std::string& t) { return parse_float32(t); });
 }
 
 std::vector<std::string> Args::list(const std::string& name, const std::string& fallback) const {

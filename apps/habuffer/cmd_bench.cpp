@@ -37,20 +37,17 @@ int run_bench(const std::vector<std::string>& argv) {
   s.sizes = parse_sizes(args, "256x256");
   s.repeats = args.u32("repeats", 3, 1, 1000);
   s.seed = args.u64("seed", 1);
-  s.threads = args.u32("threads", 0);
+  s.threads = args.u32("threads", 0, 0, kMaxThreads);
+  args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
   s.floors = !args.has("no-floors");
   try {
     harness::validate_bench(s);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  std::vector<std::string> inputs;
   bool needs_gl = false;
-  for (const harness::WorkloadSpec& w : s.scenes) {
-    if (!w.fragments.empty()) inputs.push_back(w.fragments);
-    needs_gl |= w.fragments.empty();
-  }
-  const std::vector<std::string> outputs = parse_outputs(args, inputs);
+  for (const harness::WorkloadSpec& w : s.scenes) needs_gl |= w.fragments.empty();
+  const std::vector<std::string> outputs = parse_outputs(args, s.scenes).out;
   const auto context = context_for(needs_gl, "bench");
   ProgressBar progress = ProgressBar::for_terminal("habuffer bench", "runs", args.has("quiet"));
   s.on_progress = progress.callback();

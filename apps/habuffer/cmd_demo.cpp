@@ -72,13 +72,13 @@ int run_demo(const std::vector<std::string>& argv) {
   // Tables are allocated before the clock starts: the times are insertion only.
   const OffsetSequence offsets = options.offsets.make(options.config.table, options.config.record_layout().max_age());
   std::optional<BuildResult> one, many;
-  one.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}});
+  one.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}, std::nullopt});
   const double ms_one = timed_ms([&] { one->counters = one->buffer.insert(fragments, serial); });
   BuildTiming timing{0.0, threads, {}, {}};
   if (options.gl) {
     many.emplace(build_ha_on_gl(options, fragments, timing));
   } else {
-    many.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}});
+    many.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}, std::nullopt});
     timing.build_ms = timed_ms([&] { many->counters = many->buffer.insert(fragments, options.insert); });
     many->attempts.push_back({options.config.table, many->counters, options.config.table.area()});
   }

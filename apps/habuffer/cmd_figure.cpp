@@ -6,7 +6,10 @@
 #include "harness_cli.h"
 #include "habuffer/harness/figures.h"
 #include "habuffer/harness/frontier.h"
+#include "habuffer/number_text.h"
+#include "habuffer/option_rules.h"
 #include "habuffer/progress.h"
+#include "habuffer/scene_catalog.h"
 
 namespace habuffer::cli {
 namespace {
@@ -42,9 +45,13 @@ int run_figure(const std::vector<std::string>& argv) {
   harness::FigureSettings s;
   s.path = parse_path(args);
   s.repeats = args.u32("repeats", 3, 1, 1000);
-  s.threads = args.u32("threads", 0);
-  s.tau = args.f32("tau", 0.99f);
-  if (!(s.tau > 0.0f && s.tau <= 1.0f)) throw UsageError("--tau must be in (0, 1]");
+  s.threads = args.u32("threads", 0, 0, kMaxThreads);
+  args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
+  try {
+    s.tau = args.has("tau") ? parse_cull_threshold(args.str("tau", "")) : 0.99f;
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("option --tau: ") + e.what());
+  }
   const auto allowed = [&](std::initializer_list<const char*> own) {
     for (const char* o : {"scene", "scenes", "opacities", "frames", "load", "planes", "fragments", "loads", "picks",
                           "targets", "no-allocate"}) {
@@ -53,44 +60,68 @@ int run_figure(const std::vector<std::string>& argv) {
       if (!mine && args.has(o)) throw UsageError("option --" + std::string(o) + " does not apply to figure " + name);
     }
   };
-  std::vector<std::string> outputs;
+  args.refuse_unless(args.has("picks"), {"targets"}, "without --picks (the targets choose the picks)");
   harness::ResultTable table;
   ProgressBar progress = ProgressBar::for_terminal("habuffer figure " + name, "runs", args.has("quiet"));
   s.on_progress = progress.callback();
-  if (name == "table1") {
-    allowed({"fragments", "loads", "no-allocate"});
-    const std::vector<Extent> size = parse_sizes(args, "1024x1024");
-    std::vector<std::uint64_t> counts;
-    for (const double f : parse_reals(args, "fragments", "850000,1500000,10000000")) {
-      if (!(f >= 1.0) || f != std::floor(f)) throw UsageError("--fragments: counts must be positive integers");
-      counts.push_back(static_cast<std::uint64_t>(f));
-    }
-    outputs = parse_outputs(args, {});
+  // Every file and value is checked before the first render.
+  const auto checked = [&](auto check) {
     try {
-      table = harness::run_memory_table(size.at(0), counts, parse_reals(args, "loads", "0.9,0.8,0.5"), !args.has("no-allocate"));
+      check();
     } catch (const std::invalid_argument& e) {
       throw UsageError(e.what());
     }
+  };
+  HarnessOutputs outputs;
+  if (name == "table1") {
+    allowed({"fragments", "loads", "no-allocate"});
+    args.refuse_unless(false, {"path", "repeats", "threads", "tau"}, "on table1 (sizes only, nothing is rendered)");
+    const std::vector<Extent> size = parse_sizes(args, "1024x1024");
+    if (size.size() != 1) throw UsageError("--size takes one WxH for table1");
+    std::vector<std::uint64_t> counts;
+    for (const std::string& f : args.list("fragments", "850000,1500000,10000000"))
+      checked([&] { counts.push_back(parse_unsigned(f, 1, harness::kMaxTableFragments)); });
+    std::vector<double> loads;
+    for (const std::string& l : args.list("loads", "0.9,0.8,0.5"))
+      checked([&] { loads.push_back(parse_load_factor(l)); });
+    checked([&] { harness::validate_memory_table(size[0], counts, loads); });
+    outputs = parse_outputs(args, {});
+    table = harness::run_memory_table(size[0], counts, loads, !args.has("no-allocate"));
   } else {
     const std::vector<Extent> sizes = parse_sizes(args, "256x256");
     s.size = sizes.at(0);
+    if (sizes.size() != 1 && name != "frontier") throw UsageError("--size takes one WxH for figure " + name);
     if (name == "fig2") {
       allowed({"scene", "opacities"});
       const std::vector<harness::WorkloadSpec> scene = parse_scenes_or(args, "scene", "hairball");
+      if (scene.size() != 1) throw UsageError("--scene takes one scene for fig2");
+      checked([&] { harness::check_fig2_scene(scene[0]); });
       std::vector<float> opacities;
-      for (const double o : parse_reals(args, "opacities", "0.125,0.25,0.5,1")) opacities.push_back(static_cast<float>(o));
-      outputs = parse_outputs(args, {});
+      SceneOptions probe;
+      for (const std::string& o : args.list("opacities", "0.125,0.25,0.5,1")) {
+        checked([&] {
+          try {
+            set_scene_option(probe, "opacity", o);
+          } catch (const std::invalid_argument& e) {
+            throw std::invalid_argument("--opacities: " + std::string(e.what()));
+          }
+        });
+        opacities.push_back(probe.opacity);
+      }
+      outputs = parse_outputs(args, scene);
       const auto context = context_for(true, "figure");
-      table = harness::run_fig2(scene.at(0), opacities, s);
+      table = harness::run_fig2(scene[0], opacities, s);
     } else if (name == "fig8") {
       allowed({"scene", "frames", "load"});
       const std::vector<harness::WorkloadSpec> scene = parse_scenes_or(args, "scene", "quads:count=64");
+      if (scene.size() != 1) throw UsageError("--scene takes one scene for fig8");
+      checked([&] { harness::check_fig8_scene(scene[0]); });
       const std::uint32_t frames = args.u32("frames", 16, 2, 100000);
-      const double load = args.real("load", 0.64);
-      if (!(load > 0.0 && load <= 1.0)) throw UsageError("--load must be in (0, 1]");
-      outputs = parse_outputs(args, {});
+      double load = 0.64;
+      if (args.has("load")) checked([&] { load = parse_load_factor(args.str("load", "")); });
+      outputs = parse_outputs(args, scene);
       const auto context = context_for(true, "figure");
-      table = harness::run_fig8(scene.at(0), frames, load, s);
+      table = harness::run_fig8(scene[0], frames, load, s);
     } else if (name == "fig10" || name == "frontier") {
       harness::BenchSettings b;
       if (name == "fig10") {
@@ -106,27 +137,25 @@ int run_figure(const std::vector<std::string>& argv) {
         b.techniques = harness::frontier_techniques(s.path);
       }
       b.on_progress = s.on_progress;
-      outputs = parse_outputs(args, {});
-      std::vector<std::string> picks;
-      if (args.has("picks")) {
-        picks = args.list("picks", "");
-        harness::check_table_paths(picks);
-      }
+      checked([&] { harness::validate_bench(b); });
+      const std::vector<double> targets =
+          args.has("picks") ? parse_reals(args, "targets", "30,40,50", 0.0, 1000.0) : std::vector<double>{};
+      outputs = parse_outputs(args, b.scenes);
       const auto context = context_for(true, "figure");
       table = harness::run_bench(b);
       table.title = name;
       if (name == "frontier") {
         harness::mark_pareto(table);
-        if (!picks.empty()) {
-          harness::ResultTable p = harness::frontier_picks(table, parse_reals(args, "targets", "30,40,50"));
-          write_outputs(("figure " + name).c_str(), p, picks, argv);
+        if (!outputs.picks.empty()) {
+          harness::ResultTable p = harness::frontier_picks(table, targets);
+          write_outputs(("figure " + name).c_str(), p, outputs.picks, argv);
         }
       }
     } else {
       throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier)");
     }
   }
-  write_outputs(("figure " + name).c_str(), table, outputs, rest);
+  write_outputs(("figure " + name).c_str(), table, outputs.out, rest);
   return 0;
 }
 

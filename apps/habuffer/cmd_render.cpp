@@ -83,20 +83,14 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args, Technique technique
   return out;
 }
 
-// Options of the procedural scenes, refused on scenes that ignore them (the
-// catalog says which scenes take which).
+// Scene options refused on scenes that ignore them (the catalog says which
+// scenes take which).
 void refuse_scene_options_that_do_not_apply(const Args& args) {
   const std::string scene = args.has("scene") ? args.required("scene") : "";
-  const std::pair<const char*, const char*> options[] = {
-      {"count", "count"}, {"scene-seed", "seed"}, {"spread", "spread"}, {"order", "order"}};
-  for (const auto& [flag, option] : options) {
-    const std::vector<std::string> takers = scenes_taking(option);
-    std::string names;
-    for (const std::string& t : takers) names += (names.empty() ? "" : ", ") + t;
-    args.refuse_unless(std::find(takers.begin(), takers.end(), scene) != takers.end(), {flag},
-                       "on scene " + excerpt(scene) + " (" + names + " take" + (takers.size() == 1 ? "s" : "") +
-                           " it)");
-  }
+  for (const SceneOptionRule& r : scene_option_rules())
+    if (!scene.empty() && r.key != std::string("opacity"))
+      args.refuse_unless(scene_takes(scene, r.key), {r.flag},
+                         "on scene " + excerpt(scene) + " (" + scenes_taking_text(r.key) + ")");
 }
 
 // Every file the command reads or writes, checked before any work.
@@ -117,22 +111,18 @@ void check_render_files(const Args& args, const RenderSettings& s, const std::ve
   check_files(files);
 }
 
+// The catalog's rules (habuffer/scene_catalog.h), as the harness's scene
+// words obey them.
 SceneOptions parse_scene_options(const Args& args) {
   SceneOptions o;
-  o.opacity = args.f32("opacity", 0.5f);
-  // Records carry alpha as a byte, round(255 a): at 1/510 and below it may be
-  // 0 (255 a is then at most one half, and GLSL may round halves down).
-  const float kSmallestOpacity = std::nextafter(1.0f / 510.0f, 1.0f);
-  if (!(o.opacity >= kSmallestOpacity && o.opacity <= 1.0f))
-    throw UsageError("option --opacity: must be in (0, 1], at least " + shortest(kSmallestOpacity) +
-                     " (just above 1/510: smaller rounds to alpha 0 in the 8-bit record)");
-  o.seed = args.u64("scene-seed", 1);
-  o.count = args.u32("count", 0, 1, 1u << 20);
-  o.spread = args.f32("spread", 1.0f);
-  if (!(o.spread >= 0.0f && o.spread <= 1.0f)) throw UsageError("option --spread: must be in [0, 1]");
-  const std::string order = args.str("order", "back");
-  if (order != "front" && order != "back") throw UsageError("option --order: '" + order + "' is not front or back");
-  o.order = order == "front" ? PlaneOrder::FrontToBack : PlaneOrder::BackToFront;
+  for (const SceneOptionRule& r : scene_option_rules()) {
+    if (!args.has(r.flag)) continue;
+    try {
+      set_scene_option(o, r.key, args.str(r.flag, ""));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("option --") + r.flag + ": " + e.what());
+    }
+  }
   return o;
 }
 
@@ -159,7 +149,7 @@ RenderSettings parse_settings(const Args& args) {
     throw UsageError("option --max-attempts needs --lossless or an automatic size (--table auto, --pool auto)");
   s.max_attempts = args.u32("max-attempts", 16, 1, 1000);
   s.frames = args.u32("frames", 1, 1, 100000);
-  s.threads = args.u32("threads", 0, 0, 1024);
+  s.threads = args.u32("threads", 0, 0, kMaxThreads);
   args.refuse_unless(s.path == RenderPath::Cpu || args.has("fragments"), {"threads"},
                      "with --path gl (the GPU inserts and composites)");
   s.background = args.has("background") ? parse_background(args.required("background")) : glm::vec3(1.0f);
@@ -264,14 +254,18 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
                          "scene is out of view, fully opaque or degenerate\n",
                  r.frames.size(), r.frames.size() == 1 ? "" : "s");
   const std::string frames = r.frames.size() == 1 ? "" : " over " + std::to_string(r.frames.size()) + " frames";
+  // Age failures from a pixel deeper than AMAX are not the buffers' size:
+  // say which pixel and what age bits would hold it.
+  const std::string too_deep = r.too_deep ? too_deep_message(*r.too_deep, s.config.age_bits) : "";
   if (s.lossless && total.failures() > 0) {
     report_lossless_failure("render", total,
                             frames + " after up to " + std::to_string(s.max_attempts) + " attempts per frame" +
-                                (r.growth_limited ? " (the technique's buffers reached this OpenGL's limits)"
+                                (!too_deep.empty()      ? ": " + too_deep
+                                 : r.growth_limited     ? " (the technique's buffers reached this OpenGL's limits)"
                                  : s.technique == Technique::Ha ? "; more --age-bits fits deeper pixels" : ""));
     return 1;
   }
-  warn_losses("render", total, frames, lossless_hint(s.technique));
+  warn_losses("render", total, frames, too_deep.empty() ? lossless_hint(s.technique) : too_deep);
   return 0;
 }
 

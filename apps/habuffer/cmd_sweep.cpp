@@ -40,10 +40,13 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.loads = parse_reals(args, "loads", "0.5,0.6,0.7,0.8,0.9,0.95");
   s.repeats = args.u32("repeats", 3, 1, 1000);
   s.seed = args.u64("seed", 1);
+  args.refuse_unless(s.technique.technique == Technique::Ha, {"offsets", "seed"},
+                     "with --technique " + to_string(s.technique.technique) + " (the HA-buffer's offsets)");
   const std::string offsets = args.str("offsets", "random");
   if (offsets != "random" && offsets != "farthest") throw UsageError("--offsets must be random or farthest");
   s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
-  s.threads = args.u32("threads", 0);
+  s.threads = args.u32("threads", 0, 0, kMaxThreads);
+  args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
   const std::vector<Extent> sizes = parse_sizes(args, "256x256");
   if (sizes.size() != 1) throw UsageError("--size takes one WxH (bench compares several)");
   try {
@@ -53,8 +56,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   }
   const harness::WorkloadSpec w =
       harness::parse_workload_spec(args.has("fragments") ? args.required("fragments") : args.required("scene"));
-  const std::vector<std::string> outputs =
-      parse_outputs(args, args.has("fragments") ? std::vector<std::string>{w.fragments} : std::vector<std::string>{});
+  const std::vector<std::string> outputs = parse_outputs(args, {w}).out;
   const auto context = context_for(w.fragments.empty(), "sweep");
   const harness::Workload workload(w, sizes[0]);
   ProgressBar progress = ProgressBar::for_terminal("habuffer sweep", "runs", args.has("quiet"));

@@ -34,12 +34,12 @@ TechniqueBuild build_on_gl(const HashOptions& options, std::span<const Fragment>
   timing.gl_deferred = report.deferred;
   timing.gl_resume_rounds = report.resume_rounds;
   timing.gl_cut_short_retries = report.cut_short_retries;
-  return TechniqueBuild{gpu.technique().read_back(), report.counters, std::move(report.attempts)};
+  return TechniqueBuild{gpu.technique().read_back(), report.counters, std::move(report.attempts), false, std::nullopt};
 }
 
 BuildResult build_ha_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
   TechniqueBuild b = build_on_gl(options, fragments, timing);
-  return BuildResult{std::move(dynamic_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts)};
+  return BuildResult{std::move(dynamic_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts), b.too_deep};
 }
 
 }  // namespace habuffer::cli

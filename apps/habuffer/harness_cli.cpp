@@ -4,6 +4,8 @@
 
 #include "habuffer/csv.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/printable.h"
+#include "loss_report.h"
 
 namespace habuffer::cli {
 
@@ -67,18 +69,30 @@ std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::
   return parse_words(args, name, fallback, harness::parse_workload_spec);
 }
 
-std::vector<std::string> parse_outputs(const Args& args, const std::vector<std::string>& inputs) {
-  const std::vector<std::string> outputs = args.list("out", "");
+namespace {
+
+std::vector<std::string> table_paths(const Args& args, const std::string& name) {
+  if (!args.has(name) && name != "out") return {};
+  const std::vector<std::string> paths = args.list(name, "");
   try {
-    harness::check_table_paths(outputs);
+    harness::check_table_paths(paths);
   } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--out: ") + e.what());
+    throw UsageError("--" + name + ": " + e.what());
   }
+  return paths;
+}
+
+}  // namespace
+
+HarnessOutputs parse_outputs(const Args& args, const std::vector<harness::WorkloadSpec>& workloads) {
+  HarnessOutputs o{table_paths(args, "out"), table_paths(args, "picks")};
   FileRoles files;
-  for (const std::string& in : inputs) files.input("input", in);
-  for (const std::string& out : outputs) files.output("--out", out);
+  for (const harness::WorkloadSpec& w : workloads)
+    if (const std::string in = w.input_file(); !in.empty()) files.input("scene " + excerpt(w.word), in);
+  for (const std::string& out : o.out) files.output("--out", out);
+  for (const std::string& picks : o.picks) files.output("--picks", picks);
   check_files(files);
-  return outputs;
+  return o;
 }
 
 std::unique_ptr<gl::EglContext> context_for(bool needed, const char* command) {
@@ -100,8 +114,46 @@ harness::Provenance provenance(const char* command, const std::vector<std::strin
   return p;
 }
 
+namespace {
+
+// "technique=lists scene=quads load=0.5": the cells that tell runs apart.
+std::string row_label(const harness::ResultRow& row) {
+  std::string label;
+  for (const char* column : {"technique", "scene", "size", "load", "opacity", "early_cull", "frame"}) {
+    const harness::Cell* c = row.find(column);
+    if (c == nullptr) continue;
+    std::string v;
+    if (const auto* t = std::get_if<std::string>(c)) v = *t;
+    else if (const auto* i = std::get_if<std::int64_t>(c)) v = std::to_string(*i);
+    else if (const auto* d = std::get_if<double>(c)) v = shortest(*d);
+    else continue;
+    if (!label.empty()) label += ' ';
+    label.append(column).append(1, '=').append(v);
+  }
+  return label;
+}
+
+}  // namespace
+
+void warn_table_losses(const char* command, const harness::ResultTable& table) {
+  std::size_t lossy = 0, runs = 0;
+  std::string first;
+  for (const harness::ResultRow& row : table.rows) {
+    const std::optional<Counters> c = counters_of(row);
+    if (!c) continue;
+    ++runs;
+    if (lost_fragments(*c) == 0) continue;
+    if (lossy++ == 0) first = row_label(row) + ": " + loss_summary(*c);
+  }
+  if (lossy == 0) return;
+  const std::string which = lossy > 1 ? "the first, " + first : first;
+  std::fprintf(stderr, "habuffer %s: warning: %zu of %zu runs lost fragments (their counter columns say which); %s\n",
+               command, lossy, runs, which.c_str());
+}
+
 void write_outputs(const char* command, harness::ResultTable& table, const std::vector<std::string>& outputs,
                    const std::vector<std::string>& argv) {
+  warn_table_losses(command, table);
   const std::string renderer = table.provenance.renderer;
   table.provenance = provenance(command, argv);
   table.provenance.renderer = renderer;

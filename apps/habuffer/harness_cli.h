@@ -27,14 +27,23 @@ std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name);
 // The same with a default list.
 std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::string& name, const std::string& fallback);
-// --out F.json[,F.csv]: checked (extensions, writable, not an input) before any work.
-std::vector<std::string> parse_outputs(const Args& args, const std::vector<std::string>& inputs);
+// A harness command's files, checked together before any work (one rule
+// for every command): --out F.json[,F.csv] and, where the command has it,
+// --picks F.json[,F.csv] (extensions, writable, no two the same file), none
+// of them any workload's input (a fragment CSV or mesh file).
+struct HarnessOutputs {
+  std::vector<std::string> out, picks;
+};
+HarnessOutputs parse_outputs(const Args& args, const std::vector<harness::WorkloadSpec>& workloads);
 
 // A context when any scene needs one (streams do not); DataError when none can be made.
 std::unique_ptr<gl::EglContext> context_for(bool needed, const char* command);
 // "habuffer CMD ARGS..." as typed, and the machine.
 harness::Provenance provenance(const char* command, const std::vector<std::string>& argv);
-// Writes the table and prints one line per output.
+// One warning line on stderr when any run of the table lost fragments
+// (failed, dropped, culled or invalid), naming the first such run.
+void warn_table_losses(const char* command, const harness::ResultTable& table);
+// Warns of losses, writes the table and prints one line per output.
 void write_outputs(const char* command, harness::ResultTable& table, const std::vector<std::string>& outputs,
                    const std::vector<std::string>& argv);
 

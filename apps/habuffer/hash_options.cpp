@@ -1,10 +1,10 @@
 #include "hash_options.h"
 
-
 #include <algorithm>
 #include <limits>
 
 #include "habuffer/interchange.h"
+#include "habuffer/option_rules.h"
 
 namespace habuffer::cli {
 
@@ -33,12 +33,11 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   if (args.has("early-cull")) {
     // The threshold is used as a float32 on both paths; below the smallest
     // normal float32 a GPU may flush it to 0, which turns cull off.
-    const float tau = args.f32("early-cull", 0.0f);
-    if (!(tau >= std::numeric_limits<float>::min() && tau <= 1.0f))
-      throw UsageError("option --early-cull: threshold must be in (0, 1], at least " +
-                       shortest(std::numeric_limits<float>::min()) + " (the smallest normal float32), not " +
-                       args.str("early-cull", ""));
-    c.early_cull_tau = tau;
+    try {
+      c.early_cull_tau = parse_cull_threshold(args.str("early-cull", ""));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("option --early-cull: ") + e.what());
+    }
   }
   const std::string saturation = args.str("saturation", "off");
   if (saturation != "on" && saturation != "off")
@@ -73,7 +72,7 @@ HashOptions parse_hash_options(const Args& args, bool techniques, std::initializ
   if (!screen) throw UsageError("option --screen is required");
   o.config = parse_buffer_config(args, *screen, args.extent("table").value_or(*screen));
   const BufferConfig& c = o.config;
-  o.insert.threads = args.u32("threads", 1, 0, 1024);
+  o.insert.threads = args.u32("threads", 1, 0, kMaxThreads);
   const std::string mode = args.str("insert-mode", "auto");
   if (mode == "auto") {
     o.insert.mode = InsertMode::Auto;

@@ -22,7 +22,7 @@ TechniqueOptions parse_technique_options(const Args& args, std::initializer_list
                      on + " (early cull is the HA-buffer's and sorted lists')");
   args.refuse_unless(tech == Technique::Ha, {"table", "block", "offsets", "seed"}, on + " (the HA-buffer's own)");
   for (const char* m : more) args.refuse_unless(tech == Technique::Ha, {m}, on + " (the HA-buffer's own)");
-  o.layers = args.u32("layers", HABUFFER_DEFAULT_LAYERS, 1, 1u << 16);
+  o.layers = args.u32("layers", HABUFFER_DEFAULT_LAYERS, 1, HABUFFER_MAX_LAYERS);
   const std::string pool = args.str("pool", "auto");
   o.pool = pool == "auto" ? 0 : args.u64("pool", 0, 1, UINT32_MAX - 1);
   const std::string occupancy = args.str("occupancy", "off");

@@ -81,7 +81,12 @@ class FragmentBuffer {
 
 /// Throws std::out_of_range naming the first fragment outside `screen`.
 void check_on_screen(std::span<const Fragment> fragments, Extent screen);
-/// The threads `threads` means (0: every hardware thread).
+/// Most threads any call takes (the CLI's --threads bound): far more than
+/// any machine this library targets uses, and far below where oneTBB's
+/// arenas fail (tens of thousands).
+inline constexpr std::uint32_t kMaxThreads = 1024;
+/// The threads `threads` means (0: every hardware thread). Throws
+/// std::invalid_argument above kMaxThreads.
 std::uint32_t resolve_threads(std::uint32_t threads);
 
 }  // namespace habuffer

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "habuffer/ha_buffer.h"
+#include "habuffer/pixel_depth.h"
 #include "habuffer/technique.h"
 #include "habuffer/resize_policy.h"
 
@@ -42,6 +43,9 @@ struct BuildResult {
   HaBuffer buffer;  ///< the final attempt's buffer
   Counters counters;                  ///< of the final attempt
   std::vector<BuildAttempt> attempts;  ///< every attempt, in order
+  /// Lossless mode stopped without growing: this pixel has more distinct
+  /// records than AMAX, which no table holds (TechniqueBuild::too_deep).
+  std::optional<PixelDepth> too_deep;
   /// Whether the final attempt lost no fragment.
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
@@ -60,6 +64,10 @@ struct TechniqueBuild {
   Counters counters;                   ///< of the final attempt
   std::vector<BuildAttempt> attempts;  ///< every attempt, in order
   bool growth_limited = false;         ///< lossless mode stopped: the next size cannot be built
+  /// HA-buffer: lossless mode stopped without growing because this pixel
+  /// has more distinct records than AMAX (habuffer/pixel_depth.h): no table
+  /// holds it.
+  std::optional<PixelDepth> too_deep;
   /// Whether the final attempt lost no fragment.
   [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
 };
@@ -67,11 +75,17 @@ struct TechniqueBuild {
 /// One build of any technique (max_attempts = 1), or lossless mode: on failure
 /// grow the configuration (TechniqueConfig::grown) and gather the whole stream
 /// again, at most `max_attempts` times, stopping early (growth_limited) when the
-/// next size cannot be built. Throws std::invalid_argument for max_attempts 0 or
+/// next size cannot be built, or (too_deep) when an HA-buffer's age failures
+/// come from a pixel with more distinct records than AMAX, which no table holds. Throws std::invalid_argument for max_attempts 0 or
 /// a bad policy or configuration, std::out_of_range for a fragment off the screen.
 TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource& offsets,
                                std::span<const Fragment> fragments, const InsertOptions& options,
                                const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
+
+/// HA-buffer without early cull (which could cull them): the pixel with the
+/// most distinct records beyond AMAX, which fails at any table size
+/// (habuffer/pixel_depth.h); nothing for other techniques or when none is.
+std::optional<PixelDepth> pixel_beyond_every_table(const TechniqueConfig& config, std::span<const Fragment> fragments);
 
 /// An empty container of the configured technique (offsets for the HA-buffer's table).
 std::unique_ptr<FragmentBuffer> make_fragment_buffer(const TechniqueConfig& config, const OffsetSource& offsets);

@@ -31,7 +31,33 @@ std::vector<std::string> scene_names();
 bool is_scene_name(const std::string& name);
 // The procedural scenes that use SceneOptions' `option` ("count", "seed",
 // "spread" or "order"); make_scene ignores it for every other scene.
+// Opacity is every scene's (mesh files included) and is not listed.
 std::vector<std::string> scenes_taking(const std::string& option);
+
+// The scene options, one catalog for `habuffer render`'s flags and the
+// harness's scene words ("planes:count=32:order=front"): each option's key
+// in words, its flag, and the values it accepts.
+struct SceneOptionRule {
+  const char* key;       // "count", "seed", "opacity", "spread", "order"
+  const char* flag;      // "count", "scene-seed", "opacity", "spread", "order"
+  const char* accepted;  // for messages: "an integer in 1..1048576"
+};
+const std::vector<SceneOptionRule>& scene_option_rules();
+// Largest count of tubes, quads or planes.
+inline constexpr std::uint32_t kMaxSceneCount = 1u << 20;
+// Smallest opacity: records carry alpha as a byte, round(255 a); at 1/510
+// and below it may be 0 (255 a is then at most one half, and GLSL may round
+// halves down).
+float smallest_opacity();
+// Sets option `key` of `options` from `text` by its rule. Throws
+// std::invalid_argument with the reason alone ("'0' outside 1..1048576"),
+// for the caller to prefix with the flag or the word.
+void set_scene_option(SceneOptions& options, const std::string& key, const std::string& text);
+// Whether scene `name_or_path` uses option `key` (false: make_scene would
+// ignore it). Throws std::invalid_argument for an unknown key.
+bool scene_takes(const std::string& name_or_path, const std::string& key);
+// "hairball, quads, planes take it" / "no scene takes it" for messages.
+std::string scenes_taking_text(const std::string& key);
 
 // A scene name or a mesh file path. Throws SceneError naming what was wrong.
 Scene make_scene(const std::string& name_or_path, const SceneOptions& options);

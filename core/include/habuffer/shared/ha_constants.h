@@ -34,6 +34,8 @@
 
 // Fixed arrays: default layers per pixel (Crassin 2010 uses 16).
 #define HABUFFER_DEFAULT_LAYERS 16u
+// Most layers per pixel (fixed arrays, k-buffer) an option or word accepts.
+#define HABUFFER_MAX_LAYERS 65536u
 // The k-buffer's occupancy map: 32-bit words per pixel (32 buckets each)
 // by default and at most (seed 003 uses d = 32 words for k up to 32).
 #define HABUFFER_DEFAULT_OCCUPANCY_WORDS 4u

@@ -16,6 +16,8 @@
 /// framebuffer.
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -55,6 +57,9 @@ class GlFrameDriver {
   [[nodiscard]] Extent screen() const { return technique_->screen(); }
   /// The options every frame runs with.
   [[nodiscard]] const GlFrameOptions& options() const { return options_; }
+  /// Caps the attempts per frame from now on (at least 1): a caller that
+  /// knows growth cannot help (a pixel deeper than AMAX) stops it.
+  void limit_attempts(std::uint32_t attempts) { options_.max_attempts = std::max(1u, std::min(options_.max_attempts, attempts)); }
 
   /// The GLSL module for this technique, atomic mode and binding points.
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;

@@ -32,6 +32,12 @@ struct FigureSettings {
 };
 
 // Fig. 2 on `scene` (default hairball) at each opacity.
+// The scene words Fig. 2 and Fig. 8 accept: fig2 varies the opacity (not a
+// fragment file, no opacity= of its own), fig8 the spread (a scene that
+// takes spread, no spread= of its own). Throw std::invalid_argument naming
+// the word; the runs check them first too.
+void check_fig2_scene(const WorkloadSpec& scene);
+void check_fig8_scene(const WorkloadSpec& scene);
 ResultTable run_fig2(const WorkloadSpec& scene, const std::vector<float>& opacities, const FigureSettings& s);
 // Fig. 8: `quads` scene words (count, seed, opacity kept; spread set per
 // frame), `frames` frames, the table sized for `load` of frame 0's fragments.
@@ -39,6 +45,13 @@ ResultTable run_fig8(const WorkloadSpec& quads, std::uint32_t frames, double loa
 // Seed 001's Fig. 10 as bench settings: planes (count) front and back, the
 // HA-buffer and sorted lists, exact, with cull, with cull and saturation.
 BenchSettings fig10_bench_settings(std::uint32_t planes, const FigureSettings& s);
+// Table 1's bounds: fragment counts in 1..kMaxTableFragments, loads in
+// (0, 1] with F / L slots below 2^32; a row whose model exceeds
+// kMaxTableAllocationBytes is not allocated (its note says so).
+inline constexpr std::uint64_t kMaxTableFragments = std::uint64_t{1} << 31;
+inline constexpr std::uint64_t kMaxTableAllocationBytes = std::uint64_t{4} << 30;
+// Throws std::invalid_argument naming the option and value out of bounds.
+void validate_memory_table(Extent screen, const std::vector<std::uint64_t>& fragments, const std::vector<double>& loads);
 // Table 1 at `pixels` (the paper: 1024x1024) for each fragment count and load.
 ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fragments, const std::vector<double>& loads,
                              bool allocate);

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -24,13 +25,18 @@ struct PlanSettings {
   std::uint32_t trials = 3;           // synthetic streams per HA-buffer load
   std::uint64_t seed = 1;
   std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;
+  // Called after each simulated trial (done, total).
+  std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
 
 // One row per configuration: technique, memory_bytes, predicted_max_age
 // (mean over trials) and its largest, predicted_failures (fragments lost),
 // failure_risk (share of trials losing any), predicted_psnr (inf when
 // exact), lossless, meets_target, recommended. Notes give the depth
-// complexity and the recommendation.
+// complexity and the recommendation. A pixel with more fragments than AMAX
+// fails the HA-buffer at every load: its rows are predicted from that
+// (failures at least the excess, risk 1) without simulating, and a note
+// names the pixel and the age bits that would hold it.
 ResultTable run_plan(const Workload& workload, const PlanSettings& s);
 // The same from a capture already made.
 ResultTable plan_from_capture(const ExactCapture& capture, Extent screen, const PlanSettings& s);

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -39,6 +40,8 @@ class ResultRow {
 
 // Every counter of a run as columns (fragments, stored, each reason, failures).
 void set_counters(ResultRow& row, const Counters& c);
+// The counters set_counters wrote into `row`, or nothing when it holds none.
+std::optional<Counters> counters_of(const ResultRow& row);
 
 // What produced a table: printed in the JSON and named by every figure.
 struct Provenance {

@@ -5,7 +5,10 @@
 //
 // Scene words for lists on the command line: NAME[:KEY=VALUE]... with keys
 // count, order (front|back), opacity, seed and spread, e.g.
-// "planes:order=front:count=32"; a word ending in .csv is a fragment stream.
+// "planes:order=front:count=32", each obeying the rule of its `habuffer
+// render` flag (one catalog: habuffer/scene_catalog.h); a key the scene does
+// not take, or given twice, is refused. A word ending in .csv is a fragment
+// stream and takes no keys.
 #pragma once
 
 #include <cstdint>
@@ -26,6 +29,9 @@ struct WorkloadSpec {
   std::string fragments;  // fragment CSV; empty for a scene
   SceneOptions options;
   std::string word;       // as given
+  // The file the workload reads (a fragment CSV or a mesh file), or empty
+  // for a named scene: the harness checks it against the outputs.
+  [[nodiscard]] std::string input_file() const;
 };
 
 // Throws std::invalid_argument naming the word and key.

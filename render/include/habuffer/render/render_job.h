@@ -21,6 +21,7 @@
 #include "habuffer/ha_buffer.h"
 #include "habuffer/technique.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/pixel_depth.h"
 #include "habuffer/render/image.h"
 #include "habuffer/resize_policy.h"
 #include "habuffer/scene.h"
@@ -95,6 +96,11 @@ struct RenderResult {
   [[nodiscard]] const HaBuffer* ha_buffer() const { return dynamic_cast<const HaBuffer*>(buffer.get()); }
   std::string device;                          // "gl native32 on llvmpipe ...", "cpu (N threads)"
   bool growth_limited = false;  // the context could not hold the table the first frame or lossless mode wanted
+  // HA-buffer without early cull: a pixel with more records than AMAX, which
+  // no table holds, so no frame grew for it. The CPU path counts distinct
+  // records; the GPU path, which sees only the counting pass, counts
+  // fragments (duplicates included).
+  std::optional<PixelDepth> too_deep;
 };
 
 // Needs a current OpenGL 4.5 core context. Throws SceneError, GlError,

@@ -1,0 +1,49 @@
+/// @file
+/// The deepest pixel of a stream, in records.
+///
+/// The HA-buffer stores a pixel's records at distinct ages 1..AMAX (two
+/// records of one pixel at one age would share a slot), so a pixel whose
+/// fragments make more than AMAX = 2^A - 1 distinct records fails at any
+/// table size: growing the table (lossless mode, automatic sizing) cannot
+/// help, only more age bits (or another technique) can. Builds ask this
+/// before growing in vain.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+
+#include <glm/vec2.hpp>
+
+#include "habuffer/extent.h"
+#include "habuffer/fragment.h"
+#include "habuffer/record_layout.h"
+
+namespace habuffer {
+
+/// A pixel and how many records its fragments make.
+struct PixelDepth {
+  glm::uvec2 pixel{0, 0};     ///< the pixel
+  std::uint64_t records = 0;  ///< distinct records (identical records of a pixel merge, SPEC 10)
+  /// False where only fragments were counted (duplicates included): a GPU
+  /// counting pass, which sees no records.
+  bool distinct = true;
+};
+
+/// The pixel with the most distinct records among those with more than
+/// `limit`, or nothing when no pixel has more. Invalid fragments (SPEC 2)
+/// make no record; fragments off `screen` are skipped. Linear in the
+/// fragments, plus a sort of the fragments of pixels with more than `limit`.
+std::optional<PixelDepth> pixel_deeper_than(std::span<const Fragment> fragments, Extent screen,
+                                            const RecordLayout& layout, std::uint64_t limit);
+
+/// The age bits whose AMAX holds `records` records per pixel, or nothing
+/// when even HABUFFER_MAX_AGE_BITS cannot.
+std::optional<std::uint32_t> age_bits_for(std::uint64_t records);
+
+/// "pixel (3, 7) has 20 distinct fragments, more than AMAX = 2^4 - 1 = 15:
+/// use --age-bits 5 (or accept the loss)" for messages.
+std::string too_deep_message(const PixelDepth& deepest, std::uint32_t age_bits);
+
+}  // namespace habuffer

@@ -1,0 +1,26 @@
+#include "habuffer/option_rules.h"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "habuffer/number_text.h"
+
+namespace habuffer {
+
+float parse_cull_threshold(std::string_view text) {
+  const float tau = parse_float32(text);
+  if (!(tau >= std::numeric_limits<float>::min() && tau <= 1.0f))
+    throw std::invalid_argument("threshold must be in (0, 1], at least " +
+                                shortest_text(std::numeric_limits<float>::min()) +
+                                " (the smallest normal float32), not " + std::string(text));
+  return tau;
+}
+
+double parse_load_factor(std::string_view text) {
+  const double load = parse_float64(text);
+  if (!(load > 0.0 && load <= 1.0)) throw std::invalid_argument("load must be in (0, 1], not " + std::string(text));
+  return load;
+}
+
+}  // namespace habuffer
