@@ -2,7 +2,7 @@
 # with the GL path, ::gl), their headers (the shared C++/GLSL sources
 # included), the host GLSL files, the CMake package habufferConfig.cmake
 # with its version file, and pkg-config files habuffer-core.pc and
-# habuffer-gl.pc.
+# habuffer-gl.pc, and the license (MIT).
 include(CMakePackageConfigHelpers)
 
 set(_habuffer_targets habuffer_offsets habuffer_core)
@@ -17,6 +17,7 @@ install(TARGETS ${_habuffer_targets} EXPORT habufferTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY offsets/include/ core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})  # MIT; named by the CMake and pkg-config packages
 if(HABUFFER_WITH_GL)
   install(DIRECTORY gl/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   install(DIRECTORY ${HABUFFER_GLSL_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/habuffer/glsl PATTERN stamp EXCLUDE)
@@ -34,7 +35,7 @@ set(HABUFFER_PACKAGE_WITH_TBB ${HABUFFER_WITH_TBB})
 set(HABUFFER_PACKAGE_COMPONENTS ${_habuffer_components})
 configure_package_config_file(cmake/habufferConfig.cmake.in ${PROJECT_BINARY_DIR}/habufferConfig.cmake
                               INSTALL_DESTINATION ${HABUFFER_CMAKE_DIR}
-                              PATH_VARS CMAKE_INSTALL_INCLUDEDIR CMAKE_INSTALL_DATADIR)
+                              PATH_VARS CMAKE_INSTALL_INCLUDEDIR CMAKE_INSTALL_DATADIR CMAKE_INSTALL_DOCDIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/habufferConfigVersion.cmake
                                  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/habufferConfig.cmake ${PROJECT_BINARY_DIR}/habufferConfigVersion.cmake

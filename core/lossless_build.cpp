@@ -1,6 +1,7 @@
 #include "habuffer/lossless_build.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "habuffer/fixed_arrays.h"
@@ -62,6 +63,11 @@ TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource
   policy.validate();
   TechniqueConfig c = config;
   c.buffer.table = config.buffer.table_or_screen();
+  // The automatic pool (0), as render's --pool auto: the fragments at
+  // grow_at use, so one pool holds them all.
+  if (uses_pool(c.technique) && c.pool_capacity == 0)
+    c.pool_capacity = std::max<std::uint64_t>(
+        1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments.size()) / policy.grow_at)));
   std::vector<BuildAttempt> attempts;
   for (;;) {
     std::unique_ptr<FragmentBuffer> buffer = make_fragment_buffer(c, offsets);

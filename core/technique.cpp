@@ -61,7 +61,9 @@ void TechniqueConfig::validate() const {
   if (uses_pool(technique)) {
     // Links are 32-bit node numbers with 0 for "none".
     if (pool_capacity == 0 || pool_capacity >= UINT32_MAX)
-      throw std::invalid_argument("node pool of " + std::to_string(pool_capacity) + " nodes: must be in [1, 2^32 - 2]");
+      throw std::invalid_argument("node pool of " + std::to_string(pool_capacity) +
+                                  " nodes: must be in [1, 2^32 - 2] (0, automatic, is for build_technique and the GL "
+                                  "containers, which size it)");
   }
   if (occupancy && std::uint64_t{occupancy_words} * pixels > UINT32_MAX)
     throw std::invalid_argument(std::to_string(occupancy_words) + " occupancy words of screen " + buffer.screen.str() +

@@ -5,18 +5,36 @@
 #include <epoxy/gl.h>
 
 #include "gl_state_guard.h"
+#include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/glsl_sources.h"
 
 namespace habuffer::gl {
+namespace {
+
+// Whether the host has an occlusion query active: GL keeps one per target,
+// and a pass of ours under it would end it or add to its count.
+bool host_occlusion_query_active() {
+  for (GLenum target : {GL_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED, GL_ANY_SAMPLES_PASSED_CONSERVATIVE}) {
+    GLint active = 0;
+    glGetQueryiv(target, GL_CURRENT_QUERY, &active);
+    if (active != 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 ClearPass::ClearPass(AtomicMode mode, const GlBindings& bindings)
     : program_(ShaderProgram::graphics(full_screen_vertex(), clear_pass_fragment(mode, bindings), "clear pass")) {
   glCreateFramebuffers(1, &framebuffer_);
   glCreateVertexArrays(1, &vertex_array_);
   glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);
+  atomic_count_ = create_buffer(sizeof(GLuint64));
+  stream_point_ = bindings.stream;
 }
 
 ClearPass::~ClearPass() {
+  delete_buffer(atomic_count_);
   glDeleteQueries(1, &query_);
   glDeleteVertexArrays(1, &vertex_array_);
   glDeleteFramebuffers(1, &framebuffer_);
@@ -40,8 +58,15 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   glBindVertexArray(vertex_array_);
   glUseProgram(program_.id());
   program_.set("ha_clear_writes", writes ? 1u : 0u);
+  const bool atomic = host_occlusion_query_active();
+  program_.set("ha_clear_atomic_count", atomic ? 1u : 0u);
   PassClock clock(timer_);
-  glBeginQuery(GL_SAMPLES_PASSED, query_);
+  if (atomic) {
+    zero_buffer(atomic_count_);
+    bind_at(GL_SHADER_STORAGE_BUFFER, stream_point_, atomic_count_);  // the caller's guard restores the point
+  } else {
+    glBeginQuery(GL_SAMPLES_PASSED, query_);
+  }
   for (std::uint32_t y = 0; y < table.y; y += th) {
     for (std::uint32_t x = 0; x < table.x; x += tw) {
       program_.set("ha_tile_origin", x, y);
@@ -49,18 +74,27 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
-  glEndQuery(GL_SAMPLES_PASSED);
-  // Later passes and read-backs see the zeroed slots.
+  if (!atomic) glEndQuery(GL_SAMPLES_PASSED);
+  // Later passes and read-backs see the zeroed slots (and the atomic count).
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  if (result_buffer != 0) {
+  std::uint64_t stored = 0;
+  if (atomic) {
+    // Tables have at most 2^32 - 1 slots: the low word holds the count, the high word stays 0.
+    if (result_buffer != 0)
+      glCopyNamedBufferSubData(atomic_count_, result_buffer, 0, 0, sizeof(GLuint64));
+    else
+      glGetNamedBufferSubData(atomic_count_, 0, sizeof stored, &stored);
+  } else if (result_buffer != 0) {
     // The GPU writes the result when it has it; nobody waits (the caller's
     // guard restores the host's query-buffer binding).
     glBindBuffer(GL_QUERY_BUFFER, result_buffer);
     glGetQueryObjectui64v(query_, GL_QUERY_RESULT, nullptr);
     glBindBuffer(GL_QUERY_BUFFER, 0);
+  } else {
+    stored = query_result(query_);
   }
   const auto [wall, gpu] = clock.stop(finish);
-  return {result_buffer != 0 ? 0 : query_result(query_), wall, gpu};
+  return {stored, wall, gpu};
 }
 
 }  // namespace habuffer::gl

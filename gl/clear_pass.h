@@ -2,7 +2,11 @@
 // framebuffer, one fragment per slot; fragments of empty slots are discarded
 // and the others zero their slot, so a GL_SAMPLES_PASSED query counts the
 // stored records at almost no cost. Tables beyond the framebuffer limits
-// (16384² on llvmpipe) are cleared in tiles under the same query.
+// (16384² on llvmpipe) are cleared in tiles under the same query. While a
+// host's own occlusion query is active (GL_SAMPLES_PASSED, GL_ANY_SAMPLES_
+// PASSED[_CONSERVATIVE] around frame(): GL allows one at a time, and ours
+// would end the host's), the pass counts with an atomic add instead and
+// discards every fragment, so the host's query counts none of ours.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +41,8 @@ class ClearPass {
   ShaderProgram program_;
   GpuTimer timer_;
   unsigned framebuffer_ = 0, vertex_array_ = 0, query_ = 0;
+  unsigned atomic_count_ = 0;   // the count of the atomic route (8 bytes, a query result's layout)
+  unsigned stream_point_ = 0;   // where the atomic route binds it (the stream point: unused by the pass)
 };
 
 }  // namespace habuffer::gl

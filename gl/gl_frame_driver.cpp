@@ -68,7 +68,6 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
   if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
   if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
-  bindings().validate();
   GLint viewport[2] = {};
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
   const Extent s = screen();
@@ -106,6 +105,7 @@ void GlFrameDriver::write_params() const {
   p.ha_capture_only = options_.capture_only ? 1u : 0u;
   p.ha_count_writes = options_.count_writes ? 1u : 0u;
   p.ha_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
+  p.ha_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
   technique_->write_params(p);
   glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
 }
@@ -142,7 +142,28 @@ void GlFrameDriver::bind() const {
   bind_at(GL_UNIFORM_BUFFER, b.params, gpu_->params);
 }
 
+namespace {
+
+// Throws GlError when the depth test enabled now keeps the other
+// convention's nearest fragments: ha_insert_here would sort every list
+// back to front, silently.
+void check_depth_convention(DepthConvention convention) {
+  if (!glIsEnabled(GL_DEPTH_TEST)) return;
+  GLint func = 0;
+  glGetIntegerv(GL_DEPTH_FUNC, &func);
+  const bool greater = func == GL_GREATER || func == GL_GEQUAL, less = func == GL_LESS || func == GL_LEQUAL;
+  if (convention == DepthConvention::Standard && greater)
+    throw GlError(std::string("the depth test is ") + (func == GL_GREATER ? "GL_GREATER" : "GL_GEQUAL") +
+                  " (reversed-Z) but GlFrameOptions::depth is Standard: set DepthConvention::Reversed");
+  if (convention == DepthConvention::Reversed && less)
+    throw GlError(std::string("the depth test is ") + (func == GL_LESS ? "GL_LESS" : "GL_LEQUAL") +
+                  " but GlFrameOptions::depth is Reversed: set DepthConvention::Standard");
+}
+
+}  // namespace
+
 FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
+  check_depth_convention(options_.depth);
   const GlStateGuard guard(bindings());
   FrameReport report;
   report.index = frames_++;
@@ -185,7 +206,8 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       continue;
     }
     report.attempts.push_back({technique_->table(), report.counters, technique_->capacity()});
-    if (report.counters.failures() == 0 || report.attempts.size() >= options_.max_attempts) break;
+    const std::uint32_t allowed = std::max<std::uint32_t>(options_.max_attempts, technique_->grows_at_once() ? 2 : 1);
+    if (report.counters.failures() == 0 || report.attempts.size() >= allowed) break;
     // Failures that are all calls cut short (contention or the driver, not
     // the technique's size): the same buffers, emptied, again.
     if (report.counters.failures() <= report.cut_short) {
@@ -318,6 +340,7 @@ void GlFrameDriver::read_counters(FrameReport& report) const {
   c.merge_duplicates(tally[HABUFFER_COUNTER_MERGED]);
   report.counters = c;
   report.slot_writes = tally[HABUFFER_COUNTER_SLOT_WRITES];
+  report.off_screen = tally[HABUFFER_COUNTER_OFF_SCREEN];
   report.nodes_requested = words[HABUFFER_COUNTER_NODES];
   report.most_arrived = words[HABUFFER_COUNTER_MOST_ARRIVED];
 }

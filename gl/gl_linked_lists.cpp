@@ -15,6 +15,15 @@ namespace {
 
 constexpr std::uint64_t kNodeBytes = sizeof(glm::uvec2) + 4;  // entry and link
 
+// pool_capacity 0 asks for an automatic pool: it starts at one node per
+// pixel (the API has no counting pass, as render has), a frame that dropped
+// is gathered again at once into a pool of the nodes it asked for, and
+// SPEC 8's rule adapts it every frame.
+TechniqueConfig with_pool(TechniqueConfig c) {
+  if (c.pool_capacity == 0) c.pool_capacity = std::max<std::uint64_t>(c.buffer.screen.area(), 1);
+  return c;
+}
+
 }  // namespace
 
 struct GlLinkedLists::Gpu {
@@ -26,8 +35,10 @@ struct GlLinkedLists::Gpu {
 };
 
 GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(lists_flavour(config.technique), mode, bindings, validated_as(config, lists_flavour(config.technique)).buffer.screen),
-      config_(validated_as(config, lists_flavour(config.technique))),
+    : GlTechnique(lists_flavour(config.technique), mode, bindings,
+                  validated_as(with_pool(config), lists_flavour(config.technique)).buffer.screen),
+      config_(validated_as(with_pool(config), lists_flavour(config.technique))),
+      auto_pool_(config.pool_capacity == 0),
       gpu_(std::make_unique<Gpu>()) {
   check_atomic_mode(mode, config_.buffer.layout);
   check_storage_fits(screen().area() * 4, "the head image of screen " + screen().str());
@@ -81,7 +92,7 @@ std::string GlLinkedLists::pool_limit(std::uint64_t nodes) const {
 }
 
 void GlLinkedLists::begin_frame(FrameReport& report, const GlFrameOptions& options) {
-  if (!options.adaptive || !has_request_) return;
+  if (!(options.adaptive || auto_pool_) || !has_request_) return;
   // SPEC 8's rule on the pool: its use is the nodes the last frame asked for.
   const std::uint64_t next = options.policy.next(config_.pool_capacity, last_requested_);
   if (next == config_.pool_capacity) return;

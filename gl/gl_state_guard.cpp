@@ -47,6 +47,8 @@ void GlStateGuard::prepare_full_screen_pass() {
   switch_off_pass_capabilities(false);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  for (GLint d = 1; d < limit(GL_MAX_DRAW_BUFFERS); ++d)
+    glColorMaski(static_cast<GLuint>(d), GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glBindBuffer(GL_QUERY_BUFFER, 0);
 }
 
@@ -78,9 +80,10 @@ GlStateGuard::GlStateGuard(const GlBindings& bindings) {
   glGetFloati_v(GL_VIEWPORT, 0, viewport_);
   glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
   glGetFloatv(GL_POINT_SIZE, &point_size_);
-  for (GLuint d = 0; d < kGuardedDrawBuffers; ++d) {
-    glGetBooleani_v(GL_COLOR_WRITEMASK, d, colour_masks_[d]);
-    for (int i = 0; i < 6; ++i) glGetIntegeri_v(kBlend[i], d, &blends_[d][i]);
+  draw_buffers_.resize(static_cast<std::size_t>(limit(GL_MAX_DRAW_BUFFERS)));
+  for (GLuint d = 0; d < draw_buffers_.size(); ++d) {
+    glGetBooleani_v(GL_COLOR_WRITEMASK, d, draw_buffers_[d].mask);
+    for (int i = 0; i < 6; ++i) glGetIntegeri_v(kBlend[i], d, &draw_buffers_[d].blend[i]);
   }
   glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer_);
   for (std::size_t i = 0; i < pack_.size(); ++i) glGetIntegerv(kPackParameters[i], &pack_[i]);
@@ -106,9 +109,9 @@ GlStateGuard::~GlStateGuard() {
   glViewportIndexedfv(0, viewport_);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
   glPointSize(point_size_);
-  for (GLuint d = 0; d < kGuardedDrawBuffers; ++d) {
-    const GLboolean* m = colour_masks_[d];
-    const GLint* b = blends_[d];
+  for (GLuint d = 0; d < draw_buffers_.size(); ++d) {
+    const GLboolean* m = draw_buffers_[d].mask;
+    const GLint* b = draw_buffers_[d].blend;
     glColorMaski(d, m[0], m[1], m[2], m[3]);
     glBlendFuncSeparatei(d, static_cast<GLenum>(b[0]), static_cast<GLenum>(b[1]), static_cast<GLenum>(b[2]),
                          static_cast<GLenum>(b[3]));

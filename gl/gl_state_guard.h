@@ -1,8 +1,8 @@
 // Saves the GL state the library's passes touch and restores it on scope
 // exit, so a host app's context is left as it was: current program, vertex
 // array, draw framebuffer, viewport 0, polygon mode, the colour masks and
-// blend setup of draw buffers 0 and 1 (the resolve writes buffer 0, wboit's
-// gather buffers 0 and 1), the pixel-pack buffer and pack parameters (the
+// blend setup of every draw buffer (the resolve writes buffer 0 and masks
+// the others, wboit's gather writes buffers 0 and 1), the pixel-pack buffer and pack parameters (the
 // blended baselines' copies), the capabilities a
 // full-screen pass must switch off (per draw buffer and per viewport where GL
 // keeps them so, the clip distances, logic op, program point size), the point size, the query-buffer binding, and the
@@ -28,8 +28,10 @@ class GlStateGuard {
   // Disables what would alter a full-screen pass (blend, depth, stencil,
   // cull, scissor, rasterizer discard, clip distances), sets polygon mode to
   // fill, enables every colour channel of draw buffer 0 (a mask the host left
-  // off would make the resolve write nothing), and unbinds the query buffer
-  // so query results come back to memory.
+  // off would make the resolve write nothing) and masks every other draw
+  // buffer (the pass writes output 0 only: a host's second attachment, an id
+  // buffer, would get undefined values), and unbinds the query buffer so
+  // query results come back to memory.
   static void prepare_full_screen_pass();
   // Viewport 0 only (glViewport would reset every viewport of the host's array).
   static void set_viewport(GLsizei width, GLsizei height);
@@ -39,8 +41,6 @@ class GlStateGuard {
   // GL's initial pack parameters (tightly packed rows, no skips), so a read
   // into a buffer object lays the pixels out as they are.
   static void prepare_pack();
-  // The draw buffers whose colour mask and blend setup the guard keeps.
-  static constexpr GLuint kGuardedDrawBuffers = 2;
 
  private:
   struct IndexedBuffer {
@@ -58,8 +58,11 @@ class GlStateGuard {
   GLfloat viewport_[4] = {};
   GLint polygon_mode_[2] = {};
   GLfloat point_size_ = 1.0f;
-  GLboolean colour_masks_[kGuardedDrawBuffers][4] = {};  // colour write masks
-  GLint blends_[kGuardedDrawBuffers][6] = {};            // blend functions and equations
+  struct DrawBuffer {
+    GLboolean mask[4] = {};  // colour write mask
+    GLint blend[6] = {};     // blend functions and equations
+  };
+  std::vector<DrawBuffer> draw_buffers_;  // every draw buffer, GL_MAX_DRAW_BUFFERS of them
   GLint pack_buffer_ = 0;
   std::array<GLint, 8> pack_ = {};  // the pack parameters, in the order of kPackParameters
   std::vector<Capability> capabilities_;

@@ -1,3 +1,4 @@
+#include <span>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -65,21 +66,27 @@ std::string parameter_block() {
 }  // namespace
 
 void GlBindings::validate() const {
+  static constexpr const char* kNames[] = {"table",  "max_age", "offsets",  "counters",  "locks",
+                                           "capture", "stream", "deferred", "saturation"};
   const auto points = storage_points();
   for (std::size_t i = 0; i < points.size(); ++i)
     for (std::size_t j = i + 1; j < points.size(); ++j)
       if (points[i] == points[j])
-        throw GlError("shader-storage binding point " + std::to_string(points[i]) + " is used twice");
+        throw GlError(std::string("shader-storage binding point ") + std::to_string(points[i]) + " is used twice (GlBindings::" +
+                      kNames[i] + " and ::" + kNames[j] + ")");
   GLint max_storage = 0, max_uniform = 0;
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &max_storage);
   glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &max_uniform);
-  for (unsigned p : points)
-    if (p >= static_cast<unsigned>(max_storage))
-      throw GlError("shader-storage binding point " + std::to_string(p) + " is beyond this context's " +
-                    std::to_string(max_storage) + " points");
+  // Points run from 0 to the limit - 1: a point equal to the limit is out.
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (points[i] >= static_cast<unsigned>(max_storage))
+      throw GlError(std::string("shader-storage binding point GlBindings::") + kNames[i] + " = " +
+                    std::to_string(points[i]) + " is beyond this context's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
+                    std::to_string(max_storage) + ": points 0.." + std::to_string(max_storage - 1) + ")");
   if (params >= static_cast<unsigned>(max_uniform))
-    throw GlError("uniform-buffer binding point " + std::to_string(params) + " is beyond this context's " +
-                  std::to_string(max_uniform) + " points");
+    throw GlError("uniform-buffer binding point GlBindings::params = " + std::to_string(params) +
+                  " is beyond this context's GL_MAX_UNIFORM_BUFFER_BINDINGS (" + std::to_string(max_uniform) +
+                  ": points 0.." + std::to_string(max_uniform - 1) + ")");
 }
 
 GlBindings GlBindings::from_base(unsigned storage_base, unsigned uniform_base) {
@@ -110,16 +117,38 @@ std::string GlBindings::glsl_defines(bool overridable) const {
   define("DEFERRED", deferred);
   define("SATURATION", saturation);
   define("PARAMS", params);
-  // The sorted techniques' buffers take the HA-buffer's points (one technique per module).
-  define("HEADS", table);
-  define("NODES", max_age);
-  define("LINKS", offsets);
-  define("COUNTS", table);
-  define("LAYERS", max_age);
-  define("ACCUM", table);
-  define("REVEALAGE", max_age);
   return s;
 }
+
+std::span<const GlBindings::DerivedName> GlBindings::derived_names() {
+  // One technique per module, so the other techniques' buffers take the
+  // HA-buffer's points.
+  static constexpr DerivedName kDerived[] = {{"HEADS", "TABLE"},  {"NODES", "MAX_AGE"}, {"LINKS", "OFFSETS"},
+                                             {"COUNTS", "TABLE"}, {"LAYERS", "MAX_AGE"}, {"ACCUM", "TABLE"},
+                                             {"REVEALAGE", "MAX_AGE"}};
+  return kDerived;
+}
+
+namespace {
+
+// The other techniques' binding names as the documented ones (macros of
+// macros), so a host that defines the documented names before an installed
+// file moves every technique's buffers: with numbers of their own, the
+// lists' buffers stayed at the defaults while the container bound the
+// host's points, and every fragment vanished with no error. A host that
+// defines a derived name itself gets a one-line #error naming the name to
+// define instead.
+std::string derived_binding_defines() {
+  std::string s;
+  for (const GlBindings::DerivedName& d : GlBindings::derived_names()) {
+    const std::string name = std::string("HABUFFER_BINDING_") + d.name, of = std::string("HABUFFER_BINDING_") + d.of;
+    s += "#ifdef " + name + "\n#error " + name + " is derived from " + of + ": define that one instead\n#endif\n";
+    s += "#define " + name + ' ' + of + '\n';
+  }
+  return s;
+}
+
+}  // namespace
 
 namespace {
 
@@ -182,6 +211,7 @@ std::string technique_module_body(Technique technique, AtomicMode mode, const Gl
   std::string s;
   if (stage == ShaderStage::Fragment) s += "#define HABUFFER_STAGE_FRAGMENT\n";
   s += bindings.glsl_defines(overridable_bindings);
+  s += derived_binding_defines();
   s += word_defines(mode);
   s += kHaConstants;
   s += '\n';
@@ -304,8 +334,11 @@ std::vector<GlslFile> host_glsl_files() {
             "// Place after `#version 450 core` and the lines of extensions.glsl, anywhere at global scope\n"
             "// (after the host's own declarations too), then call\n"
             "//   uint ha_insert(uvec2 pixel, float depth, uint rgba)  // rgba: packUnorm4x8, straight alpha\n"
-            "// once per fragment. Binding points: #define HABUFFER_BINDING_* before this file to move them\n"
-            "// (the same numbers as the host's habuffer::gl::GlBindings), defaults from 16 up.\n"
+            "// once per fragment. Binding points (defaults 16..24, uniform 16): #define any of\n"
+            "//   HABUFFER_BINDING_TABLE MAX_AGE OFFSETS COUNTERS LOCKS CAPTURE STREAM DEFERRED SATURATION\n"
+            "//   (shader-storage) and HABUFFER_BINDING_PARAMS (uniform) before this file to move them, with\n"
+            "// the same numbers as the host's habuffer::gl::GlBindings (GlBindings::glsl_defines() writes\n"
+            "// them). Every technique's buffers take these points; define no other HABUFFER_BINDING_ name.\n"
             "// Reserved names: ha_*, Ha*, habuffer_*, HABUFFER_*, ll_*, fa_*, sl_*, kb_*, bl_*, wb_*.\n";
         if (!stores_lists(t))
           head +=

@@ -1,5 +1,9 @@
-// GPU time of a span of GL commands (GL_TIME_ELAPSED query). Only one such
-// query may be active at a time, so spans must not nest.
+// GPU time of a span of GL commands, as the difference of two GL_TIMESTAMP
+// queries. Timestamps are never "active": a host's own GL_TIME_ELAPSED query
+// around a frame() or inside its gather callback keeps running untouched (a
+// GL_TIME_ELAPSED query of ours would have ended the host's, GL errors
+// 0x0502, or made the host's begin fail inside the gather), and spans may
+// nest.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -13,33 +17,32 @@ namespace habuffer::gl {
 
 class GpuTimer {
  public:
-  GpuTimer() { glCreateQueries(GL_TIME_ELAPSED, 1, &query_); }
-  ~GpuTimer() { glDeleteQueries(1, &query_); }
+  GpuTimer() { glCreateQueries(GL_TIMESTAMP, 2, queries_); }
+  ~GpuTimer() { glDeleteQueries(2, queries_); }
   GpuTimer(const GpuTimer&) = delete;
   GpuTimer& operator=(const GpuTimer&) = delete;
 
-  void begin() const { glBeginQuery(GL_TIME_ELAPSED, query_); }
-  void end() const { glEndQuery(GL_TIME_ELAPSED); }
-  // Waits for the result (inside a GlStateGuard: see query_result).
-  [[nodiscard]] double milliseconds() const { return static_cast<double>(query_result(query_)) * 1e-6; }
+  void begin() const { glQueryCounter(queries_[0], GL_TIMESTAMP); }
+  void end() const { glQueryCounter(queries_[1], GL_TIMESTAMP); }
+  // Waits for both timestamps (inside a GlStateGuard: see query_result).
+  [[nodiscard]] double milliseconds() const {
+    const GLuint64 start = query_result(queries_[0]), stop = query_result(queries_[1]);
+    return stop > start ? static_cast<double>(stop - start) * 1e-6 : 0.0;
+  }
 
  private:
-  GLuint query_ = 0;
+  GLuint queries_[2] = {0, 0};
 };
 
-// Wall clock and GPU timer around one pass; the query is ended on every
-// path, so a pass that throws leaves no query active.
+// Wall clock and GPU timestamps around one pass. Nothing stays active, so a
+// pass that throws needs no clean-up.
 class PassClock {
  public:
   explicit PassClock(const GpuTimer& timer) : timer_(timer), start_(std::chrono::steady_clock::now()) { timer_.begin(); }
-  ~PassClock() {
-    if (running_) timer_.end();
-  }
   PassClock(const PassClock&) = delete;
   PassClock& operator=(const PassClock&) = delete;
   // Ends the pass (waiting for it with glFinish when `finish`): {wall ms, GPU ms}.
   [[nodiscard]] std::pair<double, double> stop(bool finish) {
-    running_ = false;
     timer_.end();
     if (finish) glFinish();
     const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
@@ -49,7 +52,6 @@ class PassClock {
  private:
   const GpuTimer& timer_;
   std::chrono::steady_clock::time_point start_;
-  bool running_ = true;
 };
 
 }  // namespace habuffer::gl

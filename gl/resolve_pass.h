@@ -24,7 +24,7 @@ class ResolvePass {
 
   // Needs the buffers bound and the caller's state guard. Returns {wall ms, GPU ms}.
   // background_texture: 0 for the uniform background, else a 2D texture read per pixel.
-  // Writes every colour channel of draw buffer 0 (prepare_full_screen_pass;
+  // Writes every colour channel of draw buffer 0 and no other draw buffer (prepare_full_screen_pass;
   // the caller's guard restores the host's mask and blend setup).
   std::pair<double, double> run(Extent screen, glm::vec3 background, unsigned background_texture, bool finish);
   // The same over what the framebuffer holds: premultiplied (C, 1 - T)

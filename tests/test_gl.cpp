@@ -81,6 +81,51 @@ TEST(Gl, BindingPointsAreCheckedAgainstEachOtherAndTheLimits) {
   }
 }
 
+// Binding points run from 0 to the limit - 1: a point equal to
+// GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (or GL_MAX_UNIFORM_BUFFER_BINDINGS)
+// is refused, the point below it taken; a container refuses it in one line
+// naming the member, the point and the limit, before compiling anything.
+TEST(Gl, ABindingPointEqualToTheContextsLimitIsRefusedAndTheOneBelowItTaken) {
+  gl_context();
+  GLint max_storage = 0, max_uniform = 0;
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &max_storage);
+  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &max_uniform);
+  ASSERT_GE(max_storage, 9);
+  ASSERT_GE(max_uniform, 1);
+  const auto storage = static_cast<unsigned>(max_storage), uniform = static_cast<unsigned>(max_uniform);
+  EXPECT_NO_THROW(gl::GlBindings::from_base(storage - 9, uniform - 1).validate());  // saturation = limit - 1
+  const auto refused = [](const gl::GlBindings& b) -> std::string {
+    try {
+      b.validate();
+    } catch (const gl::GlError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const std::string storage_error = refused(gl::GlBindings::from_base(storage - 8, 0));  // saturation = limit
+  EXPECT_NE(storage_error.find("GlBindings::saturation = " + std::to_string(storage)), std::string::npos) << storage_error;
+  EXPECT_NE(storage_error.find("GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" + std::to_string(storage)), std::string::npos)
+      << storage_error;
+  const std::string uniform_error = refused(gl::GlBindings::from_base(0, uniform));
+  EXPECT_NE(uniform_error.find("GlBindings::params = " + std::to_string(uniform)), std::string::npos) << uniform_error;
+  EXPECT_NE(uniform_error.find("GL_MAX_UNIFORM_BUFFER_BINDINGS (" + std::to_string(uniform)), std::string::npos)
+      << uniform_error;
+  // A container with such a point: the same line, not a compile log.
+  TechniqueConfig c;
+  c.technique = Technique::Lists;
+  c.buffer = test::config({8, 8}, {8, 8}, Layout::L32, 8);
+  c.pool_capacity = 64;
+  try {
+    (void)gl::make_gl_technique(c, {}, gl::AtomicMode::Native32, gl::GlBindings::from_base(storage - 8, 0));
+    ADD_FAILURE() << "a container took binding point " << storage;
+  } catch (const gl::GlError& e) {
+    EXPECT_EQ(std::string(e.what()), storage_error);
+  }
+  // The storage-size limit the buffers are checked against: equal fits, one more byte does not.
+  EXPECT_NO_THROW(gl::check_storage_fits(gl::max_storage_bytes(), "a buffer"));
+  EXPECT_THROW(gl::check_storage_fits(gl::max_storage_bytes() + 1, "a buffer"), gl::GlError);
+}
+
 // HABUFFER_ATOMIC_MODE forces a mode for the layout it holds, refuses a mode
 // this context cannot run and any unknown name: never a silent fallback.
 TEST(Gl, TheAtomicModeOverrideIsObeyedOrRefused) {

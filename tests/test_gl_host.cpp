@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gl_test_support.h"
+#include "habuffer/gl/gl_error.h"
 
 namespace habuffer {
 namespace {
@@ -430,10 +431,24 @@ struct HostRaster {
   }
 };
 
+// The binding names docs/embedding.md lists, written here by hand as a host
+// reads them there (not by the library's GlBindings::glsl_defines()).
+std::string documented_defines(const gl::GlBindings& b) {
+  const std::pair<const char*, unsigned> names[] = {
+      {"TABLE", b.table},       {"MAX_AGE", b.max_age}, {"OFFSETS", b.offsets},   {"COUNTERS", b.counters},
+      {"LOCKS", b.locks},       {"CAPTURE", b.capture}, {"STREAM", b.stream},     {"DEFERRED", b.deferred},
+      {"SATURATION", b.saturation}, {"PARAMS", b.params}};
+  std::string s;
+  for (const auto& [name, point] : names) s += "#define HABUFFER_BINDING_" + std::string(name) + " " + std::to_string(point) + "\n";
+  return s;
+}
+
 // The module placed after the host's own declarations (its uniform block,
 // storage buffer, inputs, outputs and functions), as the runtime assembles
 // it and as the installed GLSL files give it (at the host's binding points,
-// defined before the file), compiles and renders what the module placed
+// with only the documented names defined before the file: every technique's
+// buffers follow them; the lists' once stayed at the defaults and every
+// transparent pixel vanished), compiles and renders what the module placed
 // first renders, bit for bit.
 TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
   HostContext host;
@@ -448,7 +463,7 @@ TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
   std::map<std::string, std::string> files;
   for (const gl::GlslFile& f : gl::host_glsl_files()) files[f.path] = f.text;
   for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info()))
-    for (Technique t : {Technique::Ha, Technique::Lists, Technique::KBuffer}) {
+    for (Technique t : {Technique::Ha, Technique::Lists, Technique::Arrays, Technique::SortedLists, Technique::KBuffer}) {
       SCOPED_TRACE(gl::to_string(mode) + " " + to_string(t));
       TechniqueConfig c;
       c.technique = t;
@@ -461,7 +476,7 @@ TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
       const std::string dir = gl::to_string(mode) + "/";
       ASSERT_EQ(files.count(dir + to_string(t) + ".frag.glsl"), 1u);
       const std::string from_files = "#version 450 core\n" + files[dir + "extensions.glsl"] + kHostDeclarations +
-                                     bindings.glsl_defines() + files[dir + to_string(t) + ".frag.glsl"] + kHostMain;
+                                     documented_defines(bindings) + files[dir + to_string(t) + ".frag.glsl"] + kHostMain;
       std::vector<std::vector<glm::vec4>> images;
       std::vector<Counters> counters;
       for (const std::string* fragment : {&first, &after, &from_files}) {
@@ -479,6 +494,150 @@ TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
   std::uint32_t host_count = 0;
   glGetNamedBufferSubData(host_buffers[1], 0, 4, &host_count);
   EXPECT_GT(host_count, 0u);  // the host's own buffer, written by its own code
+  glDeleteBuffers(2, host_buffers);
+}
+
+// A host that defines another technique's binding name (the lists' heads)
+// before an installed file gets one #error naming the documented name to
+// define instead, not a shader bound elsewhere than the container.
+TEST(GlHost, DefiningADerivedBindingNameIsACompileErrorNamingTheDocumentedOne) {
+  HostContext host;
+  std::string lists;
+  for (const gl::GlslFile& f : gl::host_glsl_files())
+    if (f.path == "native32/lists.frag.glsl") lists = f.text;
+  ASSERT_FALSE(lists.empty());
+  const std::string fragment = "#version 450 core\n#define HABUFFER_BINDING_HEADS 40\n" + lists +
+                               "void main() { ha_insert_here(vec4(1.0)); }\n";
+  try {
+    (void)gl::ShaderProgram::graphics(kHostVertex, fragment, "host gather");
+    ADD_FAILURE() << "compiled";
+  } catch (const gl::GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("HABUFFER_BINDING_HEADS is derived from HABUFFER_BINDING_TABLE"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// The host's framebuffer has a second colour attachment, an R32UI id buffer
+// drawn as draw buffer 1: resolve_over() and resolve() write draw buffer 0
+// only and leave every id as it was, and draw buffer 1's mask (on) comes back.
+TEST(GlHost, TheResolveLeavesTheHostsIdAttachmentUntouched) {
+  HostContext host;
+  const Extent screen{24, 24};
+  GLuint textures[2], framebuffer = 0;
+  glCreateTextures(GL_TEXTURE_2D, 2, textures);
+  glTextureStorage2D(textures[0], 1, GL_RGBA32F, 24, 24);
+  glTextureStorage2D(textures[1], 1, GL_R32UI, 24, 24);
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, textures[0], 0);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, textures[1], 0);
+  const GLenum draw_buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer, 2, draw_buffers);
+  std::vector<std::uint32_t> ids(screen.area());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = 1000u + 7u * static_cast<std::uint32_t>(i);
+  glTextureSubImage2D(textures[1], 0, 0, 0, 24, 24, GL_RED_INTEGER, GL_UNSIGNED_INT, ids.data());
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  gl::GlHaBuffer gpu(test::config(screen, {30, 30}, test::layout_of(mode), 8), test::random_offsets(6), mode);
+  gl::ComputeInserter(gpu).insert(test::stream(screen, StreamKind::Random, 2000, 6));  // every pixel, most of them
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  gpu.resolve_over();
+  gpu.resolve({0.5f, 0.5f, 0.5f});
+  std::vector<std::uint32_t> after(screen.area());
+  glGetTextureImage(textures[1], 0, GL_RED_INTEGER, GL_UNSIGNED_INT, static_cast<GLsizei>(after.size() * 4), after.data());
+  EXPECT_EQ(static_cast<std::size_t>(std::mismatch(ids.begin(), ids.end(), after.begin()).first - ids.begin()), ids.size())
+      << "an id changed";
+  GLboolean mask[4] = {};
+  glGetBooleani_v(GL_COLOR_WRITEMASK, 1, mask);
+  EXPECT_TRUE(mask[0] == GL_TRUE && mask[1] == GL_TRUE && mask[2] == GL_TRUE && mask[3] == GL_TRUE);
+  std::vector<glm::vec4> colour(screen.area());
+  glGetTextureImage(textures[0], 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(colour.size() * sizeof(glm::vec4)),
+                    colour.data());
+  EXPECT_TRUE(colour == test::resolve_to_image(gpu, {0.5f, 0.5f, 0.5f})) << "draw buffer 0 holds the resolve";
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteTextures(2, textures);
+}
+
+// Host queries: a GL_TIME_ELAPSED and a GL_SAMPLES_PASSED query of the host
+// around frame() (with the clear pass running), the first around the resolve too, keep
+// running, end without a GL error, and the samples count only the host's own
+// gather; the same two queries inside the gather callback work; the clear
+// pass counts the stored records under the host's query as without it.
+TEST(GlHost, HostQueriesAroundAndInsideAFrameAreNeverDisturbed) {
+  HostContext host;
+  GLuint host_buffers[2];
+  glCreateBuffers(2, host_buffers);
+  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostRaster raster;
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  gl::GlHaBuffer gpu(test::config({24, 24}, {64, 64}, test::layout_of(mode), 8), test::random_offsets(5), mode);
+  const auto program = gl::ShaderProgram::graphics(
+      kHostVertex, gpu.module_source(gl::ShaderStage::Fragment) + kHostDeclarations + kHostMain, "host gather");
+  GLuint queries[4];
+  glCreateQueries(GL_TIME_ELAPSED, 1, &queries[0]);
+  glCreateQueries(GL_SAMPLES_PASSED, 1, &queries[1]);
+  glCreateQueries(GL_TIME_ELAPSED, 1, &queries[2]);
+  glCreateQueries(GL_SAMPLES_PASSED, 1, &queries[3]);
+  const auto draw = [&] {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, raster.framebuffer);
+    glViewport(0, 0, 24, 24);
+    glUseProgram(program.id());
+    glBindVertexArray(raster.vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 9);
+  };
+  const auto result = [](GLuint q) {
+    GLuint64 v = 0;
+    glGetQueryObjectui64v(q, GL_QUERY_RESULT, &v);
+    return v;
+  };
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  const gl::FrameReport first = gpu.frame(draw);
+  ASSERT_EQ(first.counters.failures(), 0u);
+  // Around the second frame, whose clear pass counts the first frame's records.
+  glBeginQuery(GL_TIME_ELAPSED, queries[0]);
+  glBeginQuery(GL_SAMPLES_PASSED, queries[1]);
+  const gl::FrameReport second = gpu.frame(draw);
+  glEndQuery(GL_SAMPLES_PASSED);
+  GLuint texture = 0, framebuffer = 0;  // the host's image, for the resolve under its timer
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, GL_RGBA8, 24, 24);
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  gpu.resolve_over();
+  glEndQuery(GL_TIME_ELAPSED);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteTextures(1, &texture);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_TRUE(second.cleared);
+  EXPECT_EQ(result(queries[1]), second.counters.fragments) << "the host's samples are its gather's fragments";
+  EXPECT_GT(result(queries[0]), 0u);
+  // Inside the gather callback.
+  const gl::FrameReport third = gpu.frame([&] {
+    glBeginQuery(GL_TIME_ELAPSED, queries[2]);
+    glBeginQuery(GL_SAMPLES_PASSED, queries[3]);
+    draw();
+    glEndQuery(GL_SAMPLES_PASSED);
+    glEndQuery(GL_TIME_ELAPSED);
+  });
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_EQ(result(queries[3]), third.counters.fragments);
+  EXPECT_GT(result(queries[2]), 0u);
+  const gl::FrameReport fourth = gpu.frame(draw);
+  // The clear pass under the host's query (second frame, read in the third)
+  // and without one (third frame, read in the fourth) count the same records.
+  ASSERT_TRUE(third.counted_stored.has_value());
+  ASSERT_TRUE(fourth.counted_stored.has_value());
+  EXPECT_EQ(*third.counted_stored, first.counters.stored());
+  EXPECT_EQ(*fourth.counted_stored, second.counters.stored());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glDeleteQueries(4, queries);
   glDeleteBuffers(2, host_buffers);
 }
 
@@ -558,6 +717,140 @@ TEST(GlHost, ResolveOverBlendsOntoTheHostsFramebuffer) {
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glDeleteFramebuffers(1, &framebuffer);
   glDeleteTextures(1, &texture);
+}
+
+// pool_capacity 0 on the GPU is the automatic pool: one node per pixel at
+// first, the first frame (three overlapping triangles: more fragments than
+// pixels) dropped and was gathered again at once into a pool of the nodes it
+// asked for, without lossless mode, and renders the HA-buffer's image; the
+// next frame fits in one attempt.
+TEST(GlHost, AnAutomaticPoolHoldsTheFrameWithoutLosslessMode) {
+  HostContext host;
+  GLuint host_buffers[2];
+  glCreateBuffers(2, host_buffers);
+  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostRaster raster;
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  std::vector<std::vector<glm::vec4>> images;
+  for (Technique t : {Technique::Ha, Technique::Lists, Technique::SortedLists}) {
+    SCOPED_TRACE(to_string(t));
+    TechniqueConfig c;
+    c.technique = t;
+    c.buffer = test::config({24, 24}, {64, 64}, test::layout_of(mode), 8);
+    c.pool_capacity = 0;  // the default: automatic
+    gl::GlFrameDriver gpu(gl::make_gl_technique(c, test::random_offsets(5), mode));
+    const auto program = gl::ShaderProgram::graphics(
+        kHostVertex, gpu.module_source(gl::ShaderStage::Fragment) + kHostDeclarations + kHostMain, "host gather");
+    gl::FrameReport report;
+    images.push_back(raster.render(gpu, program, report));
+    EXPECT_EQ(report.counters.failures(), 0u);
+    if (t == Technique::Ha) continue;
+    EXPECT_EQ(report.attempts.size(), 2u);
+    EXPECT_EQ(report.attempts.front().capacity, 24u * 24u);
+    EXPECT_GT(report.attempts.front().counters.dropped_pool, 0u);
+    EXPECT_TRUE(images.back() == images.front());
+    (void)raster.render(gpu, program, report);
+    EXPECT_EQ(report.attempts.size(), 1u);
+    EXPECT_EQ(report.counters.failures(), 0u);
+  }
+  glDeleteBuffers(2, host_buffers);
+}
+
+// A host whose window grew beyond the container's screen (the triangles
+// drawn at 24x24 into a 16x16 container, as after a resize without a new
+// container): the fragments beyond the screen are lost, counted invalid and
+// off_screen, and the frame is not lossless; at the right size it is.
+TEST(GlHost, FragmentsBeyondTheScreenAreALossTheReportSays) {
+  HostContext host;
+  GLuint host_buffers[2];
+  glCreateBuffers(2, host_buffers);
+  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostRaster raster;
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  for (const Extent screen : {Extent{16, 16}, Extent{24, 24}}) {
+    SCOPED_TRACE(screen.str());
+    gl::GlHaBuffer gpu(test::config(screen, {64, 64}, test::layout_of(mode), 8), test::random_offsets(5), mode);
+    const auto program = gl::ShaderProgram::graphics(
+        kHostVertex, gpu.module_source(gl::ShaderStage::Fragment) + kHostDeclarations + kHostMain, "host gather");
+    gl::FrameReport report;
+    (void)raster.render(gpu, program, report);
+    EXPECT_EQ(report.counters.failures(), 0u);
+    EXPECT_EQ(report.off_screen, report.counters.invalid);
+    if (screen.x < 24) {
+      EXPECT_GT(report.off_screen, 0u);
+      EXPECT_FALSE(report.lossless());
+    } else {
+      EXPECT_EQ(report.off_screen, 0u);
+      EXPECT_TRUE(report.lossless());
+    }
+  }
+  glDeleteBuffers(2, host_buffers);
+}
+
+// The same triangles drawn by a reversed-Z host (glClipControl zero-to-one,
+// window depth 1 nearest): depth 1 - d where kHostVertex gives d.
+constexpr const char* kHostVertexReversed = R"(#version 450 core
+out vec4 host_colour;
+void main() {
+  int tri = gl_VertexID / 3, k = gl_VertexID % 3;
+  vec2 p = k == 0 ? vec2(-1.0, -1.0) : k == 1 ? vec2(3.0, -1.0) : vec2(-1.0, 3.0);
+  p = p * (0.4 + 0.2 * float(tri)) + vec2(0.15 * float(tri), -0.1 * float(tri));
+  gl_Position = vec4(p, 1.0 - (0.2 + 0.25 * float(tri)), 1.0);
+  host_colour = vec4(tri == 0 ? 0.9 : 0.1, tri == 1 ? 0.8 : 0.2, tri == 2 ? 0.7 : 0.3, 0.4 + 0.15 * float(tri));
+}
+)";
+
+// A reversed-Z host (glClipControl zero-to-one, GL_GREATER) with
+// DepthConvention::Reversed renders the standard host's image; with the
+// default convention its GL_GREATER depth test is refused in one line
+// instead of compositing back to front (which would give another image).
+TEST(GlHost, AReversedZHostRendersTheStandardImageWithTheReversedConvention) {
+  HostContext host;
+  GLuint host_buffers[2];
+  glCreateBuffers(2, host_buffers);
+  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
+  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostRaster raster;
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  TechniqueConfig c;
+  c.buffer = test::config({24, 24}, {64, 64}, test::layout_of(mode), 8);
+  const auto image = [&](const char* vertex, gl::DepthConvention convention) {
+    gl::GlFrameOptions o;
+    o.depth = convention;
+    gl::GlFrameDriver gpu(gl::make_gl_technique(c, test::random_offsets(5), mode), o);
+    const auto program = gl::ShaderProgram::graphics(
+        vertex, gpu.module_source(gl::ShaderStage::Fragment) + kHostDeclarations + kHostMain, "host gather");
+    gl::FrameReport report;
+    auto out = raster.render(gpu, program, report);
+    EXPECT_EQ(report.counters.failures(), 0u);
+    return out;
+  };
+  const std::vector<glm::vec4> standard = image(kHostVertex, gl::DepthConvention::Standard);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glEnable(GL_DEPTH_TEST);  // no depth attachment in the gather: every fragment passes
+  glDepthFunc(GL_GREATER);
+  EXPECT_TRUE(image(kHostVertexReversed, gl::DepthConvention::Reversed) == standard);
+  try {
+    (void)image(kHostVertexReversed, gl::DepthConvention::Standard);
+    ADD_FAILURE() << "a GL_GREATER depth test was taken for the standard convention";
+  } catch (const gl::GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("GL_GREATER (reversed-Z) but GlFrameOptions::depth is Standard"),
+              std::string::npos)
+        << e.what();
+  }
+  glDisable(GL_DEPTH_TEST);  // what the check cannot see: the lists come out back to front
+  EXPECT_FALSE(image(kHostVertexReversed, gl::DepthConvention::Standard) == standard);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  glDepthFunc(GL_LESS);
+  glDeleteBuffers(2, host_buffers);
 }
 
 }  // namespace

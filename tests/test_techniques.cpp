@@ -249,6 +249,29 @@ TEST(Techniques, LosslessBuildsGrowThePoolAndTheLayersUntilNothingIsDropped) {
   }
 }
 
+// pool_capacity 0 is the automatic pool, as the CLI's --pool auto: a build
+// sizes it for its fragments at grow_at use and loses nothing in one
+// attempt; a container made without fragments still refuses it, saying who takes it.
+TEST(Techniques, AnAutomaticPoolIsSizedFromTheFragmentsAndHoldsThemInOneAttempt) {
+  const Extent screen{30, 20};
+  const std::vector<Fragment> frags = test::stream(screen, StreamKind::Hot, 4000, 12);
+  for (Technique t : {Technique::Lists, Technique::SortedLists}) {
+    TechniqueConfig c = test::technique_config(t, screen);
+    c.pool_capacity = 0;
+    const TechniqueBuild b = build_technique(c, OffsetSource{}, frags, InsertOptions{});
+    EXPECT_TRUE(b.lossless()) << to_string(t);
+    EXPECT_EQ(b.attempts.size(), 1u) << to_string(t);
+    EXPECT_EQ(b.buffer->capacity(), 5000u) << to_string(t);  // 4000 / 0.8
+    EXPECT_EQ(test::traversed_lists(*b.buffer), test::exact_lists(frags, RecordLayout(Layout::L64, 8))) << to_string(t);
+    try {
+      (void)make_fragment_buffer(c, OffsetSource{});
+      ADD_FAILURE() << "a container without fragments took the automatic pool";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("0, automatic, is for build_technique"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Techniques, TheMemoryModelGivesWhatTheCpuContainersAllocateToTheByte) {
   for (const Extent screen : {Extent{64, 48}, Extent{1000, 3}, Extent{17, 17}})
     for (std::uint32_t block : {1u, 8u, 5u}) {

@@ -19,6 +19,10 @@ uint ha_insert(uvec2 pixel, float depth, uint rgba) {
     if (ha_capture_capacity > 0u && ha_gather_phase == 0u) ha_capture(pixel, depth, rgba);
     if (ha_capture_only != 0u) return HABUFFER_INVALID;
     outcome = HABUFFER_TECHNIQUE_CALL(pixel, depth, rgba);
+  } else {
+    // Counted once per frame: not in a pass that inserts nothing (the k-buffer's fill pass).
+    if (ha_gather_phase != 0u) return HABUFFER_UNCOUNTED;
+    ha_counter_add(pixel, HABUFFER_COUNTER_OFF_SCREEN, 1u);
   }
   if (outcome < HABUFFER_OUTCOME_COUNT) ha_counter_add(pixel, outcome, 1u);
   return outcome;
@@ -32,7 +36,12 @@ uint ha_insert(uvec2 pixel, float depth) { return ha_insert(pixel, depth, 0u); }
 uint ha_pack_rgba(vec4 colour) { return packUnorm4x8(colour.abgr); }
 
 #ifdef HABUFFER_STAGE_FRAGMENT
-// The current fragment at its pixel and window depth gl_FragCoord.z (the
-// default depth range: 0 nearest), with a straight-alpha colour.
-uint ha_insert_here(vec4 colour) { return ha_insert(uvec2(gl_FragCoord.xy), gl_FragCoord.z, ha_pack_rgba(colour)); }
+// The current fragment at its pixel and window depth, with a straight-alpha
+// colour: gl_FragCoord.z (0 nearest), or 1 - gl_FragCoord.z for a host
+// whose depth convention is reversed-Z (GlFrameOptions::depth: 1 nearest,
+// GL_GREATER), so the lists are nearest first either way.
+uint ha_insert_here(vec4 colour) {
+  float depth = ha_depth_reversed != 0u ? 1.0 - gl_FragCoord.z : gl_FragCoord.z;
+  return ha_insert(uvec2(gl_FragCoord.xy), depth, ha_pack_rgba(colour));
+}
 #endif

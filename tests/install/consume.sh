@@ -8,7 +8,13 @@
 #  - adds the source tree to a C++17 host project by add_subdirectory, with
 #    shared libraries and without oneTBB: only the libraries are made, the
 #    host's build type is kept, both examples build and run;
-#  - builds the CPU example again through pkg-config alone;
+#  - builds the CPU example of COMPONENTS core with pkg-config disabled
+#    (core needs neither pkg-config nor libepoxy);
+#  - checks that add_subdirectory sets habuffer_GLSL_DIR and leaves the
+#    host's targets that do not link habuffer at C++17;
+#  - builds the CPU example again through pkg-config alone (its Cflags
+#    carry -std=c++20);
+#  - checks the license (MIT) is installed and named by both packages;
 #  - compiles every installed header on its own;
 #  - checks that the installed headers define no macro outside HABUFFER_*;
 #  - checks the installed GLSL files.
@@ -52,6 +58,24 @@ if cmake -S "$work/too_new" -B "$work/too_new/build2" -DCMAKE_PREFIX_PATH="$pref
 fi
 grep -q "no component 'vulkan'" "$work/no_component.log" || fail "the missing component is not named"
 
+echo "== COMPONENTS core without pkg-config or libepoxy"
+mkdir -p "$work/core_only"
+cat >"$work/core_only/CMakeLists.txt" <<CMAKE
+cmake_minimum_required(VERSION 3.22)
+project(core_only LANGUAGES CXX)
+find_package(habuffer 0.1 CONFIG REQUIRED COMPONENTS core)
+if(NOT habuffer_LICENSE STREQUAL "MIT" OR NOT EXISTS "\${habuffer_LICENSE_FILE}")
+  message(FATAL_ERROR "the package names license '\${habuffer_LICENSE}', file '\${habuffer_LICENSE_FILE}'")
+endif()
+add_executable(cpu_only "$source/examples/cpu_only/main.cpp")
+target_link_libraries(cpu_only PRIVATE habuffer::core)
+CMAKE
+cmake -S "$work/core_only" -B "$work/core_only/build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
+      -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON -DPKG_CONFIG_EXECUTABLE=/nonexistent >"$work/core_only.log" 2>&1 ||
+  { cat "$work/core_only.log"; fail "COMPONENTS core needed pkg-config"; }
+cmake --build "$work/core_only/build" >>"$work/core_only.log" 2>&1 || { tail -40 "$work/core_only.log"; fail "COMPONENTS core: build failed"; }
+"$work/core_only/build/cpu_only" >/dev/null || fail "COMPONENTS core: cpu_only failed"
+
 echo "== add_subdirectory into a C++17 host project (shared libraries, std::thread instead of oneTBB)"
 mkdir -p "$work/subdir"
 cat >"$work/subdir/CMakeLists.txt" <<CMAKE
@@ -61,6 +85,13 @@ set(CMAKE_CXX_STANDARD 17)
 set(BUILD_SHARED_LIBS ON)
 set(HABUFFER_WITH_TBB OFF CACHE BOOL "")
 add_subdirectory("$source" habuffer)
+if(NOT habuffer_GLSL_DIR)
+  message(FATAL_ERROR "add_subdirectory does not set habuffer_GLSL_DIR")
+endif()
+file(WRITE "\${CMAKE_BINARY_DIR}/glsl_dir.txt" "\${habuffer_GLSL_DIR}")
+# A target that does not link habuffer keeps the host's C++17.
+file(WRITE "\${CMAKE_BINARY_DIR}/cxx17.cpp" "static_assert(__cplusplus == 201703L, \\"C++17\\");\\nint main() { return 0; }\\n")
+add_executable(cxx17_probe "\${CMAKE_BINARY_DIR}/cxx17.cpp")
 foreach(t habuffer habuffer_tests habuffer_gl_tests habuffer_bench habuffer_scene habuffer_render habuffer_harness)
   if(TARGET \${t})
     message(FATAL_ERROR "add_subdirectory made \${t}")
@@ -84,14 +115,21 @@ ldd "$work/subdir/build/cpu_only" >"$work/ldd.txt"
 grep libhabuffer_core.so "$work/ldd.txt" >/dev/null || fail "add_subdirectory: libhabuffer_core is not shared"
 ! grep libtbb "$work/ldd.txt" >/dev/null || fail "add_subdirectory: oneTBB linked with HABUFFER_WITH_TBB=OFF"
 "$work/subdir/build/host_app" >/dev/null || fail "add_subdirectory: host_app failed"
+[ -f "$(cat "$work/subdir/build/glsl_dir.txt")/native32/ha.frag.glsl" ] || fail "add_subdirectory: habuffer_GLSL_DIR has no GLSL files"
 
 echo "== pkg-config"
 export PKG_CONFIG_PATH=$prefix/lib/pkgconfig:$prefix/lib/x86_64-linux-gnu/pkgconfig
 pkg-config --exists habuffer-core habuffer-gl || fail "pkg-config does not find habuffer-core and habuffer-gl"
 # shellcheck disable=SC2046
-c++ -std=c++20 -O1 "$source/examples/cpu_only/main.cpp" -o "$work/cpu_only_pc" $(pkg-config --cflags --libs habuffer-core)
+c++ -O1 "$source/examples/cpu_only/main.cpp" -o "$work/cpu_only_pc" $(pkg-config --cflags --libs habuffer-core)
 "$work/cpu_only_pc" >/dev/null || fail "cpu_only built through pkg-config failed"
 [ -d "$(pkg-config --variable=glsldir habuffer-gl)" ] || fail "habuffer-gl's glsldir does not exist"
+
+echo "== license"
+grep -q "^MIT License" "$prefix/share/doc/habuffer/LICENSE" || fail "the license is not installed in share/doc/habuffer"
+for pc in habuffer-core habuffer-gl; do
+  [ "$(pkg-config --variable=license $pc)" = MIT ] || fail "$pc does not name the MIT license"
+done
 
 echo "== every installed header compiles on its own"
 find "$prefix/include/habuffer" -name '*.h' ! -path '*/shared/*' | sort >"$work/headers.txt"

@@ -64,7 +64,7 @@ struct TechniqueConfig {
   /// the depth code, so lists of every technique compare bit for bit); table,
   /// block, iteration limit and early cull are the HA-buffer's.
   BufferConfig buffer;
-  std::uint64_t pool_capacity = 0;          ///< linked lists, sorted lists: nodes (at least 1)
+  std::uint64_t pool_capacity = 0;          ///< linked lists, sorted lists: nodes; 0: automatic (build_technique, GL containers)
   std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< fixed arrays, k-buffer: K (at least 1)
   /// k-buffer: occupancy-map culling (a fill pass, a count pass, then
   /// insertion rejecting what lies beyond the k-th occupied bucket) with

@@ -78,11 +78,14 @@
 // arrays merged as duplicates (counted stored at insertion, moved to
 // duplicates by the host); the pixels the sort pass finished (every pixel of
 // the screen must: a driver that ends an invocation early leaves the count
-// short, never silently).
+// short, never silently); the calls whose pixel lay outside the screen
+// (counted invalid too; a loss: a host drawing beyond the screen it
+// configured, e.g. after a window resize).
 #define HABUFFER_COUNTER_SLOT_WRITES 11u
 #define HABUFFER_COUNTER_MERGED 12u
 #define HABUFFER_COUNTER_SORT_DONE 13u
-#define HABUFFER_GPU_COUNTER_COUNT 14u
+#define HABUFFER_COUNTER_OFF_SCREEN 14u
+#define HABUFFER_GPU_COUNTER_COUNT 15u
 // Words after the stripes, on a cache line of their own, that are not sums:
 // the linked lists' node counter (one atomic add per fragment, the
 // technique's own hot spot) and the most fragments a fixed-array pixel

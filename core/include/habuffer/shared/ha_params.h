@@ -29,7 +29,11 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UINT(ha_occupancy_near_code)  // k-buffer: the depth code of the range's near end
   HABUFFER_PARAM_UINT(ha_occupancy_bucket_codes)  // k-buffer: depth codes per bucket
   HABUFFER_PARAM_FLOAT(ha_depth_near)         // wboit: the depth range its weights span
-  HABUFFER_PARAM_FLOAT(ha_depth_far)          // (block size a multiple of 16 bytes, as std140 rounds it)
+  HABUFFER_PARAM_FLOAT(ha_depth_far)
+  HABUFFER_PARAM_UINT(ha_depth_reversed)       // every technique: 1: ha_insert_here reads 1 - gl_FragCoord.z (reversed-Z)
+  HABUFFER_PARAM_UINT(ha_unused_1)             // (block size a multiple of 16 bytes, as std140 rounds it)
+  HABUFFER_PARAM_UINT(ha_unused_2)
+  HABUFFER_PARAM_UINT(ha_unused_3)
 HABUFFER_PARAMS_END
 
 #endif

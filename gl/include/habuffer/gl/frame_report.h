@@ -17,6 +17,13 @@ namespace habuffer::gl {
 /// Options of every frame of a GlFrameDriver; its constructor throws
 /// std::invalid_argument for bad ones (an invalid policy, max_attempts or
 /// lock_spin_limit 0, capture_only without capture).
+/// The host's depth convention, which ha_insert_here() reads
+/// gl_FragCoord.z by (records are always nearest first, SPEC 2).
+enum class DepthConvention {
+  Standard,  ///< window depth 0 is nearest (GL_LESS / GL_LEQUAL; the default depth range)
+  Reversed,  ///< window depth 1 is nearest (reversed-Z: GL_GREATER / GL_GEQUAL, glClipControl zero-to-one)
+};
+
 struct GlFrameOptions {
   /// Resize by `policy` from the previous frame's count (SPEC 8): the
   /// HA-buffer's table, the linked lists' node pool (fixed arrays keep K).
@@ -43,15 +50,21 @@ struct GlFrameOptions {
   std::uint32_t clear_tile = 0;  ///< side of the clear pass's tiles; 0: the framebuffer limits
   bool finish_timing = true;     ///< glFinish after each pass so wall_ms is the pass's whole time
   bool count_writes = false;     ///< tally slot writes (FrameReport::slot_writes): one more atomic per insert
+  /// How ha_insert_here() reads gl_FragCoord.z. frame() refuses a depth test
+  /// enabled at the call with a function of the other convention (GL_GREATER
+  /// or GL_GEQUAL with Standard, GL_LESS or GL_LEQUAL with Reversed), which
+  /// would otherwise composite back to front with no error.
+  DepthConvention depth = DepthConvention::Standard;
 };
 
 /// Time of one pass: wall clock from submission to completion (glFinish when
 /// GlFrameOptions::finish_timing, else submission only), and the driver's
-/// GL_TIME_ELAPSED. Use wall_ms on Mesa llvmpipe: its timer queries measure
-/// command recording, not rasterization (0.2 ms for an 11 ms gather here).
+/// time between two GL_TIMESTAMP queries (never an active GL_TIME_ELAPSED
+/// query, which would end or block a host's own). Use wall_ms on Mesa
+/// llvmpipe: its timer queries measure command recording, not rasterization.
 struct PassTiming {
   double wall_ms = 0.0;  ///< wall clock (ms)
-  double gpu_ms = 0.0;   ///< GL_TIME_ELAPSED (ms)
+  double gpu_ms = 0.0;   ///< between two GL_TIMESTAMP queries (ms)
 };
 
 /// What one GlFrameDriver::frame did: sizes, outcome tallies, gathers repeated,
@@ -95,8 +108,13 @@ struct FrameReport {
   PassTiming clear;   ///< the clear pass (zero on the first frame)
   PassTiming gather;  ///< the final gather, its resume rounds included
   PassTiming sort;    ///< linked lists, fixed arrays: the sort pass after the final gather
-  /// Whether the final gather dropped nothing (no failures in its counters).
-  [[nodiscard]] bool lossless() const { return counters.failures() == 0; }
+  /// Insert calls of the final gather whose pixel lay outside the screen
+  /// (also in counters.invalid): fragments lost, for instance drawn by a
+  /// host whose window grew beyond the screen it configured (resize_screen()).
+  std::uint64_t off_screen = 0;
+  /// Whether the final gather lost nothing: no failures in its counters and
+  /// no fragment off the screen.
+  [[nodiscard]] bool lossless() const { return counters.failures() == 0 && off_screen == 0; }
 };
 
 }  // namespace habuffer::gl

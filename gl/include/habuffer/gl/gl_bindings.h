@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <string>
 
 namespace habuffer::gl {
@@ -13,7 +14,8 @@ namespace habuffer::gl {
 /// Binding points of the GPU path's buffers. The defaults start at 16
 /// (kDefaultStorageBase, kDefaultUniformBase), above the points hosts use
 /// first; from_base() moves them as a block. Every point is checked against
-/// the context's limits when a frame driver is made (validate()).
+/// the context's limits when a container is made (validate()), before it
+/// compiles a shader with them.
 struct GlBindings {
   static constexpr unsigned kDefaultStorageBase = 16;  ///< the first shader-storage point by default
   static constexpr unsigned kDefaultUniformBase = 16;  ///< the uniform-buffer point by default
@@ -42,9 +44,21 @@ struct GlBindings {
   /// the context's limits (GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS,
   /// GL_MAX_UNIFORM_BUFFER_BINDINGS); needs a current context.
   void validate() const;
-  /// "#define HABUFFER_BINDING_TABLE 16\n..." for the module assembly; with
-  /// `overridable`, each inside #ifndef (the installed GLSL files).
+  /// "#define HABUFFER_BINDING_TABLE 16\n..." for the module assembly: the
+  /// ten documented names, HABUFFER_BINDING_TABLE, _MAX_AGE, _OFFSETS,
+  /// _COUNTERS, _LOCKS, _CAPTURE, _STREAM, _DEFERRED, _SATURATION (storage)
+  /// and _PARAMS (uniform); with `overridable`, each inside #ifndef (the
+  /// installed GLSL files). What a host defines before an installed file.
   [[nodiscard]] std::string glsl_defines(bool overridable = false) const;
+  /// A binding name of another technique's buffer and the documented name
+  /// whose point it takes (HEADS is TABLE's point, ...).
+  struct DerivedName {
+    const char* name;  ///< after HABUFFER_BINDING_
+    const char* of;    ///< the documented name it is defined as
+  };
+  /// Every derived name: the module defines each as its documented name (a
+  /// host never defines them; one that does gets an #error).
+  [[nodiscard]] static std::span<const DerivedName> derived_names();
 };
 
 }  // namespace habuffer::gl

@@ -8,6 +8,10 @@
 /// the pool by the policy's step past grow_at use of the previous frame's
 /// request and shrinks it below shrink_at (SPEC 8's rule on nodes); lossless
 /// mode regathers into a pool of at least the nodes the gather asked for.
+/// `pool_capacity` 0 is the automatic pool (the CLI's `--pool auto`): one
+/// node per pixel at first, a frame that dropped gathered again at once into
+/// a pool of the nodes it asked for (whatever max_attempts), and SPEC 8's
+/// rule every frame (whatever adaptive).
 #pragma once
 
 #include <memory>
@@ -20,7 +24,8 @@ namespace habuffer::gl {
 /// sorted-lists (see the file comment).
 class GlLinkedLists final : public GlTechnique {
  public:
-  /// Throws std::invalid_argument for a bad config, GlError beyond the context's limits.
+  /// Throws std::invalid_argument for a bad config, GlError beyond the
+  /// context's limits. `config.pool_capacity` 0: the automatic pool.
   GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings);
   /// Deletes the head image, node pool, saturation codes and sort pass.
   ~GlLinkedLists() override;
@@ -46,6 +51,10 @@ class GlLinkedLists final : public GlTechnique {
   /// Whether this is sorted-lists: kept sorted while inserting, no sort pass.
   [[nodiscard]] bool sorted_on_insert() const { return config_.technique == Technique::SortedLists; }
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
+  /// The automatic pool grows at once, in the frame that dropped.
+  [[nodiscard]] bool grows_at_once() const override { return auto_pool_; }
+  /// Whether the pool is automatic (pool_capacity 0 given).
+  [[nodiscard]] bool automatic_pool() const { return auto_pool_; }
   [[nodiscard]] std::uint64_t capacity() const override { return config_.pool_capacity; }
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
@@ -58,6 +67,7 @@ class GlLinkedLists final : public GlTechnique {
   [[nodiscard]] std::string pool_limit(std::uint64_t nodes) const;
 
   TechniqueConfig config_;
+  bool auto_pool_ = false;
   std::uint64_t last_requested_ = 0;
   bool has_request_ = false;
   std::unique_ptr<Gpu> gpu_;

@@ -27,7 +27,9 @@ struct GlParams;
 /// comment); make_gl_technique makes one.
 class GlTechnique {
  public:
-  /// Records what every container shares (no GL calls).
+  /// Records what every container shares and checks the binding points
+  /// against the current context's limits (GlBindings::validate: GlError),
+  /// before the container compiles anything with them.
   GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen);
   /// Virtual: frame drivers own containers through this base.
   virtual ~GlTechnique();
@@ -91,6 +93,10 @@ class GlTechnique {
   /// counters and counts; the driver retries calls cut short itself); false
   /// when this context cannot hold more.
   virtual bool grow(const FrameReport& report, const GlFrameOptions& options) = 0;
+  /// Whether a frame that dropped fragments is gathered again into a grown
+  /// container even without lossless mode (max_attempts 1): the automatic
+  /// pool of linked lists. One such regather, then max_attempts rules.
+  [[nodiscard]] virtual bool grows_at_once() const { return false; }
   /// Whether insert calls can be cut short and deferred (the HA-buffer's probe loop).
   [[nodiscard]] virtual bool defers_calls() const { return false; }
   /// Records the technique can hold now.
