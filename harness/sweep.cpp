@@ -80,12 +80,8 @@ ResultRow make_row(const SweepSettings& s, double load, const LoadRuns& r) {
   if (s.path == RenderPath::Gl && calls > 0) row.set("slot_writes_per_fragment", static_cast<double>(r.slot_writes) / calls);
   if (r.probes >= 0.0) row.set("probes_per_fragment", r.probes);
   if (!r.histogram.empty()) {
-    const double n = static_cast<double>(r.mean_age.size());
-    double mean = 0.0, var = 0.0;
-    for (const double a : r.mean_age) mean += a / n;
-    for (const double a : r.mean_age) var += (a - mean) * (a - mean) / std::max(1.0, n - 1.0);
     row.set("mean_age", histogram_mean(r.histogram))
-        .set("mean_age_ci95", n > 1 ? student_t95(static_cast<std::uint32_t>(n - 1)) * std::sqrt(var / n) : 0.0)
+        .set("mean_age_ci95", mean_ci95(r.mean_age))
         .set("p99_age", histogram_quantile(r.histogram, 0.99))
         .set("max_age", *std::max_element(r.max_age.begin(), r.max_age.end()))
         .set("age_histogram", r.histogram);

@@ -10,6 +10,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "ply_check.h"
+
 namespace habuffer {
 namespace {
 
@@ -56,6 +58,7 @@ Mesh convert(const aiScene& s, const aiMesh& m, std::size_t index, float opacity
 
 Scene load_mesh_file(const std::string& path, float opacity) {
   if (!std::ifstream(path).good()) throw SceneError("mesh file '" + path + "' cannot be opened");
+  if (is_ply_file(path)) check_ply_file(path);  // assimp trusts a PLY header: it may abort or allocate gigabytes
   Assimp::Importer importer;
   const aiScene* s = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                                  aiProcess_PreTransformVertices | aiProcess_SortByPType |

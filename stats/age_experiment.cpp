@@ -163,4 +163,13 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
   return rows;
 }
 
+double mean_ci95(std::span<const double> samples) {
+  const auto n = static_cast<double>(samples.size());
+  if (samples.size() < 2) return 0.0;
+  double mean = 0.0, var = 0.0;
+  for (const double a : samples) mean += a / n;
+  for (const double a : samples) var += (a - mean) * (a - mean) / (n - 1.0);
+  return student_t95(static_cast<std::uint32_t>(samples.size() - 1)) * std::sqrt(var / n);
+}
+
 }  // namespace habuffer

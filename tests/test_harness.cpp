@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <numeric>
 
 #include "gl_test_support.h"
@@ -12,6 +14,7 @@
 #include "habuffer/harness/frontier.h"
 #include "habuffer/harness/plan.h"
 #include "habuffer/harness/sweep.h"
+#include "habuffer/harness/technique_spec.h"
 
 namespace habuffer::harness {
 namespace {
@@ -250,6 +253,128 @@ TEST(Harness, TechniqueWordsReadBackToTheirLabelsAndBadKnobsAreRefusedByName) {
     EXPECT_THROW((void)parse_technique_spec(bad), std::invalid_argument) << bad;
   EXPECT_THROW((void)parse_workload_spec("planes:order=up"), std::invalid_argument);
   EXPECT_THROW((void)parse_workload_spec("planes:depth=3"), std::invalid_argument);
+}
+
+TEST(Harness, EqualPointsAreBothOnTheParetoFrontAndAStrictlyBetterOneDropsThem) {
+  ResultTable t;
+  const auto row = [&](const char* tech, double ms, double mem, double psnr) {
+    ResultRow r;
+    r.set("scene", "a").set("size", "8x8").set("path", "cpu").set("technique", tech).set("total_ms", ms)
+        .set("memory_bytes", mem).set("psnr", psnr);
+    t.rows.push_back(r);
+  };
+  row("twin-1", 2.0, 64.0, 40.0);
+  row("twin-2", 2.0, 64.0, 40.0);
+  row("slower-same-psnr", 2.5, 64.0, 40.0);
+  row("same-time-worse", 2.0, 64.0, 39.0);
+  mark_pareto(t);
+  const auto mark = [&](std::size_t i, const char* c) { return std::get<bool>(*t.rows[i].find(c)); };
+  EXPECT_TRUE(mark(0, "pareto_time")) << "a tie dominates nobody";
+  EXPECT_TRUE(mark(1, "pareto_time"));
+  EXPECT_TRUE(mark(0, "pareto_memory"));
+  EXPECT_TRUE(mark(1, "pareto_memory"));
+  EXPECT_FALSE(mark(2, "pareto_time")) << "as accurate, strictly slower";
+  EXPECT_TRUE(mark(2, "pareto_memory")) << "as much memory and as accurate: a tie in memory";
+  EXPECT_FALSE(mark(3, "pareto_time")) << "as fast, strictly less accurate";
+}
+
+TEST(Harness, SceneWordsObeyRendersRulesForEveryKey) {
+  const WorkloadSpec ok = parse_workload_spec("quads:count=8:seed=7:opacity=1:spread=0.5");
+  EXPECT_EQ(ok.options.count, 8u);
+  EXPECT_EQ(ok.options.seed, 7u);
+  EXPECT_EQ(ok.options.spread, 0.5f);
+  EXPECT_EQ(parse_workload_spec("planes:count=1048576:order=front").options.order, PlaneOrder::FrontToBack);
+  EXPECT_EQ(parse_workload_spec("frags.csv").fragments, "frags.csv");
+  const auto refusal = [](const std::string& w) {
+    try {
+      (void)parse_workload_spec(w);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::pair<const char*, const char*> refused[] = {
+      {"quads:count=0", "outside 1..1048576"},
+      {"planes:count=1048577", "outside 1..1048576"},
+      {"planes:count=1000000000", "outside 1..1048576"},
+      {"quads:opacity=0.00196", "above 1/510"},  // 1/510 = 0.0019608: rounds to alpha 0
+      {"quads:opacity=1.5", "outside (0, 1]"},
+      {"quads:spread=-0.1", "outside [0, 1]"},
+      {"quads:order=front", "does not take order"},
+      {"engine:count=3", "does not take count"},
+      {"planes:seed=3", "does not take seed"},
+      {"planes:spread=0.5", "does not take spread"},
+      {"frags.csv:count=3", "a fragment file takes no options"},
+      {"quads:count=3:count=4", "count given twice"},
+      {"planes:", "empty option"},
+      {"quads:count=1e3", "not a non-negative integer"},
+      {"quads:opacity=1e-50", "outside float32's range"},
+  };
+  for (const auto& [word, why] : refused) {
+    const std::string m = refusal(word);
+    EXPECT_NE(m.find(why), std::string::npos) << word << ": " << m;
+    EXPECT_NE(m.find(word), std::string::npos) << word << " is not named in: " << m;
+  }
+}
+
+TEST(Harness, TechniqueWordsObeyTheOptionsRulesAndLoadsThatOverflowAreRefusedNamingTheLoad) {
+  const std::pair<const char*, const char*> refused[] = {
+      {"ha:cull=1e-40", "smallest normal float32"},  // a subnormal: a GPU may flush it to 0
+      {"ha:cull=0", "threshold must be in (0, 1]"},
+      {"ha:cull=0.5:cull=0.6", "cull given twice"},
+      {"ha:load=0.5:load=0.6", "load given twice"},
+      {"ha:age=13", "outside 4..12"},
+      {"ha:age=3", "outside 4..12"},
+      {"arrays:k=65537", "outside 1..65536"},
+      {"kbuffer:k=4:occ:words=33", "outside 1..32"},
+      {"ha:load=0", "load must be in (0, 1]"},
+  };
+  for (const auto& [word, why] : refused) {
+    try {
+      (void)parse_technique_spec(word);
+      ADD_FAILURE() << word << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << word << ": " << e.what();
+    }
+  }
+  EXPECT_EQ(parse_technique_spec("ha:cull=1.17549435e-38").cull, std::numeric_limits<float>::min());
+  for (const auto& size : {std::function<void()>([] { (void)table_for_load({16, 16}, 1024, 1e-300); }),
+                           std::function<void()>([] { (void)capacity_for_load(1024, 1e-300); })}) {
+    try {
+      size();
+      ADD_FAILURE() << "a load of 1e-300 was sized";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("load 1e-300"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("2^32"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(capacity_for_load(1024, 0.5), 2048u);
+  EXPECT_EQ(table_for_load({16, 16}, 1024, 1.0), (Extent{32, 32}));
+}
+
+TEST(Harness, SweepRefusesASizeInTheTechniqueWordThatItWouldOverride) {
+  SweepSettings s = small_sweep(RenderPath::Cpu);
+  for (const char* w : {"ha:load=0.5", "arrays:k=4", "lists:load=0.9"}) {
+    s.technique = parse_technique_spec(w);
+    EXPECT_THROW(validate_sweep(s), std::invalid_argument) << w;
+  }
+  s.technique = parse_technique_spec("ha:cull=0.9");
+  EXPECT_NO_THROW(validate_sweep(s));
+}
+
+TEST(Harness, FiguresRefuseScenesWhoseKnobTheyVaryAndTable1BoundsItsSizes) {
+  EXPECT_THROW(check_fig2_scene(parse_workload_spec("f.csv")), std::invalid_argument);
+  EXPECT_THROW(check_fig2_scene(parse_workload_spec("hairball:opacity=0.5")), std::invalid_argument);
+  EXPECT_NO_THROW(check_fig2_scene(parse_workload_spec("hairball:count=10")));
+  EXPECT_THROW(check_fig8_scene(parse_workload_spec("planes")), std::invalid_argument);
+  EXPECT_THROW(check_fig8_scene(parse_workload_spec("quads:spread=0.5")), std::invalid_argument);
+  EXPECT_NO_THROW(check_fig8_scene(parse_workload_spec("quads:count=8")));
+  EXPECT_THROW(validate_memory_table({64, 64}, {1000}, {0.0}), std::invalid_argument);
+  EXPECT_THROW(validate_memory_table({64, 64}, {1000}, {1.5}), std::invalid_argument);
+  EXPECT_THROW(validate_memory_table({64, 64}, {0}, {0.5}), std::invalid_argument);
+  EXPECT_THROW(validate_memory_table({64, 64}, {kMaxTableFragments + 1}, {0.5}), std::invalid_argument);
+  EXPECT_THROW(validate_memory_table({64, 64}, {kMaxTableFragments}, {0.4}), std::invalid_argument);
+  EXPECT_NO_THROW(validate_memory_table({64, 64}, {kMaxTableFragments}, {1.0}));
 }
 
 // The plan's predictions for engine at 256x256 against measured renders:

@@ -147,6 +147,31 @@ TEST_F(InputSafety, LinesLongerThanTheLimitStopWithTheFileAndLine) {
   EXPECT_NE(why_binary.find("nul.csv:1: line longer than"), std::string::npos);
 }
 
+TEST_F(InputSafety, ALineOfExactlyTheLimitIsReadAndOneByteMoreIsRefused) {
+  const std::string head = "0,0,0.5,";
+  for (const std::size_t extra : {std::size_t{0}, std::size_t{1}}) {
+    const std::string line = head + std::string(CsvReader::kMaxLineBytes - head.size() + extra, '7');
+    ASSERT_EQ(line.size(), CsvReader::kMaxLineBytes + extra);
+    for (const bool from_file : {true, false}) {
+      const std::string why = data_error([&] {
+        const std::string body = "x,y,depth,rgba\n" + line + "\n";
+        if (from_file) {
+          read_fragments(write("edge.csv", body), {1, 1});
+        } else {
+          CsvReader r = CsvReader::from_text("edge.csv", body);
+          r.expect_header({"x", "y", "depth", "rgba"});
+          std::vector<std::string_view> fields;
+          while (r.next(fields)) (void)r.u32_dec_or_hex(fields[3], "rgba");
+        }
+      });
+      if (extra == 0)
+        EXPECT_NE(why.find(":2: field rgba"), std::string::npos) << "a line of exactly the limit is read: " << why.substr(0, 120);
+      else
+        EXPECT_NE(why.find(":2: line longer than"), std::string::npos) << why.substr(0, 120);
+    }
+  }
+}
+
 TEST_F(InputSafety, RowsWithAnExtraFieldAreRefusedInEveryCsvFile) {
   EXPECT_NE(data_error([&] { read_fragments(write("f.csv", "x,y,depth,rgba\n0,0,0.5,1,9\n"), {1, 1}); })
                 .find("f.csv:2: 5 fields, expected 4"),

@@ -72,6 +72,45 @@ TEST(Scene, ErrorsNameTheSceneOrFile) {
 
 // Depth t is linear eye depth between near and far (the paper's mapping):
 // the bounding sphere lies inside [0, 1].
+// assimp trusts a PLY header: a truncated ASCII file aborted the process
+// inside its assertions, a short binary one claiming 4e9 vertices ran out of
+// memory. Both are refused before assimp reads them, naming the element.
+TEST(Scene, PlyFilesThatCannotHoldWhatTheirHeaderDeclaresAreRefusedBeforeImport) {
+  const auto message = [](const std::string& name, const std::string& text) {
+    const std::string path = testing::TempDir() + "/" + name;
+    std::ofstream(path, std::ios::binary) << text;
+    try {
+      (void)make_scene(path, {});
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string ascii_head =
+      "ply\nformat ascii 1.0\nelement vertex 1000\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string truncated = message("truncated.ply", ascii_head + "0 0 0\n1 0 0\n0 1 0\n");
+  EXPECT_NE(truncated.find("declares 1001 rows but the file has 3 lines"), std::string::npos) << truncated;
+  EXPECT_NE(truncated.find("truncated.ply"), std::string::npos);
+  const std::string huge = message("huge.ply",
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n");
+  EXPECT_NE(huge.find("'vertex' claims 4000000000 rows of at least 12 bytes, but the file holds 0 bytes"),
+            std::string::npos) << huge;
+  EXPECT_NE(message("beyond.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nend_header\n").find("more than 2^32"),
+            std::string::npos);
+  EXPECT_NE(message("count.ply", "ply\nformat ascii 1.0\nelement vertex -3\nend_header\n").find("count '-3'"),
+            std::string::npos);
+  EXPECT_NE(message("noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n").find("no end_header"), std::string::npos);
+  EXPECT_NE(message("type.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty quad x\nend_header\n")
+                .find("unknown type"),
+            std::string::npos);
+  // Exactly what the header declares: read (one triangle).
+  std::string ok = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(message("whole.ply", ok), "no error");
+}
+
 TEST(Camera, FramesTheSceneWithLinearDepthInZeroOne) {
   const Scene s = make_scene("hairball", {});
   for (float yaw : {0.0f, 90.0f, 217.0f}) {

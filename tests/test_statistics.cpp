@@ -21,6 +21,18 @@ const ExperimentRow& row(const std::vector<ExperimentRow>& rows, Probing probing
   throw std::logic_error("row not found");
 }
 
+TEST(Statistics, TheMeansConfidenceIntervalIsTSigmaOverTheRootOfN) {
+  const std::vector<double> five{1, 2, 3, 4, 5};  // sample sd sqrt(2.5), t95(4) = 2.776
+  EXPECT_NEAR(mean_ci95(five), student_t95(4) * std::sqrt(2.5) / std::sqrt(5.0), 1e-12);
+  EXPECT_NEAR(mean_ci95(five), 1.9632, 1e-3);
+  // Four times the samples, same spread: the interval narrows by more than 2x.
+  std::vector<double> twenty;
+  for (int k = 0; k < 4; ++k) twenty.insert(twenty.end(), five.begin(), five.end());
+  EXPECT_LT(mean_ci95(twenty), mean_ci95(five) / 2.0);
+  EXPECT_EQ(mean_ci95(std::vector<double>{3.0}), 0.0);
+  EXPECT_EQ(mean_ci95(std::vector<double>{2.0, 2.0, 2.0}), 0.0);
+}
+
 TEST(Statistics, CoherentRobinHoodSimulatorBuildsTheL32HaBufferTable) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     const Extent screen{48, 40}, table{60, 40};

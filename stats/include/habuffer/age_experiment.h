@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <span>
 #include <vector>
 
 #include "habuffer/fragment_streams.h"
@@ -59,5 +60,10 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& config);
 
 // Two-sided 95% Student t quantile for `df` degrees of freedom.
 double student_t95(std::uint32_t df);
+
+// Half-width of the 95% confidence interval of the mean of `samples`:
+// t95(n - 1) * s / sqrt(n), with s the sample standard deviation; 0 for
+// fewer than two samples.
+double mean_ci95(std::span<const double> samples);
 
 }  // namespace habuffer
