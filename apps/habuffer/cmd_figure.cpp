@@ -46,7 +46,7 @@ int run_figure(const std::vector<std::string>& argv) {
   s.path = parse_path(args);
   s.repeats = args.u32("repeats", 3, 1, 1000);
   s.threads = args.u32("threads", 0, 0, kMaxThreads);
-  args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
+  if (name != "table1") args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
   try {
     s.tau = args.has("tau") ? parse_cull_threshold(args.str("tau", "")) : 0.99f;
   } catch (const std::invalid_argument& e) {
@@ -79,11 +79,17 @@ int run_figure(const std::vector<std::string>& argv) {
     const std::vector<Extent> size = parse_sizes(args, "1024x1024");
     if (size.size() != 1) throw UsageError("--size takes one WxH for table1");
     std::vector<std::uint64_t> counts;
+    const auto option = [&](const char* flag, auto parse) {
+      try {
+        parse();
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("option --") + flag + ": " + e.what());
+      }
+    };
     for (const std::string& f : args.list("fragments", "850000,1500000,10000000"))
-      checked([&] { counts.push_back(parse_unsigned(f, 1, harness::kMaxTableFragments)); });
+      option("fragments", [&] { counts.push_back(parse_unsigned(f, 1, harness::kMaxTableFragments)); });
     std::vector<double> loads;
-    for (const std::string& l : args.list("loads", "0.9,0.8,0.5"))
-      checked([&] { loads.push_back(parse_load_factor(l)); });
+    for (const std::string& l : args.list("loads", "0.9,0.8,0.5")) option("loads", [&] { loads.push_back(parse_load_factor(l)); });
     checked([&] { harness::validate_memory_table(size[0], counts, loads); });
     outputs = parse_outputs(args, {});
     table = harness::run_memory_table(size[0], counts, loads, !args.has("no-allocate"));

@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/interchange.h"
+#include "habuffer/memory_budget.h"
 
 namespace habuffer::cli {
 
@@ -44,6 +45,11 @@ int run_generate(const std::vector<std::string>& argv) {
     if (!(load > 0.0 && load <= 4.0)) throw UsageError("option --load: must be in (0, 4]");
     const Extent table = args.extent("table").value_or(*screen);
     o.count = static_cast<std::uint64_t>(std::llround(load * static_cast<double>(table.area())));
+  }
+  try {
+    check_fits_in_memory("--fragments " + std::to_string(o.count), saturating_product(o.count, sizeof(Fragment)));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
   write_fragments(out, make_stream(*screen, o));
   return 0;

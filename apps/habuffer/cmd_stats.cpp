@@ -1,10 +1,12 @@
 // habuffer stats: experiments on age vs load over the CPU-path model.
+#include <cmath>
 #include <cstdio>
 #include <algorithm>
 #include <cstdlib>
 #include <charconv>
 
 #include "cli_args.h"
+#include "habuffer/memory_budget.h"
 #include "commands.h"
 #include "habuffer/age_experiment.h"
 #include "habuffer/csv.h"
@@ -100,6 +102,15 @@ int run_stats(const std::vector<std::string>& argv) {
     if (ec != std::errc() || end != l.data() + l.size() || !(v > 0.0 && v <= 4.0))
       throw UsageError("option --loads: " + excerpt(l) + " is not a load in (0, 4]");
     c.loads.push_back(v);
+  }
+  // The largest load's stream (16 bytes a fragment) and the table (8 bytes a slot).
+  double max_load = 0.0;
+  for (const double l : c.loads) max_load = std::max(max_load, l);
+  try {
+    check_fits_in_memory("option --screen " + c.screen.str() + " (table " + c.table.str() + ")",
+                         saturating_product(c.table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
   }
   c.trials = args.u32("trials", 5, 1, 100000);
   c.seed = args.u64("seed", 1);

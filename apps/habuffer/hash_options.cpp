@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "habuffer/interchange.h"
+#include "habuffer/memory_budget.h"
 #include "habuffer/option_rules.h"
 
 namespace habuffer::cli {
@@ -47,6 +48,11 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
     throw UsageError("option --saturation on needs --early-cull TAU (it records where culling began)");
   try {
     c.validate();
+    // The least any technique allocates: per-pixel images and counts (32
+    // bytes a pixel over the buffers and frames) and the table's records.
+    check_fits_in_memory("screen " + c.screen.str() + " (table " + c.table_or_screen().str() + ")",
+                         saturating_product(c.screen.area(), 32) +
+                             saturating_product(c.table_or_screen().area(), c.record_layout().word_bytes()));
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

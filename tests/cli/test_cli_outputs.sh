@@ -81,6 +81,66 @@ if [[ ! -w locked ]]; then  # not as root
 fi
 chmod 755 locked
 
-for cls in signal write race replace; do echo "class $cls: ${tried[$cls]:-0} cases"; done
+# --- 5. The harness holds to the CLI's file rules --------------------------
+"$bin" generate --screen 16x16 --fragments 600 --seed 3 --out scene.csv >/dev/null 2>&1
+sum_scene=$(md5sum <scene.csv)
+ln -sf scene.csv scene_link.csv
+F=(figure frontier --path cpu --size 16x16 --repeats 1 --scenes scene.csv)
+expect files 2 "the same file as scene 'scene.csv'" -- "${F[@]}" --out scene.csv
+expect files 2 "the same file as scene 'scene.csv'" -- "${F[@]}" --out scene_link.csv
+expect files 2 "(two outputs)" -- "${F[@]}" --out f.json --picks f.json
+expect files 2 "the same file as scene" -- "${F[@]}" --out f.json --picks scene.csv
+expect files 2 "--picks" -- "${F[@]}" --out f.json --picks missing_dir/p.json
+expect values 2 "--targets has no effect without --picks" -- "${F[@]}" --out f.json --targets 30
+expect files 2 "the same file as scene" -- bench --path cpu --size 16x16 --scenes scene.csv --techniques ha --out scene.csv
+expect files 2 "the same file as scene" -- sweep --size 16x16 --fragments scene.csv --out scene.csv
+expect files 2 "the same file as scene" -- plan --size 16x16 --fragments scene.csv --out scene.csv
+unchanged files scene.csv "$sum_scene"
+
+# --- 6. Harness words and options obey render's rules -----------------------
+expect values 2 "count=0: 0 outside 1..1048576" -- bench --scenes quads:count=0 --techniques ha --out b.json
+expect values 2 "outside 1..1048576" -- bench --scenes planes:count=1000000000 --techniques ha --out b.json
+expect values 2 "above 1/510" -- bench --scenes quads:opacity=0.001 --techniques ha --out b.json
+expect values 2 "does not take count" -- bench --scenes engine:count=3 --techniques ha --out b.json
+expect values 2 "does not take order" -- bench --scenes quads:order=front --techniques ha --out b.json
+expect values 2 "a fragment file takes no options" -- bench --path cpu --scenes scene.csv:count=3 --techniques ha --out b.json
+expect values 2 "count given twice" -- bench --scenes quads:count=3:count=4 --techniques ha --out b.json
+expect values 2 "cull given twice" -- bench --scenes quads --techniques ha:cull=0.5:cull=0.6 --out b.json
+expect values 2 "smallest normal float32" -- bench --scenes quads --techniques ha:cull=1e-40 --out b.json
+expect values 2 "sweep sets the load" -- sweep --scene quads --technique ha:load=0.5 --out s.json
+expect values 2 "sweep sets the layers" -- sweep --scene quads --technique arrays:k=4 --out s.json
+expect values 2 "--offsets has no effect with --technique lists" -- sweep --scene quads --technique lists --offsets random --out s.json
+expect values 2 "--threads: 70000 outside 0..1024" -- bench --path cpu --scenes quads --techniques ha --threads 70000 --out b.json
+expect values 2 "--threads has no effect with --path gl" -- sweep --scene quads --threads 2 --out s.json
+expect values 2 "--threads has no effect with --path gl" -- figure fig10 --threads 2 --out f.json
+expect values 2 "fragment file" -- figure fig2 --scene scene.csv --path cpu --out f.json
+expect values 2 "has none (quads takes it)" -- figure fig8 --scene planes --out f.json
+expect values 2 "option --loads: load must be in (0, 1]" -- figure table1 --loads 0 --out t.json
+expect values 2 "option --loads: load must be in (0, 1]" -- figure table1 --loads 1.5 --out t.json
+expect values 2 "outside 1..2147483648" -- figure table1 --fragments 1000000000000 --out t.json
+expect values 2 "has no effect on table1" -- figure table1 --threads 2 --out t.json
+expect values 2 "--saturation has no effect with --technique lists" -- render --scene quads --size 8x8 --out q.png --technique lists --saturation on
+expect values 2 "needs" -- stats --screen 100000x100000
+expect values 2 "more than this machine's" -- render --scene quads --size 65535x65535 --out q.png
+
+# --- 7. Losses in harness runs are said; a pixel deeper than AMAX is named --
+printf 'x,y,depth,rgba\n' >deep.csv
+for i in $(seq 1 300); do printf '0,0,%s,255\n' "0.$((1000 + i))"; done >>deep.csv
+printf '1,1,0.5,255\n' >>deep.csv
+expect losses 0 "" -- bench --path cpu --size 4x4 --scenes deep.csv --techniques lists,arrays:k=2 --repeats 1 --out b.json
+grep -q "warning: 1 of 2 runs lost fragments" err.txt && grep -q "technique=arrays:k=2" err.txt && ok losses ||
+  bad losses "bench did not warn of arrays:k=2's losses: $(cat err.txt)"
+expect losses 1 "pixel (0, 0) has 300 distinct fragments, more than AMAX = 2^8 - 1 = 255, at any table size: use --age-bits 9" -- \
+  render --fragments deep.csv --size 4x4 --stats r.json --lossless
+expect losses 1 "pixel (0, 0) has 300 distinct fragments" -- build-lists --in deep.csv --out l.csv --screen 4x4 --lossless
+expect losses 0 "" -- build-lists --in deep.csv --out l.csv --screen 4x4 --lossless --age-bits 9
+timeout 60 "$bin" plan --size 4x4 --fragments deep.csv --out p.json >/dev/null 2>err.txt && grep -q "ha_beyond_amax" p.json &&
+  ok losses || bad losses "plan on a pixel deeper than AMAX: $(cat err.txt)"
+if command -v script >/dev/null; then
+  script -qec "$bin plan --size 16x16 --fragments scene.csv --out p2.json" /dev/null >tty_plan.txt 2>&1
+  grep -q 'habuffer plan \[' tty_plan.txt && ok progress || bad progress "plan shows no progress on a terminal"
+fi
+
+for cls in signal write race replace files values losses progress; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli outputs: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]
