@@ -91,15 +91,18 @@ void sync_directory(const fs::path& dir) {
 
 AtomicFile::AtomicFile(const std::string& path, Access access) : path_(path), target_(path), access_(access) {
   if (path.empty()) throw DataError("empty output file name");
+  struct stat st {};
+  const bool exists = ::stat(path.c_str(), &st) == 0;  // through links
+  if (exists && S_ISDIR(st.st_mode)) throw DataError(printable(path_) + ": is a directory, not a file to write");
+  // Devices and pipes (/dev/stdout is a link to one) are written in place,
+  // by the name given; a link to a regular file (or to none yet) is
+  // resolved, so the file it points to is replaced and the link kept.
+  in_place_ = exists && !S_ISREG(st.st_mode);
   std::error_code ec;
-  if (fs::is_symlink(path, ec)) {
-    const fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  if (!in_place_ && fs::is_symlink(path, ec)) {
+    const fs::path resolved = exists ? fs::canonical(path, ec) : fs::weakly_canonical(fs::absolute(path, ec), ec);
     if (!ec) target_ = resolved.string();
   }
-  struct stat st {};
-  const bool exists = ::stat(target_.c_str(), &st) == 0;
-  if (exists && S_ISDIR(st.st_mode)) throw DataError(printable(path_) + ": is a directory, not a file to write");
-  in_place_ = exists && !S_ISREG(st.st_mode);
   if (in_place_ && access_ == Access::Stream) {
     fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd_ < 0) fail("cannot open for writing", errno);

@@ -40,7 +40,7 @@ struct Header {
   std::uint64_t data_offset = 0;
 };
 
-Header read_header(std::ifstream& in, const std::string& path) {
+Header read_header(std::istream& in, const std::string& path) {
   Header h;
   std::string line;
   bool format = false;
@@ -56,7 +56,9 @@ Header read_header(std::ifstream& in, const std::string& path) {
     }
     if (keyword == "end_header") {
       if (!format) refuse(path, "PLY header has no format line");
-      h.data_offset = static_cast<std::uint64_t>(in.tellg());
+      const std::streamoff offset = in.tellg();
+      if (offset < 0) refuse(path, "PLY data cannot be located after its header");
+      h.data_offset = static_cast<std::uint64_t>(offset);
       return h;
     }
     if (keyword == "format") {
@@ -108,6 +110,10 @@ bool is_ply_file(const std::string& path) {
 void check_ply_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) refuse(path, "cannot be opened");
+  check_ply_stream(in, path);
+}
+
+void check_ply_stream(std::istream& in, const std::string& path) {
   const Header h = read_header(in, path);
   if (h.ascii) {
     // One row a line; blank lines hold none. Read only as far as needed.
@@ -123,7 +129,9 @@ void check_ply_file(const std::string& path) {
     return;
   }
   in.seekg(0, std::ios::end);
-  const auto size = static_cast<std::uint64_t>(in.tellg());
+  const std::streamoff end = in.tellg();
+  if (end < 0) refuse(path, "the size of the PLY data cannot be read");
+  const auto size = static_cast<std::uint64_t>(end);
   const std::uint64_t held = size > h.data_offset ? size - h.data_offset : 0;
   std::uint64_t needed = 0;
   for (const Element& e : h.elements) {

@@ -5,6 +5,7 @@
 // tens of gigabytes. Refused here with the element and the sizes instead.
 #pragma once
 
+#include <istream>
 #include <string>
 
 namespace habuffer {
@@ -17,5 +18,8 @@ bool is_ply_file(const std::string& path);
 // declares: binary, fewer bytes than the rows need at the least (lists
 // empty); ASCII, fewer non-empty lines than rows.
 void check_ply_file(const std::string& path);
+// The same over a stream (positioned at the file's start) named `path` in
+// messages: tests and the fuzz target.
+void check_ply_stream(std::istream& in, const std::string& path);
 
 }  // namespace habuffer

@@ -9,6 +9,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "habuffer/atomic_file.h"
 #include "habuffer/csv.h"
@@ -120,6 +121,25 @@ TEST_F(AtomicOutput, ADeviceIsWrittenInPlaceAndAFullOneSaysSo) {
     EXPECT_NE(std::string(e.what()).find("No space left on device"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("/dev/full"), std::string::npos) << e.what();
   }
+}
+
+TEST_F(AtomicOutput, APipeAndALinkToOneAreWrittenInPlace) {
+  const std::string fifo = (dir_ / "pipe").string(), link = (dir_ / "stdout-like").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_symlink(fifo, link);  // as /dev/stdout links to the process's pipe
+  for (const std::string& target : {fifo, link}) {
+    std::string got;
+    std::thread reader([&] { got = read(fifo); });
+    {
+      AtomicFile f(target);
+      f.write("through the pipe\n");
+      f.commit();
+    }
+    reader.join();
+    EXPECT_EQ(got, "through the pipe\n") << target;
+    EXPECT_TRUE(fs::is_fifo(fifo));
+  }
+  EXPECT_TRUE(fs::is_symlink(link));
 }
 
 TEST_F(AtomicOutput, ASymbolicLinkStaysALinkToTheReplacedFile) {

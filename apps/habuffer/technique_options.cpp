@@ -21,6 +21,8 @@ TechniqueOptions parse_technique_options(const Args& args, std::initializer_list
   args.refuse_unless(has_early_cull(tech), {"early-cull", "iter-limit", "saturation"},
                      on + " (early cull is the HA-buffer's and sorted lists')");
   args.refuse_unless(tech == Technique::Ha, {"table", "block", "offsets", "seed"}, on + " (the HA-buffer's own)");
+  args.refuse_unless(stores_lists(tech), {"lossless", "max-attempts"},
+                     on + " (it blends every fragment into the image: nothing is dropped, nothing grows)");
   for (const char* m : more) args.refuse_unless(tech == Technique::Ha, {m}, on + " (the HA-buffer's own)");
   o.layers = args.u32("layers", HABUFFER_DEFAULT_LAYERS, 1, HABUFFER_MAX_LAYERS);
   const std::string pool = args.str("pool", "auto");

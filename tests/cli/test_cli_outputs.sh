@@ -54,6 +54,8 @@ if [[ -w /dev/full ]]; then
   expect write 1 "No space left on device" -- render --scene quads --size 8x8 --path cpu --out full.png
 fi
 expect write 0 "" -- generate --screen 64x64 --fragments 5000 --out /dev/null
+lines=$("$bin" generate --screen 64x64 --fragments 5000 --out /dev/stdout 2>err.txt | wc -l)
+[[ $lines -eq 5001 ]] && ok write || bad write "--out /dev/stdout gave $lines lines: $(cat err.txt)"
 
 # --- 3. Two runs to one output leave one run's whole file -------------------
 "$bin" generate --screen 256x256 --fragments 300000 --seed 1 --out a.csv >/dev/null 2>&1
@@ -120,6 +122,8 @@ expect values 2 "option --loads: load must be in (0, 1]" -- figure table1 --load
 expect values 2 "outside 1..2147483648" -- figure table1 --fragments 1000000000000 --out t.json
 expect values 2 "has no effect on table1" -- figure table1 --threads 2 --out t.json
 expect values 2 "--saturation has no effect with --technique lists" -- render --scene quads --size 8x8 --out q.png --technique lists --saturation on
+expect values 2 "--lossless has no effect with --technique blend" -- render --scene quads --size 8x8 --out q.png --technique blend --lossless
+expect values 2 "--lossless has no effect with --technique wboit" -- render --scene quads --size 8x8 --out q.png --technique wboit --lossless
 expect values 2 "needs" -- stats --screen 100000x100000
 expect values 2 "more than this machine's" -- render --scene quads --size 65535x65535 --out q.png
 
