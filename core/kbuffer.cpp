@@ -50,11 +50,13 @@ Counters KBuffer::insert_words(std::span<const Fragment> fragments, std::uint32_
 
 Counters KBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, screen());
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const std::uint32_t threads = detail::insert_threads(options, Technique::KBuffer);
   return wide() ? insert_words<std::uint64_t>(fragments, threads) : insert_words<std::uint32_t>(fragments, threads);
 }
 
 std::uint64_t KBuffer::clear() {
+  const auto alone = gate_.alone();
   const std::uint64_t held = count_stored();
   std::fill(slots64_.begin(), slots64_.end(), 0);
   std::fill(slots32_.begin(), slots32_.end(), 0u);
@@ -72,6 +74,7 @@ std::uint64_t KBuffer::count_stored() const {
 }
 
 std::uint32_t KBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  check_pixel(x, y, screen());
   out.clear();
   const RecordLayout layout = config_.buffer.record_layout();
   const std::uint64_t pixel = x + std::uint64_t{y} * screen().x;
@@ -101,6 +104,7 @@ std::uint64_t KBuffer::memory_bytes() const {
 }
 
 void KBuffer::import_state(std::span<const std::uint32_t> slot_words, std::span<const std::uint32_t> limits) {
+  const auto alone = gate_.alone();
   const std::uint64_t words = wide() ? slots64_.size() * 2 : slots32_.size();
   if (slot_words.size() != words || limits.size() != limits_.size())
     throw std::invalid_argument("imported k-buffer has " + std::to_string(slot_words.size()) + " words and " +
@@ -115,6 +119,7 @@ void KBuffer::import_state(std::span<const std::uint32_t> slot_words, std::span<
 }
 
 std::uint32_t KBuffer::occupancy_limit(std::uint32_t x, std::uint32_t y) const {
+  check_pixel(x, y, screen());
   if (!config_.occupancy) throw std::logic_error("the k-buffer's occupancy map is off");
   return limits_[x + std::size_t{y} * screen().x];
 }

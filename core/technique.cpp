@@ -107,7 +107,9 @@ TechniqueConfig ha_technique_config(const BufferConfig& buffer) {
 }
 
 TechniqueConfig validated_as(TechniqueConfig config, Technique t) {
-  config.technique = t;
+  if (config.technique != t)
+    throw std::invalid_argument("a " + to_string(t) + " container cannot be built from a " +
+                                to_string(config.technique) + " configuration");
   config.validate();
   return config;
 }

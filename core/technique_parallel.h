@@ -38,12 +38,19 @@ inline std::uint32_t insert_threads(const InsertOptions& options, Technique tech
 
 // The stream split into contiguous slices, one per thread: each thread's
 // `make_kernel(concurrent)` (a bool_constant telling whether atomics are
-// needed: false for one thread) runs run(kernel, slice, thread).
+// needed: false for one thread, unless `shared`: other calls may insert into
+// the same buffers at the same time) runs run(kernel, slice, thread).
 template <class MakeKernel, class Run>
-void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Run run) {
+void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Run run,
+                bool shared = false) {
   if (threads == 1) {
-    auto k = make_kernel(std::false_type{});
-    run(k, frags, 0u);
+    if (shared) {
+      auto k = make_kernel(std::true_type{});
+      run(k, frags, 0u);
+    } else {
+      auto k = make_kernel(std::false_type{});
+      run(k, frags, 0u);
+    }
     return;
   }
   run_with_threads(threads, [&] {
@@ -56,16 +63,18 @@ void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKern
 }
 
 // Every fragment through insert(kernel, fragment), which returns the HA_*
-// outcome, on contiguous slices; returns the tallied outcomes.
+// outcome, on contiguous slices (atomics when `shared`, as for_slices);
+// returns the tallied outcomes.
 template <class MakeKernel, class Insert>
-Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Insert insert) {
+Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Insert insert,
+                       bool shared = false) {
   std::vector<SliceCounters> slices(threads);
   for_slices(frags, threads, make_kernel, [&](auto& k, std::span<const Fragment> slice, std::uint32_t t) {
     // A local tally: counters in memory could alias the buffers and force a store per fragment.
     std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
     for (const Fragment& f : slice) ++tally[insert(k, f)];
     slices[t].c.add_tally(tally);
-  });
+  }, shared);
   Counters total;
   for (const auto& s : slices) total += s.c;
   return total;
