@@ -97,6 +97,22 @@ void LinkedLists::import_state(std::span<const std::uint32_t> heads, std::span<c
   const auto bad_link = [&](std::uint32_t l) { return l > entries_.size(); };
   if (std::any_of(heads.begin(), heads.end(), bad_link) || std::any_of(next.begin(), next.end(), bad_link))
     throw std::invalid_argument("imported lists link beyond the pool of " + std::to_string(entries_.size()) + " nodes");
+  // Each node on at most one list, once (a cycle would never end a walk),
+  // every list sorted with valid entries.
+  const RecordLayout layout = config_.buffer.record_layout();
+  std::vector<bool> reached(entries.size(), false);
+  std::vector<glm::uvec2> list;
+  for (std::size_t p = 0; p < heads.size(); ++p) {
+    list.clear();
+    for (std::uint32_t l = heads[p]; l != 0; l = next[l - 1]) {
+      if (reached[l - 1])
+        throw std::invalid_argument("imported lists reach node " + std::to_string(l) + " twice (again from pixel (" +
+                                    std::to_string(p % screen().x) + "," + std::to_string(p / screen().x) + "))");
+      reached[l - 1] = true;
+      list.push_back(entries[l - 1]);
+    }
+    detail::check_imported_list(list, layout, p, screen(), "imported lists");
+  }
   std::copy(heads.begin(), heads.end(), heads_.begin());
   std::copy(entries.begin(), entries.end(), entries_.begin());
   std::copy(next.begin(), next.end(), next_.begin());

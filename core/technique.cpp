@@ -108,8 +108,8 @@ TechniqueConfig ha_technique_config(const BufferConfig& buffer) {
 
 TechniqueConfig validated_as(TechniqueConfig config, Technique t) {
   if (config.technique != t)
-    throw std::invalid_argument("a " + to_string(t) + " container cannot be built from a " +
-                                to_string(config.technique) + " configuration");
+    throw std::invalid_argument("technique " + to_string(t) + "'s container refuses a configuration of technique " +
+                                to_string(config.technique));
   config.validate();
   return config;
 }

@@ -12,6 +12,7 @@
 
 #include "habuffer/fragment_buffer.h"
 #include "habuffer/parallel.h"
+#include "habuffer/record_layout.h"
 
 namespace habuffer::detail {
 
@@ -135,6 +136,28 @@ std::vector<glm::vec4> composite_image(Extent screen, std::span<const glm::vec3>
     throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
                                 screen.str());
   return composite_pixels(screen, threads, make_kernel, composite, [&](std::size_t p) { return backgrounds[p]; });
+}
+
+// Throws std::invalid_argument unless `entries`, pixel `pixel`'s imported
+// list nearest first, could have been built: codes within the layout's,
+// data 0 in L32, strictly decreasing (code, data) (sorted, identical entries
+// merged). `what` names the container.
+inline void check_imported_list(std::span<const glm::uvec2> entries, const RecordLayout& layout, std::size_t pixel,
+                                Extent screen, const char* what) {
+  const auto where = [&](std::size_t k) {
+    return std::string(what) + ": entry " + std::to_string(k) + " of pixel (" + std::to_string(pixel % screen.x) + "," +
+           std::to_string(pixel / screen.x) + ")";
+  };
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const glm::uvec2 e = entries[k];
+    if (e.x > layout.max_code())
+      throw std::invalid_argument(where(k) + " has depth code " + std::to_string(e.x) + ", above the layout's " +
+                                  std::to_string(layout.max_code()));
+    if (!layout.has_data() && e.y != 0)
+      throw std::invalid_argument(where(k) + " has data " + std::to_string(e.y) + " in the L32 layout (which has none)");
+    if (k > 0 && !(entries[k - 1].x > e.x || (entries[k - 1].x == e.x && entries[k - 1].y > e.y)))
+      throw std::invalid_argument(where(k) + " is not behind the entry before it (lists are sorted, identical entries merged)");
+  }
 }
 
 }  // namespace habuffer::detail

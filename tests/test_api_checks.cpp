@@ -191,8 +191,10 @@ TEST(ArgumentChecks, AContainerBuiltFromAnotherTechniquesConfigurationIsRefused)
     c.pool_capacity = 100;
     return c;
   };
-  expect_refused<std::invalid_argument>([&] { FixedArrays a(config(Technique::Lists)); }, {"arrays", "lists configuration"});
-  expect_refused<std::invalid_argument>([&] { LinkedLists l(config(Technique::Ha)); }, {"lists", "ha configuration"});
+  expect_refused<std::invalid_argument>([&] { FixedArrays a(config(Technique::Lists)); },
+                                        {"technique arrays's container", "technique lists"});
+  expect_refused<std::invalid_argument>([&] { LinkedLists l(config(Technique::Ha)); },
+                                        {"technique lists's container", "technique ha"});
   expect_refused<std::invalid_argument>([&] { LinkedLists l(config(Technique::Arrays)); }, {"lists", "arrays"});
   expect_refused<std::invalid_argument>([&] { KBuffer k(config(Technique::Arrays)); }, {"kbuffer", "arrays"});
   expect_refused<std::invalid_argument>([&] { BlendedImage b(config(Technique::KBuffer)); }, {"kbuffer"});
@@ -252,6 +254,59 @@ TEST(ArgumentChecks, AnHaBufferRefusesToImportRecordsThatCannotBeThere) {
   std::vector<std::uint32_t> m = ages;
   m[2] = 256;
   refused(words, m, {"cell (2,0)", "age 256", "AMAX 255"});
+}
+
+// The other containers' read-backs: lists whose links reach a node twice (a
+// cycle would never end a walk), unsorted or merged-less lists, entries
+// beyond the layout, k-buffer layers no insertion leaves.
+TEST(ArgumentChecks, ListsArraysAndKBuffersRefuseToImportStateThatCannotBeThere) {
+  const Extent screen{2, 1};
+  const RecordLayout layout(Layout::L64, 8);
+  TechniqueConfig lc = test::technique_config(Technique::Lists, screen);
+  lc.pool_capacity = 3;
+  LinkedLists lists(lc);
+  const std::vector<glm::uvec2> entries{{900, 5}, {700, 5}, {800, 5}};
+  lists.import_state(std::vector<std::uint32_t>{1, 3}, entries, std::vector<std::uint32_t>{2, 0, 0}, 3);  // (0,0): 900, 700
+  std::vector<ListEntry> list;
+  lists.list(0, 0, list);
+  EXPECT_EQ(list.size(), 2u);
+  expect_refused<std::invalid_argument>(
+      [&] { lists.import_state(std::vector<std::uint32_t>{1, 0}, entries, std::vector<std::uint32_t>{2, 1, 0}, 3); },
+      {"node 1 twice", "pixel (0,0)"});
+  expect_refused<std::invalid_argument>(
+      [&] { lists.import_state(std::vector<std::uint32_t>{2, 0}, entries, std::vector<std::uint32_t>{0, 3, 0}, 3); },
+      {"entry 1 of pixel (0,0)", "not behind"});
+  lists.list(0, 0, list);
+  EXPECT_EQ(list.size(), 2u);  // unchanged by the refusals
+
+  TechniqueConfig ac = test::technique_config(Technique::Arrays, screen);
+  ac.layers = 2;
+  FixedArrays arrays(ac);
+  expect_refused<std::invalid_argument>(
+      [&] { arrays.import_state(std::vector<std::uint32_t>{0, 2}, std::vector<glm::uvec2>{{0, 0}, {5, 1}, {0, 0}, {6, 1}}, 0); },
+      {"entry 1 of pixel (1,0)", "not behind"});
+  expect_refused<std::invalid_argument>(
+      [&] { arrays.import_state(std::vector<std::uint32_t>{1, 0}, std::vector<glm::uvec2>{{1u << 24, 1}, {0, 0}, {0, 0}, {0, 0}}, 0); },
+      {"entry 0 of pixel (0,0)", "depth code 16777216", "16777215"});
+
+  TechniqueConfig kc = test::technique_config(Technique::KBuffer, screen);
+  kc.layers = 2;
+  KBuffer kb(kc);
+  const auto words = [](std::vector<std::uint64_t> records) {
+    std::vector<std::uint32_t> w;
+    for (std::uint64_t r : records) {
+      w.push_back(static_cast<std::uint32_t>(r));
+      w.push_back(static_cast<std::uint32_t>(r >> 32));
+    }
+    return w;
+  };
+  kb.import_state(words({layout.pack(1, 9, 1), 0, layout.pack(1, 8, 1), 0}), {});
+  expect_refused<std::invalid_argument>([&] { kb.import_state(words({layout.pack(2, 9, 1), 0, 0, 0}), {}); },
+                                        {"layer 0 of pixel (0,0)", "age 2"});
+  expect_refused<std::invalid_argument>([&] { kb.import_state(words({0, 0, 0, layout.pack(1, 9, 1)}), {}); },
+                                        {"layer 1 of pixel (1,0)", "after an empty layer"});
+  kb.list(0, 0, list);
+  EXPECT_EQ(list, (std::vector<ListEntry>{{0, 9, 1}, {0, 8, 1}}));
 }
 
 }  // namespace
