@@ -21,6 +21,7 @@ BlendedImage::BlendedImage(const TechniqueConfig& config)
 
 Counters BlendedImage::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, screen());
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const std::uint32_t threads = detail::insert_threads(options, technique());
   std::vector<detail::SliceCounters> parts(threads);
   const std::uint32_t width = screen().x;
@@ -51,12 +52,14 @@ Counters BlendedImage::insert(std::span<const Fragment> fragments, const InsertO
 }
 
 std::uint64_t BlendedImage::clear() {
+  const auto alone = gate_.alone();
   accum_.assign(screen().area(), weighted() ? glm::vec4(0.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   revealage_.assign(weighted() ? screen().area() : 0, 1.0f);
   return 0;
 }
 
-std::uint32_t BlendedImage::list(std::uint32_t, std::uint32_t, std::vector<ListEntry>& out) const {
+std::uint32_t BlendedImage::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  check_pixel(x, y, screen());
   out.clear();
   return 0;
 }
@@ -74,6 +77,7 @@ std::vector<glm::vec4> BlendedImage::composite_image(std::span<const glm::vec3> 
 std::uint64_t BlendedImage::memory_bytes() const { return accum_.size() * sizeof(glm::vec4) + revealage_.size() * 4; }
 
 void BlendedImage::import_state(std::span<const glm::vec4> accum, std::span<const float> revealage) {
+  const auto alone = gate_.alone();
   if (accum.size() != accum_.size() || revealage.size() != revealage_.size())
     throw std::invalid_argument("imported accumulators have " + std::to_string(accum.size()) + " pixels and " +
                                 std::to_string(revealage.size()) + " revealages, the image " +

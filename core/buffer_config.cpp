@@ -10,6 +10,8 @@ void BufferConfig::validate() const {
   (void)record_layout();  // checks layout and age bits
   const Extent h = table_or_screen();
   if (screen.area() == 0) throw std::invalid_argument("screen size " + screen.str() + " is empty");
+  if (table != Extent{} && table.area() == 0)
+    throw std::invalid_argument("table " + table.str() + " has a zero side (0x0 means the screen's size)");
   if (screen.area() > UINT32_MAX)
     throw std::invalid_argument("screen " + screen.str() + " has more than 2^32 - 1 pixels");
   if (h.x < screen.x || h.y < screen.y)

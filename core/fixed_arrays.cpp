@@ -21,6 +21,7 @@ ArraysBuffers FixedArrays::buffers() const {
 
 Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, screen());
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const std::uint32_t threads = detail::insert_threads(options, Technique::Arrays);
   if (fragments.size() > UINT32_MAX - std::uint64_t{*std::max_element(counts_.begin(), counts_.end())})
     throw std::invalid_argument("fixed arrays count a pixel's fragments in 32 bits: " +
@@ -36,6 +37,7 @@ Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOp
 }
 
 std::uint64_t FixedArrays::clear() {
+  const auto alone = gate_.alone();
   const std::uint64_t held = count_stored();
   std::fill(counts_.begin(), counts_.end(), 0u);
   max_arrived_ = 0;
@@ -49,6 +51,7 @@ std::uint64_t FixedArrays::count_stored() const {
 }
 
 std::uint32_t FixedArrays::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  check_pixel(x, y, screen());
   out.clear();
   const std::size_t pixel = x + std::size_t{y} * screen().x;
   for (std::uint32_t k = 0; k < counts_[pixel]; ++k) {
@@ -70,12 +73,20 @@ std::uint64_t FixedArrays::memory_bytes() const {
 
 void FixedArrays::import_state(std::span<const std::uint32_t> counts, std::span<const glm::uvec2> layers,
                                std::uint32_t largest_overflow) {
+  const auto alone = gate_.alone();
   if (counts.size() != counts_.size() || layers.size() != layers_.size())
     throw std::invalid_argument("imported arrays have " + std::to_string(counts.size()) + " pixels and " +
                                 std::to_string(layers.size()) + " layers, the buffer " + std::to_string(counts_.size()) +
                                 " and " + std::to_string(layers_.size()));
   if (std::any_of(counts.begin(), counts.end(), [&](std::uint32_t n) { return n > params_.layers; }))
     throw std::invalid_argument("imported arrays hold more than " + std::to_string(params_.layers) + " layers in a pixel");
+  const RecordLayout layout = config_.buffer.record_layout();
+  std::vector<glm::uvec2> list;
+  for (std::size_t p = 0; p < counts.size(); ++p) {
+    list.clear();
+    for (std::uint32_t k = 0; k < counts[p]; ++k) list.push_back(layers[k * counts.size() + p]);
+    detail::check_imported_list(list, layout, p, screen(), "imported arrays");
+  }
   std::copy(counts.begin(), counts.end(), counts_.begin());
   std::copy(layers.begin(), layers.end(), layers_.begin());
   max_arrived_ = largest_overflow;

@@ -16,6 +16,12 @@ void check_on_screen(std::span<const Fragment> fragments, Extent screen) {
   }
 }
 
+void check_pixel(std::uint32_t x, std::uint32_t y, Extent screen) {
+  if (x >= screen.x || y >= screen.y)
+    throw std::out_of_range("pixel (" + std::to_string(x) + "," + std::to_string(y) + ") lies outside screen " +
+                            screen.str());
+}
+
 std::uint32_t resolve_threads(std::uint32_t threads) {
   if (threads > kMaxThreads)
     throw std::invalid_argument(std::to_string(threads) + " threads: at most " + std::to_string(kMaxThreads));

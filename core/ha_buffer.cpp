@@ -1,6 +1,7 @@
 #include "habuffer/ha_buffer.h"
 
 #include <algorithm>
+#include <charconv>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,12 @@
 
 namespace habuffer {
 namespace {
+
+std::string hex_word(std::uint64_t w) {
+  char digits[17] = {};
+  const auto end = std::to_chars(digits, digits + 16, w, 16).ptr;
+  return "0x" + std::string(digits, end);
+}
 
 KernelParams make_params(const BufferConfig& c, const MaxAgeTable& m) {
   KernelParams p;
@@ -70,8 +77,9 @@ struct HaBuffer::Impl {
   }
 
   // Contiguous slices of the stream, one per thread, all sharing the table
-  // through atomics (one slice and plain stores for one thread).
-  Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads) {
+  // through atomics (one slice and plain stores for one thread, unless
+  // `shared`: other calls may be inserting at the same time).
+  Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, bool shared) {
     return std::visit(
         [&](auto& st) {
           using Word = std::remove_pointer_t<decltype(st.data())>;
@@ -81,7 +89,8 @@ struct HaBuffer::Impl {
                 return HashKernel<Word, decltype(concurrent)::value>(params, offsets.values().data(), st.data(),
                                                                      max_age.data());
               },
-              [](auto& k, const Fragment& f) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+              [](auto& k, const Fragment& f) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); },
+              shared);
         },
         storage);
   }
@@ -124,25 +133,44 @@ const MaxAgeTable& HaBuffer::max_age() const { return impl_->max_age; }
 Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, impl_->config.screen);
   const std::uint32_t threads = resolve_threads(options.threads);
-  InsertMode mode = options.mode;
-  if (mode == InsertMode::Auto) mode = threads == 1 ? InsertMode::Serial : InsertMode::Atomic;
-  if (mode == InsertMode::Serial && threads != 1)
-    throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
-  if (mode != InsertMode::OwnerComputes) return impl_->insert_slices(fragments, threads);
-  if (options.band_rows == 0) throw std::invalid_argument("band_rows must be at least 1");
-  if (impl_->config.saturation)
-    throw std::invalid_argument("owner-computes insertion has no saturation depth (its owners share no atomics)");
-  Counters counters;
-  run_with_threads(threads, [&] { counters = impl_->insert_owner_computes(fragments, options, threads); });
-  return counters;
+  switch (options.mode) {
+    case InsertMode::Auto:
+      // One thread and no other call running: plain stores, the call alone.
+      // Else atomics, beside any other atomic call (InsertGate).
+      if (threads == 1)
+        if (const auto alone = gate_.alone_if_free()) return impl_->insert_slices(fragments, 1, false);
+      break;
+    case InsertMode::Serial: {
+      if (threads != 1)
+        throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
+      const auto alone = gate_.alone();
+      return impl_->insert_slices(fragments, 1, false);
+    }
+    case InsertMode::Atomic: break;
+    case InsertMode::OwnerComputes: {
+      if (options.band_rows == 0) throw std::invalid_argument("band_rows must be at least 1");
+      if (impl_->config.saturation)
+        throw std::invalid_argument("owner-computes insertion has no saturation depth (its owners share no atomics)");
+      const auto alone = gate_.alone();  // its owners store without atomics
+      Counters counters;
+      run_with_threads(threads, [&] { counters = impl_->insert_owner_computes(fragments, options, threads); });
+      return counters;
+    }
+  }
+  const auto shared = gate_.shared();
+  return impl_->insert_slices(fragments, threads, true);
 }
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {
   check_on_screen({&f, 1}, impl_->config.screen);
-  return impl_->with_kernel<false>([&](auto& k) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); });
+  const auto insert = [&](auto& k) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); };
+  if (const auto alone = gate_.alone_if_free()) return impl_->with_kernel<false>(insert);
+  const auto shared = gate_.shared();
+  return impl_->with_kernel<true>(insert);
 }
 
 std::uint64_t HaBuffer::clear() {
+  const auto alone = gate_.alone();
   impl_->max_age.clear();
   std::fill(impl_->saturation.begin(), impl_->saturation.end(), 0u);
   return std::visit([](auto& s) { return s.clear_and_count(); }, impl_->storage);
@@ -164,20 +192,48 @@ void HaBuffer::import_state(std::span<const std::uint64_t> table_words, std::spa
     throw std::invalid_argument("imported state has " + std::to_string(table_words.size()) + " slots and " +
                                 std::to_string(max_ages.size()) + " max-age cells, the buffer " +
                                 std::to_string(slot_count()) + " and " + std::to_string(impl_->max_age.ages().size()));
+  // Refuse records that cannot be there (before changing anything): traversal
+  // must find every stored record in exactly its own pixel (SPEC invariant 2).
+  const std::uint32_t amax = impl_->layout.max_age();
+  const Extent cells = impl_->max_age.cells();
+  for (std::size_t i = 0; i < max_ages.size(); ++i)
+    if (max_ages[i] > amax)
+      throw std::invalid_argument("imported max-age cell (" + std::to_string(i % cells.x) + "," +
+                                  std::to_string(i / cells.x) + ") holds age " + std::to_string(max_ages[i]) +
+                                  ", above AMAX " + std::to_string(amax));
+  const Extent table = impl_->config.table, screen = impl_->config.screen;
+  impl_->with_kernel([&](auto& k) {
+    using Word = std::remove_cv_t<std::remove_pointer_t<decltype(k.slots())>>;
+    for (std::size_t s = 0; s < table_words.size(); ++s) {
+      const std::uint64_t w = table_words[s];
+      if (w == 0) continue;
+      const std::string where = "imported slot " + std::to_string(s) + " (record " + hex_word(w) + ")";
+      if (w > std::numeric_limits<Word>::max()) throw std::invalid_argument(where + " does not fit the L32 layout");
+      const std::uint32_t a = k.ha_age(static_cast<Word>(w));
+      if (a == 0) throw std::invalid_argument(where + " has age 0, which no stored record has");
+      const glm::uvec2 p = k.ha_owner(glm::uvec2(s % table.x, s / table.x), a);
+      const std::string pixel = "pixel (" + std::to_string(p.x) + "," + std::to_string(p.y) + ")";
+      if (p.x >= screen.x || p.y >= screen.y)
+        throw std::invalid_argument(where + " has age " + std::to_string(a) + ", which makes it " + pixel +
+                                    ", outside screen " + screen.str());
+      if (max_ages[k.ha_cell(p)] < a)
+        throw std::invalid_argument(where + " has age " + std::to_string(a) + " for " + pixel +
+                                    ", above its max-age cell's " + std::to_string(max_ages[k.ha_cell(p)]) +
+                                    " (traversal would never reach it)");
+    }
+  });
+  const auto alone = gate_.alone();
   std::visit(
       [&](auto& st) {
         using Word = std::remove_pointer_t<decltype(st.data())>;
-        for (std::size_t s = 0; s < table_words.size(); ++s) {
-          if (table_words[s] > std::numeric_limits<Word>::max())
-            throw std::invalid_argument("imported slot " + std::to_string(s) + " does not fit the L32 layout");
-          st.data()[s] = static_cast<Word>(table_words[s]);
-        }
+        for (std::size_t s = 0; s < table_words.size(); ++s) st.data()[s] = static_cast<Word>(table_words[s]);
       },
       impl_->storage);
   std::copy(max_ages.begin(), max_ages.end(), impl_->max_age.data());
 }
 
 std::uint32_t HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  check_pixel(x, y, screen());
   out.clear();
   return impl_->with_kernel([&](auto& k) {
     const glm::uvec2 p(x, y);
@@ -195,6 +251,7 @@ std::uint32_t HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListE
 }
 
 glm::vec4 HaBuffer::composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const {
+  check_pixel(x, y, screen());
   return impl_->with_kernel([&](auto& k) { return k.ha_composite(glm::uvec2(x, y), background); });
 }
 

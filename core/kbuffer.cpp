@@ -1,5 +1,6 @@
 #include "habuffer/kbuffer.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -50,11 +51,13 @@ Counters KBuffer::insert_words(std::span<const Fragment> fragments, std::uint32_
 
 Counters KBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, screen());
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const std::uint32_t threads = detail::insert_threads(options, Technique::KBuffer);
   return wide() ? insert_words<std::uint64_t>(fragments, threads) : insert_words<std::uint32_t>(fragments, threads);
 }
 
 std::uint64_t KBuffer::clear() {
+  const auto alone = gate_.alone();
   const std::uint64_t held = count_stored();
   std::fill(slots64_.begin(), slots64_.end(), 0);
   std::fill(slots32_.begin(), slots32_.end(), 0u);
@@ -72,6 +75,7 @@ std::uint64_t KBuffer::count_stored() const {
 }
 
 std::uint32_t KBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  check_pixel(x, y, screen());
   out.clear();
   const RecordLayout layout = config_.buffer.record_layout();
   const std::uint64_t pixel = x + std::uint64_t{y} * screen().x;
@@ -101,11 +105,42 @@ std::uint64_t KBuffer::memory_bytes() const {
 }
 
 void KBuffer::import_state(std::span<const std::uint32_t> slot_words, std::span<const std::uint32_t> limits) {
+  const auto alone = gate_.alone();
   const std::uint64_t words = wide() ? slots64_.size() * 2 : slots32_.size();
   if (slot_words.size() != words || limits.size() != limits_.size())
     throw std::invalid_argument("imported k-buffer has " + std::to_string(slot_words.size()) + " words and " +
                                 std::to_string(limits.size()) + " limits, the buffer " + std::to_string(words) +
                                 " and " + std::to_string(limits_.size()));
+  // Each pixel's layers: records of age 1 (0 is an empty slot), nearest
+  // first, empty slots only after the last record.
+  const RecordLayout layout = config_.buffer.record_layout();
+  const std::uint64_t pixels = screen().area();
+  const auto word = [&](std::uint64_t s) {
+    return wide() ? slot_words[2 * s] | (std::uint64_t{slot_words[2 * s + 1]} << 32) : std::uint64_t{slot_words[s]};
+  };
+  std::vector<glm::uvec2> list;
+  for (std::uint64_t p = 0; p < pixels; ++p) {
+    list.clear();
+    bool ended = false;
+    for (std::uint32_t k = 0; k < params_.layers; ++k) {
+      const std::uint64_t r = word(k * pixels + p);
+      const std::string where = "imported k-buffer: layer " + std::to_string(k) + " of pixel (" +
+                                std::to_string(p % screen().x) + "," + std::to_string(p / screen().x) + ")";
+      if (r == 0) {
+        ended = true;
+        continue;
+      }
+      if (ended) throw std::invalid_argument(where + " holds a record after an empty layer");
+      if (layout.age(r) != 1)
+        throw std::invalid_argument(where + " holds a record of age " + std::to_string(layout.age(r)) + ", not 1");
+      list.emplace_back(layout.code(r), layout.data(r));
+    }
+    detail::check_imported_list(list, layout, p, screen(), "imported k-buffer");
+  }
+  const std::uint32_t buckets = 32 * config_.occupancy_words;
+  if (std::any_of(limits.begin(), limits.end(), [&](std::uint32_t b) { return b > buckets; }))
+    throw std::invalid_argument("imported k-buffer: an occupancy limit above " +
+                                std::to_string(buckets) + " buckets");
   if (wide())
     for (std::size_t s = 0; s < slots64_.size(); ++s)
       slots64_[s] = slot_words[2 * s] | (std::uint64_t{slot_words[2 * s + 1]} << 32);
@@ -115,6 +150,7 @@ void KBuffer::import_state(std::span<const std::uint32_t> slot_words, std::span<
 }
 
 std::uint32_t KBuffer::occupancy_limit(std::uint32_t x, std::uint32_t y) const {
+  check_pixel(x, y, screen());
   if (!config_.occupancy) throw std::logic_error("the k-buffer's occupancy map is off");
   return limits_[x + std::size_t{y} * screen().x];
 }

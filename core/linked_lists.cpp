@@ -18,6 +18,7 @@ LinkedLists::LinkedLists(const TechniqueConfig& config)
 
 Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, screen());
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const std::uint32_t threads = detail::insert_threads(options, technique());
   if (requested_ + fragments.size() > UINT32_MAX)
     throw std::invalid_argument("linked lists count nodes in 32 bits: " + std::to_string(requested_ + fragments.size()) +
@@ -48,6 +49,7 @@ ListsBuffers LinkedLists::buffers() const {
 }
 
 std::uint64_t LinkedLists::clear() {
+  const auto alone = gate_.alone();
   const std::uint64_t held = count_stored();
   std::fill(heads_.begin(), heads_.end(), 0u);
   std::fill(saturation_.begin(), saturation_.end(), 0u);
@@ -64,6 +66,7 @@ std::uint64_t LinkedLists::count_stored() const {
 }
 
 std::uint32_t LinkedLists::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  check_pixel(x, y, screen());
   out.clear();
   std::uint32_t reads = 1;
   for (std::uint32_t l = heads_[x + std::size_t{y} * screen().x]; l != 0; l = next_[l - 1]) {
@@ -86,6 +89,7 @@ std::uint64_t LinkedLists::memory_bytes() const {
 
 void LinkedLists::import_state(std::span<const std::uint32_t> heads, std::span<const glm::uvec2> entries,
                                std::span<const std::uint32_t> next, std::uint64_t requested) {
+  const auto alone = gate_.alone();
   if (heads.size() != heads_.size() || entries.size() != entries_.size() || next.size() != next_.size())
     throw std::invalid_argument("imported lists have " + std::to_string(heads.size()) + " heads and " +
                                 std::to_string(entries.size()) + " nodes, the buffer " + std::to_string(heads_.size()) +
@@ -93,6 +97,22 @@ void LinkedLists::import_state(std::span<const std::uint32_t> heads, std::span<c
   const auto bad_link = [&](std::uint32_t l) { return l > entries_.size(); };
   if (std::any_of(heads.begin(), heads.end(), bad_link) || std::any_of(next.begin(), next.end(), bad_link))
     throw std::invalid_argument("imported lists link beyond the pool of " + std::to_string(entries_.size()) + " nodes");
+  // Each node on at most one list, once (a cycle would never end a walk),
+  // every list sorted with valid entries.
+  const RecordLayout layout = config_.buffer.record_layout();
+  std::vector<bool> reached(entries.size(), false);
+  std::vector<glm::uvec2> list;
+  for (std::size_t p = 0; p < heads.size(); ++p) {
+    list.clear();
+    for (std::uint32_t l = heads[p]; l != 0; l = next[l - 1]) {
+      if (reached[l - 1])
+        throw std::invalid_argument("imported lists reach node " + std::to_string(l) + " twice (again from pixel (" +
+                                    std::to_string(p % screen().x) + "," + std::to_string(p / screen().x) + "))");
+      reached[l - 1] = true;
+      list.push_back(entries[l - 1]);
+    }
+    detail::check_imported_list(list, layout, p, screen(), "imported lists");
+  }
   std::copy(heads.begin(), heads.end(), heads_.begin());
   std::copy(entries.begin(), entries.end(), entries_.begin());
   std::copy(next.begin(), next.end(), next_.begin());

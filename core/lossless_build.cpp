@@ -26,6 +26,7 @@ BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::
 std::unique_ptr<FragmentBuffer> make_fragment_buffer(const TechniqueConfig& config, const OffsetSource& offsets) {
   switch (config.technique) {
     case Technique::Ha: {
+      config.validate();  // before the offsets are made for its table
       const Extent table = config.buffer.table_or_screen();
       return std::make_unique<HaBuffer>(config.buffer, offsets.make(table, config.buffer.record_layout().max_age()));
     }

@@ -109,7 +109,9 @@ TechniqueConfig ha_technique_config(const BufferConfig& buffer) {
 }
 
 TechniqueConfig validated_as(TechniqueConfig config, Technique t) {
-  config.technique = t;
+  if (config.technique != t)
+    throw std::invalid_argument("technique " + to_string(t) + "'s container refuses a configuration of technique " +
+                                to_string(config.technique));
   config.validate();
   return config;
 }

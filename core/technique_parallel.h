@@ -12,6 +12,7 @@
 
 #include "habuffer/fragment_buffer.h"
 #include "habuffer/parallel.h"
+#include "habuffer/record_layout.h"
 
 namespace habuffer::detail {
 
@@ -38,12 +39,19 @@ inline std::uint32_t insert_threads(const InsertOptions& options, Technique tech
 
 // The stream split into contiguous slices, one per thread: each thread's
 // `make_kernel(concurrent)` (a bool_constant telling whether atomics are
-// needed: false for one thread) runs run(kernel, slice, thread).
+// needed: false for one thread, unless `shared`: other calls may insert into
+// the same buffers at the same time) runs run(kernel, slice, thread).
 template <class MakeKernel, class Run>
-void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Run run) {
+void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Run run,
+                bool shared = false) {
   if (threads == 1) {
-    auto k = make_kernel(std::false_type{});
-    run(k, frags, 0u);
+    if (shared) {
+      auto k = make_kernel(std::true_type{});
+      run(k, frags, 0u);
+    } else {
+      auto k = make_kernel(std::false_type{});
+      run(k, frags, 0u);
+    }
     return;
   }
   run_with_threads(threads, [&] {
@@ -56,16 +64,18 @@ void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKern
 }
 
 // Every fragment through insert(kernel, fragment), which returns the HA_*
-// outcome, on contiguous slices; returns the tallied outcomes.
+// outcome, on contiguous slices (atomics when `shared`, as for_slices);
+// returns the tallied outcomes.
 template <class MakeKernel, class Insert>
-Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Insert insert) {
+Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKernel make_kernel, Insert insert,
+                       bool shared = false) {
   std::vector<SliceCounters> slices(threads);
   for_slices(frags, threads, make_kernel, [&](auto& k, std::span<const Fragment> slice, std::uint32_t t) {
     // A local tally: counters in memory could alias the buffers and force a store per fragment.
     std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
     for (const Fragment& f : slice) ++tally[insert(k, f)];
     slices[t].c.add_tally(tally);
-  });
+  }, shared);
   Counters total;
   for (const auto& s : slices) total += s.c;
   return total;
@@ -126,6 +136,28 @@ std::vector<glm::vec4> composite_image(Extent screen, std::span<const glm::vec3>
     throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
                                 screen.str());
   return composite_pixels(screen, threads, make_kernel, composite, [&](std::size_t p) { return backgrounds[p]; });
+}
+
+// Throws std::invalid_argument unless `entries`, pixel `pixel`'s imported
+// list nearest first, could have been built: codes within the layout's,
+// data 0 in L32, strictly decreasing (code, data) (sorted, identical entries
+// merged). `what` names the container.
+inline void check_imported_list(std::span<const glm::uvec2> entries, const RecordLayout& layout, std::size_t pixel,
+                                Extent screen, const char* what) {
+  const auto where = [&](std::size_t k) {
+    return std::string(what) + ": entry " + std::to_string(k) + " of pixel (" + std::to_string(pixel % screen.x) + "," +
+           std::to_string(pixel / screen.x) + ")";
+  };
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const glm::uvec2 e = entries[k];
+    if (e.x > layout.max_code())
+      throw std::invalid_argument(where(k) + " has depth code " + std::to_string(e.x) + ", above the layout's " +
+                                  std::to_string(layout.max_code()));
+    if (!layout.has_data() && e.y != 0)
+      throw std::invalid_argument(where(k) + " has data " + std::to_string(e.y) + " in the L32 layout (which has none)");
+    if (k > 0 && !(entries[k - 1].x > e.x || (entries[k - 1].x == e.x && entries[k - 1].y > e.y)))
+      throw std::invalid_argument(where(k) + " is not behind the entry before it (lists are sorted, identical entries merged)");
+  }
 }
 
 }  // namespace habuffer::detail

@@ -135,6 +135,7 @@ class DistanceField {
 
 OffsetSequence OffsetSequence::farthest(Extent table, std::uint32_t count, std::uint64_t seed) {
   if (count == 0) throw std::invalid_argument("offset count must be positive");
+  if (table.area() == 0) throw std::invalid_argument("offsets: table " + table.str() + " has no slots");
   if (table.area() > kFarthestMaxSlots)
     throw std::invalid_argument("farthest offsets: table " + table.str() + " has more than 2^28 slots (the exact " +
                                 "distance field would need " + std::to_string(table.area() * 4 >> 20) +

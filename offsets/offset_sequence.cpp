@@ -16,8 +16,9 @@ std::uint32_t distinct_needed(Extent table, std::uint32_t count) {
   return static_cast<std::uint32_t>(std::min<std::uint64_t>(count, table.area()));
 }
 
-void check_count(std::uint32_t count) {
+void check_count(std::uint32_t count, Extent table) {
   if (count == 0) throw std::invalid_argument("offset count must be positive");
+  if (table.area() == 0) throw std::invalid_argument("offsets: table " + table.str() + " has no slots");
 }
 
 }  // namespace
@@ -30,7 +31,7 @@ OffsetSequence::OffsetSequence(Extent table, OffsetGenerator gen, std::vector<gl
 }
 
 OffsetSequence OffsetSequence::random(Extent table, std::uint32_t count, std::uint64_t seed) {
-  check_count(count);
+  check_count(count, table);
   SplitMix64 rng(seed ^ 0x6A09E667F3BCC908ull);
   const std::uint32_t n = distinct_needed(table, count);
   std::vector<glm::uvec2> picked;
@@ -55,7 +56,7 @@ OffsetSequence OffsetSequence::random(Extent table, std::uint32_t count, std::ui
 }
 
 OffsetSequence OffsetSequence::from_list(Extent table, std::uint32_t count, std::span<const glm::uvec2> rows) {
-  check_count(count);
+  check_count(count, table);
   const std::uint32_t n = distinct_needed(table, count);
   if (rows.size() < n)
     throw std::invalid_argument("offsets: " + std::to_string(rows.size()) + " rows given, " + std::to_string(n) +

@@ -35,7 +35,7 @@ void finish_stats(FrameStats& fs) {
 
 bool automatic_size(const RenderSettings& s) {
   switch (s.technique) {
-    case Technique::Ha: return s.config.table.area() == 0;
+    case Technique::Ha: return s.config.table == Extent{};
     case Technique::Lists:
     case Technique::SortedLists: return s.pool == 0;
     case Technique::Arrays:

@@ -70,7 +70,10 @@ double student_t95(std::uint32_t df) {
 
 std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
   if (c.trials == 0) throw std::invalid_argument("at least one trial is needed");
-  const Extent table = c.table.area() == 0 ? c.screen : c.table;
+  if (c.screen.area() == 0) throw std::invalid_argument("screen size " + c.screen.str() + " is empty");
+  if (c.table != Extent{} && c.table.area() == 0)
+    throw std::invalid_argument("table " + c.table.str() + " has a zero side (0x0 means the screen's size)");
+  const Extent table = c.table == Extent{} ? c.screen : c.table;
   const RecordLayout layout(Layout::L32, c.age_bits);
   std::vector<ExperimentRow> rows;
   const std::uint64_t total_trials = std::uint64_t{c.trials} * c.loads.size();

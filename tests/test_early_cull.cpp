@@ -5,6 +5,8 @@
 #include <map>
 
 #include "habuffer/hash_kernel.h"
+#include "habuffer/linked_lists.h"
+#include "habuffer/lossless_build.h"
 #include "habuffer/reference_compositor.h"
 #include "test_support.h"
 
@@ -162,6 +164,61 @@ TEST(EarlyCull, ImageErrorAgainstExactReferenceIsBoundedByOneMinusTau) {
     for (std::size_t i = 0; i < image.size(); ++i)
       for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(double(image[i][ch]) - reference[i][ch]));
     EXPECT_LE(worst, (1.0 - tau) + 1e-4) << "tau " << tau;
+  }
+}
+
+// Saturation's boundary (ha_saturated: `code < saturation`, not `<=`): once a
+// culled fragment saturates its pixel at code c, a fragment with exactly
+// code c is still inserted (its data may sort it in front of the culled
+// record), so it is walked and culled, not rejected; one code behind (the
+// next float32 depth on the 2^-24 grid) is rejected before insertion; one
+// code in front is walked too. Both techniques with saturation.
+TEST(EarlyCull, SaturationRejectsOnlyCodesStrictlyBehindTheSaturatedOne) {
+  for (Technique t : {Technique::Ha, Technique::SortedLists}) {
+    SCOPED_TRACE(to_string(t));
+    TechniqueConfig c = test::technique_config(t, {4, 4});
+    c.buffer.table = {8, 8};
+    c.buffer.early_cull_tau = 0.5f;
+    c.buffer.saturation = true;
+    c.pool_capacity = 16;
+    const std::unique_ptr<FragmentBuffer> b = make_fragment_buffer(c, OffsetSource{});
+    const auto insert = [&](float depth, std::uint32_t colour) {
+      const Fragment f{1, 2, depth, colour};
+      return b->insert({&f, 1});
+    };
+    const RecordLayout layout = c.buffer.record_layout();
+    const float at = 0.5f, behind = 0.5f + 0x1.0p-24f, in_front = 0.5f - 0x1.0p-24f;
+    ASSERT_EQ(layout.depth_code(behind) + 1, layout.depth_code(at));
+    ASSERT_EQ(layout.depth_code(at) + 1, layout.depth_code(in_front));
+    EXPECT_EQ(insert(0.25f, 0x10101000u | 255u).stored(), 1u);  // opaque, in front of everything below
+    EXPECT_EQ(insert(at, 0x20202000u | 128u).culled, 1u);       // saturates the pixel at code(0.5)
+    const Counters equal = insert(at, 0xF0F0F000u | 128u);      // the same code, larger data
+    EXPECT_EQ(equal.culled, 1u);
+    EXPECT_EQ(equal.saturated_rejected, 0u);
+    EXPECT_EQ(insert(behind, 0xF0F0F000u | 128u).saturated_rejected, 1u);
+    const Counters front = insert(in_front, 0x30303000u | 128u);
+    EXPECT_EQ(front.culled, 1u);
+    EXPECT_EQ(front.saturated_rejected, 0u);
+    std::vector<ListEntry> list;
+    b->list(1, 2, list);
+    ASSERT_EQ(list.size(), 1u);
+    EXPECT_EQ(list[0].code, layout.depth_code(0.25f));
+  }
+}
+
+// The cull threshold's boundary on sorted lists as on the HA-buffer
+// (ThresholdOneKeepsWhatLiesBehindAnOpaqueFragment): at tau = 1 the
+// accumulated opacity behind an opaque fragment is exactly 1, not above, so
+// nothing is culled; just below 1 it is.
+TEST(EarlyCull, SortedListsCullOnlyAboveTauNotAtIt) {
+  for (float tau : {1.0f, std::nextafter(1.0f, 0.0f)}) {
+    TechniqueConfig c = test::technique_config(Technique::SortedLists, {4, 4});
+    c.buffer.early_cull_tau = tau;
+    c.pool_capacity = 8;
+    LinkedLists lists(c);
+    const Fragment front{2, 1, 0.2f, rgba(255)}, back{2, 1, 0.7f, rgba(255)};
+    EXPECT_EQ(lists.insert({&front, 1}).stored(), 1u);
+    EXPECT_EQ(lists.insert({&back, 1}).culled, tau < 1.0f ? 1u : 0u) << tau;
   }
 }
 

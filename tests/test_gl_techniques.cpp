@@ -179,5 +179,36 @@ TEST_F(GlTechniques, AdaptivePoolGrowsPastItsGrowThresholdAndShrinksBelowItsShri
   EXPECT_EQ(shrunk.counters.stored(), 100u);
 }
 
+// The GPU containers refuse what the CPU ones refuse (issue 25): sizes with a
+// zero side, before anything divides by them, and another technique's
+// configuration.
+TEST_F(GlTechniques, GpuContainersRefuseZeroSidesAndAnotherTechniquesConfiguration) {
+  const gl::AtomicMode mode = gl::AtomicMode::Emulated64;
+  const auto refused = [](auto&& f, const std::string& part) {
+    try {
+      f();
+      ADD_FAILURE() << "nothing thrown; expected " << part;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  for (const Extent zero : {Extent{0, 5}, Extent{5, 0}, Extent{0, 0}}) {
+    refused([&] { gl::GlHaBuffer b(test::config(zero, {}), test::random_offsets(1), mode); }, "screen size " + zero.str());
+    for (Technique t : all_techniques()) {
+      TechniqueConfig c = technique_config(t, zero, mode);
+      c.pool_capacity = 10;
+      refused([&] { (void)gl_technique(c, mode); }, "screen size " + zero.str());
+    }
+  }
+  refused([&] { gl::GlHaBuffer b(test::config({8, 8}, {1000, 0}), test::random_offsets(1), mode); }, "table 1000x0");
+  gl::GlHaBuffer ok(test::config({8, 8}, {}), test::random_offsets(1), mode);
+  refused([&] { ok.resize({0, 1000}); }, "table 0x1000");
+  TechniqueConfig lists = technique_config(Technique::Lists, {8, 8}, mode);
+  lists.pool_capacity = 10;
+  refused([&] { gl::GlFixedArrays a(lists, mode, {}); }, "technique arrays's container refuses a configuration of technique lists");
+  TechniqueConfig arrays = technique_config(Technique::Arrays, {8, 8}, mode);
+  refused([&] { gl::GlLinkedLists l(arrays, mode, {}); }, "technique lists's container refuses a configuration of technique arrays");
+}
+
 }  // namespace
 }  // namespace habuffer

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <set>
 #include <vector>
+
+#include <glm/common.hpp>
 
 #include "habuffer/fragment_streams.h"
 #include "habuffer/ha_buffer.h"
@@ -123,6 +126,72 @@ inline std::vector<Fragment> stream(Extent screen, StreamKind kind, std::uint64_
   o.count = count;
   o.seed = seed;
   return make_stream(screen, o);
+}
+
+// A scene for draw-order tests: a coherent stream (several surfaces per
+// pixel), and on every third pixel three fragments at one depth with
+// different colours (ties the data word breaks) and an exact duplicate.
+inline std::vector<Fragment> draw_order_scene(Extent screen, std::size_t count, std::uint64_t seed) {
+  std::vector<Fragment> f = stream(screen, StreamKind::Coherent, count, seed);
+  SplitMix64 rng(seed + 101);
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = (y % 3); x < screen.x; x += 3) {
+      const float t = static_cast<float>(rng.below(1u << 16)) * 0x1.0p-16f;
+      for (std::uint32_t k = 0; k < 3; ++k)
+        f.push_back({x, y, t, static_cast<std::uint32_t>(rng.next() & 0xFFFFFF00u) | (60u + 60u * k)});
+      f.push_back(f[rng.below(f.size())]);  // a duplicate of an earlier fragment (any pixel)
+    }
+  return shuffled(std::move(f), seed + 7);
+}
+
+// Two float images equal bit for bit (signed zeros and NaN payloads included).
+inline bool same_bits(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0;
+}
+
+// How far an approximate technique's image may move when the draw order of
+// `frags` is reversed, per pixel and channel (docs/spec-notes.md, "Draw
+// order"). wboit: its accumulators are sums and a product, order-free but
+// for float rounding: 8 n 2^-24 for a pixel of n valid fragments (while the
+// accumulated weight stays below the resolve's 5e4 clamp). blend: the
+// colour is a convex combination of the fragments' colours with weights
+// a_i prod_(j drawn after i) (1 - a_j), which total 1 - T in any order, so a
+// channel moves by at most (1 - T)(c_max - c_min) over the pixel's
+// fragments, plus the same rounding; alpha (1 - T) only by rounding.
+inline std::vector<glm::vec4> reversal_bound(Technique t, std::span<const Fragment> frags, Extent screen) {
+  struct Pixel {
+    std::uint32_t n = 0;
+    double transmittance = 1.0;
+    glm::dvec3 lo{1.0}, hi{0.0};
+  };
+  std::vector<Pixel> px(screen.area());
+  for (const Fragment& f : frags) {
+    if (!RecordLayout::depth_valid(f.depth)) continue;
+    Pixel& p = px[f.x + std::size_t{f.y} * screen.x];
+    ++p.n;
+    p.transmittance *= 1.0 - static_cast<double>(f.rgba & 255u) / 255.0;
+    const glm::dvec3 c((f.rgba >> 24) / 255.0, ((f.rgba >> 16) & 255u) / 255.0, ((f.rgba >> 8) & 255u) / 255.0);
+    p.lo = glm::min(p.lo, c);
+    p.hi = glm::max(p.hi, c);
+  }
+  std::vector<glm::vec4> bound(screen.area());
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const double rounding = 8.0 * px[i].n * 0x1.0p-24;
+    glm::dvec3 colour(rounding);
+    if (t == Technique::Blend && px[i].n > 0) colour += (1.0 - px[i].transmittance) * (px[i].hi - px[i].lo);
+    bound[i] = glm::vec4(glm::vec3(colour), static_cast<float>(rounding));
+  }
+  return bound;
+}
+
+// Whether every channel of `a` and `b` differs by at most `bound` (per pixel).
+inline bool within_bound(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b,
+                         const std::vector<glm::vec4>& bound) {
+  if (a.size() != b.size() || a.size() != bound.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int c = 0; c < 4; ++c)
+      if (!(std::abs(a[i][c] - b[i][c]) <= bound[i][c])) return false;
+  return true;
 }
 
 }  // namespace habuffer::test

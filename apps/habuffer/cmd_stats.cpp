@@ -53,7 +53,7 @@ void write_csv(const std::string& path, const std::vector<ExperimentRow>& rows) 
 void write_json(const std::string& path, const ExperimentConfig& c, const std::vector<ExperimentRow>& rows) {
   JsonWriter j;
   j.begin_object().key("screen").begin_array().value(c.screen.x).value(c.screen.y).end_array();
-  const Extent table = c.table.area() == 0 ? c.screen : c.table;
+  const Extent table = c.table == Extent{} ? c.screen : c.table;
   j.key("table").begin_array().value(table.x).value(table.y).end_array();
   j.field("stream", to_string(c.stream.kind)).field("trials", c.trials).field("seed", c.seed);
   j.field("age_bits", c.age_bits).field("block", c.block).key("rows").begin_array();

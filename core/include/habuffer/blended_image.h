@@ -34,7 +34,9 @@ class BlendedImage final : public FragmentBuffer {
 
   /// FragmentBuffer interface: blends every valid fragment into its pixel (counted
   /// blended), one band of rows per thread. Throws std::invalid_argument for
-  /// InsertMode::OwnerComputes or Serial with more than one thread.
+  /// InsertMode::OwnerComputes or Serial with more than one thread. Each call
+  /// runs alone: calls overlapping on this container wait for it
+  /// (insert_gate.h), so a pixel's blend order is the calls' order.
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// Resets the accumulators; returns 0 (nothing is stored).
   std::uint64_t clear() override;

@@ -14,7 +14,7 @@ namespace habuffer {
 /// limit and early cull.
 struct BufferConfig {
   Extent screen;  ///< V, in pixels
-  Extent table;  ///< zero: the screen size
+  Extent table;  ///< 0x0: the screen size (one zero side is refused)
   Layout layout = Layout::L64;  ///< record layout (SPEC 2)
   std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;  ///< A (SPEC 2), 4..12
   std::uint32_t block = HABUFFER_DEFAULT_BLOCK;  ///< B, the max-age table's block side in pixels (SPEC 5)
@@ -25,12 +25,13 @@ struct BufferConfig {
   /// are rejected before insertion (saturated_rejected; guacamole, Fig. 6).
   bool saturation = false;
 
-  /// The table H: `table`, or the screen when `table` has zero area.
-  [[nodiscard]] Extent table_or_screen() const { return table.area() == 0 ? screen : table; }
+  /// The table H: `table`, or the screen when `table` is 0x0.
+  [[nodiscard]] Extent table_or_screen() const { return table == Extent{} ? screen : table; }
   /// The record layout of `layout` and `age_bits`; throws std::invalid_argument for age bits outside 4..12.
   [[nodiscard]] RecordLayout record_layout() const { return {layout, age_bits}; }
   /// Throws std::invalid_argument with a message naming the field and values
-  /// (geometry rule of SPEC 1, age bits, block, cull threshold, size limits).
+  /// (a screen or table with a zero side, geometry rule of SPEC 1, age bits,
+  /// block, cull threshold, size limits).
   void validate() const;
 };
 

@@ -35,7 +35,8 @@ class FixedArrays final : public FragmentBuffer {
   /// FragmentBuffer interface: counts each pixel's fragments atomically, then
   /// sorts every pixel's layers. Throws std::invalid_argument for
   /// InsertMode::OwnerComputes, Serial with more than one thread, or a batch
-  /// that could overflow a pixel's 32-bit counter.
+  /// that could overflow a pixel's 32-bit counter. Each call runs alone: calls
+  /// overlapping on this container wait for it (insert_gate.h).
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// FragmentBuffer interface: zeroes the counters and largest_overflow().
   std::uint64_t clear() override;

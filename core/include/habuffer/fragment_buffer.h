@@ -15,17 +15,22 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/fragment.h"
+#include "habuffer/insert_gate.h"
 #include "habuffer/technique.h"
 
 namespace habuffer {
 
 /// Every mode builds the same result (SPEC 9); they differ in speed only.
-/// docs/performance.md compares them.
+/// docs/performance.md compares them. Each is safe when insert() calls
+/// overlap on one container (insert_gate.h): the modes with plain stores
+/// then run alone, the others wait for them.
 enum class InsertMode {
-  Auto,           ///< Serial for one thread, Atomic for several (fastest measured)
-  Serial,         ///< one thread, input order, plain loads and stores
+  /// Serial for one thread while no other call changes the container, else
+  /// Atomic (beside any other atomic call): correct when calls overlap.
+  Auto,
+  Serial,         ///< one thread, input order, plain loads and stores; the call runs alone
   Atomic,         ///< the GPU's model: threads split the stream and share every slot through atomics
-  OwnerComputes,  ///< HA-buffer only: no atomics, table rows dealt out to threads (owner_computes.h)
+  OwnerComputes,  ///< HA-buffer only: no atomics, table rows dealt out to threads (owner_computes.h); runs alone
 };
 
 /// How FragmentBuffer::insert runs a batch.
@@ -59,16 +64,23 @@ class FragmentBuffer {
   /// Inserts a batch (and, for techniques that sort afterwards, sorts the
   /// touched lists, merging identical entries as duplicates). Throws
   /// std::out_of_range naming the first fragment off the screen, before
-  /// inserting anything.
+  /// inserting anything. Calls may overlap on one container from any number
+  /// of threads: the HA-buffer's atomic calls run together, every other call
+  /// runs alone, an overlapping call waiting for it (insert_gate.h); the
+  /// counters of the calls add up to one call's over their fragments.
   virtual Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) = 0;
-  /// Empties the buffer; returns the records it held.
+  /// Empties the buffer; returns the records it held. Runs alone (waits for
+  /// overlapping insert() calls).
   virtual std::uint64_t clear() = 0;
   /// The records held now, counted on the buffer.
   [[nodiscard]] virtual std::uint64_t count_stored() const = 0;
   /// Records the buffer can hold in all (slots, nodes, layers of every pixel).
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
 
-  /// Pixel (x, y)'s list, nearest first; returns the storage words read to find it.
+  /// Pixel (x, y)'s list, nearest first; returns the storage words read to
+  /// find it. Throws std::out_of_range for a pixel off the screen. This and
+  /// the other const calls may overlap each other, not a call that changes
+  /// the container (insert, clear, import_state).
   virtual std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const = 0;
   /// Each pixel over its own background (row-major, screen area entries).
   [[nodiscard]] virtual std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
@@ -77,10 +89,17 @@ class FragmentBuffer {
   [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
   /// The configuration it holds now (sizes grown by lossless builds included).
   [[nodiscard]] virtual TechniqueConfig technique_config() const = 0;
+
+ protected:
+  /// Overlapping calls that change the container hold it (insert_gate.h).
+  InsertGate gate_;
 };
 
 /// Throws std::out_of_range naming the first fragment outside `screen`.
 void check_on_screen(std::span<const Fragment> fragments, Extent screen);
+/// Throws std::out_of_range naming pixel (x, y) and `screen` when the pixel
+/// lies outside it (every per-pixel call checks its pixel so).
+void check_pixel(std::uint32_t x, std::uint32_t y, Extent screen);
 /// Most threads any call takes (the CLI's --threads bound): far more than
 /// any machine this library targets uses, and far below where oneTBB's
 /// arenas fail (tens of thousands).

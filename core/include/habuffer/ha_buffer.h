@@ -44,13 +44,18 @@ class HaBuffer final : public FragmentBuffer {
   [[nodiscard]] Extent table() const;
 
   /// Inserts a batch; throws std::out_of_range (naming the index and pixel) if
-  /// any fragment lies off the screen, before inserting anything.
+  /// any fragment lies off the screen, before inserting anything. Calls may
+  /// overlap from any number of threads: Auto inserts with plain stores only
+  /// while no other call changes the buffer, else through atomics beside the
+  /// other atomic calls; Atomic calls run together; Serial and OwnerComputes
+  /// calls (plain stores) run alone, overlapping calls waiting for them. The
+  /// table is the same in every case (SPEC 9).
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
-  /// Inserts one fragment and returns its HA_* outcome. Not thread-safe
-  /// against other calls on this buffer.
+  /// Inserts one fragment and returns its HA_* outcome; may overlap other
+  /// calls as insert() in the Auto mode does.
   std::uint32_t insert_one(const Fragment& fragment);
 
-  /// Zeroes T and M; returns the number of records T held.
+  /// Zeroes T and M; returns the number of records T held. Runs alone.
   std::uint64_t clear() override;
   /// FragmentBuffer interface: T's non-empty slots, counted.
   [[nodiscard]] std::uint64_t count_stored() const override;
@@ -63,17 +68,23 @@ class HaBuffer final : public FragmentBuffer {
   /// The max-age table M.
   [[nodiscard]] const MaxAgeTable& max_age() const;
 
-  /// Replaces T and M with state built elsewhere (the GPU path's read-back),
+  /// Runs alone. Replaces T and M with state built elsewhere (the GPU path's read-back),
   /// so traversal, compositing and the dumps work on it. Throws
-  /// std::invalid_argument when the sizes differ from this buffer's or an L32
-  /// buffer is given a word above 32 bits.
+  /// std::invalid_argument, changing nothing, when the sizes differ from this
+  /// buffer's or a word cannot be there: above 32 bits in an L32 buffer, a
+  /// record of age 0, one whose age makes it a pixel off the screen or one
+  /// beyond its pixel's max-age cell (traversal would miss it), a max-age
+  /// cell above AMAX.
   void import_state(std::span<const std::uint64_t> table_words, std::span<const std::uint32_t> max_ages);
 
   /// Pixel (x, y)'s list, nearest first, by traversal (SPEC 7). Returns the
   /// slots read: the walk stops at the first age whose slot holds a younger
-  /// record (Proposition A), before the cell's max age when it can.
+  /// record (Proposition A), before the cell's max age when it can. Throws
+  /// std::out_of_range for a pixel off the screen; like every const call it
+  /// may overlap other const calls, not insert, clear or import_state.
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
-  /// Front-to-back float32 compositing of pixel (x, y) over `background`.
+  /// Front-to-back float32 compositing of pixel (x, y) over `background`;
+  /// throws std::out_of_range for a pixel off the screen.
   [[nodiscard]] glm::vec4 composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const;
   /// The whole screen, row-major.
   [[nodiscard]] std::vector<glm::vec4> composite_image(glm::vec3 background, std::uint32_t threads = 0) const;

@@ -31,7 +31,8 @@ class KBuffer final : public FragmentBuffer {
   /// FragmentBuffer interface: with the occupancy map on, a fill pass and a count
   /// pass come first; the layers stay sorted without a sort pass. Throws
   /// std::invalid_argument for InsertMode::OwnerComputes or Serial with more
-  /// than one thread.
+  /// than one thread. Each call runs alone: calls overlapping on this
+  /// container wait for it (insert_gate.h).
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// FragmentBuffer interface: zeroes the layers, the occupancy map and the limits.
   std::uint64_t clear() override;

@@ -39,7 +39,8 @@ class LinkedLists final : public FragmentBuffer {
   /// FragmentBuffer interface: lists sort every pixel's list after the batch;
   /// sorted-lists link each fragment in at its place. Throws std::invalid_argument
   /// for InsertMode::OwnerComputes, Serial with more than one thread, or more than
-  /// 2^32 - 1 fragments since the last clear.
+  /// 2^32 - 1 fragments since the last clear. Each call runs alone: calls
+  /// overlapping on this container wait for it (insert_gate.h).
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// FragmentBuffer interface: empties every list and resets the node counter and requested().
   std::uint64_t clear() override;

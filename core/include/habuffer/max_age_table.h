@@ -15,7 +15,7 @@ class MaxAgeTable {
  public:
   /// An empty table: no cells.
   MaxAgeTable() = default;
-  /// Throws std::invalid_argument when block is 0.
+  /// Throws std::invalid_argument when block is 0 or the screen has no pixels.
   MaxAgeTable(Extent screen, std::uint32_t block);
 
   /// Cells per row and column: the screen divided by B, rounded up.
@@ -26,8 +26,8 @@ class MaxAgeTable {
   [[nodiscard]] std::uint32_t cell_index(std::uint32_t px, std::uint32_t py) const {
     return px / block_ + (py / block_) * cells_.x;
   }
-  /// Cell (cx, cy)'s max age.
-  [[nodiscard]] std::uint32_t at(std::uint32_t cx, std::uint32_t cy) const { return ages_[cx + cy * cells_.x]; }
+  /// Cell (cx, cy)'s max age; throws std::out_of_range for a cell outside cells().
+  [[nodiscard]] std::uint32_t at(std::uint32_t cx, std::uint32_t cy) const;
   /// The largest max age of any cell (0 for an empty table).
   [[nodiscard]] std::uint32_t max() const;
   /// The cells, row-major, for a kernel to update.

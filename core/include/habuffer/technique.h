@@ -91,7 +91,8 @@ struct TechniqueConfig {
 /// The HA-buffer of `buffer` as a technique configuration.
 TechniqueConfig ha_technique_config(const BufferConfig& buffer);
 
-/// `config` as technique `t`, validated (throws as validate()).
+/// `config`, validated (throws as validate()) as technique `t`; throws
+/// std::invalid_argument when it configures another technique.
 TechniqueConfig validated_as(TechniqueConfig config, Technique t);
 
 }  // namespace habuffer

@@ -22,6 +22,8 @@ class OffsetSequence {
  public:
   /// `count` offsets (AMAX) for table `table`: pairwise distinct when the table
   /// has at least `count` slots, else the table's slots repeated cyclically.
+  /// Every maker throws std::invalid_argument for a count of 0 or a table
+  /// without slots (a zero side).
   static OffsetSequence random(Extent table, std::uint32_t count, std::uint64_t seed);
   /// Greedy max-min toroidal distance: each offset as far as possible from all
   /// earlier ones (ties: smallest slot index). The seed picks the first offset.
