@@ -404,6 +404,22 @@ constexpr const char* kHostMain = R"(void main() {
 }
 )";
 
+// The host's own uniform block at binding 0 and storage buffer at binding 1
+// (low points, below the library's), which its shaders use and update.
+struct HostLowBuffers {
+  GLuint ids[2] = {0, 0};
+  HostLowBuffers() {
+    glCreateBuffers(2, ids);
+    for (const GLuint b : ids) glNamedBufferData(b, 16, nullptr, GL_DYNAMIC_DRAW);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, ids[0]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ids[1]);
+  }
+  ~HostLowBuffers() { glDeleteBuffers(2, ids); }
+  HostLowBuffers(const HostLowBuffers&) = delete;
+  HostLowBuffers& operator=(const HostLowBuffers&) = delete;
+  GLuint operator[](std::size_t i) const { return ids[i]; }
+};
+
 struct HostRaster {
   GLuint framebuffer = 0, vertex_array = 0;
   HostRaster() {
@@ -452,12 +468,7 @@ std::string documented_defines(const gl::GlBindings& b) {
 // first renders, bit for bit.
 TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
   HostContext host;
-  GLuint host_buffers[2];
-  glCreateBuffers(2, host_buffers);
-  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
-  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostLowBuffers host_buffers;
   const HostRaster raster;
   const gl::GlBindings bindings = test::host_bindings();  // not the defaults the files carry
   std::map<std::string, std::string> files;
@@ -494,7 +505,6 @@ TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
   std::uint32_t host_count = 0;
   glGetNamedBufferSubData(host_buffers[1], 0, 4, &host_count);
   EXPECT_GT(host_count, 0u);  // the host's own buffer, written by its own code
-  glDeleteBuffers(2, host_buffers);
 }
 
 // A host that defines another technique's binding name (the lists' heads)
@@ -566,12 +576,7 @@ TEST(GlHost, TheResolveLeavesTheHostsIdAttachmentUntouched) {
 // pass counts the stored records under the host's query as without it.
 TEST(GlHost, HostQueriesAroundAndInsideAFrameAreNeverDisturbed) {
   HostContext host;
-  GLuint host_buffers[2];
-  glCreateBuffers(2, host_buffers);
-  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
-  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostLowBuffers host_buffers;
   const HostRaster raster;
   const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
   gl::GlHaBuffer gpu(test::config({24, 24}, {64, 64}, test::layout_of(mode), 8), test::random_offsets(5), mode);
@@ -638,7 +643,6 @@ TEST(GlHost, HostQueriesAroundAndInsideAFrameAreNeverDisturbed) {
   EXPECT_EQ(*fourth.counted_stored, second.counters.stored());
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   glDeleteQueries(4, queries);
-  glDeleteBuffers(2, host_buffers);
 }
 
 // resolve_over composites onto the host's image: C + T * destination in
@@ -726,12 +730,7 @@ TEST(GlHost, ResolveOverBlendsOntoTheHostsFramebuffer) {
 // next frame fits in one attempt.
 TEST(GlHost, AnAutomaticPoolHoldsTheFrameWithoutLosslessMode) {
   HostContext host;
-  GLuint host_buffers[2];
-  glCreateBuffers(2, host_buffers);
-  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
-  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostLowBuffers host_buffers;
   const HostRaster raster;
   const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
   std::vector<std::vector<glm::vec4>> images;
@@ -756,7 +755,6 @@ TEST(GlHost, AnAutomaticPoolHoldsTheFrameWithoutLosslessMode) {
     EXPECT_EQ(report.attempts.size(), 1u);
     EXPECT_EQ(report.counters.failures(), 0u);
   }
-  glDeleteBuffers(2, host_buffers);
 }
 
 // A host whose window grew beyond the container's screen (the triangles
@@ -765,12 +763,7 @@ TEST(GlHost, AnAutomaticPoolHoldsTheFrameWithoutLosslessMode) {
 // off_screen, and the frame is not lossless; at the right size it is.
 TEST(GlHost, FragmentsBeyondTheScreenAreALossTheReportSays) {
   HostContext host;
-  GLuint host_buffers[2];
-  glCreateBuffers(2, host_buffers);
-  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
-  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostLowBuffers host_buffers;
   const HostRaster raster;
   const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
   for (const Extent screen : {Extent{16, 16}, Extent{24, 24}}) {
@@ -790,7 +783,6 @@ TEST(GlHost, FragmentsBeyondTheScreenAreALossTheReportSays) {
       EXPECT_TRUE(report.lossless());
     }
   }
-  glDeleteBuffers(2, host_buffers);
 }
 
 // The same triangles drawn by a reversed-Z host (glClipControl zero-to-one,
@@ -812,12 +804,7 @@ void main() {
 // instead of compositing back to front (which would give another image).
 TEST(GlHost, AReversedZHostRendersTheStandardImageWithTheReversedConvention) {
   HostContext host;
-  GLuint host_buffers[2];
-  glCreateBuffers(2, host_buffers);
-  glNamedBufferData(host_buffers[0], 16, nullptr, GL_DYNAMIC_DRAW);
-  glNamedBufferData(host_buffers[1], 16, nullptr, GL_DYNAMIC_DRAW);
-  glBindBufferBase(GL_UNIFORM_BUFFER, 0, host_buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffers[1]);
+  const HostLowBuffers host_buffers;
   const HostRaster raster;
   const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
   TechniqueConfig c;
@@ -850,7 +837,6 @@ TEST(GlHost, AReversedZHostRendersTheStandardImageWithTheReversedConvention) {
   EXPECT_FALSE(image(kHostVertexReversed, gl::DepthConvention::Standard) == standard);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   glDepthFunc(GL_LESS);
-  glDeleteBuffers(2, host_buffers);
 }
 
 }  // namespace

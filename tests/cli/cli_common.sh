@@ -1,5 +1,8 @@
-# What the CLI test scripts share, sourced after `bin` is set: counters per
-# class of harm, and `expect`, which checks one run's exit code and stderr.
+# What the CLI test scripts share, sourced after `bin` and `dir` are set: a
+# fresh working directory, counters per class of harm, and `expect`, which
+# checks one run's exit code and stderr.
+rm -rf "$dir" && mkdir -p "$dir" && cd "$dir" || exit 1
+export ASAN_OPTIONS=${ASAN_OPTIONS:-}:detect_leaks=0  # GL runs: Mesa's allocations
 pass=0
 fail=0
 declare -A tried

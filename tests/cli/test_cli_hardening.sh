@@ -8,11 +8,8 @@
 set -u
 bin=$1
 dir=$2
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-rm -rf "$dir" && mkdir -p "$dir" && cd "$dir" || exit 1
-export ASAN_OPTIONS=${ASAN_OPTIONS:-}:detect_leaks=0  # GL runs: Mesa's allocations
 # shellcheck source=cli_common.sh
-source "$here/cli_common.sh"
+source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/cli_common.sh"  # enters a fresh $dir
 
 printf 'x,y,depth,rgba\n0,0,0.5,0xFF0000FF\n1,0,0.25,255\n1,1,0.75,0x00FF0080\n' >in.csv
 printf 'ox,oy\n0,0\n1,0\n0,1\n1,1\n2,0\n2,1\n2,2\n0,2\n1,2\n3,0\n3,1\n3,2\n3,3\n0,3\n1,3\n' >off.csv

@@ -6,11 +6,8 @@
 set -u
 bin=$1
 dir=$2
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-rm -rf "$dir" && mkdir -p "$dir" && cd "$dir" || exit 1
-export ASAN_OPTIONS=${ASAN_OPTIONS:-}:detect_leaks=0  # GL runs: Mesa's allocations
 # shellcheck source=cli_common.sh
-source "$here/cli_common.sh"
+source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/cli_common.sh"  # enters a fresh $dir
 
 no_temporaries() {  # CLASS: no staging file left in this directory
   local left
