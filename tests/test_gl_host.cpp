@@ -1067,6 +1067,7 @@ TEST(GlHost, ARefusedScreenResizeNamesTheSizesAndLeavesTheContainerWorkingAtItsO
       TechniqueConfig deep = c;
       deep.layers = 64;
       gl::GlFrameDriver d(gl::make_gl_technique(deep, test::random_offsets(5), mode));
+      const std::uint64_t deep_memory = d.memory_bytes();
       const Extent tall{64, static_cast<std::uint32_t>(rows)};
       try {
         d.resize_screen(tall);
@@ -1076,6 +1077,8 @@ TEST(GlHost, ARefusedScreenResizeNamesTheSizesAndLeavesTheContainerWorkingAtItsO
         EXPECT_NE(std::string(e.what()).find("shader-storage"), std::string::npos) << e.what();
       }
       EXPECT_EQ(d.screen(), a);
+      EXPECT_EQ(d.memory_bytes(), deep_memory);
+      EXPECT_EQ(d.technique().capacity(), 64u * a.area());
     }  // else a context whose buffers hold any screen of its viewport: nothing to refuse
     EXPECT_EQ(gpu.screen(), a);
     EXPECT_EQ(gpu.memory_bytes(), memory);
