@@ -81,6 +81,43 @@ GlBlendedImage::GlBlendedImage(const TechniqueConfig& config, AtomicMode mode, c
 
 GlBlendedImage::~GlBlendedImage() = default;
 
+void GlBlendedImage::change_screen(Extent screen) {
+  TechniqueConfig next = config_;
+  next.buffer.screen = screen;
+  next = BlendedImage::checked_config(next);
+  check_framebuffer_fits(screen);
+  const std::uint64_t pixels = screen.area();
+  check_storage_fits(pixels * 16, "the blended accumulators of screen " + screen.str());
+  // New attachments and copies first; the framebuffer object stays the same
+  // (a host may hold gather_framebuffer()), its attachments replaced by name
+  // (no binding changes), and back to the old ones if it is not complete.
+  Gpu fresh;
+  fresh.accum = make_target(GL_RGBA32F, screen);
+  fresh.accum_copy = create_buffer(pixels * 16);
+  if (weighted()) {
+    fresh.revealage = make_target(GL_R32F, screen);
+    fresh.revealage_copy = create_buffer(pixels * 4);
+  }
+  glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, fresh.accum, 0);
+  if (weighted()) glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, fresh.revealage, 0);
+  if (const GLenum status = glCheckNamedFramebufferStatus(gpu_->framebuffer, GL_DRAW_FRAMEBUFFER);
+      status != GL_FRAMEBUFFER_COMPLETE) {
+    glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, gpu_->accum, 0);
+    if (weighted()) glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, gpu_->revealage, 0);
+    throw GlError("the " + to_string(technique()) + " accumulators' framebuffer of screen " + screen.str() +
+                  " is not complete (status " + std::to_string(status) + ")");
+  }
+  std::swap(gpu_->accum, fresh.accum);
+  std::swap(gpu_->accum_copy, fresh.accum_copy);
+  if (weighted()) {
+    std::swap(gpu_->revealage, fresh.revealage);
+    std::swap(gpu_->revealage_copy, fresh.revealage_copy);
+  }
+  config_ = next;
+  reset();  // the accumulators' empty values
+  check_gl_errors("resizing the blended accumulators");
+}
+
 void GlBlendedImage::write_params(GlParams& p) const {
   p.ha_age_bits = config_.buffer.age_bits;
   p.ha_depth_near = config_.depth_range.near_t;

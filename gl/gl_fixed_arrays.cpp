@@ -6,6 +6,7 @@
 
 #include "gl_params.h"
 #include "habuffer/fixed_arrays.h"
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "sort_pass.h"
@@ -41,6 +42,24 @@ void GlFixedArrays::allocate_layers(std::uint32_t layers) {
   delete_buffer(gpu_->layers);
   gpu_->layers = create_buffer(bytes);
   config_.layers = layers;
+}
+
+void GlFixedArrays::change_screen(Extent screen) {
+  TechniqueConfig next = config_;
+  next.buffer.screen = screen;
+  next.validate();  // K slots per pixel within 32-bit indices
+  const std::uint64_t pixels = screen.area();
+  check_storage_fits(pixels * 4, "the counters of screen " + screen.str());
+  const std::uint64_t bytes = std::uint64_t{config_.layers} * pixels * sizeof(glm::uvec2);
+  check_storage_fits(bytes, std::to_string(config_.layers) + " layers of screen " + screen.str());
+  Gpu fresh;  // made before the old ones go; its destructor frees them on a throw
+  fresh.counts = create_buffer(pixels * 4);
+  fresh.layers = create_buffer(bytes);
+  check_gl_errors("resizing the arrays' screen");
+  std::swap(gpu_->counts, fresh.counts);
+  std::swap(gpu_->layers, fresh.layers);
+  config_ = next;
+  most_arrived_ = 0;
 }
 
 void GlFixedArrays::write_params(GlParams& p) const {

@@ -68,12 +68,7 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
   if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
   if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
-  GLint viewport[2] = {};
-  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
-  const Extent s = screen();
-  if (s.x > static_cast<std::uint32_t>(viewport[0]) || s.y > static_cast<std::uint32_t>(viewport[1]))
-    throw GlError("screen " + s.str() + " exceeds this OpenGL's largest viewport " + std::to_string(viewport[0]) + "x" +
-                  std::to_string(viewport[1]));
+  check_viewport_fits(screen());
   gpu_->counters = create_buffer(kCounterWords * 4);
   gpu_->params = create_buffer(sizeof(GlParams));
   gpu_->capture = create_buffer(kAppendHeaderBytes);
@@ -93,6 +88,11 @@ GlFrameDriver::~GlFrameDriver() = default;
 
 std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
   return technique_->module_source(stage, header);
+}
+
+void GlFrameDriver::resize_screen(Extent screen) {
+  technique_->resize_screen(screen);  // strong guarantee: on a throw nothing changed
+  write_params();                     // the block's screen for passes run before the next frame
 }
 
 void GlFrameDriver::write_params() const {

@@ -2,6 +2,10 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
 #include "clear_pass.h"
 #include "gl_params.h"
 #include "habuffer/gl/debug_output.h"
@@ -16,6 +20,18 @@ BufferConfig validated(BufferConfig c) {
   c.validate();
   c.table = c.table_or_screen();
   return c;
+}
+
+// Cells of the max-age table of `c`'s screen (GlError beyond 32-bit cell indices).
+std::uint32_t max_age_cells(const BufferConfig& c) {
+  const std::uint64_t cells = std::uint64_t{(c.screen.x - 1) / c.block + 1} * std::uint64_t{(c.screen.y - 1) / c.block + 1};
+  if (cells > UINT32_MAX) throw GlError("max-age table of " + std::to_string(cells) + " cells is too large");
+  return static_cast<std::uint32_t>(cells);
+}
+
+// One side of a table scaled from screen side `from` to `to`, rounded up.
+std::uint64_t scaled_side(std::uint32_t side, std::uint32_t from, std::uint32_t to) {
+  return (std::uint64_t{side} * to + from - 1) / from;
 }
 
 }  // namespace
@@ -37,10 +53,7 @@ GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMod
       clear_tile_(clear_tile),
       gpu_(std::make_unique<Gpu>()) {
   check_atomic_mode(mode, config_.layout);
-  const std::uint64_t cells = std::uint64_t{(config_.screen.x - 1) / config_.block + 1} *
-                              std::uint64_t{(config_.screen.y - 1) / config_.block + 1};
-  if (cells > UINT32_MAX) throw GlError("max-age table of " + std::to_string(cells) + " cells is too large");
-  cells_ = static_cast<std::uint32_t>(cells);
+  cells_ = max_age_cells(config_);
   if (const std::string why = table_limit(config_.table); !why.empty()) throw GlError(why);
   gpu_->max_age = create_buffer(std::uint64_t{cells_} * 4);
   gpu_->count = create_buffer(sizeof(std::uint64_t));
@@ -104,6 +117,60 @@ void GlHaTable::resize(Extent table) {
   c.table = table;
   c.validate();
   if (table != config_.table) allocate_table(table);
+}
+
+void GlHaTable::change_screen(Extent screen) {
+  // The table keeps its ratio to the screen side by side (so the load stays
+  // about what it was; an automatic table, the screen, becomes the new
+  // screen as in a fresh container), falling back to the screen itself when
+  // that scaled table is beyond the rules or this context's limits.
+  BufferConfig next = config_;
+  next.screen = screen;
+  const auto why_not = [&](Extent table) -> std::string {
+    BufferConfig c = next;
+    c.table = table;
+    try {
+      c.validate();
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return table_limit(table);
+  };
+  const std::uint64_t tx = std::max<std::uint64_t>(scaled_side(config_.table.x, config_.screen.x, screen.x), screen.x);
+  const std::uint64_t ty = std::max<std::uint64_t>(scaled_side(config_.table.y, config_.screen.y, screen.y), screen.y);
+  next.table = screen;
+  if (tx <= (1u << 31) && ty <= (1u << 31)) {
+    const Extent scaled{static_cast<std::uint32_t>(tx), static_cast<std::uint32_t>(ty)};
+    if (why_not(scaled).empty()) next.table = scaled;
+  }
+  if (const std::string why = why_not(next.table); !why.empty()) {
+    next.validate();  // the configuration's own message first (std::invalid_argument)
+    throw GlError(why);
+  }
+  const std::uint32_t cells = max_age_cells(next);
+  if (next.saturation) check_storage_fits(screen.area() * 4, "the saturation image of screen " + screen.str());
+  check_storage_fits(std::uint64_t{cells} * 4, "the max-age table of screen " + screen.str());
+  // Everything new is made before anything old goes: a throw leaves the
+  // container as it was (fresh's destructor frees what was made).
+  const bool new_table = next.table != config_.table;
+  OffsetSequence offsets = new_table ? source_.make(next.table, next.record_layout().max_age()) : offsets_;
+  Gpu fresh;
+  const std::uint64_t slots = next.table.area();
+  fresh.table = create_buffer(slots * next.record_layout().word_bytes());
+  if (mode() == AtomicMode::Emulated64) fresh.locks = create_buffer(emulated64_lock_words(slots) * 4);
+  fresh.offsets = create_buffer(offsets.size() * sizeof(glm::uvec2), offsets.values().data());
+  fresh.max_age = create_buffer(std::uint64_t{cells} * 4);
+  if (next.saturation) fresh.saturation = create_buffer(screen.area() * 4);
+  check_gl_errors("resizing the HA-buffer's screen");
+  for (auto [mine, theirs] : {std::pair{&gpu_->table, &fresh.table}, std::pair{&gpu_->locks, &fresh.locks},
+                              std::pair{&gpu_->offsets, &fresh.offsets}, std::pair{&gpu_->max_age, &fresh.max_age},
+                              std::pair{&gpu_->saturation, &fresh.saturation}})
+    std::swap(*mine, *theirs);
+  config_ = next;
+  cells_ = cells;
+  offsets_ = std::move(offsets);
+  holds_frame_ = false;          // the new table is empty: nothing for a clear pass to count
+  pending_count_table_.reset();  // a count in flight was of the old screen
 }
 
 std::uint64_t GlHaTable::count_stored() {

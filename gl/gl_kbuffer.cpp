@@ -2,7 +2,10 @@
 
 #include <epoxy/gl.h>
 
+#include <utility>
+
 #include "gl_params.h"
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
@@ -54,6 +57,29 @@ void GlKBuffer::allocate_layers(std::uint32_t layers) {
     zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
   }
   config_.layers = layers;
+}
+
+void GlKBuffer::change_screen(Extent screen) {
+  TechniqueConfig next = config_;
+  next.buffer.screen = screen;
+  next.validate();  // K slots and the occupancy words per pixel within 32-bit indices
+  const std::uint64_t pixels = screen.area(), slots = std::uint64_t{config_.layers} * pixels;
+  check_storage_fits(slots * word_bytes(), std::to_string(config_.layers) + " k-buffer layers of screen " + screen.str());
+  if (config_.occupancy)
+    check_storage_fits(pixels * config_.occupancy_words * 4,
+                       "an occupancy map of " + std::to_string(config_.occupancy_words) + " words per pixel");
+  Gpu fresh;  // made before the old ones go; its destructor frees them on a throw
+  fresh.slots = create_buffer(slots * word_bytes());
+  if (mode() == AtomicMode::Emulated64) fresh.locks = create_buffer(emulated64_lock_words(slots) * 4);
+  if (config_.occupancy) {
+    fresh.occupancy = create_buffer(pixels * config_.occupancy_words * 4);
+    fresh.limits = create_buffer(pixels * 4);
+  }
+  check_gl_errors("resizing the k-buffer's screen");
+  for (auto [mine, theirs] : {std::pair{&gpu_->slots, &fresh.slots}, std::pair{&gpu_->locks, &fresh.locks},
+                              std::pair{&gpu_->occupancy, &fresh.occupancy}, std::pair{&gpu_->limits, &fresh.limits}})
+    std::swap(*mine, *theirs);
+  config_ = next;
 }
 
 void GlKBuffer::write_params(GlParams& p) const {

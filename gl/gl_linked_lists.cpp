@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "gl_params.h"
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/linked_lists.h"
@@ -60,6 +61,41 @@ void GlLinkedLists::allocate_pool(std::uint64_t nodes) {
   gpu_->nodes = create_buffer(nodes * sizeof(glm::uvec2));
   gpu_->links = create_buffer(nodes * 4);
   config_.pool_capacity = nodes;
+}
+
+void GlLinkedLists::change_screen(Extent screen) {
+  TechniqueConfig next = config_;
+  next.buffer.screen = screen;
+  const std::uint64_t from = this->screen().area(), to = screen.area();
+  // The pool holds fragments, which grow with the area: scaled by its ratio
+  // (rounded up; the automatic pool at least one node per pixel, as a fresh
+  // one starts), or kept when the scaled pool is beyond the limits.
+  const std::uint64_t scaled = (config_.pool_capacity * to + from - 1) / from;
+  next.pool_capacity = std::max<std::uint64_t>(scaled, auto_pool_ ? to : 1);
+  if (!pool_limit(next.pool_capacity).empty()) next.pool_capacity = config_.pool_capacity;
+  next.validate();
+  if (const std::string why = pool_limit(next.pool_capacity); !why.empty()) throw GlError(why);
+  check_storage_fits(to * 4, "the head image of screen " + screen.str());
+  // Made before the old ones go (fresh's destructor frees them on a throw).
+  Gpu fresh;
+  fresh.heads = create_buffer(to * 4);
+  if (next.pool_capacity != config_.pool_capacity) {
+    fresh.nodes = create_buffer(next.pool_capacity * sizeof(glm::uvec2));
+    fresh.links = create_buffer(next.pool_capacity * 4);
+  }
+  if (next.buffer.saturation) fresh.saturation = create_buffer(to * 4);
+  check_gl_errors("resizing the lists' screen");
+  std::swap(gpu_->heads, fresh.heads);
+  std::swap(gpu_->saturation, fresh.saturation);
+  if (fresh.nodes != 0) {
+    std::swap(gpu_->nodes, fresh.nodes);
+    std::swap(gpu_->links, fresh.links);
+  }
+  config_ = next;
+  // The last request was made on the old screen: SPEC 8's rule waits for a
+  // frame of the new one.
+  has_request_ = false;
+  last_requested_ = 0;
 }
 
 void GlLinkedLists::resize_pool(std::uint64_t nodes) {

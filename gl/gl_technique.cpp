@@ -2,6 +2,8 @@
 
 #include <epoxy/gl.h>
 
+#include <stdexcept>
+
 #include "habuffer/gl/gl_error.h"
 
 namespace habuffer::gl {
@@ -17,6 +19,15 @@ GlTechnique::~GlTechnique() = default;
 
 std::string GlTechnique::module_source(ShaderStage stage, std::string_view header) const {
   return technique_module(technique_, mode_, bindings_, stage, header);
+}
+
+void GlTechnique::resize_screen(Extent screen) {
+  if (screen.area() == 0)
+    throw std::invalid_argument("screen size " + screen.str() + " is empty (the container stays at " + screen_.str() + ")");
+  check_viewport_fits(screen);
+  if (screen == screen_) return;
+  change_screen(screen);
+  screen_ = screen;
 }
 
 PassTiming GlTechnique::after_gather(bool) { return {}; }
@@ -48,6 +59,14 @@ void check_storage_fits(std::uint64_t bytes, const std::string& what) {
   if (bytes > max_storage_bytes())
     throw GlError(what + " needs " + std::to_string(bytes) + " bytes, this OpenGL allows " +
                   std::to_string(max_storage_bytes()) + " per shader-storage buffer");
+}
+
+void check_viewport_fits(Extent screen) {
+  GLint viewport[2] = {};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  if (screen.x > static_cast<std::uint32_t>(viewport[0]) || screen.y > static_cast<std::uint32_t>(viewport[1]))
+    throw GlError("screen " + screen.str() + " exceeds this OpenGL's largest viewport " + std::to_string(viewport[0]) +
+                  "x" + std::to_string(viewport[1]));
 }
 
 }  // namespace habuffer::gl

@@ -870,3 +870,211 @@ TEST(GlHost, BuffersReplacedInsideAFrameAreNotRebound) {
 
 }  // namespace
 }  // namespace habuffer
+
+namespace habuffer {
+namespace {
+
+// A host's raster gather at any window size: kHostVertex's triangles over
+// the viewport (0, 0, size), drawn by a shader that only inserts (no colour
+// output of its own, so the blended baselines' outputs are the module's).
+constexpr const char* kResizeMain = R"(in vec4 host_colour;
+void main() { ha_insert_here(host_colour); }
+)";
+
+struct WindowRaster {
+  GLuint framebuffer = 0, vertex_array = 0;
+  WindowRaster() {
+    glCreateFramebuffers(1, &framebuffer);
+    glCreateVertexArrays(1, &vertex_array);
+  }
+  ~WindowRaster() {
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteVertexArrays(1, &vertex_array);
+  }
+  WindowRaster(const WindowRaster&) = delete;
+  WindowRaster& operator=(const WindowRaster&) = delete;
+  // One frame of `gpu` drawn into a window of `size`, and its resolved image.
+  std::vector<glm::vec4> render(gl::GlFrameDriver& gpu, const gl::ShaderProgram& program, Extent size,
+                                gl::FrameReport& report) const {
+    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(size.x));
+    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(size.y));
+    report = gpu.frame([&] {
+      // The blended baselines draw into their own framebuffer, bound by the driver.
+      if (gpu.technique().gather_framebuffer() == 0) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+      glViewport(0, 0, static_cast<GLsizei>(size.x), static_cast<GLsizei>(size.y));
+      glUseProgram(program.id());
+      glBindVertexArray(vertex_array);
+      glDrawArrays(GL_TRIANGLES, 0, 9);
+    });
+    return test::resolve_to_image(gpu, {0.1f, 0.2f, 0.3f});
+  }
+};
+
+// Every GL technique at 16x16 (the HA-buffer with its automatic table and
+// with an explicit one, the lists with the automatic pool, K 4 of the
+// three triangles), then resized in place to a larger and a smaller window:
+// the host calls one method, resize_screen, with its state untouched; the
+// next frame covers the whole new window (nothing off the screen, nothing
+// lost) and renders bit for bit, with the same lists, what a container made
+// fresh at that size renders; the memory counter is a fresh container's of
+// the same capacity; the automatic table becomes the new screen, an explicit
+// one keeps its ratio to the screen.
+TEST(GlHost, EveryTechniqueResizedInPlaceRendersWhatAFreshContainerOfTheNewScreenRenders) {
+  HostContext host;
+  GLuint host_buffer = 0;
+  glCreateBuffers(1, &host_buffer);
+  glNamedBufferData(host_buffer, 16, nullptr, GL_DYNAMIC_DRAW);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffer);
+  const WindowRaster raster;
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  const Extent a{16, 16};
+  gl::GlFrameOptions lossless;  // the HA-buffer's table grows in the first frame
+  lossless.max_attempts = 8;
+  struct Case {
+    Technique technique;
+    Extent table;  // the HA-buffer's; zero: automatic
+  };
+  for (const Case k : {Case{Technique::Ha, {}}, Case{Technique::Ha, {20, 20}}, Case{Technique::Lists, {}},
+                       Case{Technique::SortedLists, {}}, Case{Technique::Arrays, {}}, Case{Technique::KBuffer, {}},
+                       Case{Technique::Wboit, {}}, Case{Technique::Blend, {}}}) {
+    SCOPED_TRACE(to_string(k.technique) + " table " + k.table.str());
+    TechniqueConfig c;
+    c.technique = k.technique;
+    c.buffer = test::config(a, k.table, test::layout_of(mode), 8);
+    c.layers = 4;
+    gl::GlFrameDriver gpu(gl::make_gl_technique(c, test::random_offsets(5), mode), lossless);
+    const auto program = gl::ShaderProgram::graphics(
+        kHostVertex, gpu.module_source(gl::ShaderStage::Fragment) + kResizeMain, "host gather");
+    gl::FrameReport report;
+    (void)raster.render(gpu, program, a, report);
+    ASSERT_TRUE(report.lossless());
+    Extent table = gpu.technique().table();
+    for (const Extent s : {Extent{24, 20}, Extent{12, 10}}) {
+      SCOPED_TRACE("resized to " + s.str());
+      const Extent old = gpu.screen();
+      const HostState before = host_state();
+      gpu.resize_screen(s);
+      EXPECT_TRUE(host_state() == before);
+      EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+      ASSERT_EQ(gpu.screen(), s);
+      TechniqueConfig fresh_config = c;
+      fresh_config.buffer.screen = s;
+      if (k.technique == Technique::Ha) {
+        // Each side scaled by the screen's, rounded up; offsets for it.
+        const Extent expected{(table.x * s.x + old.x - 1) / old.x, (table.y * s.y + old.y - 1) / old.y};
+        EXPECT_EQ(gpu.technique().table(), expected);
+        EXPECT_EQ(static_cast<gl::GlHaTable&>(gpu.technique()).offsets().table(), expected);
+        table = gpu.technique().table();
+        fresh_config.buffer.table = table;
+        if (k.table.area() == 0) {
+          // An automatic table no frame grew becomes the new screen, as in a fresh container.
+          gl::GlFrameDriver unused(gl::make_gl_technique(c, test::random_offsets(5), mode));
+          unused.resize_screen(s);
+          EXPECT_EQ(unused.technique().table(), s);
+        }
+      }
+      {
+        // The memory of the same capacity (the scaled pool) made fresh.
+        TechniqueConfig same = fresh_config;
+        if (uses_pool(k.technique)) same.pool_capacity = gpu.technique().capacity();
+        const auto made = gl::make_gl_technique(same, test::random_offsets(5), mode);
+        EXPECT_EQ(gpu.technique().memory_bytes(), made->memory_bytes());
+        EXPECT_EQ(gpu.technique().capacity(), made->capacity());
+      }
+      const std::vector<glm::vec4> image = raster.render(gpu, program, s, report);
+      EXPECT_EQ(report.off_screen, 0u);
+      EXPECT_TRUE(report.lossless());
+      EXPECT_GT(report.counters.stored() + report.counters.blended, 0u);
+      gl::GlFrameDriver fresh(gl::make_gl_technique(fresh_config, test::random_offsets(5), mode), lossless);
+      gl::FrameReport fresh_report;
+      const std::vector<glm::vec4> expected = raster.render(fresh, program, s, fresh_report);
+      ASSERT_TRUE(fresh_report.lossless());
+      EXPECT_EQ(report.counters.stored(), fresh_report.counters.stored());
+      EXPECT_TRUE(image == expected);
+      if (stores_lists(k.technique)) {
+        EXPECT_EQ(test::traversed_lists(*gpu.technique().read_back()),
+                  test::traversed_lists(*fresh.technique().read_back()));
+      }
+    }
+  }
+  glDeleteBuffers(1, &host_buffer);
+}
+
+// Screens a container cannot take are refused before anything changes: an
+// empty one (std::invalid_argument naming it) and one beyond the largest
+// viewport or beyond a shader-storage buffer (GlError naming the sizes and
+// the limit, as at construction); the container keeps its screen, memory and
+// buffers and renders the same image as before at its old size.
+TEST(GlHost, ARefusedScreenResizeNamesTheSizesAndLeavesTheContainerWorkingAtItsOldSize) {
+  HostContext host;
+  const WindowRaster raster;
+  const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
+  const Extent a{16, 16};
+  GLint viewport[2] = {};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  const Extent wide{static_cast<std::uint32_t>(viewport[0]) + 1, 16};
+  // Within the viewport and 32-bit indices, beyond one shader-storage buffer:
+  // more rows of 64 pixels than the largest buffer holds at K 64 and 4 bytes
+  // a slot (or 8).
+  const std::uint64_t rows = gl::max_storage_bytes() / (4 * 64 * 64) + 1;
+  const bool storage_testable = rows <= static_cast<std::uint64_t>(viewport[1]) && rows * 64 * 64 < UINT32_MAX;
+  for (Technique t : {Technique::Ha, Technique::Lists, Technique::SortedLists, Technique::Arrays, Technique::KBuffer,
+                      Technique::Wboit, Technique::Blend}) {
+    SCOPED_TRACE(to_string(t));
+    TechniqueConfig c;
+    c.technique = t;
+    c.buffer = test::config(a, {}, test::layout_of(mode), 8);
+    c.layers = 4;
+    gl::GlFrameOptions lossless;
+    lossless.max_attempts = 8;
+    gl::GlFrameDriver gpu(gl::make_gl_technique(c, test::random_offsets(5), mode), lossless);
+    const auto program = gl::ShaderProgram::graphics(
+        kHostVertex, gpu.module_source(gl::ShaderStage::Fragment) + kResizeMain, "host gather");
+    gl::FrameReport report;
+    const std::vector<glm::vec4> before = raster.render(gpu, program, a, report);
+    ASSERT_TRUE(report.lossless());
+    const std::uint64_t memory = gpu.memory_bytes(), capacity = gpu.technique().capacity();
+    const Extent table = gpu.technique().table();
+    try {
+      gpu.resize_screen({0, 16});
+      ADD_FAILURE() << "an empty screen was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("0x16"), std::string::npos) << e.what();
+    }
+    try {
+      gpu.resize_screen(wide);
+      ADD_FAILURE() << "a screen beyond the viewport was taken";
+    } catch (const gl::GlError& e) {
+      EXPECT_NE(std::string(e.what()).find(wide.str()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("viewport"), std::string::npos) << e.what();
+    }
+    if (storage_testable && uses_layers(t)) {
+      // K 64 set at construction would not fit either: a container of K 64 at 16x16, resized.
+      TechniqueConfig deep = c;
+      deep.layers = 64;
+      gl::GlFrameDriver d(gl::make_gl_technique(deep, test::random_offsets(5), mode));
+      const std::uint64_t deep_memory = d.memory_bytes();
+      const Extent tall{64, static_cast<std::uint32_t>(rows)};
+      try {
+        d.resize_screen(tall);
+        ADD_FAILURE() << "a screen beyond a shader-storage buffer was taken";
+      } catch (const gl::GlError& e) {
+        EXPECT_NE(std::string(e.what()).find(tall.str()), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("shader-storage"), std::string::npos) << e.what();
+      }
+      EXPECT_EQ(d.screen(), a);
+      EXPECT_EQ(d.memory_bytes(), deep_memory);
+      EXPECT_EQ(d.technique().capacity(), 64u * a.area());
+    }  // else a context whose buffers hold any screen of its viewport: nothing to refuse
+    EXPECT_EQ(gpu.screen(), a);
+    EXPECT_EQ(gpu.memory_bytes(), memory);
+    EXPECT_EQ(gpu.technique().capacity(), capacity);
+    EXPECT_EQ(gpu.technique().table(), table);
+    EXPECT_TRUE(raster.render(gpu, program, a, report) == before);
+    EXPECT_TRUE(report.lossless());
+    EXPECT_EQ(report.off_screen, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace habuffer

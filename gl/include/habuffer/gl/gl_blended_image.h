@@ -51,6 +51,12 @@ class GlBlendedImage final : public GlTechnique {
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
 
+ protected:
+  /// resize_screen (gl_technique.h): new accumulators of the new screen
+  /// (cleared) and their storage-buffer copies, attached to the same
+  /// framebuffer object, so gather_framebuffer() keeps its name.
+  void change_screen(Extent screen) override;
+
  private:
   struct Gpu;
   [[nodiscard]] bool weighted() const { return config_.technique == Technique::Wboit; }

@@ -42,6 +42,12 @@ class GlFixedArrays final : public GlTechnique {
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
   void gathered(const FrameReport& report) override { most_arrived_ = report.most_arrived; }
 
+ protected:
+  /// resize_screen (gl_technique.h): new zeroed counters and K layers per
+  /// pixel of the new screen, K kept (the depth of a pixel does not grow
+  /// with the screen; lossless mode's K stays).
+  void change_screen(Extent screen) override;
+
  private:
   struct Gpu;
   void allocate_layers(std::uint32_t layers);

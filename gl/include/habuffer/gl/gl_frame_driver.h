@@ -61,6 +61,17 @@ class GlFrameDriver {
   /// knows growth cannot help (a pixel deeper than AMAX) stops it.
   void limit_attempts(std::uint32_t attempts) { options_.max_attempts = std::max(1u, std::min(options_.max_attempts, attempts)); }
 
+  /// A window resize: the technique's screen changed in place
+  /// (GlTechnique::resize_screen: every per-pixel buffer made anew, the
+  /// HA-buffer's table and the node pool scaled with the screen), and the
+  /// parameter block with it. The next frame and resolve cover the new
+  /// screen; the last frame's lists are gone. Throws std::invalid_argument
+  /// (an empty screen, the configuration's rules) or GlError (this
+  /// context's viewport or buffer limits), each one line naming the sizes,
+  /// and then leaves everything as it was. Shaders, the capture and the
+  /// deferred-call buffers are kept (none depends on the screen).
+  void resize_screen(Extent screen);
+
   /// The GLSL module for this technique, atomic mode and binding points.
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
 

@@ -32,6 +32,8 @@ class GlHaBuffer : public GlFrameDriver {
   /// Sets the table for the next frame (at least the screen; offsets
   /// regenerated), e.g. from a host's own estimate before the first frame.
   /// Throws std::invalid_argument or GlError (beyond the context's limits).
+  /// The table only; a window resize is resize_screen (GlFrameDriver), which
+  /// also scales the table (GlHaTable::change_screen).
   void resize(Extent table);
   /// Runs the counting pass without clearing: the records in the table, by
   /// occlusion query.

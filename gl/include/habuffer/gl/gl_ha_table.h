@@ -38,7 +38,8 @@ class GlHaTable final : public GlTechnique {
   /// The offsets of the current table.
   [[nodiscard]] const OffsetSequence& offsets() const { return offsets_; }
 
-  /// Sets the table for the next frame (at least the screen; offsets regenerated).
+  /// Sets the table for the next frame (at least the screen; offsets
+  /// regenerated). The table only: resize_screen changes the screen.
   void resize(Extent table);
   /// Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
@@ -67,6 +68,18 @@ class GlHaTable final : public GlTechnique {
   [[nodiscard]] std::uint64_t capacity() const override { return config_.table.area(); }
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
+
+ protected:
+  /// resize_screen (gl_technique.h): the table scaled by each side's ratio
+  /// of the new screen to the old, rounded up and at least the new screen
+  /// (SPEC 1), so an automatic table (the screen) becomes the new screen as
+  /// in a fresh container and an explicit or adapted one keeps its load;
+  /// when that table is beyond the context's limits, the screen itself.
+  /// Offsets regenerated for a new table (as lossless growth and adaptive
+  /// sizing do); a fresh zeroed table, max-age table and saturation image;
+  /// the count of a clear pass in flight is dropped (the first frame after
+  /// runs no clear pass, adaptive sizing resumes a frame later).
+  void change_screen(Extent screen) override;
 
  private:
   struct Gpu;

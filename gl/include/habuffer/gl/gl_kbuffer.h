@@ -45,6 +45,11 @@ class GlKBuffer final : public GlTechnique {
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
 
+ protected:
+  /// resize_screen (gl_technique.h): K layers per pixel of the new screen
+  /// (zeroed), K kept, new lock words (emulated64) and occupancy buffers.
+  void change_screen(Extent screen) override;
+
  private:
   struct Gpu;
   void allocate_layers(std::uint32_t layers);

@@ -60,6 +60,14 @@ class GlLinkedLists final : public GlTechnique {
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
   void gathered(const FrameReport& report) override;
 
+ protected:
+  /// resize_screen (gl_technique.h): a new zeroed head image (and
+  /// saturation image); the pool scaled by the ratio of the new screen's area
+  /// to the old, rounded up (an automatic pool at least one node per pixel;
+  /// the pool kept when the scaled one is beyond the limits), its links
+  /// made anew; the last frame's node request forgotten.
+  void change_screen(Extent screen) override;
+
  private:
   struct Gpu;
   void allocate_pool(std::uint64_t nodes);

@@ -47,6 +47,21 @@ class GlTechnique {
   /// The GLSL module host shaders append their code to (technique_module).
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
 
+  /// Changes the screen in place (a host's window resize): the next frame
+  /// stores every pixel of `screen` and nothing of the last frame. Every
+  /// per-pixel buffer is made anew for `screen` (zeroed); what the container
+  /// learned is kept where it does not depend on the screen (K of fixed
+  /// arrays and the k-buffer) and scaled with it where it does (the
+  /// HA-buffer's table by each side's ratio, at least the screen; the node
+  /// pool by the area's ratio), see each container. The limits are checked
+  /// first, with the one-line errors of construction: std::invalid_argument
+  /// for an empty screen or one beyond the configuration's rules, GlError
+  /// for one beyond this context's (viewport, buffer sizes). On a throw the
+  /// container is unchanged and keeps working at its old screen (strong
+  /// guarantee). The same screen is a no-op. Touches no binding of the
+  /// host's (buffers and textures are made and cleared by name).
+  void resize_screen(Extent screen);
+
   /// The technique's fields of the parameter block.
   virtual void write_params(GlParams& params) const = 0;
   /// Binds the technique's storage buffers at their points.
@@ -109,6 +124,13 @@ class GlTechnique {
   /// dumps, compositing on the CPU), its insert counters left to the caller.
   [[nodiscard]] virtual std::unique_ptr<FragmentBuffer> read_back() const = 0;
 
+ protected:
+  /// resize_screen's work, for a screen that is not empty, fits the
+  /// viewport and differs from screen(): check every limit, make the new
+  /// buffers, and only then replace the old ones (strong guarantee).
+  /// screen() is still the old one during the call.
+  virtual void change_screen(Extent screen) = 0;
+
  private:
   Technique technique_;
   AtomicMode mode_;
@@ -134,5 +156,8 @@ std::uint64_t emulated64_lock_words(std::uint64_t slots);
 void check_storage_fits(std::uint64_t bytes, const std::string& what);
 /// GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
 std::uint64_t max_storage_bytes();
+/// Throws GlError unless `screen` fits this context's largest viewport
+/// (GL_MAX_VIEWPORT_DIMS; the message names both).
+void check_viewport_fits(Extent screen);
 
 }  // namespace habuffer::gl
