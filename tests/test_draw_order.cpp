@@ -3,6 +3,7 @@
 // one order and in the reverse order to the same image bit for bit and the
 // same lists CSV; the approximate ones move within their stated bound.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -35,7 +36,11 @@ Rendered render(const TechniqueConfig& c, std::span<const Fragment> frags, const
   const std::vector<glm::vec3> backgrounds(c.buffer.screen.area(), glm::vec3(0.25f, 0.5f, 0.75f));
   r.image = b->composite_image(backgrounds, 1);
   if (stores_lists(c.technique)) {
-    const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / "draw_order_lists.csv";
+    // One file per process and test: ctest runs the tests side by side.
+    const std::filesystem::path path =
+        std::filesystem::path(::testing::TempDir()) /
+        ("draw_order_lists_" + std::to_string(::getpid()) + "_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".csv");
     write_lists(path.string(), *b);
     r.lists_csv = read_text(path);
     std::filesystem::remove(path);

@@ -4,6 +4,7 @@
 // runs; wboit and blend move within their stated bound (test_draw_order.cpp
 // is the CPU path's).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -29,7 +30,11 @@ Rendered render(const TechniqueConfig& c, gl::AtomicMode mode, std::span<const F
   r.report = gl::ComputeInserter(gpu).insert(frags);
   r.image = test::resolve_to_image(gpu, glm::vec3(0.25f, 0.5f, 0.75f));
   if (stores_lists(c.technique)) {
-    const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / "gl_draw_order_lists.csv";
+    // One file per process and test: ctest runs the tests side by side.
+    const std::filesystem::path path =
+        std::filesystem::path(::testing::TempDir()) /
+        ("gl_draw_order_lists_" + std::to_string(::getpid()) + "_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".csv");
     write_lists(path.string(), *gpu.technique().read_back());
     std::ifstream in(path);
     std::stringstream s;
