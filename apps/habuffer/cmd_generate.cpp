@@ -45,6 +45,9 @@ int run_generate(const std::vector<std::string>& argv) {
     if (!(load > 0.0 && load <= 4.0)) throw UsageError("option --load: must be in (0, 4]");
     const Extent table = args.extent("table").value_or(*screen);
     o.count = static_cast<std::uint64_t>(std::llround(load * static_cast<double>(table.area())));
+    if (o.count == 0)
+      throw UsageError("option --load: " + args.str("load", "") + " of table " + table.str() +
+                       " gives no fragment (at least " + shortest(0.5 / static_cast<double>(table.area())) + ")");
   }
   try {
     check_fits_in_memory("--fragments " + std::to_string(o.count), saturating_product(o.count, sizeof(Fragment)));

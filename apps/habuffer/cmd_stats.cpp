@@ -103,6 +103,9 @@ int run_stats(const std::vector<std::string>& argv) {
       throw UsageError("option --loads: " + excerpt(l) + " is not a load in (0, 4]");
     c.loads.push_back(v);
   }
+  for (const double l : c.loads)
+    if (l * static_cast<double>(c.table.area()) < 1.0)
+      throw UsageError("option --loads: " + shortest(l) + " of table " + c.table.str() + " gives no fragment");
   // The largest load's stream (16 bytes a fragment) and the table (8 bytes a slot).
   double max_load = 0.0;
   for (const double l : c.loads) max_load = std::max(max_load, l);

@@ -122,6 +122,9 @@ expect values 2 "--saturation has no effect with --technique lists" -- render --
 expect values 2 "--lossless has no effect with --technique blend" -- render --scene quads --size 8x8 --out q.png --technique blend --lossless
 expect values 2 "--lossless has no effect with --technique wboit" -- render --scene quads --size 8x8 --out q.png --technique wboit --lossless
 expect values 2 "needs" -- stats --screen 100000x100000
+expect values 2 "option --loads: 1e-300 of table 128x128 gives no fragment" -- stats --loads 1e-300
+expect values 2 "option --load: 1e-300 of table 4x4 gives no fragment" -- generate --screen 4x4 --load 1e-300 --out g.csv
+expect values 2 "more than 2^32 - 1: raise the load" -- demo --screen 4x4 --load 1e-300
 expect values 2 "more than this machine's" -- render --scene quads --size 65535x65535 --out q.png
 
 # --- 7. Losses in harness runs are said; a pixel deeper than AMAX is named --
