@@ -4,6 +4,7 @@
 
 #include "habuffer/csv.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/memory_budget.h"
 #include "habuffer/printable.h"
 #include "loss_report.h"
 
@@ -34,6 +35,12 @@ std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback) {
   for (const std::string& w : args.list("size", fallback)) {
     const std::optional<Extent> e = parse_extent(w);
     if (!e) throw UsageError("--size: '" + w + "' is not WxH with positive sides");
+    try {
+      // The least a render allocates: 32 bytes a pixel over its buffers.
+      check_fits_in_memory("--size " + e->str(), saturating_product(e->area(), 32));
+    } catch (const std::invalid_argument& why) {
+      throw UsageError(why.what());
+    }
     out.push_back(*e);
   }
   return out;

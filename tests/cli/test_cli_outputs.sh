@@ -126,6 +126,7 @@ expect values 2 "option --loads: 1e-300 of table 128x128 gives no fragment" -- s
 expect values 2 "option --load: 1e-300 of table 4x4 gives no fragment" -- generate --screen 4x4 --load 1e-300 --out g.csv
 expect values 2 "more than 2^32 - 1: raise the load" -- demo --screen 4x4 --load 1e-300
 expect values 2 "more than this machine's" -- render --scene quads --size 65535x65535 --out q.png
+expect values 2 "--size 65535x65535 needs" -- sweep --scene quads --size 65535x65535 --out s.json
 
 # --- 7. Losses in harness runs are said; a pixel deeper than AMAX is named --
 printf 'x,y,depth,rgba\n' >deep.csv
