@@ -81,11 +81,13 @@ void FixedArrays::import_state(std::span<const std::uint32_t> counts, std::span<
   if (std::any_of(counts.begin(), counts.end(), [&](std::uint32_t n) { return n > params_.layers; }))
     throw std::invalid_argument("imported arrays hold more than " + std::to_string(params_.layers) + " layers in a pixel");
   const RecordLayout layout = config_.buffer.record_layout();
+  ArraysKernel<false> order(params_, buffers());  // the arrays' entry order (ha_entries.glsl)
+  const auto before = [&](glm::uvec2 a, glm::uvec2 b) { return order.ha_entry_before(a, b); };
   std::vector<glm::uvec2> list;
   for (std::size_t p = 0; p < counts.size(); ++p) {
     list.clear();
     for (std::uint32_t k = 0; k < counts[p]; ++k) list.push_back(layers[k * counts.size() + p]);
-    detail::check_imported_list(list, layout, p, screen(), "imported arrays");
+    detail::check_imported_list(list, layout, p, screen(), "imported arrays", before);
   }
   std::copy(counts.begin(), counts.end(), counts_.begin());
   std::copy(layers.begin(), layers.end(), layers_.begin());

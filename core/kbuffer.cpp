@@ -135,7 +135,12 @@ void KBuffer::import_state(std::span<const std::uint32_t> slot_words, std::span<
         throw std::invalid_argument(where + " holds a record of age " + std::to_string(layout.age(r)) + ", not 1");
       list.emplace_back(layout.code(r), layout.data(r));
     }
-    detail::check_imported_list(list, layout, p, screen(), "imported k-buffer");
+    // The k-buffer keeps a pixel's layers in record order (ha_kbuffer.glsl
+    // compares whole records), so an entry lies before another when its
+    // record of age 1 is the greater.
+    detail::check_imported_list(list, layout, p, screen(), "imported k-buffer", [&](glm::uvec2 a, glm::uvec2 b) {
+      return layout.pack(1, a.x, a.y) > layout.pack(1, b.x, b.y);
+    });
   }
   const std::uint32_t buckets = 32 * config_.occupancy_words;
   if (std::any_of(limits.begin(), limits.end(), [&](std::uint32_t b) { return b > buckets; }))

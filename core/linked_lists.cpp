@@ -100,6 +100,8 @@ void LinkedLists::import_state(std::span<const std::uint32_t> heads, std::span<c
   // Each node on at most one list, once (a cycle would never end a walk),
   // every list sorted with valid entries.
   const RecordLayout layout = config_.buffer.record_layout();
+  ListsKernel<false> order(params_, buffers());  // the lists' entry order (ha_entries.glsl)
+  const auto before = [&](glm::uvec2 a, glm::uvec2 b) { return order.ha_entry_before(a, b); };
   std::vector<bool> reached(entries.size(), false);
   std::vector<glm::uvec2> list;
   for (std::size_t p = 0; p < heads.size(); ++p) {
@@ -111,7 +113,7 @@ void LinkedLists::import_state(std::span<const std::uint32_t> heads, std::span<c
       reached[l - 1] = true;
       list.push_back(entries[l - 1]);
     }
-    detail::check_imported_list(list, layout, p, screen(), "imported lists");
+    detail::check_imported_list(list, layout, p, screen(), "imported lists", before);
   }
   std::copy(heads.begin(), heads.end(), heads_.begin());
   std::copy(entries.begin(), entries.end(), entries_.begin());

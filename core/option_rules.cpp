@@ -23,4 +23,13 @@ double parse_load_factor(std::string_view text) {
   return load;
 }
 
+Extent table_of_sides(double x, double y, double load, std::uint64_t fragments) {
+  const double side = static_cast<double>(std::uint32_t{1} << 31);
+  if (!(x <= side && y <= side && x * y <= static_cast<double>(UINT32_MAX)))
+    throw std::invalid_argument("load " + shortest_text(load) + " of " + std::to_string(fragments) +
+                                " fragments needs a table of " + shortest_text(x * y) +
+                                " slots, more than 2^32 - 1: raise the load");
+  return {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)};
+}
+
 }  // namespace habuffer

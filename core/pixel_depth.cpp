@@ -39,6 +39,15 @@ std::optional<PixelDepth> pixel_deeper_than(std::span<const Fragment> fragments,
   return deepest;
 }
 
+std::optional<PixelDepth> pixel_counted_beyond(std::span<const std::uint32_t> counts, Extent screen,
+                                               std::uint64_t limit) {
+  const auto deepest = std::max_element(counts.begin(), counts.end());
+  if (deepest == counts.end() || *deepest <= limit) return std::nullopt;
+  const auto index = static_cast<std::uint64_t>(deepest - counts.begin());
+  return PixelDepth{{static_cast<std::uint32_t>(index % screen.x), static_cast<std::uint32_t>(index / screen.x)},
+                    *deepest, false};
+}
+
 std::optional<std::uint32_t> age_bits_for(std::uint64_t records) {
   for (std::uint32_t a = HABUFFER_MIN_AGE_BITS; a <= HABUFFER_MAX_AGE_BITS; ++a)
     if (records <= (std::uint64_t{1} << a) - 1) return a;

@@ -140,10 +140,13 @@ std::vector<glm::vec4> composite_image(Extent screen, std::span<const glm::vec3>
 
 // Throws std::invalid_argument unless `entries`, pixel `pixel`'s imported
 // list nearest first, could have been built: codes within the layout's,
-// data 0 in L32, strictly decreasing (code, data) (sorted, identical entries
-// merged). `what` names the container.
-inline void check_imported_list(std::span<const glm::uvec2> entries, const RecordLayout& layout, std::size_t pixel,
-                                Extent screen, const char* what) {
+// data 0 in L32, each entry strictly `before(previous, entry)` behind the
+// one before it (sorted, identical entries merged; `before` is the
+// technique's own order, e.g. ha_entries.glsl's ha_entry_before). `what`
+// names the container.
+template <class Before>
+void check_imported_list(std::span<const glm::uvec2> entries, const RecordLayout& layout, std::size_t pixel,
+                         Extent screen, const char* what, Before before) {
   const auto where = [&](std::size_t k) {
     return std::string(what) + ": entry " + std::to_string(k) + " of pixel (" + std::to_string(pixel % screen.x) + "," +
            std::to_string(pixel / screen.x) + ")";
@@ -155,7 +158,7 @@ inline void check_imported_list(std::span<const glm::uvec2> entries, const Recor
                                   std::to_string(layout.max_code()));
     if (!layout.has_data() && e.y != 0)
       throw std::invalid_argument(where(k) + " has data " + std::to_string(e.y) + " in the L32 layout (which has none)");
-    if (k > 0 && !(entries[k - 1].x > e.x || (entries[k - 1].x == e.x && entries[k - 1].y > e.y)))
+    if (k > 0 && !before(entries[k - 1], e))
       throw std::invalid_argument(where(k) + " is not behind the entry before it (lists are sorted, identical entries merged)");
   }
 }

@@ -39,7 +39,7 @@ std::string tau_text(float tau) {
 void check_fig2_scene(const WorkloadSpec& scene) {
   if (!scene.fragments.empty())
     throw std::invalid_argument("fig2 sets the scene's opacity: '" + scene.word + "' is a fragment file (its colours are fixed)");
-  if (scene.word.find(":opacity=") != std::string::npos)
+  if (scene.keys.count("opacity") != 0)
     throw std::invalid_argument("fig2 sets the opacity from --opacities: drop opacity= from '" + scene.word + "'");
 }
 
@@ -47,7 +47,7 @@ void check_fig8_scene(const WorkloadSpec& scene) {
   if (!scene.fragments.empty() || !scene_takes(scene.scene, "spread"))
     throw std::invalid_argument("fig8 pulls the quads together by their spread: '" + scene.word + "' has none (" +
                                 scenes_taking_text("spread") + ")");
-  if (scene.word.find(":spread=") != std::string::npos)
+  if (scene.keys.count("spread") != 0)
     throw std::invalid_argument("fig8 sets the spread per frame: drop spread= from '" + scene.word + "'");
 }
 

@@ -39,7 +39,10 @@ std::vector<Fragment> synthetic_stream(const std::vector<std::uint32_t>& counts,
   return out;
 }
 
-Prediction predict_ha(const ExactCapture& c, Extent screen, double load, const PlanSettings& s) {
+// `beyond_amax`: the fragments beyond AMAX over every pixel, when any pixel
+// has more than AMAX (then every load fails them).
+Prediction predict_ha(const ExactCapture& c, Extent screen, double load, const PlanSettings& s,
+                      std::optional<std::uint64_t> beyond_amax) {
   Prediction p;
   p.spec.load = load;
   if (s.age_bits != HABUFFER_DEFAULT_AGE_BITS) p.spec.age_bits = s.age_bits;
@@ -49,16 +52,13 @@ Prediction predict_ha(const ExactCapture& c, Extent screen, double load, const P
   config.buffer.table = table_for_load(screen, c.fragments, load);
   p.memory = memory_model_bytes(config, config.buffer.table.area());
   double sum_max = 0.0, lost = 0.0, losing = 0.0;
-  const std::uint32_t amax = config.buffer.record_layout().max_age();
-  const std::uint32_t deepest = *std::max_element(c.pixel_fragments.begin(), c.pixel_fragments.end());
-  if (deepest > amax) {
+  if (beyond_amax) {
     // Simulating would probe AMAX slots for each fragment beyond it, for
     // nothing: every trial loses at least the excess.
-    std::uint64_t excess = 0;
-    for (const std::uint32_t n : c.pixel_fragments) excess += n > amax ? n - amax : 0;
+    const std::uint32_t amax = config.buffer.record_layout().max_age();
     p.max_age = amax;
     p.max_age_max = amax;
-    p.failures = static_cast<double>(excess);
+    p.failures = static_cast<double>(*beyond_amax);
     p.risk = 1.0;
     p.psnr = kInf;
     return p;
@@ -146,17 +146,17 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
   std::vector<Prediction> preds;
   const std::uint32_t deepest = *std::max_element(c.pixel_fragments.begin(), c.pixel_fragments.end());
   const double max_load = static_cast<double>(c.fragments) / static_cast<double>(screen.area());
-  const RecordLayout layout(Layout::L64, s.age_bits);
-  std::string notes_too_deep;
-  if (deepest > layout.max_age()) {
-    const auto index = static_cast<std::uint32_t>(
-        std::max_element(c.pixel_fragments.begin(), c.pixel_fragments.end()) - c.pixel_fragments.begin());
-    notes_too_deep = too_deep_message(PixelDepth{{index % screen.x, index / screen.x}, deepest, false}, s.age_bits);
+  const std::uint32_t amax = RecordLayout(Layout::L64, s.age_bits).max_age();
+  const std::optional<PixelDepth> too_deep = pixel_counted_beyond(c.pixel_fragments, screen, amax);
+  std::optional<std::uint64_t> beyond_amax;
+  if (too_deep) {
+    beyond_amax = 0;
+    for (const std::uint32_t n : c.pixel_fragments) *beyond_amax += n > amax ? n - amax : 0;
   }
   std::uint64_t done = 0;
   const std::uint64_t total = s.loads.size();
   for (const double l : s.loads) {
-    if (l <= max_load) preds.push_back(predict_ha(c, screen, l, s));
+    if (l <= max_load) preds.push_back(predict_ha(c, screen, l, s, beyond_amax));
     if (s.on_progress) s.on_progress(++done, total);
   }
   preds.push_back(predict_lists(c, screen, Technique::Lists));
@@ -198,7 +198,9 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
     if (depth[d]) hist += (hist.empty() ? "" : " ") + std::to_string(d) + ":" + std::to_string(depth[d]);
   table.notes["fragments"] = std::to_string(c.fragments);
   table.notes["max_depth_complexity"] = std::to_string(deepest);
-  if (!notes_too_deep.empty()) table.notes["ha_beyond_amax"] = notes_too_deep + "; the ha rows are predicted without simulation";
+  if (too_deep)
+    table.notes["ha_beyond_amax"] =
+        too_deep_message(*too_deep, s.age_bits) + "; the ha rows are predicted without simulation";
   table.notes["depth_complexity_histogram"] = hist + " (fragments per pixel : pixels)";
   table.notes["recommendation"] = best ? best->spec.label() : std::string("none meets the target");
   table.notes["model"] =

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "habuffer/csv.h"
 #include "habuffer/json_writer.h"
@@ -141,29 +142,30 @@ double ResultRow::number(const std::string& column) const {
   throw std::out_of_range("result row has no number in column '" + column + "'");
 }
 
+namespace {
+
+// The counters' own columns, in table order, for writing and reading back
+// alike; `stored` and `failures`, derived, stand before and after them.
+constexpr std::pair<const char*, std::uint64_t Counters::*> kCounterColumns[] = {
+    {"invalid", &Counters::invalid},           {"duplicates", &Counters::duplicates},
+    {"culled", &Counters::culled},             {"saturated_rejected", &Counters::saturated_rejected},
+    {"blended", &Counters::blended},           {"failed_age", &Counters::failed_age},
+    {"failed_iter", &Counters::failed_iter},   {"dropped_pool", &Counters::dropped_pool},
+    {"dropped_layers", &Counters::dropped_layers}, {"occupancy_rejected", &Counters::occupancy_rejected}};
+
+}  // namespace
+
 void set_counters(ResultRow& row, const Counters& c) {
-  row.set("fragments", c.fragments).set("stored", c.stored()).set("invalid", c.invalid).set("duplicates", c.duplicates)
-      .set("culled", c.culled).set("saturated_rejected", c.saturated_rejected).set("blended", c.blended)
-      .set("failed_age", c.failed_age).set("failed_iter", c.failed_iter).set("dropped_pool", c.dropped_pool)
-      .set("dropped_layers", c.dropped_layers).set("occupancy_rejected", c.occupancy_rejected)
-      .set("failures", c.failures());
+  row.set("fragments", c.fragments).set("stored", c.stored());
+  for (const auto& [column, field] : kCounterColumns) row.set(column, c.*field);
+  row.set("failures", c.failures());
 }
 
 std::optional<Counters> counters_of(const ResultRow& row) {
   if (row.find("fragments") == nullptr || row.find("failures") == nullptr) return std::nullopt;
-  const auto n = [&](const char* column) { return static_cast<std::uint64_t>(row.number(column)); };
   Counters c;
-  c.fragments = n("fragments");
-  c.invalid = n("invalid");
-  c.duplicates = n("duplicates");
-  c.culled = n("culled");
-  c.saturated_rejected = n("saturated_rejected");
-  c.blended = n("blended");
-  c.failed_age = n("failed_age");
-  c.failed_iter = n("failed_iter");
-  c.dropped_pool = n("dropped_pool");
-  c.dropped_layers = n("dropped_layers");
-  c.occupancy_rejected = n("occupancy_rejected");
+  c.fragments = static_cast<std::uint64_t>(row.number("fragments"));
+  for (const auto& [column, field] : kCounterColumns) c.*field = static_cast<std::uint64_t>(row.number(column));
   return c;
 }
 

@@ -1,6 +1,5 @@
 #include "habuffer/harness/technique_spec.h"
 
-#include <charconv>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -108,14 +107,7 @@ TechniqueSpec parse_technique_spec(const std::string& word) {
 Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
   const double slots = std::ceil(static_cast<double>(fragments) / load);
   const double scale = std::sqrt(slots / static_cast<double>(screen.area()));
-  const double x = std::ceil(screen.x * scale), y = std::ceil(screen.y * scale);
-  // Checked as doubles, before any cast: a tiny load makes them huge (or
-  // infinite), and a cast of those to an integer is undefined.
-  if (!(x * y <= static_cast<double>(UINT32_MAX) && x <= static_cast<double>(1u << 31) && y <= static_cast<double>(1u << 31)))
-    throw std::invalid_argument("load " + number_text(load) + " of " + std::to_string(fragments) +
-                                " fragments needs a table of " + number_text(x * y) +
-                                " slots, more than 2^32 - 1: raise the load");
-  const Extent table{static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)};
+  const Extent table = table_of_sides(std::ceil(screen.x * scale), std::ceil(screen.y * scale), load, fragments);
   if (table.x < screen.x || table.y < screen.y)
     throw std::invalid_argument("load " + number_text(load) + " of " + std::to_string(fragments) +
                                 " fragments needs a table smaller than the screen " + screen.str() +

@@ -1,8 +1,6 @@
 #include "habuffer/harness/workload.h"
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -33,12 +31,11 @@ WorkloadSpec parse_workload_spec(const std::string& word) {
     return w;
   }
   if (word.back() == ':') refuse("empty option after ':'");
-  std::set<std::string> given;
   while (std::getline(in, part, ':')) {
     const std::size_t eq = part.find('=');
     if (eq == std::string::npos) refuse("'" + part + "' is not KEY=VALUE");
     const std::string key = part.substr(0, eq), value = part.substr(eq + 1);
-    if (!given.insert(key).second) refuse(key + " given twice");
+    if (!w.keys.insert(key).second) refuse(key + " given twice");
     try {
       if (!scene_takes(w.scene, key)) refuse("scene " + w.scene + " does not take " + key + " (" + scenes_taking_text(key) + ")");
       set_scene_option(w.options, key, value);

@@ -65,16 +65,12 @@ namespace {
 
 // The GPU path sees no records before inserting, only the counting pass: a
 // pixel with more fragments than AMAX (without early cull, which could cull
-// them) fails an HA-buffer at any table size unless they are duplicates, so
-// no frame grows the table for it (16 growths to a 4 GB table otherwise).
-void stop_growth_for_deep_pixels(const RenderSettings& s, const std::vector<std::uint32_t>& counts,
-                                 gl::GlFrameDriver& driver, RenderResult& result) {
-  if (s.technique != Technique::Ha || s.config.early_cull_tau > 0.0f || counts.empty()) return;
-  const auto deepest = std::max_element(counts.begin(), counts.end());
-  if (*deepest <= s.config.record_layout().max_age()) return;
-  const auto index = static_cast<std::uint32_t>(deepest - counts.begin());
-  result.too_deep = PixelDepth{{index % s.config.screen.x, index / s.config.screen.x}, *deepest, false};
-  driver.limit_attempts(1);
+// them) fails an HA-buffer at any table size unless they are duplicates.
+bool age_limit_applies(const RenderSettings& s) {
+  return s.path == RenderPath::Gl && s.technique == Technique::Ha && s.config.early_cull_tau <= 0.0f;
+}
+std::optional<PixelDepth> pixel_beyond_amax(const RenderSettings& s, std::span<const std::uint32_t> counts) {
+  return pixel_counted_beyond(counts, s.config.screen, s.config.record_layout().max_age());
 }
 
 }  // namespace
@@ -106,7 +102,10 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
                           " fragments overflows the GPU path's 32-bit counters: render a smaller view or fewer layers");
       // Size the first table or pool from the count, so frame 0 need not fail its way up.
       path->size_for(fragments, result);
-      if (s.path == RenderPath::Gl) stop_growth_for_deep_pixels(s, renderer.read_pixel_fragments(), driver, result);
+      // Where frames may grow, no frame grows for such a pixel (16 growths to
+      // a 4 GB table otherwise); the read-back is only paid there.
+      if (age_limit_applies(s) && frame_attempts(s) > 1)
+        if ((result.too_deep = pixel_beyond_amax(s, renderer.read_pixel_fragments()))) driver.limit_attempts(1);
     }
     const gl::FrameReport report = driver.frame([&] { renderer.gather(camera); }, [&] { return renderer.inserted(); });
     fs.opaque_rejected = renderer.read_rejected();
@@ -117,6 +116,10 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
     if (s.on_progress) s.on_progress(k + 1, s.frames);
   }
   result.pixel_fragments = renderer.read_pixel_fragments();
+  // Frames that could not grow: the same pixel named for the loss warning.
+  const bool failed_age = std::any_of(result.frames.begin(), result.frames.end(),
+                                      [](const FrameStats& f) { return f.counters.failed_age > 0; });
+  if (!result.too_deep && failed_age && age_limit_applies(s)) result.too_deep = pixel_beyond_amax(s, result.pixel_fragments);
   path->finish(renderer, result);
   gl::check_gl_errors("rendering");
   return result;

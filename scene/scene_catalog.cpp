@@ -38,64 +38,68 @@ std::vector<std::string> scene_names() {
   return names;
 }
 
-std::vector<std::string> scenes_taking(const std::string& option) {
-  // As make_scene below passes them on.
-  static const std::map<std::string, std::vector<std::string>> takers{
-      {"count", {"hairball", "quads", "planes"}}, {"seed", {"hairball", "quads"}}, {"spread", {"quads"}},
-      {"order", {"planes"}}};
-  const auto it = takers.find(option);
-  return it == takers.end() ? std::vector<std::string>{} : it->second;
+float smallest_opacity() { return std::nextafter(1.0f / 510.0f, 1.0f); }
+
+namespace {
+
+void set_count(SceneOptions& o, const std::string& text) {
+  o.count = static_cast<std::uint32_t>(parse_unsigned(text, 1, kMaxSceneCount));
+}
+void set_seed(SceneOptions& o, const std::string& text) { o.seed = parse_unsigned(text); }
+void set_opacity(SceneOptions& o, const std::string& text) {
+  const float a = parse_float32(text);
+  if (!(a >= smallest_opacity() && a <= 1.0f))
+    throw std::invalid_argument(text + " outside (0, 1], at least " + shortest_text(smallest_opacity()) +
+                                " (just above 1/510: smaller rounds to alpha 0 in the 8-bit record)");
+  o.opacity = a;
+}
+void set_spread(SceneOptions& o, const std::string& text) {
+  const float v = parse_float32(text);
+  if (!(v >= 0.0f && v <= 1.0f)) throw std::invalid_argument(text + " outside [0, 1]");
+  o.spread = v;
+}
+void set_order(SceneOptions& o, const std::string& text) {
+  if (text != "front" && text != "back") throw std::invalid_argument("'" + text + "' is not front or back");
+  o.order = text == "front" ? PlaneOrder::FrontToBack : PlaneOrder::BackToFront;
 }
 
+// The rule of `key`; throws std::invalid_argument naming the keys there are.
+const SceneOptionRule& rule_of(const std::string& key) {
+  std::string keys;
+  for (const SceneOptionRule& r : scene_option_rules()) {
+    if (key == r.key) return r;
+    keys += (keys.empty() ? "" : ", ") + std::string(r.key);
+  }
+  throw std::invalid_argument("unknown scene option '" + key + "' (" + keys + ")");
+}
+
+}  // namespace
+
 const std::vector<SceneOptionRule>& scene_option_rules() {
+  // The takers as make_scene below passes the options on.
   static const std::vector<SceneOptionRule> rules{
-      {"count", "count", "an integer in 1..1048576"},
-      {"seed", "scene-seed", "a non-negative integer"},
-      {"opacity", "opacity", "a number in (0, 1] above 1/510"},
-      {"spread", "spread", "a number in [0, 1]"},
-      {"order", "order", "front or back"}};
+      {"count", "count", {"hairball", "quads", "planes"}, set_count},
+      {"seed", "scene-seed", {"hairball", "quads"}, set_seed},
+      {"opacity", "opacity", {}, set_opacity},
+      {"spread", "spread", {"quads"}, set_spread},
+      {"order", "order", {"planes"}, set_order}};
   return rules;
 }
 
-float smallest_opacity() { return std::nextafter(1.0f / 510.0f, 1.0f); }
+std::vector<std::string> scenes_taking(const std::string& option) { return rule_of(option).takers; }
 
-void set_scene_option(SceneOptions& o, const std::string& key, const std::string& text) {
-  if (key == "count") {
-    o.count = static_cast<std::uint32_t>(parse_unsigned(text, 1, kMaxSceneCount));
-  } else if (key == "seed") {
-    o.seed = parse_unsigned(text);
-  } else if (key == "opacity") {
-    const float a = parse_float32(text);
-    if (!(a >= smallest_opacity() && a <= 1.0f))
-      throw std::invalid_argument(text + " outside (0, 1], at least " + shortest_text(smallest_opacity()) +
-                                  " (just above 1/510: smaller rounds to alpha 0 in the 8-bit record)");
-    o.opacity = a;
-  } else if (key == "spread") {
-    const float v = parse_float32(text);
-    if (!(v >= 0.0f && v <= 1.0f)) throw std::invalid_argument(text + " outside [0, 1]");
-    o.spread = v;
-  } else if (key == "order") {
-    if (text != "front" && text != "back") throw std::invalid_argument("'" + text + "' is not front or back");
-    o.order = text == "front" ? PlaneOrder::FrontToBack : PlaneOrder::BackToFront;
-  } else {
-    throw std::invalid_argument("unknown scene option '" + key + "' (count, seed, opacity, spread, order)");
-  }
-}
+void set_scene_option(SceneOptions& o, const std::string& key, const std::string& text) { rule_of(key).set(o, text); }
 
 bool scene_takes(const std::string& name_or_path, const std::string& key) {
-  if (key == "opacity") return true;
-  if (std::none_of(scene_option_rules().begin(), scene_option_rules().end(),
-                   [&](const SceneOptionRule& r) { return key == r.key; }))
-    throw std::invalid_argument("unknown scene option '" + key + "' (count, seed, opacity, spread, order)");
-  const std::vector<std::string> takers = scenes_taking(key);
-  return std::find(takers.begin(), takers.end(), name_or_path) != takers.end();
+  const std::vector<std::string>& takers = rule_of(key).takers;
+  return takers.empty() || std::find(takers.begin(), takers.end(), name_or_path) != takers.end();
 }
 
 std::string scenes_taking_text(const std::string& key) {
-  const std::vector<std::string> takers = scenes_taking(key);
+  const std::vector<std::string>& takers = rule_of(key).takers;
+  if (takers.empty()) return "every scene takes it";
   std::string names;
   for (const std::string& t : takers) names += (names.empty() ? "" : ", ") + t;
-  if (takers.empty()) return "no scene takes it";
   return names + " take" + (takers.size() == 1 ? "s" : "") + " it";
 }
 

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
+#include "habuffer/option_rules.h"
 #include "habuffer/random.h"
 
 namespace habuffer {
@@ -98,17 +98,8 @@ std::vector<Fragment> make_stream(Extent screen, const StreamOptions& o) {
 Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
   if (!(load > 0.0)) throw std::invalid_argument("load must be positive");
   const double scale = std::sqrt(static_cast<double>(fragments) / load / static_cast<double>(screen.area()));
-  // Checked as doubles before the cast: a tiny load makes them huge, and
-  // casting such a double to an integer is undefined.
-  const double x = std::max<double>(screen.x, std::ceil(screen.x * scale));
-  const double y = std::max<double>(screen.y, std::ceil(screen.y * scale));
-  if (!(x * y <= static_cast<double>(UINT32_MAX) && x <= static_cast<double>(1u << 31) && y <= static_cast<double>(1u << 31))) {
-    char text[128];
-    std::snprintf(text, sizeof text, "load %g of %llu fragments needs a table of %.3g slots", load,
-                  static_cast<unsigned long long>(fragments), x * y);
-    throw std::invalid_argument(std::string(text) + ", more than 2^32 - 1: raise the load");
-  }
-  return {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)};
+  return table_of_sides(std::max<double>(screen.x, std::ceil(screen.x * scale)),
+                        std::max<double>(screen.y, std::ceil(screen.y * scale)), load, fragments);
 }
 
 StreamKind parse_stream_kind(const std::string& name) {

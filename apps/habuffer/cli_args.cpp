@@ -1,9 +1,6 @@
 #include "cli_args.h"
 
-#include <charconv>
-#include <cmath>
 #include <cstdio>
-#include <limits>
 
 #include "habuffer/number_text.h"
 #include "habuffer/printable.h"
@@ -58,38 +55,21 @@ std::string Args::required(const std::string& name) const {
 std::uint64_t Args::u64(const std::string& name, std::uint64_t fallback, std::uint64_t min, std::uint64_t max) const {
   auto it = values_.find(name);
   if (it == values_.end()) return fallback;
-  try {
-    return parse_unsigned(it->second, min, max);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("option --" + name + ": " + e.what());
-  }
+  return usage_errors(name, [&] { return parse_unsigned(it->second, min, max); });
 }
 
 std::uint32_t Args::u32(const std::string& name, std::uint32_t fallback, std::uint32_t min, std::uint32_t max) const {
   return static_cast<std::uint32_t>(u64(name, fallback, min, max));
 }
 
-namespace {
-
-template <class Parse>
-auto parsed(const std::string& name, const std::string& text, Parse parse) {
-  try {
-    return parse(text);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError("option --" + name + ": " + e.what());
-  }
-}
-
-}  // namespace
-
 double Args::real(const std::string& name, double fallback) const {
   auto it = values_.find(name);
-  return it == values_.end() ? fallback : parsed(name, it->second, [](const std::string& t) { return parse_float64(t); });
+  return it == values_.end() ? fallback : usage_errors(name, [&] { return parse_float64(it->second); });
 }
 
 float Args::f32(const std::string& name, float fallback) const {
   auto it = values_.find(name);
-  return it == values_.end() ? fallback : parsed(name, it->second, [](const std::string& t) { return parse_float32(t); });
+  return it == values_.end() ? fallback : usage_errors(name, [&] { return parse_float32(it->second); });
 }
 
 std::vector<std::string> Args::list(const std::string& name, const std::string& fallback) const {

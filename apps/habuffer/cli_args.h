@@ -26,6 +26,18 @@ class UsageError : public std::runtime_error {
 std::string shortest(float v);
 std::string shortest(double v);
 
+// `parse()`, a library rule's std::invalid_argument turned into bad usage:
+// "option --NAME: REASON", or the reason alone for an empty name (the
+// library's message names the option itself).
+template <class Parse>
+auto usage_errors(const std::string& name, Parse parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(name.empty() ? std::string(e.what()) : "option --" + name + ": " + e.what());
+  }
+}
+
 // FileRoles::check, its conflicts as bad usage.
 void check_files(const FileRoles& files);
 

@@ -48,11 +48,14 @@ int run_build_lists(const std::vector<std::string>& argv) {
   check_files(files);
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
-  // A pixel deeper than AMAX fails at any table size: no growth for it, on
-  // either path (the GPU's lossless loop cannot see records).
+  // A pixel deeper than AMAX fails at any table size. The CPU's lossless
+  // loop finds it after its first attempt (TechniqueBuild::too_deep); the
+  // GPU's cannot see records, so it is looked for first there, and no
+  // attempt grows for it.
   const TechniqueConfig config = technique_config(options, fragments.size());
-  std::optional<PixelDepth> too_deep = pixel_beyond_every_table(config, fragments);
-  if (too_deep) options.max_attempts = 1;
+  std::optional<PixelDepth> too_deep;
+  if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
+    options.max_attempts = 1;
   BuildTiming timing{0.0, resolve_threads(options.insert.threads), {}, {}};
   std::optional<TechniqueBuild> built;
   if (options.gl) {
@@ -83,7 +86,10 @@ int run_build_lists(const std::vector<std::string>& argv) {
     throw std::logic_error("accounting broken: the " + to_string(result.buffer->technique()) + " buffer holds " +
                            std::to_string(report.stored) +
                            " records, counters say " + std::to_string(report.counters.stored()));
-  if (result.counters.failed_age == 0) too_deep.reset();  // it did not fail after all (cull)
+  if (!too_deep) too_deep = result.too_deep;
+  // One attempt and age failures: no loop looked, look now for the warning.
+  if (!too_deep && options.max_attempts == 1 && result.counters.failed_age > 0)
+    too_deep = pixel_beyond_every_table(config, fragments);
   if (options.lossless && !result.lossless()) {
     const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get());
     report_lossless_failure("build-lists", result.counters,

@@ -46,13 +46,9 @@ int run_demo(const std::vector<std::string>& argv) {
   const double load = probe.real("load", 0.5);
   if (!(load > 0.0 && load <= 1.0)) throw UsageError("option --load: must be in (0, 1]");
   if (!probe.has("screen")) with_defaults.insert(with_defaults.end(), {"--screen", screen.str()});
-  if (!probe.has("table")) {
-    try {
-      with_defaults.insert(with_defaults.end(), {"--table", table_for_load(screen, count, load).str()});
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("option --load: ") + e.what());
-    }
-  }
+  if (!probe.has("table"))
+    with_defaults.insert(with_defaults.end(),
+                         {"--table", usage_errors("load", [&] { return table_for_load(screen, count, load).str(); })});
   const Args args(with_defaults, valued, hash_flag_options());
   HashOptions options = parse_hash_options(args);
   // demo's default: every hardware thread (serial insertion keeps its one).

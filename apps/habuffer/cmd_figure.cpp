@@ -47,11 +47,7 @@ int run_figure(const std::vector<std::string>& argv) {
   s.repeats = args.u32("repeats", 3, 1, 1000);
   s.threads = args.u32("threads", 0, 0, kMaxThreads);
   if (name != "table1") args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
-  try {
-    s.tau = args.has("tau") ? parse_cull_threshold(args.str("tau", "")) : 0.99f;
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("option --tau: ") + e.what());
-  }
+  if (args.has("tau")) s.tau = usage_errors("tau", [&] { return parse_cull_threshold(args.str("tau", "")); });
   const auto allowed = [&](std::initializer_list<const char*> own) {
     for (const char* o : {"scene", "scenes", "opacities", "frames", "load", "planes", "fragments", "loads", "picks",
                           "targets", "no-allocate"}) {
@@ -65,13 +61,6 @@ int run_figure(const std::vector<std::string>& argv) {
   ProgressBar progress = ProgressBar::for_terminal("habuffer figure " + name, "runs", args.has("quiet"));
   s.on_progress = progress.callback();
   // Every file and value is checked before the first render.
-  const auto checked = [&](auto check) {
-    try {
-      check();
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
-  };
   HarnessOutputs outputs;
   if (name == "table1") {
     allowed({"fragments", "loads", "no-allocate"});
@@ -79,18 +68,12 @@ int run_figure(const std::vector<std::string>& argv) {
     const std::vector<Extent> size = parse_sizes(args, "1024x1024");
     if (size.size() != 1) throw UsageError("--size takes one WxH for table1");
     std::vector<std::uint64_t> counts;
-    const auto option = [&](const char* flag, auto parse) {
-      try {
-        parse();
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string("option --") + flag + ": " + e.what());
-      }
-    };
     for (const std::string& f : args.list("fragments", "850000,1500000,10000000"))
-      option("fragments", [&] { counts.push_back(parse_unsigned(f, 1, harness::kMaxTableFragments)); });
+      counts.push_back(usage_errors("fragments", [&] { return parse_unsigned(f, 1, harness::kMaxTableFragments); }));
     std::vector<double> loads;
-    for (const std::string& l : args.list("loads", "0.9,0.8,0.5")) option("loads", [&] { loads.push_back(parse_load_factor(l)); });
-    checked([&] { harness::validate_memory_table(size[0], counts, loads); });
+    for (const std::string& l : args.list("loads", "0.9,0.8,0.5"))
+      loads.push_back(usage_errors("loads", [&] { return parse_load_factor(l); }));
+    usage_errors("", [&] { harness::validate_memory_table(size[0], counts, loads); });
     outputs = parse_outputs(args, {});
     table = harness::run_memory_table(size[0], counts, loads, !args.has("no-allocate"));
   } else {
@@ -101,17 +84,11 @@ int run_figure(const std::vector<std::string>& argv) {
       allowed({"scene", "opacities"});
       const std::vector<harness::WorkloadSpec> scene = parse_scenes_or(args, "scene", "hairball");
       if (scene.size() != 1) throw UsageError("--scene takes one scene for fig2");
-      checked([&] { harness::check_fig2_scene(scene[0]); });
+      usage_errors("", [&] { harness::check_fig2_scene(scene[0]); });
       std::vector<float> opacities;
-      SceneOptions probe;
+      SceneOptions probe;  // each opacity by the scene option's rule
       for (const std::string& o : args.list("opacities", "0.125,0.25,0.5,1")) {
-        checked([&] {
-          try {
-            set_scene_option(probe, "opacity", o);
-          } catch (const std::invalid_argument& e) {
-            throw std::invalid_argument("--opacities: " + std::string(e.what()));
-          }
-        });
+        usage_errors("opacities", [&] { set_scene_option(probe, "opacity", o); });
         opacities.push_back(probe.opacity);
       }
       outputs = parse_outputs(args, scene);
@@ -121,10 +98,10 @@ int run_figure(const std::vector<std::string>& argv) {
       allowed({"scene", "frames", "load"});
       const std::vector<harness::WorkloadSpec> scene = parse_scenes_or(args, "scene", "quads:count=64");
       if (scene.size() != 1) throw UsageError("--scene takes one scene for fig8");
-      checked([&] { harness::check_fig8_scene(scene[0]); });
+      usage_errors("", [&] { harness::check_fig8_scene(scene[0]); });
       const std::uint32_t frames = args.u32("frames", 16, 2, 100000);
       double load = 0.64;
-      if (args.has("load")) checked([&] { load = parse_load_factor(args.str("load", "")); });
+      if (args.has("load")) load = usage_errors("load", [&] { return parse_load_factor(args.str("load", "")); });
       outputs = parse_outputs(args, scene);
       const auto context = context_for(true, "figure");
       table = harness::run_fig8(scene[0], frames, load, s);
@@ -143,7 +120,7 @@ int run_figure(const std::vector<std::string>& argv) {
         b.techniques = harness::frontier_techniques(s.path);
       }
       b.on_progress = s.on_progress;
-      checked([&] { harness::validate_bench(b); });
+      usage_errors("", [&] { harness::validate_bench(b); });
       const std::vector<double> targets =
           args.has("picks") ? parse_reals(args, "targets", "30,40,50", 0.0, 1000.0) : std::vector<double>{};
       outputs = parse_outputs(args, b.scenes);

@@ -49,11 +49,9 @@ int run_generate(const std::vector<std::string>& argv) {
       throw UsageError("option --load: " + args.str("load", "") + " of table " + table.str() +
                        " gives no fragment (at least " + shortest(0.5 / static_cast<double>(table.area())) + ")");
   }
-  try {
+  usage_errors("", [&] {
     check_fits_in_memory("--fragments " + std::to_string(o.count), saturating_product(o.count, sizeof(Fragment)));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  });
   write_fragments(out, make_stream(*screen, o));
   return 0;
 }

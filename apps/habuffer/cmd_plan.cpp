@@ -33,13 +33,8 @@ int run_plan(const std::vector<std::string>& argv) {
   s.seed = args.u64("seed", 1);
   s.age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   s.loads.clear();
-  for (const std::string& l : args.list("loads", "0.5,0.6,0.7,0.8,0.9,0.95")) {
-    try {
-      s.loads.push_back(parse_load_factor(l));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("option --loads: ") + e.what());
-    }
-  }
+  for (const std::string& l : args.list("loads", "0.5,0.6,0.7,0.8,0.9,0.95"))
+    s.loads.push_back(usage_errors("loads", [&] { return parse_load_factor(l); }));
   const std::vector<Extent> sizes = parse_sizes(args, "256x256");
   if (sizes.size() != 1) throw UsageError("--size takes one WxH");
   const harness::WorkloadSpec w =

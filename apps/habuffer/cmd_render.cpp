@@ -88,7 +88,7 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args, Technique technique
 void refuse_scene_options_that_do_not_apply(const Args& args) {
   const std::string scene = args.has("scene") ? args.required("scene") : "";
   for (const SceneOptionRule& r : scene_option_rules())
-    if (!scene.empty() && r.key != std::string("opacity"))
+    if (!scene.empty() && !r.takers.empty())
       args.refuse_unless(scene_takes(scene, r.key), {r.flag},
                          "on scene " + excerpt(scene) + " (" + scenes_taking_text(r.key) + ")");
 }
@@ -115,14 +115,8 @@ void check_render_files(const Args& args, const RenderSettings& s, const std::ve
 // words obey them.
 SceneOptions parse_scene_options(const Args& args) {
   SceneOptions o;
-  for (const SceneOptionRule& r : scene_option_rules()) {
-    if (!args.has(r.flag)) continue;
-    try {
-      set_scene_option(o, r.key, args.str(r.flag, ""));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("option --") + r.flag + ": " + e.what());
-    }
-  }
+  for (const SceneOptionRule& r : scene_option_rules())
+    if (args.has(r.flag)) usage_errors(r.flag, [&] { set_scene_option(o, r.key, args.str(r.flag, "")); });
   return o;
 }
 

@@ -109,12 +109,10 @@ int run_stats(const std::vector<std::string>& argv) {
   // The largest load's stream (16 bytes a fragment) and the table (8 bytes a slot).
   double max_load = 0.0;
   for (const double l : c.loads) max_load = std::max(max_load, l);
-  try {
+  usage_errors("", [&] {
     check_fits_in_memory("option --screen " + c.screen.str() + " (table " + c.table.str() + ")",
                          saturating_product(c.table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  });
   c.trials = args.u32("trials", 5, 1, 100000);
   c.seed = args.u64("seed", 1);
   try {

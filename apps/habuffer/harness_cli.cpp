@@ -35,12 +35,8 @@ std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback) {
   for (const std::string& w : args.list("size", fallback)) {
     const std::optional<Extent> e = parse_extent(w);
     if (!e) throw UsageError("--size: '" + w + "' is not WxH with positive sides");
-    try {
-      // The least a render allocates: 32 bytes a pixel over its buffers.
-      check_fits_in_memory("--size " + e->str(), saturating_product(e->area(), 32));
-    } catch (const std::invalid_argument& why) {
-      throw UsageError(why.what());
-    }
+    // The least a render allocates: 32 bytes a pixel over its buffers.
+    usage_errors("", [&] { check_fits_in_memory("--size " + e->str(), saturating_product(e->area(), 32)); });
     out.push_back(*e);
   }
   return out;

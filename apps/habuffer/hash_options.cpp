@@ -34,11 +34,7 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   if (args.has("early-cull")) {
     // The threshold is used as a float32 on both paths; below the smallest
     // normal float32 a GPU may flush it to 0, which turns cull off.
-    try {
-      c.early_cull_tau = parse_cull_threshold(args.str("early-cull", ""));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("option --early-cull: ") + e.what());
-    }
+    c.early_cull_tau = usage_errors("early-cull", [&] { return parse_cull_threshold(args.str("early-cull", "")); });
   }
   const std::string saturation = args.str("saturation", "off");
   if (saturation != "on" && saturation != "off")
@@ -46,16 +42,14 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   c.saturation = saturation == "on";
   if (c.saturation && c.early_cull_tau <= 0.0f)
     throw UsageError("option --saturation on needs --early-cull TAU (it records where culling began)");
-  try {
+  usage_errors("", [&] {
     c.validate();
     // The least any technique allocates: per-pixel images and counts (32
     // bytes a pixel over the buffers and frames) and the table's records.
     check_fits_in_memory("screen " + c.screen.str() + " (table " + c.table_or_screen().str() + ")",
                          saturating_product(c.screen.area(), 32) +
                              saturating_product(c.table_or_screen().area(), c.record_layout().word_bytes()));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  });
   return c;
 }
 

@@ -138,6 +138,15 @@ grep -q "warning: 1 of 2 runs lost fragments" err.txt && grep -q "technique=arra
 expect losses 1 "pixel (0, 0) has 300 distinct fragments, more than AMAX = 2^8 - 1 = 255, at any table size: use --age-bits 9" -- \
   render --fragments deep.csv --size 4x4 --stats r.json --lossless
 expect losses 1 "pixel (0, 0) has 300 distinct fragments" -- build-lists --in deep.csv --out l.csv --screen 4x4 --lossless
+# The GPU path of render sees the counting pass only: one attempt where
+# frames may grow (lossless), the same pixel named where they may not.
+expect losses 1 "pixel (0, 0) has 300 fragments (duplicates included), more than AMAX" -- \
+  render --scene planes --count 300 --size 8x8 --out p.png --lossless --stats p.json --quiet
+python3 -c "import json,sys; sys.exit(json.load(open('p.json'))['frames'][0]['attempts'] != 1)" && ok losses ||
+  bad losses "render --lossless grew the table for a pixel deeper than AMAX"
+expect losses 0 "" -- render --scene planes --count 300 --size 8x8 --out p.png --table 8x8 --quiet
+grep -q "pixel (0, 0) has 300 fragments (duplicates included)" err.txt && ok losses ||
+  bad losses "render with a fixed table did not name the pixel deeper than AMAX: $(cat err.txt)"
 expect losses 0 "" -- build-lists --in deep.csv --out l.csv --screen 4x4 --lossless --age-bits 9
 timeout 60 "$bin" plan --size 4x4 --fragments deep.csv --out p.json >/dev/null 2>err.txt && grep -q "ha_beyond_amax" p.json &&
   ok losses || bad losses "plan on a pixel deeper than AMAX: $(cat err.txt)"

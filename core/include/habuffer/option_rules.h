@@ -4,7 +4,10 @@
 /// the same rule, so that a value one refuses the other refuses too.
 #pragma once
 
+#include <cstdint>
 #include <string_view>
+
+#include "habuffer/extent.h"
 
 namespace habuffer {
 
@@ -16,5 +19,12 @@ float parse_cull_threshold(std::string_view text);
 /// A target load factor: a finite number in (0, 1]. Throws
 /// std::invalid_argument with the reason.
 double parse_load_factor(std::string_view text);
+
+/// The table of `x` by `y` slots, sides computed in double precision for
+/// `fragments` at `load` (both only for the message). Throws
+/// std::invalid_argument naming the load when a side exceeds 2^31 or the
+/// table 2^32 - 1 slots. The check comes before any cast: casting a huge or
+/// infinite double (a tiny load) to an integer is undefined.
+Extent table_of_sides(double x, double y, double load, std::uint64_t fragments);
 
 }  // namespace habuffer

@@ -38,6 +38,12 @@ struct PixelDepth {
 std::optional<PixelDepth> pixel_deeper_than(std::span<const Fragment> fragments, Extent screen,
                                             const RecordLayout& layout, std::uint64_t limit);
 
+/// The pixel with the most fragments by a count per pixel (row-major over
+/// `screen`, as a counting pass gives), when that count exceeds `limit`;
+/// nothing otherwise. Its `distinct` is false: duplicates are counted too.
+std::optional<PixelDepth> pixel_counted_beyond(std::span<const std::uint32_t> counts, Extent screen,
+                                               std::uint64_t limit);
+
 /// The age bits whose AMAX holds `records` records per pixel, or nothing
 /// when even HABUFFER_MAX_AGE_BITS cannot.
 std::optional<std::uint32_t> age_bits_for(std::uint64_t records);

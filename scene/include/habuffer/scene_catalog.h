@@ -29,20 +29,20 @@ std::string assimp_models_root();
 std::vector<std::string> scene_names();
 // Whether `name` is one of scene_names() (not a mesh file).
 bool is_scene_name(const std::string& name);
-// The procedural scenes that use SceneOptions' `option` ("count", "seed",
-// "spread" or "order"); make_scene ignores it for every other scene.
-// Opacity is every scene's (mesh files included) and is not listed.
-std::vector<std::string> scenes_taking(const std::string& option);
-
-// The scene options, one catalog for `habuffer render`'s flags and the
+// The scene options, declared once for `habuffer render`'s flags and the
 // harness's scene words ("planes:count=32:order=front"): each option's key
-// in words, its flag, and the values it accepts.
+// in words, its flag, the scenes that use it (make_scene ignores it for
+// every other scene) and how its text becomes the value.
 struct SceneOptionRule {
-  const char* key;       // "count", "seed", "opacity", "spread", "order"
-  const char* flag;      // "count", "scene-seed", "opacity", "spread", "order"
-  const char* accepted;  // for messages: "an integer in 1..1048576"
+  const char* key;                   // "count", "seed", "opacity", "spread", "order"
+  const char* flag;                  // "count", "scene-seed", "opacity", "spread", "order"
+  std::vector<std::string> takers;   // empty: every scene, mesh files included
+  // Sets the option from `text`; throws std::invalid_argument with the reason.
+  void (*set)(SceneOptions& options, const std::string& text);
 };
 const std::vector<SceneOptionRule>& scene_option_rules();
+// The scenes that use option `option` (empty for one every scene uses).
+std::vector<std::string> scenes_taking(const std::string& option);
 // Largest count of tubes, quads or planes.
 inline constexpr std::uint32_t kMaxSceneCount = 1u << 20;
 // Smallest opacity: records carry alpha as a byte, round(255 a); at 1/510

@@ -25,7 +25,7 @@ struct PlanSettings {
   std::uint32_t trials = 3;           // synthetic streams per HA-buffer load
   std::uint64_t seed = 1;
   std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;
-  // Called after each simulated trial (done, total).
+  // Called after each load's HA-buffer prediction (done, total).
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
 

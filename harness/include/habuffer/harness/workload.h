@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct WorkloadSpec {
   std::string fragments;  // fragment CSV; empty for a scene
   SceneOptions options;
   std::string word;       // as given
+  std::set<std::string> keys;  // the option keys the word gave ("count", ...)
   // The file the workload reads (a fragment CSV or a mesh file), or empty
   // for a named scene: the harness checks it against the outputs.
   [[nodiscard]] std::string input_file() const;
