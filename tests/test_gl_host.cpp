@@ -420,11 +420,13 @@ struct HostLowBuffers {
   GLuint operator[](std::size_t i) const { return ids[i]; }
 };
 
+// The host's own framebuffer (no attachments: the library's buffers are
+// the output) and vertex array, drawing the three triangles.
 struct HostRaster {
   GLuint framebuffer = 0, vertex_array = 0;
   HostRaster() {
     glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, 24);
+    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, 24);  // tests drawing into it themselves
     glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, 24);
     glCreateVertexArrays(1, &vertex_array);
   }
@@ -434,16 +436,24 @@ struct HostRaster {
   }
   HostRaster(const HostRaster&) = delete;
   HostRaster& operator=(const HostRaster&) = delete;
-  // One frame of `gpu` with `program` drawing the triangles; the resolved image.
-  std::vector<glm::vec4> render(gl::GlFrameDriver& gpu, const gl::ShaderProgram& program, gl::FrameReport& report) const {
+  // One frame of `gpu` drawn into a window of `size`, and its resolved image.
+  std::vector<glm::vec4> render(gl::GlFrameDriver& gpu, const gl::ShaderProgram& program, Extent size,
+                                gl::FrameReport& report) const {
+    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(size.x));
+    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(size.y));
     report = gpu.frame([&] {
-      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
-      glViewport(0, 0, 24, 24);
+      // The blended baselines draw into their own framebuffer, bound by the driver.
+      if (gpu.technique().gather_framebuffer() == 0) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+      glViewport(0, 0, static_cast<GLsizei>(size.x), static_cast<GLsizei>(size.y));
       glUseProgram(program.id());
       glBindVertexArray(vertex_array);
       glDrawArrays(GL_TRIANGLES, 0, 9);
     });
     return test::resolve_to_image(gpu, {0.1f, 0.2f, 0.3f});
+  }
+  // The same in the 24x24 window most tests use.
+  std::vector<glm::vec4> render(gl::GlFrameDriver& gpu, const gl::ShaderProgram& program, gl::FrameReport& report) const {
+    return render(gpu, program, {24, 24}, report);
   }
 };
 
@@ -881,34 +891,6 @@ constexpr const char* kResizeMain = R"(in vec4 host_colour;
 void main() { ha_insert_here(host_colour); }
 )";
 
-struct WindowRaster {
-  GLuint framebuffer = 0, vertex_array = 0;
-  WindowRaster() {
-    glCreateFramebuffers(1, &framebuffer);
-    glCreateVertexArrays(1, &vertex_array);
-  }
-  ~WindowRaster() {
-    glDeleteFramebuffers(1, &framebuffer);
-    glDeleteVertexArrays(1, &vertex_array);
-  }
-  WindowRaster(const WindowRaster&) = delete;
-  WindowRaster& operator=(const WindowRaster&) = delete;
-  // One frame of `gpu` drawn into a window of `size`, and its resolved image.
-  std::vector<glm::vec4> render(gl::GlFrameDriver& gpu, const gl::ShaderProgram& program, Extent size,
-                                gl::FrameReport& report) const {
-    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(size.x));
-    glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(size.y));
-    report = gpu.frame([&] {
-      // The blended baselines draw into their own framebuffer, bound by the driver.
-      if (gpu.technique().gather_framebuffer() == 0) glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
-      glViewport(0, 0, static_cast<GLsizei>(size.x), static_cast<GLsizei>(size.y));
-      glUseProgram(program.id());
-      glBindVertexArray(vertex_array);
-      glDrawArrays(GL_TRIANGLES, 0, 9);
-    });
-    return test::resolve_to_image(gpu, {0.1f, 0.2f, 0.3f});
-  }
-};
 
 // Every GL technique at 16x16 (the HA-buffer with its automatic table and
 // with an explicit one, the lists with the automatic pool, K 4 of the
@@ -925,7 +907,7 @@ TEST(GlHost, EveryTechniqueResizedInPlaceRendersWhatAFreshContainerOfTheNewScree
   glCreateBuffers(1, &host_buffer);
   glNamedBufferData(host_buffer, 16, nullptr, GL_DYNAMIC_DRAW);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, host_buffer);
-  const WindowRaster raster;
+  const HostRaster raster;
   const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
   const Extent a{16, 16};
   gl::GlFrameOptions lossless;  // the HA-buffer's table grows in the first frame
@@ -1007,7 +989,7 @@ TEST(GlHost, EveryTechniqueResizedInPlaceRendersWhatAFreshContainerOfTheNewScree
 // buffers and renders the same image as before at its old size.
 TEST(GlHost, ARefusedScreenResizeNamesTheSizesAndLeavesTheContainerWorkingAtItsOldSize) {
   HostContext host;
-  const WindowRaster raster;
+  const HostRaster raster;
   const gl::AtomicMode mode = gl::runnable_atomic_modes(gl::query_gl_info()).back();
   const Extent a{16, 16};
   GLint viewport[2] = {};
