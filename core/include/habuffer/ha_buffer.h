@@ -51,6 +51,10 @@ class HaBuffer final : public FragmentBuffer {
   /// calls (plain stores) run alone, overlapping calls waiting for them. The
   /// table is the same in every case (SPEC 9).
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  /// The order insert(fragments, options) uses: options.order, with Auto
+  /// resolved (InsertOrder's rule). Throws std::invalid_argument for Pixel
+  /// with OwnerComputes (whose owners follow the probes, not the pixels).
+  [[nodiscard]] InsertOrder insert_order(std::size_t fragments, const InsertOptions& options) const;
   /// Inserts one fragment and returns its HA_* outcome; may overlap other
   /// calls as insert() in the Auto mode does.
   std::uint32_t insert_one(const Fragment& fragment);
