@@ -228,6 +228,13 @@ std::uint64_t HaBuffer::clear() {
   return std::visit([](auto& s) { return s.clear_and_count(); }, impl_->storage);
 }
 
+void HaBuffer::reset() {
+  const auto alone = gate_.alone();
+  impl_->max_age.clear();
+  std::fill(impl_->saturation.begin(), impl_->saturation.end(), 0u);
+  std::visit([](auto& s) { s.clear(); }, impl_->storage);
+}
+
 std::uint64_t HaBuffer::count_stored() const {
   return std::visit([](const auto& s) { return s.count_nonempty(); }, impl_->storage);
 }

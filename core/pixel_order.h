@@ -158,9 +158,11 @@ void insert_pixel_jump_start(Kernel& k, glm::uvec2 p, std::span<const typename K
       if (outcome != HABUFFER_PENDING) break;
       const std::uint32_t age = c.a;
       outcome = k.ha_insert_step_at(c, k.ha_probe(c.p, c.a), false);
-      // r was written at `age` (stored, or evicting a smaller record), or its
-      // twin is there: a smaller record starts one age further, a twin there.
-      if (own && (outcome != HABUFFER_PENDING || c.r != k.ha_with_age(r, c.a))) {
+      // r was written at `age` (stored, or evicting a smaller record: the
+      // carried one is then another pixel's, which may have r's very code and
+      // data), or its twin is there: a smaller record starts one age
+      // further, a twin there.
+      if (own && (outcome != HABUFFER_PENDING || c.p != p || c.r != k.ha_with_age(r, c.a))) {
         own = false;
         next_start = age + 1;
         twin_start = age;

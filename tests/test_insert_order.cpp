@@ -90,6 +90,30 @@ TEST(InsertOrder, PixelOrderGivesArrivalOrdersTableMaxAgeAndCountersAtOneAndMany
     }
 }
 
+// Planes over the whole screen: every pixel holds records with the very code
+// and data of its neighbours', so a record evicted by another pixel's may
+// look exactly like the one that evicted it, but for its pixel.
+TEST(InsertOrder, PixelOrderEqualsArrivalOrderWhenNeighboursHoldIdenticalRecords) {
+  const Extent screen{19, 13};
+  for (Layout layout : {Layout::L32, Layout::L64})
+    for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+      SCOPED_TRACE(to_string(layout) + " seed " + std::to_string(seed));
+      std::vector<Fragment> f;
+      for (int plane = 0; plane < 5; ++plane)
+        for (std::uint32_t y = 0; y < screen.y; ++y)
+          for (std::uint32_t x = 0; x < screen.x; ++x)
+            if ((x * 7 + y * 3 + static_cast<std::uint32_t>(plane) + seed) % 4 != 0)
+              f.push_back({x, y, 0.1f + 0.15f * static_cast<float>(plane), 0x80808080u});
+      const BufferConfig cfg = test::config(screen, {38, 30}, layout, 6);  // load about 0.8
+      HaBuffer arrival = test::make_buffer(cfg, seed), pixel = test::make_buffer(cfg, seed);
+      const Counters na = arrival.insert(test::shuffled(f, seed), ordered(InsertOrder::Arrival));
+      ASSERT_EQ(na.failures(), 0u);
+      const Counters np = pixel.insert(f, ordered(InsertOrder::Pixel));
+      EXPECT_EQ(np, na);
+      EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
+    }
+}
+
 TEST(InsertOrder, PixelOrderEqualsArrivalOrderIntoABufferHoldingAnEarlierBatch) {
   const Extent screen{48, 40};
   const BufferConfig cfg = test::config(screen, {56, 48});

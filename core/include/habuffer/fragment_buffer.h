@@ -104,6 +104,10 @@ class FragmentBuffer {
   /// Empties the buffer; returns the records it held. Runs alone (waits for
   /// overlapping insert() calls).
   virtual std::uint64_t clear() = 0;
+  /// Empties the buffer without counting what it held (a frame's start when
+  /// nobody reads the count; the HA-buffer's count walks the whole table).
+  /// Runs alone. Containers that count for free use clear().
+  virtual void reset() { (void)clear(); }
   /// The records held now, counted on the buffer.
   [[nodiscard]] virtual std::uint64_t count_stored() const = 0;
   /// Records the buffer can hold in all (slots, nodes, layers of every pixel).

@@ -61,6 +61,8 @@ class HaBuffer final : public FragmentBuffer {
 
   /// Zeroes T and M; returns the number of records T held. Runs alone.
   std::uint64_t clear() override;
+  /// Zeroes T and M without counting. Runs alone.
+  void reset() override;
   /// FragmentBuffer interface: T's non-empty slots, counted.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// FragmentBuffer interface: slot_count().

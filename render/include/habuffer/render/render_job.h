@@ -49,12 +49,16 @@ struct RenderSettings {
   std::uint32_t max_attempts = 16;  // lossless and auto
   ResizePolicy policy;
   OffsetSource offsets;
-  std::uint32_t frames = 1;  // the camera orbits 360 degrees over the frames
+  std::uint32_t frames = 1;  // the camera orbits 360 degrees over the frames (unless !orbit)
+  // false: every frame shows the same view (steady-state timing: frame 0
+  // pays the cold start, later frames reuse what it made).
+  bool orbit = true;
   CameraParams camera;
   glm::vec3 background{1.0f};
   bool keep_fragments = false;  // capture the last frame's fragments (reference, CPU-side heat maps)
   bool per_pixel_culled = false;  // CPU path: count culled fragments per pixel (serial insertion)
   std::uint32_t threads = 0;      // CPU path
+  InsertOrder insert_order = InsertOrder::Auto;  // CPU path, the HA-buffer (InsertOrder)
   // Called after each frame with (frames done, frames).
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
