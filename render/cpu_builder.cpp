@@ -61,6 +61,7 @@ const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, Fra
   fs.counters = b.counters;
   fs.capacity = b.buffer->capacity();
   if (const auto* ha = dynamic_cast<const HaBuffer*>(b.buffer.get())) {
+    fs.insert_order = ha->insert_order(fragments.size(), frame_insert_options(settings_));
     config_.buffer.table = ha->table();
     fs.table = ha->table();
     fs.max_age = ha->max_age().max();

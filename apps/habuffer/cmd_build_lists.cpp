@@ -56,7 +56,8 @@ int run_build_lists(const std::vector<std::string>& argv) {
   std::optional<PixelDepth> too_deep;
   if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
     options.max_attempts = 1;
-  BuildTiming timing{0.0, resolve_threads(options.insert.threads), {}, {}};
+  BuildTiming timing;
+  timing.threads = resolve_threads(options.insert.threads);
   std::optional<TechniqueBuild> built;
   if (options.gl) {
     built.emplace(build_on_gl(options, fragments, timing));
@@ -67,6 +68,8 @@ int run_build_lists(const std::vector<std::string>& argv) {
     timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   TechniqueBuild& result = *built;
+  if (const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get()); ha && !options.gl)
+    timing.insert_order = to_string(ha->insert_order(fragments.size(), options.insert));
 
   write_lists(out, *result.buffer);
   if (const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get())) {

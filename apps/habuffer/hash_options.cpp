@@ -89,10 +89,7 @@ HashOptions parse_hash_options(const Args& args, bool techniques, std::initializ
   } else {
     throw UsageError("option --insert-mode: '" + mode + "' is not auto, serial, atomic or owner");
   }
-  const std::string order = args.str("insert-order", "auto");
-  const std::optional<InsertOrder> parsed_order = parse_insert_order(order);
-  if (!parsed_order) throw UsageError("option --insert-order: '" + order + "' is not auto, arrival or pixel");
-  o.insert.order = *parsed_order;
+  o.insert.order = insert_order_option(args);
   if (o.insert.order == InsertOrder::Pixel && o.insert.mode == InsertMode::OwnerComputes)
     throw UsageError("option --insert-order pixel cannot go with --insert-mode owner (its owners follow the probes)");
   if (o.insert.order != InsertOrder::Auto && o.technique.technique != Technique::Ha)

@@ -77,6 +77,10 @@ struct FrameStats {
   std::uint32_t resume_rounds = 0;
   bool resize_limited = false;    // GPU path: adaptive sizing wanted a table the context cannot hold
   std::uint32_t max_age = 0;     // HA-buffer
+  // The order the frame was inserted in: the CPU path's HA-buffer says what
+  // Auto chose; every other technique and the GPU path insert in arrival
+  // (rasterization) order.
+  InsertOrder insert_order = InsertOrder::Arrival;
   double load_factor = 0.0;      // stored / capacity
   // gather: the gather pass (resume rounds included); resolve: the sort pass
   // (lists, arrays) and the compositing.
