@@ -112,7 +112,8 @@ struct HaBuffer::Impl {
 
   // The batch bucketed by pixel, nearest first, with the jump start
   // (pixel_order.h): bands of rows, one per thread.
-  Counters insert_pixel_ordered(std::span<const Fragment> frags, std::uint32_t threads, bool shared) {
+  Counters insert_pixel_ordered(std::span<const Fragment> frags, std::uint32_t threads, bool shared,
+                                std::optional<bool> interleave) {
     return std::visit(
         [&](auto& st) {
           using Word = std::remove_pointer_t<decltype(st.data())>;
@@ -122,15 +123,17 @@ struct HaBuffer::Impl {
           };
           std::unique_lock<std::mutex> kept(buckets_mutex, std::try_to_lock);
           std::vector<detail::PixelBuckets<Word>> own;
-          return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared,
+          const bool interleaved = interleave.value_or(st.bytes() >= kInterleaveMinTableBytes);
+          return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared, interleaved,
                                                     kept.owns_lock() ? kept_buckets<Word>() : own);
         },
         storage);
   }
 
   // Arrival or pixel order, as `order` says.
-  Counters insert_ordered(std::span<const Fragment> frags, InsertOrder order, std::uint32_t threads, bool shared) {
-    if (order == InsertOrder::Pixel) return insert_pixel_ordered(frags, threads, shared);
+  Counters insert_ordered(std::span<const Fragment> frags, InsertOrder order, std::uint32_t threads, bool shared,
+                          std::optional<bool> interleave) {
+    if (order == InsertOrder::Pixel) return insert_pixel_ordered(frags, threads, shared, interleave);
     return insert_slices(frags, threads, shared);
   }
 
@@ -190,13 +193,14 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
       // One thread and no other call running: plain stores, the call alone.
       // Else atomics, beside any other atomic call (InsertGate).
       if (threads == 1)
-        if (const auto alone = gate_.alone_if_free()) return impl_->insert_ordered(fragments, order, 1, false);
+        if (const auto alone = gate_.alone_if_free())
+          return impl_->insert_ordered(fragments, order, 1, false, options.interleave);
       break;
     case InsertMode::Serial: {
       if (threads != 1)
         throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
       const auto alone = gate_.alone();
-      return impl_->insert_ordered(fragments, order, 1, false);
+      return impl_->insert_ordered(fragments, order, 1, false, options.interleave);
     }
     case InsertMode::Atomic: break;
     case InsertMode::OwnerComputes: {
@@ -210,7 +214,7 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
     }
   }
   const auto shared = gate_.shared();
-  return impl_->insert_ordered(fragments, order, threads, true);
+  return impl_->insert_ordered(fragments, order, threads, true, options.interleave);
 }
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {

@@ -89,18 +89,18 @@ class PixelBuckets {
       if (f.y >= band.y0 && f.y < band.y1 && valid(f)) records_[end_[local(f) + 1]++] = pack(f);
   }
 
-  // visit(pixel, records) for every pixel holding records, row by row; the
-  // records are sorted nearest first just before the visit.
-  template <class Visit>
-  void for_each_pixel(Visit visit) {
-    for (std::size_t i = 0; i < pixels_; ++i) {
-      const std::uint32_t begin = end_[i], end = end_[i + 1];
-      if (begin == end) continue;
-      const std::span<Word> list(records_.data() + begin, end - begin);
-      nearest_first(list);
-      const std::size_t pixel = origin_ + i;
-      visit(glm::uvec2(pixel % width_, pixel / width_), std::span<const Word>(list));
-    }
+  // Pixels of the band, row by row (indices for records()).
+  [[nodiscard]] std::size_t pixels() const { return pixels_; }
+  // Pixel i's records, sorted nearest first by this call (empty: none); `p`
+  // is set to the pixel.
+  std::span<const Word> records(std::size_t i, glm::uvec2& p) {
+    const std::uint32_t begin = end_[i], end = end_[i + 1];
+    if (begin == end) return {};
+    const std::span<Word> list(records_.data() + begin, end - begin);
+    nearest_first(list);
+    const std::size_t pixel = origin_ + i;
+    p = glm::uvec2(pixel % width_, pixel / width_);
+    return list;
   }
 
  private:
@@ -126,61 +126,163 @@ class PixelBuckets {
   std::vector<Word> records_;
 };
 
-// Inserts pixel p's age-1 records (nearest first, identical ones adjacent)
-// with the jump start (early cull off), tallying each record's outcome. On
-// one thread this writes exactly what inserting the same records in the same
-// order from age 1 writes, failures included (tests/test_insert_order.cpp).
+// One pixel's age-1 records (nearest first, identical ones adjacent)
+// inserted with the jump start (early cull off), one probe step at a time, so
+// that a thread may interleave several pixels (latency hiding) or run one to
+// its end. On one thread this writes exactly what inserting the same records
+// in the same order from age 1 writes, failures included
+// (tests/test_insert_order.cpp).
 template <class Kernel>
-void insert_pixel_jump_start(Kernel& k, glm::uvec2 p, std::span<const typename Kernel::ha_word> records,
-                             std::uint64_t* tally) {
+class JumpStartCursor {
+ public:
   using Word = typename Kernel::ha_word;
-  std::uint32_t next_start = 1;  // the age a smaller record starts at
-  std::uint32_t twin_start = 1;  // the age an identical record starts at (it may meet its twin there)
-  Word previous = 0;             // no record is 0 (ages start at 1)
-  bool previous_failed = false;
-  for (const Word r : records) {
-    // Its twin went before it and nothing was lost since: the twin is in the
-    // table (perhaps moved further by an eviction), so this is a duplicate.
-    if (r == previous && !previous_failed) {
-      ++tally[HABUFFER_DUPLICATE];
-      continue;
-    }
-    const std::uint32_t start = r == previous ? twin_start : next_start;
-    previous = r;
-    typename Kernel::HaCarry c = k.ha_carry_begin(p, k.ha_code(r), k.ha_data(r));
-    c.a = start;
-    c.iter = start - 1;  // the skipped probes count, so the iteration limit reads the same
-    if (start <= k.ha_max_age()) c.r = k.ha_with_age(r, start);
-    bool own = true;  // still carrying r (not a record r evicted)
-    std::uint32_t outcome = HABUFFER_PENDING;
-    while (outcome == HABUFFER_PENDING) {
-      outcome = k.ha_insert_limit(c);
-      if (outcome != HABUFFER_PENDING) break;
-      const std::uint32_t age = c.a;
-      outcome = k.ha_insert_step_at(c, k.ha_probe(c.p, c.a), false);
-      // r was written at `age` (stored, or evicting a smaller record: the
-      // carried one is then another pixel's, which may have r's very code and
-      // data), or its twin is there: a smaller record starts one age
-      // further, a twin there.
-      if (own && (outcome != HABUFFER_PENDING || c.p != p || c.r != k.ha_with_age(r, c.a))) {
-        own = false;
-        next_start = age + 1;
-        twin_start = age;
+  using Carry = typename Kernel::HaCarry;
+
+  // Starts pixel p's records; `tally` receives each record's outcome.
+  void begin(glm::uvec2 p, std::span<const Word> records) {
+    p_ = p;
+    next_ = records.data();
+    end_ = records.data() + records.size();
+    next_start_ = twin_start_ = 1;
+    previous_ = 0;  // no record is 0 (ages start at 1)
+    previous_failed_ = false;
+  }
+
+  // Moves to the next record that must probe, counting the duplicates on the
+  // way; false when the pixel has no record left.
+  bool next_record(Kernel& k, std::uint64_t* tally) {
+    for (; next_ != end_; ++next_) {
+      const Word r = *next_;
+      // Its twin went before it and nothing was lost since: the twin is in
+      // the table (perhaps moved further by an eviction): a duplicate.
+      if (r == previous_ && !previous_failed_) {
+        ++tally[HABUFFER_DUPLICATE];
+        continue;
       }
+      const std::uint32_t start = r == previous_ ? twin_start_ : next_start_;
+      previous_ = r;
+      ++next_;
+      c_ = k.ha_carry_begin(p_, k.ha_code(r), k.ha_data(r));
+      c_.a = start;
+      c_.iter = start - 1;  // the skipped probes count, so the iteration limit reads the same
+      if (start <= k.ha_max_age()) c_.r = k.ha_with_age(r, start);
+      own_ = true;
+      return true;
     }
-    // r itself failed: it lost at every age before c.a, so will the next.
-    if (own) next_start = twin_start = c.a;
-    previous_failed = outcome == HABUFFER_FAILED_AGE || outcome == HABUFFER_FAILED_ITER;
+    return false;
+  }
+
+  // The slot the next step probes, or nullptr when the record's call ends
+  // without probing (for a prefetch).
+  [[nodiscard]] const Word* next_slot(Kernel& k) const {
+    if (k.ha_insert_limit(c_) != HABUFFER_PENDING) return nullptr;
+    return k.slots() + k.ha_slot(k.ha_probe(c_.p, c_.a));
+  }
+
+  // One probe step of the current record's call; true when the call has
+  // ended (its outcome tallied).
+  bool step(Kernel& k, std::uint64_t* tally) {
+    std::uint32_t outcome = k.ha_insert_limit(c_);
+    if (outcome == HABUFFER_PENDING) {
+      const std::uint32_t age = c_.a;
+      outcome = k.ha_insert_step_at(c_, k.ha_probe(c_.p, c_.a), false);
+      // The record was written at `age` (stored, or evicting a smaller
+      // record: the carried one is then another pixel's, which may have its
+      // very code and data), or its twin is there: a smaller record starts
+      // one age further, a twin there.
+      if (own_ && (outcome != HABUFFER_PENDING || c_.p != p_ || c_.r != k.ha_with_age(previous_, c_.a))) {
+        own_ = false;
+        next_start_ = age + 1;
+        twin_start_ = age;
+      }
+      if (outcome == HABUFFER_PENDING) return false;
+    }
+    // The record itself failed: it lost at every age before c.a, so will the next.
+    if (own_) next_start_ = twin_start_ = c_.a;
+    previous_failed_ = outcome == HABUFFER_FAILED_AGE || outcome == HABUFFER_FAILED_ITER;
     ++tally[outcome];
+    return true;
+  }
+
+ private:
+  glm::uvec2 p_{0u};
+  const Word* next_ = nullptr;
+  const Word* end_ = nullptr;
+  std::uint32_t next_start_ = 1;  // the age a smaller record starts at
+  std::uint32_t twin_start_ = 1;  // the age an identical record starts at (it may meet its twin there)
+  Word previous_ = 0;
+  bool previous_failed_ = false;
+  Carry c_{};
+  bool own_ = false;  // still carrying the pixel's record (not one it evicted)
+};
+
+// Every pixel of `buckets` through the jump start, one after the other.
+template <class Kernel, class Buckets>
+void insert_pixels_jump_start(Kernel& k, Buckets& buckets, std::uint64_t* tally) {
+  JumpStartCursor<Kernel> cursor;
+  glm::uvec2 p;
+  for (std::size_t i = 0; i < buckets.pixels(); ++i) {
+    const auto records = buckets.records(i, p);
+    if (records.empty()) continue;
+    cursor.begin(p, records);
+    while (cursor.next_record(k, tally))
+      while (!cursor.step(k, tally)) {
+      }
   }
 }
 
-// Inserts pixel p's age-1 records one by one in the given order (early cull
-// on: the order changes what is culled, the probes do not skip).
-template <class Kernel>
-void insert_pixel_in_order(Kernel& k, glm::uvec2 p, std::span<const typename Kernel::ha_word> records,
-                           std::uint64_t* tally) {
-  for (const auto r : records) ++tally[k.ha_insert_code(p, k.ha_code(r), k.ha_data(r))];
+// How many pixels one thread interleaves when hiding latency (AMAC-style):
+// enough independent probes in flight to cover a miss to memory.
+inline constexpr std::size_t kInterleavedPixels = 16;
+
+// Every pixel of `buckets` through the jump start, kInterleavedPixels at a
+// time: each lane makes one probe step, then prefetches the slot of its next
+// step, so a slot's miss overlaps the other lanes' work. The steps of
+// different pixels interleave as concurrent calls would (SPEC 9: the same
+// table); a pixel's own records stay in order in its lane.
+template <class Kernel, class Buckets>
+void insert_pixels_interleaved(Kernel& k, Buckets& buckets, std::uint64_t* tally) {
+  JumpStartCursor<Kernel> lanes[kInterleavedPixels];
+  bool busy[kInterleavedPixels] = {};
+  std::size_t next_pixel = 0, working = 0;
+  glm::uvec2 p;
+  // Gives lane l the next pixel with a record to probe; false when none is left.
+  const auto refill = [&](std::size_t l) {
+    for (; next_pixel < buckets.pixels(); ++next_pixel) {
+      const auto records = buckets.records(next_pixel, p);
+      if (records.empty()) continue;
+      ++next_pixel;
+      lanes[l].begin(p, records);
+      if (lanes[l].next_record(k, tally)) return true;
+    }
+    return false;
+  };
+  const auto prefetch = [&](std::size_t l) {
+    if (const auto* slot = lanes[l].next_slot(k)) __builtin_prefetch(slot, 1);
+  };
+  for (std::size_t l = 0; l < kInterleavedPixels; ++l)
+    if ((busy[l] = refill(l))) {
+      ++working;
+      prefetch(l);
+    }
+  while (working > 0)
+    for (std::size_t l = 0; l < kInterleavedPixels; ++l) {
+      if (!busy[l]) continue;
+      if (lanes[l].step(k, tally) && !lanes[l].next_record(k, tally) && !(busy[l] = refill(l))) {
+        --working;
+        continue;
+      }
+      prefetch(l);
+    }
+}
+
+// Every pixel's records one by one, nearest first, each from age 1 (early
+// cull on: the order changes what is culled, so no probe is skipped).
+template <class Kernel, class Buckets>
+void insert_pixels_in_order(Kernel& k, Buckets& buckets, std::uint64_t* tally) {
+  glm::uvec2 p;
+  for (std::size_t i = 0; i < buckets.pixels(); ++i)
+    for (const auto r : buckets.records(i, p)) ++tally[k.ha_insert_code(p, k.ha_code(r), k.ha_data(r))];
 }
 
 // The whole batch in pixel order on `threads` threads, each owning a band of
@@ -190,11 +292,14 @@ void insert_pixel_in_order(Kernel& k, glm::uvec2 p, std::span<const typename Ker
 // Batches beyond PixelBuckets::kMaxFragments go in consecutive parts.
 template <class Word, class MakeKernel>
 Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen, std::uint32_t threads,
-                              MakeKernel make_kernel, bool shared, std::vector<PixelBuckets<Word>>& buckets) {
+                              MakeKernel make_kernel, bool shared, bool interleave,
+                              std::vector<PixelBuckets<Word>>& buckets) {
   if (fragments.size() > PixelBuckets<Word>::kMaxFragments) {
     const std::size_t half = fragments.size() / 2;
-    Counters total = insert_pixel_ordered<Word>(fragments.first(half), screen, threads, make_kernel, shared, buckets);
-    total += insert_pixel_ordered<Word>(fragments.subspan(half), screen, threads, make_kernel, shared, buckets);
+    Counters total =
+        insert_pixel_ordered<Word>(fragments.first(half), screen, threads, make_kernel, shared, interleave, buckets);
+    total +=
+        insert_pixel_ordered<Word>(fragments.subspan(half), screen, threads, make_kernel, shared, interleave, buckets);
     return total;
   }
   const std::vector<RowBand> bands = balanced_row_bands(fragments, screen, threads);
@@ -206,9 +311,11 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
         fragments, screen, bands[b], [&](const Fragment& f) { return k.ha_depth_valid(f.depth); },
         [&](const Fragment& f) { return k.ha_pack(1u, k.ha_depth_code(f.depth), f.rgba); }, tally[HABUFFER_INVALID]);
     if (k.ha_cull_tau > 0.0f)
-      buckets[b].for_each_pixel([&](glm::uvec2 p, std::span<const Word> r) { insert_pixel_in_order(k, p, r, tally); });
+      insert_pixels_in_order(k, buckets[b], tally);
+    else if (interleave)
+      insert_pixels_interleaved(k, buckets[b], tally);
     else
-      buckets[b].for_each_pixel([&](glm::uvec2 p, std::span<const Word> r) { insert_pixel_jump_start(k, p, r, tally); });
+      insert_pixels_jump_start(k, buckets[b], tally);
     parts[b].c.add_tally(tally);
   };
   if (bands.size() == 1 && !shared) {

@@ -79,14 +79,17 @@ TEST(InsertOrder, PixelOrderGivesArrivalOrdersTableMaxAgeAndCountersAtOneAndMany
       HaBuffer arrival = test::make_buffer(cfg, seed);
       const Counters na = arrival.insert(f, ordered(InsertOrder::Arrival));
       ASSERT_EQ(na.failures(), 0u) << "the case must not fail: SPEC 9 promises identity only then";
-      for (std::uint32_t threads : {1u, 2u, 3u}) {
-        SCOPED_TRACE("threads " + std::to_string(threads));
-        HaBuffer pixel = test::make_buffer(cfg, seed);
-        const Counters np = pixel.insert(f, ordered(InsertOrder::Pixel, threads));
-        EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
-        EXPECT_EQ(pixel.max_age().ages(), arrival.max_age().ages());
-        EXPECT_EQ(np, na);
-      }
+      for (std::uint32_t threads : {1u, 2u, 3u})
+        for (bool interleave : {false, true}) {
+          SCOPED_TRACE("threads " + std::to_string(threads) + (interleave ? " interleaved" : ""));
+          HaBuffer pixel = test::make_buffer(cfg, seed);
+          InsertOptions o = ordered(InsertOrder::Pixel, threads);
+          o.interleave = interleave;
+          const Counters np = pixel.insert(f, o);
+          EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
+          EXPECT_EQ(pixel.max_age().ages(), arrival.max_age().ages());
+          EXPECT_EQ(np, na);
+        }
     }
 }
 
@@ -105,12 +108,17 @@ TEST(InsertOrder, PixelOrderEqualsArrivalOrderWhenNeighboursHoldIdenticalRecords
             if ((x * 7 + y * 3 + static_cast<std::uint32_t>(plane) + seed) % 4 != 0)
               f.push_back({x, y, 0.1f + 0.15f * static_cast<float>(plane), 0x80808080u});
       const BufferConfig cfg = test::config(screen, {38, 30}, layout, 6);  // load about 0.8
-      HaBuffer arrival = test::make_buffer(cfg, seed), pixel = test::make_buffer(cfg, seed);
+      HaBuffer arrival = test::make_buffer(cfg, seed);
       const Counters na = arrival.insert(test::shuffled(f, seed), ordered(InsertOrder::Arrival));
       ASSERT_EQ(na.failures(), 0u);
-      const Counters np = pixel.insert(f, ordered(InsertOrder::Pixel));
-      EXPECT_EQ(np, na);
-      EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
+      for (bool interleave : {false, true}) {
+        HaBuffer pixel = test::make_buffer(cfg, seed);
+        InsertOptions o = ordered(InsertOrder::Pixel);
+        o.interleave = interleave;
+        const Counters np = pixel.insert(f, o);
+        EXPECT_EQ(np, na);
+        EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
+      }
     }
 }
 
@@ -167,7 +175,9 @@ TEST(InsertOrder, PixelOrderCountsEveryFragmentWhenAPixelIsDeeperThanAmaxAtManyT
     for (std::uint32_t x = 0; x < screen.x; ++x) f.push_back({x, y, 0.5f, 0});  // depth 1 everywhere else
   for (std::uint32_t threads : {1u, 2u, 4u}) {
     HaBuffer b = test::make_buffer(cfg);
-    const Counters n = b.insert(test::shuffled(f, threads), ordered(InsertOrder::Pixel, threads));
+    InsertOptions o = ordered(InsertOrder::Pixel, threads);
+    o.interleave = threads != 2;
+    const Counters n = b.insert(test::shuffled(f, threads), o);
     EXPECT_EQ(n.fragments, f.size());
     EXPECT_GT(n.failed_age, 0u);
     EXPECT_EQ(b.count_stored(), n.stored());

@@ -63,12 +63,21 @@ std::optional<InsertOrder> parse_insert_order(std::string_view name);
 inline constexpr std::uint64_t kPixelOrderMinFragments = 64;
 /// Auto's rule (see kPixelOrderMinFragments).
 inline constexpr std::uint64_t kPixelOrderPixelsPerFragment = 16;
+/// Pixel order without early cull interleaves several pixels per thread
+/// (latency hiding: a slot's miss overlaps other pixels' probes) when the
+/// table is at least this large, unless InsertOptions::interleave says
+/// otherwise; below it the table sits in cache and interleaving only adds
+/// work (docs/performance.md, issue 26).
+inline constexpr std::uint64_t kInterleaveMinTableBytes = std::uint64_t{8} << 20;
 
 /// How FragmentBuffer::insert runs a batch.
 struct InsertOptions {
   std::uint32_t threads = 1;  ///< 0: every hardware thread
   InsertMode mode = InsertMode::Auto;  ///< how the threads share the buffer
   InsertOrder order = InsertOrder::Auto;  ///< the HA-buffer's order (others insert in arrival order)
+  /// Pixel order: interleave pixels on each thread (true), or not (false);
+  /// nullopt: by the table's size (kInterleaveMinTableBytes). The same table either way.
+  std::optional<bool> interleave;
   std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band
 };
 
