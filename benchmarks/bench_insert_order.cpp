@@ -39,7 +39,7 @@ void BM_InsertOrder(benchmark::State& state) {
 
 BENCHMARK(BM_InsertOrder)
     ->ArgNames({"pixel", "side", "load", "threads"})
-    ->ArgsProduct({{0, 1, 2}, {1024, 512, 256}, {50, 80}, {1, 2}})
+    ->ArgsProduct({{0, 1, 2}, {1024, 512, 362, 256}, {50, 80}, {1, 2}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -123,8 +123,9 @@ struct HaBuffer::Impl {
           };
           std::unique_lock<std::mutex> kept(buckets_mutex, std::try_to_lock);
           std::vector<detail::PixelBuckets<Word>> own;
-          const bool interleaved = interleave.value_or(st.bytes() >= kInterleaveMinTableBytes);
-          return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared, interleaved,
+          const detail::InterleaveRule rule{interleave, st.bytes() >= kInterleaveMinTableBytes,
+                                            static_cast<double>(frags.size()) / static_cast<double>(st.size())};
+          return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared, rule,
                                                     kept.owns_lock() ? kept_buckets<Word>() : own);
         },
         storage);

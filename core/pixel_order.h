@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -83,7 +84,11 @@ class PixelBuckets {
           ++invalid;
         }
       }
-    for (std::size_t i = 2; i < end_.size(); ++i) end_[i] += end_[i - 1];
+    covered_ = 0;
+    for (std::size_t i = 2; i < end_.size(); ++i) {
+      covered_ += end_[i] != 0;
+      end_[i] += end_[i - 1];
+    }
     records_.resize(n);
     for (const Fragment& f : fragments)
       if (f.y >= band.y0 && f.y < band.y1 && valid(f)) records_[end_[local(f) + 1]++] = pack(f);
@@ -91,6 +96,10 @@ class PixelBuckets {
 
   // Pixels of the band, row by row (indices for records()).
   [[nodiscard]] std::size_t pixels() const { return pixels_; }
+  // Records per pixel holding any (0 for none).
+  [[nodiscard]] double mean_depth() const {
+    return covered_ > 0 ? static_cast<double>(records_.size()) / static_cast<double>(covered_) : 0.0;
+  }
   // Pixel i's records, sorted nearest first by this call (empty: none); `p`
   // is set to the pixel.
   std::span<const Word> records(std::size_t i, glm::uvec2& p) {
@@ -121,7 +130,7 @@ class PixelBuckets {
     }
   }
 
-  std::size_t origin_ = 0, width_ = 1, pixels_ = 0;
+  std::size_t origin_ = 0, width_ = 1, pixels_ = 0, covered_ = 0;
   std::vector<std::uint32_t> end_;  // end_[i + 1]: the end of pixel i's records (end_[0] = end_[1] = 0)
   std::vector<Word> records_;
 };
@@ -235,6 +244,26 @@ void insert_pixels_jump_start(Kernel& k, Buckets& buckets, std::uint64_t* tally)
 // enough independent probes in flight to cover a miss to memory.
 inline constexpr std::size_t kInterleavedPixels = 16;
 
+// When a band interleaves its pixels (measured with BM_InsertOrder,
+// docs/performance.md): never while the table sits in cache; beyond, where
+// probes are many: deep pixels (several ages per pixel, one stream of slots
+// per age, more streams than the hardware prefetcher follows) or a full
+// table (long probe sequences). Shallow pixels in a half-full table walk the
+// table in a few sequential streams the prefetcher already covers.
+struct InterleaveRule {
+  std::optional<bool> forced;  // InsertOptions::interleave
+  bool large_table = false;    // at least kInterleaveMinTableBytes
+  double fill = 0.0;           // fragments / slots: the load the batch can reach
+
+  static constexpr double kMinDepth = 6.0;  // records per covered pixel
+  static constexpr double kMinFill = 0.7;
+
+  [[nodiscard]] bool applies(double mean_depth) const {
+    if (forced) return *forced;
+    return large_table && (mean_depth >= kMinDepth || fill >= kMinFill);
+  }
+};
+
 // Every pixel of `buckets` through the jump start, kInterleavedPixels at a
 // time: each lane makes one probe step, then prefetches the slot of its next
 // step, so a slot's miss overlaps the other lanes' work. The steps of
@@ -292,7 +321,7 @@ void insert_pixels_in_order(Kernel& k, Buckets& buckets, std::uint64_t* tally) {
 // Batches beyond PixelBuckets::kMaxFragments go in consecutive parts.
 template <class Word, class MakeKernel>
 Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen, std::uint32_t threads,
-                              MakeKernel make_kernel, bool shared, bool interleave,
+                              MakeKernel make_kernel, bool shared, const InterleaveRule& interleave,
                               std::vector<PixelBuckets<Word>>& buckets) {
   if (fragments.size() > PixelBuckets<Word>::kMaxFragments) {
     const std::size_t half = fragments.size() / 2;
@@ -312,7 +341,7 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
         [&](const Fragment& f) { return k.ha_pack(1u, k.ha_depth_code(f.depth), f.rgba); }, tally[HABUFFER_INVALID]);
     if (k.ha_cull_tau > 0.0f)
       insert_pixels_in_order(k, buckets[b], tally);
-    else if (interleave)
+    else if (interleave.applies(buckets[b].mean_depth()))
       insert_pixels_interleaved(k, buckets[b], tally);
     else
       insert_pixels_jump_start(k, buckets[b], tally);

@@ -64,10 +64,11 @@ inline constexpr std::uint64_t kPixelOrderMinFragments = 64;
 /// Auto's rule (see kPixelOrderMinFragments).
 inline constexpr std::uint64_t kPixelOrderPixelsPerFragment = 16;
 /// Pixel order without early cull interleaves several pixels per thread
-/// (latency hiding: a slot's miss overlaps other pixels' probes) when the
-/// table is at least this large, unless InsertOptions::interleave says
-/// otherwise; below it the table sits in cache and interleaving only adds
-/// work (docs/performance.md, issue 26).
+/// (latency hiding: a slot's miss overlaps other pixels' probes) only when
+/// the table is at least this large and probes are many (deep pixels or a
+/// full table: core/pixel_order.h, InterleaveRule), unless
+/// InsertOptions::interleave says otherwise; below it the table sits in
+/// cache and interleaving only adds work (docs/performance.md, issue 26).
 inline constexpr std::uint64_t kInterleaveMinTableBytes = std::uint64_t{8} << 20;
 
 /// How FragmentBuffer::insert runs a batch.
