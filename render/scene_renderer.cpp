@@ -32,11 +32,6 @@ std::string gather_header(const gl::GlBindings& b, SceneRenderer::GatherCounts c
 
 std::string gather_code() { return std::string(render::kShading) + render::kGatherFragment; }
 
-// The counting pass inserts nothing: the gather's code without a module.
-std::string count_source(const gl::GlBindings& b) {
-  return "#version 450 core\n#define R_COUNT_ONLY\n" + gather_header(b, {}) + gather_code();
-}
-
 std::string opaque_source() { return std::string("#version 450 core\n") + render::kShading + render::kOpaqueFragment; }
 
 bool same_view(const Camera& a, const Camera& b) {
@@ -54,7 +49,6 @@ SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const 
   Sources s;
   s.vertex = render::kSceneVertex;
   s.opaque_fragment = opaque_source();
-  s.count_fragment = count_source(b);
   s.gather_fragment =
       gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, gather_header(b, counts)) + gather_code();
   return s;
@@ -66,8 +60,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
 SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts)
     : screen_(screen),
       counts_(counts),
+      buffer_(buffer),
       opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex, opaque_source(), "opaque pass")),
-      count_program_(gl::ShaderProgram::graphics(render::kSceneVertex, count_source(buffer.bindings()), "counting pass")),
       gather_program_(gl::ShaderProgram::graphics(
           render::kSceneVertex,
           buffer.module_source(gl::ShaderStage::Fragment, gather_header(buffer.bindings(), counts)) + gather_code(),
@@ -117,8 +111,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glCreateFramebuffers(1, &gather_framebuffer_);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
-  for (const gl::ShaderProgram* p : {&count_program_, &gather_program_, &atomic_floor_program_})
-    p->set("r_screen_width", screen.x);
+  for (const gl::ShaderProgram* p : {&gather_program_, &atomic_floor_program_}) p->set("r_screen_width", screen.x);
   pixel_fragments_ = gl::create_buffer(screen.area() * 4);
   pixel_culled_ = gl::create_buffer(screen.area() * 4);
   rejected_ = gl::create_buffer(4);
@@ -198,8 +191,11 @@ void SceneRenderer::gather(const Camera& camera) {
 void SceneRenderer::count(const Camera& camera) {
   gl::zero_buffer(pixel_fragments_);
   gl::zero_buffer(rejected_);
+  buffer_.bind();  // the module's blocks, which the pass declares though it reads none
   bind_counts();
-  draw_transparent(count_program_, camera, gather_framebuffer_);  // writes no colour: it discards every fragment
+  gather_program_.set("r_count_only", 1u);
+  draw_transparent(gather_program_, camera, gather_framebuffer_);  // writes no colour: it discards every fragment
+  gather_program_.set("r_count_only", 0u);
   latest_ = counted_ = camera;
 }
 

@@ -39,13 +39,14 @@ class SceneRenderer {
   // technique, as compiled (no GL needed: the reference-compiler check
   // writes them out); the gather with `counts`, in the module's default variant.
   struct Sources {
-    std::string vertex, opaque_fragment, count_fragment, gather_fragment;
+    std::string vertex, opaque_fragment, gather_fragment;  // the gather is also the counting pass
   };
   static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings,
                                 Technique technique = Technique::Ha, GatherCounts counts = {true, true});
 
   // Compiles the gather shader from `buffer`'s module (technique, mode,
   // binding points and variant), counting GatherCounts::for_driver(buffer).
+  // `buffer` must outlive the renderer (its counting passes bind its blocks).
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer);
   // The same, counting `counts`.
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts);
@@ -91,7 +92,8 @@ class SceneRenderer {
     bool opaque;  // drawn in the opaque pass
   };
   void draw_meshes(const gl::ShaderProgram& program, const Camera& camera, bool opaque) const;
-  // The counting pass: fragments per pixel and rejected ones, nothing inserted.
+  // The counting pass (the gather program, inserting nothing): fragments per
+  // pixel and rejected ones, with `buffer`'s blocks bound.
   void count(const Camera& camera);
   void bind_counts() const;
   // The transparent meshes through `program` into `framebuffer`, the opaque depth image at unit 0.
@@ -99,8 +101,9 @@ class SceneRenderer {
 
   Extent screen_;
   GatherCounts counts_;
+  const gl::GlFrameDriver& buffer_;  // whose module the gather compiles
   std::vector<GpuMesh> meshes_;
-  gl::ShaderProgram opaque_program_, count_program_, gather_program_, blend_program_, atomic_floor_program_;
+  gl::ShaderProgram opaque_program_, gather_program_, blend_program_, atomic_floor_program_;
   unsigned opaque_framebuffer_ = 0, colour_ = 0, depth_ = 0, depth_buffer_ = 0;
   unsigned gather_framebuffer_ = 0, blend_framebuffer_ = 0;
   unsigned technique_framebuffer_ = 0;  // where the technique blends (wboit, blend), else 0
