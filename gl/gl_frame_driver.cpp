@@ -65,9 +65,10 @@ struct GlFrameDriver::Gpu {
 GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options)
     : technique_(checked(std::move(technique))),
       options_(options),
-      needs_call_count_(query_gl_info().loop_budget),
+      needs_call_count_(query_gl_info().software_rasterizer),
       gpu_(std::make_unique<Gpu>()) {
   options_.policy.validate();
+  options_.module = options_.module.resolved(mode(), query_gl_info());
   if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
   if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");

@@ -66,18 +66,26 @@ std::string parameter_block() {
 
 }  // namespace
 
+ModuleVariant ModuleVariant::resolved(AtomicMode mode, const GlInfo& info) const {
+  ModuleVariant v = *this;
+  if (!v.slot_read_first) v.slot_read_first = mode == AtomicMode::Emulated64;
+  if (!v.max_age_read_first) v.max_age_read_first = info.software_rasterizer;
+  return v;
+}
+
 std::string ModuleVariant::defines() const {
   std::string s;
   if (count_writes) s += "#define HABUFFER_COUNT_WRITES\n";
-  s += "#define HABUFFER_SLOT_READ_FIRST " + std::string(slot_read_first ? "1" : "0") + "\n";
-  s += "#define HABUFFER_MAX_AGE_READ_FIRST " + std::string(max_age_read_first ? "1" : "0") + "\n";
+  if (slot_read_first) s += "#define HABUFFER_SLOT_READ_FIRST " + std::string(*slot_read_first ? "1" : "0") + "\n";
+  if (max_age_read_first)
+    s += "#define HABUFFER_MAX_AGE_READ_FIRST " + std::string(*max_age_read_first ? "1" : "0") + "\n";
   return s;
 }
 
 std::string ModuleVariant::str() const {
-  const auto bit = [](bool b) { return b ? "1" : "0"; };
-  return std::string("count_writes=") + bit(count_writes) + " slot_read_first=" + bit(slot_read_first) +
-         " max_age_read_first=" + bit(max_age_read_first);
+  const auto choice = [](std::optional<bool> b) { return !b ? "auto" : *b ? "1" : "0"; };
+  return std::string("count_writes=") + (count_writes ? "1" : "0") + " slot_read_first=" + choice(slot_read_first) +
+         " max_age_read_first=" + choice(max_age_read_first);
 }
 
 void GlBindings::validate() const {

@@ -44,8 +44,9 @@ TEST(GlBookkeeping, EveryModuleVariantBuildsTheCpuPathsTableAndMaxAgesBitForBit)
                         {{64, 64}, {80, 64}, 8, StreamKind::Random, 0.9},
                         {{16, 48}, {16, 48}, 4, StreamKind::Coherent, 1.1}};
   for (gl::AtomicMode mode : modes())
-    for (const gl::GlFrameOptions& o : {with_variant(false, false, false), with_variant(true, true, false),
-                                        with_variant(false, true, true), with_variant(true, false, true)}) {
+    for (const gl::GlFrameOptions& o : {gl::GlFrameOptions{}, with_variant(false, false, false),
+                                        with_variant(true, true, false), with_variant(false, true, true),
+                                        with_variant(true, false, true)}) {
       SCOPED_TRACE(gl::to_string(mode) + " " + o.module.str());
       for (const Case& k : cases) {
         SCOPED_TRACE(k.screen.str() + " in " + k.table.str());
@@ -98,17 +99,36 @@ TEST(GlBookkeeping, SlotWritesSwitchedOffGiveTheSameTablesCountersAndImageAsSwit
   }
 }
 
+// An unset choice of the variant is the one measured faster for the atomic
+// mode and implementation (docs/performance.md, "Issue 26: GPU
+// bookkeeping"); a choice made is kept.
+TEST(GlBookkeeping, UnsetVariantChoicesResolveByAtomicModeAndImplementation) {
+  gl_context();
+  const gl::GlInfo info = gl::query_gl_info();
+  for (gl::AtomicMode mode : modes()) {
+    SCOPED_TRACE(gl::to_string(mode));
+    gl::GlHaBuffer gpu(test::config({8, 8}, {8, 8}, test::layout_of(mode)), test::random_offsets(1), mode);
+    const gl::ModuleVariant& v = gpu.options().module;
+    EXPECT_EQ(v.slot_read_first, std::optional<bool>(mode == gl::AtomicMode::Emulated64));
+    EXPECT_EQ(v.max_age_read_first, std::optional<bool>(info.software_rasterizer));
+    EXPECT_FALSE(v.count_writes);
+    EXPECT_NE(gpu.module_source(gl::ShaderStage::Compute).find("#define HABUFFER_SLOT_READ_FIRST"), std::string::npos);
+    gl::GlHaBuffer chosen(gpu.config(), test::random_offsets(1), mode, with_variant(true, false, false));
+    EXPECT_EQ(chosen.options().module, with_variant(true, false, false).module);
+  }
+}
+
 // The driver asks its host for the gather's call count only where the
 // implementation can end calls without an outcome (llvmpipe's loop budget),
 // and the renderer then counts per pixel in the gather, at no extra pass.
 TEST(GlBookkeeping, TheCallCountIsAskedForOnlyWhereTheImplementationHasALoopBudget) {
   gl_context();
   const gl::GlInfo info = gl::query_gl_info();
-  EXPECT_EQ(info.loop_budget, info.renderer.find("llvmpipe") != std::string::npos ||
-                                  info.renderer.find("softpipe") != std::string::npos);
+  EXPECT_EQ(info.software_rasterizer, info.renderer.find("llvmpipe") != std::string::npos ||
+                                          info.renderer.find("softpipe") != std::string::npos);
   gl::GlHaBuffer gpu(test::config({8, 8}, {8, 8}, Layout::L32), test::random_offsets(1), gl::AtomicMode::Native32);
-  EXPECT_EQ(gpu.needs_call_count(), info.loop_budget);
-  EXPECT_EQ(SceneRenderer::GatherCounts::for_driver(gpu).fragments, info.loop_budget);
+  EXPECT_EQ(gpu.needs_call_count(), info.software_rasterizer);
+  EXPECT_EQ(SceneRenderer::GatherCounts::for_driver(gpu).fragments, info.software_rasterizer);
 }
 
 struct Gathered {

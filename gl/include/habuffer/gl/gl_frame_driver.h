@@ -55,10 +55,11 @@ class GlFrameDriver {
   [[nodiscard]] const GlBindings& bindings() const { return technique_->bindings(); }
   /// The screen, in pixels.
   [[nodiscard]] Extent screen() const { return technique_->screen(); }
-  /// The options every frame runs with.
+  /// The options every frame runs with (the module variant resolved: ModuleVariant::resolved).
   [[nodiscard]] const GlFrameOptions& options() const { return options_; }
   /// Whether frame() asks its host for the gather's call count: only where
-  /// the implementation can end a call without an outcome (GlInfo::loop_budget),
+  /// the implementation can end a call without an outcome (its loop budget:
+  /// GlInfo::software_rasterizer),
   /// so a host elsewhere need not count its calls per fragment.
   [[nodiscard]] bool needs_call_count() const { return needs_call_count_; }
   /// Caps the attempts per frame from now on (at least 1): a caller that
