@@ -36,6 +36,7 @@
 #include "habuffer/gl/gl_linked_lists.h"
 #include "habuffer/gl/gl_technique.h"
 #include "habuffer/render/render_job.h"
+#include "habuffer/render/resolve_target.h"
 #include "habuffer/render/scene_renderer.h"
 #include "habuffer/scene_catalog.h"
 
@@ -212,27 +213,6 @@ void size_for(gl::GlTechnique& t, std::uint64_t fragments) {
   if (auto* lists = dynamic_cast<gl::GlLinkedLists*>(&t))
     lists->resize_pool(std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / 0.8))));
 }
-
-// An RGBA32F target the resolve writes, bound while it lives.
-class ResolveTarget {
- public:
-  explicit ResolveTarget(Extent screen) {
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture_);
-    glTextureStorage2D(texture_, 1, GL_RGBA32F, static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
-    glCreateFramebuffers(1, &framebuffer_);
-    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, texture_, 0);
-  }
-  ~ResolveTarget() {
-    glDeleteFramebuffers(1, &framebuffer_);
-    glDeleteTextures(1, &texture_);
-  }
-  ResolveTarget(const ResolveTarget&) = delete;
-  ResolveTarget& operator=(const ResolveTarget&) = delete;
-  [[nodiscard]] unsigned framebuffer() const { return framebuffer_; }
-
- private:
-  GLuint texture_ = 0, framebuffer_ = 0;
-};
 
 // side, bookkeeping (0: none in the gather; a driver that asks for the call
 // count (llvmpipe) gets it from a counting pass after the gather's clock;

@@ -13,7 +13,7 @@
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/gl_linked_lists.h"
 #include "habuffer/memory_model.h"
-#include "resolve_target.h"
+#include "habuffer/render/resolve_target.h"
 
 namespace habuffer {
 namespace {

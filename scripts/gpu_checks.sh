@@ -19,9 +19,11 @@
 # (GPU_CHECKS_BUDGET_S, 540 s): a step that would start with less than 20 s
 # left is skipped, so a slow step cannot eat the rest, and the script ends in
 # time. Everything goes on after a failure. OUTDIR holds two files (the
-# device machine returns few): gpu.log, the commands, their output, exit codes
-# and times; results.tar.gz, every result file (*.json, *.csv), repacked after
-# each step so a run cut short still returns what it finished.
+# device machine returns few): gpu.log, the commands, their output (every
+# benchmark repetition as it ends), exit codes and times; results.tar.gz,
+# every result file (*.json, *.csv), repacked after each step so a run cut
+# short still returns what it finished. A benchmark writes its JSON only when
+# it ends, so the long ones are split (one per side).
 set -uo pipefail
 mode=run
 case "${1:-}" in
@@ -29,7 +31,7 @@ case "${1:-}" in
   --dry-run) mode=dry; shift ;;
 esac
 out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
-all_steps=info,gl-tests,gather,captured,insert,harness,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+all_steps=info,gl-tests,gather,harness,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
 steps=${2:-$all_steps}
 budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
@@ -85,8 +87,7 @@ else
   render_size=2048x2048 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
 fi
 bench_flags=(--benchmark_min_time="$bench_time" --benchmark_repetitions="$bench_reps"
-             --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
-             --benchmark_out_format=json)
+             --benchmark_enable_random_interleaving=true --benchmark_out_format=json)
 
 if want info; then
   if [[ $mode != smoke ]]; then
@@ -96,13 +97,22 @@ if want info; then
   step 60 info habuffer info
 fi
 # Every GL test in the default mode (native64 on NVIDIA).
-want gl-tests && sharded 4 150 gl-tests habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
+want gl-tests && sharded 4 120 gl-tests habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
 # render's gather in steady state, with and without the bookkeeping of issue
 # 26 part 5 (bookkeeping:1 = the slot-write tally and the per-pixel counts
 # render paid in every frame before), and native64 with and without the
 # read-first slot load (slot_rf) and max-age read (age_rf).
-want gather && step 150 gather habuffer_bench --benchmark_filter="BM_GlGather/(engine|hairball|spider)/[a-z0-9-]+/side:($sides)/" \
-  "${bench_flags[@]}" --benchmark_out=gl-gather.json
+if want gather; then
+  for side in ${sides//|/ }; do
+    step $((side > 512 ? 120 : 90)) "gather-$side" habuffer_bench \
+      --benchmark_filter="BM_GlGather/(engine|hairball|spider)/[a-z0-9-]+/side:$side/" "${bench_flags[@]}" \
+      --benchmark_out="gl-gather-$side.json"
+  done
+fi
+# The technique table (first frame of a fresh renderer each round: the harness's own timing).
+want harness && step 150 harness habuffer bench --path gl --quiet --repeats "$repeats" --size "$sizes" \
+  --scenes engine,hairball,spider --techniques ha,ha:cull=0.99,lists,sorted-lists,sorted-lists:cull=0.99 \
+  --out techniques.json,techniques.csv
 # The captured hairball stream through the compute entry, arrival and pixel
 # order, loads 0.3/0.55/0.8 and the variants, in the L64 mode the GPU runs.
 want captured && step 120 captured habuffer_bench --benchmark_filter="BM_GlCaptured/hairball/(arrival|pixel)/$l64/side:($sides)/" \
@@ -111,16 +121,12 @@ want captured && step 120 captured habuffer_bench --benchmark_filter="BM_GlCaptu
 # GPU) and 2^24 fragments, native32 (the L32 goal: 4.4 G frag/s at load 0.5) and native64.
 want insert && step 90 insert habuffer_bench --benchmark_filter="BM_GlInsertNative(32|64)/load:[0-9]+/log2n:($log2n)/" \
   "${bench_flags[@]}" --benchmark_out=gl-insert.json
-# The technique table (first frame of a fresh renderer each round: the harness's own timing).
-want harness && step 150 harness habuffer bench --path gl --quiet --repeats "$repeats" --size "$sizes" \
-  --scenes engine,hairball,spider --techniques ha,ha:cull=0.99,lists,sorted-lists,sorted-lists:cull=0.99 \
-  --out techniques.json,techniques.csv
 want loads && step 90 loads habuffer bench --path gl --quiet --no-floors --repeats "$repeats" --size "$sizes" \
   --scenes hairball --techniques ha:load=0.3,ha:load=0.55,ha:load=0.8 --out loads.json,loads.csv
 # Issue 26 part 6: BM_Technique beside the harness on the same scene and machine.
+# Every repetition kept: its H100 median (35.9 ms) hid one repetition of 88 ms.
 want technique && step 90 technique habuffer_bench --benchmark_filter='BM_Technique/hairball/gl/(ha|lists)/' \
-  --benchmark_repetitions="$bench_reps" --benchmark_report_aggregates_only=true \
-  --benchmark_out=gl-technique.json --benchmark_out_format=json
+  --benchmark_repetitions="$bench_reps" --benchmark_out=gl-technique.json --benchmark_out_format=json
 # Older checks, as time allows.
 want gl-tests-emulated64 && sharded 4 120 gl-tests-emulated64 env HABUFFER_ATOMIC_MODE=emulated64 \
   habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
