@@ -16,6 +16,21 @@ void check_on_screen(std::span<const Fragment> fragments, Extent screen) {
   }
 }
 
+std::string to_string(InsertOrder order) {
+  switch (order) {
+    case InsertOrder::Auto: return "auto";
+    case InsertOrder::Arrival: return "arrival";
+    case InsertOrder::Pixel: return "pixel";
+  }
+  return "?";
+}
+
+std::optional<InsertOrder> parse_insert_order(std::string_view name) {
+  for (InsertOrder o : {InsertOrder::Auto, InsertOrder::Arrival, InsertOrder::Pixel})
+    if (name == to_string(o)) return o;
+  return std::nullopt;
+}
+
 void check_pixel(std::uint32_t x, std::uint32_t y, Extent screen) {
   if (x >= screen.x || y >= screen.y)
     throw std::out_of_range("pixel (" + std::to_string(x) + "," + std::to_string(y) + ") lies outside screen " +

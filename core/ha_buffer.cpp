@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -12,6 +13,7 @@
 #include "habuffer/slot_storage.h"
 #include "habuffer/owner_computes.h"
 #include "habuffer/parallel.h"
+#include "pixel_order.h"
 #include "technique_parallel.h"
 
 namespace habuffer {
@@ -46,6 +48,19 @@ struct HaBuffer::Impl {
   KernelParams params;
   std::vector<std::uint32_t> saturation;  // early cull with saturation: a code per pixel
   std::variant<SlotStorage<std::uint64_t>, SlotStorage<std::uint32_t>> storage;
+  // Pixel order's buckets, kept between calls (a frame then touches no fresh
+  // pages); a call that finds them taken by an overlapping call makes its own.
+  std::mutex buckets_mutex;
+  std::vector<detail::PixelBuckets<std::uint64_t>> buckets64;
+  std::vector<detail::PixelBuckets<std::uint32_t>> buckets32;
+
+  template <class Word>
+  std::vector<detail::PixelBuckets<Word>>& kept_buckets() {
+    if constexpr (std::is_same_v<Word, std::uint64_t>)
+      return buckets64;
+    else
+      return buckets32;
+  }
 
   Impl(const BufferConfig& c, OffsetSequence o)
       : config(c), layout(c.record_layout()), offsets(std::move(o)), max_age(c.screen, c.block) {
@@ -95,6 +110,34 @@ struct HaBuffer::Impl {
         storage);
   }
 
+  // The batch bucketed by pixel, nearest first, with the jump start
+  // (pixel_order.h): bands of rows, one per thread.
+  Counters insert_pixel_ordered(std::span<const Fragment> frags, std::uint32_t threads, bool shared,
+                                std::optional<bool> interleave) {
+    return std::visit(
+        [&](auto& st) {
+          using Word = std::remove_pointer_t<decltype(st.data())>;
+          const auto make_kernel = [&](auto concurrent) {
+            return HashKernel<Word, decltype(concurrent)::value>(params, offsets.values().data(), st.data(),
+                                                                 max_age.data());
+          };
+          std::unique_lock<std::mutex> kept(buckets_mutex, std::try_to_lock);
+          std::vector<detail::PixelBuckets<Word>> own;
+          const detail::InterleaveRule rule{interleave, st.bytes() >= kInterleaveMinTableBytes,
+                                            static_cast<double>(frags.size()) / static_cast<double>(st.size())};
+          return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared, rule,
+                                                    kept.owns_lock() ? kept_buckets<Word>() : own);
+        },
+        storage);
+  }
+
+  // Arrival or pixel order, as `order` says.
+  Counters insert_ordered(std::span<const Fragment> frags, InsertOrder order, std::uint32_t threads, bool shared,
+                          std::optional<bool> interleave) {
+    if (order == InsertOrder::Pixel) return insert_pixel_ordered(frags, threads, shared, interleave);
+    return insert_slices(frags, threads, shared);
+  }
+
   Counters insert_owner_computes(std::span<const Fragment> frags, const InsertOptions& options,
                                  std::uint32_t threads) {
     return std::visit(
@@ -130,21 +173,35 @@ Extent HaBuffer::screen() const { return impl_->config.screen; }
 Extent HaBuffer::table() const { return impl_->config.table; }
 const MaxAgeTable& HaBuffer::max_age() const { return impl_->max_age; }
 
+InsertOrder HaBuffer::insert_order(std::size_t fragments, const InsertOptions& options) const {
+  if (options.order == InsertOrder::Pixel && options.mode == InsertMode::OwnerComputes)
+    throw std::invalid_argument("owner-computes insertion follows the probes, not the pixels: it has no pixel order");
+  if (options.order != InsertOrder::Auto) return options.order;
+  // Pixel order gives arrival order's table only without early cull (SPEC 9),
+  // and pays for itself only when the batch is not tiny beside the screen.
+  const bool pays = fragments >= kPixelOrderMinFragments &&
+                    fragments * kPixelOrderPixelsPerFragment >= impl_->config.screen.area();
+  const bool same_result = impl_->config.early_cull_tau <= 0.0f && options.mode != InsertMode::OwnerComputes;
+  return pays && same_result ? InsertOrder::Pixel : InsertOrder::Arrival;
+}
+
 Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, impl_->config.screen);
   const std::uint32_t threads = resolve_threads(options.threads);
+  const InsertOrder order = insert_order(fragments.size(), options);
   switch (options.mode) {
     case InsertMode::Auto:
       // One thread and no other call running: plain stores, the call alone.
       // Else atomics, beside any other atomic call (InsertGate).
       if (threads == 1)
-        if (const auto alone = gate_.alone_if_free()) return impl_->insert_slices(fragments, 1, false);
+        if (const auto alone = gate_.alone_if_free())
+          return impl_->insert_ordered(fragments, order, 1, false, options.interleave);
       break;
     case InsertMode::Serial: {
       if (threads != 1)
         throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
       const auto alone = gate_.alone();
-      return impl_->insert_slices(fragments, 1, false);
+      return impl_->insert_ordered(fragments, order, 1, false, options.interleave);
     }
     case InsertMode::Atomic: break;
     case InsertMode::OwnerComputes: {
@@ -158,7 +215,7 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
     }
   }
   const auto shared = gate_.shared();
-  return impl_->insert_slices(fragments, threads, true);
+  return impl_->insert_ordered(fragments, order, threads, true, options.interleave);
 }
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {
@@ -174,6 +231,13 @@ std::uint64_t HaBuffer::clear() {
   impl_->max_age.clear();
   std::fill(impl_->saturation.begin(), impl_->saturation.end(), 0u);
   return std::visit([](auto& s) { return s.clear_and_count(); }, impl_->storage);
+}
+
+void HaBuffer::reset() {
+  const auto alone = gate_.alone();
+  impl_->max_age.clear();
+  std::fill(impl_->saturation.begin(), impl_->saturation.end(), 0u);
+  std::visit([](auto& s) { s.clear(); }, impl_->storage);
 }
 
 std::uint64_t HaBuffer::count_stored() const {

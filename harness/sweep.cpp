@@ -19,6 +19,8 @@ RenderSettings run_settings(const SweepSettings& s, Extent screen, std::uint64_t
   RenderSettings r;
   r.path = s.path;
   r.threads = s.threads;
+  r.insert_order = s.insert_order;
+  r.frames = 2;  // a warm-up frame on the same buffers, then the timed one (steady state)
   r.config.screen = screen;
   r.offsets.generator = s.offsets;
   r.offsets.seed = s.seed + repeat;
@@ -62,6 +64,7 @@ struct LoadRuns {
   double measured_load = 0.0;
   Extent table;
   double probes = -1.0;
+  InsertOrder insert_order = InsertOrder::Arrival;
 };
 
 void add_histogram(std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& h) {
@@ -72,6 +75,7 @@ void add_histogram(std::vector<std::uint64_t>& into, const std::vector<std::uint
 ResultRow make_row(const SweepSettings& s, double load, const LoadRuns& r) {
   ResultRow row;
   row.set("load", load).set("measured_load", r.measured_load).set("technique", s.technique.label())
+      .set("insert_order", to_string(r.insert_order))
       .set("repeats", s.repeats).set("capacity", r.capacity);
   if (r.table.area() != 0) row.set("table", r.table.str());
   const Spread m = spread_of(r.mfrag_per_s), g = spread_of(r.gather_ms);
@@ -172,6 +176,7 @@ ResultTable run_sweep(const Workload& workload, const SweepSettings& s) {
       l.capacity = f.capacity;
       l.table = f.table;
       l.measured_load = f.load_factor;
+      l.insert_order = f.insert_order;
       table.provenance.renderer = r.device;
       if (rs.technique == Technique::Ha && r.buffer) {
         const std::vector<std::uint64_t> h = age_histogram(*r.buffer);
@@ -188,7 +193,9 @@ ResultTable run_sweep(const Workload& workload, const SweepSettings& s) {
   table.notes["mfrag_per_s"] = "fragments reaching insertion / gather time, median over repeats (min, max beside)";
   table.notes["probes_per_fragment"] =
       "slots probed per insert call by the instrumented model of SPEC 3 (stats library) on the same fragments, "
-      "table and offsets as repetition 0";
+      "table and offsets as repetition 0, in arrival order (the process the statistics describe), whatever "
+      "insert_order the timed gather used";
+  table.notes["gather_ms"] = "the second frame of the view, on the buffers the first made (steady state)";
   table.notes["mean_age_ci95"] = "half-width of the 95% Student-t interval of the repetitions' mean ages";
   for (std::size_t i = 0; i < s.loads.size(); ++i) table.rows.push_back(make_row(s, s.loads[i], runs[i]));
   return table;

@@ -61,7 +61,7 @@ Workload::Workload(const WorkloadSpec& spec, Extent size) : spec_(spec), size_(s
 
 RenderResult Workload::render(RenderSettings s) const {
   s.config.screen = size_;
-  s.frames = 1;
+  s.orbit = false;  // one fixed view: every frame the same (warm-up frames, then timed ones)
   if (!scene_) {
     if (s.path == RenderPath::Gl) throw std::invalid_argument("fragment stream '" + spec_.word + "' renders on the CPU path only");
     return render_fragments(stream_, s);

@@ -20,7 +20,21 @@ std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments) {
   return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / s.policy.grow_at)));
 }
 
-CpuBuilder::CpuBuilder(const RenderSettings& settings) : settings_(settings), config_(technique_config(settings)) {}
+namespace {
+
+InsertOptions frame_insert_options(const RenderSettings& s) {
+  InsertOptions o;
+  o.threads = s.threads;
+  o.order = s.insert_order;
+  return o;
+}
+
+}  // namespace
+
+CpuBuilder::CpuBuilder(const RenderSettings& settings)
+    : settings_(settings),
+      config_(technique_config(settings)),
+      frames_(settings.offsets, frame_insert_options(settings), settings.policy, frame_attempts(settings)) {}
 
 void CpuBuilder::size_for(std::uint64_t fragments) {
   if (!automatic_size(settings_)) return;
@@ -28,7 +42,7 @@ void CpuBuilder::size_for(std::uint64_t fragments) {
   if (config_.technique == Technique::Lists) config_.pool_capacity = initial_pool(settings_, fragments);
 }
 
-TechniqueBuild CpuBuilder::build(std::span<const Fragment> fragments, FrameStats& fs) {
+const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, FrameStats& fs) {
   if (automatic_size(settings_) && previous_use_) {
     if (config_.technique == Technique::Ha) {
       const Extent next = settings_.policy.next(config_.buffer.table, settings_.config.screen, *previous_use_);
@@ -40,16 +54,14 @@ TechniqueBuild CpuBuilder::build(std::span<const Fragment> fragments, FrameStats
       config_.pool_capacity = next;
     }
   }
-  InsertOptions options;
-  options.threads = settings_.threads;
   const auto t0 = std::chrono::steady_clock::now();
-  TechniqueBuild b =
-      build_technique(config_, settings_.offsets, fragments, options, settings_.policy, frame_attempts(settings_));
+  const TechniqueBuild& b = frames_.build(config_, fragments);
   fs.gather_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   fs.attempts = static_cast<std::uint32_t>(b.attempts.size());
   fs.counters = b.counters;
   fs.capacity = b.buffer->capacity();
   if (const auto* ha = dynamic_cast<const HaBuffer*>(b.buffer.get())) {
+    fs.insert_order = ha->insert_order(fragments.size(), frame_insert_options(settings_));
     config_.buffer.table = ha->table();
     fs.table = ha->table();
     fs.max_age = ha->max_age().max();

@@ -1,7 +1,8 @@
 // The CPU path's frames of one technique: the first size from a fragment
 // count, adaptive sizing between frames from the previous frame's exact
 // count (SPEC 8 on the HA-buffer's table and on the lists' pool), lossless
-// and automatic regathers, and the frame's statistics.
+// and automatic regathers, the container kept between frames of one size
+// (TechniqueFrames), and the frame's statistics.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 
 #include "habuffer/lossless_build.h"
 #include "habuffer/render/render_job.h"
+#include "habuffer/technique_frames.h"
 
 namespace habuffer {
 
@@ -18,12 +20,18 @@ class CpuBuilder {
   explicit CpuBuilder(const RenderSettings& settings);
   // Sizes an automatic table or pool for `fragments` (before the first frame).
   void size_for(std::uint64_t fragments);
-  // One frame: inserts (and sorts) `fragments`, filling the frame's counts and gather time.
-  TechniqueBuild build(std::span<const Fragment> fragments, FrameStats& fs);
+  // One frame: inserts (and sorts) `fragments`, filling the frame's counts
+  // and gather time. The result stays here until the next frame or release().
+  const TechniqueBuild& build(std::span<const Fragment> fragments, FrameStats& fs);
+  // The last frame's result and container (see TechniqueFrames::release).
+  TechniqueBuild release() { return frames_.release(); }
+  // Containers made so far (1 when every frame kept the first).
+  [[nodiscard]] std::uint64_t containers_made() const { return frames_.containers_made(); }
 
  private:
   const RenderSettings& settings_;
   TechniqueConfig config_;
+  TechniqueFrames frames_;
   std::optional<std::uint64_t> previous_use_;  // stored records (HA) or nodes asked for (lists)
 };
 

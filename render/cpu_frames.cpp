@@ -38,18 +38,18 @@ class CpuFrames final : public FramePath {
 
   void complete_frame(const gl::FrameReport&, SceneRenderer& renderer, FrameStats& fs, RenderResult& result) override {
     std::vector<Fragment> fragments = capture_.read_capture();
-    last_.emplace(builder_.build(fragments, fs));
-    result.growth_limited = result.growth_limited || last_->growth_limited;
-    if (last_->too_deep) result.too_deep = last_->too_deep;
+    const TechniqueBuild& last = builder_.build(fragments, fs);
+    result.growth_limited = result.growth_limited || last.growth_limited;
+    if (last.too_deep) result.too_deep = last.too_deep;
     const auto r0 = std::chrono::steady_clock::now();
     result.backgrounds = renderer.read_opaque_colour();
-    result.image = Image{settings_.config.screen, last_->buffer->composite_image(result.backgrounds, settings_.threads)};
+    result.image = Image{settings_.config.screen, last.buffer->composite_image(result.backgrounds, settings_.threads)};
     fs.resolve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
     result.fragments = std::move(fragments);  // the last frame's stay (reference, culled heat map)
   }
 
   void finish(SceneRenderer&, RenderResult& result) override {
-    finish_cpu_result(settings_, std::move(*last_), result);
+    finish_cpu_result(settings_, builder_.release(), result);
     result.device = "cpu, fragments rasterized by gl (" + gl::query_gl_info().renderer + ")";
   }
 
@@ -57,7 +57,6 @@ class CpuFrames final : public FramePath {
   const RenderSettings& settings_;
   gl::GlHaBuffer capture_;
   CpuBuilder builder_;
-  std::optional<TechniqueBuild> last_;
 };
 
 }  // namespace

@@ -89,7 +89,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
     const auto t0 = Clock::now();
     FrameStats fs;
     fs.index = k;
-    fs.yaw = s.camera.yaw + 360.0f * static_cast<float>(k) / static_cast<float>(s.frames);
+    fs.yaw = s.camera.yaw + (s.orbit ? 360.0f * static_cast<float>(k) / static_cast<float>(s.frames) : 0.0f);
     CameraParams params = s.camera;
     params.yaw = fs.yaw;
     const Camera camera = frame_scene(scene, params, screen);
@@ -130,22 +130,27 @@ RenderResult render_fragments(std::span<const Fragment> fragments, const RenderS
   RenderResult result;
   CpuBuilder builder(s);
   builder.size_for(fragments.size());
-  FrameStats fs;
-  const auto t0 = Clock::now();
-  TechniqueBuild b = builder.build(fragments, fs);
-  result.growth_limited = b.growth_limited;
-  result.too_deep = b.too_deep;
-  const auto r0 = Clock::now();
   result.backgrounds.assign(s.config.screen.area(), s.background);
-  result.image = Image{s.config.screen, b.buffer->composite_image(result.backgrounds, s.threads)};
-  fs.resolve_ms = ms_since(r0);
-  finish_stats(fs);
-  fs.frame_ms = ms_since(t0);
-  result.frames.push_back(fs);
+  // Every frame the same stream (a stream has one view), on the kept container.
+  for (std::uint32_t k = 0; k < s.frames; ++k) {
+    FrameStats fs;
+    fs.index = k;
+    const auto t0 = Clock::now();
+    const TechniqueBuild& b = builder.build(fragments, fs);
+    result.growth_limited = result.growth_limited || b.growth_limited;
+    if (b.too_deep) result.too_deep = b.too_deep;
+    const auto r0 = Clock::now();
+    result.image = Image{s.config.screen, b.buffer->composite_image(result.backgrounds, s.threads)};
+    fs.resolve_ms = ms_since(r0);
+    finish_stats(fs);
+    fs.frame_ms = ms_since(t0);
+    result.frames.push_back(fs);
+    if (s.on_progress) s.on_progress(k + 1, s.frames);
+  }
   result.pixel_fragments.assign(s.config.screen.area(), 0);
   for (const Fragment& f : fragments) ++result.pixel_fragments[f.x + std::size_t{f.y} * s.config.screen.x];
   result.fragments.assign(fragments.begin(), fragments.end());
-  finish_cpu_result(s, std::move(b), result);
+  finish_cpu_result(s, builder.release(), result);
   result.device = "cpu";
   return result;
 }

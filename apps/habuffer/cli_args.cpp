@@ -100,4 +100,11 @@ std::optional<Extent> Args::extent(const std::string& name) const {
   return e;
 }
 
+InsertOrder insert_order_option(const Args& args) {
+  const std::string name = args.str("insert-order", "auto");
+  const std::optional<InsertOrder> order = parse_insert_order(name);
+  if (!order) throw UsageError("option --insert-order: '" + name + "' is not auto, arrival or pixel");
+  return *order;
+}
+
 }  // namespace habuffer::cli

@@ -13,6 +13,7 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/file_roles.h"
+#include "habuffer/fragment_buffer.h"
 
 namespace habuffer::cli {
 
@@ -73,5 +74,9 @@ class Args {
   std::map<std::string, std::string> values_;
   std::set<std::string> flags_;
 };
+
+// --insert-order auto|arrival|pixel (the HA-buffer's order on the CPU path;
+// InsertOrder): Auto when absent.
+InsertOrder insert_order_option(const Args& args);
 
 }  // namespace habuffer::cli

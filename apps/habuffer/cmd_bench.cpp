@@ -13,6 +13,7 @@ namespace {
 constexpr const char* kHelp =
     "usage: habuffer bench --scenes S1,S2,... --techniques T1,T2,... --out F.json[,F.csv]\n"
     "         [--size WxH[,WxH...] (256x256)] [--path gl|cpu] [--repeats N (3)] [--seed S] [--threads N]\n"
+    "         [--insert-order auto|arrival|pixel]\n"
     "         [--no-floors] [--quiet]\n"
     "  Every technique on every scene at every size, repetitions interleaved (each combination once per\n"
     "  round) with the floors (one atomic add per fragment; unsorted blending) measured in every round.\n"
@@ -28,7 +29,7 @@ constexpr const char* kHelp =
 
 int run_bench(const std::vector<std::string>& argv) {
   if (print_help(argv, kHelp)) return 0;
-  const Args args(argv, {"scenes", "techniques", "size", "path", "repeats", "seed", "threads", "out"},
+  const Args args(argv, {"scenes", "techniques", "size", "path", "repeats", "seed", "threads", "insert-order", "out"},
                   {"no-floors", "quiet"});
   harness::BenchSettings s;
   s.path = parse_path(args);
@@ -38,7 +39,8 @@ int run_bench(const std::vector<std::string>& argv) {
   s.repeats = args.u32("repeats", 3, 1, 1000);
   s.seed = args.u64("seed", 1);
   s.threads = args.u32("threads", 0, 0, kMaxThreads);
-  args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
+  s.insert_order = insert_order_option(args);
+  args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"}, "with --path gl (the GPU inserts)");
   s.floors = !args.has("no-floors");
   try {
     harness::validate_bench(s);

@@ -18,7 +18,7 @@ constexpr const char* kHelp =
     "usage: habuffer build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [--table WxH] [--layout 64|32]\n"
     "         [--age-bits N] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--block B] [--threads N]\n"
     "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
-    "         [--insert-mode auto|serial|atomic|owner] [--path cpu|gl] [--technique ha|lists|arrays]\n"
+    "         [--insert-mode auto|serial|atomic|owner] [--insert-order auto|arrival|pixel] [--path cpu|gl] [--technique ha|lists|arrays]\n"
     "         [--layers K] [--pool N|auto] [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
     "  --threads 0 uses every hardware thread; every insert mode builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
     "  --technique lists|arrays: the same lists CSV from per-pixel linked lists (--pool: nodes, auto: one per\n"
@@ -56,7 +56,8 @@ int run_build_lists(const std::vector<std::string>& argv) {
   std::optional<PixelDepth> too_deep;
   if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
     options.max_attempts = 1;
-  BuildTiming timing{0.0, resolve_threads(options.insert.threads), {}, {}};
+  BuildTiming timing;
+  timing.threads = resolve_threads(options.insert.threads);
   std::optional<TechniqueBuild> built;
   if (options.gl) {
     built.emplace(build_on_gl(options, fragments, timing));
@@ -67,6 +68,8 @@ int run_build_lists(const std::vector<std::string>& argv) {
     timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   TechniqueBuild& result = *built;
+  if (const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get()); ha && !options.gl)
+    timing.insert_order = to_string(ha->insert_order(fragments.size(), options.insert));
 
   write_lists(out, *result.buffer);
   if (const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get())) {

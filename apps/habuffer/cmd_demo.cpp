@@ -75,12 +75,14 @@ int run_demo(const std::vector<std::string>& argv) {
   std::optional<BuildResult> one, many;
   one.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}, std::nullopt});
   const double ms_one = timed_ms([&] { one->counters = one->buffer.insert(fragments, serial); });
-  BuildTiming timing{0.0, threads, {}, {}};
+  BuildTiming timing;
+  timing.threads = threads;
   if (options.gl) {
     many.emplace(build_ha_on_gl(options, fragments, timing));
   } else {
     many.emplace(BuildResult{HaBuffer(options.config, offsets), {}, {}, std::nullopt});
     timing.build_ms = timed_ms([&] { many->counters = many->buffer.insert(fragments, options.insert); });
+    timing.insert_order = to_string(many->buffer.insert_order(fragments.size(), options.insert));
     many->attempts.push_back({options.config.table, many->counters, options.config.table.area()});
   }
   const double ms_many = timing.build_ms;

@@ -26,6 +26,10 @@ int run_info(const std::vector<std::string>& argv) {
   std::printf("paths:\n");
   std::printf("  cpu: available (%s, %u hardware threads; layouts L64 and L32; age bits 4..12)\n",
               parallel_runtime().c_str(), default_concurrency());
+  std::printf("    HA-buffer insert order: auto = pixel (bucketed by pixel, nearest first, jump-started; the table of\n"
+              "    arrival order) without early cull and at >= 1 fragment per %llu pixels, else arrival; "
+              "--insert-order\n",
+              static_cast<unsigned long long>(kPixelOrderPixelsPerFragment));
   try {
     const gl::EglContext context;
     const gl::GlInfo info = gl::query_gl_info();

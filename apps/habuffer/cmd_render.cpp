@@ -33,7 +33,7 @@ constexpr const char* kHelp =
     "         [--table WxH|auto] [--lossless [--max-attempts N]] [--frames N] [--yaw DEG] [--pitch DEG] [--fov DEG]\n"
     "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE] [--error]\n"
     "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
-    "         [--count N] [--spread S] [--order front|back] [--scene-seed N] [--opaque-meshes I,J,...] [--quiet]\n"
+    "         [--insert-order auto|arrival|pixel] [--count N] [--spread S] [--order front|back] [--scene-seed N] [--opaque-meshes I,J,...] [--quiet]\n"
     "         [--slot-writes]\n"
     "  scenes: engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file.\n"
     "  --size defaults to 1024x1024; --table auto (default) sizes the first table from a counting pass,\n"
@@ -147,8 +147,11 @@ RenderSettings parse_settings(const Args& args) {
   s.max_attempts = args.u32("max-attempts", 16, 1, 1000);
   s.frames = args.u32("frames", 1, 1, 100000);
   s.threads = args.u32("threads", 0, 0, kMaxThreads);
-  args.refuse_unless(s.path == RenderPath::Cpu || args.has("fragments"), {"threads"},
+  s.insert_order = insert_order_option(args);
+  args.refuse_unless(s.path == RenderPath::Cpu || args.has("fragments"), {"threads", "insert-order"},
                      "with --path gl (the GPU inserts and composites)");
+  args.refuse_unless(s.technique == Technique::Ha, {"insert-order"},
+                     "with --technique " + to_string(s.technique) + " (the HA-buffer's own)");
   args.refuse_unless(s.path == RenderPath::Gl && !args.has("fragments"), {"slot-writes"},
                      "on the CPU path (the GPU path's tally)");
   s.background = args.has("background") ? parse_background(args.required("background")) : glm::vec3(1.0f);
@@ -277,7 +280,7 @@ int run_render(const std::vector<std::string>& argv) {
                    "frames", "yaw", "pitch", "fov", "background", "out", "stats", "heatmap", "reference", "age-bits",
                    "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed",
                    "opaque-meshes", "technique", "layers", "pool", "occupancy", "occupancy-words", "depth-range",
-                   "saturation"},
+                   "saturation", "insert-order"},
                   {"lossless", "quiet", "error", "slot-writes"});
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");

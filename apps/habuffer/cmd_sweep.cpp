@@ -13,7 +13,8 @@ namespace {
 constexpr const char* kHelp =
     "usage: habuffer sweep (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [--size WxH (256x256)]\n"
     "         [--loads L1,L2,... (0.5,0.6,0.7,0.8,0.9,0.95)] [--repeats N (3)] [--path gl|cpu] [--technique T (ha)]\n"
-    "         [--seed S (1)] [--offsets random|farthest] [--threads N] [--quiet]\n"
+    "         [--seed S (1)] [--offsets random|farthest] [--threads N]\n"
+    "         [--insert-order auto|arrival|pixel] [--quiet]\n"
     "  One fixed view (the scene's default camera); the technique sized for each load of the scene's\n"
     "  fragments (the HA-buffer's table, the lists' pool, the arrays' or k-buffer's layers); N runs per\n"
     "  load with offsets seeded S + run, interleaved load by load. One row per load: load, gather\n"
@@ -27,7 +28,7 @@ constexpr const char* kHelp =
 int run_sweep(const std::vector<std::string>& argv) {
   if (print_help(argv, kHelp)) return 0;
   const Args args(argv, {"scene", "fragments", "size", "loads", "repeats", "path", "technique", "seed", "offsets",
-                         "threads", "out"},
+                         "threads", "insert-order", "out"},
                   {"quiet"});
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   harness::SweepSettings s;
@@ -46,7 +47,8 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (offsets != "random" && offsets != "farthest") throw UsageError("--offsets must be random or farthest");
   s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
   s.threads = args.u32("threads", 0, 0, kMaxThreads);
-  args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
+  s.insert_order = insert_order_option(args);
+  args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"}, "with --path gl (the GPU inserts)");
   const std::vector<Extent> sizes = parse_sizes(args, "256x256");
   if (sizes.size() != 1) throw UsageError("--size takes one WxH (bench compares several)");
   try {

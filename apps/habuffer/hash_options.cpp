@@ -12,7 +12,7 @@ namespace habuffer::cli {
 const std::set<std::string>& hash_valued_options() {
   static const std::set<std::string> names{"screen", "table", "layout", "age-bits", "offsets", "seed", "block",
                                            "threads", "early-cull", "iter-limit", "max-attempts",
-                                           "insert-mode", "path"};
+                                           "insert-mode", "insert-order", "path"};
   return names;
 }
 
@@ -89,6 +89,12 @@ HashOptions parse_hash_options(const Args& args, bool techniques, std::initializ
   } else {
     throw UsageError("option --insert-mode: '" + mode + "' is not auto, serial, atomic or owner");
   }
+  o.insert.order = insert_order_option(args);
+  if (o.insert.order == InsertOrder::Pixel && o.insert.mode == InsertMode::OwnerComputes)
+    throw UsageError("option --insert-order pixel cannot go with --insert-mode owner (its owners follow the probes)");
+  if (o.insert.order != InsertOrder::Auto && o.technique.technique != Technique::Ha)
+    throw UsageError("option --insert-order has no effect with --technique " + to_string(o.technique.technique) +
+                     " (the HA-buffer's own)");
   o.lossless = args.has("lossless");
   o.max_attempts = o.lossless ? args.u32("max-attempts", 16, 1, 1000) : 1;
   if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");
@@ -96,7 +102,7 @@ HashOptions parse_hash_options(const Args& args, bool techniques, std::initializ
   const std::string path = args.str("path", "cpu");
   if (path != "cpu" && path != "gl") throw UsageError("option --path: '" + path + "' is not cpu or gl");
   o.gl = path == "gl";
-  args.refuse_unless(!o.gl, {"threads", "insert-mode"}, "with --path gl (the GPU inserts)");
+  args.refuse_unless(!o.gl, {"threads", "insert-mode", "insert-order"}, "with --path gl (the GPU inserts)");
 
   o.offsets_name = args.str("offsets", "random");
   o.offsets = parse_offset_source(args, c);

@@ -32,6 +32,7 @@ void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.field("capacity", f.capacity).field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
   counters(json, f.counters);
   json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
+  json.field("insert_order", to_string(f.insert_order));
   if (gpu) counted(json, "slot_writes", f.slot_writes).field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
   json.field("gather_ms", f.gather_ms).field("resolve_ms", f.resolve_ms).field("frame_ms", f.frame_ms);
   if (gpu) json.field("clear_ms", f.clear_ms);
@@ -92,6 +93,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   json.field("covered_pixels", s.covered_pixels);
   write_extent(json, "table", last.table);
   json.field("capacity", last.capacity).field("load_factor", last.load_factor).field("max_age", last.max_age);
+  json.field("insert_order", to_string(last.insert_order));
   json.field("gather_ms", last.gather_ms).field("resolve_ms", last.resolve_ms).field("frame_ms", last.frame_ms);
   const std::uint64_t stored = last.counters.stored();
   json.field("memory_bytes", r.memory_bytes).field("memory_model_bytes", r.memory_model_bytes);

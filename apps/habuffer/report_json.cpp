@@ -42,7 +42,7 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
              report.stored > 0 ? static_cast<double>(report.memory_bytes) / static_cast<double>(report.stored) : 0.0);
   json.field("build_ms", timing.build_ms);
   json.field("fragments_per_second", timing.build_ms > 0 ? static_cast<double>(c.fragments) / timing.build_ms * 1e3 : 0.0);
-  json.field("threads", timing.threads).field("lossless", options.lossless);
+  json.field("threads", timing.threads).field("insert_order", timing.insert_order).field("lossless", options.lossless);
   if (!timing.gl_atomic_mode.empty())
     json.field("gl_atomic_mode", timing.gl_atomic_mode).field("gl_renderer", timing.gl_renderer)
         .field("gl_deferred", timing.gl_deferred).field("gl_resume_rounds", timing.gl_resume_rounds)

@@ -12,6 +12,7 @@ namespace habuffer::cli {
 struct BuildTiming {
   double build_ms = 0.0;  // insertion of all attempts, including tile binning
   std::uint32_t threads = 1;
+  std::string insert_order = "arrival";  // the CPU path's HA-buffer: the order used (auto resolved)
   std::string gl_atomic_mode;  // --path gl: the mode that ran, and the renderer
   std::string gl_renderer;
   std::uint64_t gl_deferred = 0;         // insert calls cut short and resumed (summed over rounds)

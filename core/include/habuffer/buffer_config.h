@@ -33,6 +33,8 @@ struct BufferConfig {
   /// (a screen or table with a zero side, geometry rule of SPEC 1, age bits,
   /// block, cull threshold, size limits).
   void validate() const;
+  /// Memberwise equality.
+  friend bool operator==(const BufferConfig&, const BufferConfig&) = default;
 };
 
 }  // namespace habuffer

@@ -7,7 +7,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -28,15 +31,54 @@ enum class InsertMode {
   /// Serial for one thread while no other call changes the container, else
   /// Atomic (beside any other atomic call): correct when calls overlap.
   Auto,
-  Serial,         ///< one thread, input order, plain loads and stores; the call runs alone
+  Serial,         ///< one thread, plain loads and stores (in the InsertOrder); the call runs alone
   Atomic,         ///< the GPU's model: threads split the stream and share every slot through atomics
   OwnerComputes,  ///< HA-buffer only: no atomics, table rows dealt out to threads (owner_computes.h); runs alone
 };
+
+/// The order the HA-buffer inserts a batch in (issue 26). Without early cull
+/// and failures both give the same table, max-age table and counters (SPEC
+/// 9); they differ in speed, and in the probes made (the statistics of
+/// probes per fragment describe the arrival process).
+enum class InsertOrder {
+  /// Pixel where it gives arrival order's result (no early cull) and the
+  /// batch is large enough to pay for bucketing by pixel (at least
+  /// kPixelOrderMinFragments and one fragment per kPixelOrderPixelsPerFragment
+  /// pixels); else Arrival.
+  Auto,
+  Arrival,  ///< the batch's order: each fragment probes from age 1
+  /// Bucketed by pixel, nearest first, each record started one age past
+  /// where its pixel's previous record was first written (the "jump start";
+  /// docs/spec-notes.md has the proof). With early cull, a different
+  /// schedule of the same rules (no jump start): culls can only grow.
+  Pixel,
+};
+
+/// "auto", "arrival", "pixel".
+std::string to_string(InsertOrder order);
+/// The order named `name`; nullopt for anything else.
+std::optional<InsertOrder> parse_insert_order(std::string_view name);
+/// Auto's rule: smaller batches insert in arrival order, since bucketing
+/// touches every pixel of the screen once.
+inline constexpr std::uint64_t kPixelOrderMinFragments = 64;
+/// Auto's rule (see kPixelOrderMinFragments).
+inline constexpr std::uint64_t kPixelOrderPixelsPerFragment = 16;
+/// Pixel order without early cull interleaves several pixels per thread
+/// (latency hiding: a slot's miss overlaps other pixels' probes) only when
+/// the table is at least this large and probes are many (deep pixels or a
+/// full table: core/pixel_order.h, InterleaveRule), unless
+/// InsertOptions::interleave says otherwise; below it the table sits in
+/// cache and interleaving only adds work (docs/performance.md, issue 26).
+inline constexpr std::uint64_t kInterleaveMinTableBytes = std::uint64_t{8} << 20;
 
 /// How FragmentBuffer::insert runs a batch.
 struct InsertOptions {
   std::uint32_t threads = 1;  ///< 0: every hardware thread
   InsertMode mode = InsertMode::Auto;  ///< how the threads share the buffer
+  InsertOrder order = InsertOrder::Auto;  ///< the HA-buffer's order (others insert in arrival order)
+  /// Pixel order: interleave pixels on each thread (true), or not (false);
+  /// nullopt: by the table's size (kInterleaveMinTableBytes). The same table either way.
+  std::optional<bool> interleave;
   std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band
 };
 
@@ -72,6 +114,10 @@ class FragmentBuffer {
   /// Empties the buffer; returns the records it held. Runs alone (waits for
   /// overlapping insert() calls).
   virtual std::uint64_t clear() = 0;
+  /// Empties the buffer without counting what it held (a frame's start when
+  /// nobody reads the count; the HA-buffer's count walks the whole table).
+  /// Runs alone. Containers that count for free use clear().
+  virtual void reset() { (void)clear(); }
   /// The records held now, counted on the buffer.
   [[nodiscard]] virtual std::uint64_t count_stored() const = 0;
   /// Records the buffer can hold in all (slots, nodes, layers of every pixel).

@@ -51,12 +51,18 @@ class HaBuffer final : public FragmentBuffer {
   /// calls (plain stores) run alone, overlapping calls waiting for them. The
   /// table is the same in every case (SPEC 9).
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
+  /// The order insert(fragments, options) uses: options.order, with Auto
+  /// resolved (InsertOrder's rule). Throws std::invalid_argument for Pixel
+  /// with OwnerComputes (whose owners follow the probes, not the pixels).
+  [[nodiscard]] InsertOrder insert_order(std::size_t fragments, const InsertOptions& options) const;
   /// Inserts one fragment and returns its HA_* outcome; may overlap other
   /// calls as insert() in the Auto mode does.
   std::uint32_t insert_one(const Fragment& fragment);
 
   /// Zeroes T and M; returns the number of records T held. Runs alone.
   std::uint64_t clear() override;
+  /// Zeroes T and M without counting. Runs alone.
+  void reset() override;
   /// FragmentBuffer interface: T's non-empty slots, counted.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// FragmentBuffer interface: slot_count().

@@ -17,6 +17,7 @@
 #include "habuffer/kbuffer.h"
 #include "habuffer/linked_lists.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/technique_frames.h"
 #include "habuffer/max_age_table.h"
 #include "habuffer/memory_model.h"
 #include "habuffer/offset_sequence.h"

@@ -84,6 +84,9 @@ struct TechniqueConfig {
   /// fragments: the HA-buffer's table grown by `policy`; the lists' pool to
   /// at least the nodes asked for (and one step); fixed arrays' K to the most
   /// fragments a pixel received (and at least one more).
+  /// Memberwise equality.
+  friend bool operator==(const TechniqueConfig&, const TechniqueConfig&) = default;
+
   [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
                                       std::uint32_t most_arrived) const;
 };

@@ -24,6 +24,7 @@ struct BenchSettings {
   std::vector<Extent> sizes;
   std::uint32_t repeats = 3;
   std::uint32_t threads = 0;  // CPU path
+  InsertOrder insert_order = InsertOrder::Auto;  // CPU path, the HA-buffer
   std::uint64_t seed = 1;     // the HA-buffer's offsets
   bool floors = true;
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;  // (runs done, runs)

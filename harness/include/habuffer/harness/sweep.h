@@ -23,6 +23,7 @@ struct SweepSettings {
   std::uint64_t seed = 1;             // offsets of repetition r: seed + r
   OffsetGenerator offsets = OffsetGenerator::Random;
   std::uint32_t threads = 0;          // CPU path
+  InsertOrder insert_order = InsertOrder::Auto;  // CPU path, the HA-buffer
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;  // (runs done, runs)
 };
 

@@ -59,10 +59,11 @@ class Workload {
   [[nodiscard]] bool is_stream() const { return !scene_; }
   [[nodiscard]] const Scene* scene() const { return scene_ ? &*scene_ : nullptr; }
 
-  // One frame of the scene (the scene's default view) or of the stream (CPU
-  // path only: throws std::invalid_argument for the GL path) with `s`'s
-  // technique; s.config.screen and the camera are set here. Needs a current
-  // GL context for scenes.
+  // s.frames frames of the scene's default view (every frame the same view,
+  // on the buffers the first made) or of the stream (CPU path only: throws
+  // std::invalid_argument for the GL path) with `s`'s technique;
+  // s.config.screen and the camera are set here. Needs a current GL context
+  // for scenes.
   [[nodiscard]] RenderResult render(RenderSettings s) const;
   // The exact capture (the CPU path's fragments, composited by reference_image).
   [[nodiscard]] ExactCapture capture() const;

@@ -49,7 +49,10 @@ struct RenderSettings {
   std::uint32_t max_attempts = 16;  // lossless and auto
   ResizePolicy policy;
   OffsetSource offsets;
-  std::uint32_t frames = 1;  // the camera orbits 360 degrees over the frames
+  std::uint32_t frames = 1;  // the camera orbits 360 degrees over the frames (unless !orbit)
+  // false: every frame shows the same view (steady-state timing: frame 0
+  // pays the cold start, later frames reuse what it made).
+  bool orbit = true;
   CameraParams camera;
   glm::vec3 background{1.0f};
   bool keep_fragments = false;  // capture the last frame's fragments (reference, CPU-side heat maps)
@@ -58,6 +61,7 @@ struct RenderSettings {
   // one more atomic per insert call, compiled into the module only when asked.
   bool count_slot_writes = false;
   std::uint32_t threads = 0;      // CPU path
+  InsertOrder insert_order = InsertOrder::Auto;  // CPU path, the HA-buffer (InsertOrder)
   // Called after each frame with (frames done, frames).
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
@@ -78,6 +82,10 @@ struct FrameStats {
   std::uint32_t resume_rounds = 0;
   bool resize_limited = false;    // GPU path: adaptive sizing wanted a table the context cannot hold
   std::uint32_t max_age = 0;     // HA-buffer
+  // The order the frame was inserted in: the CPU path's HA-buffer says what
+  // Auto chose; every other technique and the GPU path insert in arrival
+  // (rasterization) order.
+  InsertOrder insert_order = InsertOrder::Arrival;
   double load_factor = 0.0;      // stored / capacity
   // gather: the gather pass (resume rounds included); resolve: the sort pass
   // (lists, arrays) and the compositing; clear (GPU path): the clear pass and

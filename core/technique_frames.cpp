@@ -1,0 +1,89 @@
+#include "habuffer/technique_frames.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "habuffer/fixed_arrays.h"
+#include "habuffer/linked_lists.h"
+
+namespace habuffer {
+namespace {
+
+// The lossless attempt after `buffer` dropped fragments.
+TechniqueConfig next_attempt(const TechniqueConfig& c, const FragmentBuffer& buffer, const ResizePolicy& policy) {
+  const auto* lists = dynamic_cast<const LinkedLists*>(&buffer);
+  const auto* arrays = dynamic_cast<const FixedArrays*>(&buffer);
+  return c.grown(policy, lists != nullptr ? lists->requested() : 0, arrays != nullptr ? arrays->largest_overflow() : 0);
+}
+
+// Whether `buffer` is the container make_fragment_buffer would make for `c`
+// (the HA-buffer says only its BufferConfig; the offsets come from one source).
+bool made_for(const FragmentBuffer& buffer, const TechniqueConfig& c) {
+  const TechniqueConfig held = buffer.technique_config();
+  if (held.technique != c.technique) return false;
+  return c.technique == Technique::Ha ? held.buffer == c.buffer : held == c;
+}
+
+}  // namespace
+
+TechniqueFrames::TechniqueFrames(OffsetSource offsets, InsertOptions options, ResizePolicy policy,
+                                 std::uint32_t max_attempts)
+    : offsets_(std::move(offsets)), options_(options), policy_(policy), max_attempts_(max_attempts) {
+  if (max_attempts == 0) throw std::invalid_argument("at least one build attempt is needed");
+  policy.validate();
+}
+
+std::unique_ptr<FragmentBuffer> TechniqueFrames::container_for(const TechniqueConfig& c) {
+  if (last_ && last_->buffer && made_for(*last_->buffer, c)) {
+    std::unique_ptr<FragmentBuffer> kept = std::move(last_->buffer);
+    kept->reset();
+    return kept;
+  }
+  std::unique_ptr<FragmentBuffer> made = make_fragment_buffer(c, offsets_);
+  ++made_;
+  return made;
+}
+
+const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std::span<const Fragment> fragments) {
+  TechniqueConfig c = config;
+  c.buffer.table = config.buffer.table_or_screen();
+  // The automatic pool (0), as render's --pool auto: the fragments at
+  // grow_at use, so one pool holds them all.
+  if (uses_pool(c.technique) && c.pool_capacity == 0)
+    c.pool_capacity = std::max<std::uint64_t>(
+        1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments.size()) / policy_.grow_at)));
+  auto b = std::make_unique<TechniqueBuild>();
+  for (;;) {
+    std::unique_ptr<FragmentBuffer> buffer = container_for(c);
+    last_.reset();  // a failed attempt's container is not kept: the next is larger
+    const Counters counters = buffer->insert(fragments, options_);
+    b->attempts.push_back({c.technique == Technique::Ha ? c.buffer.table : Extent{}, counters, buffer->capacity()});
+    b->counters = counters;
+    b->buffer = std::move(buffer);
+    if (counters.failures() == 0 || b->attempts.size() >= max_attempts_) break;
+    if (counters.failed_age > 0)
+      if ((b->too_deep = pixel_beyond_every_table(c, fragments))) break;
+    const TechniqueConfig next = next_attempt(c, *b->buffer, policy_);
+    if (!next.limit().empty()) {  // no larger buffer can be built: the last attempt's result, marked
+      b->growth_limited = true;
+      break;
+    }
+    c = next;
+  }
+  last_ = std::move(b);
+  return *last_;
+}
+
+const TechniqueBuild& TechniqueFrames::last() const {
+  if (!last_) throw std::logic_error("TechniqueFrames::last() before the first frame");
+  return *last_;
+}
+
+TechniqueBuild TechniqueFrames::release() {
+  if (!last_) throw std::logic_error("TechniqueFrames::release() before the first frame");
+  TechniqueBuild b = std::move(*last_);
+  last_.reset();
+  return b;
+}
+
+}  // namespace habuffer
