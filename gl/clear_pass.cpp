@@ -60,7 +60,7 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   program_.set("ha_clear_writes", writes ? 1u : 0u);
   const bool atomic = host_occlusion_query_active();
   program_.set("ha_clear_atomic_count", atomic ? 1u : 0u);
-  PassClock clock(timer_);
+  PassClock clock(timer_, finish);
   if (atomic) {
     zero_buffer(atomic_count_);
     bind_at(GL_SHADER_STORAGE_BUFFER, stream_point_, atomic_count_);  // the caller's guard restores the point
@@ -93,7 +93,7 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   } else {
     stored = query_result(query_);
   }
-  const auto [wall, gpu] = clock.stop(finish);
+  const auto [wall, gpu] = clock.stop();
   return {stored, wall, gpu};
 }
 

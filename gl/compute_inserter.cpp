@@ -15,13 +15,17 @@ namespace habuffer::gl {
 
 namespace {
 
-// The blended baselines need the blender: their stream is drawn as points.
+// The driver's module (its variant's defines included) with the entry's
+// code. The blended baselines need the blender: their stream is drawn as points.
 ShaderProgram entry_program(const GlFrameDriver& buffer) {
   const Technique t = buffer.technique().technique();
   if (stores_lists(t))
-    return ShaderProgram::compute(insert_stream_compute(t, buffer.mode(), buffer.bindings()), "insert compute shader");
-  const auto [vertex, fragment] = insert_stream_points(t, buffer.mode(), buffer.bindings());
-  return ShaderProgram::graphics(vertex, fragment, to_string(t) + " insert points");
+    return ShaderProgram::compute(buffer.module_source(ShaderStage::Compute) + kInsertStreamCompute,
+                                  "insert compute shader");
+  // The vertex stage takes the compute module for HaFragment and the parameters.
+  return ShaderProgram::graphics(buffer.module_source(ShaderStage::Compute) + kPointStreamVertex,
+                                 buffer.module_source(ShaderStage::Fragment) + kPointStreamFragment,
+                                 to_string(t) + " insert points");
 }
 
 }  // namespace

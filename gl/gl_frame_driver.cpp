@@ -56,15 +56,19 @@ struct GlFrameDriver::Gpu {
   GLuint deferred[2] = {0, 0};  // ping-pong: the calls a round resumes, the calls it defers again
   std::unique_ptr<ResolvePass> resolve;
   std::unique_ptr<ShaderProgram> resume;
-  GpuTimer gather_timer;
+  GpuTimer gather_timer, reset_timer;
   ~Gpu() {
     for (GLuint* b : {&counters, &capture, &params, &deferred[0], &deferred[1]}) delete_buffer(*b);
   }
 };
 
 GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options)
-    : technique_(checked(std::move(technique))), options_(options), gpu_(std::make_unique<Gpu>()) {
+    : technique_(checked(std::move(technique))),
+      options_(options),
+      needs_call_count_(query_gl_info().software_rasterizer),
+      gpu_(std::make_unique<Gpu>()) {
   options_.policy.validate();
+  options_.module = options_.module.resolved(mode(), query_gl_info());
   if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
   if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
@@ -80,14 +84,14 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
       resolve_fragment(technique_->technique(), mode(), bindings()), to_string(technique_->technique()) + " resolve pass");
   if (technique_->defers_calls())
     gpu_->resume = std::make_unique<ShaderProgram>(
-        ShaderProgram::compute(resume_compute(technique_->technique(), mode(), bindings()), "resume compute shader"));
+        ShaderProgram::compute(module_source(ShaderStage::Compute) + kResumeCompute, "resume compute shader"));
   check_gl_errors("creating the GPU frame buffers");
 }
 
 GlFrameDriver::~GlFrameDriver() = default;
 
 std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
-  return technique_->module_source(stage, header);
+  return technique_->module_source(stage, options_.module.defines() + std::string(header));
 }
 
 void GlFrameDriver::resize_screen(Extent screen) {
@@ -103,7 +107,6 @@ void GlFrameDriver::write_params() const {
   p.ha_screen_size[1] = screen().y;
   p.ha_capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
   p.ha_capture_only = options_.capture_only ? 1u : 0u;
-  p.ha_count_writes = options_.count_writes ? 1u : 0u;
   p.ha_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
   p.ha_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
   technique_->write_params(p);
@@ -227,8 +230,12 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
 
 void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
                                FrameReport& report) {
-  reset_frame_state();
-  technique_->before_gather();
+  {
+    PassClock clock(gpu_->reset_timer, options_.finish_timing);
+    reset_frame_state();
+    technique_->before_gather();
+    std::tie(report.reset.wall_ms, report.reset.gpu_ms) = clock.stop();
+  }
   double fill_ms = 0.0;
   if (technique_->gather_passes() > 1) {
     // A pass of the host's scene that inserts nothing (the k-buffer's
@@ -255,13 +262,17 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     const GlStateGuard attempt_guard(bindings());
     bind();
     technique_->enter_gather();
-    PassClock clock(gpu_->gather_timer);
-    gather();
-    // Resolve, read-backs and the next clear see every insert.
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
-    technique_->leave_gather();
+    {
+      PassClock clock(gpu_->gather_timer, options_.finish_timing);
+      gather();
+      // Resolve, read-backs and the next clear see every insert.
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+      technique_->leave_gather();
+      std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop();
+    }
+    // The deferred count is read after the clock (a read-back inside it
+    // would time a stall, not the gather); resume rounds, if any, add their own span.
     unfinished = resume_deferred(report);
-    std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop(options_.finish_timing);
     report.gather.wall_ms += fill_ms;
     // A gather frame() will repeat (a buffer overflowed) is not worth sorting.
     if (options_.capture) report.captured = read_capture_count();
@@ -280,7 +291,7 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
   report.counters.fragments += unfinished;
   report.counters.failed_iter += unfinished;
   report.cut_short += unfinished;
-  if (calls && !options_.capture_only) {
+  if (calls && needs_call_count_ && !options_.capture_only) {
     const std::uint64_t made = calls();
     if (made < report.counters.fragments)
       throw GlError("the gather counted " + std::to_string(report.counters.fragments) + " insert calls, the host " +
@@ -307,7 +318,10 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
   // always completes its probe), so the rounds shrink the set; the bound
   // only guards against a driver that cuts every call at once. Our buffers
   // again at our points: the host's gather may have bound its own there.
-  if (count > 0) bind();
+  if (count == 0) return 0;
+  bind();
+  // The rounds' own span (each count read waits for its round: part of it).
+  PassClock clock(gpu_->gather_timer, options_.finish_timing);
   while (count > 0 && report.resume_rounds < options_.resume_rounds) {
     report.deferred += count;
     const int out = 1 - in;
@@ -322,6 +336,9 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
     count = read_deferred_count(out);
     in = out;
   }
+  const auto [wall_ms, gpu_ms] = clock.stop();
+  report.gather.wall_ms += wall_ms;
+  report.gather.gpu_ms += gpu_ms;
   return count;
 }
 
@@ -339,7 +356,8 @@ void GlFrameDriver::read_counters(FrameReport& report) const {
   c.add_tally(tally);
   c.merge_duplicates(tally[HABUFFER_COUNTER_MERGED]);
   report.counters = c;
-  report.slot_writes = tally[HABUFFER_COUNTER_SLOT_WRITES];
+  report.slot_writes.reset();
+  if (options_.module.count_writes) report.slot_writes = tally[HABUFFER_COUNTER_SLOT_WRITES];
   report.off_screen = tally[HABUFFER_COUNTER_OFF_SCREEN];
   report.nodes_requested = words[HABUFFER_COUNTER_NODES];
   report.most_arrived = words[HABUFFER_COUNTER_MOST_ARRIVED];

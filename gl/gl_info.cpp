@@ -42,6 +42,8 @@ GlInfo query_gl_info() {
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &i.max_framebuffer_width);
   glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &i.max_framebuffer_height);
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &i.max_compute_work_groups_x);
+  i.software_rasterizer =
+      i.renderer.find("llvmpipe") != std::string::npos || i.renderer.find("softpipe") != std::string::npos;
   return i;
 }
 

@@ -5,6 +5,7 @@
 
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/module_variant.h"
 
 namespace habuffer::gl {
 namespace {
@@ -64,6 +65,28 @@ std::string parameter_block() {
 }
 
 }  // namespace
+
+ModuleVariant ModuleVariant::resolved(AtomicMode mode, const GlInfo& info) const {
+  ModuleVariant v = *this;
+  if (!v.slot_read_first) v.slot_read_first = mode == AtomicMode::Emulated64;
+  if (!v.max_age_read_first) v.max_age_read_first = info.software_rasterizer;
+  return v;
+}
+
+std::string ModuleVariant::defines() const {
+  std::string s;
+  if (count_writes) s += "#define HABUFFER_COUNT_WRITES\n";
+  if (slot_read_first) s += "#define HABUFFER_SLOT_READ_FIRST " + std::string(*slot_read_first ? "1" : "0") + "\n";
+  if (max_age_read_first)
+    s += "#define HABUFFER_MAX_AGE_READ_FIRST " + std::string(*max_age_read_first ? "1" : "0") + "\n";
+  return s;
+}
+
+std::string ModuleVariant::str() const {
+  const auto choice = [](std::optional<bool> b) { return !b ? "auto" : *b ? "1" : "0"; };
+  return std::string("count_writes=") + (count_writes ? "1" : "0") + " slot_read_first=" + choice(slot_read_first) +
+         " max_age_read_first=" + choice(max_age_read_first);
+}
 
 void GlBindings::validate() const {
   static constexpr const char* kNames[] = {"table",  "max_age", "offsets",  "counters",  "locks",
@@ -305,6 +328,18 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
   }
   shaders.push_back({"kbuffer-count", "comp", kbuffer_count_compute(mode, bindings)});
   shaders.push_back({"kbuffer-resume", "comp", resume_compute(Technique::KBuffer, mode, bindings)});
+  // The HA-buffer's entry in the variant furthest from the default (every
+  // #if branch the default leaves out), as the frame driver assembles it.
+  ModuleVariant other;
+  other.count_writes = true;
+  other.slot_read_first = false;
+  other.max_age_read_first = true;
+  shaders.push_back({"insert-variant", "comp",
+                     technique_module(Technique::Ha, mode, bindings, ShaderStage::Compute, other.defines()) +
+                         kInsertStreamCompute});
+  shaders.push_back({"resume-variant", "comp",
+                     technique_module(Technique::Ha, mode, bindings, ShaderStage::Compute, other.defines()) +
+                         kResumeCompute});
   return shaders;
 }
 

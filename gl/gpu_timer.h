@@ -34,23 +34,34 @@ class GpuTimer {
   GLuint queries_[2] = {0, 0};
 };
 
-// Wall clock and GPU timestamps around one pass. Nothing stays active, so a
-// pass that throws needs no clean-up.
+// Wall clock and GPU timestamps around one pass. With `finish`, the clock
+// waits for the GPU (glFinish) before it starts and when it stops, so the
+// wall time is the pass's whole time and none of the work queued before it
+// (a fresh buffer's zeroing, a host's pass). Nothing stays active, so a pass
+// that throws needs no clean-up.
 class PassClock {
  public:
-  explicit PassClock(const GpuTimer& timer) : timer_(timer), start_(std::chrono::steady_clock::now()) { timer_.begin(); }
+  PassClock(const GpuTimer& timer, bool finish) : timer_(timer), finish_(finish), start_(started(finish)) {
+    timer_.begin();
+  }
   PassClock(const PassClock&) = delete;
   PassClock& operator=(const PassClock&) = delete;
-  // Ends the pass (waiting for it with glFinish when `finish`): {wall ms, GPU ms}.
-  [[nodiscard]] std::pair<double, double> stop(bool finish) {
+  // Ends the pass: {wall ms, GPU ms}.
+  [[nodiscard]] std::pair<double, double> stop() {
     timer_.end();
-    if (finish) glFinish();
+    if (finish_) glFinish();
     const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
     return {wall, timer_.milliseconds()};
   }
 
  private:
+  static std::chrono::steady_clock::time_point started(bool finish) {
+    if (finish) glFinish();
+    return std::chrono::steady_clock::now();
+  }
+
   const GpuTimer& timer_;
+  bool finish_;
   std::chrono::steady_clock::time_point start_;
 };
 

@@ -43,9 +43,9 @@ std::pair<double, double> ResolvePass::draw(Extent screen, glm::vec3 background,
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit0);
   if (background_texture != 0) glBindTextureUnit(0, background_texture);
   GlStateGuard::set_viewport(static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
-  PassClock clock(timer_);
+  PassClock clock(timer_, finish);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  const auto times = clock.stop(finish);
+  const auto times = clock.stop();
   glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(unit0));
   glActiveTexture(static_cast<GLenum>(active));
   return times;

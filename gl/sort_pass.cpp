@@ -11,11 +11,11 @@ SortPass::SortPass(Technique technique, AtomicMode mode, const GlBindings& bindi
 
 PassTiming SortPass::run(Extent screen, bool finish) {
   glUseProgram(program_.id());
-  PassClock clock(timer_);
+  PassClock clock(timer_, finish);
   glDispatchCompute((screen.x + 7) / 8, (screen.y + 7) / 8, 1);
   // The resolve and read-backs see the sorted lists.
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  const auto [wall, gpu] = clock.stop(finish);
+  const auto [wall, gpu] = clock.stop();
   return {wall, gpu};
 }
 

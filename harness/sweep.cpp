@@ -24,6 +24,7 @@ RenderSettings run_settings(const SweepSettings& s, Extent screen, std::uint64_t
   r.config.screen = screen;
   r.offsets.generator = s.offsets;
   r.offsets.seed = s.seed + repeat;
+  r.count_slot_writes = s.path == RenderPath::Gl;  // slot_writes_per_fragment, a column of the GL sweep
   TechniqueSpec t = s.technique;
   t.load.reset();
   t.layers.reset();
@@ -170,7 +171,7 @@ ResultTable run_sweep(const Workload& workload, const SweepSettings& s) {
       l.gather_ms.push_back(f.gather_ms);
       l.mfrag_per_s.push_back(f.gather_ms > 0 ? static_cast<double>(f.counters.fragments) / (f.gather_ms * 1e3) : 0.0);
       l.counters += f.counters;
-      l.slot_writes += f.slot_writes;
+      l.slot_writes += f.slot_writes.value_or(0);
       l.memory_bytes = r.memory_bytes;
       l.capacity = f.capacity;
       l.table = f.table;

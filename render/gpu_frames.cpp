@@ -13,7 +13,7 @@
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/gl_linked_lists.h"
 #include "habuffer/memory_model.h"
-#include "resolve_target.h"
+#include "habuffer/render/resolve_target.h"
 
 namespace habuffer {
 namespace {
@@ -24,7 +24,7 @@ gl::GlFrameOptions gpu_frame_options(const RenderSettings& s) {
   o.policy = s.policy;
   o.max_attempts = frame_attempts(s);
   o.capture = s.keep_fragments;
-  o.count_writes = true;
+  o.module.count_writes = s.count_slot_writes;
   return o;
 }
 
@@ -77,6 +77,7 @@ class GpuFrames final : public FramePath {
     fs.resume_rounds = report.resume_rounds;
     fs.resize_limited = report.resize_limited;
     fs.gather_ms = report.gather.wall_ms;
+    fs.clear_ms = report.clear.wall_ms + report.reset.wall_ms;
     if (const auto* ha = dynamic_cast<const gl::GlHaTable*>(&driver_.technique())) fs.max_age = largest(ha->read_max_age());
     result.growth_limited = result.growth_limited || report.growth_limited;
   }
@@ -84,7 +85,7 @@ class GpuFrames final : public FramePath {
   void finish(SceneRenderer& renderer, RenderResult& result) override {
     result.backgrounds = renderer.read_opaque_colour();
     result.image = target_.read();
-    result.pixel_culled = renderer.read_pixel_culled();
+    if (settings_.per_pixel_culled) result.pixel_culled = renderer.read_pixel_culled();
     if (settings_.keep_fragments) result.fragments = driver_.read_capture();
     result.buffer = driver_.technique().read_back();
     result.memory_bytes = driver_.memory_bytes() - driver_.capture_bytes();  // the capture serves --reference only

@@ -5,6 +5,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include <chrono>
+#include <stdexcept>
 
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
@@ -16,33 +17,55 @@ namespace {
 
 constexpr unsigned kPixelFragmentsBinding = 10, kPixelCulledBinding = 11, kRejectedBinding = 12;
 
-std::string gather_source(const gl::GlFrameDriver& buffer) {
-  return SceneRenderer::shader_sources(buffer.mode(), buffer.bindings(), buffer.technique().technique()).gather_fragment;
+// The gather shader's own defines: its binding points and what it counts.
+std::string gather_header(const gl::GlBindings& b, SceneRenderer::GatherCounts counts) {
+  for (unsigned p : b.storage_points())
+    if (p == kPixelFragmentsBinding || p == kPixelCulledBinding || p == kRejectedBinding)
+      throw gl::GlError("the renderer's shader-storage points 10-12 collide with the library's");
+  std::string h = "#define R_BINDING_PIXEL_FRAGMENTS " + std::to_string(kPixelFragmentsBinding) +
+                  "\n#define R_BINDING_PIXEL_CULLED " + std::to_string(kPixelCulledBinding) +
+                  "\n#define R_BINDING_REJECTED " + std::to_string(kRejectedBinding) + "\n";
+  if (counts.fragments) h += "#define R_COUNT_FRAGMENTS\n";
+  if (counts.culled) h += "#define R_COUNT_CULLED\n";
+  return h;
+}
+
+std::string gather_code() { return std::string(render::kShading) + render::kGatherFragment; }
+
+std::string opaque_source() { return std::string("#version 450 core\n") + render::kShading + render::kOpaqueFragment; }
+
+bool same_view(const Camera& a, const Camera& b) {
+  return a.view == b.view && a.projection == b.projection && a.near_plane == b.near_plane && a.far_plane == b.far_plane;
 }
 
 }  // namespace
 
-SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b, Technique technique) {
-  for (unsigned p : b.storage_points())
-    if (p == kPixelFragmentsBinding || p == kPixelCulledBinding || p == kRejectedBinding)
-      throw gl::GlError("the renderer's shader-storage points 10-12 collide with the library's");
-  const std::string header =
-      "#define R_BINDING_PIXEL_FRAGMENTS 10\n#define R_BINDING_PIXEL_CULLED 11\n#define R_BINDING_REJECTED 12\n";
+SceneRenderer::GatherCounts SceneRenderer::GatherCounts::for_driver(const gl::GlFrameDriver& buffer) {
+  return {buffer.needs_call_count(), true};
+}
+
+SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b, Technique technique,
+                                                     GatherCounts counts) {
   Sources s;
   s.vertex = render::kSceneVertex;
-  s.opaque_fragment = std::string("#version 450 core\n") + render::kShading + render::kOpaqueFragment;
+  s.opaque_fragment = opaque_source();
   s.gather_fragment =
-      gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, header) + render::kShading +
-      render::kGatherFragment;
+      gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, gather_header(b, counts)) + gather_code();
   return s;
 }
 
 SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer)
+    : SceneRenderer(scene, screen, buffer, GatherCounts::for_driver(buffer)) {}
+
+SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts)
     : screen_(screen),
-      opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex,
-                                                  shader_sources(buffer.mode(), buffer.bindings()).opaque_fragment,
-                                                  "opaque pass")),
-      gather_program_(gl::ShaderProgram::graphics(render::kSceneVertex, gather_source(buffer), "gather pass")),
+      counts_(counts),
+      buffer_(buffer),
+      opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex, opaque_source(), "opaque pass")),
+      gather_program_(gl::ShaderProgram::graphics(
+          render::kSceneVertex,
+          buffer.module_source(gl::ShaderStage::Fragment, gather_header(buffer.bindings(), counts)) + gather_code(),
+          "gather pass")),
       blend_program_(gl::ShaderProgram::graphics(
           render::kSceneVertex, std::string("#version 450 core\n") + render::kShading + render::kBlendFragment,
           "blend floor")),
@@ -88,8 +111,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glCreateFramebuffers(1, &gather_framebuffer_);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
-  gather_program_.set("r_screen_width", screen.x);
-  atomic_floor_program_.set("r_screen_width", screen.x);
+  for (const gl::ShaderProgram* p : {&gather_program_, &atomic_floor_program_}) p->set("r_screen_width", screen.x);
   pixel_fragments_ = gl::create_buffer(screen.area() * 4);
   pixel_culled_ = gl::create_buffer(screen.area() * 4);
   rejected_ = gl::create_buffer(4);
@@ -145,12 +167,40 @@ void SceneRenderer::draw_opaque(const Camera& camera, glm::vec3 background) {
   glDisable(GL_DEPTH_TEST);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  opaque_ = camera;
 }
 
-void SceneRenderer::gather(const Camera& camera) { run_gather(camera, false); }
+void SceneRenderer::bind_counts() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelCulledBinding, pixel_culled_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRejectedBinding, rejected_);
+}
+
+void SceneRenderer::gather(const Camera& camera) {
+  // Zeroed each time: a frame may gather twice.
+  if (counts_.fragments) gl::zero_buffer(pixel_fragments_);
+  if (counts_.culled) gl::zero_buffer(pixel_culled_);
+  gl::zero_buffer(rejected_);
+  bind_counts();
+  // The blended baselines' inserts blend into the technique's framebuffer.
+  draw_transparent(gather_program_, camera, technique_framebuffer_ != 0 ? technique_framebuffer_ : gather_framebuffer_);
+  latest_ = camera;
+  if (counts_.fragments) counted_ = camera;
+}
+
+void SceneRenderer::count(const Camera& camera) {
+  gl::zero_buffer(pixel_fragments_);
+  gl::zero_buffer(rejected_);
+  buffer_.bind();  // the module's blocks, which the pass declares though it reads none
+  bind_counts();
+  gather_program_.set("r_count_only", 1u);
+  draw_transparent(gather_program_, camera, gather_framebuffer_);  // writes no colour: it discards every fragment
+  gather_program_.set("r_count_only", 0u);
+  latest_ = counted_ = camera;
+}
 
 std::uint64_t SceneRenderer::count_fragments(const Camera& camera) {
-  run_gather(camera, true);
+  count(camera);
   return inserted();
 }
 
@@ -164,20 +214,6 @@ void SceneRenderer::draw_transparent(const gl::ShaderProgram& program, const Cam
   glBindTextureUnit(0, 0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-}
-
-void SceneRenderer::run_gather(const Camera& camera, bool count_only) {
-  gather_program_.set("r_count_only", count_only ? 1u : 0u);
-  gl::zero_buffer(pixel_fragments_);
-  gl::zero_buffer(pixel_culled_);
-  gl::zero_buffer(rejected_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelCulledBinding, pixel_culled_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRejectedBinding, rejected_);
-  // The blended baselines' inserts blend into the technique's framebuffer; the
-  // counting pass writes no colour (it discards every fragment).
-  const bool blends = technique_framebuffer_ != 0 && !count_only;
-  draw_transparent(gather_program_, camera, blends ? technique_framebuffer_ : gather_framebuffer_);
 }
 
 namespace {
@@ -205,6 +241,7 @@ double SceneRenderer::atomic_floor(const Camera& camera) {
   const auto t0 = std::chrono::steady_clock::now();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPixelFragmentsBinding, pixel_fragments_);
   draw_transparent(atomic_floor_program_, camera, gather_framebuffer_);
+  latest_ = counted_ = camera;  // its atomic adds are the per-pixel counts
   return finished_ms(t0);
 }
 
@@ -214,12 +251,23 @@ std::vector<glm::vec3> SceneRenderer::read_opaque_colour() const {
   return out;
 }
 
-std::vector<std::uint32_t> SceneRenderer::read_pixel_fragments() const {
+std::vector<std::uint32_t> SceneRenderer::read_pixel_fragments() {
+  if (latest_ && !(counted_ && same_view(*counted_, *latest_))) {
+    // The count rejects against the opaque depth image, which must still be the gather's.
+    if (!opaque_ || !same_view(*opaque_, *latest_))
+      throw std::logic_error("per-pixel counts of a gather whose opaque pass was drawn over since");
+    count(*latest_);
+  }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   return gl::read_words(pixel_fragments_, screen_.area());
 }
-std::vector<std::uint32_t> SceneRenderer::read_pixel_culled() const { return gl::read_words(pixel_culled_, screen_.area()); }
-std::uint64_t SceneRenderer::inserted() const {
+
+std::vector<std::uint32_t> SceneRenderer::read_pixel_culled() const {
+  if (!counts_.culled) return {};
+  return gl::read_words(pixel_culled_, screen_.area());
+}
+
+std::uint64_t SceneRenderer::inserted() {
   std::uint64_t n = 0;
   for (std::uint32_t c : read_pixel_fragments()) n += c;
   return n;

@@ -1,51 +1,145 @@
 #!/usr/bin/env bash
-# The GPU path's checks on a machine with a real GPU, from the bundle of
-# scripts/device_bundle.sh: what the machine is, `habuffer info`, the GL
-# tests (every runnable atomic mode), the scene tests without image files,
-# the GL benchmarks, the technique table of `habuffer bench` and renders'
-# stats. Usage (repository root): scripts/gpu_checks.sh OUTDIR [STEPS]
-# STEPS: a comma list of info,tests,render-tests,bench,harness,render (all).
-# Every step has its own time limit and goes on after a failure; the log is
-# OUTDIR/gpu.log, results OUTDIR/*.json and *.csv.
+# The GPU path's checks on a machine with a real GPU (NVIDIA, headless EGL),
+# from the bundle of scripts/device_bundle.sh, in one command of under 10
+# minutes: what the machine is, the GL tests, issue 26's measurements (render's
+# gather with and without its per-fragment bookkeeping, the module's
+# read-first variants, the captured hairball stream through the compute entry
+# in arrival and in pixel order, the compute entry at 2^24 fragments, the
+# technique table of `habuffer bench` on engine, hairball and spider at 512
+# and 1024, hairball at three loads, BM_Technique beside `habuffer bench`),
+# then the older checks as time allows (GL tests in emulated64, the scene
+# tests, renders' stats, issue 11's whole technique table).
+#
+# Usage (repository root): scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]
+#   STEPS    a comma list of the step names below (default: all, in that order)
+#   --smoke  every step at toy sizes (64x64, 256-pixel benchmarks, 2^18
+#            fragments, 1 repeat, a few tests), to try the script on llvmpipe
+#   --dry-run  print each step's command and time limit, run nothing
+# Each step has its own time limit and all of them share one deadline
+# (GPU_CHECKS_BUDGET_S, 540 s): a step that would start with less than 20 s
+# left is skipped, so a slow step cannot eat the rest, and the script ends in
+# time. Everything goes on after a failure. OUTDIR holds two files (the
+# device machine returns few): gpu.log, the commands, their output (every
+# benchmark repetition as it ends), exit codes and times; results.tar.gz,
+# every result file (*.json, *.csv), repacked after each step so a run cut
+# short still returns what it finished. A benchmark writes its JSON only when
+# it ends, so the long ones are split (one per side).
 set -uo pipefail
-out=${1:?usage: scripts/gpu_checks.sh OUTDIR [STEPS]}
-steps=${2:-info,tests,render-tests,bench,harness,render}
+mode=run
+case "${1:-}" in
+  --smoke) mode=smoke; shift ;;
+  --dry-run) mode=dry; shift ;;
+esac
+out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
+all_steps=info,gl-tests,gather,harness,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+steps=${2:-$all_steps}
+budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
-# shellcheck disable=SC1091
-source .dev/run.sh
+out=$(cd "$out" && pwd)
+repo=$PWD
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+if [[ -f .dev/run.sh ]]; then
+  # shellcheck disable=SC1091
+  source .dev/run.sh
+else
+  export PATH="$PWD/build/bin:$PATH"  # a local build (the smoke run)
+fi
 log="$out/gpu.log"
+: >"$log"
+deadline=$((SECONDS + budget))
 want() { [[ ",$steps," == *",$1,"* ]]; }
-step() {  # step LIMIT_S NAME COMMAND...
+pack() { tar czf "$out/results.tar.gz" -C "$work" . 2>>"$log"; }
+# step LIMIT_S NAME COMMAND...: runs COMMAND in the results folder, within
+# LIMIT_S and the shared deadline.
+step() {
   local limit=$1 name=$2; shift 2
-  echo "== $name: $*" | tee -a "$log"
+  local left=$((deadline - SECONDS))
+  ((limit > left)) && limit=$left
+  if [[ $mode == dry ]]; then
+    echo "== $name (limit ${limit} s): $*"
+    return
+  fi
+  if ((limit < 20)); then
+    echo "== $name: skipped, ${left} s left of the ${budget} s budget" | tee -a "$log"
+    return
+  fi
+  echo "== $name (limit ${limit} s): $*" | tee -a "$log"
   local t0=$SECONDS
-  timeout "$limit" "$@" >>"$log" 2>&1
+  (cd "$work" && timeout "$limit" "$@") >>"$log" 2>&1
   local rc=$?
   echo "== $name: rc=$rc after $((SECONDS - t0)) s" | tee -a "$log"
+  pack
 }
+# sharded N LIMIT_S NAME COMMAND...: a test binary as N shard processes at
+# once (scripts/gtest_shards.sh).
+sharded() {
+  local n=$1 limit=$2 name=$3; shift 3
+  step "$limit" "$name" "$repo/scripts/gtest_shards.sh" "$n" "$@"
+}
+
+# Sizes, repeats and filters: the real run, or toys for --smoke.
+if [[ $mode == smoke ]]; then
+  sizes=64x64 repeats=1 sides='256' gtest_filter='GlBookkeeping.*:GlFrame.*:Render.Planes*'
+  render_size=96x96 bench_time=0.05 bench_reps=1 log2n='18' l64=emulated64  # llvmpipe has no native64
+else
+  sizes=512x512,1024x1024 repeats=3 sides='512|1024' gtest_filter='*'
+  render_size=2048x2048 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
+fi
+bench_flags=(--benchmark_min_time="$bench_time" --benchmark_repetitions="$bench_reps"
+             --benchmark_enable_random_interleaving=true --benchmark_out_format=json)
+
 if want info; then
-  step 30 nvidia-smi nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
+  if [[ $mode != smoke ]]; then
+    step 30 nvidia-smi nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
+  fi
+  step 30 uptime uptime
   step 60 info habuffer info
 fi
-if want tests; then  # every runnable mode: the default (native64 on NVIDIA) and emulated64 forced
-  step 240 gl-tests habuffer_gl_tests --gtest_brief=1
-  step 240 gl-tests-emulated64 env HABUFFER_ATOMIC_MODE=emulated64 habuffer_gl_tests --gtest_brief=1
-fi
-want render-tests && step 240 render-tests habuffer_render_tests --gtest_brief=1
-if want bench; then
-  step 300 gl-bench habuffer_bench --benchmark_filter='BM_GlInsert|BM_Render|BM_Technique/[a-z-]+/gl/' \
-    --benchmark_repetitions=3 --benchmark_report_aggregates_only=true \
-    --benchmark_out="$out/gl-bench.json" --benchmark_out_format=json
-fi
-if want harness; then
-  step 300 harness habuffer bench --path gl --quiet --repeats 5 --size 512x512,1024x1024 \
-    --scenes engine,hairball,planes:order=front:count=32,planes:order=back:count=32 \
-    --techniques ha,ha:cull=0.99,sorted-lists,sorted-lists:cull=0.99,lists,arrays:k=16,kbuffer:k=4,kbuffer:k=8,kbuffer:k=8:occ,kbuffer:k=16,wboit,blend \
-    --out "$out/techniques.json,$out/techniques.csv"
-fi
-if want render; then
-  for scene in engine hairball; do
-    step 120 "render-$scene" habuffer render --scene "$scene" --size 2048x2048 --path gl --quiet --stats "$out/render-$scene.json"
+# Every GL test in the default mode (native64 on NVIDIA).
+want gl-tests && sharded 4 120 gl-tests habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
+# render's gather in steady state, with and without the bookkeeping of issue
+# 26 part 5 (bookkeeping:1 = the slot-write tally and the per-pixel counts
+# render paid in every frame before), and native64 with and without the
+# read-first slot load (slot_rf) and max-age read (age_rf).
+if want gather; then
+  for side in ${sides//|/ }; do
+    step $((side > 512 ? 120 : 90)) "gather-$side" habuffer_bench \
+      --benchmark_filter="BM_GlGather/(engine|hairball|spider)/[a-z0-9-]+/side:$side/" "${bench_flags[@]}" \
+      --benchmark_out="gl-gather-$side.json"
   done
 fi
+# The technique table (first frame of a fresh renderer each round: the harness's own timing).
+want harness && step 150 harness habuffer bench --path gl --quiet --repeats "$repeats" --size "$sizes" \
+  --scenes engine,hairball,spider --techniques ha,ha:cull=0.99,lists,sorted-lists,sorted-lists:cull=0.99 \
+  --out techniques.json,techniques.csv
+# The captured hairball stream through the compute entry, arrival and pixel
+# order, loads 0.3/0.55/0.8 and the variants, in the L64 mode the GPU runs.
+want captured && step 120 captured habuffer_bench --benchmark_filter="BM_GlCaptured/hairball/(arrival|pixel)/$l64/side:($sides)/" \
+  "${bench_flags[@]}" --benchmark_out=gl-captured.json
+# The compute entry on synthetic coherent streams, 2^18 (dispatch-bound on a
+# GPU) and 2^24 fragments, native32 (the L32 goal: 4.4 G frag/s at load 0.5) and native64.
+want insert && step 90 insert habuffer_bench --benchmark_filter="BM_GlInsertNative(32|64)/load:[0-9]+/log2n:($log2n)/" \
+  "${bench_flags[@]}" --benchmark_out=gl-insert.json
+want loads && step 90 loads habuffer bench --path gl --quiet --no-floors --repeats "$repeats" --size "$sizes" \
+  --scenes hairball --techniques ha:load=0.3,ha:load=0.55,ha:load=0.8 --out loads.json,loads.csv
+# Issue 26 part 6: BM_Technique beside the harness on the same scene and machine.
+# Every repetition kept: its H100 median (35.9 ms) hid one repetition of 88 ms.
+want technique && step 90 technique habuffer_bench --benchmark_filter='BM_Technique/hairball/gl/(ha|lists)/' \
+  --benchmark_repetitions="$bench_reps" --benchmark_out=gl-technique.json --benchmark_out_format=json
+# Older checks, as time allows.
+want gl-tests-emulated64 && sharded 4 120 gl-tests-emulated64 env HABUFFER_ATOMIC_MODE=emulated64 \
+  habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
+want render-tests && sharded 4 120 render-tests habuffer_render_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
+if want render; then
+  for scene in engine hairball; do
+    step 60 "render-$scene" habuffer render --scene "$scene" --size "$render_size" --path gl --quiet --slot-writes \
+      --stats "render-$scene.json"
+  done
+fi
+want techniques-all && step 240 techniques-all habuffer bench --path gl --quiet --repeats 1 --size "$sizes" \
+  --scenes engine,hairball,planes:order=front:count=32,planes:order=back:count=32 \
+  --techniques ha,ha:cull=0.99,sorted-lists,sorted-lists:cull=0.99,lists,arrays:k=16,kbuffer:k=4,kbuffer:k=8,kbuffer:k=8:occ,kbuffer:k=16,wboit,blend \
+  --out techniques-all.json,techniques-all.csv
+[[ $mode == dry ]] || echo "== done after $SECONDS s; results: $out/results.tar.gz" | tee -a "$log"
 exit 0

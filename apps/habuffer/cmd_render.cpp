@@ -34,6 +34,7 @@ constexpr const char* kHelp =
     "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE] [--error]\n"
     "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
     "         [--insert-order auto|arrival|pixel] [--count N] [--spread S] [--order front|back] [--scene-seed N] [--opaque-meshes I,J,...] [--quiet]\n"
+    "         [--slot-writes]\n"
     "  scenes: engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file.\n"
     "  --size defaults to 1024x1024; --table auto (default) sizes the first table from a counting pass,\n"
     "  grows at once when a frame fails and adapts between frames (SPEC 8). Images: PNG, or EXR/HDR/TIFF\n"
@@ -50,6 +51,8 @@ constexpr const char* kHelp =
     "  --reference IMAGE writes the exact reference; with it or --error the stats give psnr, rmse and\n"
     "  max_error of the image against it.\n"
     "  --quiet: no summary and no progress bar (shown on a terminal for --frames above 1).\n"
+    "  --slot-writes (--path gl): the stats' slot_writes, tallied by one more atomic per insert call\n"
+    "  (compiled in only then; null in the stats otherwise).\n"
     "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
     "  --lossless render that still lost fragments, 2 bad usage.\n";
 
@@ -149,6 +152,8 @@ RenderSettings parse_settings(const Args& args) {
                      "with --path gl (the GPU inserts and composites)");
   args.refuse_unless(s.technique == Technique::Ha, {"insert-order"},
                      "with --technique " + to_string(s.technique) + " (the HA-buffer's own)");
+  args.refuse_unless(s.path == RenderPath::Gl && !args.has("fragments"), {"slot-writes"},
+                     "on the CPU path (the GPU path's tally)");
   s.background = args.has("background") ? parse_background(args.required("background")) : glm::vec3(1.0f);
   return s;
 }
@@ -276,7 +281,7 @@ int run_render(const std::vector<std::string>& argv) {
                    "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed",
                    "opaque-meshes", "technique", "layers", "pool", "occupancy", "occupancy-words", "depth-range",
                    "saturation", "insert-order"},
-                  {"lossless", "quiet", "error"});
+                  {"lossless", "quiet", "error", "slot-writes"});
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");
   RenderSettings s = parse_settings(args);
@@ -288,6 +293,7 @@ int run_render(const std::vector<std::string>& argv) {
   check_render_files(args, s, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
   s.keep_fragments = args.has("reference") || args.has("error");
+  s.count_slot_writes = args.has("slot-writes");
   SceneDescription described;
   RenderResult r;
   if (args.has("fragments")) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
+#include <optional>
 
 #include "habuffer/json_writer.h"
 #include "habuffer/memory_model.h"
@@ -18,6 +20,12 @@ void counters(JsonWriter& json, const Counters& c) {
   json.field("blended", c.blended);
 }
 
+// A count, or null where it was not counted (not a zero that reads as one).
+JsonWriter& counted(JsonWriter& json, std::string_view key, const std::optional<std::uint64_t>& count) {
+  if (count) return json.field(key, *count);
+  return json.field(key, std::numeric_limits<double>::quiet_NaN());  // the writer's null
+}
+
 void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.begin_object().field("index", f.index).field("yaw", static_cast<double>(f.yaw));
   write_extent(json, "table", f.table);
@@ -25,8 +33,9 @@ void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   counters(json, f.counters);
   json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
   json.field("insert_order", to_string(f.insert_order));
-  if (gpu) json.field("slot_writes", f.slot_writes).field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
+  if (gpu) counted(json, "slot_writes", f.slot_writes).field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
   json.field("gather_ms", f.gather_ms).field("resolve_ms", f.resolve_ms).field("frame_ms", f.frame_ms);
+  if (gpu) json.field("clear_ms", f.clear_ms);
   json.end_object();
 }
 
@@ -78,7 +87,8 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   json.field("table_mode", automatic_size(set) ? "auto" : (set.lossless ? "lossless" : "fixed"));
   counters(json, last.counters);
   json.field("opaque_rejected", last.opaque_rejected);
-  if (set.path == RenderPath::Gl) json.field("slot_writes", last.slot_writes);  // counted on the GPU path only
+  // Counted on the GPU path only, and only with --slot-writes (null otherwise).
+  if (set.path == RenderPath::Gl) counted(json, "slot_writes", last.slot_writes);
   json.field("max_depth_complexity", s.max_depth_complexity).field("mean_depth_complexity", s.mean_depth_complexity);
   json.field("covered_pixels", s.covered_pixels);
   write_extent(json, "table", last.table);

@@ -43,11 +43,13 @@ HaCarry ha_carry_from(HaDeferred d) {
 }
 
 // Ends one run of a call (the call itself or a resumption): adds its slot
-// writes, and defers a call cut short, returning HABUFFER_PENDING (its outcome is
-// counted when the resume pass ends it); any other outcome is returned for
-// the caller to count.
+// writes (in the HABUFFER_COUNT_WRITES variant), and defers a call cut short,
+// returning HABUFFER_PENDING (its outcome is counted when the resume pass ends
+// it); any other outcome is returned for the caller to count.
 uint ha_end_run(uvec2 pixel, HaCarry c, uint outcome) {
-  if (ha_count_writes != 0u && ha_call_writes != 0u) ha_counter_add(pixel, HABUFFER_COUNTER_SLOT_WRITES, ha_call_writes);
+#ifdef HABUFFER_COUNT_WRITES
+  if (ha_call_writes != 0u) ha_counter_add(pixel, HABUFFER_COUNTER_SLOT_WRITES, ha_call_writes);
+#endif
   if (outcome == HABUFFER_CUT) {
     ha_defer(c);
     return HABUFFER_PENDING;

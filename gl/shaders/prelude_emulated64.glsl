@@ -17,7 +17,9 @@ bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
   old = ha_table[s];
   if (old < r) {
     ha_table[s] = r;
+#ifdef HABUFFER_COUNT_WRITES
     ha_call_writes += 1u;
+#endif
   }
   memoryBarrierBuffer();
   atomicExchange(ha_locks[lock], 0u);

@@ -7,7 +7,9 @@ layout(std430, binding = HABUFFER_BINDING_TABLE) buffer HaTable { ha_word ha_tab
 
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
   ha_word old = atomicMax(ha_table[s], r);
+#ifdef HABUFFER_COUNT_WRITES
   if (old < r) ha_call_writes += 1u;
+#endif
   return old;
 }
 uint ha_atomic_missed() { return 0u; }

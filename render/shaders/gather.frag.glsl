@@ -1,14 +1,23 @@
 // Gather pass: every transparent fragment in front of the opaque surfaces
-// goes through ha_insert; those behind are rejected first and counted. Per
-// pixel, the fragments inserted (depth complexity) and those culled are
-// counted for the heat maps. Fragments that insert nothing discard, so a
-// technique that blends its inserts (wboit, blend) gets no output from them.
+// goes through ha_insert; those behind are rejected first and counted. The
+// same program is the counting pass (r_count_only 1: fragments per pixel,
+// nothing inserted; sizing the table, depth complexity), so it compiles
+// once, and on llvmpipe, which compiles a program at its first draw, the
+// counting pass also readies the gather. Per-pixel counts in the inserting
+// gather, each compiled in only where asked (an atomic add per fragment that
+// no frame pays for unless it reads the counts: SceneRenderer::GatherCounts):
+//   R_COUNT_FRAGMENTS  fragments per pixel, as the counting pass counts them;
+//   R_COUNT_CULLED     fragments early cull rejected, per pixel.
+// Fragments that insert nothing discard, so a technique that blends its
+// inserts (wboit, blend) gets no output from them.
 layout(std430, binding = R_BINDING_PIXEL_FRAGMENTS) buffer RPixelFragments { uint r_pixel_fragments[]; };
+#ifdef R_COUNT_CULLED
 layout(std430, binding = R_BINDING_PIXEL_CULLED) buffer RPixelCulled { uint r_pixel_culled[]; };
+#endif
 layout(std430, binding = R_BINDING_REJECTED) buffer RRejected { uint r_rejected; };
 layout(binding = 0) uniform sampler2D r_opaque_depth;  // t of the nearest opaque surface; 2 where none
+uniform uint r_screen_width;  // its own: the counting pass reads nothing of the technique's
 uniform uint r_count_only;
-uniform uint r_screen_width;  // its own: the counting pass runs without the HA-buffer's uniform block  // 1: count the fragments per pixel, insert nothing (sizing the table)
 
 uint r_pack_rgba(vec3 c, float a) {
   uvec4 b = uvec4(round(clamp(vec4(c, a), 0.0, 1.0) * 255.0));
@@ -24,7 +33,15 @@ void main() {
     discard;
   }
   uint i = p.x + p.y * r_screen_width;
+  if (r_count_only != 0u) {
+    atomicAdd(r_pixel_fragments[i], 1u);
+    discard;
+  }
+#ifdef R_COUNT_FRAGMENTS
   atomicAdd(r_pixel_fragments[i], 1u);
-  if (r_count_only != 0u) discard;
-  if (ha_insert(p, t, rgba) == HABUFFER_CULLED) atomicAdd(r_pixel_culled[i], 1u);
+#endif
+  uint outcome = ha_insert(p, t, rgba);
+#ifdef R_COUNT_CULLED
+  if (outcome == HABUFFER_CULLED) atomicAdd(r_pixel_culled[i], 1u);
+#endif
 }

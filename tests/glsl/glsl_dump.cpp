@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
     shaders.push_back({"scene", "vert", r.vertex});
     shaders.push_back({"opaque", "frag", r.opaque_fragment});
     shaders.push_back({"gather", "frag", r.gather_fragment});
+    // The gather counting nothing per pixel (every count's #if left out).
+    shaders.push_back({"gather-plain", "frag", SceneRenderer::shader_sources(mode, {}, Technique::Ha, {}).gather_fragment});
     for (const gl::ShaderSource& s : shaders) {
       const std::string path = dir + "/" + gl::to_string(mode) + "-" + s.name + "." + s.stage;
       std::ofstream out(path);

@@ -12,7 +12,14 @@
 // native),
 // void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
 // ha_cull_tau (0 = early cull off), ha_word ha_load_slot(ha_index s) (a
-// plain read), and HABUFFER_INOUT(T) (GLSL: inout T; C++: T&).
+// plain read), and HABUFFER_INOUT(T) (GLSL: inout T; C++: T&). A host may
+// define HABUFFER_SLOT_READ_FIRST 0 to give every probe its atomic without
+// the plain load first (the GL path's ModuleVariant::slot_read_first; the
+// table is the same either way).
+
+#ifndef HABUFFER_SLOT_READ_FIRST
+#define HABUFFER_SLOT_READ_FIRST 1
+#endif
 
 // HABUFFER_PENDING while the carried record may probe again, else the failure
 // that ends the call (SPEC 6 checks the age, then the iteration budget).
@@ -62,7 +69,7 @@ uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h, bool cull) {
   // A slot that loses to a record in place costs one plain load, not an
   // atomic (and, in emulated64, not a lock): at high depth complexity most
   // probes meet older, larger records.
-  if (ha_slot_known_larger(s, c, cull)) {
+  if (HABUFFER_SLOT_READ_FIRST != 0 && ha_slot_known_larger(s, c, cull)) {
     c.iter += 1u;
     c.a += 1u;
     c.r = ha_with_age(c.r, c.a);

@@ -18,7 +18,6 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UVEC2(ha_screen_size)         // every technique
   HABUFFER_PARAM_UINT(ha_capture_capacity)     // fragments the capture buffer holds; 0: capture off
   HABUFFER_PARAM_UINT(ha_capture_only)         // 1: capture, insert nothing, count nothing
-  HABUFFER_PARAM_UINT(ha_count_writes)         // HA-buffer: 1: count slot writes (HABUFFER_COUNTER_SLOT_WRITES)
   HABUFFER_PARAM_UINT(ha_deferred_capacity)    // HA-buffer: calls cut short that the deferred-call buffer holds
   HABUFFER_PARAM_UINT(ha_pool_capacity)        // linked lists: nodes
   HABUFFER_PARAM_UINT(ha_layers)               // fixed arrays, k-buffer: K
@@ -34,6 +33,7 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UINT(ha_unused_1)             // (block size a multiple of 16 bytes, as std140 rounds it)
   HABUFFER_PARAM_UINT(ha_unused_2)
   HABUFFER_PARAM_UINT(ha_unused_3)
+  HABUFFER_PARAM_UINT(ha_unused_4)
 HABUFFER_PARAMS_END
 
 #endif

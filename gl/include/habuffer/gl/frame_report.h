@@ -9,6 +9,7 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/fragment.h"
+#include "habuffer/gl/module_variant.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/resize_policy.h"
 
@@ -48,8 +49,12 @@ struct GlFrameOptions {
   bool capture_only = false;            ///< capture without inserting (the CPU path replays the capture)
   std::uint64_t capture_capacity = 1u << 20;  ///< first capacity; grows (and the frame regathers) on overflow
   std::uint32_t clear_tile = 0;  ///< side of the clear pass's tiles; 0: the framebuffer limits
-  bool finish_timing = true;     ///< glFinish after each pass so wall_ms is the pass's whole time
-  bool count_writes = false;     ///< tally slot writes (FrameReport::slot_writes): one more atomic per insert
+  /// glFinish before and after each pass, so a pass's wall_ms is its whole
+  /// time and nothing queued before it.
+  bool finish_timing = true;
+  /// The insertion module's compile-time variant (slot-write tally, read-first
+  /// loads): in module_source() and every pass of the driver.
+  ModuleVariant module;
   /// How ha_insert_here() reads gl_FragCoord.z. frame() refuses a depth test
   /// enabled at the call with a function of the other convention (GL_GREATER
   /// or GL_GEQUAL with Standard, GL_LESS or GL_LEQUAL with Reversed), which
@@ -98,7 +103,9 @@ struct FrameReport {
   /// last resume round, or ended by the driver without an outcome (counted
   /// failed_iter; lossless mode gathers them again into the same table).
   std::uint64_t cut_short = 0;
-  std::uint64_t slot_writes = 0;    ///< with count_writes: slot raises, evicted records included
+  /// Slot raises, evicted records included, when ModuleVariant::count_writes
+  /// compiled the tally in; nullopt otherwise (not counted, not zero).
+  std::optional<std::uint64_t> slot_writes;
   std::uint32_t cut_short_retries = 0;  ///< gathers repeated because calls were cut short
   std::uint32_t deferred_regathers = 0;  ///< gathers repeated because the deferred-call buffer overflowed
   bool resize_limited = false;      ///< adaptive sizing wanted a table beyond this context's limits
@@ -106,7 +113,11 @@ struct FrameReport {
   std::uint32_t capture_regathers = 0;  ///< gathers repeated because the capture buffer overflowed
   std::uint64_t captured = 0;           ///< fragments in the capture buffer
   PassTiming clear;   ///< the clear pass (zero on the first frame)
-  PassTiming gather;  ///< the final gather, its resume rounds included
+  /// The buffer resets before the final gather (tallies, the max-age table,
+  /// list heads, ...), with finish_timing waited for before the gather's
+  /// clock starts: so `gather` spans the gather alone, not work queued before it.
+  PassTiming reset;
+  PassTiming gather;  ///< the final gather, its resume rounds included (never a read-back)
   PassTiming sort;    ///< linked lists, fixed arrays: the sort pass after the final gather
   /// Insert calls of the final gather whose pixel lay outside the screen
   /// (also in counters.invalid): fragments lost, for instance drawn by a

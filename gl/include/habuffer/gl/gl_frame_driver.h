@@ -55,8 +55,13 @@ class GlFrameDriver {
   [[nodiscard]] const GlBindings& bindings() const { return technique_->bindings(); }
   /// The screen, in pixels.
   [[nodiscard]] Extent screen() const { return technique_->screen(); }
-  /// The options every frame runs with.
+  /// The options every frame runs with (the module variant resolved: ModuleVariant::resolved).
   [[nodiscard]] const GlFrameOptions& options() const { return options_; }
+  /// Whether frame() asks its host for the gather's call count: only where
+  /// the implementation can end a call without an outcome (its loop budget:
+  /// GlInfo::software_rasterizer),
+  /// so a host elsewhere need not count its calls per fragment.
+  [[nodiscard]] bool needs_call_count() const { return needs_call_count_; }
   /// Caps the attempts per frame from now on (at least 1): a caller that
   /// knows growth cannot help (a pixel deeper than AMAX) stops it.
   void limit_attempts(std::uint32_t attempts) { options_.max_attempts = std::max(1u, std::min(options_.max_attempts, attempts)); }
@@ -88,6 +93,7 @@ class GlFrameDriver {
   /// gather made: calls a driver ended without an outcome (llvmpipe's loop
   /// budget can stop a SIMD group's lanes) are then counted as failed_iter
   /// and cut short, and retried like the others, so nothing goes uncounted.
+  /// It is asked only where needs_call_count(), after the gather's clock.
   FrameReport frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls = {});
 
   /// Composites every screen pixel over `background` into the framebuffer
@@ -140,6 +146,7 @@ class GlFrameDriver {
   std::uint64_t deferred_overflow_ = 0;  ///< calls the last gather deferred, when more than the buffer held
   std::uint64_t frames_ = 0;
   bool sorted_ = false;  ///< the last gather ran the technique's sort pass
+  bool needs_call_count_ = false;
   std::uint32_t gather_phase_ = 0;  ///< the parameter ha_gather_phase: 1 in a fill pass
   std::unique_ptr<Gpu> gpu_;
 };

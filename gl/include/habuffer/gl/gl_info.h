@@ -34,6 +34,11 @@ struct GlInfo {
   /// GL_MAX_FRAMEBUFFER_WIDTH and GL_MAX_FRAMEBUFFER_HEIGHT (pixels).
   int max_framebuffer_width = 0, max_framebuffer_height = 0;
   int max_compute_work_groups_x = 0;  ///< GL_MAX_COMPUTE_WORK_GROUP_COUNT in x
+  /// Mesa's software rasterizers (llvmpipe, softpipe, by GL_RENDERER): shaders
+  /// run on the CPU. Their loop budget can end an insert call without an
+  /// outcome (docs/spec-notes.md, "Loop budget"), and an atomic costs a
+  /// locked read-modify-write of a CPU cache line.
+  bool software_rasterizer = false;
 };
 
 /// Needs a current OpenGL 4.5 core context.

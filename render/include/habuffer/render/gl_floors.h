@@ -25,7 +25,7 @@ class GlFloors {
   double atomic_ms() { return pass(false); }
   double blend_ms() { return pass(true); }
   // Fragments the last atomic pass counted.
-  [[nodiscard]] std::uint64_t fragments() const { return renderer_.inserted(); }
+  [[nodiscard]] std::uint64_t fragments() { return renderer_.inserted(); }
 
  private:
   double pass(bool blend);

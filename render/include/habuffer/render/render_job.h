@@ -56,7 +56,10 @@ struct RenderSettings {
   CameraParams camera;
   glm::vec3 background{1.0f};
   bool keep_fragments = false;  // capture the last frame's fragments (reference, CPU-side heat maps)
-  bool per_pixel_culled = false;  // CPU path: count culled fragments per pixel (serial insertion)
+  bool per_pixel_culled = false;  // count culled fragments per pixel (CPU path: serial insertion)
+  // GPU path (HA-buffer, k-buffer): tally slot writes (FrameStats::slot_writes),
+  // one more atomic per insert call, compiled into the module only when asked.
+  bool count_slot_writes = false;
   std::uint32_t threads = 0;      // CPU path
   InsertOrder insert_order = InsertOrder::Auto;  // CPU path, the HA-buffer (InsertOrder)
   // Called after each frame with (frames done, frames).
@@ -72,7 +75,9 @@ struct FrameStats {
   std::uint32_t attempts = 1;
   Counters counters;
   std::uint64_t opaque_rejected = 0;
-  std::uint64_t slot_writes = 0;  // GPU path: slot raises, evicted records included (insertion work)
+  // GPU path with count_slot_writes: slot raises, evicted records included
+  // (insertion work); nullopt when not counted.
+  std::optional<std::uint64_t> slot_writes;
   std::uint64_t deferred = 0;     // GPU path: insert calls cut short and resumed (FrameReport::deferred)
   std::uint32_t resume_rounds = 0;
   bool resize_limited = false;    // GPU path: adaptive sizing wanted a table the context cannot hold
@@ -83,8 +88,9 @@ struct FrameStats {
   InsertOrder insert_order = InsertOrder::Arrival;
   double load_factor = 0.0;      // stored / capacity
   // gather: the gather pass (resume rounds included); resolve: the sort pass
-  // (lists, arrays) and the compositing.
-  double gather_ms = 0.0, resolve_ms = 0.0, frame_ms = 0.0;
+  // (lists, arrays) and the compositing; clear (GPU path): the clear pass and
+  // the buffer resets before the gather, which the gather's clock leaves out.
+  double gather_ms = 0.0, resolve_ms = 0.0, clear_ms = 0.0, frame_ms = 0.0;
 };
 
 struct RenderResult {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -19,17 +20,36 @@ namespace habuffer {
 
 class SceneRenderer {
  public:
+  // What the gather pass counts per pixel besides inserting. Each count is
+  // a #define of the gather shader: one nobody reads costs no atomic per
+  // fragment. The per-pixel fragment counts are exact either way: without
+  // `fragments`, read_pixel_fragments() runs the counting pass for the last
+  // pass's camera when that camera's counts are not held already (none is
+  // needed after count_fragments of the camera just gathered).
+  struct GatherCounts {
+    bool fragments = false;  // fragments per pixel, in the inserting gather itself
+    bool culled = false;     // fragments early cull rejected, per pixel (read_pixel_culled)
+    // What a gather for `buffer` must count: the fragments where the driver
+    // asks for the call count (GlFrameDriver::needs_call_count: the counts
+    // are then there at no extra pass), and the culled ones (none without early cull).
+    static GatherCounts for_driver(const gl::GlFrameDriver& buffer);
+  };
+
   // The renderer's shaders for an atomic mode, binding points and
   // technique, as compiled (no GL needed: the reference-compiler check
-  // writes them out).
+  // writes them out); the gather with `counts`, in the module's default variant.
   struct Sources {
-    std::string vertex, opaque_fragment, gather_fragment;
+    std::string vertex, opaque_fragment, gather_fragment;  // the gather is also the counting pass
   };
   static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings,
-                                Technique technique = Technique::Ha);
+                                Technique technique = Technique::Ha, GatherCounts counts = {true, true});
 
-  // Compiles the gather shader for `buffer`'s technique, mode and binding points.
+  // Compiles the gather shader from `buffer`'s module (technique, mode,
+  // binding points and variant), counting GatherCounts::for_driver(buffer).
+  // `buffer` must outlive the renderer (its counting passes bind its blocks).
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer);
+  // The same, counting `counts`.
+  SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts);
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
@@ -53,11 +73,15 @@ class SceneRenderer {
   [[nodiscard]] unsigned opaque_colour_texture() const { return colour_; }
   // Row-major, row 0 at the bottom.
   [[nodiscard]] std::vector<glm::vec3> read_opaque_colour() const;
-  [[nodiscard]] std::vector<std::uint32_t> read_pixel_fragments() const;
+  // The fragments per pixel of the last gather, counting pass or atomic
+  // floor (a counting pass first where they were not counted).
+  [[nodiscard]] std::vector<std::uint32_t> read_pixel_fragments();
+  // The last gather's early-culled fragments per pixel; empty unless GatherCounts::culled.
   [[nodiscard]] std::vector<std::uint32_t> read_pixel_culled() const;
   [[nodiscard]] std::uint64_t read_rejected() const;
   // ha_insert calls of the last gather (the per-pixel fragment counts summed).
-  [[nodiscard]] std::uint64_t inserted() const;
+  [[nodiscard]] std::uint64_t inserted();
+  [[nodiscard]] const GatherCounts& gather_counts() const { return counts_; }
 
  private:
   struct GpuMesh {
@@ -68,17 +92,25 @@ class SceneRenderer {
     bool opaque;  // drawn in the opaque pass
   };
   void draw_meshes(const gl::ShaderProgram& program, const Camera& camera, bool opaque) const;
-  void run_gather(const Camera& camera, bool count_only);
+  // The counting pass (the gather program, inserting nothing): fragments per
+  // pixel and rejected ones, with `buffer`'s blocks bound.
+  void count(const Camera& camera);
+  void bind_counts() const;
   // The transparent meshes through `program` into `framebuffer`, the opaque depth image at unit 0.
   void draw_transparent(const gl::ShaderProgram& program, const Camera& camera, unsigned framebuffer) const;
 
   Extent screen_;
+  GatherCounts counts_;
+  const gl::GlFrameDriver& buffer_;  // whose module the gather compiles
   std::vector<GpuMesh> meshes_;
   gl::ShaderProgram opaque_program_, gather_program_, blend_program_, atomic_floor_program_;
   unsigned opaque_framebuffer_ = 0, colour_ = 0, depth_ = 0, depth_buffer_ = 0;
   unsigned gather_framebuffer_ = 0, blend_framebuffer_ = 0;
   unsigned technique_framebuffer_ = 0;  // where the technique blends (wboit, blend), else 0
   unsigned pixel_fragments_ = 0, pixel_culled_ = 0, rejected_ = 0;
+  // The camera of the last pass over the transparent meshes, the one whose
+  // fragments pixel_fragments_ holds, and the opaque pass's (none before the first of each).
+  std::optional<Camera> latest_, counted_, opaque_;
 };
 
 }  // namespace habuffer
