@@ -85,7 +85,11 @@ class GpuFrames final : public FramePath {
   void finish(SceneRenderer& renderer, RenderResult& result) override {
     result.backgrounds = renderer.read_opaque_colour();
     result.image = target_.read();
-    if (settings_.per_pixel_culled) result.pixel_culled = renderer.read_pixel_culled();
+    if (settings_.per_pixel_culled) {
+      result.pixel_culled = renderer.read_pixel_culled();
+      // Without early cull the gather counts none: nothing was culled.
+      if (result.pixel_culled.empty()) result.pixel_culled.assign(settings_.config.screen.area(), 0);
+    }
     if (settings_.keep_fragments) result.fragments = driver_.read_capture();
     result.buffer = driver_.technique().read_back();
     result.memory_bytes = driver_.memory_bytes() - driver_.capture_bytes();  // the capture serves --reference only

@@ -83,7 +83,11 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   if (!mode) throw gl::GlError("--layout 64 needs 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   const std::unique_ptr<FramePath> path = make_frame_path(s, *mode);
   gl::GlFrameDriver& driver = path->driver();
-  SceneRenderer renderer(scene, screen, driver);
+  // The gather counts only what this render reads: fragments per pixel where
+  // the driver needs the call count, culled ones for a culled heat map.
+  SceneRenderer renderer(scene, screen, driver,
+                         SceneRenderer::GatherCounts{driver.needs_call_count(),
+                                                     s.per_pixel_culled && s.config.early_cull_tau > 0.0f});
   RenderResult result;
   for (std::uint32_t k = 0; k < s.frames; ++k) {
     const auto t0 = Clock::now();
