@@ -107,5 +107,15 @@ inline constexpr std::uint32_t kMaxThreads = 1024;
 /// The threads `threads` means (0: every hardware thread). Throws
 /// std::invalid_argument above kMaxThreads.
 std::uint32_t resolve_threads(std::uint32_t threads);
+/// Work items (fragments to insert, pixels to sort or composite) that pay
+/// for one more thread of a default count: below it, starting a thread and
+/// joining it costs more than the items it would take (docs/performance.md,
+/// "Issue 26: CPU threads for every technique", measures it).
+inline constexpr std::uint64_t kWorkPerThread = 16384;
+/// The threads `threads` means for a call over `work` items: an explicit
+/// count is honoured (throws std::invalid_argument above kMaxThreads); 0
+/// means every hardware thread, but no more than one per kWorkPerThread
+/// items and at least one, so the default never splits a small batch.
+std::uint32_t resolve_threads(std::uint32_t threads, std::uint64_t work);
 
 }  // namespace habuffer
