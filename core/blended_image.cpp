@@ -20,9 +20,9 @@ BlendedImage::BlendedImage(const TechniqueConfig& config)
 }
 
 Counters BlendedImage::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  check_on_screen(fragments, screen());
-  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   detail::InsertPlan plan = detail::insert_plan(options, technique(), fragments.size());
+  detail::check_on_screen(fragments, screen(), plan.threads);
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   // Threads own rows of pixels whatever the mode: blending has no atomic
   // version, and each pixel then blends its fragments in stream order, as one
   // thread does, bit for bit.

@@ -20,9 +20,9 @@ ArraysBuffers FixedArrays::buffers() const {
 }
 
 Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  check_on_screen(fragments, screen());
-  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const detail::InsertPlan plan = detail::insert_plan(options, Technique::Arrays, fragments.size());
+  detail::check_on_screen(fragments, screen(), plan.threads);
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   if (fragments.size() > UINT32_MAX - std::uint64_t{*std::max_element(counts_.begin(), counts_.end())})
     throw std::invalid_argument("fixed arrays count a pixel's fragments in 32 bits: " +
                                 std::to_string(fragments.size()) + " fragments in one batch are too many");

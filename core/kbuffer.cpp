@@ -75,9 +75,9 @@ Counters KBuffer::insert_words(std::span<const Fragment> fragments, const detail
 }
 
 Counters KBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  check_on_screen(fragments, screen());
-  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const detail::InsertPlan plan = detail::insert_plan(options, Technique::KBuffer, fragments.size());
+  detail::check_on_screen(fragments, screen(), plan.threads);
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   return wide() ? insert_words<std::uint64_t>(fragments, plan) : insert_words<std::uint32_t>(fragments, plan);
 }
 

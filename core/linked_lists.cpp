@@ -24,32 +24,87 @@ struct alignas(64) SetAside {
   std::vector<std::size_t> fragments;  // indices into the batch
 };
 
-// The set-aside fragments through insert(kernel, fragment) on one thread,
-// with the nodes of `left` (what the threads' blocks left), which keeps
-// those still unused: only now, with every other node linked, is a fragment
-// dropped. on_stored(kernel, fragment) follows each fragment stored.
+// The most fragments a thread sets aside when the pool has no block left
+// (node_blocks.h): on one thread none, as no other block can hold a node;
+// for lists, where every fragment takes a node, what the other threads'
+// blocks can hold at most; sorted lists set aside every one, since a
+// set-aside fragment may turn out a duplicate and take none.
+std::size_t set_aside_limit(std::uint32_t threads, bool sorted) {
+  if (threads == 1) return 0;
+  return sorted ? SIZE_MAX : std::size_t{threads - 1} * NodePool::kBlock;
+}
+
+// The ranges of `ranges` cut into single nodes.
+std::vector<NodeRange> one_by_one(std::span<const NodeRange> ranges) {
+  std::vector<NodeRange> nodes;
+  for (const NodeRange& r : ranges)
+    for (std::uint32_t n = r.begin; n < r.end; ++n) nodes.push_back({n, n + 1});
+  return nodes;
+}
+
+// `ranges` sorted, neighbouring ones joined, empty ones dropped.
+std::vector<NodeRange> coalesced(std::vector<NodeRange> ranges) {
+  std::erase_if(ranges, [](const NodeRange& r) { return r.empty(); });
+  std::sort(ranges.begin(), ranges.end(), [](const NodeRange& a, const NodeRange& b) { return a.begin < b.begin; });
+  std::vector<NodeRange> joined;
+  for (const NodeRange& r : ranges) {
+    if (!joined.empty() && joined.back().end == r.begin) joined.back().end = r.end;
+    else joined.push_back(r);
+  }
+  return joined;
+}
+
+// What placing the set-aside fragments gave.
+struct Placed {
+  Counters counters;
+  std::uint64_t merged = 0;  // what on_stored returned
+};
+
+// The set-aside fragments through insert(kernel, fragment) with the nodes
+// of `left` (what the threads' blocks left), which keeps those still unused:
+// only now, with every other node linked, is a fragment dropped. Threads
+// that own their rows each place their own set-aside fragments (their own
+// pixels), taking the left nodes one at a time, so that no thread holds a
+// node another needs and sorted lists walk again in parallel; after slices
+// of the stream, one thread places them all. on_stored(kernel, fragment)
+// follows each fragment stored and returns the entries it merged.
 template <class Insert, class OnStored>
-Counters place_set_aside(ListsKernel<false>& k, std::uint32_t capacity, std::span<const Fragment> fragments,
-                         std::span<const SetAside> aside, std::vector<NodeRange>& left, Insert insert,
-                         OnStored on_stored) {
-  std::uint32_t no_fresh = capacity;
-  NodePool rest(&no_fresh, capacity, left);
-  k.use_nodes(rest);
-  std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
-  for (const SetAside& a : aside)
-    for (const std::size_t i : a.fragments) {
-      const std::uint32_t outcome = insert(k, fragments[i]);
-      if (outcome == HABUFFER_STORED) {
-        k.ll_commit_node();
-        on_stored(k, fragments[i]);
-      }
-      ++tally[outcome];
-    }
-  const NodeRange block = k.unused_nodes();
-  left = rest.unused({&block, 1});
-  Counters c;
-  c.add_tally(tally);
-  return c;
+Placed place_set_aside(const TechniqueParams& params, const ListsBuffers& b, std::span<const Fragment> fragments,
+                       std::span<const SetAside> aside, bool owned_rows, std::vector<NodeRange>& left,
+                       Insert insert, OnStored on_stored) {
+  if (std::all_of(aside.begin(), aside.end(), [](const SetAside& a) { return a.fragments.empty(); })) return {};
+  const auto threads = static_cast<std::uint32_t>(owned_rows ? aside.size() : 1);
+  const std::vector<NodeRange> nodes = owned_rows ? one_by_one(left) : left;
+  std::uint32_t no_fresh = params.pool_capacity;
+  NodePool rest(&no_fresh, params.pool_capacity, nodes);
+  std::vector<detail::SliceCounters> parts(threads);
+  std::vector<detail::PartCount> merged(threads);
+  std::vector<NodeRange> blocks(threads);
+  run_with_threads(threads, [&] {
+    fork_join(threads, [&](std::uint32_t t) {
+      ListsKernel<false> k(params, b);
+      k.use_nodes(rest);
+      std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
+      for (std::size_t a = owned_rows ? t : 0; a < (owned_rows ? t + 1 : aside.size()); ++a)
+        for (const std::size_t i : aside[a].fragments) {
+          const std::uint32_t outcome = insert(k, fragments[i]);
+          if (outcome == HABUFFER_STORED) {
+            k.ll_commit_node();
+            merged[t].n += on_stored(k, fragments[i]);
+          }
+          ++tally[outcome];
+        }
+      parts[t].c.add_tally(tally);
+      blocks[t] = k.unused_nodes();
+    });
+  });
+  left = coalesced(rest.unused(blocks));
+  Placed placed;
+  for (std::uint32_t t = 0; t < threads; ++t) {
+    placed.counters += parts[t].c;
+    placed.merged += merged[t].n;
+  }
+  return placed;
 }
 
 // Asks the cache for the line at `p`: a hint, nothing waits for it.
@@ -99,6 +154,7 @@ Counters LinkedLists::gather(std::span<const Fragment> fragments, const detail::
   NodePool pool(&counter_, static_cast<std::uint32_t>(capacity()), spare_);
   std::vector<NodeRange> blocks(plan.threads);  // each thread's last block, what it left of it
   std::vector<SetAside> aside(plan.threads);
+  const std::size_t aside_limit = set_aside_limit(plan.threads, sorted_on_insert());
   std::vector<detail::SliceCounters> parts(plan.threads);
   std::vector<detail::PartCount> merged(plan.threads + 1);  // the last: pixels sorted after the threads
   const auto make = [&](auto concurrent) { return ListsKernel<decltype(concurrent)::value>(params_, lists); };
@@ -109,7 +165,7 @@ Counters LinkedLists::gather(std::span<const Fragment> fragments, const detail::
     for (const Fragment& f : mine) {
       if (!owns(f)) continue;
       const std::uint32_t outcome = insert(k, f);
-      if (outcome == HABUFFER_DROPPED_POOL) {
+      if (outcome == HABUFFER_DROPPED_POOL && aside[t].fragments.size() < aside_limit) {
         aside[t].fragments.push_back(static_cast<std::size_t>(&f - fragments.data()));
         continue;
       }
@@ -124,12 +180,13 @@ Counters LinkedLists::gather(std::span<const Fragment> fragments, const detail::
   Counters c;
   for (const auto& part : parts) c += part.c;
   std::vector<NodeRange> left = pool.unused(blocks);
-  ListsKernel<false> one(params_, buffers());
-  c += place_set_aside(one, static_cast<std::uint32_t>(capacity()), fragments, aside, left, insert,
-                       [&](auto& k, const Fragment& f) {
-                         // Its pixel's list was sorted already: sort it again.
-                         if (sort_own_rows) merged.back().n += k.ll_sort_pixel(glm::uvec2(f.x, f.y));
-                       });
+  const Placed late = place_set_aside(params_, lists, fragments, aside, plan.owned_rows, left, insert,
+                                      [&](ListsKernel<false>& k, const Fragment& f) -> std::uint64_t {
+                                        // Its pixel's list was sorted already: sort it again.
+                                        return sort_own_rows ? k.ll_sort_pixel(glm::uvec2(f.x, f.y)) : 0;
+                                      });
+  c += late.counters;
+  merged.back().n = late.merged;
   spare_ = std::move(left);
   return_to_counter(spare_, &counter_);
   requested_ += c.stored() + c.dropped_pool;  // every node asked for, duplicates included
@@ -144,9 +201,9 @@ Counters LinkedLists::gather(std::span<const Fragment> fragments, const detail::
 }
 
 Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  check_on_screen(fragments, screen());
-  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   const detail::InsertPlan plan = detail::insert_plan(options, technique(), fragments.size());
+  detail::check_on_screen(fragments, screen(), plan.threads);
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   if (requested_ + fragments.size() > UINT32_MAX)
     throw std::invalid_argument("linked lists count nodes in 32 bits: " + std::to_string(requested_ + fragments.size()) +
                                 " fragments since the last clear are too many");

@@ -63,6 +63,24 @@ inline InsertPlan insert_plan(const InsertOptions& options, Technique technique,
   return plan;
 }
 
+// check_on_screen (fragment_buffer.h) on `threads` slices in parallel:
+// throws as it does, naming the first fragment off the screen. One thread
+// reading the whole batch took 4-5 % of the lists' time on hairball.
+inline void check_on_screen(std::span<const Fragment> frags, Extent screen, std::uint32_t threads) {
+  if (threads == 1) return habuffer::check_on_screen(frags, screen);
+  std::vector<PartCount> first_off(threads);
+  run_with_threads(threads, [&] {
+    fork_join(threads, [&](std::uint32_t t) {
+      const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
+      std::size_t i = begin;
+      while (i < end && frags[i].x < screen.x && frags[i].y < screen.y) ++i;
+      first_off[t].n = i < end ? i : frags.size();
+    });
+  });
+  for (const PartCount& f : first_off)
+    if (f.n < frags.size()) habuffer::check_on_screen(frags.first(f.n + 1), screen);  // throws, naming it
+}
+
 // Every fragment is thread 0's (one thread, or slices of the stream).
 struct AnyRow {
   bool operator()(const Fragment&) const { return true; }
@@ -218,18 +236,6 @@ void for_every_pixel(Extent screen, std::uint32_t threads, MakeKernel make_kerne
     for (std::uint32_t y = y0; y < y1; ++y)
       for (std::uint32_t x = 0; x < screen.x; ++x) visit(k, glm::uvec2(x, y), part);
   });
-}
-
-// Every pixel's list sorted by `make_kernel()`'s sort(kernel, pixel), which
-// returns the entries it merged; returns them all.
-template <class MakeKernel, class Sort>
-std::uint64_t sort_every_pixel(Extent screen, std::uint32_t threads, MakeKernel make_kernel, Sort sort) {
-  std::vector<PartCount> merged(threads);
-  for_every_pixel(screen, threads, make_kernel,
-                  [&](auto& k, glm::uvec2 p, std::uint32_t part) { merged[part].n += sort(k, p); });
-  std::uint64_t total = 0;
-  for (const PartCount& m : merged) total += m.n;
-  return total;
 }
 
 // Each pixel p composited over background(p) (row-major index) by

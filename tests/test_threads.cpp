@@ -212,6 +212,26 @@ TEST(Threads, BatchesThatLeaveThePoolRoomGiveOneBatchsListsAtTwoThreads) {
   }
 }
 
+TEST(Threads, AFragmentOffTheScreenIsNamedAndNothingInsertedAtTwoThreads) {
+  const Extent screen{64, 48};
+  std::vector<Fragment> frags = busy_stream(screen);
+  const std::vector<Variant> all = variants(screen, frags);
+  const std::size_t first = frags.size() * 3 / 4, second = frags.size() - 5;
+  frags[second].y = screen.y;
+  frags[first].x = screen.x + 7;
+  for (const Variant& v : all) {
+    SCOPED_TRACE(v.name);
+    const std::unique_ptr<FragmentBuffer> b = make_fragment_buffer(v.config, OffsetSource{});
+    try {
+      b->insert(frags, with_threads(2));
+      ADD_FAILURE() << "nothing thrown";
+    } catch (const std::out_of_range& e) {
+      EXPECT_NE(std::string(e.what()).find("fragment " + std::to_string(first) + " "), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(b->count_stored(), 0u);
+  }
+}
+
 TEST(NodePool, HandsOutSpareRangesFirstThenFreshBlocksAndNothingBeyondTheCapacity) {
   std::uint32_t fresh = 100;
   const std::vector<NodeRange> spare{{10, 20}, {40, 45}};

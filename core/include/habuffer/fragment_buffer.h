@@ -25,8 +25,12 @@ namespace habuffer {
 /// overlap on one container (insert_gate.h): the modes with plain stores
 /// then run alone, the others wait for them.
 enum class InsertMode {
-  /// Serial for one thread while no other call changes the container, else
-  /// Atomic (beside any other atomic call): correct when calls overlap.
+  /// HA-buffer: Serial for one thread while no other call changes the
+  /// container, else Atomic (beside any other atomic call): correct when
+  /// calls overlap. Other techniques on several threads: rows of pixels
+  /// dealt out to the threads, each inserting its own pixels' fragments in
+  /// stream order with plain stores, so the result is one thread's, bit for
+  /// bit (core/technique_parallel.h); the call runs alone.
   Auto,
   Serial,         ///< one thread, input order, plain loads and stores; the call runs alone
   Atomic,         ///< the GPU's model: threads split the stream and share every slot through atomics
@@ -35,9 +39,9 @@ enum class InsertMode {
 
 /// How FragmentBuffer::insert runs a batch.
 struct InsertOptions {
-  std::uint32_t threads = 1;  ///< 0: every hardware thread
+  std::uint32_t threads = 1;  ///< 0: the default count, resolve_threads (the HA-buffer: every hardware thread)
   InsertMode mode = InsertMode::Auto;  ///< how the threads share the buffer
-  std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band
+  std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band; other techniques' Auto: screen rows
 };
 
 /// One record of a pixel's list, front to back. `age` is the HA-buffer's

@@ -4,9 +4,11 @@
 /// (technique lists, seed 002) or kept sorted by a lock-free insertion with
 /// optional early termination and saturation depth (technique sorted-lists,
 /// seed 001's PreSortLF and PreSortLF*).
-/// A fragment arriving at a full pool is dropped and counted (dropped_pool);
-/// requested() tells how many nodes the last gather wanted, so a caller can
-/// size the next pool (adaptive sizing, lossless regathering).
+/// A fragment is dropped and counted (dropped_pool) only when every node of
+/// the pool holds a record, at any thread count (node_blocks.h);
+/// requested() tells how many nodes the gathers since the last clear wanted
+/// (stored + dropped_pool, before merging duplicates), so a caller can size
+/// the next pool (adaptive sizing, lossless regathering).
 #pragma once
 
 #include <cstdint>
