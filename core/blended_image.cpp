@@ -20,7 +20,8 @@ BlendedImage::BlendedImage(const TechniqueConfig& config)
 }
 
 Counters BlendedImage::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  detail::InsertPlan plan = detail::insert_plan(options, technique(), fragments.size());
+  detail::InsertPlan plan =
+      detail::insert_plan(options, technique(), detail::insert_work(technique(), fragments.size(), false, screen()));
   detail::check_on_screen(fragments, screen(), plan.threads);
   const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   // Threads own rows of pixels whatever the mode: blending has no atomic

@@ -20,7 +20,8 @@ ArraysBuffers FixedArrays::buffers() const {
 }
 
 Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  const detail::InsertPlan plan = detail::insert_plan(options, Technique::Arrays, fragments.size());
+  const detail::InsertPlan plan = detail::insert_plan(
+      options, Technique::Arrays, detail::insert_work(Technique::Arrays, fragments.size(), true, screen()));
   detail::check_on_screen(fragments, screen(), plan.threads);
   const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   if (fragments.size() > UINT32_MAX - std::uint64_t{*std::max_element(counts_.begin(), counts_.end())})
@@ -31,7 +32,7 @@ Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOp
   const auto make = [&](auto concurrent) { return ArraysKernel<decltype(concurrent)::value>(params_, buffers()); };
   const auto make_sorter = [&] { return ArraysKernel<false>(params_, buffers()); };
   const auto sort = [](auto& k, glm::uvec2 p) { return k.fa_sort_pixel(p); };
-  detail::for_insert_threads(fragments, screen(), plan, make, [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
+  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
     std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
     for (const Fragment& f : mine)
       if (owns(f)) ++tally[k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
@@ -39,7 +40,8 @@ Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOp
     // A thread that owns its rows sorts them at once: no other thread writes them.
     if (plan.owned_rows)
       merged[t].n = detail::sort_rows(screen(), make_sorter, sort, [&](auto row) { owns.rows(screen(), row); });
-  });
+  };
+  detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
   Counters c;
   for (const auto& part : parts) c += part.c;
   // Sort every pixel's layers, merging identical entries.

@@ -45,15 +45,16 @@ Counters KBuffer::insert_words(std::span<const Fragment> fragments, const detail
   if (config_.occupancy && !plan.owned_rows) {
     // Fill pass, then count pass: the limits cover every fragment of the
     // frame so far (earlier batches' bits stay), so they only ever tighten.
-    detail::for_insert_threads(fragments, screen(), plan, make, [](auto& k, std::span<const Fragment> mine, std::uint32_t, auto) {
-      for (const Fragment& f : mine) fill(k, f);
-    });
+    detail::for_insert_threads(fragments, screen(), plan, make,
+                               [](auto& k, std::span<const Fragment> mine, std::uint32_t, auto) {
+                                 for (const Fragment& f : mine) fill(k, f);
+                               });
     detail::for_every_pixel(
         screen(), plan.threads, [&] { return KBufferKernel<Word, false>(params_, buffers<Word>()); },
         [](auto& k, glm::uvec2 p, std::uint32_t) { k.kb_count_pixel(p); });
   }
   std::vector<detail::SliceCounters> parts(plan.threads);
-  detail::for_insert_threads(fragments, screen(), plan, make, [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
+  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
     if (config_.occupancy && plan.owned_rows) {
       // The three passes on the thread's own pixels, which no other thread
       // touches: no barrier between them.
@@ -68,14 +69,16 @@ Counters KBuffer::insert_words(std::span<const Fragment> fragments, const detail
     for (const Fragment& f : mine)
       if (owns(f)) ++tally[k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
     parts[t].c.add_tally(tally);
-  });
+  };
+  detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
   Counters total;
   for (const auto& part : parts) total += part.c;
   return total;
 }
 
 Counters KBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  const detail::InsertPlan plan = detail::insert_plan(options, Technique::KBuffer, fragments.size());
+  const detail::InsertPlan plan = detail::insert_plan(
+      options, Technique::KBuffer, detail::insert_work(Technique::KBuffer, fragments.size(), config_.occupancy, screen()));
   detail::check_on_screen(fragments, screen(), plan.threads);
   const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   return wide() ? insert_words<std::uint64_t>(fragments, plan) : insert_words<std::uint32_t>(fragments, plan);

@@ -158,7 +158,7 @@ Counters LinkedLists::gather(std::span<const Fragment> fragments, const detail::
   std::vector<detail::SliceCounters> parts(plan.threads);
   std::vector<detail::PartCount> merged(plan.threads + 1);  // the last: pixels sorted after the threads
   const auto make = [&](auto concurrent) { return ListsKernel<decltype(concurrent)::value>(params_, lists); };
-  detail::for_insert_threads(fragments, screen(), plan, make, [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
+  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
     k.use_nodes(pool);
     // A local tally: counters in memory could alias the buffers and force a store per fragment.
     std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
@@ -176,7 +176,8 @@ Counters LinkedLists::gather(std::span<const Fragment> fragments, const detail::
     blocks[t] = k.unused_nodes();
     if (sort_own_rows)
       merged[t].n = sort_rows(params_, lists, [&](auto row) { owns.rows(screen(), row); });
-  });
+  };
+  detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
   Counters c;
   for (const auto& part : parts) c += part.c;
   std::vector<NodeRange> left = pool.unused(blocks);
@@ -201,7 +202,8 @@ Counters LinkedLists::gather(std::span<const Fragment> fragments, const detail::
 }
 
 Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  const detail::InsertPlan plan = detail::insert_plan(options, technique(), fragments.size());
+  const detail::InsertPlan plan = detail::insert_plan(
+      options, technique(), detail::insert_work(technique(), fragments.size(), !sorted_on_insert(), screen()));
   detail::check_on_screen(fragments, screen(), plan.threads);
   const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
   if (requested_ + fragments.size() > UINT32_MAX)

@@ -112,10 +112,11 @@ inline constexpr std::uint32_t kMaxThreads = 1024;
 /// std::invalid_argument above kMaxThreads.
 std::uint32_t resolve_threads(std::uint32_t threads);
 /// Work items (fragments to insert, pixels to sort or composite) that pay
-/// for one more thread of a default count: below it, starting a thread and
-/// joining it costs more than the items it would take (docs/performance.md,
-/// "Issue 26: CPU threads for every technique", measures it).
-inline constexpr std::uint64_t kWorkPerThread = 16384;
+/// for one more thread of a default count: sorted lists and the k-buffer,
+/// which make no pass over every pixel, gained from two threads at 48-64 K
+/// fragments and lost below 32 K (docs/performance.md, "Issue 26: CPU
+/// threads for every technique").
+inline constexpr std::uint64_t kWorkPerThread = 32768;
 /// The threads `threads` means for a call over `work` items: an explicit
 /// count is honoured (throws std::invalid_argument above kMaxThreads); 0
 /// means every hardware thread, but no more than one per kWorkPerThread
