@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #include "bench_common.h"
+#include "habuffer/lossless_build.h"
 
 namespace habuffer::bench {
 namespace {
@@ -97,6 +98,48 @@ void BM_CountFloor(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
 }
 BENCHMARK(BM_CountFloor)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// Every other technique's insert() on the same stream into a kept container
+// (cleared between iterations, untimed), at 1 and 2 threads and the default
+// count (threads:0): two threads should beat one, and the default never lose
+// to it (issue 26). Lists and arrays include their sort.
+void BM_PeerInsert(benchmark::State& state, Technique technique) {
+  const auto& frags = stream(StreamKind::Coherent);
+  TechniqueConfig c;
+  c.technique = technique;
+  c.buffer.screen = kScreen;
+  c.buffer.table = kScreen;
+  c.pool_capacity = frags.size();
+  c.layers = 16;
+  const std::unique_ptr<FragmentBuffer> buffer = make_fragment_buffer(c, OffsetSource{});
+  InsertOptions options;
+  options.threads = static_cast<std::uint32_t>(state.range(0));
+  Counters counters;
+  for (auto _ : state) {
+    state.PauseTiming();
+    buffer->clear();
+    state.ResumeTiming();
+    counters = buffer->insert(frags, options);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * frags.size()));
+  state.counters["stored"] = static_cast<double>(counters.stored());
+  state.counters["failed"] = static_cast<double>(counters.failures());
+}
+
+const bool peers_registered = [] {
+  for (Technique t : all_techniques()) {
+    if (t == Technique::Ha) continue;  // BM_InsertCoherent above
+    benchmark::RegisterBenchmark(("BM_PeerInsert/" + to_string(t)).c_str(),
+                                 [t](benchmark::State& st) { BM_PeerInsert(st, t); })
+        ->ArgName("threads")
+        ->Arg(1)
+        ->Arg(2)
+        ->Arg(0)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  return true;
+}();
 
 // 10^8 fragments on the CPU path (4096x4096 screen, load 0.5): 1.6 GB of
 // stream and 1.6 GB of table. Run it explicitly with

@@ -20,32 +20,38 @@ BlendedImage::BlendedImage(const TechniqueConfig& config)
 }
 
 Counters BlendedImage::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  check_on_screen(fragments, screen());
+  detail::InsertPlan plan =
+      detail::insert_plan(options, technique(), detail::insert_work(technique(), fragments.size(), false, screen()));
+  detail::check_on_screen(fragments, screen(), plan.threads);
   const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
-  const std::uint32_t threads = detail::insert_threads(options, technique());
-  std::vector<detail::SliceCounters> parts(threads);
+  // Threads own rows of pixels whatever the mode: blending has no atomic
+  // version, and each pixel then blends its fragments in stream order, as one
+  // thread does, bit for bit.
+  plan.owned_rows = plan.threads > 1;
+  std::vector<detail::SliceCounters> parts(plan.threads);
   const std::uint32_t width = screen().x;
-  detail::for_row_bands(screen(), threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
-    BlendedKernel k(params_);
-    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
-    for (const Fragment& f : fragments) {
-      if (f.y < y0 || f.y >= y1) continue;
-      if (!k.ha_depth_valid(f.depth)) {
-        ++tally[HABUFFER_INVALID];
-        continue;
-      }
-      ++tally[HABUFFER_BLENDED];
-      const std::size_t p = f.x + std::size_t{f.y} * width;
-      const glm::vec4 c = k.ha_unpack_rgba(f.rgba);
-      if (weighted()) {
-        accum_[p] += k.wb_accum_term(f.depth, c);
-        revealage_[p] *= 1.0f - c.a;
-      } else {
-        accum_[p] = k.bl_over(accum_[p], c);
-      }
-    }
-    parts[part].c.add_tally(tally);
-  });
+  detail::for_insert_threads(
+      fragments, screen(), plan, [&](auto) { return BlendedKernel(params_); },
+      [&](BlendedKernel& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
+        std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
+        for (const Fragment& f : mine) {
+          if (!owns(f)) continue;
+          if (!k.ha_depth_valid(f.depth)) {
+            ++tally[HABUFFER_INVALID];
+            continue;
+          }
+          ++tally[HABUFFER_BLENDED];
+          const std::size_t p = f.x + std::size_t{f.y} * width;
+          const glm::vec4 c = k.ha_unpack_rgba(f.rgba);
+          if (weighted()) {
+            accum_[p] += k.wb_accum_term(f.depth, c);
+            revealage_[p] *= 1.0f - c.a;
+          } else {
+            accum_[p] = k.bl_over(accum_[p], c);
+          }
+        }
+        parts[t].c.add_tally(tally);
+      });
   Counters total;
   for (const auto& part : parts) total += part.c;
   return total;

@@ -1,5 +1,6 @@
 #include "habuffer/fragment_buffer.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -41,6 +42,12 @@ std::uint32_t resolve_threads(std::uint32_t threads) {
   if (threads > kMaxThreads)
     throw std::invalid_argument(std::to_string(threads) + " threads: at most " + std::to_string(kMaxThreads));
   return threads != 0 ? threads : default_concurrency();
+}
+
+std::uint32_t resolve_threads(std::uint32_t threads, std::uint64_t work) {
+  const std::uint32_t all = resolve_threads(threads);
+  if (threads != 0) return all;
+  return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(work / kWorkPerThread, 1, all));
 }
 
 }  // namespace habuffer

@@ -187,7 +187,7 @@ InsertOrder HaBuffer::insert_order(std::size_t fragments, const InsertOptions& o
 
 Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
   check_on_screen(fragments, impl_->config.screen);
-  const std::uint32_t threads = resolve_threads(options.threads);
+  const std::uint32_t threads = resolve_threads(options.threads, fragments.size());
   const InsertOrder order = insert_order(fragments.size(), options);
   switch (options.mode) {
     case InsertMode::Auto:

@@ -8,6 +8,15 @@
 #include "technique_parallel.h"
 
 namespace habuffer {
+namespace {
+
+// The occupancy map's fill step for one fragment (invalid depths fill nothing).
+template <class Kernel>
+void fill(Kernel& k, const Fragment& f) {
+  if (k.ha_depth_valid(f.depth)) k.kb_fill(glm::uvec2(f.x, f.y), k.ha_depth_code(f.depth));
+}
+
+}  // namespace
 
 KBuffer::KBuffer(const TechniqueConfig& config)
     : config_(validated_as(config, Technique::KBuffer)), params_(make_technique_params(config_)) {
@@ -31,29 +40,48 @@ KBufferBuffers<Word> KBuffer::buffers() const {
 }
 
 template <class Word>
-Counters KBuffer::insert_words(std::span<const Fragment> fragments, std::uint32_t threads) {
+Counters KBuffer::insert_words(std::span<const Fragment> fragments, const detail::InsertPlan& plan) {
   const auto make = [&](auto concurrent) { return KBufferKernel<Word, decltype(concurrent)::value>(params_, buffers<Word>()); };
-  if (config_.occupancy) {
+  if (config_.occupancy && !plan.owned_rows) {
     // Fill pass, then count pass: the limits cover every fragment of the
     // frame so far (earlier batches' bits stay), so they only ever tighten.
-    detail::for_slices(fragments, threads, make, [](auto& k, std::span<const Fragment> slice, std::uint32_t) {
-      for (const Fragment& f : slice)
-        if (k.ha_depth_valid(f.depth)) k.kb_fill(glm::uvec2(f.x, f.y), k.ha_depth_code(f.depth));
-    });
+    detail::for_insert_threads(fragments, screen(), plan, make,
+                               [](auto& k, std::span<const Fragment> mine, std::uint32_t, auto) {
+                                 for (const Fragment& f : mine) fill(k, f);
+                               });
     detail::for_every_pixel(
-        screen(), threads, [&] { return KBufferKernel<Word, false>(params_, buffers<Word>()); },
+        screen(), plan.threads, [&] { return KBufferKernel<Word, false>(params_, buffers<Word>()); },
         [](auto& k, glm::uvec2 p, std::uint32_t) { k.kb_count_pixel(p); });
   }
-  return detail::insert_slices(fragments, threads, make, [](auto& k, const Fragment& f) {
-    return k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
-  });
+  std::vector<detail::SliceCounters> parts(plan.threads);
+  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
+    if (config_.occupancy && plan.owned_rows) {
+      // The three passes on the thread's own pixels, which no other thread
+      // touches: no barrier between them.
+      for (const Fragment& f : mine)
+        if (owns(f)) fill(k, f);
+      owns.rows(screen(), [&](std::uint32_t y) {
+        for (std::uint32_t x = 0; x < screen().x; ++x) k.kb_count_pixel(glm::uvec2(x, y));
+      });
+    }
+    // A local tally: counters in memory could alias the buffers and force a store per fragment.
+    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
+    for (const Fragment& f : mine)
+      if (owns(f)) ++tally[k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
+    parts[t].c.add_tally(tally);
+  };
+  detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
+  Counters total;
+  for (const auto& part : parts) total += part.c;
+  return total;
 }
 
 Counters KBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  check_on_screen(fragments, screen());
+  const detail::InsertPlan plan = detail::insert_plan(
+      options, Technique::KBuffer, detail::insert_work(Technique::KBuffer, fragments.size(), config_.occupancy, screen()));
+  detail::check_on_screen(fragments, screen(), plan.threads);
   const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
-  const std::uint32_t threads = detail::insert_threads(options, Technique::KBuffer);
-  return wide() ? insert_words<std::uint64_t>(fragments, threads) : insert_words<std::uint32_t>(fragments, threads);
+  return wide() ? insert_words<std::uint64_t>(fragments, plan) : insert_words<std::uint32_t>(fragments, plan);
 }
 
 std::uint64_t KBuffer::clear() {

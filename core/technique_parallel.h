@@ -1,9 +1,12 @@
-// The parallel shapes the sorted techniques share on the CPU: a stream split
-// into contiguous slices, one per thread, all inserting into the same
-// buffers with atomics (the GPU's model); and a screen split into bands of
-// rows, one per thread, for the per-pixel sort and compositing.
+// The parallel shapes the techniques share on the CPU: a stream split into
+// contiguous slices, one per thread, all inserting into the same buffers
+// with atomics (the GPU's model); the screen's rows dealt out to threads,
+// each inserting its own pixels' fragments with plain stores and sorting
+// its own lists (the default, insert_plan); and a screen split into bands of
+// rows, one per thread, for a sort after slices and for compositing.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -26,16 +29,107 @@ struct alignas(64) PartCount {
   std::uint64_t n = 0;
 };
 
-// The threads and whether they share the buffers through atomics; throws for
-// a mode the sorted techniques do not have.
-inline std::uint32_t insert_threads(const InsertOptions& options, Technique technique) {
-  const std::uint32_t threads = resolve_threads(options.threads);
+// How a technique's insert call runs its threads (insert_plan).
+struct InsertPlan {
+  std::uint32_t threads = 1;
+  // Rows of pixels dealt out to the threads (true), or the stream split into
+  // slices that share the buffers through atomics (false).
+  bool owned_rows = false;
+  std::uint32_t band_rows = 16;  // rows per band when owned_rows
+};
+
+// Work items of an insert call, for the default thread count
+// (resolve_threads): one per fragment; one per pixel of a pass over every
+// pixel (`pixel_pass`: the lists' and arrays' sort, the k-buffer's
+// occupancy count); and for blending one per 16 fragments, since blending a
+// fragment costs about what reading it costs and every thread reads the
+// whole batch (two threads: 1.0x at 1 M fragments of hairball, 1.39x at 2 M).
+inline std::uint64_t insert_work(Technique technique, std::uint64_t fragments, bool pixel_pass, Extent screen) {
+  if (!stores_lists(technique)) return fragments / 16;
+  return fragments + (pixel_pass ? screen.area() : 0);
+}
+
+// The plan for `options` over a batch of `work` items (insert_work) of `technique`;
+// throws for a bad count or mode (owner-computes is the HA-buffer's). One
+// thread (Serial, or a count of 1): the stream in order, plain stores.
+// Atomic: contiguous slices of the stream sharing every buffer through
+// atomics, the GPU's model. Auto: the screen's rows dealt out in bands of
+// options.band_rows, round robin (as owner_computes.h deals the
+// HA-buffer's table), and each thread inserts the fragments of its own
+// pixels in stream order with plain loads and stores: no atomics, a cache
+// line written by two threads only at band edges, and every pixel sees its
+// fragments in the order one thread would, so the results are those of one
+// thread, bit for bit, for every count. Threads 0: resolve_threads(0,
+// work).
+inline InsertPlan insert_plan(const InsertOptions& options, Technique technique, std::uint64_t work) {
   if (options.mode == InsertMode::OwnerComputes)
     throw std::invalid_argument("owner-computes insertion is the HA-buffer's, not " + to_string(technique) + "'s");
-  if (options.mode == InsertMode::Serial && threads != 1)
-    throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
-  return threads;
+  InsertPlan plan;
+  plan.threads = resolve_threads(options.threads, work);
+  if (options.mode == InsertMode::Serial && plan.threads != 1)
+    throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(plan.threads));
+  if (options.band_rows == 0) throw std::invalid_argument("band_rows must be at least 1");
+  plan.owned_rows = plan.threads > 1 && options.mode != InsertMode::Atomic;
+  plan.band_rows = options.band_rows;
+  return plan;
 }
+
+// check_on_screen (fragment_buffer.h) on `threads` slices in parallel:
+// throws as it does, naming the first fragment off the screen. One thread
+// reading the whole batch took 4-5 % of the lists' time on hairball.
+inline void check_on_screen(std::span<const Fragment> frags, Extent screen, std::uint32_t threads) {
+  if (threads == 1) return habuffer::check_on_screen(frags, screen);
+  std::vector<PartCount> first_off(threads);
+  run_with_threads(threads, [&] {
+    fork_join(threads, [&](std::uint32_t t) {
+      const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
+      std::size_t i = begin;
+      while (i < end && frags[i].x < screen.x && frags[i].y < screen.y) ++i;
+      first_off[t].n = i < end ? i : frags.size();
+    });
+  });
+  for (const PartCount& f : first_off)
+    if (f.n < frags.size()) habuffer::check_on_screen(frags.first(f.n + 1), screen);  // throws, naming it
+}
+
+// Every fragment is thread 0's (one thread, or slices of the stream).
+struct AnyRow {
+  bool operator()(const Fragment&) const { return true; }
+  // f(y) for every row of `screen`.
+  template <class F>
+  void rows(Extent screen, F f) const {
+    for (std::uint32_t y = 0; y < screen.y; ++y) f(y);
+  }
+};
+
+// Thread `t`'s rows: bands of rows dealt out round robin (RowOwners).
+struct OwnRows {
+  const std::uint16_t* owner;  // per row: the thread that owns it
+  std::uint16_t t;
+  bool operator()(const Fragment& f) const { return owner[f.y] == t; }
+  // f(y) for each of thread t's rows of `screen`.
+  template <class F>
+  void rows(Extent screen, F f) const {
+    for (std::uint32_t y = 0; y < screen.y; ++y)
+      if (owner[y] == t) f(y);
+  }
+};
+
+// Which thread owns each row: bands of `band_rows` rows dealt out round
+// robin to `threads` threads, so a frame whose fragments crowd part of the
+// screen still gives every thread its share. A table, not a division per
+// fragment.
+class RowOwners {
+ public:
+  RowOwners(std::uint32_t rows, std::uint32_t threads, std::uint32_t band_rows) : owner_(rows) {
+    static_assert(kMaxThreads <= UINT16_MAX + 1u, "a thread index fits 16 bits");
+    for (std::uint32_t y = 0; y < rows; ++y) owner_[y] = static_cast<std::uint16_t>(y / band_rows % threads);
+  }
+  [[nodiscard]] OwnRows of(std::uint32_t t) const { return {owner_.data(), static_cast<std::uint16_t>(t)}; }
+
+ private:
+  std::vector<std::uint16_t> owner_;
+};
 
 // The stream split into contiguous slices, one per thread: each thread's
 // `make_kernel(concurrent)` (a bool_constant telling whether atomics are
@@ -63,6 +157,69 @@ void for_slices(std::span<const Fragment> frags, std::uint32_t threads, MakeKern
   });
 }
 
+// The threads of `plan` over `frags`: each runs run(kernel, fragments, t,
+// mine) and inserts each f of `fragments` with mine(f) (an AnyRow or
+// OwnRows, whose rows() are the pixels it alone touched), with the kernel
+// make_kernel(concurrent) gives (a bool_constant telling whether atomics
+// are needed: only for slices of the stream on several threads).
+template <class MakeKernel, class Run>
+void for_insert_threads(std::span<const Fragment> frags, Extent screen, const InsertPlan& plan, MakeKernel make_kernel,
+                        Run run) {
+  if (!plan.owned_rows) {
+    for_slices(frags, plan.threads, make_kernel,
+               [&](auto& k, std::span<const Fragment> slice, std::uint32_t t) { run(k, slice, t, AnyRow{}); });
+    return;
+  }
+  const RowOwners owners(screen.y, plan.threads, plan.band_rows);
+  run_with_threads(plan.threads, [&] {
+    fork_join(plan.threads, [&](std::uint32_t t) {
+      auto k = make_kernel(std::false_type{});
+      run(k, frags, t, owners.of(t));
+    });
+  });
+}
+
+// body(part, y_begin, y_end) over `parts` bands of rows, in parallel.
+template <class Body>
+void for_row_bands(Extent screen, std::uint32_t parts, Body body) {
+  run_with_threads(parts, [&] {
+    fork_join(parts, [&](std::uint32_t part) {
+      body(part, static_cast<std::uint32_t>(std::uint64_t{screen.y} * part / parts),
+           static_cast<std::uint32_t>(std::uint64_t{screen.y} * (part + 1) / parts));
+    });
+  });
+}
+
+// sort(kernel, pixel) over the pixels of the rows `rows` visits (rows(f)
+// calls f(y) for each), with one kernel make_kernel() gives; returns the sum
+// of what sort returns (the entries it merged). One kernel for all the rows
+// and everything inlined (flatten): a kernel the compiler cannot keep in
+// registers is reloaded after every store, which made the lists' sort
+// 10-15 % slower.
+template <class MakeKernel, class Sort, class Rows>
+[[gnu::flatten]] std::uint64_t sort_rows(Extent screen, MakeKernel make_kernel, Sort sort, Rows rows) {
+  auto k = make_kernel();
+  std::uint64_t merged = 0;
+  rows([&](std::uint32_t y) {
+    for (std::uint32_t x = 0; x < screen.x; ++x) merged += sort(k, glm::uvec2(x, y));
+  });
+  return merged;
+}
+
+// The same over bands of rows, in parallel (the sort after slices of the stream).
+template <class MakeKernel, class Sort>
+std::uint64_t sort_row_bands(Extent screen, std::uint32_t threads, MakeKernel make_kernel, Sort sort) {
+  std::vector<PartCount> merged(threads);
+  for_row_bands(screen, threads, [&](std::uint32_t part, std::uint32_t y0, std::uint32_t y1) {
+    merged[part].n = sort_rows(screen, make_kernel, sort, [&](auto f) {
+      for (std::uint32_t y = y0; y < y1; ++y) f(y);
+    });
+  });
+  std::uint64_t total = 0;
+  for (const PartCount& m : merged) total += m.n;
+  return total;
+}
+
 // Every fragment through insert(kernel, fragment), which returns the HA_*
 // outcome, on contiguous slices (atomics when `shared`, as for_slices);
 // returns the tallied outcomes.
@@ -81,17 +238,6 @@ Counters insert_slices(std::span<const Fragment> frags, std::uint32_t threads, M
   return total;
 }
 
-// body(part, y_begin, y_end) over `parts` bands of rows, in parallel.
-template <class Body>
-void for_row_bands(Extent screen, std::uint32_t parts, Body body) {
-  run_with_threads(parts, [&] {
-    fork_join(parts, [&](std::uint32_t part) {
-      body(part, static_cast<std::uint32_t>(std::uint64_t{screen.y} * part / parts),
-           static_cast<std::uint32_t>(std::uint64_t{screen.y} * (part + 1) / parts));
-    });
-  });
-}
-
 // visit(kernel, pixel) for every pixel, bands of rows in parallel, one
 // `make_kernel()` per band.
 template <class MakeKernel, class Visit>
@@ -103,25 +249,13 @@ void for_every_pixel(Extent screen, std::uint32_t threads, MakeKernel make_kerne
   });
 }
 
-// Every pixel's list sorted by `make_kernel()`'s sort(kernel, pixel), which
-// returns the entries it merged; returns them all.
-template <class MakeKernel, class Sort>
-std::uint64_t sort_every_pixel(Extent screen, std::uint32_t threads, MakeKernel make_kernel, Sort sort) {
-  std::vector<PartCount> merged(threads);
-  for_every_pixel(screen, threads, make_kernel,
-                  [&](auto& k, glm::uvec2 p, std::uint32_t part) { merged[part].n += sort(k, p); });
-  std::uint64_t total = 0;
-  for (const PartCount& m : merged) total += m.n;
-  return total;
-}
-
 // Each pixel p composited over background(p) (row-major index) by
 // `make_kernel()`'s composite(kernel, pixel, background), bands of rows in parallel.
 template <class MakeKernel, class Composite, class Background>
 std::vector<glm::vec4> composite_pixels(Extent screen, std::uint32_t threads, MakeKernel make_kernel,
                                         Composite composite, Background background) {
   std::vector<glm::vec4> image(screen.area());
-  for_every_pixel(screen, resolve_threads(threads), make_kernel, [&](auto& k, glm::uvec2 p, std::uint32_t) {
+  for_every_pixel(screen, resolve_threads(threads, screen.area()), make_kernel, [&](auto& k, glm::uvec2 p, std::uint32_t) {
     const std::size_t i = p.x + std::size_t{p.y} * screen.x;
     image[i] = composite(k, p, background(i));
   });

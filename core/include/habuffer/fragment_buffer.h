@@ -28,8 +28,12 @@ namespace habuffer {
 /// overlap on one container (insert_gate.h): the modes with plain stores
 /// then run alone, the others wait for them.
 enum class InsertMode {
-  /// Serial for one thread while no other call changes the container, else
-  /// Atomic (beside any other atomic call): correct when calls overlap.
+  /// HA-buffer: Serial for one thread while no other call changes the
+  /// container, else Atomic (beside any other atomic call): correct when
+  /// calls overlap. Other techniques on several threads: rows of pixels
+  /// dealt out to the threads, each inserting its own pixels' fragments in
+  /// stream order with plain stores, so the result is one thread's, bit for
+  /// bit (core/technique_parallel.h); the call runs alone.
   Auto,
   Serial,         ///< one thread, plain loads and stores (in the InsertOrder); the call runs alone
   Atomic,         ///< the GPU's model: threads split the stream and share every slot through atomics
@@ -73,13 +77,13 @@ inline constexpr std::uint64_t kInterleaveMinTableBytes = std::uint64_t{8} << 20
 
 /// How FragmentBuffer::insert runs a batch.
 struct InsertOptions {
-  std::uint32_t threads = 1;  ///< 0: every hardware thread
+  std::uint32_t threads = 1;  ///< 0: the default count for the batch (resolve_threads(threads, work))
   InsertMode mode = InsertMode::Auto;  ///< how the threads share the buffer
   InsertOrder order = InsertOrder::Auto;  ///< the HA-buffer's order (others insert in arrival order)
   /// Pixel order: interleave pixels on each thread (true), or not (false);
   /// nullopt: by the table's size (kInterleaveMinTableBytes). The same table either way.
   std::optional<bool> interleave;
-  std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band
+  std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band; other techniques' Auto: screen rows
 };
 
 /// One record of a pixel's list, front to back. `age` is the HA-buffer's
@@ -153,5 +157,16 @@ inline constexpr std::uint32_t kMaxThreads = 1024;
 /// The threads `threads` means (0: every hardware thread). Throws
 /// std::invalid_argument above kMaxThreads.
 std::uint32_t resolve_threads(std::uint32_t threads);
+/// Work items (fragments to insert, pixels to sort or composite) that pay
+/// for one more thread of a default count: sorted lists and the k-buffer,
+/// which make no pass over every pixel, gained from two threads at 48-64 K
+/// fragments and lost below 32 K (docs/performance.md, "Issue 26: CPU
+/// threads for every technique").
+inline constexpr std::uint64_t kWorkPerThread = 32768;
+/// The threads `threads` means for a call over `work` items: an explicit
+/// count is honoured (throws std::invalid_argument above kMaxThreads); 0
+/// means every hardware thread, but no more than one per kWorkPerThread
+/// items and at least one, so the default never splits a small batch.
+std::uint32_t resolve_threads(std::uint32_t threads, std::uint64_t work);
 
 }  // namespace habuffer

@@ -14,6 +14,9 @@
 #include "habuffer/technique_params.h"
 
 namespace habuffer {
+namespace detail {
+struct InsertPlan;  // how an insert call runs its threads (core/technique_parallel.h)
+}  // namespace detail
 
 /// The k-buffer's CPU container (see above).
 class KBuffer final : public FragmentBuffer {
@@ -60,7 +63,7 @@ class KBuffer final : public FragmentBuffer {
 
  private:
   template <class Word>
-  Counters insert_words(std::span<const Fragment> fragments, std::uint32_t threads);
+  Counters insert_words(std::span<const Fragment> fragments, const detail::InsertPlan& plan);
   template <class Word>
   [[nodiscard]] KBufferBuffers<Word> buffers() const;
   [[nodiscard]] bool wide() const { return config_.buffer.layout == Layout::L64; }

@@ -1,12 +1,14 @@
 /// @file
 /// Per-pixel linked lists on the CPU: head pointers, a node pool of fixed
-/// capacity with one atomic counter; either sorted after each insert batch
+/// capacity handed to threads in blocks (node_blocks.h); either sorted after each insert batch
 /// (technique lists, seed 002) or kept sorted by a lock-free insertion with
 /// optional early termination and saturation depth (technique sorted-lists,
 /// seed 001's PreSortLF and PreSortLF*).
-/// A fragment arriving at a full pool is dropped and counted (dropped_pool);
-/// requested() tells how many nodes the last gather wanted, so a caller can
-/// size the next pool (adaptive sizing, lossless regathering).
+/// A fragment is dropped and counted (dropped_pool) only when every node of
+/// the pool holds a record, at any thread count (node_blocks.h);
+/// requested() tells how many nodes the gathers since the last clear wanted
+/// (stored + dropped_pool, before merging duplicates), so a caller can size
+/// the next pool (adaptive sizing, lossless regathering).
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,9 @@
 #include "habuffer/technique_params.h"
 
 namespace habuffer {
+namespace detail {
+struct InsertPlan;  // how an insert call runs its threads (core/technique_parallel.h)
+}  // namespace detail
 
 /// Per-pixel linked lists, sorted after the gather or kept sorted (see above).
 class LinkedLists final : public FragmentBuffer {
@@ -68,6 +73,13 @@ class LinkedLists final : public FragmentBuffer {
 
  private:
   [[nodiscard]] ListsBuffers buffers() const;
+  /// Every fragment through insert(kernel, fragment), which returns the
+  /// HABUFFER_* outcome, on the threads of `plan` with nodes from blocks
+  /// (node_blocks.h); lists (not sorted-lists) then sorted, identical
+  /// entries merged. Adds the nodes asked for to requested(); returns the
+  /// tallied outcomes.
+  template <class Insert>
+  Counters gather(std::span<const Fragment> fragments, const detail::InsertPlan& plan, Insert insert);
 
   TechniqueConfig config_;
   TechniqueParams params_;
@@ -75,7 +87,8 @@ class LinkedLists final : public FragmentBuffer {
   std::vector<glm::uvec2> entries_;
   std::vector<std::uint32_t> next_;
   std::vector<std::uint32_t> saturation_;  ///< sorted lists with saturation: a code per pixel
-  std::uint32_t counter_ = 0;
+  std::uint32_t counter_ = 0;  ///< the first node never handed out since the last clear
+  std::vector<NodeRange> spare_;  ///< nodes earlier calls reserved and left unused: handed out first
   std::uint64_t requested_ = 0;
 };
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "habuffer/glsl_env.h"
+#include "habuffer/node_blocks.h"
 #include "habuffer/technique_params.h"
 
 namespace habuffer {
@@ -18,13 +19,13 @@ struct ListsBuffers {
   std::uint32_t* heads;    ///< one link per pixel
   glm::uvec2* entries;     ///< (code, data) per node
   std::uint32_t* next;     ///< one link per node
-  std::uint32_t* counter;  ///< nodes asked for
   std::uint32_t* saturation;  ///< sorted lists with saturation: a code per pixel (else unused)
 };
 
-/// Concurrent: the node counter, head pointers and (sorted lists) links are
-/// updated atomically (several inserters at once); the sort and compositing
-/// need no atomics (one pixel per thread).
+/// Concurrent: head pointers and (sorted lists) links are updated atomically
+/// (several inserters at once; blocks of nodes are reserved atomically
+/// always, node_blocks.h); the sort and compositing need no atomics (one
+/// pixel per thread).
 template <bool Concurrent>
 class ListsKernel {
  public:
@@ -59,11 +60,22 @@ class ListsKernel {
   float ha_cull_tau;  ///< sorted lists: early termination (0: off)
   uint ha_saturation;  ///< 1: saturation depth on, 0: off
 
-  /// Increments the node counter; returns its old value (it keeps counting past the capacity).
+  /// Inserts take nodes from blocks of `pool` (node_blocks.h).
+  void use_nodes(NodePool& pool) { pool_ = &pool; }
+  /// The node this kernel's next insertion may link (its block's first,
+  /// reserving a block when the last is used up), or the capacity when the
+  /// pool has no node left. It stays the next one until the host commits it
+  /// (ll_commit_node, when an insertion returned HABUFFER_STORED), so an
+  /// insertion that links nothing takes nothing; the host counts the nodes
+  /// asked for from the outcomes (stored and dropped_pool).
   uint ll_allocate_node() {
-    if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(*b_.counter).fetch_add(1, std::memory_order_relaxed);
-    return (*b_.counter)++;
+    if (block_.empty()) block_ = pool_->take();
+    return block_.empty() ? ha_pool_capacity : block_.begin;
   }
+  /// The node ll_allocate_node gave was linked: the next insertion takes the next one.
+  void ll_commit_node() { ++block_.begin; }
+  /// The nodes of this kernel's block not handed out yet.
+  [[nodiscard]] NodeRange unused_nodes() const { return block_; }
   /// Replaces the pixel's head by `link`; returns the old head (atomic when Concurrent).
   uint ll_exchange_head(uint pixel, uint link) {
     if constexpr (Concurrent) return std::atomic_ref<std::uint32_t>(b_.heads[pixel]).exchange(link, std::memory_order_relaxed);
@@ -118,6 +130,8 @@ class ListsKernel {
 
  private:
   Buffers b_;
+  NodePool* pool_ = nullptr;  ///< where blocks come from (use_nodes)
+  NodeRange block_;           ///< the nodes of the current block not handed out yet
 };
 
 }  // namespace habuffer

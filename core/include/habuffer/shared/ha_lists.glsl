@@ -9,8 +9,10 @@
 // empty; node n is stored at index n - 1.
 // Host environment provides, besides ha_record.glsl, ha_blend.glsl and
 // ha_entries.glsl: uint ha_pool_capacity (nodes), uint ll_allocate_node()
-// (the counter's old value, atomically incremented: it keeps counting past
-// the capacity, so the host learns how many nodes a frame wanted),
+// (a free node, or ha_pool_capacity or more when the pool has none left: on
+// the GPU the counter's old value, atomically incremented, which keeps
+// counting past the capacity, so the host learns how many nodes a frame
+// wanted; on the CPU the next node of the thread's block, node_blocks.h),
 // uint ll_exchange_head(uint pixel, uint link) (atomic; the old head),
 // uint ll_load_head(uint pixel), void ll_store_head(uint pixel, uint link),
 // uvec2 ll_load_entry(uint node), void ll_store_entry(uint node, uvec2 e),
