@@ -53,9 +53,18 @@ Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOp
 std::uint64_t FixedArrays::clear() {
   const auto alone = gate_.alone();
   const std::uint64_t held = count_stored();
+  empty();
+  return held;
+}
+
+void FixedArrays::reset() {
+  const auto alone = gate_.alone();
+  empty();
+}
+
+void FixedArrays::empty() {
   std::fill(counts_.begin(), counts_.end(), 0u);
   max_arrived_ = 0;
-  return held;
 }
 
 std::uint64_t FixedArrays::count_stored() const {

@@ -87,11 +87,20 @@ Counters KBuffer::insert(std::span<const Fragment> fragments, const InsertOption
 std::uint64_t KBuffer::clear() {
   const auto alone = gate_.alone();
   const std::uint64_t held = count_stored();
+  empty();
+  return held;
+}
+
+void KBuffer::reset() {
+  const auto alone = gate_.alone();
+  empty();
+}
+
+void KBuffer::empty() {
   std::fill(slots64_.begin(), slots64_.end(), 0);
   std::fill(slots32_.begin(), slots32_.end(), 0u);
   std::fill(occupancy_.begin(), occupancy_.end(), 0u);
   std::fill(limits_.begin(), limits_.end(), 0u);
-  return held;
 }
 
 std::uint64_t KBuffer::record(std::uint64_t slot) const { return wide() ? slots64_[slot] : slots32_[slot]; }

@@ -228,12 +228,21 @@ ListsBuffers LinkedLists::buffers() const {
 std::uint64_t LinkedLists::clear() {
   const auto alone = gate_.alone();
   const std::uint64_t held = count_stored();
+  empty();
+  return held;
+}
+
+void LinkedLists::reset() {
+  const auto alone = gate_.alone();
+  empty();
+}
+
+void LinkedLists::empty() {
   std::fill(heads_.begin(), heads_.end(), 0u);
   std::fill(saturation_.begin(), saturation_.end(), 0u);
   counter_ = 0;
   spare_.clear();
   requested_ = 0;
-  return held;
 }
 
 std::uint64_t LinkedLists::count_stored() const {

@@ -40,6 +40,8 @@ class FixedArrays final : public FragmentBuffer {
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// FragmentBuffer interface: zeroes the counters and largest_overflow().
   std::uint64_t clear() override;
+  /// The same without counting (a kept container's next frame).
+  void reset() override;
   /// The sum of the pixels' sorted lengths.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// K per pixel.
@@ -64,6 +66,8 @@ class FixedArrays final : public FragmentBuffer {
                     std::uint32_t largest_overflow);
 
  private:
+  // Empties every pixel (the caller holds the container alone).
+  void empty();
   [[nodiscard]] ArraysBuffers buffers() const;
 
   TechniqueConfig config_;

@@ -39,6 +39,8 @@ class KBuffer final : public FragmentBuffer {
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// FragmentBuffer interface: zeroes the layers, the occupancy map and the limits.
   std::uint64_t clear() override;
+  /// The same without counting (a kept container's next frame).
+  void reset() override;
   /// The non-empty layer slots.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// K per pixel.
@@ -62,6 +64,8 @@ class KBuffer final : public FragmentBuffer {
   [[nodiscard]] std::uint32_t occupancy_limit(std::uint32_t x, std::uint32_t y) const;
 
  private:
+  // Empties every slot (the caller holds the container alone).
+  void empty();
   template <class Word>
   Counters insert_words(std::span<const Fragment> fragments, const detail::InsertPlan& plan);
   template <class Word>

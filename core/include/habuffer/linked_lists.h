@@ -49,6 +49,8 @@ class LinkedLists final : public FragmentBuffer {
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// FragmentBuffer interface: empties every list and resets the node counter and requested().
   std::uint64_t clear() override;
+  /// The same without counting the lists (a kept container's next frame).
+  void reset() override;
   /// The nodes linked into the lists.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// The pool's nodes.
@@ -72,6 +74,8 @@ class LinkedLists final : public FragmentBuffer {
                     std::span<const std::uint32_t> next, std::uint64_t requested);
 
  private:
+  // Empties every list (the caller holds the container alone).
+  void empty();
   [[nodiscard]] ListsBuffers buffers() const;
   /// Every fragment through insert(kernel, fragment), which returns the
   /// HABUFFER_* outcome, on the threads of `plan` with nodes from blocks
