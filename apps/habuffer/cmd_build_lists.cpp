@@ -20,7 +20,7 @@ constexpr const char* kHelp =
     "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
     "         [--insert-mode auto|serial|atomic|owner] [--insert-order auto|arrival|pixel] [--path cpu|gl] [--technique ha|lists|arrays]\n"
     "         [--layers K] [--pool N|auto] [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
-    "  --threads 0 uses every hardware thread; every insert mode builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
+    "  --threads 0 uses every hardware thread, at most one per 32768 fragments; every insert mode and order builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
     "  --technique lists|arrays: the same lists CSV from per-pixel linked lists (--pool: nodes, auto: one per\n"
     "  fragment) or fixed arrays (--layers K, default 16); identical records are merged as duplicates, so an\n"
     "  exact technique's lists equal the HA-buffer's byte for byte. --table, --block, --iter-limit, --early-cull,\n"
