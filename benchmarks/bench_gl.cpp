@@ -209,9 +209,11 @@ std::unique_ptr<gl::GlTechnique> placeholder_technique(Technique t, float cull, 
 // Sizes for `fragments` as render's automatic sizes do: the HA-buffer's
 // table at load 0.55, the lists' pool at 0.8.
 void size_for(gl::GlTechnique& t, std::uint64_t fragments) {
-  if (auto* ha = dynamic_cast<gl::GlHaTable*>(&t)) ha->resize(table_for_load(t.screen(), fragments, 0.55));
-  if (auto* lists = dynamic_cast<gl::GlLinkedLists*>(&t))
-    lists->resize_pool(std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / 0.8))));
+  TechniqueConfig wanted;
+  wanted.technique = t.technique();
+  if (uses_table(wanted.technique)) wanted.buffer.table = table_for_load(t.screen(), fragments, 0.55);
+  wanted.pool_capacity = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / 0.8)));
+  t.fit_automatic_size(wanted);
 }
 
 // side, bookkeeping (0: none in the gather; a driver that asks for the call
@@ -296,7 +298,7 @@ const bool registered = [] {
                               Gathered{"lists", Technique::Lists, 0.0f}})
       gather_args(benchmark::RegisterBenchmark(("BM_GlGather/" + std::string(scene) + "/" + g.label).c_str(),
                                                [=](benchmark::State& st) { run_gather(st, scene, g.technique, g.cull); }),
-                  g.technique == Technique::Ha && g.cull == 0.0f);
+                  uses_table(g.technique) && g.cull == 0.0f);
   return true;
 }();
 

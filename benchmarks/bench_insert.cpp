@@ -155,7 +155,7 @@ const std::vector<Fragment>& scene_stream(const std::string& name) {
 // one thread).
 const bool peers_registered = [] {
   for (Technique t : all_techniques()) {
-    if (t == Technique::Ha) continue;  // BM_InsertCoherent above
+    if (uses_table(t)) continue;  // the HA-buffer: BM_InsertCoherent above
     benchmark::RegisterBenchmark(
         ("BM_PeerInsert/" + to_string(t)).c_str(),
         [t](benchmark::State& st) {

@@ -16,10 +16,11 @@ get_target_property(_habuffer_type habuffer_core TYPE)
 install(TARGETS ${_habuffer_targets} EXPORT habufferTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY offsets/include/ core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The technique folders keep their sources beside their headers: not installed.
+install(DIRECTORY offsets/include/ core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.cpp" EXCLUDE)
 install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})  # MIT; named by the CMake and pkg-config packages
 if(HABUFFER_WITH_GL)
-  install(DIRECTORY gl/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY gl/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.cpp" EXCLUDE)
   install(DIRECTORY ${HABUFFER_GLSL_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/habuffer/glsl PATTERN stamp EXCLUDE)
 endif()
 

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "habuffer/build_report.h"
 #include "habuffer/parallel.h"
 
 namespace habuffer {
@@ -49,5 +50,12 @@ std::uint32_t resolve_threads(std::uint32_t threads, std::uint64_t work) {
   if (threads != 0) return all;
   return static_cast<std::uint32_t>(std::clamp<std::uint64_t>(work / kWorkPerThread, 1, all));
 }
+
+void FragmentBuffer::measure(BuildReport& r) const {
+  r.stored = count_stored();
+  r.load_factor = r.capacity > 0 ? static_cast<double>(r.stored) / static_cast<double>(r.capacity) : 0.0;
+}
+
+std::string FragmentBuffer::capacity_text() const { return std::to_string(capacity()) + " records"; }
 
 }  // namespace habuffer

@@ -9,6 +9,7 @@
 #include <variant>
 
 
+#include "habuffer/build_report.h"
 #include "habuffer/hash_kernel.h"
 #include "habuffer/slot_storage.h"
 #include "habuffer/owner_computes.h"
@@ -171,6 +172,25 @@ const RecordLayout& HaBuffer::record_layout() const { return impl_->layout; }
 const OffsetSequence& HaBuffer::offsets() const { return impl_->offsets; }
 Extent HaBuffer::screen() const { return impl_->config.screen; }
 Extent HaBuffer::table() const { return impl_->config.table; }
+
+std::string HaBuffer::capacity_text() const { return "table " + table().str(); }
+
+void HaBuffer::measure(BuildReport& r) const {
+  std::vector<std::uint64_t> hist = age_histogram();
+  std::uint64_t weighted = 0;
+  r.stored = 0;
+  for (std::uint32_t a = 1; a < hist.size(); ++a) {
+    r.stored += hist[a];
+    weighted += std::uint64_t{a} * hist[a];
+    if (hist[a] != 0) r.max_age = a;
+  }
+  hist.resize(r.max_age + 1);
+  r.age_histogram = std::move(hist);
+  r.load_factor = static_cast<double>(r.stored) / static_cast<double>(slot_count());
+  r.mean_age = r.stored == 0 ? 0.0 : static_cast<double>(weighted) / static_cast<double>(r.stored);
+  r.max_age_table_max = max_age().max();
+  r.table = table();
+}
 const MaxAgeTable& HaBuffer::max_age() const { return impl_->max_age; }
 
 InsertOrder HaBuffer::insert_order(std::size_t fragments, const InsertOptions& options) const {

@@ -4,10 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "habuffer/fixed_arrays.h"
-#include "habuffer/linked_lists.h"
-#include "habuffer/kbuffer.h"
-#include "habuffer/blended_image.h"
+#include "habuffer/ha_buffer.h"
+#include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_frames.h"
 
 namespace habuffer {
@@ -25,24 +23,11 @@ BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::
 }
 
 std::unique_ptr<FragmentBuffer> make_fragment_buffer(const TechniqueConfig& config, const OffsetSource& offsets) {
-  switch (config.technique) {
-    case Technique::Ha: {
-      config.validate();  // before the offsets are made for its table
-      const Extent table = config.buffer.table_or_screen();
-      return std::make_unique<HaBuffer>(config.buffer, offsets.make(table, config.buffer.record_layout().max_age()));
-    }
-    case Technique::Lists:
-    case Technique::SortedLists: return std::make_unique<LinkedLists>(config);
-    case Technique::Arrays: return std::make_unique<FixedArrays>(config);
-    case Technique::KBuffer: return std::make_unique<KBuffer>(config);
-    case Technique::Wboit:
-    case Technique::Blend: return std::make_unique<BlendedImage>(config);
-  }
-  throw std::invalid_argument("unknown technique");
+  return descriptor(config.technique).make(config, offsets);
 }
 
 std::optional<PixelDepth> pixel_beyond_every_table(const TechniqueConfig& c, std::span<const Fragment> fragments) {
-  if (c.technique != Technique::Ha || c.buffer.early_cull_tau > 0.0f) return std::nullopt;
+  if (!uses_table(c.technique) || c.buffer.early_cull_tau > 0.0f) return std::nullopt;
   const RecordLayout layout = c.buffer.record_layout();
   return pixel_deeper_than(fragments, c.buffer.screen, layout, layout.max_age());
 }

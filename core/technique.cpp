@@ -3,40 +3,31 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_params.h"
 
 namespace habuffer {
 
-std::string to_string(Technique t) {
-  switch (t) {
-    case Technique::Ha: return "ha";
-    case Technique::Lists: return "lists";
-    case Technique::Arrays: return "arrays";
-    case Technique::SortedLists: return "sorted-lists";
-    case Technique::KBuffer: return "kbuffer";
-    case Technique::Wboit: return "wboit";
-    case Technique::Blend: return "blend";
-  }
-  return "?";
-}
+std::string to_string(Technique t) { return std::string(descriptor(t).name); }
 
 std::optional<Technique> parse_technique(std::string_view name) {
-  for (Technique t : all_techniques())
-    if (name == to_string(t)) return t;
+  if (const TechniqueDescriptor* d = find_technique(name)) return d->technique;
   return std::nullopt;
 }
 
 std::vector<Technique> all_techniques() {
-  return {Technique::Ha,      Technique::Lists, Technique::Arrays, Technique::SortedLists,
-          Technique::KBuffer, Technique::Wboit, Technique::Blend};
+  std::vector<Technique> all;
+  for (const TechniqueDescriptor* d : technique_registry()) all.push_back(d->technique);
+  return all;
 }
 
-bool stores_lists(Technique t) { return t != Technique::Wboit && t != Technique::Blend; }
-bool exact_technique(Technique t) { return stores_lists(t); }
-bool has_early_cull(Technique t) { return t == Technique::Ha || t == Technique::SortedLists; }
-bool uses_pool(Technique t) { return t == Technique::Lists || t == Technique::SortedLists; }
-bool uses_layers(Technique t) { return t == Technique::Arrays || t == Technique::KBuffer; }
-Technique lists_flavour(Technique t) { return t == Technique::SortedLists ? t : Technique::Lists; }
+bool stores_lists(Technique t) { return descriptor(t).stores_lists; }
+bool exact_technique(Technique t) { return descriptor(t).exact; }
+bool has_early_cull(Technique t) { return descriptor(t).early_cull; }
+bool uses_pool(Technique t) { return descriptor(t).capacity == CapacityKind::PoolNodes; }
+bool uses_layers(Technique t) { return descriptor(t).capacity == CapacityKind::PixelLayers; }
+bool uses_table(Technique t) { return descriptor(t).capacity == CapacityKind::TableSlots; }
+Technique lists_flavour(Technique t) { return uses_pool(t) ? t : Technique::Lists; }
 
 std::string technique_names() {
   std::string s;
@@ -45,35 +36,28 @@ std::string technique_names() {
 }
 
 void TechniqueConfig::validate() const {
+  const TechniqueDescriptor& d = descriptor(technique);
   buffer.validate();
-  if (!has_early_cull(technique) && buffer.early_cull_tau > 0.0f)
-    throw std::invalid_argument("early cull is the HA-buffer's and sorted lists': technique " + to_string(technique) +
-                                " has none");
-  if (occupancy && technique != Technique::KBuffer)
-    throw std::invalid_argument("occupancy maps are the k-buffer's, not " + to_string(technique) + "'s");
+  if (!d.early_cull && buffer.early_cull_tau > 0.0f)
+    throw std::invalid_argument("early cull is " + techniques_taking("early-cull") + "'s: technique " +
+                                to_string(technique) + " has none");
+  if (occupancy && !d.takes("occupancy"))
+    throw std::invalid_argument("occupancy maps are " + techniques_taking("occupancy") + "'s, not " +
+                                to_string(technique) + "'s");
   if (occupancy_words == 0 || occupancy_words > HABUFFER_MAX_OCCUPANCY_WORDS)
     throw std::invalid_argument("occupancy words " + std::to_string(occupancy_words) + " outside [1, " +
                                 std::to_string(HABUFFER_MAX_OCCUPANCY_WORDS) + "]");
   if (!(depth_range.near_t >= 0.0f && depth_range.near_t < depth_range.far_t && depth_range.far_t <= 1.0f))
     throw std::invalid_argument("depth range [" + std::to_string(depth_range.near_t) + ", " +
                                 std::to_string(depth_range.far_t) + "] is not an interval within [0, 1]");
-  const std::uint64_t pixels = buffer.screen.area();
-  if (uses_pool(technique)) {
-    // Links are 32-bit node numbers with 0 for "none".
-    if (pool_capacity == 0 || pool_capacity >= UINT32_MAX)
-      throw std::invalid_argument("node pool of " + std::to_string(pool_capacity) +
-                                  " nodes: must be in [1, 2^32 - 2] (0, automatic, is for build_technique and the GL "
-                                  "containers, which size it)");
-  }
-  if (occupancy && std::uint64_t{occupancy_words} * pixels > UINT32_MAX)
-    throw std::invalid_argument(std::to_string(occupancy_words) + " occupancy words of screen " + buffer.screen.str() +
-                                " exceed 2^32 - 1 words");
-  if (uses_layers(technique)) {
-    if (layers == 0) throw std::invalid_argument(to_string(technique) + " needs at least 1 layer per pixel");
-    if (std::uint64_t{layers} * pixels > UINT32_MAX)
-      throw std::invalid_argument(std::to_string(layers) + " layers of screen " + buffer.screen.str() +
-                                  " exceed 2^32 - 1 slots");
-  }
+  d.validate(*this);
+}
+
+void validate_layers(const TechniqueConfig& c) {
+  if (c.layers == 0) throw std::invalid_argument(to_string(c.technique) + " needs at least 1 layer per pixel");
+  if (std::uint64_t{c.layers} * c.buffer.screen.area() > UINT32_MAX)
+    throw std::invalid_argument(std::to_string(c.layers) + " layers of screen " + c.buffer.screen.str() +
+                                " exceed 2^32 - 1 slots");
 }
 
 std::string TechniqueConfig::limit() const {
@@ -87,18 +71,29 @@ std::string TechniqueConfig::limit() const {
 
 TechniqueConfig TechniqueConfig::grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
                                        std::uint32_t most_arrived) const {
+  return descriptor(technique).grown(*this, policy, GrowthNeed{nodes_requested, most_arrived});
+}
+
+TechniqueConfig TechniqueConfig::relevant() const {
+  const TechniqueDescriptor& d = descriptor(technique);
+  const TechniqueConfig defaults;
   TechniqueConfig c = *this;
-  switch (technique) {
-    case Technique::Ha: c.buffer.table = policy.grown(buffer.table_or_screen()); break;
-    case Technique::Lists:
-    case Technique::SortedLists: c.pool_capacity = policy.grown(pool_capacity, nodes_requested); break;
-    case Technique::Arrays: c.layers = std::max(most_arrived, layers + 1); break;
-    // The k-buffer does not know how deep its pixels were: it doubles K.
-    case Technique::KBuffer: c.layers = layers * 2; break;
-    case Technique::Wboit:
-    case Technique::Blend: break;  // they drop nothing
-  }
+  if (d.capacity != CapacityKind::PoolNodes) c.pool_capacity = defaults.pool_capacity;
+  if (d.capacity != CapacityKind::PixelLayers) c.layers = defaults.layers;
+  if (!d.takes("occupancy")) c.occupancy = defaults.occupancy;
+  if (!c.occupancy) c.occupancy_words = defaults.occupancy_words;
+  if (!d.reads_depth_range) c.depth_range = defaults.depth_range;
   return c;
+}
+
+std::uint64_t TechniqueConfig::configured_capacity() const {
+  switch (descriptor(technique).capacity) {
+    case CapacityKind::TableSlots: return buffer.table_or_screen().area();
+    case CapacityKind::PoolNodes: return pool_capacity;
+    case CapacityKind::PixelLayers: return std::uint64_t{layers} * buffer.screen.area();
+    case CapacityKind::None: break;
+  }
+  return 0;
 }
 
 TechniqueConfig ha_technique_config(const BufferConfig& buffer) {

@@ -3,25 +3,20 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "habuffer/fixed_arrays.h"
-#include "habuffer/linked_lists.h"
 
 namespace habuffer {
 namespace {
 
 // The lossless attempt after `buffer` dropped fragments.
 TechniqueConfig next_attempt(const TechniqueConfig& c, const FragmentBuffer& buffer, const ResizePolicy& policy) {
-  const auto* lists = dynamic_cast<const LinkedLists*>(&buffer);
-  const auto* arrays = dynamic_cast<const FixedArrays*>(&buffer);
-  return c.grown(policy, lists != nullptr ? lists->requested() : 0, arrays != nullptr ? arrays->largest_overflow() : 0);
+  const GrowthNeed need = buffer.growth_need();
+  return c.grown(policy, need.nodes_requested, need.most_arrived);
 }
 
 // Whether `buffer` is the container make_fragment_buffer would make for `c`
-// (the HA-buffer says only its BufferConfig; the offsets come from one source).
+// (the offsets come from one source, so the configuration says it all).
 bool made_for(const FragmentBuffer& buffer, const TechniqueConfig& c) {
-  const TechniqueConfig held = buffer.technique_config();
-  if (held.technique != c.technique) return false;
-  return c.technique == Technique::Ha ? held.buffer == c.buffer : held == c;
+  return buffer.technique_config().relevant() == c.relevant();
 }
 
 }  // namespace
@@ -57,7 +52,7 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
     std::unique_ptr<FragmentBuffer> buffer = container_for(c);
     last_.reset();  // a failed attempt's container is not kept: the next is larger
     const Counters counters = buffer->insert(fragments, options_);
-    b->attempts.push_back({c.technique == Technique::Ha ? c.buffer.table : Extent{}, counters, buffer->capacity()});
+    b->attempts.push_back({uses_table(c.technique) ? c.buffer.table : Extent{}, counters, buffer->capacity()});
     b->counters = counters;
     b->buffer = std::move(buffer);
     if (counters.failures() == 0 || b->attempts.size() >= max_attempts_) break;

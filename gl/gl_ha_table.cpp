@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -14,6 +15,25 @@
 #include "habuffer/ha_buffer.h"
 
 namespace habuffer::gl {
+
+bool GlHaTable::fit_automatic_size(const TechniqueConfig& wanted) {
+  const Extent want = wanted.buffer.table;
+  Extent fitted = want;
+  const std::uint64_t max_slots = max_storage_bytes() / config_.record_layout().word_bytes();
+  if (want.area() > max_slots) {
+    const double scale = std::sqrt(static_cast<double>(max_slots) / static_cast<double>(want.area()));
+    fitted = {std::max(screen().x, static_cast<std::uint32_t>(want.x * scale)),
+              std::max(screen().y, static_cast<std::uint32_t>(want.y * scale))};
+  }
+  resize(fitted);
+  return fitted != want;
+}
+
+std::uint32_t GlHaTable::read_largest_max_age() const {
+  const std::vector<std::uint32_t> cells = read_max_age();
+  return cells.empty() ? 0u : *std::max_element(cells.begin(), cells.end());
+}
+
 namespace {
 
 BufferConfig validated(BufferConfig c) {

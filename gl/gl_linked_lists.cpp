@@ -49,6 +49,12 @@ GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, con
   if (!sorted_on_insert()) gpu_->sort = std::make_unique<SortPass>(Technique::Lists, mode, bindings);
 }
 
+bool GlLinkedLists::fit_automatic_size(const TechniqueConfig& wanted) {
+  const std::uint64_t fitted = std::min<std::uint64_t>(wanted.pool_capacity, max_storage_bytes() / sizeof(glm::uvec2));
+  resize_pool(fitted);
+  return fitted != wanted.pool_capacity;
+}
+
 GlLinkedLists::~GlLinkedLists() = default;
 
 void GlLinkedLists::allocate_pool(std::uint64_t nodes) {

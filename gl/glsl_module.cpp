@@ -6,6 +6,8 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
 #include "habuffer/gl/module_variant.h"
+#include "habuffer/gl/technique_registry.h"
+#include "habuffer/technique_descriptor.h"
 
 namespace habuffer::gl {
 namespace {
@@ -30,7 +32,6 @@ const char* word_defines(AtomicMode mode) {
          "#define ha_word_split(r) unpackUint2x32(r)\n#define ha_word_join(v) packUint2x32(v)\n";
 }
 
-const char* mode_prelude(AtomicMode mode) { return mode == AtomicMode::Emulated64 ? kPreludeEmulated64 : kPreludeNative; }
 
 // The parameter block of ha_params.h, read here as a list of (GLSL type, name).
 struct ParamField {
@@ -175,56 +176,6 @@ std::string derived_binding_defines() {
 
 namespace {
 
-// The parts of a technique's module after the shared prelude, in order, and
-// the names the passes call (insert, sort, composite) as macros.
-std::string technique_parts(Technique technique, AtomicMode mode) {
-  std::string s;
-  const auto add = [&](const char* part) {
-    s += part;
-    s += '\n';
-  };
-  switch (technique) {
-    case Technique::Ha:
-      s += "#define HABUFFER_TECHNIQUE_CALL ha_call\n#define HABUFFER_TECHNIQUE_COMPOSITE ha_composite\n";
-      for (const char* part : {kHaEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation, kHaProbe,
-                               kHaInsert, kHaBlend, kHaTraverse, kHaEntry, kInsertEntry})
-        add(part);
-      break;
-    case Technique::Lists:
-      s += "#define HABUFFER_TECHNIQUE_CALL ll_insert_fragment\n#define HABUFFER_TECHNIQUE_SORT ll_sort_pixel\n"
-           "#define HABUFFER_TECHNIQUE_COMPOSITE ll_composite\n";
-      for (const char* part : {kListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kInsertEntry}) add(part);
-      break;
-    case Technique::Arrays:
-      s += "#define HABUFFER_TECHNIQUE_CALL fa_insert_fragment\n#define HABUFFER_TECHNIQUE_SORT fa_sort_pixel\n"
-           "#define HABUFFER_TECHNIQUE_COMPOSITE fa_composite\n";
-      for (const char* part : {kArraysEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaArrays, kInsertEntry}) add(part);
-      break;
-    case Technique::SortedLists:
-      s += "#define HABUFFER_TECHNIQUE_CALL sl_insert_fragment\n#define HABUFFER_TECHNIQUE_COMPOSITE ll_composite\n"
-           "#define HABUFFER_LISTS_QUALIFIER coherent\n";
-      for (const char* part : {kListsEnv, kSortedListsEnv, kSortedEnv, kHaRecord, kHaBlend, kHaEntries, kHaLists, kSaturationEnv,
-                               kHaSaturation, kHaSortedLists, kInsertEntry})
-        add(part);
-      break;
-    case Technique::KBuffer:
-      s += "#define HABUFFER_TECHNIQUE_CALL kb_call\n#define HABUFFER_TECHNIQUE_COMPOSITE kb_composite\n"
-           "#define HABUFFER_CARRY_RUN kb_insert_run\n";
-      for (const char* part : {kKBufferEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation,
-                               kHaBlend, kHaKBuffer, kHaEntry, kKBufferEntry, kInsertEntry})
-        add(part);
-      break;
-    case Technique::Wboit:
-    case Technique::Blend:
-      if (technique == Technique::Wboit) s += "#define HABUFFER_WBOIT\n";
-      s += "#define HABUFFER_TECHNIQUE_BEGIN bl_begin_call\n#define HABUFFER_TECHNIQUE_CALL bl_insert_fragment\n"
-           "#define HABUFFER_TECHNIQUE_COMPOSITE bl_composite\n";
-      for (const char* part : {kBlendedEnv, kHaRecord, kHaBlend, kHaBlended, kBlendedEntry, kInsertEntry}) add(part);
-      break;
-  }
-  return s;
-}
-
 }  // namespace
 
 std::string module_extensions(AtomicMode mode) { return mode_extensions(mode); }
@@ -243,7 +194,7 @@ std::string technique_module_body(Technique technique, AtomicMode mode, const Gl
     s += part;
     s += '\n';
   }
-  return s + technique_parts(technique, mode);
+  return s + gl_descriptor(technique).module_parts(mode);
 }
 
 std::string technique_module(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
@@ -280,7 +231,8 @@ std::string kbuffer_count_compute(AtomicMode mode, const GlBindings& bindings) {
 }
 
 std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings& bindings) {
-  if (technique == Technique::Ha) throw GlError("the HA-buffer is sorted by insertion: it has no sort pass");
+  if (descriptor(technique).sorted_on_insert)
+    throw GlError("technique " + to_string(technique) + " is sorted by insertion: it has no sort pass");
   return technique_module(technique, mode, bindings, ShaderStage::Compute) + kSortCompute;
 }
 
@@ -307,39 +259,24 @@ std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings) {
 }
 
 std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bindings) {
-  std::vector<ShaderSource> shaders{{"insert", "comp", insert_stream_compute(mode, bindings)},
-                                    {"resume", "comp", resume_compute(mode, bindings)},
-                                    {"full-screen", "vert", full_screen_vertex()},
-                                    {"clear", "frag", clear_pass_fragment(mode, bindings)},
-                                    {"resolve", "frag", resolve_fragment(mode, bindings)}};
-  for (Technique t : {Technique::Lists, Technique::Arrays, Technique::SortedLists, Technique::KBuffer}) {
-    const std::string name = to_string(t);
-    shaders.push_back({name + "-insert", "comp", insert_stream_compute(t, mode, bindings)});
-    if (t == Technique::Lists || t == Technique::Arrays)
-      shaders.push_back({name + "-sort", "comp", sort_compute(t, mode, bindings)});
-    shaders.push_back({name + "-resolve", "frag", resolve_fragment(t, mode, bindings)});
+  std::vector<ShaderSource> shaders;
+  for (const TechniqueDescriptor* d : technique_registry()) {
+    // The hash table's passes keep their historical names ("insert", "resolve").
+    const std::string name = d->capacity == CapacityKind::TableSlots ? "" : std::string(d->name) + "-";
+    if (d->stores_lists) {
+      shaders.push_back({name + "insert", "comp", insert_stream_compute(d->technique, mode, bindings)});
+      if (!d->sorted_on_insert) shaders.push_back({name + "sort", "comp", sort_compute(d->technique, mode, bindings)});
+    } else {
+      const auto [vertex, fragment] = insert_stream_points(d->technique, mode, bindings);
+      shaders.push_back({name + "insert", "vert", vertex});
+      shaders.push_back({name + "insert", "frag", fragment});
+    }
+    shaders.push_back({name + "resolve", "frag", resolve_fragment(d->technique, mode, bindings)});
+    if (const auto own = gl_descriptor(d->technique).own_shaders) {
+      std::vector<ShaderSource> more = own(mode, bindings);
+      shaders.insert(shaders.end(), more.begin(), more.end());
+    }
   }
-  for (Technique t : {Technique::Wboit, Technique::Blend}) {
-    const std::string name = to_string(t);
-    const auto [vertex, fragment] = insert_stream_points(t, mode, bindings);
-    shaders.push_back({name + "-insert", "vert", vertex});
-    shaders.push_back({name + "-insert", "frag", fragment});
-    shaders.push_back({name + "-resolve", "frag", resolve_fragment(t, mode, bindings)});
-  }
-  shaders.push_back({"kbuffer-count", "comp", kbuffer_count_compute(mode, bindings)});
-  shaders.push_back({"kbuffer-resume", "comp", resume_compute(Technique::KBuffer, mode, bindings)});
-  // The HA-buffer's entry in the variant furthest from the default (every
-  // #if branch the default leaves out), as the frame driver assembles it.
-  ModuleVariant other;
-  other.count_writes = true;
-  other.slot_read_first = false;
-  other.max_age_read_first = true;
-  shaders.push_back({"insert-variant", "comp",
-                     technique_module(Technique::Ha, mode, bindings, ShaderStage::Compute, other.defines()) +
-                         kInsertStreamCompute});
-  shaders.push_back({"resume-variant", "comp",
-                     technique_module(Technique::Ha, mode, bindings, ShaderStage::Compute, other.defines()) +
-                         kResumeCompute});
   return shaders;
 }
 
@@ -357,8 +294,7 @@ std::vector<GlslFile> host_glsl_files() {
                      "// habuffer " HABUFFER_VERSION ": the #extension lines of atomic mode " + to_string(mode) +
                          ", right after the shader's #version 450 line and before any code.\n" +
                          module_extensions(mode)});
-    for (Technique t : {Technique::Ha, Technique::Lists, Technique::Arrays, Technique::SortedLists, Technique::KBuffer,
-                        Technique::Wboit, Technique::Blend})
+    for (Technique t : all_techniques())
       for (ShaderStage stage : {ShaderStage::Fragment, ShaderStage::Compute}) {
         const bool fragment = stage == ShaderStage::Fragment;
         if (!fragment && !stores_lists(t)) continue;  // the blended baselines need the blender: fragment shaders only

@@ -42,7 +42,7 @@ ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c
   const double frags = static_cast<double>(c.capture.fragments);
   row.set("bytes_per_fragment", frags > 0 ? static_cast<double>(r.memory_bytes) / frags : 0.0);
   set_counters(row, r.last.counters);
-  if (t.technique == Technique::Ha) row.set("max_age", r.last.max_age).set("table", r.last.table.str());
+  if (uses_table(t.technique)) row.set("max_age", r.last.max_age).set("table", r.last.table.str());
   row.set("load_factor", r.last.load_factor);
   row.set("psnr", r.error.psnr).set("rmse", r.error.rmse).set("max_error", r.error.max_error);
   if (!c.atomic_ms.empty()) {

@@ -1,4 +1,5 @@
 #include "habuffer/harness/figures.h"
+#include "habuffer/technique_descriptor.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -213,10 +214,10 @@ ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fr
           allocatable = false;
         }
       c.layers = t.layers.value_or(HABUFFER_DEFAULT_LAYERS);
-      const std::uint64_t capacity = t.technique == Technique::Ha ? (allocatable ? c.buffer.table.area()
-                                                                                 : capacity_for_load(f, *t.load))
-                                     : uses_pool(t.technique)    ? f
-                                                                 : 0;
+      const std::uint64_t capacity = uses_table(t.technique) ? (allocatable ? c.buffer.table.area()
+                                                                            : capacity_for_load(f, *t.load))
+                                     : uses_pool(t.technique) ? f
+                                                              : 0;
       c.pool_capacity = uses_pool(t.technique) ? f : screen.area();
       ResultRow row;
       row.set("technique", t.label()).set("fragments", f).set("pixels", screen.area());
@@ -232,7 +233,8 @@ ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fr
       else if (allocate && !affordable)
         row.set("note", "model only: more than the " + std::to_string(kMaxTableAllocationBytes >> 30) +
                             " GiB table1 allocates");
-      const std::string paper_row = uses_pool(t.technique) && t.technique == Technique::Lists ? "linked-list" : t.label();
+      const std::string_view named_row = descriptor(t.technique).paper_memory_row;
+      const std::string paper_row = named_row.empty() ? t.label() : std::string(named_row);
       if (const std::optional<double> p = published_value(paper_row, f)) row.set("paper_table_mib", *p);
       table.rows.push_back(row);
     }

@@ -1,4 +1,5 @@
 #include "habuffer/harness/plan.h"
+#include "habuffer/technique_descriptor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -118,7 +119,7 @@ Prediction predict_layers(const ExactCapture& c, Extent screen, Technique techni
   if (over == 0) {
     p.psnr = kInf;
   } else {
-    const Image image = reference_image(truncated(c.stream, screen, k, technique == Technique::KBuffer), screen, c.backgrounds);
+    const Image image = reference_image(truncated(c.stream, screen, k, descriptor(technique).overflow_keeps_nearest), screen, c.backgrounds);
     p.psnr = compare_pixels(image, c.reference).psnr;
   }
   return p;
@@ -174,7 +175,7 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
   // anything), or among those whose predicted PSNR meets the target.
   const Prediction* best = nullptr;
   for (const Prediction& p : preds) {
-    const bool ok = s.target_psnr ? (p.psnr && *p.psnr >= *s.target_psnr && (p.spec.technique != Technique::Ha || p.risk == 0.0))
+    const bool ok = s.target_psnr ? (p.psnr && *p.psnr >= *s.target_psnr && (!uses_table(p.spec.technique) || p.risk == 0.0))
                                   : p.risk == 0.0;
     if (ok && (!best || p.memory < best->memory)) best = &p;
   }

@@ -1,4 +1,5 @@
 #include "habuffer/harness/sweep.h"
+#include "habuffer/technique_descriptor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,7 @@
 namespace habuffer::harness {
 namespace {
 
-bool sized_by_load(Technique t) { return t == Technique::Ha || uses_pool(t) || uses_layers(t); }
+bool sized_by_load(Technique t) { return descriptor(t).capacity != CapacityKind::None; }
 
 // The settings of one run: the technique sized for `load` of `fragments`.
 RenderSettings run_settings(const SweepSettings& s, Extent screen, std::uint64_t fragments, double load,
@@ -178,7 +179,7 @@ ResultTable run_sweep(const Workload& workload, const SweepSettings& s) {
       l.measured_load = f.load_factor;
       l.insert_order = f.insert_order;
       table.provenance.renderer = r.device;
-      if (rs.technique == Technique::Ha && r.buffer) {
+      if (uses_table(rs.technique) && r.buffer) {
         const std::vector<std::uint64_t> h = age_histogram(*r.buffer);
         add_histogram(l.histogram, h);
         l.mean_age.push_back(histogram_mean(h));

@@ -1,5 +1,7 @@
 #include "habuffer/harness/technique_spec.h"
 
+#include "habuffer/technique_descriptor.h"
+
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -62,6 +64,18 @@ std::string TechniqueSpec::label() const {
 
 bool TechniqueSpec::exact() const { return exact_technique(technique) && cull == 0.0f; }
 
+namespace {
+
+// "ha, lists, sorted-lists": the techniques a load sizes.
+std::string automatically_sized_techniques() {
+  std::string s;
+  for (const TechniqueDescriptor* d : technique_registry())
+    if (d->sized_automatically()) s += (s.empty() ? "" : ", ") + std::string(d->name);
+  return s;
+}
+
+}  // namespace
+
 TechniqueSpec parse_technique_spec(const std::string& word) {
   const std::vector<std::string> parts = split(word, ':');
   TechniqueSpec t;
@@ -93,13 +107,14 @@ TechniqueSpec parse_technique_spec(const std::string& word) {
                                   "' (cull=TAU, sat, load=L, age=A, k=K, occ, words=D)");
     }
   }
-  const Technique k = t.technique;
-  require(t.cull == 0.0f || has_early_cull(k), word, "cull applies to ha and sorted-lists");
+  // Each knob is a CLI option of the technique's descriptor.
+  const TechniqueDescriptor& d = descriptor(t.technique);
+  require(t.cull == 0.0f || d.takes("early-cull"), word, "cull applies to " + techniques_taking("early-cull"));
   require(!t.saturation || t.cull > 0.0f, word, "sat needs cull=TAU");
-  require(!t.load || k == Technique::Ha || uses_pool(k), word, "load applies to ha, lists and sorted-lists");
-  require(!t.age_bits || k == Technique::Ha, word, "age applies to ha");
-  require(!t.layers || uses_layers(k), word, "k applies to arrays and kbuffer");
-  require(!t.occupancy || k == Technique::KBuffer, word, "occ applies to kbuffer");
+  require(!t.load || d.sized_automatically(), word, "load applies to " + automatically_sized_techniques());
+  require(!t.age_bits || d.capacity == CapacityKind::TableSlots, word, "age applies to " + techniques_taking("table"));
+  require(!t.layers || d.takes("layers"), word, "k applies to " + techniques_taking("layers"));
+  require(!t.occupancy || d.takes("occupancy"), word, "occ applies to " + techniques_taking("occupancy"));
   require(!t.occupancy_words || t.occupancy, word, "words needs occ");
   return t;
 }
@@ -134,7 +149,7 @@ void TechniqueSpec::apply(RenderSettings& s, std::uint64_t fragments) const {
   if (occupancy_words) s.occupancy_words = *occupancy_words;
   s.config.table = {};
   s.pool = 0;
-  if (load && technique == Technique::Ha) s.config.table = table_for_load(s.config.screen, fragments, *load);
+  if (load && uses_table(technique)) s.config.table = table_for_load(s.config.screen, fragments, *load);
   if (load && uses_pool(technique)) s.pool = capacity_for_load(fragments, *load);
 }
 

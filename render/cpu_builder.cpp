@@ -4,9 +4,8 @@
 #include <chrono>
 #include <cmath>
 
-#include "habuffer/fixed_arrays.h"
 #include "habuffer/fragment_streams.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/ha_buffer.h"
 #include "habuffer/memory_model.h"
 
 namespace habuffer {
@@ -36,15 +35,21 @@ CpuBuilder::CpuBuilder(const RenderSettings& settings)
       config_(technique_config(settings)),
       frames_(settings.offsets, frame_insert_options(settings), settings.policy, frame_attempts(settings)) {}
 
+// Both paths size an automatic container from the counting pass: a table
+// at the middle of SPEC 8's band, a pool that holds the fragments at grow_at.
+TechniqueConfig automatic_config(const RenderSettings& s, TechniqueConfig c, std::uint64_t fragments) {
+  if (uses_table(c.technique)) c.buffer.table = initial_table(s, fragments);
+  if (uses_pool(c.technique)) c.pool_capacity = initial_pool(s, fragments);
+  return c;
+}
+
 void CpuBuilder::size_for(std::uint64_t fragments) {
-  if (!automatic_size(settings_)) return;
-  if (config_.technique == Technique::Ha) config_.buffer.table = initial_table(settings_, fragments);
-  if (config_.technique == Technique::Lists) config_.pool_capacity = initial_pool(settings_, fragments);
+  if (automatic_size(settings_)) config_ = automatic_config(settings_, config_, fragments);
 }
 
 const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, FrameStats& fs) {
   if (automatic_size(settings_) && previous_use_) {
-    if (config_.technique == Technique::Ha) {
+    if (uses_table(config_.technique)) {
       const Extent next = settings_.policy.next(config_.buffer.table, settings_.config.screen, *previous_use_);
       fs.resized = next != config_.buffer.table;
       config_.buffer.table = next;
@@ -60,18 +65,19 @@ const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, Fra
   fs.attempts = static_cast<std::uint32_t>(b.attempts.size());
   fs.counters = b.counters;
   fs.capacity = b.buffer->capacity();
-  if (const auto* ha = dynamic_cast<const HaBuffer*>(b.buffer.get())) {
-    fs.insert_order = ha->insert_order(fragments.size(), frame_insert_options(settings_));
-    config_.buffer.table = ha->table();
-    fs.table = ha->table();
-    fs.max_age = ha->max_age().max();
-    previous_use_ = b.counters.stored();
-  } else if (const auto* lists = dynamic_cast<const LinkedLists*>(b.buffer.get())) {
-    config_.pool_capacity = lists->capacity();
-    previous_use_ = lists->requested();
-  } else if (const auto* arrays = dynamic_cast<const FixedArrays*>(b.buffer.get())) {
-    config_.layers = arrays->layers();  // a lossless frame's K holds the next frames too
+  fs.insert_order = b.buffer->insert_order(fragments.size(), frame_insert_options(settings_));
+  // What the frame grew to holds the next frames too (a lossless table, pool or K).
+  const TechniqueConfig held = b.buffer->technique_config();
+  config_.buffer.table = held.buffer.table;
+  config_.pool_capacity = held.pool_capacity;
+  config_.layers = held.layers;
+  if (const HaBuffer* table = b.buffer->hash_table()) {
+    fs.table = table->table();
+    fs.max_age = table->max_age().max();
   }
+  // The use SPEC 8's rule sizes the next frame by: records held, or nodes asked for.
+  if (uses_table(config_.technique)) previous_use_ = b.counters.stored();
+  if (uses_pool(config_.technique)) previous_use_ = b.buffer->growth_need().nodes_requested;
   return b;
 }
 
@@ -92,8 +98,8 @@ std::vector<std::uint32_t> culled_per_pixel(const HaBuffer& like, std::span<cons
 
 void finish_cpu_result(const RenderSettings& settings, TechniqueBuild last, RenderResult& result) {
   if (settings.per_pixel_culled) {
-    if (const auto* ha = dynamic_cast<const HaBuffer*>(last.buffer.get()))
-      result.pixel_culled = culled_per_pixel(*ha, result.fragments);
+    if (const HaBuffer* table = last.buffer->hash_table())
+      result.pixel_culled = culled_per_pixel(*table, result.fragments);
     else
       result.pixel_culled.assign(settings.config.screen.area(), 0);  // no early cull: nothing culled
   }

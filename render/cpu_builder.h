@@ -40,6 +40,10 @@ class CpuBuilder {
 Extent initial_table(const RenderSettings& s, std::uint64_t fragments);
 // An automatic pool's first size: the fragments at the policy's grow_at use.
 std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments);
+/// `c` with the automatic container's first size for `fragments` fragments
+/// (the counting pass): initial_table for a hash table, initial_pool for a
+/// node pool; both paths size so (issue 24 fixed the CPU's sorted lists).
+TechniqueConfig automatic_config(const RenderSettings& s, TechniqueConfig c, std::uint64_t fragments);
 
 }  // namespace habuffer
 

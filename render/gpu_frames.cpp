@@ -9,9 +9,7 @@
 #include "cpu_builder.h"
 #include "frame_path.h"
 #include "habuffer/gl/gl_error.h"
-#include "habuffer/gl/gl_ha_table.h"
 #include "habuffer/gl/gl_info.h"
-#include "habuffer/gl/gl_linked_lists.h"
 #include "habuffer/memory_model.h"
 #include "habuffer/render/resolve_target.h"
 
@@ -28,18 +26,6 @@ gl::GlFrameOptions gpu_frame_options(const RenderSettings& s) {
   return o;
 }
 
-// The largest table up to `wanted` (same aspect) the context holds.
-Extent fit_gpu_table(const gl::GlHaTable& ha, Extent wanted) {
-  const std::uint64_t max_slots = gl::max_storage_bytes() / ha.config().record_layout().word_bytes();
-  if (wanted.area() <= max_slots) return wanted;
-  const double scale = std::sqrt(static_cast<double>(max_slots) / static_cast<double>(wanted.area()));
-  const Extent screen = ha.config().screen;
-  return {std::max(screen.x, static_cast<std::uint32_t>(wanted.x * scale)),
-          std::max(screen.y, static_cast<std::uint32_t>(wanted.y * scale))};
-}
-
-std::uint32_t largest(std::span<const std::uint32_t> v) { return v.empty() ? 0u : *std::max_element(v.begin(), v.end()); }
-
 class GpuFrames final : public FramePath {
  public:
   GpuFrames(const RenderSettings& s, gl::AtomicMode mode)
@@ -49,17 +35,8 @@ class GpuFrames final : public FramePath {
 
   void size_for(std::uint64_t fragments, RenderResult& result) override {
     if (!automatic_size(settings_)) return;
-    if (auto* ha = dynamic_cast<gl::GlHaTable*>(&driver_.technique())) {
-      const Extent first = initial_table(settings_, fragments);
-      const Extent fitted = fit_gpu_table(*ha, first);
-      result.growth_limited = result.growth_limited || fitted != first;
-      ha->resize(fitted);
-    } else if (auto* lists = dynamic_cast<gl::GlLinkedLists*>(&driver_.technique())) {
-      const std::uint64_t wanted = initial_pool(settings_, fragments);
-      const std::uint64_t fitted = std::min<std::uint64_t>(wanted, gl::max_storage_bytes() / sizeof(glm::uvec2));
-      result.growth_limited = result.growth_limited || fitted != wanted;
-      lists->resize_pool(fitted);
-    }
+    const TechniqueConfig wanted = automatic_config(settings_, technique_config(settings_), fragments);
+    result.growth_limited = driver_.technique().fit_automatic_size(wanted) || result.growth_limited;
   }
 
   void complete_frame(const gl::FrameReport& report, SceneRenderer& renderer, FrameStats& fs,
@@ -78,7 +55,7 @@ class GpuFrames final : public FramePath {
     fs.resize_limited = report.resize_limited;
     fs.gather_ms = report.gather.wall_ms;
     fs.clear_ms = report.clear.wall_ms + report.reset.wall_ms;
-    if (const auto* ha = dynamic_cast<const gl::GlHaTable*>(&driver_.technique())) fs.max_age = largest(ha->read_max_age());
+    fs.max_age = driver_.technique().read_largest_max_age();
     result.growth_limited = result.growth_limited || report.growth_limited;
   }
 

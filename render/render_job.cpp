@@ -34,15 +34,8 @@ void finish_stats(FrameStats& fs) {
 }  // namespace
 
 bool automatic_size(const RenderSettings& s) {
-  switch (s.technique) {
-    case Technique::Ha: return s.config.table == Extent{};
-    case Technique::Lists:
-    case Technique::SortedLists: return s.pool == 0;
-    case Technique::Arrays:
-    case Technique::KBuffer:
-    case Technique::Wboit:
-    case Technique::Blend: return false;
-  }
+  if (uses_table(s.technique)) return s.config.table == Extent{};
+  if (uses_pool(s.technique)) return s.pool == 0;
   return false;
 }
 
@@ -67,7 +60,7 @@ namespace {
 // pixel with more fragments than AMAX (without early cull, which could cull
 // them) fails an HA-buffer at any table size unless they are duplicates.
 bool age_limit_applies(const RenderSettings& s) {
-  return s.path == RenderPath::Gl && s.technique == Technique::Ha && s.config.early_cull_tau <= 0.0f;
+  return s.path == RenderPath::Gl && uses_table(s.technique) && s.config.early_cull_tau <= 0.0f;
 }
 std::optional<PixelDepth> pixel_beyond_amax(const RenderSettings& s, std::span<const std::uint32_t> counts) {
   return pixel_counted_beyond(counts, s.config.screen, s.config.record_layout().max_age());

@@ -340,5 +340,32 @@ TEST(Render, ArraysWithFewLayersDropAndCountTheRestAndLosslessModeKeepsEverythin
   EXPECT_GT(lossless.frames.back().attempts, 1u);
 }
 
+// Issue 24: the CPU path sized an automatic pool from the counting pass for
+// lists only, so sorted lists started from a placeholder of one node per
+// pixel and reached their size by regathering. Both paths now size every
+// pool technique from the counting pass: one attempt, the pool of
+// initial_pool's rule (the fragments at grow_at), on both paths alike.
+TEST(Render, EveryPoolTechniquesAutomaticPoolIsSizedFromTheCountingPassOnBothPaths) {
+  const Scene hairball = make_scene("hairball", {});
+  for (const Technique t : {Technique::Lists, Technique::SortedLists}) {
+    std::uint64_t gl_capacity = 0;
+    for (const RenderPath path : {RenderPath::Gl, RenderPath::Cpu}) {
+      SCOPED_TRACE(to_string(t) + (path == RenderPath::Gl ? " gl" : " cpu"));
+      RenderSettings s = settings({64, 64}, path);
+      s.technique = t;
+      s.pool = 0;  // auto
+      const RenderResult r = render(hairball, s);
+      const FrameStats& f = r.frames.front();
+      EXPECT_EQ(f.attempts, 1u);
+      EXPECT_EQ(f.counters.failures(), 0u);
+      const auto wanted = static_cast<std::uint64_t>(std::ceil(static_cast<double>(f.counters.fragments) / s.policy.grow_at));
+      EXPECT_EQ(f.capacity, wanted);
+      EXPECT_GT(f.capacity, std::uint64_t{64} * 64);  // more than the placeholder of one node per pixel
+      if (path == RenderPath::Gl) gl_capacity = f.capacity;
+      else EXPECT_EQ(f.capacity, gl_capacity);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace habuffer

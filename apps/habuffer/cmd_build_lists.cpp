@@ -36,7 +36,7 @@ int run_build_lists(const std::vector<std::string>& argv) {
   const Args args(argv, valued, hash_flag_options());
   const std::string in = args.required("in");
   const std::string out = args.required("out");
-  HashOptions options = parse_hash_options(args, true, {"dump-table", "dump-max-age"});
+  HashOptions options = parse_hash_options(args, true);
   if (!stores_lists(options.technique.technique))
     throw UsageError("--technique " + to_string(options.technique.technique) +
                      " stores no lists (it blends every fragment into the image): use habuffer render");
@@ -68,11 +68,10 @@ int run_build_lists(const std::vector<std::string>& argv) {
     timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   TechniqueBuild& result = *built;
-  if (const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get()); ha && !options.gl)
-    timing.insert_order = to_string(ha->insert_order(fragments.size(), options.insert));
+  if (!options.gl) timing.insert_order = to_string(result.buffer->insert_order(fragments.size(), options.insert));
 
   write_lists(out, *result.buffer);
-  if (const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get())) {
+  if (const HaBuffer* ha = result.buffer->hash_table()) {
     if (args.has("dump-table")) write_table(args.required("dump-table"), *ha);
     if (args.has("dump-max-age")) write_max_age(args.required("dump-max-age"), *ha);
   }
@@ -94,13 +93,11 @@ int run_build_lists(const std::vector<std::string>& argv) {
   if (!too_deep && options.max_attempts == 1 && result.counters.failed_age > 0)
     too_deep = pixel_beyond_every_table(config, fragments);
   if (options.lossless && !result.lossless()) {
-    const auto* ha = dynamic_cast<const HaBuffer*>(result.buffer.get());
     report_lossless_failure("build-lists", result.counters,
                             " after " + std::to_string(result.attempts.size()) + " attempt" +
                                 (result.attempts.size() == 1 ? "" : "s") +
                                 (too_deep ? ": " + too_deep_message(*too_deep, options.config.age_bits)
-                                 : ha != nullptr ? " (last table " + ha->table().str() + ")"
-                                                 : " (last capacity " + std::to_string(result.buffer->capacity()) + ")"));
+                                            : " (last " + result.buffer->capacity_text() + ")"));
     return 1;
   }
   if (too_deep) {

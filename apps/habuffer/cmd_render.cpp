@@ -14,6 +14,7 @@
 #include "habuffer/render/heatmap.h"
 #include "habuffer/render/render_job.h"
 #include "habuffer/scene_catalog.h"
+#include "habuffer/technique_descriptor.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/printable.h"
 #include "habuffer/progress.h"
@@ -78,7 +79,7 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args, Technique technique
     const std::string kind = item.substr(0, colon);
     if (colon == std::string::npos || colon + 1 == item.size() || (kind != "depth" && kind != "age" && kind != "culled"))
       throw UsageError("option --heatmap: " + excerpt(item) + " is not depth:IMAGE, age:IMAGE or culled:IMAGE");
-    if (kind != "depth" && technique != Technique::Ha)
+    if (kind != "depth" && !uses_table(technique))
       throw UsageError("option --heatmap " + kind + ": the HA-buffer's (ages, early cull), not technique " +
                        to_string(technique) + "'s");
     out.push_back({kind, item.substr(colon + 1)});
@@ -150,8 +151,9 @@ RenderSettings parse_settings(const Args& args) {
   s.insert_order = insert_order_option(args);
   args.refuse_unless(s.path == RenderPath::Cpu || args.has("fragments"), {"threads", "insert-order"},
                      "with --path gl (the GPU inserts and composites)");
-  args.refuse_unless(s.technique == Technique::Ha, {"insert-order"},
-                     "with --technique " + to_string(s.technique) + " (the HA-buffer's own)");
+  args.refuse_unless(descriptor(s.technique).takes("insert-order"), {"insert-order"},
+                     "with --technique " + to_string(s.technique) + " (it applies to " +
+                         techniques_taking("insert-order") + ")");
   args.refuse_unless(s.path == RenderPath::Gl && !args.has("fragments"), {"slot-writes"},
                      "on the CPU path (the GPU path's tally)");
   s.background = args.has("background") ? parse_background(args.required("background")) : glm::vec3(1.0f);
@@ -264,7 +266,7 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
                             frames + " after up to " + std::to_string(s.max_attempts) + " attempts per frame" +
                                 (!too_deep.empty()      ? ": " + too_deep
                                  : r.growth_limited     ? " (the technique's buffers reached this OpenGL's limits)"
-                                 : s.technique == Technique::Ha ? "; more --age-bits fits deeper pixels" : ""));
+                                 : uses_table(s.technique) ? "; more --age-bits fits deeper pixels" : ""));
     return 1;
   }
   warn_losses("render", total, frames, too_deep.empty() ? lossless_hint(s.technique) : too_deep);

@@ -6,6 +6,7 @@
 #include "harness_cli.h"
 #include "habuffer/harness/sweep.h"
 #include "habuffer/progress.h"
+#include "habuffer/technique_descriptor.h"
 
 namespace habuffer::cli {
 namespace {
@@ -41,8 +42,9 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.loads = parse_reals(args, "loads", "0.5,0.6,0.7,0.8,0.9,0.95");
   s.repeats = args.u32("repeats", 3, 1, 1000);
   s.seed = args.u64("seed", 1);
-  args.refuse_unless(s.technique.technique == Technique::Ha, {"offsets", "seed"},
-                     "with --technique " + to_string(s.technique.technique) + " (the HA-buffer's offsets)");
+  args.refuse_unless(descriptor(s.technique.technique).takes("offsets"), {"offsets", "seed"},
+                     "with --technique " + to_string(s.technique.technique) + " (offsets apply to " +
+                         techniques_taking("offsets") + ")");
   const std::string offsets = args.str("offsets", "random");
   if (offsets != "random" && offsets != "farthest") throw UsageError("--offsets must be random or farthest");
   s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;

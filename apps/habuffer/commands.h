@@ -19,5 +19,6 @@ int run_sweep(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_figure(const std::vector<std::string>& args);
 int run_plan(const std::vector<std::string>& args);
+int run_techniques(const std::vector<std::string>& args);
 
 }  // namespace habuffer::cli

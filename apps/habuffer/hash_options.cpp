@@ -6,6 +6,7 @@
 #include "habuffer/interchange.h"
 #include "habuffer/memory_budget.h"
 #include "habuffer/option_rules.h"
+#include "habuffer/technique_descriptor.h"
 
 namespace habuffer::cli {
 
@@ -65,9 +66,9 @@ TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragm
   return c;
 }
 
-HashOptions parse_hash_options(const Args& args, bool techniques, std::initializer_list<const char*> ha_only) {
+HashOptions parse_hash_options(const Args& args, bool techniques) {
   HashOptions o;
-  if (techniques) o.technique = parse_technique_options(args, ha_only);
+  if (techniques) o.technique = parse_technique_options(args);
   const auto screen = args.extent("screen");
   if (!screen) throw UsageError("option --screen is required");
   o.config = parse_buffer_config(args, *screen, args.extent("table").value_or(*screen));
@@ -83,18 +84,18 @@ HashOptions parse_hash_options(const Args& args, bool techniques, std::initializ
     o.insert.mode = InsertMode::Atomic;
   } else if (mode == "owner") {
     o.insert.mode = InsertMode::OwnerComputes;
-    if (o.technique.technique != Technique::Ha)
+    if (!uses_table(o.technique.technique))
       throw UsageError("option --insert-mode owner has no effect with --technique " + to_string(o.technique.technique) +
-                       " (the HA-buffer's own)");
+                       " (owners of table rows: a hash table's own)");
   } else {
     throw UsageError("option --insert-mode: '" + mode + "' is not auto, serial, atomic or owner");
   }
   o.insert.order = insert_order_option(args);
   if (o.insert.order == InsertOrder::Pixel && o.insert.mode == InsertMode::OwnerComputes)
     throw UsageError("option --insert-order pixel cannot go with --insert-mode owner (its owners follow the probes)");
-  if (o.insert.order != InsertOrder::Auto && o.technique.technique != Technique::Ha)
+  if (o.insert.order != InsertOrder::Auto && !descriptor(o.technique.technique).takes("insert-order"))
     throw UsageError("option --insert-order has no effect with --technique " + to_string(o.technique.technique) +
-                     " (the HA-buffer's own)");
+                     " (it applies to " + techniques_taking("insert-order") + ")");
   o.lossless = args.has("lossless");
   o.max_attempts = o.lossless ? args.u32("max-attempts", 16, 1, 1000) : 1;
   if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");

@@ -36,10 +36,9 @@ const std::set<std::string>& hash_flag_options();
 
 // Throws UsageError for bad values or conflicting sizes, DataError for a bad
 // offsets file. `screen` is required. With `techniques`, --technique,
-// --layers and --pool are parsed too (the command accepts them), and the
-// HA-buffer's options (and `ha_only`) refused with another technique.
-HashOptions parse_hash_options(const Args& args, bool techniques = false,
-                               std::initializer_list<const char*> ha_only = {});
+// --layers and --pool are parsed too (the command accepts them), and each
+// option only some techniques take refused with the others.
+HashOptions parse_hash_options(const Args& args, bool techniques = false);
 
 // The parts other commands share: --layout, --age-bits, --block,
 // --iter-limit, --early-cull for a screen and table (zero table: auto);

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "habuffer/fragment.h"
-#include "habuffer/technique.h"
+#include "habuffer/technique_descriptor.h"
 
 namespace habuffer::cli {
 
@@ -19,22 +19,8 @@ std::uint64_t lost_fragments(const Counters& c);
 // the non-zero reasons).
 std::string loss_summary(const Counters& c);
 
-// What to try when fragments failed in a command that takes --lossless.
-inline constexpr const char* kLosslessHint =
-    "--lossless grows the table until they fit (or give a larger --table, more --age-bits)";
-// What keeps a technique's dropped fragments.
-inline const char* lossless_hint(Technique t) {
-  switch (t) {
-    case Technique::Ha: return kLosslessHint;
-    case Technique::Lists: return "--lossless grows the node pool until they fit (or give a larger --pool)";
-    case Technique::SortedLists: return "--lossless grows the node pool until they fit (or give a larger --pool)";
-    case Technique::Arrays: return "--lossless raises K to the deepest pixel (or give more --layers)";
-    case Technique::KBuffer: return "the k-buffer keeps the K nearest by design: --lossless doubles K until nothing drops";
-    case Technique::Wboit:
-    case Technique::Blend: return "";
-  }
-  return kLosslessHint;
-}
+// What keeps a technique's dropped fragments (its descriptor's hint).
+inline std::string lossless_hint(Technique t) { return std::string(descriptor(t).lossless_hint); }
 
 // Prints "habuffer COMMAND: warning: SUMMARY[CONTEXT][; HINT]" when anything
 // was lost; the hint only when fragments failed (not culled or invalid).

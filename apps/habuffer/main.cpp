@@ -28,6 +28,7 @@ constexpr const char* kUsage =
     "  figure       seed 000's Fig. 2, Fig. 8, Table 1, seed 001's Fig. 10, the speed-accuracy frontier\n"
     "  plan         predict memory, max age, overflow and error per technique from one counting pass\n"
     "  info         version, build type and available paths\n"
+    "  techniques   the registered techniques and their properties (--markdown: the README table)\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
 
 // One short printable line whatever a library put in its message: text with
@@ -52,7 +53,8 @@ int main(int argc, char** argv) {
       {"demo", cli::run_demo},               {"info", cli::run_info},         {"stats", cli::run_stats},
       {"render", cli::run_render},           {"compare", cli::run_compare},
       {"sweep", cli::run_sweep},             {"bench", cli::run_bench},
-      {"figure", cli::run_figure},           {"plan", cli::run_plan}};
+      {"figure", cli::run_figure},           {"plan", cli::run_plan},
+      {"techniques", cli::run_techniques}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

@@ -71,16 +71,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   write_extent(json, "size", set.config.screen);
   json.field("path", path_name(set.path)).field("technique", to_string(set.technique));
   json.field("device", r.device).field("layout", to_string(set.config.layout));
-  if (uses_layers(set.technique))
-    json.field("layers", static_cast<std::uint64_t>(last.capacity / set.config.screen.area()));
-  if (uses_pool(set.technique)) json.field("pool_nodes", last.capacity);
-  if (set.technique == Technique::KBuffer) {
-    json.field("occupancy", set.occupancy);
-    if (set.occupancy) json.field("occupancy_words", set.occupancy_words);
-  }
-  if (set.technique == Technique::KBuffer || set.technique == Technique::Wboit)
-    json.key("depth_range").begin_array().value(static_cast<double>(set.depth_range.near_t))
-        .value(static_cast<double>(set.depth_range.far_t)).end_array();
+  write_technique_fields(json, technique_config(set), last.capacity);
   json.field("saturation", set.config.saturation);
   json.field("age_bits", set.config.age_bits).field("block", set.config.block);
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
@@ -128,8 +119,9 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
 void print_render_summary(const RenderSummary& s, const RenderOutputs& outputs) {
   const FrameStats& last = s.result->frames.back();
   const RenderSettings& set = *s.settings;
-  const std::string held = set.technique == Technique::Ha ? "table " + last.table.str() + ", max age " + std::to_string(last.max_age)
-                                                         : std::to_string(last.capacity) + " records of " + to_string(set.technique);
+  const std::string held = uses_table(set.technique)
+                               ? "table " + last.table.str() + ", max age " + std::to_string(last.max_age)
+                               : std::to_string(last.capacity) + " records of " + to_string(set.technique);
   std::printf("%s %s %s, %s: %.3g M fragments (max depth complexity %u), %.3g M stored, load %.2f of %s\n",
               s.scene.name.c_str(), set.config.screen.str().c_str(), to_string(set.config.layout).c_str(),
               s.result->device.c_str(), static_cast<double>(last.counters.fragments) * 1e-6, s.max_depth_complexity,

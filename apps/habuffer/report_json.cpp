@@ -1,10 +1,26 @@
 #include "report_json.h"
 
-#include "habuffer/ha_buffer.h"
+#include <type_traits>
+
+#include "habuffer/technique_descriptor.h"
 
 namespace habuffer::cli {
 void write_extent(JsonWriter& json, std::string_view key, Extent e) {
   json.key(key).begin_array().value(e.x).value(e.y).end_array();
+}
+
+void write_technique_fields(JsonWriter& json, const TechniqueConfig& config, std::uint64_t capacity) {
+  for (const ReportField& f : technique_report_fields(config, capacity))
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, DepthRange>)
+            json.key(f.name).begin_array().value(static_cast<double>(v.near_t)).value(static_cast<double>(v.far_t))
+                .end_array();
+          else
+            json.field(f.name, v);
+        },
+        f.value);
 }
 
 void write_build_stats(JsonWriter& json, const HashOptions& options, const FragmentBuffer& buffer,
@@ -15,15 +31,9 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
   json.field("layout", to_string(options.config.layout));
   json.field("age_bits", options.config.age_bits).field("block", options.config.block);
   write_extent(json, "screen", options.config.screen);
-  const auto* ha = dynamic_cast<const HaBuffer*>(&buffer);
-  write_extent(json, "table", ha != nullptr ? ha->table() : Extent{});
+  write_extent(json, "table", report.table);
   json.field("capacity", report.capacity);
-  if (uses_layers(technique)) json.field("layers", report.capacity / options.config.screen.area());
-  if (uses_pool(technique)) json.field("pool_nodes", report.capacity);
-  if (technique == Technique::KBuffer) {
-    json.field("occupancy", options.technique.occupancy);
-    if (options.technique.occupancy) json.field("occupancy_words", options.technique.occupancy_words);
-  }
+  write_technique_fields(json, buffer.technique_config(), report.capacity);
   json.field("saturation", options.config.saturation);
   json.field("offsets", options.offsets_name).field("seed", options.offsets.seed);
   json.field("early_cull", static_cast<double>(options.config.early_cull_tau));

@@ -22,6 +22,8 @@ struct BuildTiming {
 
 // "key": [x, y], the stats files' form of a size.
 void write_extent(JsonWriter& json, std::string_view key, Extent e);
+// The technique's configuration fields (technique_report_fields).
+void write_technique_fields(JsonWriter& json, const TechniqueConfig& config, std::uint64_t capacity);
 
 // Writes the body of the stats object (the caller opens and closes it).
 void write_build_stats(JsonWriter& json, const HashOptions& options, const FragmentBuffer& buffer,

@@ -3,27 +3,31 @@
 #include <stdexcept>
 #include <string>
 
+#include "habuffer/technique_descriptor.h"
+
 namespace habuffer::cli {
 
-TechniqueOptions parse_technique_options(const Args& args, std::initializer_list<const char*> more) {
+namespace {
+
+// Refuses every option some technique takes (its descriptor's list) that
+// the chosen technique does not, naming the techniques it applies to.
+void refuse_other_techniques_options(const Args& args, const TechniqueDescriptor& chosen) {
+  for (const TechniqueDescriptor* d : technique_registry())
+    for (std::string_view option : d->options)
+      if (!chosen.takes(option) && args.has(std::string(option)))
+        throw UsageError("option --" + std::string(option) + " has no effect with --technique " +
+                         std::string(chosen.name) + " (it applies to " + techniques_taking(option) + ")");
+}
+
+}  // namespace
+
+TechniqueOptions parse_technique_options(const Args& args) {
   TechniqueOptions o;
   const std::string name = args.str("technique", "ha");
   const std::optional<Technique> t = parse_technique(name);
   if (!t) throw UsageError("option --technique: '" + name + "' is not one of " + technique_names());
   o.technique = *t;
-  const Technique tech = o.technique;
-  const std::string on = "with --technique " + to_string(tech);
-  args.refuse_unless(uses_layers(tech), {"layers"}, on + " (it sets fixed arrays' and the k-buffer's K)");
-  args.refuse_unless(uses_pool(tech), {"pool"}, on + " (it sets linked lists' node pool)");
-  args.refuse_unless(tech == Technique::KBuffer, {"occupancy", "occupancy-words"}, on + " (the k-buffer's occupancy map)");
-  args.refuse_unless(tech == Technique::KBuffer || tech == Technique::Wboit, {"depth-range"},
-                     on + " (it sets the k-buffer's occupancy buckets and wboit's weights)");
-  args.refuse_unless(has_early_cull(tech), {"early-cull", "iter-limit", "saturation"},
-                     on + " (early cull is the HA-buffer's and sorted lists')");
-  args.refuse_unless(tech == Technique::Ha, {"table", "block", "offsets", "seed"}, on + " (the HA-buffer's own)");
-  args.refuse_unless(stores_lists(tech), {"lossless", "max-attempts"},
-                     on + " (it blends every fragment into the image: nothing is dropped, nothing grows)");
-  for (const char* m : more) args.refuse_unless(tech == Technique::Ha, {m}, on + " (the HA-buffer's own)");
+  refuse_other_techniques_options(args, descriptor(o.technique));
   o.layers = args.u32("layers", HABUFFER_DEFAULT_LAYERS, 1, HABUFFER_MAX_LAYERS);
   const std::string pool = args.str("pool", "auto");
   o.pool = pool == "auto" ? 0 : args.u64("pool", 0, 1, UINT32_MAX - 1);

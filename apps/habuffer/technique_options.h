@@ -26,10 +26,9 @@ inline constexpr const char* kTechniqueValued[] = {"technique",       "layers", 
 
 // Parses --technique, --layers (arrays, kbuffer), --pool (lists,
 // sorted-lists; "auto" or a node count), --occupancy and --occupancy-words
-// (kbuffer), --depth-range (kbuffer, wboit), and refuses options the
-// technique would ignore: the HA-buffer's own (--table, --block, --offsets,
-// --seed, and `more` given by the command), --early-cull, --iter-limit and
-// --saturation but for ha and sorted-lists.
-TechniqueOptions parse_technique_options(const Args& args, std::initializer_list<const char*> more = {});
+// (kbuffer), --depth-range (kbuffer, wboit), and refuses every option that
+// only some techniques take (their descriptors' option lists) where the
+// chosen technique does not take it.
+TechniqueOptions parse_technique_options(const Args& args);
 
 }  // namespace habuffer::cli

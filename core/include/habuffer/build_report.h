@@ -21,6 +21,7 @@ struct BuildReport {
   double mean_age = 0.0;           ///< over stored records
   std::vector<std::uint64_t> age_histogram;  ///< [a] = stored records of age a, a = 0..max_age
   std::uint32_t max_age_table_max = 0;       ///< largest cell of M
+  Extent table;                    ///< the hash table's size (0x0 for techniques without one)
   std::uint64_t memory_bytes = 0;  ///< bytes the container allocated (FragmentBuffer::memory_bytes)
   std::uint64_t memory_model_bytes = 0;  ///< memory_model.h, for the buffer as it is
 };

@@ -49,6 +49,8 @@ class FixedArrays final : public FragmentBuffer {
   /// The most fragments one pixel received since the last clear, when some
   /// pixel received more than K; else 0.
   [[nodiscard]] std::uint32_t largest_overflow() const { return max_arrived_; }
+  /// FragmentBuffer interface: the deepest pixel (largest_overflow()).
+  [[nodiscard]] GrowthNeed growth_need() const override { return {0, max_arrived_}; }
 
   /// FragmentBuffer interface; returns 1 + the list's length (the counter, then the layers).
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;

@@ -23,6 +23,9 @@
 
 namespace habuffer {
 
+class HaBuffer;
+struct BuildReport;
+
 /// Every mode builds the same result (SPEC 9); they differ in speed only.
 /// docs/performance.md compares them. Each is safe when insert() calls
 /// overlap on one container (insert_gate.h): the modes with plain stores
@@ -137,6 +140,27 @@ class FragmentBuffer {
                                                                std::uint32_t threads = 0) const = 0;
   /// Bytes of every buffer the technique allocated.
   [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
+  /// What the last insert asked for beyond what the container held (nodes
+  /// of a pool, layers of the deepest pixel): lossless mode sizes the next
+  /// attempt from it (TechniqueConfig::grown). Containers that grow by a
+  /// rule of their own (the HA-buffer's table, the k-buffer's K) say nothing.
+  [[nodiscard]] virtual GrowthNeed growth_need() const { return {}; }
+  /// The order insert(fragments, options) would use for a batch of
+  /// `fragments` (InsertOrder's rule): arrival order unless the container
+  /// orders batches itself (the HA-buffer).
+  [[nodiscard]] virtual InsertOrder insert_order(std::size_t fragments, const InsertOptions& options) const {
+    (void)fragments, (void)options;
+    return InsertOrder::Arrival;
+  }
+  /// The coherent hash table the container stores its records in, for what
+  /// only such a table has (ages, the max-age table, slot dumps); nullptr
+  /// when it has none. The HA-buffer returns itself.
+  [[nodiscard]] virtual const HaBuffer* hash_table() const { return nullptr; }
+  /// Fills what build_report.h's summarize() measures on the container
+  /// itself: records held and load by default; the HA-buffer adds its ages.
+  virtual void measure(BuildReport& report) const;
+  /// "table 1859x1859" or "777 records": what the container holds, for messages.
+  [[nodiscard]] virtual std::string capacity_text() const;
   /// The configuration it holds now (sizes grown by lossless builds included).
   [[nodiscard]] virtual TechniqueConfig technique_config() const = 0;
 

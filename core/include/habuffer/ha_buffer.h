@@ -54,7 +54,13 @@ class HaBuffer final : public FragmentBuffer {
   /// The order insert(fragments, options) uses: options.order, with Auto
   /// resolved (InsertOrder's rule). Throws std::invalid_argument for Pixel
   /// with OwnerComputes (whose owners follow the probes, not the pixels).
-  [[nodiscard]] InsertOrder insert_order(std::size_t fragments, const InsertOptions& options) const;
+  [[nodiscard]] InsertOrder insert_order(std::size_t fragments, const InsertOptions& options) const override;
+  /// FragmentBuffer interface: this table.
+  [[nodiscard]] const HaBuffer* hash_table() const override { return this; }
+  /// FragmentBuffer interface: records, load, ages and the max-age table's largest cell.
+  void measure(BuildReport& report) const override;
+  /// FragmentBuffer interface: "table WxH".
+  [[nodiscard]] std::string capacity_text() const override;
   /// Inserts one fragment and returns its HA_* outcome; may overlap other
   /// calls as insert() in the Auto mode does.
   std::uint32_t insert_one(const Fragment& fragment);

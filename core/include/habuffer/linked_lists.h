@@ -57,6 +57,8 @@ class LinkedLists final : public FragmentBuffer {
   [[nodiscard]] std::uint64_t capacity() const override { return params_.pool_capacity; }
   /// Nodes asked for since the last clear, including those the pool could not give.
   [[nodiscard]] std::uint64_t requested() const { return requested_; }
+  /// FragmentBuffer interface: the nodes asked for (requested()).
+  [[nodiscard]] GrowthNeed growth_need() const override { return {requested_, 0}; }
 
   /// FragmentBuffer interface; returns 1 + 2 per node (the head, then each node's entry and link).
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;

@@ -15,36 +15,38 @@
 
 #include "habuffer/buffer_config.h"
 #include "habuffer/resize_policy.h"
+#include "habuffer/technique_list.h"
 
 namespace habuffer {
 
-/// The techniques the library builds (see above).
+/// The techniques the library builds, one enumerator per line of
+/// technique_list.h, in its order; what each is and has is its descriptor
+/// (technique_descriptor.h).
 enum class Technique {
-  Ha,      ///< the coherent Robin Hood hash (SPEC): pointer-free, always sorted
-  Lists,   ///< per-pixel linked lists (Yang et al. 2010), sorted after the gather
-  Arrays,  ///< fixed per-pixel arrays of K layers (Crassin 2010), sorted after the gather
-  SortedLists,  ///< linked lists kept sorted by a lock-free insertion (guacamole's PreSortLF), early termination
-  KBuffer,      ///< the k nearest fragments per pixel by atomic max (Vasilakis 2015), occupancy-map culling
-  Wboit,        ///< weighted blended OIT (McGuire, Bavoil 2013): no lists, approximate
-  Blend,        ///< unsorted over-blending in submission order: no lists, the floor of time
+#define HABUFFER_TECHNIQUE_ENUMERATOR(Enumerator, ns) Enumerator,
+  HABUFFER_TECHNIQUES(HABUFFER_TECHNIQUE_ENUMERATOR)
+#undef HABUFFER_TECHNIQUE_ENUMERATOR
 };
 
 /// The technique's name, as parse_technique reads it.
 std::string to_string(Technique t);
-/// "ha", "lists", "arrays", "sorted-lists", "kbuffer", "wboit", "blend"; nullopt for anything else.
+/// The technique named `name` (a registered descriptor's name); nullopt for anything else.
 std::optional<Technique> parse_technique(std::string_view name);
 /// Every technique, in the order above.
 std::vector<Technique> all_techniques();
 /// "ha, lists, ...": for usage messages.
 std::string technique_names();
 
-/// What a technique has (the options and counters that apply to it).
-bool stores_lists(Technique t);     ///< per-pixel lists one can read (not wboit, blend)
+/// What a technique has (the options and counters that apply to it), read
+/// from its descriptor (technique_descriptor.h).
+bool stores_lists(Technique t);     ///< per-pixel lists one can read (not the blended baselines)
 bool exact_technique(Technique t);  ///< lists equal the HA-buffer's when nothing is dropped or culled
-bool has_early_cull(Technique t);   ///< ha, sorted-lists
-bool uses_pool(Technique t);        ///< lists, sorted-lists
-bool uses_layers(Technique t);      ///< arrays, kbuffer
-/// The linked-list container's technique for `t`: sorted-lists stays, anything else is lists.
+bool has_early_cull(Technique t);   ///< --early-cull applies (ha, sorted-lists)
+bool uses_pool(Technique t);        ///< its capacity is a node pool (lists, sorted-lists)
+bool uses_layers(Technique t);      ///< its capacity is K layers per pixel (arrays, kbuffer)
+bool uses_table(Technique t);       ///< its capacity is a hash table of slots (ha)
+/// The linked-list container's technique for `t`: a pool technique stays,
+/// anything else is lists (whose container then refuses it by name).
 Technique lists_flavour(Technique t);
 
 /// The depth interval the scene's fragments lie in (window depth t): the
@@ -55,6 +57,13 @@ struct DepthRange {
   float far_t = 1.0f;  ///< the farthest end, at most 1
   /// Memberwise equality.
   friend bool operator==(const DepthRange&, const DepthRange&) = default;
+};
+
+/// What a container's last insert asked for beyond what it held: lossless
+/// mode's next size is computed from it (FragmentBuffer::growth_need()).
+struct GrowthNeed {
+  std::uint64_t nodes_requested = 0;  ///< pool techniques: the nodes the batch asked for
+  std::uint32_t most_arrived = 0;     ///< per-pixel techniques: the most fragments a pixel received
 };
 
 /// Everything that fixes one technique's container besides the HA-buffer's offsets.
@@ -89,10 +98,21 @@ struct TechniqueConfig {
 
   [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
                                       std::uint32_t most_arrived) const;
+  /// This configuration with the fields its technique does not read at
+  /// their defaults: two configurations make the same container iff their
+  /// relevant() parts are equal.
+  [[nodiscard]] TechniqueConfig relevant() const;
+  /// The capacity this configuration asks for: the HA-buffer's table slots,
+  /// the pool's nodes, K times the pixels, or 0 for the baselines.
+  [[nodiscard]] std::uint64_t configured_capacity() const;
 };
 
 /// The HA-buffer of `buffer` as a technique configuration.
 TechniqueConfig ha_technique_config(const BufferConfig& buffer);
+
+/// The rules shared by the techniques of K layers per pixel: K at least 1,
+/// and K times the pixels at most 2^32 - 1 slots (throws std::invalid_argument).
+void validate_layers(const TechniqueConfig& config);
 
 /// `config`, validated (throws as validate()) as technique `t`; throws
 /// std::invalid_argument when it configures another technique.

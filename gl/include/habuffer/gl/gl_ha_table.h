@@ -41,6 +41,11 @@ class GlHaTable final : public GlTechnique {
   /// Sets the table for the next frame (at least the screen; offsets
   /// regenerated). The table only: resize_screen changes the screen.
   void resize(Extent table);
+  /// GlTechnique interface: the largest table up to wanted.buffer.table (same
+  /// aspect, at least the screen) the context's storage-buffer limit holds.
+  bool fit_automatic_size(const TechniqueConfig& wanted) override;
+  /// GlTechnique interface: the largest cell of read_max_age().
+  [[nodiscard]] std::uint32_t read_largest_max_age() const override;
   /// Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
   /// The counting pass without clearing (needs the buffers bound and a state guard).

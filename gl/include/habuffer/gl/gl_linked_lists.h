@@ -34,6 +34,9 @@ class GlLinkedLists final : public GlTechnique {
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
   /// Sets the pool for the next frame (a host's own estimate).
   void resize_pool(std::uint64_t nodes);
+  /// GlTechnique interface: the pool of wanted.pool_capacity nodes, or the
+  /// most the context's storage-buffer limit holds.
+  bool fit_automatic_size(const TechniqueConfig& wanted) override;
 
   /// GlTechnique interface (see gl_technique.h). With adaptive sizing,
   /// begin_frame resizes the pool from the nodes the previous gather asked for;

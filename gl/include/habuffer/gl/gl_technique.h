@@ -118,6 +118,17 @@ class GlTechnique {
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
   /// The HA-buffer's current table (zero for other techniques).
   [[nodiscard]] virtual Extent table() const { return {}; }
+  /// Sizes an automatically sized container before its first frame from the
+  /// counting pass: `wanted` says the table or pool the fragments need; the
+  /// container takes the largest up to it this OpenGL holds. Returns whether
+  /// the limits made it smaller. Containers of a fixed size ignore it.
+  virtual bool fit_automatic_size(const TechniqueConfig& wanted) {
+    (void)wanted;
+    return false;
+  }
+  /// The largest cell of the max-age table, read back (0 for containers
+  /// without one).
+  [[nodiscard]] virtual std::uint32_t read_largest_max_age() const { return 0; }
   /// Bytes of the technique's own buffers.
   [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
   /// The last frame's state as a CPU container of the same technique (lists,

@@ -1,0 +1,32 @@
+// The k-buffer on the GPU: its module parts, container and the occupancy
+// map's count pass and resume pass.
+#include "habuffer/gl/gl_kbuffer.h"
+#include "habuffer/gl/technique_registry.h"
+
+namespace habuffer::gl::techniques::kbuffer {
+namespace {
+
+std::string module_parts(AtomicMode mode) {
+  return "#define HABUFFER_TECHNIQUE_CALL kb_call\n#define HABUFFER_TECHNIQUE_COMPOSITE kb_composite\n"
+         "#define HABUFFER_CARRY_RUN kb_insert_run\n" +
+         join_parts({kKBufferEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation, kHaBlend,
+                     kHaKBuffer, kHaEntry, kKBufferEntry, kInsertEntry});
+}
+
+std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource&, AtomicMode mode,
+                                  const GlBindings& bindings, std::uint32_t) {
+  return std::make_unique<GlKBuffer>(c, mode, bindings);
+}
+
+std::vector<ShaderSource> own_shaders(AtomicMode mode, const GlBindings& bindings) {
+  return {{"kbuffer-count", "comp", kbuffer_count_compute(mode, bindings)},
+          {"kbuffer-resume", "comp", resume_compute(Technique::KBuffer, mode, bindings)}};
+}
+
+constexpr GlTechniqueDescriptor kDescriptor{Technique::KBuffer, module_parts, make, own_shaders};
+
+}  // namespace
+
+const GlTechniqueDescriptor& descriptor() { return kDescriptor; }
+
+}  // namespace habuffer::gl::techniques::kbuffer

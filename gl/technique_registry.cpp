@@ -1,0 +1,65 @@
+#include "habuffer/gl/technique_registry.h"
+
+#include <array>
+
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/technique_list.h"
+
+// Each technique's gl folder defines its descriptor(); the list names them.
+#define HABUFFER_DECLARE_GL_DESCRIPTOR(Enumerator, ns) \
+  namespace habuffer::gl::techniques::ns {             \
+  const GlTechniqueDescriptor& descriptor();           \
+  }
+HABUFFER_TECHNIQUES(HABUFFER_DECLARE_GL_DESCRIPTOR)
+#undef HABUFFER_DECLARE_GL_DESCRIPTOR
+
+namespace habuffer::gl {
+namespace {
+
+#define HABUFFER_COUNT_TECHNIQUE(Enumerator, ns) +1
+constexpr std::size_t kTechniqueCount = 0 HABUFFER_TECHNIQUES(HABUFFER_COUNT_TECHNIQUE);
+#undef HABUFFER_COUNT_TECHNIQUE
+
+const std::array<const GlTechniqueDescriptor*, kTechniqueCount>& registry() {
+#define HABUFFER_LIST_GL_DESCRIPTOR(Enumerator, ns) &techniques::ns::descriptor(),
+  static const std::array<const GlTechniqueDescriptor*, kTechniqueCount> list = {
+      HABUFFER_TECHNIQUES(HABUFFER_LIST_GL_DESCRIPTOR)};
+#undef HABUFFER_LIST_GL_DESCRIPTOR
+  static const bool checked = [] {
+    for (std::size_t i = 0; i < list.size(); ++i)
+      if (static_cast<std::size_t>(list[i]->technique) != i)
+        throw GlError("GL technique registry: descriptor of " + to_string(list[i]->technique) +
+                      " is not at its enumerator's place in technique_list.h");
+    return true;
+  }();
+  (void)checked;
+  return list;
+}
+
+}  // namespace
+
+const GlTechniqueDescriptor& gl_descriptor(Technique t) {
+  const auto i = static_cast<std::size_t>(t);
+  if (i >= kTechniqueCount) throw GlError("technique " + std::to_string(i) + " is not registered");
+  return *registry()[i];
+}
+
+std::span<const GlTechniqueDescriptor* const> gl_technique_registry() { return registry(); }
+
+std::string join_parts(std::initializer_list<const char*> parts) {
+  std::string s;
+  for (const char* part : parts) {
+    s += part;
+    s += '\n';
+  }
+  return s;
+}
+
+const char* mode_prelude(AtomicMode mode) { return mode == AtomicMode::Emulated64 ? kPreludeEmulated64 : kPreludeNative; }
+
+std::unique_ptr<GlTechnique> make_gl_technique(const TechniqueConfig& c, const OffsetSource& offsets, AtomicMode mode,
+                                               const GlBindings& bindings, std::uint32_t clear_tile) {
+  return gl_descriptor(c.technique).make(c, offsets, mode, bindings, clear_tile);
+}
+
+}  // namespace habuffer::gl
