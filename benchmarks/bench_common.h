@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "habuffer/fragment_streams.h"
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 
 namespace habuffer::bench {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_frames.h"
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "habuffer/age_experiment.h"
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/probe_simulator.h"
 
 namespace habuffer::harness {

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "habuffer/fragment_streams.h"
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/memory_model.h"
 
 namespace habuffer {

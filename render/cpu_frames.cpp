@@ -5,7 +5,7 @@
 
 #include "cpu_builder.h"
 #include "frame_path.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/gl/gl_info.h"
 
 namespace habuffer {

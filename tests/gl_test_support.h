@@ -11,7 +11,7 @@
 
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/egl_context.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "test_support.h"
 
 namespace habuffer::test {

@@ -9,10 +9,10 @@
 #include <string_view>
 #include <thread>
 
-#include "habuffer/blended_image.h"
-#include "habuffer/fixed_arrays.h"
-#include "habuffer/kbuffer.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/blended/blended_image.h"
+#include "habuffer/techniques/arrays/fixed_arrays.h"
+#include "habuffer/techniques/kbuffer/kbuffer.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
 #include "test_support.h"
 

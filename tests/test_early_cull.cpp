@@ -5,7 +5,7 @@
 #include <map>
 
 #include "habuffer/hash_kernel.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/reference_compositor.h"
 #include "test_support.h"

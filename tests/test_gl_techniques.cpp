@@ -7,10 +7,10 @@
 #include <algorithm>
 
 #include "gl_test_support.h"
-#include "habuffer/fixed_arrays.h"
-#include "habuffer/gl/gl_fixed_arrays.h"
-#include "habuffer/gl/gl_linked_lists.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/arrays/fixed_arrays.h"
+#include "habuffer/gl/techniques/arrays/gl_fixed_arrays.h"
+#include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
 
 namespace habuffer {

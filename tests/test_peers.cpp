@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "habuffer/blended_image.h"
-#include "habuffer/blended_kernel.h"
-#include "habuffer/kbuffer.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/blended/blended_image.h"
+#include "habuffer/techniques/blended/blended_kernel.h"
+#include "habuffer/techniques/kbuffer/kbuffer.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/memory_model.h"
 #include "habuffer/reference_compositor.h"

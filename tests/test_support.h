@@ -13,7 +13,7 @@
 #include <glm/common.hpp>
 
 #include "habuffer/fragment_streams.h"
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/random.h"
 #include "habuffer/technique.h"
 

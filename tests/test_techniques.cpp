@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <map>
 
-#include "habuffer/fixed_arrays.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/arrays/fixed_arrays.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/memory_model.h"
 #include "test_support.h"

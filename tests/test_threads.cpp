@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/node_blocks.h"
 #include "habuffer/parallel.h"

@@ -9,7 +9,7 @@
 #include <set>
 #include <vector>
 
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 
 namespace {
 

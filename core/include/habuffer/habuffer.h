@@ -6,16 +6,16 @@
 /// the shared algorithm itself and are included on their own.
 #pragma once
 
-#include "habuffer/blended_image.h"
+#include "habuffer/techniques/blended/blended_image.h"
 #include "habuffer/buffer_config.h"
 #include "habuffer/build_report.h"
 #include "habuffer/extent.h"
-#include "habuffer/fixed_arrays.h"
+#include "habuffer/techniques/arrays/fixed_arrays.h"
 #include "habuffer/fragment.h"
 #include "habuffer/fragment_buffer.h"
-#include "habuffer/ha_buffer.h"
-#include "habuffer/kbuffer.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
+#include "habuffer/techniques/kbuffer/kbuffer.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/technique_frames.h"
 #include "habuffer/max_age_table.h"

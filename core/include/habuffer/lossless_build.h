@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/pixel_depth.h"
 #include "habuffer/technique.h"
 #include "habuffer/resize_policy.h"

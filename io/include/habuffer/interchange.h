@@ -10,7 +10,7 @@
 
 #include "habuffer/csv.h"
 #include "habuffer/fragment.h"
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/offset_sequence.h"
 
 namespace habuffer {

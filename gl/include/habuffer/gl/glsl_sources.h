@@ -18,30 +18,30 @@ extern const char* const kHaConstants;          ///< shared/ha_constants.h: cons
 extern const char* const kHaRecord;             ///< shared/ha_record.glsl: record packing (SPEC 2)
 extern const char* const kHaCarry;              ///< shared/ha_carry.glsl: an insert call's state between steps
 extern const char* const kHaSaturation;         ///< shared/ha_saturation.glsl: saturation depth
-extern const char* const kHaSortedLists;        ///< shared/ha_sorted_lists.glsl: lists kept sorted while inserting
-extern const char* const kHaKBuffer;            ///< shared/ha_kbuffer.glsl: the k-buffer
+extern const char* const kHaSortedLists;        ///< techniques/linked_lists/ha_sorted_lists.glsl: lists kept sorted while inserting
+extern const char* const kHaKBuffer;            ///< techniques/kbuffer/ha_kbuffer.glsl: the k-buffer
 extern const char* const kSaturationEnv;        ///< gl/shaders/saturation_env.glsl: saturation depth's environment
-extern const char* const kSortedListsEnv;       ///< gl/shaders/sorted_lists_env.glsl: sorted lists' environment
-extern const char* const kKBufferEnv;           ///< gl/shaders/kbuffer_env.glsl: the k-buffer's environment
-extern const char* const kKBufferEntry;         ///< gl/shaders/kbuffer_entry.glsl: the k-buffer's insert call
-extern const char* const kKBufferCountCompute;  ///< gl/shaders/kb_count.comp.glsl: the k-buffer's count pass
+extern const char* const kSortedListsEnv;       ///< gl/include/habuffer/gl/techniques/linked_lists/sorted_lists_env.glsl: sorted lists' environment
+extern const char* const kKBufferEnv;           ///< gl/include/habuffer/gl/techniques/kbuffer/kbuffer_env.glsl: the k-buffer's environment
+extern const char* const kKBufferEntry;         ///< gl/include/habuffer/gl/techniques/kbuffer/kbuffer_entry.glsl: the k-buffer's insert call
+extern const char* const kKBufferCountCompute;  ///< gl/include/habuffer/gl/techniques/kbuffer/kb_count.comp.glsl: the k-buffer's count pass
 extern const char* const kHaProbe;              ///< shared/ha_probe.glsl: coherent probing (SPEC 3-5)
 extern const char* const kHaInsert;             ///< shared/ha_insert.glsl: insertion (SPEC 6)
 extern const char* const kHaBlend;              ///< shared/ha_blend.glsl: front-to-back compositing (SPEC 7)
 extern const char* const kHaTraverse;           ///< shared/ha_traverse.glsl: traversal (SPEC 7)
 extern const char* const kHaEntries;            ///< shared/ha_entries.glsl: a pixel's entries, sorted after the gather
-extern const char* const kHaLists;              ///< shared/ha_lists.glsl: per-pixel linked lists
-extern const char* const kHaArrays;             ///< shared/ha_arrays.glsl: fixed per-pixel arrays
-extern const char* const kHaBlended;            ///< shared/ha_blended.glsl: wboit's and blend's formulas
-extern const char* const kBlendedEnv;           ///< gl/shaders/blended_env.glsl: the blended baselines' outputs and accumulators
-extern const char* const kBlendedEntry;         ///< gl/shaders/blended_entry.glsl: their insert call and composite
+extern const char* const kHaLists;              ///< techniques/linked_lists/ha_lists.glsl: per-pixel linked lists
+extern const char* const kHaArrays;             ///< techniques/arrays/ha_arrays.glsl: fixed per-pixel arrays
+extern const char* const kHaBlended;            ///< techniques/blended/ha_blended.glsl: wboit's and blend's formulas
+extern const char* const kBlendedEnv;           ///< gl/include/habuffer/gl/techniques/blended/blended_env.glsl: the blended baselines' outputs and accumulators
+extern const char* const kBlendedEntry;         ///< gl/include/habuffer/gl/techniques/blended/blended_entry.glsl: their insert call and composite
 extern const char* const kPointStreamVertex;    ///< gl/shaders/point_stream.vert.glsl: a stream drawn as points
 extern const char* const kPointStreamFragment;  ///< gl/shaders/point_stream.frag.glsl: their insert
 extern const char* const kGlslEnv;              ///< gl/shaders/glsl_env.glsl: GLSL spellings for the shared sources
 extern const char* const kEntryCommon;          ///< gl/shaders/entry_common.glsl: outcome tallies and capture
 extern const char* const kHaEnv;                ///< gl/shaders/ha_env.glsl: the HA-buffer's environment
-extern const char* const kListsEnv;             ///< gl/shaders/lists_env.glsl: linked lists' environment
-extern const char* const kArraysEnv;            ///< gl/shaders/arrays_env.glsl: fixed arrays' environment
+extern const char* const kListsEnv;             ///< gl/include/habuffer/gl/techniques/linked_lists/lists_env.glsl: linked lists' environment
+extern const char* const kArraysEnv;            ///< gl/include/habuffer/gl/techniques/arrays/arrays_env.glsl: fixed arrays' environment
 extern const char* const kSortedEnv;            ///< gl/shaders/sorted_env.glsl: the private array of the sort
 extern const char* const kInsertEntry;          ///< gl/shaders/insert_entry.glsl: every technique's insertion entry
 extern const char* const kSortCompute;          ///< gl/shaders/sort.comp.glsl: the sort pass

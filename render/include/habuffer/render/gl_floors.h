@@ -8,7 +8,7 @@
 
 #include "habuffer/camera.h"
 #include "habuffer/extent.h"
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/render/scene_renderer.h"
 #include "habuffer/scene.h"
 

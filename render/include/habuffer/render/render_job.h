@@ -18,7 +18,7 @@
 #include "habuffer/buffer_config.h"
 #include "habuffer/camera.h"
 #include "habuffer/fragment_buffer.h"
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/technique.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/pixel_depth.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "habuffer/fixed_arrays.h"
+#include "habuffer/techniques/arrays/fixed_arrays.h"
 #include "habuffer/technique_descriptor.h"
 
 namespace habuffer::techniques::arrays {

@@ -2,7 +2,7 @@
 // (McGuire and Bavoil 2013) and plain over-blending in submission order.
 #include <string_view>
 
-#include "habuffer/blended_image.h"
+#include "habuffer/techniques/blended/blended_image.h"
 #include "habuffer/technique_descriptor.h"
 
 namespace habuffer::techniques {

@@ -2,7 +2,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/max_age_table.h"
 #include "habuffer/resize_policy.h"

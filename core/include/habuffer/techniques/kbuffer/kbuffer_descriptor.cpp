@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "habuffer/kbuffer.h"
+#include "habuffer/techniques/kbuffer/kbuffer.h"
 #include "habuffer/technique_descriptor.h"
 
 namespace habuffer::techniques::kbuffer {

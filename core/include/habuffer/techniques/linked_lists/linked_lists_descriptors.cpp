@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/resize_policy.h"
 #include "habuffer/technique_descriptor.h"
 

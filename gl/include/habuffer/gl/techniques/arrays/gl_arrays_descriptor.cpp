@@ -1,5 +1,5 @@
 // Fixed per-pixel arrays on the GPU.
-#include "habuffer/gl/gl_fixed_arrays.h"
+#include "habuffer/gl/techniques/arrays/gl_fixed_arrays.h"
 #include "habuffer/gl/technique_registry.h"
 
 namespace habuffer::gl::techniques::arrays {

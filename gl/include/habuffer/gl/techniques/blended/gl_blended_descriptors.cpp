@@ -1,6 +1,6 @@
 // The blended baselines on the GPU: weighted blended OIT and plain blending,
 // one container drawing through the fixed-function blender.
-#include "habuffer/gl/gl_blended_image.h"
+#include "habuffer/gl/techniques/blended/gl_blended_image.h"
 #include "habuffer/gl/technique_registry.h"
 
 namespace habuffer::gl::techniques {

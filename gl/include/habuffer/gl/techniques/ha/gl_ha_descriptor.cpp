@@ -1,5 +1,5 @@
 // The HA-buffer on the GPU: its module parts, container and own shaders.
-#include "habuffer/gl/gl_ha_table.h"
+#include "habuffer/gl/techniques/ha/gl_ha_table.h"
 #include "habuffer/gl/module_variant.h"
 #include "habuffer/gl/technique_registry.h"
 

@@ -1,6 +1,6 @@
 // The k-buffer on the GPU: its module parts, container and the occupancy
 // map's count pass and resume pass.
-#include "habuffer/gl/gl_kbuffer.h"
+#include "habuffer/gl/techniques/kbuffer/gl_kbuffer.h"
 #include "habuffer/gl/technique_registry.h"
 
 namespace habuffer::gl::techniques::kbuffer {

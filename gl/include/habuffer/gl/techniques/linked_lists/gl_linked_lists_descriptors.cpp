@@ -1,6 +1,6 @@
 // Linked lists on the GPU: `lists` (sorted by a sort pass) and
 // `sorted-lists` (kept sorted while inserting), one container.
-#include "habuffer/gl/gl_linked_lists.h"
+#include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
 #include "habuffer/gl/technique_registry.h"
 
 namespace habuffer::gl::techniques {

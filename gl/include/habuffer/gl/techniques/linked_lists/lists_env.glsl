@@ -1,4 +1,4 @@
-// Linked lists' environment on the GPU (core/include/habuffer/shared/ha_lists.glsl): the head
+// Linked lists' environment on the GPU (core/include/habuffer/techniques/linked_lists/ha_lists.glsl): the head
 // image, the node pool's entries and links, and the node counter (one word of
 // the counters buffer, zeroed with the tallies before every gather). No
 // invocation of lists sorted after the gather reads another's plain stores

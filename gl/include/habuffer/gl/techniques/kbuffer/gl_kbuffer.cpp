@@ -1,4 +1,4 @@
-#include "habuffer/gl/gl_kbuffer.h"
+#include "habuffer/gl/techniques/kbuffer/gl_kbuffer.h"
 
 #include <epoxy/gl.h>
 
@@ -10,7 +10,7 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
 #include "habuffer/gl/shader_program.h"
-#include "habuffer/kbuffer.h"
+#include "habuffer/techniques/kbuffer/kbuffer.h"
 #include "habuffer/technique_params.h"
 
 namespace habuffer::gl {

@@ -1,5 +1,5 @@
 /// @file
-/// The k-buffer on the CPU: the shared GLSL of core/include/habuffer/shared/ha_kbuffer.glsl
+/// The k-buffer on the CPU: the shared GLSL of core/include/habuffer/techniques/kbuffer/ha_kbuffer.glsl
 /// compiled as member functions over the buffers a shader would get.
 #pragma once
 
@@ -80,10 +80,10 @@ class KBufferKernel {
   /// Index of the lowest set bit of a non-zero word.
   static uint ha_lowest_bit(uint w) { return static_cast<uint>(std::countr_zero(w)); }
 
-#include "shared/ha_record.glsl"
-#include "shared/ha_carry.glsl"
-#include "shared/ha_blend.glsl"
-#include "shared/ha_kbuffer.glsl"
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_carry.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/techniques/kbuffer/ha_kbuffer.glsl"
 
  private:
   KBufferBuffers<Word> b_;

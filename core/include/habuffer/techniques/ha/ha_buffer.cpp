@@ -1,4 +1,4 @@
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 
 #include <algorithm>
 #include <charconv>

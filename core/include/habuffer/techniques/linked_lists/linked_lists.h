@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "habuffer/fragment_buffer.h"
-#include "habuffer/lists_kernel.h"
+#include "habuffer/techniques/linked_lists/lists_kernel.h"
 #include "habuffer/technique_params.h"
 
 namespace habuffer {

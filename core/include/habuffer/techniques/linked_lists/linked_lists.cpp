@@ -1,10 +1,10 @@
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include "habuffer/lists_kernel.h"
+#include "habuffer/techniques/linked_lists/lists_kernel.h"
 #include "technique_parallel.h"
 
 namespace habuffer {

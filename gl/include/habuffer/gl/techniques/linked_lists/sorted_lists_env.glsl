@@ -1,4 +1,4 @@
-// Sorted lists' part of the environment on the GPU (core/include/habuffer/shared/ha_sorted_lists.glsl),
+// Sorted lists' part of the environment on the GPU (core/include/habuffer/techniques/linked_lists/ha_sorted_lists.glsl),
 // after lists_env.glsl, whose buffers the module assembly makes coherent
 // (HABUFFER_LISTS_QUALIFIER): an insertion reads the links and entries other
 // invocations wrote in the same gather. A node's entry and link are

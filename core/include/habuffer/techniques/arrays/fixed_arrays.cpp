@@ -1,4 +1,4 @@
-#include "habuffer/fixed_arrays.h"
+#include "habuffer/techniques/arrays/fixed_arrays.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,6 +1,6 @@
 /// @file
 /// Per-pixel linked lists on the CPU, sorted after the gather or kept sorted
-/// while inserting: the shared GLSL of core/include/habuffer/shared/ha_lists.glsl and
+/// while inserting: the shared GLSL of core/include/habuffer/techniques/linked_lists/ha_lists.glsl and
 /// ha_sorted_lists.glsl compiled as member functions, over the buffers a
 /// shader would get.
 #pragma once
@@ -121,12 +121,12 @@ class ListsKernel {
   /// Raises the pixel's saturation code to at least `code` (atomic max).
   void ha_max_saturation(uint pixel, uint code) { ha_fetch_max<Concurrent>(b_.saturation[pixel], code); }
 
-#include "shared/ha_record.glsl"
-#include "shared/ha_blend.glsl"
-#include "shared/ha_entries.glsl"
-#include "shared/ha_lists.glsl"
-#include "shared/ha_saturation.glsl"
-#include "shared/ha_sorted_lists.glsl"
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/shared/ha_entries.glsl"
+#include "habuffer/techniques/linked_lists/ha_lists.glsl"
+#include "habuffer/shared/ha_saturation.glsl"
+#include "habuffer/techniques/linked_lists/ha_sorted_lists.glsl"
 
  private:
   Buffers b_;

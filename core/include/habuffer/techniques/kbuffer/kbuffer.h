@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "habuffer/fragment_buffer.h"
-#include "habuffer/kbuffer_kernel.h"
+#include "habuffer/techniques/kbuffer/kbuffer_kernel.h"
 #include "habuffer/technique_params.h"
 
 namespace habuffer {

@@ -1,11 +1,11 @@
-#include "habuffer/gl/gl_fixed_arrays.h"
+#include "habuffer/gl/techniques/arrays/gl_fixed_arrays.h"
 
 #include <epoxy/gl.h>
 
 #include <algorithm>
 
 #include "gl_params.h"
-#include "habuffer/fixed_arrays.h"
+#include "habuffer/techniques/arrays/fixed_arrays.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"

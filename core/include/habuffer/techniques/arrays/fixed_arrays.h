@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "habuffer/fragment_buffer.h"
-#include "habuffer/arrays_kernel.h"
+#include "habuffer/techniques/arrays/arrays_kernel.h"
 #include "habuffer/technique_params.h"
 
 namespace habuffer {

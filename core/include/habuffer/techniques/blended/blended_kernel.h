@@ -1,6 +1,6 @@
 /// @file
 /// Weighted blended OIT and plain blending on the CPU: the shared GLSL of
-/// core/include/habuffer/shared/ha_blended.glsl compiled as member functions.
+/// core/include/habuffer/techniques/blended/ha_blended.glsl compiled as member functions.
 #pragma once
 
 #include "habuffer/glsl_env.h"
@@ -30,9 +30,9 @@ class BlendedKernel {
   float ha_depth_near;  ///< depth_range.near_t (wboit's weight is normalized to the range)
   float ha_depth_far;  ///< depth_range.far_t
 
-#include "shared/ha_record.glsl"
-#include "shared/ha_blend.glsl"
-#include "shared/ha_blended.glsl"
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/techniques/blended/ha_blended.glsl"
 };
 
 }  // namespace habuffer

@@ -1,4 +1,4 @@
-// The k-buffer's environment on the GPU (core/include/habuffer/shared/ha_kbuffer.glsl): its
+// The k-buffer's environment on the GPU (core/include/habuffer/techniques/kbuffer/ha_kbuffer.glsl): its
 // layers are the mode's slot table (the prelude declares it, and the lock
 // words of emulated64), the occupancy map and the per-pixel limits sit at
 // the HA-buffer's max-age and offsets points.

@@ -9,7 +9,7 @@
 /// attachments are copied into storage buffers for the resolve and the
 /// read-back (a CPU BlendedImage). Host shaders call ha_insert at most once
 /// per invocation and discard where they call none
-/// (gl/shaders/blended_env.glsl); the compute entry draws a stream as points.
+/// (gl/include/habuffer/gl/techniques/blended/blended_env.glsl); the compute entry draws a stream as points.
 #pragma once
 
 #include <memory>

@@ -1,4 +1,4 @@
-// Fixed arrays' environment on the GPU (core/include/habuffer/shared/ha_arrays.glsl): the
+// Fixed arrays' environment on the GPU (core/include/habuffer/techniques/arrays/ha_arrays.glsl): the
 // per-pixel counters and the layers; the largest overflow goes to one word
 // of the counters buffer.
 layout(std430, binding = HABUFFER_BINDING_COUNTS) buffer HaCounts { uint ha_counts[]; };

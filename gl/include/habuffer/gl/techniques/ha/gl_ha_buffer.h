@@ -9,7 +9,7 @@
 
 #include "habuffer/buffer_config.h"
 #include "habuffer/gl/gl_frame_driver.h"
-#include "habuffer/gl/gl_ha_table.h"
+#include "habuffer/gl/techniques/ha/gl_ha_table.h"
 
 namespace habuffer::gl {
 

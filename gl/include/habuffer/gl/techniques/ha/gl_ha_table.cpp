@@ -1,4 +1,4 @@
-#include "habuffer/gl/gl_ha_table.h"
+#include "habuffer/gl/techniques/ha/gl_ha_table.h"
 
 #include <epoxy/gl.h>
 
@@ -12,7 +12,7 @@
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
-#include "habuffer/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 
 namespace habuffer::gl {
 

@@ -1,5 +1,5 @@
 /// @file
-/// Fixed per-pixel arrays on the CPU: the shared GLSL of core/include/habuffer/shared/ha_arrays.glsl
+/// Fixed per-pixel arrays on the CPU: the shared GLSL of core/include/habuffer/techniques/arrays/ha_arrays.glsl
 /// compiled as member functions, over the buffers a shader would get.
 #pragma once
 
@@ -65,10 +65,10 @@ class ArraysKernel {
   /// Atomic even for one inserter: the sort pass runs its rows on several threads.
   void fa_note_overflow(uint arrived) { ha_fetch_max<true>(*b_.max_arrived, arrived); }
 
-#include "shared/ha_record.glsl"
-#include "shared/ha_blend.glsl"
-#include "shared/ha_entries.glsl"
-#include "shared/ha_arrays.glsl"
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/shared/ha_entries.glsl"
+#include "habuffer/techniques/arrays/ha_arrays.glsl"
 
  private:
   Buffers b_;

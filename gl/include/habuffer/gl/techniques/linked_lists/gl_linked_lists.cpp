@@ -1,4 +1,4 @@
-#include "habuffer/gl/gl_linked_lists.h"
+#include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
 
 #include <epoxy/gl.h>
 
@@ -8,7 +8,7 @@
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
-#include "habuffer/linked_lists.h"
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "sort_pass.h"
 
 namespace habuffer::gl {

@@ -1,4 +1,4 @@
-// The blended baselines on the GPU (core/include/habuffer/shared/ha_blended.glsl):
+// The blended baselines on the GPU (core/include/habuffer/techniques/blended/ha_blended.glsl):
 // no lists, each fragment blended into per-pixel accumulators by the
 // fixed-function blender in primitive order, the only order-keeping
 // accumulation a GPU has (wboit's sums would also go through float atomics,

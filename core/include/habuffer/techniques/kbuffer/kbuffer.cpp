@@ -1,10 +1,10 @@
-#include "habuffer/kbuffer.h"
+#include "habuffer/techniques/kbuffer/kbuffer.h"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include "habuffer/kbuffer_kernel.h"
+#include "habuffer/techniques/kbuffer/kbuffer_kernel.h"
 #include "technique_parallel.h"
 
 namespace habuffer {

@@ -1,4 +1,4 @@
-#include "habuffer/gl/gl_ha_buffer.h"
+#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 
 #include "gl_state_guard.h"
 

@@ -1,10 +1,10 @@
-#include "habuffer/blended_image.h"
+#include "habuffer/techniques/blended/blended_image.h"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include "habuffer/blended_kernel.h"
+#include "habuffer/techniques/blended/blended_kernel.h"
 #include "technique_parallel.h"
 
 namespace habuffer {

@@ -1,10 +1,10 @@
-#include "habuffer/gl/gl_blended_image.h"
+#include "habuffer/gl/techniques/blended/gl_blended_image.h"
 
 #include <epoxy/gl.h>
 
 #include "gl_params.h"
 #include "gl_state_guard.h"
-#include "habuffer/blended_image.h"
+#include "habuffer/techniques/blended/blended_image.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
