@@ -144,20 +144,14 @@ double ResultRow::number(const std::string& column) const {
 
 namespace {
 
-// The counters' own columns, in table order, for writing and reading back
-// alike; `stored` and `failures`, derived, stand before and after them.
-constexpr std::pair<const char*, std::uint64_t Counters::*> kCounterColumns[] = {
-    {"invalid", &Counters::invalid},           {"duplicates", &Counters::duplicates},
-    {"culled", &Counters::culled},             {"saturated_rejected", &Counters::saturated_rejected},
-    {"blended", &Counters::blended},           {"failed_age", &Counters::failed_age},
-    {"failed_iter", &Counters::failed_iter},   {"dropped_pool", &Counters::dropped_pool},
-    {"dropped_layers", &Counters::dropped_layers}, {"occupancy_rejected", &Counters::occupancy_rejected}};
 
 }  // namespace
 
 void set_counters(ResultRow& row, const Counters& c) {
   row.set("fragments", c.fragments).set("stored", c.stored());
-  for (const auto& [column, field] : kCounterColumns) row.set(column, c.*field);
+  // The counters' own columns (counters.h) for writing and reading back
+  // alike; `stored` and `failures`, derived, stand before and after them.
+  for (const CounterField& f : kCounterFields) row.set(std::string(f.name), c.*f.member);
   row.set("failures", c.failures());
 }
 
@@ -165,7 +159,7 @@ std::optional<Counters> counters_of(const ResultRow& row) {
   if (row.find("fragments") == nullptr || row.find("failures") == nullptr) return std::nullopt;
   Counters c;
   c.fragments = static_cast<std::uint64_t>(row.number("fragments"));
-  for (const auto& [column, field] : kCounterColumns) c.*field = static_cast<std::uint64_t>(row.number(column));
+  for (const CounterField& f : kCounterFields) c.*f.member = static_cast<std::uint64_t>(row.number(std::string(f.name)));
   return c;
 }
 

@@ -4,27 +4,35 @@
 
 namespace habuffer::cli {
 
-std::uint64_t lost_fragments(const Counters& c) { return c.failures() + c.culled + c.saturated_rejected + c.invalid; }
+namespace {
+
+// The kinds of outcome that leave a fragment out of the lists, in the order
+// the summary names them: losses first, then what was hidden, then refusals.
+constexpr CounterKind kNotStored[] = {CounterKind::Failure, CounterKind::Hidden, CounterKind::Invalid};
+
+}  // namespace
+
+std::uint64_t lost_fragments(const Counters& c) {
+  std::uint64_t n = 0;
+  for (const CounterKind kind : kNotStored)
+    for (const CounterField& f : kCounterFields)
+      if (f.kind == kind) n += c.*f.member;
+  return n;
+}
 
 std::string loss_summary(const Counters& c) {
   std::string s = std::to_string(lost_fragments(c)) + " of " + std::to_string(c.fragments) + " fragments not stored:";
-  const std::pair<const char*, std::uint64_t> reasons[] = {{"failed_age", c.failed_age},
-                                                           {"failed_iter", c.failed_iter},
-                                                           {"dropped_pool (node pool full)", c.dropped_pool},
-                                                           {"dropped_layers (pixel's layers full)", c.dropped_layers},
-                                                           {"occupancy_rejected (beyond the k nearest)", c.occupancy_rejected},
-                                                           {"culled (early cull)", c.culled},
-                                                           {"saturated_rejected (behind a culled fragment)", c.saturated_rejected},
-                                                           {"invalid (depth NaN or outside [0, 1])", c.invalid}};
   bool first = true;
-  for (const auto& [name, n] : reasons) {
-    if (n == 0) continue;
-    s += first ? " " : ", ";
-    s += name;
-    s += ' ';
-    s += std::to_string(n);
-    first = false;
-  }
+  for (const CounterKind kind : kNotStored)
+    for (const CounterField& f : kCounterFields) {
+      if (f.kind != kind || c.*f.member == 0) continue;
+      s += first ? " " : ", ";
+      s += f.name;
+      if (!f.reason.empty()) s += " (" + std::string(f.reason) + ")";
+      s += ' ';
+      s += std::to_string(c.*f.member);
+      first = false;
+    }
   return s;
 }
 

@@ -12,13 +12,6 @@
 namespace habuffer::cli {
 namespace {
 
-void counters(JsonWriter& json, const Counters& c) {
-  json.field("fragments", c.fragments).field("stored", c.stored()).field("duplicates", c.duplicates);
-  json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
-  json.field("failed_iter", c.failed_iter).field("dropped_pool", c.dropped_pool).field("dropped_layers", c.dropped_layers);
-  json.field("saturated_rejected", c.saturated_rejected).field("occupancy_rejected", c.occupancy_rejected);
-  json.field("blended", c.blended);
-}
 
 // A count, or null where it was not counted (not a zero that reads as one).
 JsonWriter& counted(JsonWriter& json, std::string_view key, const std::optional<std::uint64_t>& count) {
@@ -30,7 +23,7 @@ void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.begin_object().field("index", f.index).field("yaw", static_cast<double>(f.yaw));
   write_extent(json, "table", f.table);
   json.field("capacity", f.capacity).field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
-  counters(json, f.counters);
+  write_counters(json, f.counters);
   json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
   json.field("insert_order", to_string(f.insert_order));
   if (gpu) counted(json, "slot_writes", f.slot_writes).field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
@@ -76,7 +69,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   json.field("age_bits", set.config.age_bits).field("block", set.config.block);
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
   json.field("table_mode", automatic_size(set) ? "auto" : (set.lossless ? "lossless" : "fixed"));
-  counters(json, last.counters);
+  write_counters(json, last.counters);
   json.field("opaque_rejected", last.opaque_rejected);
   // Counted on the GPU path only, and only with --slot-writes (null otherwise).
   if (set.path == RenderPath::Gl) counted(json, "slot_writes", last.slot_writes);

@@ -23,6 +23,11 @@ void write_technique_fields(JsonWriter& json, const TechniqueConfig& config, std
         f.value);
 }
 
+void write_counters(JsonWriter& json, const Counters& c) {
+  json.field("fragments", c.fragments).field("stored", c.stored());
+  for (const CounterField& f : kCounterFields) json.field(f.name, c.*f.member);
+}
+
 void write_build_stats(JsonWriter& json, const HashOptions& options, const FragmentBuffer& buffer,
                        const std::vector<BuildAttempt>& attempts, const BuildReport& report, const BuildTiming& timing) {
   const Counters& c = report.counters;
@@ -37,11 +42,8 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
   json.field("saturation", options.config.saturation);
   json.field("offsets", options.offsets_name).field("seed", options.offsets.seed);
   json.field("early_cull", static_cast<double>(options.config.early_cull_tau));
-  json.field("fragments", c.fragments).field("stored", report.stored).field("duplicates", c.duplicates);
-  json.field("culled", c.culled).field("invalid", c.invalid).field("failed_age", c.failed_age);
-  json.field("failed_iter", c.failed_iter).field("dropped_pool", c.dropped_pool).field("dropped_layers", c.dropped_layers);
-  json.field("saturated_rejected", c.saturated_rejected).field("occupancy_rejected", c.occupancy_rejected);
-  json.field("blended", c.blended);
+  json.field("fragments", c.fragments).field("stored", report.stored);
+  for (const CounterField& f : kCounterFields) json.field(f.name, c.*f.member);
   json.field("load_factor", report.load_factor);
   json.field("max_age", report.max_age).field("mean_age", report.mean_age);
   json.key("age_histogram").begin_array();

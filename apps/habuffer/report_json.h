@@ -22,6 +22,8 @@ struct BuildTiming {
 
 // "key": [x, y], the stats files' form of a size.
 void write_extent(JsonWriter& json, std::string_view key, Extent e);
+// "fragments", "stored" and every counter of kCounterFields.
+void write_counters(JsonWriter& json, const Counters& c);
 // The technique's configuration fields (technique_report_fields).
 void write_technique_fields(JsonWriter& json, const TechniqueConfig& config, std::uint64_t capacity);
 
