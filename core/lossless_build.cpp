@@ -17,8 +17,15 @@ OffsetSequence OffsetSource::make(Extent table, std::uint32_t count) const {
 
 BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::span<const Fragment> fragments,
                   const InsertOptions& options, const ResizePolicy& policy, std::uint32_t max_attempts) {
-  TechniqueBuild b = build_technique(ha_technique_config(config), offsets, fragments, options, policy,
-                                     max_attempts);
+  return ha_build_result(build_technique(ha_technique_config(config), offsets, fragments, options, policy,
+                                         max_attempts));
+}
+
+BuildResult ha_build_result(TechniqueBuild b) {
+  if (!b.buffer || b.buffer->hash_table() != b.buffer.get())
+    throw std::invalid_argument("a build of technique " +
+                                (b.buffer ? to_string(b.buffer->technique()) : std::string("(none)")) +
+                                " is not an HA-buffer's");
   return BuildResult{std::move(static_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts), b.too_deep};
 }
 

@@ -1,8 +1,10 @@
-// The CPU path's frames of one technique: the first size from a fragment
-// count, adaptive sizing between frames from the previous frame's exact
-// count (SPEC 8 on the HA-buffer's table and on the lists' pool), lossless
-// and automatic regathers, the container kept between frames of one size
-// (TechniqueFrames), and the frame's statistics.
+/// @file
+/// The CPU path's frames of one technique: the first size from a fragment
+/// count, adaptive sizing between frames from the previous frame's exact
+/// count (SPEC 8 on the HA-buffer's table and on the lists' pool), lossless
+/// and automatic regathers, the container kept between frames of one size
+/// (TechniqueFrames), and the frame's statistics. Private to the render
+/// library (CpuFrames uses it).
 #pragma once
 
 #include <cstdint>
@@ -15,17 +17,19 @@
 
 namespace habuffer {
 
+/// Builds one technique's frames on the CPU (see the file comment).
 class CpuBuilder {
  public:
+  /// Keeps a reference to `settings`, which must outlive the builder.
   explicit CpuBuilder(const RenderSettings& settings);
-  // Sizes an automatic table or pool for `fragments` (before the first frame).
+  /// Sizes an automatic table or pool for `fragments` (before the first frame).
   void size_for(std::uint64_t fragments);
-  // One frame: inserts (and sorts) `fragments`, filling the frame's counts
-  // and gather time. The result stays here until the next frame or release().
+  /// One frame: inserts (and sorts) `fragments`, filling the frame's counts
+  /// and gather time. The result stays here until the next frame or release().
   const TechniqueBuild& build(std::span<const Fragment> fragments, FrameStats& fs);
-  // The last frame's result and container (see TechniqueFrames::release).
+  /// The last frame's result and container (see TechniqueFrames::release).
   TechniqueBuild release() { return frames_.release(); }
-  // Containers made so far (1 when every frame kept the first).
+  /// Containers made so far (1 when every frame kept the first).
   [[nodiscard]] std::uint64_t containers_made() const { return frames_.containers_made(); }
 
  private:
@@ -35,10 +39,10 @@ class CpuBuilder {
   std::optional<std::uint64_t> previous_use_;  // stored records (HA) or nodes asked for (lists)
 };
 
-// An automatic HA table's first size: the fragments at the middle of the
-// policy's band of loads, at least the screen.
+/// An automatic HA table's first size: the fragments at the middle of the
+/// policy's band of loads ((grow_at + shrink_at) / 2), at least the screen.
 Extent initial_table(const RenderSettings& s, std::uint64_t fragments);
-// An automatic pool's first size: the fragments at the policy's grow_at use.
+/// An automatic pool's first size: the fragments at the policy's grow_at use (at least 1 node).
 std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments);
 /// `c` with the automatic container's first size for `fragments` fragments
 /// (the counting pass): initial_table for a hash table, initial_pool for a
@@ -48,8 +52,8 @@ TechniqueConfig automatic_config(const RenderSettings& s, TechniqueConfig c, std
 }  // namespace habuffer
 
 namespace habuffer {
-// Moves the last frame's build into the result: the lists, the memory
-// (measured and by formula) and, when asked, the culled fragments per pixel
-// (the HA-buffer's early cull, replayed serially).
+/// Moves the last frame's build into the result: the lists, the memory
+/// (measured and by formula) and, when asked, the culled fragments per pixel
+/// (the HA-buffer's early cull, replayed serially).
 void finish_cpu_result(const RenderSettings& settings, TechniqueBuild last, RenderResult& result);
 }  // namespace habuffer

@@ -1,5 +1,6 @@
-// Command-line options of one subcommand: "--name value" pairs and "--flag"
-// switches, checked against what the subcommand accepts.
+/// @file
+/// Command-line options of one subcommand: "--name value" pairs and "--flag"
+/// switches, checked against what the subcommand accepts.
 #pragma once
 
 #include <cstdint>
@@ -17,19 +18,20 @@
 
 namespace habuffer::cli {
 
-// Wrong use of the command line (exit code 2).
+/// Wrong use of the command line (exit code 2).
 class UsageError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  using std::runtime_error::runtime_error;  ///< takes the message
 };
 
-// The shortest decimal that reads back as `v` ("1.1754944e-38").
+/// The shortest decimal that reads back as `v` ("1.1754944e-38").
 std::string shortest(float v);
+/// The same for double.
 std::string shortest(double v);
 
-// `parse()`, a library rule's std::invalid_argument turned into bad usage:
-// "option --NAME: REASON", or the reason alone for an empty name (the
-// library's message names the option itself).
+/// `parse()`, a library rule's std::invalid_argument turned into bad usage:
+/// "option --NAME: REASON", or the reason alone for an empty name (the
+/// library's message names the option itself).
 template <class Parse>
 auto usage_errors(const std::string& name, Parse parse) {
   try {
@@ -39,35 +41,43 @@ auto usage_errors(const std::string& name, Parse parse) {
   }
 }
 
-// FileRoles::check, its conflicts as bad usage.
+/// FileRoles::check, its conflicts as bad usage.
 void check_files(const FileRoles& files);
 
-// Prints `usage` and returns true when the only argument is --help.
+/// Prints `usage` and returns true when the only argument is --help.
 bool print_help(const std::vector<std::string>& argv, const char* usage);
 
+/// One subcommand's parsed options (see the file comment).
 class Args {
  public:
-  // valued: options that take a value; flags: switches. Throws UsageError on
-  // an unknown option, a missing value or a repeated option.
+  /// valued: options that take a value; flags: switches. Throws UsageError on
+  /// an unknown option, a missing value or a repeated option.
   Args(const std::vector<std::string>& argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
 
+  /// Whether option or flag `name` was given.
   [[nodiscard]] bool has(const std::string& name) const { return values_.count(name) != 0 || flags_.count(name) != 0; }
+  /// The value of `name`, or `fallback` when absent.
   [[nodiscard]] std::string str(const std::string& name, const std::string& fallback) const;
+  /// The value of `name`; UsageError when absent.
   [[nodiscard]] std::string required(const std::string& name) const;
+  /// An unsigned integer in [min, max], or `fallback` when absent; UsageError "option --NAME: ..." for bad text.
   [[nodiscard]] std::uint64_t u64(const std::string& name, std::uint64_t fallback, std::uint64_t min = 0,
                                   std::uint64_t max = UINT64_MAX) const;
+  /// As u64, for 32 bits.
   [[nodiscard]] std::uint32_t u32(const std::string& name, std::uint32_t fallback, std::uint32_t min = 0,
                                   std::uint32_t max = UINT32_MAX) const;
+  /// A double, or `fallback` when absent; UsageError for bad text (as parse_float64).
   [[nodiscard]] double real(const std::string& name, double fallback) const;
-  // A finite value parsed as the float32 it is used as (decimal rounded
-  // once); text beyond float32's range, or that rounds to zero from a
-  // non-zero value, is refused rather than turned into infinity or 0.
+  /// A finite value parsed as the float32 it is used as (decimal rounded
+  /// once); text beyond float32's range, or that rounds to zero from a
+  /// non-zero value, is refused rather than turned into infinity or 0.
   [[nodiscard]] float f32(const std::string& name, float fallback) const;
-  // A comma-separated list; an empty list or an empty item is refused.
+  /// A comma-separated list; an empty list or an empty item is refused.
   [[nodiscard]] std::vector<std::string> list(const std::string& name, const std::string& fallback) const;
-  // Refuses each of `names` given on the command line unless `applies`:
-  // "option --NAME has no effect WHY".
+  /// Refuses each of `names` given on the command line unless `applies`:
+  /// "option --NAME has no effect WHY".
   void refuse_unless(bool applies, std::initializer_list<const char*> names, const std::string& why) const;
+  /// A size WxH with positive sides, or nullopt when absent; UsageError for anything else.
   [[nodiscard]] std::optional<Extent> extent(const std::string& name) const;
 
  private:
@@ -75,8 +85,8 @@ class Args {
   std::set<std::string> flags_;
 };
 
-// --insert-order auto|arrival|pixel (the HA-buffer's order on the CPU path;
-// InsertOrder): Auto when absent.
+/// --insert-order auto|arrival|pixel (the HA-buffer's order on the CPU path;
+/// InsertOrder): Auto when absent.
 InsertOrder insert_order_option(const Args& args);
 
 }  // namespace habuffer::cli

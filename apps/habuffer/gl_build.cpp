@@ -38,8 +38,7 @@ TechniqueBuild build_on_gl(const HashOptions& options, std::span<const Fragment>
 }
 
 BuildResult build_ha_on_gl(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing) {
-  TechniqueBuild b = build_on_gl(options, fragments, timing);
-  return BuildResult{std::move(dynamic_cast<HaBuffer&>(*b.buffer)), b.counters, std::move(b.attempts), b.too_deep};
+  return ha_build_result(build_on_gl(options, fragments, timing));
 }
 
 }  // namespace habuffer::cli

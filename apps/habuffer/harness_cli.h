@@ -1,6 +1,8 @@
-// What the harness commands (sweep, bench, figure, plan) share on the
-// command line: lists of scenes, techniques and sizes, the output files, the
-// GL context, progress and the provenance every table carries.
+/// @file
+/// What the harness commands (sweep, bench, figure, plan) share on the
+/// command line: lists of scenes, techniques and sizes, the output files, the
+/// GL context, progress and the provenance every table carries, so the four
+/// commands read their options and write their tables by one set of rules.
 #pragma once
 
 #include <memory>
@@ -16,34 +18,39 @@
 
 namespace habuffer::cli {
 
-// A comma-separated list of numbers, each in [lo, hi].
+/// Option `name`'s comma-separated list of numbers (`fallback` when absent), each in [lo, hi]; UsageError
+/// otherwise.
 std::vector<double> parse_reals(const Args& args, const std::string& name, const std::string& fallback,
                                 double lo = -1e300, double hi = 1e300);
-// --path gl|cpu (default gl).
+/// --path gl|cpu (default gl).
 RenderPath parse_path(const Args& args);
-// --size WxH[,WxH...]: at least one, each positive.
+/// --size WxH[,WxH...]: at least one, each positive.
 std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback);
+/// Option `name`'s technique words (harness/technique_spec.h), `fallback` when absent; UsageError naming the
+/// option for a bad word.
 std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name, const std::string& fallback);
+/// Option `name`'s scene words (harness/workload.h); UsageError naming the option for a bad word or none.
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name);
-// The same with a default list.
+/// The same with a default list.
 std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::string& name, const std::string& fallback);
-// A harness command's files, checked together before any work (one rule
-// for every command): --out F.json[,F.csv] and, where the command has it,
-// --picks F.json[,F.csv] (extensions, writable, no two the same file), none
-// of them any workload's input (a fragment CSV or mesh file).
+/// A harness command's files, checked together before any work (one rule
+/// for every command): --out F.json[,F.csv] and, where the command has it,
+/// --picks F.json[,F.csv] (extensions, writable, no two the same file), none
+/// of them any workload's input (a fragment CSV or mesh file).
 struct HarnessOutputs {
-  std::vector<std::string> out, picks;
+  std::vector<std::string> out, picks;  ///< --out's and --picks' paths (picks empty when not given)
 };
+/// Reads and checks --out and --picks (see HarnessOutputs); UsageError on any conflict.
 HarnessOutputs parse_outputs(const Args& args, const std::vector<harness::WorkloadSpec>& workloads);
 
-// A context when any scene needs one (streams do not); DataError when none can be made.
+/// A context when any scene needs one (streams do not); DataError when none can be made.
 std::unique_ptr<gl::EglContext> context_for(bool needed, const char* command);
-// "habuffer CMD ARGS..." as typed, and the machine.
+/// "habuffer CMD ARGS..." as typed, and the machine.
 harness::Provenance provenance(const char* command, const std::vector<std::string>& argv);
-// One warning line on stderr when any run of the table lost fragments
-// (failed, dropped, culled or invalid), naming the first such run.
+/// One warning line on stderr when any run of the table lost fragments
+/// (failed, dropped, culled or invalid), naming the first such run.
 void warn_table_losses(const char* command, const harness::ResultTable& table);
-// Warns of losses, writes the table and prints one line per output.
+/// Warns of losses, writes the table and prints one line per output.
 void write_outputs(const char* command, harness::ResultTable& table, const std::vector<std::string>& outputs,
                    const std::vector<std::string>& argv);
 

@@ -1,7 +1,8 @@
-// The options every command that builds an HA-buffer shares (--screen,
-// --table, --layout, --age-bits, --offsets, --seed, --block, --threads,
-// --early-cull, --iter-limit, --lossless, --max-attempts), turned into the
-// library's configuration.
+/// @file
+/// The options every command that builds an HA-buffer shares (--screen,
+/// --table, --layout, --age-bits, --offsets, --seed, --block, --threads,
+/// --early-cull, --iter-limit, --lossless, --max-attempts), turned into the
+/// library's configuration, so every such command reads them by the same rules.
 #pragma once
 
 #include <set>
@@ -14,39 +15,42 @@
 
 namespace habuffer::cli {
 
+/// The shared build options as parsed.
 struct HashOptions {
-  BufferConfig config;
-  OffsetSource offsets;
-  std::string offsets_name;  // random, farthest or the file path
-  InsertOptions insert;
-  ResizePolicy policy;
-  std::uint32_t max_attempts = 1;  // > 1 in lossless mode
-  bool lossless = false;
-  bool gl = false;  // --path gl
-  TechniqueOptions technique;  // ha unless the command takes --technique
+  BufferConfig config;   ///< screen, table, layout, age bits, block, iteration limit, early cull
+  OffsetSource offsets;  ///< --offsets and --seed
+  std::string offsets_name;  ///< random, farthest or the file path
+  InsertOptions insert;  ///< --threads and the CPU insertion's options
+  ResizePolicy policy;   ///< how lossless mode grows the table
+  std::uint32_t max_attempts = 1;  ///< > 1 in lossless mode
+  bool lossless = false;  ///< --lossless
+  bool gl = false;  ///< --path gl
+  TechniqueOptions technique;  ///< ha unless the command takes --technique
 };
 
-// The technique's configuration for a stream of `fragments` (an automatic
-// pool holds them all).
+/// The technique's configuration for a stream of `fragments` (an automatic
+/// pool holds them all).
 TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragments);
 
-// Names to add to a command's accepted options.
+/// Names to add to a command's accepted options.
 const std::set<std::string>& hash_valued_options();
+/// Flags (no value) to add to a command's accepted options.
 const std::set<std::string>& hash_flag_options();
 
-// Throws UsageError for bad values or conflicting sizes, DataError for a bad
-// offsets file. `screen` is required. With `techniques`, --technique,
-// --layers and --pool are parsed too (the command accepts them), and each
-// option only some techniques take refused with the others.
+/// Throws UsageError for bad values or conflicting sizes, DataError for a bad
+/// offsets file. `screen` is required. With `techniques`, --technique,
+/// --layers and --pool are parsed too (the command accepts them), and each
+/// option only some techniques take refused with the others.
 HashOptions parse_hash_options(const Args& args, bool techniques = false);
 
-// The parts other commands share: --layout, --age-bits, --block,
-// --iter-limit, --early-cull for a screen and table (zero table: auto);
-// --offsets and --seed.
+/// The parts other commands share: --layout, --age-bits, --block,
+/// --iter-limit, --early-cull for a screen and table (zero table: auto);
+/// --offsets and --seed.
 BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table);
+/// --offsets (random, farthest or a file, read for `config`'s table and ages) and --seed.
 OffsetSource parse_offset_source(const Args& args, const BufferConfig& config);
 
-// Adds --offsets as an input when it names a file.
+/// Adds --offsets as an input when it names a file.
 void add_offsets_input(FileRoles& files, const HashOptions& options);
 
 }  // namespace habuffer::cli

@@ -1,6 +1,7 @@
-// Losses said out loud: any run whose fragments did not all end stored or
-// merged as duplicates prints one warning line on stderr with the counts,
-// whether or not a stats file was asked for (SPEC invariant 1).
+/// @file
+/// Losses said out loud: any run whose fragments did not all end stored or
+/// merged as duplicates prints one warning line on stderr with the counts,
+/// whether or not a stats file was asked for (SPEC invariant 1).
 #pragma once
 
 #include <cstdint>
@@ -11,24 +12,24 @@
 
 namespace habuffer::cli {
 
-// Fragments that are not in the table and not a duplicate of one that is:
-// failed (age or iteration limit), culled by early cull, or invalid.
+/// Fragments that are not in the table and not a duplicate of one that is:
+/// failed (age or iteration limit), culled by early cull, or invalid.
 std::uint64_t lost_fragments(const Counters& c);
 
-// "19745 of 20000 fragments not stored: failed_age 19745, culled 3" (only
-// the non-zero reasons).
+/// "19745 of 20000 fragments not stored: failed_age 19745, culled 3" (only
+/// the non-zero reasons).
 std::string loss_summary(const Counters& c);
 
-// What keeps a technique's dropped fragments (its descriptor's hint).
+/// What keeps a technique's dropped fragments (its descriptor's hint).
 inline std::string lossless_hint(Technique t) { return std::string(descriptor(t).lossless_hint); }
 
-// Prints "habuffer COMMAND: warning: SUMMARY[CONTEXT][; HINT]" when anything
-// was lost; the hint only when fragments failed (not culled or invalid).
+/// Prints "habuffer COMMAND: warning: SUMMARY[CONTEXT][; HINT]" when anything
+/// was lost; the hint only when fragments failed (not culled or invalid).
 void warn_losses(const std::string& command, const Counters& c, const std::string& context,
                  const std::string& hint);
 
-// Prints "habuffer COMMAND: lossless mode: SUMMARYCONTEXT", the one line of
-// a --lossless run that still lost fragments (it exits 1).
+/// Prints "habuffer COMMAND: lossless mode: SUMMARYCONTEXT", the one line of
+/// a --lossless run that still lost fragments (it exits 1).
 void report_lossless_failure(const std::string& command, const Counters& c, const std::string& context);
 
 }  // namespace habuffer::cli

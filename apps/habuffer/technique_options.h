@@ -1,7 +1,8 @@
-// The options that pick a technique (--technique NAME, --layers K, --pool N,
-// --occupancy on|off, --occupancy-words D, --depth-range NEAR,FAR), shared
-// by render and build-lists, and the refusal of options that the chosen
-// technique would ignore.
+/// @file
+/// The options that pick a technique (--technique NAME, --layers K, --pool N,
+/// --occupancy on|off, --occupancy-words D, --depth-range NEAR,FAR), shared
+/// by render and build-lists, and the refusal of options that the chosen
+/// technique would ignore.
 #pragma once
 
 #include <cstdint>
@@ -11,24 +12,25 @@
 
 namespace habuffer::cli {
 
+/// The technique options as parsed.
 struct TechniqueOptions {
-  Technique technique = Technique::Ha;
-  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  // arrays, kbuffer
-  std::uint64_t pool = 0;                    // lists, sorted-lists; 0: auto (as many as the fragments need)
-  bool occupancy = false;                    // kbuffer
-  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;
-  DepthRange depth_range;                    // kbuffer, wboit
+  Technique technique = Technique::Ha;  ///< --technique
+  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< arrays, kbuffer
+  std::uint64_t pool = 0;                    ///< lists, sorted-lists; 0: auto (as many as the fragments need)
+  bool occupancy = false;                    ///< kbuffer
+  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< kbuffer: --occupancy-words
+  DepthRange depth_range;                    ///< kbuffer, wboit
 };
 
-// Names to add to a command's accepted options.
+/// Names to add to a command's accepted options.
 inline constexpr const char* kTechniqueValued[] = {"technique",       "layers",      "pool", "occupancy",
                                                    "occupancy-words", "depth-range", "saturation"};
 
-// Parses --technique, --layers (arrays, kbuffer), --pool (lists,
-// sorted-lists; "auto" or a node count), --occupancy and --occupancy-words
-// (kbuffer), --depth-range (kbuffer, wboit), and refuses every option that
-// only some techniques take (their descriptors' option lists) where the
-// chosen technique does not take it.
+/// Parses --technique, --layers (arrays, kbuffer), --pool (lists,
+/// sorted-lists; "auto" or a node count), --occupancy and --occupancy-words
+/// (kbuffer), --depth-range (kbuffer, wboit), and refuses every option that
+/// only some techniques take (their descriptors' option lists) where the
+/// chosen technique does not take it.
 TechniqueOptions parse_technique_options(const Args& args);
 
 }  // namespace habuffer::cli

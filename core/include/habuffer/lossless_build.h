@@ -84,6 +84,11 @@ TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource
                                std::span<const Fragment> fragments, const InsertOptions& options,
                                const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
 
+/// An HA-buffer's build (whose container's hash_table() is itself) as the
+/// HA-buffer's BuildResult; throws std::invalid_argument naming the technique
+/// for a build of another.
+BuildResult ha_build_result(TechniqueBuild build);
+
 /// HA-buffer without early cull (which could cull them): the pixel with the
 /// most distinct records beyond AMAX, which fails at any table size
 /// (habuffer/pixel_depth.h); nothing for other techniques or when none is.

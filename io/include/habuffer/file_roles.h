@@ -1,10 +1,11 @@
-// The files one command reads and writes, checked before any work is done:
-// an input must be a readable regular file or a pipe; no output may be one of
-// the inputs, and no two outputs may be the same file; every output must be
-// writable where it is (a typo in a directory fails at once, not after hours
-// of work). Paths are compared resolved (symbolic links, "..", relative to
-// the working directory) and, where the file exists, by device and inode
-// (hard links).
+/// @file
+/// The files one command reads and writes, checked before any work is done:
+/// an input must be a readable regular file or a pipe; no output may be one of
+/// the inputs, and no two outputs may be the same file; every output must be
+/// writable where it is (a typo in a directory fails at once, not after hours
+/// of work). Paths are compared resolved (symbolic links, "..", relative to
+/// the working directory) and, where the file exists, by device and inode
+/// (hard links).
 #pragma once
 
 #include <stdexcept>
@@ -14,23 +15,24 @@
 
 namespace habuffer {
 
-// Two roles that would clobber each other, or an output that cannot be a
-// file (empty name, a directory). The CLI reports it as bad usage.
+/// Two roles that would clobber each other, or an output that cannot be a
+/// file (empty name, a directory). The CLI reports it as bad usage.
 class FileConflict : public std::invalid_argument {
  public:
-  using std::invalid_argument::invalid_argument;
+  using std::invalid_argument::invalid_argument;  ///< takes the message
 };
 
+/// The inputs and outputs of one command, declared then checked together (see the file comment).
 class FileRoles {
  public:
-  // `role` names the option ("--in", "--heatmap depth") in messages.
+  /// Declares an input; `role` names the option ("--in", "--heatmap depth") in messages. Returns *this.
   FileRoles& input(std::string_view role, const std::string& path);
-  // creates_parents: the writer makes missing parent directories (images);
-  // otherwise the parent directory must exist.
+  /// Declares an output (returns *this); creates_parents: the writer makes missing parent directories (images);
+  /// otherwise the parent directory must exist.
   FileRoles& output(std::string_view role, const std::string& path, bool creates_parents = false);
-  // Throws FileConflict for an output equal to an input or to another
-  // output, an empty output name, an output that is a directory, or one that
-  // cannot be written (a missing or read-only directory, a read-only file).
+  /// Throws FileConflict for an output equal to an input or to another
+  /// output, an empty output name, an output that is a directory, or one that
+  /// cannot be written (a missing or read-only directory, a read-only file).
   void check() const;
 
  private:
@@ -42,10 +44,10 @@ class FileRoles {
   std::vector<Entry> entries_;
 };
 
-// Throws DataError unless `path` can be read as a stream: missing, a
-// directory, or anything but a regular file or a pipe (a device such as
-// /dev/zero never ends) is refused with the reason. `what` names the kind of
-// file ("CSV file", "image", "mesh").
+/// Throws DataError unless `path` can be read as a stream: missing, a
+/// directory, or anything but a regular file or a pipe (a device such as
+/// /dev/zero never ends) is refused with the reason. `what` names the kind of
+/// file ("CSV file", "image", "mesh").
 void check_input_file(const std::string& path, std::string_view what);
 
 }  // namespace habuffer

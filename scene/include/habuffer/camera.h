@@ -1,6 +1,7 @@
-// The camera of `habuffer render`: orbits the scene's bounds (yaw, pitch)
-// and frames them, with near and far planes tight around the bounding
-// sphere, so the linear eye depth maps to t in [0, 1] as in the paper.
+/// @file
+/// The camera of `habuffer render`: orbits the scene's bounds (yaw, pitch)
+/// and frames them, with near and far planes tight around the bounding
+/// sphere, so the linear eye depth maps to t in [0, 1] as in the paper.
 #pragma once
 
 #include <glm/mat4x4.hpp>
@@ -10,20 +11,24 @@
 
 namespace habuffer {
 
+/// Where `habuffer render` looks from (--yaw, --pitch, --fov).
 struct CameraParams {
-  float yaw = 30.0f;    // degrees around the vertical axis
-  float pitch = 20.0f;  // degrees above the horizontal
-  float fov = 45.0f;    // degrees, of the narrower side of the screen
+  float yaw = 30.0f;    ///< degrees around the vertical axis
+  float pitch = 20.0f;  ///< degrees above the horizontal
+  float fov = 45.0f;    ///< degrees, of the narrower side of the screen
 };
 
+/// A framed camera (frame_scene makes one).
 struct Camera {
-  glm::mat4 view{1.0f}, projection{1.0f};
-  float near_plane = 0.1f, far_plane = 1.0f;
-  // t of a point at eye-space z (negative in front of the camera).
+  glm::mat4 view{1.0f}, projection{1.0f};  ///< world to eye, eye to clip
+  float near_plane = 0.1f, far_plane = 1.0f;  ///< eye-space distances that map to t = 0 and t = 1
+  /// t of a point at eye-space z (negative in front of the camera).
   [[nodiscard]] float depth(float eye_z) const { return (-eye_z - near_plane) / (far_plane - near_plane); }
 };
 
-// Throws SceneError for an empty scene or parameters out of range.
+/// The camera orbiting `scene`'s bounds at `params`, framed for `screen` (orthographic scenes along -z).
+/// Throws SceneError for an empty scene or screen, or parameters out of range
+/// (fov in (1, 179), pitch in [-90, 90] degrees, yaw finite).
 Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen);
 
 }  // namespace habuffer

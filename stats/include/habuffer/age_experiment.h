@@ -1,6 +1,8 @@
-// Experiments on age vs load: every variant (probing, policy, offsets) runs
-// on the same streams, trial by trial, and each (variant, load) gets its age
-// statistics with a 95% confidence interval over trials.
+/// @file
+/// Experiments on age vs load: every variant (probing, policy, offsets) runs
+/// on the same streams, trial by trial, and each (variant, load) gets its age
+/// statistics with a 95% confidence interval over trials, so differences
+/// between variants are measured on equal inputs and reported with their noise.
 #pragma once
 
 #include <cstdint>
@@ -14,56 +16,62 @@
 
 namespace habuffer {
 
+/// One insertion model to compare.
 struct Variant {
-  Probing probing = Probing::Coherent;
-  Policy policy = Policy::RobinHood;
-  OffsetGenerator offsets = OffsetGenerator::Random;
-  [[nodiscard]] std::string name() const;  // e.g. "coherent/robinhood/random"
+  Probing probing = Probing::Coherent;                ///< probe sequence
+  Policy policy = Policy::RobinHood;                  ///< placement
+  OffsetGenerator offsets = OffsetGenerator::Random;  ///< coherent probing's offsets
+  [[nodiscard]] std::string name() const;  ///< e.g. "coherent/robinhood/random"
 };
 
+/// What run_age_experiment runs.
 struct ExperimentConfig {
-  Extent screen{128, 128};
-  Extent table;                 // zero: the screen
-  std::vector<double> loads{0.5, 0.8, 0.9};  // fragments = load * table slots
-  std::uint32_t trials = 5;
-  std::uint64_t seed = 1;
-  StreamOptions stream{.kind = StreamKind::Random};  // kind and shape; count and seed are set per trial
-  std::vector<Variant> variants{Variant{}};
-  std::uint32_t age_bits = 8;
-  std::uint32_t block = 8;
-  // Called after each trial of each load with (trials done, loads x trials).
+  Extent screen{128, 128};      ///< pixels (not empty)
+  Extent table;                 ///< zero: the screen
+  std::vector<double> loads{0.5, 0.8, 0.9};  ///< fragments = load * table slots
+  std::uint32_t trials = 5;     ///< streams per load (at least 1)
+  std::uint64_t seed = 1;       ///< trial t's stream seed: seed * 1000003 + t
+  StreamOptions stream{.kind = StreamKind::Random};  ///< kind and shape; count and seed are set per trial
+  std::vector<Variant> variants{Variant{}};  ///< each run on every trial's stream
+  std::uint32_t age_bits = 8;   ///< as SimulatorConfig
+  std::uint32_t block = 8;      ///< as SimulatorConfig
+  /// Called after each trial of each load with (trials done, loads x trials).
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
 
+/// One (variant, load)'s statistics over the trials.
 struct ExperimentRow {
-  Variant variant;
-  double load = 0.0;             // target load
-  double stored_load = 0.0;      // mean measured load (stored / slots)
-  std::uint32_t trials = 0;
-  double mean_age = 0.0;         // mean over trials of each trial's mean age of stored records
-  double mean_age_ci95 = 0.0;    // half-width, Student t over trials
-  double age_variance = 0.0;     // of all stored records' ages, pooled over trials
-  std::uint32_t p50 = 0, p90 = 0, p99 = 0, max_age = 0;
-  double mean_max_age = 0.0;     // mean over trials of each trial's largest age
-  double mean_max_age_ci95 = 0.0;
-  double rank_bound = 0.0;       // least possible mean age: a pixel's k-th record has age >= k
-  double excess_ci95 = 0.0;      // half-width of mean_age - rank_bound over trials
-  double excess = 0.0;           // mean over trials of (mean age - rank bound)
-  double mean_probes = 0.0;      // per insert call
-  std::uint32_t max_probes = 0;
-  double traversal_probes = 0.0;         // per screen pixel
-  double wasted_traversal_probes = 0.0;  // per screen pixel, read after its last record
-  std::uint64_t failures = 0;            // failed_age + failed_iter over all trials
+  Variant variant;               ///< the variant measured
+  double load = 0.0;             ///< target load
+  double stored_load = 0.0;      ///< mean measured load (stored / slots)
+  std::uint32_t trials = 0;      ///< trials measured
+  double mean_age = 0.0;         ///< mean over trials of each trial's mean age of stored records
+  double mean_age_ci95 = 0.0;    ///< half-width, Student t over trials
+  double age_variance = 0.0;     ///< of all stored records' ages, pooled over trials
+  std::uint32_t p50 = 0, p90 = 0, p99 = 0, max_age = 0;  ///< quantiles and largest of the pooled ages
+  double mean_max_age = 0.0;     ///< mean over trials of each trial's largest age
+  double mean_max_age_ci95 = 0.0;  ///< half-width, Student t over trials
+  double rank_bound = 0.0;       ///< least possible mean age: a pixel's k-th record has age >= k
+  double excess_ci95 = 0.0;      ///< half-width of mean_age - rank_bound over trials
+  double excess = 0.0;           ///< mean over trials of (mean age - rank bound)
+  double mean_probes = 0.0;      ///< per insert call
+  std::uint32_t max_probes = 0;  ///< most slots one insert call probed, over all trials
+  double traversal_probes = 0.0;         ///< per screen pixel
+  double wasted_traversal_probes = 0.0;  ///< per screen pixel, read after its last record
+  std::uint64_t failures = 0;            ///< failed_age + failed_iter over all trials
 };
 
+/// One row per load and variant, load by load, variants in their order. Throws std::invalid_argument for no trials, an
+/// empty screen, a table with a zero side or a load that is not positive (and as ProbeSimulator).
 std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& config);
 
-// Two-sided 95% Student t quantile for `df` degrees of freedom.
+/// Two-sided 95% Student t quantile for `df` degrees of freedom: tabulated to 30, then within 0.002 of it;
+/// infinite for 0.
 double student_t95(std::uint32_t df);
 
-// Half-width of the 95% confidence interval of the mean of `samples`:
-// t95(n - 1) * s / sqrt(n), with s the sample standard deviation; 0 for
-// fewer than two samples.
+/// Half-width of the 95% confidence interval of the mean of `samples`:
+/// t95(n - 1) * s / sqrt(n), with s the sample standard deviation; 0 for
+/// fewer than two samples.
 double mean_ci95(std::span<const double> samples);
 
 }  // namespace habuffer

@@ -1,9 +1,10 @@
-// `habuffer bench`: techniques x scenes x sizes in one run, repetitions
-// interleaved (every combination once per round, round after round) so the
-// machine's drift hits all alike, the two floors measured in every round
-// beside them, and each image measured against the exact reference. One row
-// per combination: seed 000's Table 2, seed 001's and seed 002's Table 1 on
-// our scenes.
+/// @file
+/// `habuffer bench`: techniques x scenes x sizes in one run, repetitions
+/// interleaved (every combination once per round, round after round) so the
+/// machine's drift hits all alike, the two floors measured in every round
+/// beside them, and each image measured against the exact reference. One row
+/// per combination: seed 000's Table 2, seed 001's and seed 002's Table 1 on
+/// our scenes.
 #pragma once
 
 #include <cstdint>
@@ -17,24 +18,25 @@
 
 namespace habuffer::harness {
 
+/// What `habuffer bench` runs (validate_bench checks it).
 struct BenchSettings {
-  RenderPath path = RenderPath::Gl;
-  std::vector<WorkloadSpec> scenes;
-  std::vector<TechniqueSpec> techniques;
-  std::vector<Extent> sizes;
-  std::uint32_t repeats = 3;
-  std::uint32_t threads = 0;  // CPU path
-  InsertOrder insert_order = InsertOrder::Auto;  // CPU path, the HA-buffer
-  std::uint64_t seed = 1;     // the HA-buffer's offsets
-  bool floors = true;
-  std::function<void(std::uint64_t, std::uint64_t)> on_progress;  // (runs done, runs)
+  RenderPath path = RenderPath::Gl;      ///< GPU or CPU path
+  std::vector<WorkloadSpec> scenes;      ///< at least one
+  std::vector<TechniqueSpec> techniques; ///< at least one
+  std::vector<Extent> sizes;             ///< screens, pixels; at least one
+  std::uint32_t repeats = 3;             ///< rounds (at least 1)
+  std::uint32_t threads = 0;  ///< CPU path
+  InsertOrder insert_order = InsertOrder::Auto;  ///< CPU path, the HA-buffer
+  std::uint64_t seed = 1;     ///< the HA-buffer's offsets
+  bool floors = true;  ///< measure the two floors in every round
+  std::function<void(std::uint64_t, std::uint64_t)> on_progress;  ///< (runs done, runs)
 };
 
-// Throws std::invalid_argument for empty lists, zero repeats, or a
-// technique the path cannot render (wboit and blend on GL).
+/// Throws std::invalid_argument for empty lists, zero repeats, or a
+/// technique the path cannot render (wboit and blend on GL).
 void validate_bench(const BenchSettings& s);
 
-// Needs a current GL context for scenes.
+/// Runs the bench (validated first). Needs a current GL context for scenes.
 ResultTable run_bench(const BenchSettings& s);
 
 }  // namespace habuffer::harness

@@ -1,6 +1,8 @@
-// Images in and out of `habuffer render` and `habuffer compare`, all through
-// OpenImageIO: PNG (8-bit) by default, EXR, HDR or TIFF (float) by the
-// file's extension.
+/// @file
+/// Images in and out of `habuffer render` and `habuffer compare`, all through
+/// OpenImageIO: PNG (8-bit) by default, EXR, HDR or TIFF (float) by the
+/// file's extension; plus the exact reference image and the comparisons the
+/// tests and reports measure techniques by.
 #pragma once
 
 #include <stdexcept>
@@ -17,45 +19,49 @@
 
 namespace habuffer {
 
+/// An image file could not be read, written or compared (the message names the file and the reason).
 class ImageError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  using std::runtime_error::runtime_error;  ///< takes the message
 };
 
-// RGBA in [0, 1], row-major with row 0 at the bottom (OpenGL's order).
+/// RGBA in [0, 1], row-major with row 0 at the bottom (OpenGL's order).
 struct Image {
-  Extent size;
-  std::vector<glm::vec4> pixels;
+  Extent size;                    ///< width and height in pixels
+  std::vector<glm::vec4> pixels;  ///< size.area() pixels, row 0 at the bottom
 };
 
-// "OpenImageIO 2.4.7.1", or "none (...)" in a build without image files
-// (HABUFFER_WITH_IMAGES=OFF), where the file functions below and
-// write_heatmap throw ImageError naming the file.
+/// "OpenImageIO 2.4.7.1", or "none (...)" in a build without image files
+/// (HABUFFER_WITH_IMAGES=OFF), where the file functions below and
+/// write_heatmap throw ImageError naming the file.
 std::string image_support();
+/// Whether this build reads and writes image files (false: HABUFFER_WITH_IMAGES=OFF).
 bool has_image_support();
 
-// Writes RGB (the image is already composited over its background), top row
-// first. Throws ImageError naming the file.
+/// Writes RGB (the image is already composited over its background), top row
+/// first. Throws ImageError naming the file.
 void write_image(const std::string& path, const Image& image);
-// Reads RGB(A) as floats; alpha 1 when the file has none.
+/// Reads RGB(A) as floats, row 0 at the bottom; alpha 1 when the file has none, a one-channel file's
+/// value in R, G and B. Throws ImageError naming the file.
 Image read_image(const std::string& path);
 
-// The exact reference of `fragments` (SPEC 7 in double precision, each pixel
-// over its own background), as a float image.
+/// The exact reference of `fragments` (SPEC 7 in double precision, each pixel
+/// over its own background: `backgrounds` per pixel, row 0 at the bottom), as a float image.
 Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds);
 
+/// How two images' RGB differ (compare_pixels, compare_images).
 struct ImageDifference {
-  double rmse = 0.0, psnr = 0.0, max_error = 0.0;  // over RGB, values in [0, 1]
-  int max_x = 0, max_y = 0, max_channel = 0;       // where the largest error is (top row 0)
+  double rmse = 0.0, psnr = 0.0, max_error = 0.0;  ///< over RGB, values in [0, 1]; psnr in dB
+  int max_x = 0, max_y = 0, max_channel = 0;       ///< where the largest error is (top row 0)
 };
 
-// The float images' RGB compared in memory (no 8-bit quantization): rmse,
-// psnr = 20 log10(1 / rmse) (infinite when identical), the largest absolute
-// error and where (top row 0). Throws ImageError when the sizes differ.
+/// The float images' RGB compared in memory (no 8-bit quantization): rmse,
+/// psnr = 20 log10(1 / rmse) (infinite when identical), the largest absolute
+/// error and where (top row 0). Throws ImageError when the sizes differ.
 ImageDifference compare_pixels(const Image& image, const Image& reference);
 
-// OpenImageIO's comparison of the RGB channels. Throws ImageError when a file
-// cannot be read or the sizes differ (both sizes named).
+/// OpenImageIO's comparison of the RGB channels. Throws ImageError when a file
+/// cannot be read or the sizes differ (both sizes named).
 ImageDifference compare_images(const std::string& a, const std::string& b);
 
 }  // namespace habuffer

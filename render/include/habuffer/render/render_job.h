@@ -1,8 +1,10 @@
-// `habuffer render` as a library call: frames of a scene through any
-// technique (the HA-buffer, linked lists, fixed arrays) on the GPU path, or
-// rasterized by GL (capture mode) and inserted, sorted and composited on the
-// CPU path, or a recorded fragment stream on the CPU path alone; with
-// everything the stats, heat maps and reference need.
+/// @file
+/// `habuffer render` as a library call: frames of a scene through any
+/// technique (the HA-buffer, linked lists, fixed arrays, ...) on the GPU path, or
+/// rasterized by GL (capture mode) and inserted, sorted and composited on the
+/// CPU path, or a recorded fragment stream on the CPU path alone; with
+/// everything the stats, heat maps and reference need. The command, the
+/// harness and the tests share it so they measure the same frames.
 #pragma once
 
 #include <cstdint>
@@ -28,110 +30,121 @@
 
 namespace habuffer {
 
-enum class RenderPath { Gl, Cpu };
+/// Where the technique runs.
+enum class RenderPath {
+  Gl,   ///< on the GPU: the technique's buffers filled and resolved by GL
+  Cpu   ///< GL rasterizes and captures the fragments; the technique runs on the CPU
+};
 
+/// Everything one render_scene or render_fragments call runs with (validated there: std::invalid_argument).
 struct RenderSettings {
-  RenderPath path = RenderPath::Gl;
-  Technique technique = Technique::Ha;
-  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  // fixed arrays, k-buffer: K
-  bool occupancy = false;                    // k-buffer: occupancy-map culling
-  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;
-  DepthRange depth_range;                    // k-buffer's occupancy buckets, wboit's weights
-  // Linked lists: nodes in the pool; 0 means auto: sized from a counting pass
-  // (to grow_at use), grown at once when a frame drops, adapted between frames.
+  RenderPath path = RenderPath::Gl;     ///< GPU or CPU path
+  Technique technique = Technique::Ha;  ///< the container the fragments go into
+  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< fixed arrays, k-buffer: K
+  bool occupancy = false;                    ///< k-buffer: occupancy-map culling
+  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< k-buffer: 32-bit occupancy words per pixel
+  DepthRange depth_range;                    ///< k-buffer's occupancy buckets, wboit's weights
+  /// Linked lists: nodes in the pool; 0 means auto: sized from a counting pass
+  /// (to grow_at use), grown at once when a frame drops, adapted between frames.
   std::uint64_t pool = 0;
-  // Screen, layout and age bits (every technique); block, iteration limit,
-  // early cull and table (the HA-buffer). config.table zero means auto: size
-  // the first table from a counting pass, grow at once when a frame fails,
-  // and adapt between frames (SPEC 8). A given table is kept unless lossless.
+  /// Screen, layout and age bits (every technique); block, iteration limit,
+  /// early cull and table (the HA-buffer). config.table zero means auto: size
+  /// the first table from a counting pass, grow at once when a frame fails,
+  /// and adapt between frames (SPEC 8). A given table is kept unless lossless.
   BufferConfig config;
-  bool lossless = false;
-  std::uint32_t max_attempts = 16;  // lossless and auto
-  ResizePolicy policy;
-  OffsetSource offsets;
-  std::uint32_t frames = 1;  // the camera orbits 360 degrees over the frames (unless !orbit)
-  // false: every frame shows the same view (steady-state timing: frame 0
-  // pays the cold start, later frames reuse what it made).
+  bool lossless = false;  ///< regather with a grown container until nothing is dropped (at most max_attempts)
+  std::uint32_t max_attempts = 16;  ///< gathers per frame, lossless and auto (at least 1)
+  ResizePolicy policy;    ///< how automatic and lossless sizes grow and adapt
+  OffsetSource offsets;   ///< the HA-buffer's probe offsets
+  std::uint32_t frames = 1;  ///< at least 1; the camera orbits 360 degrees over the frames (unless !orbit)
+  /// false: every frame shows the same view (steady-state timing: frame 0
+  /// pays the cold start, later frames reuse what it made).
   bool orbit = true;
-  CameraParams camera;
-  glm::vec3 background{1.0f};
-  bool keep_fragments = false;  // capture the last frame's fragments (reference, CPU-side heat maps)
-  bool per_pixel_culled = false;  // count culled fragments per pixel (CPU path: serial insertion)
-  // GPU path (HA-buffer, k-buffer): tally slot writes (FrameStats::slot_writes),
-  // one more atomic per insert call, compiled into the module only when asked.
+  CameraParams camera;         ///< the first frame's view (yaw advanced per frame when orbiting)
+  glm::vec3 background{1.0f};  ///< linear RGB behind everything (where no opaque mesh covers)
+  bool keep_fragments = false;  ///< capture the last frame's fragments (reference, CPU-side heat maps)
+  bool per_pixel_culled = false;  ///< count culled fragments per pixel (CPU path: serial insertion)
+  /// GPU path (HA-buffer, k-buffer): tally slot writes (FrameStats::slot_writes),
+  /// one more atomic per insert call, compiled into the module only when asked.
   bool count_slot_writes = false;
-  std::uint32_t threads = 0;      // CPU path
-  InsertOrder insert_order = InsertOrder::Auto;  // CPU path, the HA-buffer (InsertOrder)
-  // Called after each frame with (frames done, frames).
+  std::uint32_t threads = 0;      ///< CPU path: worker threads; 0: the default count (resolve_threads)
+  InsertOrder insert_order = InsertOrder::Auto;  ///< CPU path, the HA-buffer (InsertOrder)
+  /// Called after each frame with (frames done, frames).
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
 
+/// One frame's measurements, in RenderResult::frames.
 struct FrameStats {
-  std::uint32_t index = 0;
-  float yaw = 0.0f;
-  Extent table;                  // HA-buffer
-  std::uint64_t capacity = 0;    // records the technique could hold (slots, nodes, layers of every pixel)
-  bool resized = false;
-  std::uint32_t attempts = 1;
-  Counters counters;
-  std::uint64_t opaque_rejected = 0;
-  // GPU path with count_slot_writes: slot raises, evicted records included
-  // (insertion work); nullopt when not counted.
+  std::uint32_t index = 0;       ///< the frame, from 0
+  float yaw = 0.0f;              ///< the camera's yaw, degrees
+  Extent table;                  ///< HA-buffer: the table the frame ended with
+  std::uint64_t capacity = 0;    ///< records the technique could hold (slots, nodes, layers of every pixel)
+  bool resized = false;          ///< adaptive sizing changed the table or pool before the frame's first gather
+  std::uint32_t attempts = 1;    ///< gathers the frame took (more than 1: lossless or automatic regathers)
+  Counters counters;             ///< the frame's insert outcomes (stored, dropped, culled, ...)
+  std::uint64_t opaque_rejected = 0;  ///< fragments behind the opaque surfaces, never inserted
+  /// GPU path with count_slot_writes: slot raises, evicted records included
+  /// (insertion work); nullopt when not counted.
   std::optional<std::uint64_t> slot_writes;
-  std::uint64_t deferred = 0;     // GPU path: insert calls cut short and resumed (FrameReport::deferred)
-  std::uint32_t resume_rounds = 0;
-  bool resize_limited = false;    // GPU path: adaptive sizing wanted a table the context cannot hold
-  std::uint32_t max_age = 0;     // HA-buffer
-  // The order the frame was inserted in: the CPU path's HA-buffer says what
-  // Auto chose; every other technique and the GPU path insert in arrival
-  // (rasterization) order.
+  std::uint64_t deferred = 0;     ///< GPU path: insert calls cut short and resumed (FrameReport::deferred)
+  std::uint32_t resume_rounds = 0;  ///< GPU path: passes that resumed deferred calls (FrameReport::resume_rounds)
+  bool resize_limited = false;    ///< GPU path: adaptive sizing wanted a table the context cannot hold
+  std::uint32_t max_age = 0;     ///< HA-buffer: the largest entry of the max-age table (SPEC 5)
+  /// The order the frame was inserted in: the CPU path's HA-buffer says what
+  /// Auto chose; every other technique and the GPU path insert in arrival
+  /// (rasterization) order.
   InsertOrder insert_order = InsertOrder::Arrival;
-  double load_factor = 0.0;      // stored / capacity
-  // gather: the gather pass (resume rounds included); resolve: the sort pass
-  // (lists, arrays) and the compositing; clear (GPU path): the clear pass and
-  // the buffer resets before the gather, which the gather's clock leaves out.
+  double load_factor = 0.0;      ///< stored / capacity (0 for no capacity)
+  /// Milliseconds. gather: the gather pass (resume rounds included); resolve: the sort pass
+  /// (lists, arrays) and the compositing; clear (GPU path): the clear pass and
+  /// the buffer resets before the gather, which the gather's clock leaves out;
+  /// frame: the whole frame, wall clock.
   double gather_ms = 0.0, resolve_ms = 0.0, clear_ms = 0.0, frame_ms = 0.0;
 };
 
+/// What render_scene and render_fragments return: the last frame's image and lists, every frame's stats.
 struct RenderResult {
-  Image image;                      // the last frame, composited over the background
-  std::vector<FrameStats> frames;
-  std::vector<std::uint32_t> pixel_fragments;  // last frame, per pixel (row 0 at the bottom)
-  std::vector<std::uint32_t> pixel_culled;     // last frame, per pixel (empty unless counted)
-  std::vector<glm::vec3> backgrounds;          // per pixel: the opaque pass's colour
-  std::vector<Fragment> fragments;             // last frame (when keep_fragments or path cpu)
-  std::unique_ptr<FragmentBuffer> buffer;      // the last frame's lists (on the CPU, read back from the GPU)
-  // Every buffer the technique and its frames allocated (GPU: its own, the
-  // tallies, parameters and deferred calls; not the capture, which serves
-  // the CPU path and --reference).
+  Image image;                      ///< the last frame, composited over the background
+  std::vector<FrameStats> frames;   ///< one per frame, in order
+  std::vector<std::uint32_t> pixel_fragments;  ///< last frame, per pixel (row 0 at the bottom)
+  std::vector<std::uint32_t> pixel_culled;     ///< last frame, per pixel (empty unless counted)
+  std::vector<glm::vec3> backgrounds;          ///< per pixel: the opaque pass's colour
+  std::vector<Fragment> fragments;             ///< last frame (when keep_fragments or path cpu)
+  std::unique_ptr<FragmentBuffer> buffer;      ///< the last frame's lists (on the CPU, read back from the GPU)
+  /// Every buffer the technique and its frames allocated (GPU: its own, the
+  /// tallies, parameters and deferred calls; not the capture, which serves
+  /// the CPU path and --reference), in bytes.
   std::uint64_t memory_bytes = 0;
-  std::uint64_t memory_model_bytes = 0;        // the technique's storage by formula (memory_model.h)
-  // The HA-buffer's last table, or nullptr for other techniques.
-  [[nodiscard]] const HaBuffer* ha_buffer() const { return dynamic_cast<const HaBuffer*>(buffer.get()); }
-  std::string device;                          // "gl native32 on llvmpipe ...", "cpu (N threads)"
-  bool growth_limited = false;  // the context could not hold the table the first frame or lossless mode wanted
-  // HA-buffer without early cull: a pixel with more records than AMAX, which
-  // no table holds, so no frame grew for it. The CPU path counts distinct
-  // records; the GPU path, which sees only the counting pass, counts
-  // fragments (duplicates included).
+  std::uint64_t memory_model_bytes = 0;        ///< the technique's storage by formula (memory_model.h), bytes
+  /// The HA-buffer's last table, or nullptr for other techniques.
+  [[nodiscard]] const HaBuffer* ha_buffer() const { return buffer ? buffer->hash_table() : nullptr; }
+  /// Where it ran: "gl native32 on llvmpipe ...", "cpu, fragments rasterized by gl (...)", "cpu" (a stream).
+  std::string device;
+  bool growth_limited = false;  ///< the context could not hold the table the first frame or lossless mode wanted
+  /// HA-buffer without early cull: a pixel with more records than AMAX, which
+  /// no table holds, so no frame grew for it. The CPU path counts distinct
+  /// records; the GPU path, which sees only the counting pass, counts
+  /// fragments (duplicates included).
   std::optional<PixelDepth> too_deep;
 };
 
-// Needs a current OpenGL 4.5 core context. Throws SceneError, GlError,
-// std::invalid_argument with the reason.
+/// Renders settings.frames frames of `scene` on settings.path. Needs a current OpenGL 4.5 core context.
+/// Throws SceneError, GlError, std::invalid_argument with the reason.
 RenderResult render_scene(const Scene& scene, const RenderSettings& settings);
 
-// Whether the technique's size is automatic in these settings (the
-// HA-buffer's table or the lists' pool; fixed arrays keep K).
+/// Whether the technique's size is automatic in these settings (the
+/// HA-buffer's table or the lists' pool; fixed arrays and the k-buffer keep K).
 bool automatic_size(const RenderSettings& settings);
-// The attempts a frame may take: lossless or automatic sizes regather.
+/// The attempts a frame may take: max_attempts when lossless or sizes are automatic (they regather), else 1.
 std::uint32_t frame_attempts(const RenderSettings& settings);
 
-// The technique's configuration for the settings (an automatic table or
-// pool given its placeholder: the screen).
+/// The technique's configuration for the settings (an automatic table or
+/// pool given its placeholder: the screen). Not validated.
 TechniqueConfig technique_config(const RenderSettings& settings);
 
-// A recorded stream on the CPU path, one frame, over the uniform background.
+/// A recorded stream on the CPU path over the uniform background: every one of settings.frames inserts
+/// the same stream (a stream has one view) into the kept container. Needs no GL context; throws
+/// std::invalid_argument for invalid settings.
 RenderResult render_fragments(std::span<const Fragment> fragments, const RenderSettings& settings);
 
 }  // namespace habuffer

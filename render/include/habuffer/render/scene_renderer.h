@@ -1,8 +1,9 @@
-// The GL side of `habuffer render`: a scene's meshes in vertex buffers, the
-// opaque pass (depth-tested, into a colour and a depth image) and the gather
-// pass (transparent meshes through the GLSL module's ha_insert, fragments
-// behind the opaque surfaces rejected and counted). Owns the state of the
-// context it runs in (the render command's own).
+/// @file
+/// The GL side of `habuffer render`: a scene's meshes in vertex buffers, the
+/// opaque pass (depth-tested, into a colour and a depth image) and the gather
+/// pass (transparent meshes through the GLSL module's ha_insert, fragments
+/// behind the opaque surfaces rejected and counted). Owns the state of the
+/// context it runs in (the render command's own).
 #pragma once
 
 #include <cstdint>
@@ -18,69 +19,78 @@
 
 namespace habuffer {
 
+/// A scene on the GPU and its passes (see the file comment); needs a current OpenGL 4.5 core context.
 class SceneRenderer {
  public:
-  // What the gather pass counts per pixel besides inserting. Each count is
-  // a #define of the gather shader: one nobody reads costs no atomic per
-  // fragment. The per-pixel fragment counts are exact either way: without
-  // `fragments`, read_pixel_fragments() runs the counting pass for the last
-  // pass's camera when that camera's counts are not held already (none is
-  // needed after count_fragments of the camera just gathered).
+  /// What the gather pass counts per pixel besides inserting. Each count is
+  /// a #define of the gather shader: one nobody reads costs no atomic per
+  /// fragment. The per-pixel fragment counts are exact either way: without
+  /// `fragments`, read_pixel_fragments() runs the counting pass for the last
+  /// pass's camera when that camera's counts are not held already (none is
+  /// needed after count_fragments of the camera just gathered).
   struct GatherCounts {
-    bool fragments = false;  // fragments per pixel, in the inserting gather itself
-    bool culled = false;     // fragments early cull rejected, per pixel (read_pixel_culled)
-    // What a gather for `buffer` must count: the fragments where the driver
-    // asks for the call count (GlFrameDriver::needs_call_count: the counts
-    // are then there at no extra pass), and the culled ones (none without early cull).
+    bool fragments = false;  ///< fragments per pixel, in the inserting gather itself
+    bool culled = false;     ///< fragments early cull rejected, per pixel (read_pixel_culled)
+    /// What a gather for `buffer` must count: the fragments where the driver
+    /// asks for the call count (GlFrameDriver::needs_call_count: the counts
+    /// are then there at no extra pass), and the culled ones (none without early cull).
     static GatherCounts for_driver(const gl::GlFrameDriver& buffer);
   };
 
-  // The renderer's shaders for an atomic mode, binding points and
-  // technique, as compiled (no GL needed: the reference-compiler check
-  // writes them out); the gather with `counts`, in the module's default variant.
+  /// The renderer's shaders for an atomic mode, binding points and
+  /// technique, as compiled (no GL needed: the reference-compiler check
+  /// writes them out); the gather with `counts`, in the module's default variant.
   struct Sources {
-    std::string vertex, opaque_fragment, gather_fragment;  // the gather is also the counting pass
+    std::string vertex, opaque_fragment, gather_fragment;  ///< the gather is also the counting pass
   };
+  /// See Sources.
   static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings,
                                 Technique technique = Technique::Ha, GatherCounts counts = {true, true});
 
-  // Compiles the gather shader from `buffer`'s module (technique, mode,
-  // binding points and variant), counting GatherCounts::for_driver(buffer).
-  // `buffer` must outlive the renderer (its counting passes bind its blocks).
+  /// Compiles the gather shader from `buffer`'s module (technique, mode,
+  /// binding points and variant), counting GatherCounts::for_driver(buffer).
+  /// `buffer` must outlive the renderer (its counting passes bind its blocks).
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer);
-  // The same, counting `counts`.
+  /// The same, counting `counts`.
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts);
+  /// Deletes every GL object it made.
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
   SceneRenderer& operator=(const SceneRenderer&) = delete;
 
+  /// The opaque meshes, depth-tested, over `background` into the colour and depth images the gather
+  /// rejects against.
   void draw_opaque(const Camera& camera, glm::vec3 background);
-  // The transparent meshes; call inside GlFrameDriver::frame (it may run twice
-  // in one frame: the per-pixel counts start from zero each time).
+  /// The transparent meshes; call inside GlFrameDriver::frame (it may run twice
+  /// in one frame: the per-pixel counts start from zero each time).
   void gather(const Camera& camera);
-  // The fragments a gather would insert (after opaque rejection), inserting
-  // nothing: what an automatic table is sized from before the first frame.
+  /// The fragments a gather would insert (after opaque rejection), inserting
+  /// nothing: what an automatic table is sized from before the first frame.
   std::uint64_t count_fragments(const Camera& camera);
 
-  // The floors every technique is measured against (benchmarks): plain
-  // unsorted blending of the transparent fragments over the opaque pass's
-  // colour (fixed-function, no lists), and one atomic add per fragment (to
-  // the per-pixel counts of read_pixel_fragments). Returns the pass's
-  // wall-clock milliseconds (to glFinish).
+  /// The floors every technique is measured against (benchmarks): plain
+  /// unsorted blending of the transparent fragments over the opaque pass's
+  /// colour (fixed-function, no lists), and one atomic add per fragment (to
+  /// the per-pixel counts of read_pixel_fragments). Returns the pass's
+  /// wall-clock milliseconds (to glFinish).
   double blend_floor(const Camera& camera);
+  /// One atomic add per fragment; see blend_floor.
   double atomic_floor(const Camera& camera);
 
+  /// The opaque pass's colour texture (GL name), the background the resolve composites over.
   [[nodiscard]] unsigned opaque_colour_texture() const { return colour_; }
-  // Row-major, row 0 at the bottom.
+  /// The opaque pass's colour, row-major, row 0 at the bottom.
   [[nodiscard]] std::vector<glm::vec3> read_opaque_colour() const;
-  // The fragments per pixel of the last gather, counting pass or atomic
-  // floor (a counting pass first where they were not counted).
+  /// The fragments per pixel of the last gather, counting pass or atomic
+  /// floor (a counting pass first where they were not counted).
   [[nodiscard]] std::vector<std::uint32_t> read_pixel_fragments();
-  // The last gather's early-culled fragments per pixel; empty unless GatherCounts::culled.
+  /// The last gather's early-culled fragments per pixel; empty unless GatherCounts::culled.
   [[nodiscard]] std::vector<std::uint32_t> read_pixel_culled() const;
+  /// Fragments the last gather or counting pass rejected behind the opaque surfaces.
   [[nodiscard]] std::uint64_t read_rejected() const;
-  // ha_insert calls of the last gather (the per-pixel fragment counts summed).
+  /// ha_insert calls of the last gather (the per-pixel fragment counts summed).
   [[nodiscard]] std::uint64_t inserted();
+  /// What the gather counts (fixed at construction).
   [[nodiscard]] const GatherCounts& gather_counts() const { return counts_; }
 
  private:
