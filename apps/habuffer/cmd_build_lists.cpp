@@ -18,9 +18,12 @@ constexpr const char* kHelp =
     "usage: habuffer build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [--table WxH] [--layout 64|32]\n"
     "         [--age-bits N] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--block B] [--threads N]\n"
     "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
-    "         [--insert-mode auto|serial|atomic|owner] [--insert-order auto|arrival|pixel] [--path cpu|gl] [--technique ha|lists|arrays]\n"
+    "         [--insert-mode auto|serial|atomic|owner] [--insert-order auto|arrival|pixel] [--path cpu|gl] [--technique NAME]\n"
     "         [--layers K] [--pool N|auto] [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
-    "  --threads 0 uses every hardware thread, at most one per 32768 fragments; every insert mode and order builds the same table. Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
+    "  --threads 0 (the default, as in every command; 1 with --insert-mode serial) uses every hardware thread, at most one per\n"
+    "  32768 fragments; every insert mode and order builds the same table. --path cpu is the default here (a fragment file's\n"
+    "  reference build), gl in render (which rasterizes). `habuffer techniques` lists the techniques.\n"
+    "  Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
     "  --technique lists|arrays: the same lists CSV from per-pixel linked lists (--pool: nodes, auto: one per\n"
     "  fragment) or fixed arrays (--layers K, default 16); identical records are merged as duplicates, so an\n"
     "  exact technique's lists equal the HA-buffer's byte for byte. --table, --block, --iter-limit, --early-cull,\n"
@@ -57,7 +60,7 @@ int run_build_lists(const std::vector<std::string>& argv) {
   if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
     options.max_attempts = 1;
   BuildTiming timing;
-  timing.threads = resolve_threads(options.insert.threads);
+  timing.threads = resolve_threads(options.insert.threads, fragments.size());
   std::optional<TechniqueBuild> built;
   if (options.gl) {
     built.emplace(build_on_gl(options, fragments, timing));

@@ -52,7 +52,6 @@ int run_demo(const std::vector<std::string>& argv) {
   const Args args(with_defaults, valued, hash_flag_options());
   HashOptions options = parse_hash_options(args);
   // demo's default: every hardware thread (serial insertion keeps its one).
-  if (!args.has("threads") && options.insert.mode != InsertMode::Serial) options.insert.threads = 0;
   FileRoles files;
   add_offsets_input(files, options);
   for (const char* o : {"stats", "lists"})

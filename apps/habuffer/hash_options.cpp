@@ -73,7 +73,10 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   if (!screen) throw UsageError("option --screen is required");
   o.config = parse_buffer_config(args, *screen, args.extent("table").value_or(*screen));
   const BufferConfig& c = o.config;
-  o.insert.threads = args.u32("threads", 1, 0, kMaxThreads);
+  // The default thread count is every command's: 0, the default count for
+  // the batch (resolve_threads); serial insertion is one thread.
+  const bool serial_mode = args.str("insert-mode", "auto") == "serial";
+  o.insert.threads = args.u32("threads", serial_mode ? 1 : 0, 0, kMaxThreads);
   const std::string mode = args.str("insert-mode", "auto");
   if (mode == "auto") {
     o.insert.mode = InsertMode::Auto;

@@ -1,5 +1,6 @@
-// Constants shared verbatim by the C++ path and the GLSL path.
-// Only preprocessor definitions live here, so the file is valid C++ and GLSL.
+/// @file
+/// Constants shared verbatim by the C++ path and the GLSL path.
+/// Only preprocessor definitions live here, so the file is valid C++ and GLSL.
 #ifndef HABUFFER_CONSTANTS_H
 #define HABUFFER_CONSTANTS_H
 

@@ -1,9 +1,10 @@
-// The GPU path's parameter block, declared once for C++ and GLSL (as
-// nvpro-samples' common.h does): the reader defines HABUFFER_PARAMS_BEGIN,
-// HABUFFER_PARAMS_END and HABUFFER_PARAM_UINT / HABUFFER_PARAM_FLOAT / HABUFFER_PARAM_UVEC2 before
-// including it (gl/gl_params.h: a C++ struct; prelude assembly: a std140
-// uniform block, whose members are GLSL globals). Keep every uvec2 at an
-// offset that is a multiple of 8 (std140); gl_params.h checks the offsets.
+/// @file
+/// The GPU path's parameter block, declared once for C++ and GLSL (as
+/// nvpro-samples' common.h does): the reader defines HABUFFER_PARAMS_BEGIN,
+/// HABUFFER_PARAMS_END and HABUFFER_PARAM_UINT / HABUFFER_PARAM_FLOAT / HABUFFER_PARAM_UVEC2 before
+/// including it (gl/gl_params.h: a C++ struct; prelude assembly: a std140
+/// uniform block, whose members are GLSL globals). Keep every uvec2 at an
+/// offset that is a multiple of 8 (std140); gl_params.h checks the offsets.
 #ifndef HABUFFER_PARAMS_H
 #define HABUFFER_PARAMS_H
 
