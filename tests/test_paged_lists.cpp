@@ -7,7 +7,10 @@
 // the lists of one thread on several.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <latch>
 #include <map>
+#include <thread>
 
 #include "habuffer/lossless_build.h"
 #include "habuffer/memory_model.h"
@@ -160,7 +163,7 @@ TEST(PagedLists, TheMemoryModelIsWhatItAllocatesAndThePaperFormulaIsSeed000sPage
   }
 }
 
-TEST(PagedLists, SeveralThreadsGiveTheListsOfOne) {
+TEST(PagedLists, ParallelInsertCallsGiveTheListsOfOneThread) {
   const Extent screen{37, 29};
   const std::vector<Fragment> frags = test::stream(screen, StreamKind::Hot, 12000, 9);
   const TechniqueConfig c = paged_config(screen, frags.size() * K);
@@ -213,6 +216,62 @@ TEST(PagedLists, ImportedStateIsCheckedAndRestartedAtTheHighestNode) {
   entries[3] = {0x50u << 8, 2u};
   heads[1] = 4;
   EXPECT_THROW(b.import_state(heads, entries, next, 4), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace habuffer
+
+namespace habuffer {
+namespace {
+
+// The lock-free insertion itself, on threads racing for a few pixels (no
+// insert-call machinery between them): the exact lists once sorted, and
+// every page asked for either linked or counted wasted.
+TEST(PagedLists, ParallelKernelsRacingForFewPixelsLinkEveryFragmentAndCountEveryPage) {
+  const Extent screen{3, 2};
+  constexpr std::uint32_t kThreads = 4;
+  std::vector<Fragment> frags = test::grid_stream(screen, 200000, 21, 1);  // enough for the threads to overlap
+  const TechniqueConfig c = paged_config(screen, frags.size() * K);
+  const TechniqueParams params = make_technique_params(c);
+  std::vector<std::uint32_t> heads(screen.area(), 0), next(c.pool_capacity, 0);
+  std::vector<glm::uvec2> entries(c.pool_capacity);
+  std::uint32_t counter = 0, wasted = 0;
+  const PagedListsBuffers b{heads.data(), entries.data(), next.data(), &counter, &wasted};
+  std::vector<std::array<std::uint64_t, HABUFFER_OUTCOME_COUNT>> tallies(kThreads);
+  std::vector<std::thread> threads;
+  std::latch start(kThreads);
+  for (std::uint32_t t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] {
+      PagedListsKernel<true> k(params, b);
+      start.arrive_and_wait();
+      for (std::size_t i = t; i < frags.size(); i += kThreads)
+        ++tallies[t][k.pl_insert_fragment(glm::uvec2(frags[i].x, frags[i].y), frags[i].depth, frags[i].rgba)];
+    });
+  for (std::thread& th : threads) th.join();
+  std::uint64_t stored = 0;
+  for (const auto& tally : tallies) stored += tally[HABUFFER_STORED];
+  EXPECT_EQ(stored, frags.size());
+  ::testing::Test::RecordProperty("wasted_pages", static_cast<int>(wasted));
+  // Each pixel links a page per K of its fragments; the rest was lost to races.
+  EXPECT_EQ(counter, pages_in_nodes(frags, screen) + std::uint64_t{wasted} * K);
+  PagedListsKernel<false> sorter(params, b);
+  std::uint64_t merged = 0;
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x) merged += sorter.pl_sort_pixel(glm::uvec2(x, y));
+  test::ExactLists lists;
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x)
+      for (std::uint32_t l = heads[x + y * screen.x]; l != 0; l = next[l - 1]) {
+        lists[{x, y}].push_back({0, entries[l - 1].x, entries[l - 1].y});
+        if (l != heads[x + y * screen.x]) {
+          EXPECT_LT(l, heads[x + y * screen.x]) << "the head is the list's highest node";
+        }
+      }
+  const test::ExactLists exact = test::exact_lists(frags, c.buffer.record_layout());
+  EXPECT_EQ(lists, exact);
+  std::uint64_t distinct = 0;
+  for (const auto& [pixel, list] : exact) distinct += list.size();
+  EXPECT_EQ(merged, frags.size() - distinct);
 }
 
 }  // namespace

@@ -49,7 +49,7 @@ constexpr TechniqueDescriptor kPagedLists{
     .summary = "per-pixel linked lists with nodes in pages of 4 per pixel, sorted after the gather",
     .properties =
         {
-            .source = "seed 000 (Table 1)",
+            .source = "seed 000, Table 1",
             .storage = "head image (4 B/pixel), node pool (12 B/node: code, data, link) taken in pages of 4 nodes "
                        "per pixel, two counters (nodes, wasted pages); the paper's 40V + F/K (56K + 32) bits has a "
                        "link per page and an 8-bit count per pixel instead of a link per node",
@@ -57,9 +57,12 @@ constexpr TechniqueDescriptor kPagedLists{
             .passes = "gather; sort; resolve",
             .atomics_per_fragment = "one 32-bit compare-and-swap (head) per try, one add (page counter) per 4",
             .sorted = "after the sort pass (as `lists`)",
-            .exact_when = "the pool holds the frame's pages (lossless: grown to the nodes asked for)",
+            .exact_when = "the pool holds the frame's pages: one thread asks a page per 4 fragments of a pixel, racing "
+                          "invocations may lose some, never more than a page per fragment (auto pool and lossless: "
+                          "grown to the nodes asked for)",
             .overflow = "`dropped_pool` when a pixel's page is full and no page is left; `failed_iter` beyond the "
-                        "iteration limit; `--lossless` regathers into a pool of the nodes asked for",
+                        "iteration limit (default 65536 tries); `--lossless` regathers into a pool of the nodes asked "
+                        "for",
             .early_cull = "no",
             .host_shaders = "as `ha`",
         },
