@@ -73,7 +73,7 @@ constexpr TechniqueDescriptor kPagedLists{
     .reads_depth_range = false,
     .capacity = CapacityKind::PoolNodes,
     .overflow_keeps_nearest = false,
-    .paper_memory_row = "",
+    .paper_memory_row = "paged, K = 4, lower bound",
     .options = kOptions,
     .lossless_hint = "--lossless grows the node pool until they fit (or give a larger --pool)",
     .validate = validate_pool,
