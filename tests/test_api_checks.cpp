@@ -108,7 +108,7 @@ TEST(ConcurrentCalls, ParallelDefaultInsertCallsOnEveryTechniqueStoreEveryRecord
   for (Technique t : all_techniques()) {
     SCOPED_TRACE(to_string(t));
     TechniqueConfig c = test::technique_config(t, screen);
-    c.pool_capacity = frags.size();
+    c.pool_capacity = frags.size() * 4;  // room for every pool technique: paged lists ask a page of 4 nodes at most per fragment
     c.layers = test::depth_complexity(frags, screen);
     const auto serial = make_fragment_buffer(c, OffsetSource{});
     const Counters expected = serial->insert(frags);

@@ -51,7 +51,7 @@ Rendered render(const TechniqueConfig& c, std::span<const Fragment> frags, const
 TechniqueConfig sized(Technique t, Extent screen, std::span<const Fragment> frags, Layout layout = Layout::L64) {
   TechniqueConfig c = test::technique_config(t, screen, layout);
   c.buffer.table = {screen.x * 4, screen.y * 4};
-  c.pool_capacity = frags.size();
+  c.pool_capacity = frags.size() * 4;  // room for every pool technique: paged lists ask a page of 4 nodes at most per fragment
   c.layers = test::depth_complexity(frags, screen);
   return c;
 }

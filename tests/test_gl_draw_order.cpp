@@ -48,7 +48,7 @@ Rendered render(const TechniqueConfig& c, gl::AtomicMode mode, std::span<const F
 TechniqueConfig sized(Technique t, Extent screen, std::span<const Fragment> frags, gl::AtomicMode mode) {
   TechniqueConfig c = test::technique_config(t, screen, test::layout_of(mode));
   c.buffer.table = {screen.x * 4, screen.y * 4};
-  c.pool_capacity = frags.size();
+  c.pool_capacity = frags.size() * 4;  // room for every pool technique: paged lists ask a page of 4 nodes at most per fragment
   c.layers = test::depth_complexity(frags, screen);
   return c;
 }

@@ -22,5 +22,6 @@
   X(SortedLists, sorted_lists)   \
   X(KBuffer, kbuffer)            \
   X(Wboit, wboit)                \
-  X(Blend, blend)
+  X(Blend, blend)                \
+  X(PagedLists, paged_lists)
 // clang-format on

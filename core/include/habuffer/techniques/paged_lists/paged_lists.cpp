@@ -1,0 +1,157 @@
+#include "habuffer/techniques/paged_lists/paged_lists.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "technique_parallel.h"
+
+namespace habuffer {
+
+PagedLists::PagedLists(const TechniqueConfig& config)
+    : config_(validated_as(config, Technique::PagedLists)),
+      params_(make_technique_params(config_)),
+      heads_(config_.buffer.screen.area(), 0),
+      entries_(config_.pool_capacity),
+      next_(config_.pool_capacity, 0) {}
+
+PagedListsBuffers PagedLists::buffers() const {
+  // The kernel's read-only uses (length, composite) never write through these.
+  auto* self = const_cast<PagedLists*>(this);
+  return {self->heads_.data(), self->entries_.data(), self->next_.data(), &self->counter_, &self->wasted_};
+}
+
+Counters PagedLists::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
+  const detail::InsertPlan plan = detail::insert_plan(
+      options, Technique::PagedLists, detail::insert_work(Technique::PagedLists, fragments.size(), true, screen()));
+  detail::check_on_screen(fragments, screen(), plan.threads);
+  const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
+  // Each fragment adds at most one page to the counter.
+  if (std::uint64_t{counter_} + std::uint64_t{fragments.size()} * kPagedListsPageNodes > UINT32_MAX)
+    throw std::invalid_argument("paged lists count nodes in 32 bits: " + std::to_string(fragments.size()) +
+                                " fragments in pages of " + std::to_string(kPagedListsPageNodes) + " after " +
+                                std::to_string(counter_) + " nodes asked for since the last clear are too many");
+  std::vector<detail::SliceCounters> parts(plan.threads);
+  std::vector<detail::PartCount> merged(plan.threads);
+  const PagedListsBuffers b = buffers();
+  const auto make = [&](auto concurrent) { return PagedListsKernel<decltype(concurrent)::value>(params_, b); };
+  const auto make_sorter = [&] { return PagedListsKernel<false>(params_, b); };
+  const auto sort = [](auto& k, glm::uvec2 p) { return k.pl_sort_pixel(p); };
+  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
+    // A local tally: counters in memory could alias the buffers and force a store per fragment.
+    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
+    for (const Fragment& f : mine)
+      if (owns(f)) ++tally[k.pl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
+    parts[t].c.add_tally(tally);
+    // A thread that owns its rows sorts them at once: no other thread links into them.
+    if (plan.owned_rows)
+      merged[t].n = detail::sort_rows(screen(), make_sorter, sort, [&](auto row) { owns.rows(screen(), row); });
+  };
+  detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
+  Counters c;
+  for (const auto& part : parts) c += part.c;
+  if (!plan.owned_rows) merged.assign(1, {detail::sort_row_bands(screen(), plan.threads, make_sorter, sort)});
+  for (const auto& m : merged) c.merge_duplicates(m.n);
+  return c;
+}
+
+std::uint64_t PagedLists::clear() {
+  const auto alone = gate_.alone();
+  const std::uint64_t held = count_stored();
+  empty();
+  return held;
+}
+
+void PagedLists::reset() {
+  const auto alone = gate_.alone();
+  empty();
+}
+
+void PagedLists::empty() {
+  std::fill(heads_.begin(), heads_.end(), 0u);
+  counter_ = 0;
+  wasted_ = 0;
+}
+
+std::uint64_t PagedLists::count_stored() const {
+  PagedListsKernel<false> k(params_, buffers());
+  std::uint64_t n = 0;
+  for (std::uint32_t head : heads_) n += k.ll_length(head);
+  return n;
+}
+
+std::uint32_t PagedLists::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
+  check_pixel(x, y, screen());
+  out.clear();
+  std::uint32_t reads = 1;
+  for (std::uint32_t l = heads_[x + std::size_t{y} * screen().x]; l != 0; l = next_[l - 1]) {
+    out.push_back({0, entries_[l - 1].x, entries_[l - 1].y});
+    reads += 2;
+  }
+  return reads;
+}
+
+std::vector<glm::vec4> PagedLists::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+  return detail::composite_image(
+      screen(), backgrounds, threads, [&] { return PagedListsKernel<false>(params_, buffers()); },
+      [](auto& k, glm::uvec2 p, glm::vec3 background) { return k.ll_composite(p, background); });
+}
+
+std::uint64_t PagedLists::memory_bytes() const {
+  return heads_.size() * 4 + entries_.size() * sizeof(glm::uvec2) + next_.size() * 4 + sizeof counter_ + sizeof wasted_;
+}
+
+void PagedLists::import_state(std::span<const std::uint32_t> heads, std::span<const glm::uvec2> entries,
+                              std::span<const std::uint32_t> next, std::uint64_t requested) {
+  const auto alone = gate_.alone();
+  if (heads.size() != heads_.size() || entries.size() != entries_.size() || next.size() != next_.size())
+    throw std::invalid_argument("imported paged lists have " + std::to_string(heads.size()) + " heads and " +
+                                std::to_string(entries.size()) + " nodes, the buffer " + std::to_string(heads_.size()) +
+                                " and " + std::to_string(entries_.size()));
+  if (requested > UINT32_MAX)
+    throw std::invalid_argument("imported paged lists asked for " + std::to_string(requested) +
+                                " nodes: beyond the 32-bit node counter");
+  const auto bad_link = [&](std::uint32_t l) { return l > entries_.size(); };
+  if (std::any_of(heads.begin(), heads.end(), bad_link) || std::any_of(next.begin(), next.end(), bad_link))
+    throw std::invalid_argument("imported paged lists link beyond the pool of " + std::to_string(entries_.size()) +
+                                " nodes");
+  // Each node on at most one list, once (a cycle would never end a walk),
+  // each page's nodes on one pixel's list, every list sorted with valid entries.
+  const RecordLayout layout = config_.buffer.record_layout();
+  PagedListsKernel<false> order(params_, buffers());  // the lists' entry order (ha_entries.glsl)
+  const auto before = [&](glm::uvec2 a, glm::uvec2 b) { return order.ha_entry_before(a, b); };
+  constexpr std::uint64_t kNoPixel = std::numeric_limits<std::uint64_t>::max();
+  std::vector<bool> reached(entries.size(), false);
+  std::vector<std::uint64_t> page_owner(entries.size() / kPagedListsPageNodes + 1, kNoPixel);
+  std::vector<glm::uvec2> list;
+  std::uint64_t pages_used = 0;  // past the highest page any list reaches
+  for (std::size_t p = 0; p < heads.size(); ++p) {
+    list.clear();
+    for (std::uint32_t l = heads[p]; l != 0; l = next[l - 1]) {
+      const std::string where = " (from pixel (" + std::to_string(p % screen().x) + "," +
+                                std::to_string(p / screen().x) + "))";
+      if (reached[l - 1]) throw std::invalid_argument("imported paged lists reach node " + std::to_string(l) + " twice" + where);
+      reached[l - 1] = true;
+      std::uint64_t& owner = page_owner[(l - 1) / kPagedListsPageNodes];
+      if (owner != kNoPixel && owner != p)
+        throw std::invalid_argument("imported paged lists share the page of node " + std::to_string(l) +
+                                    " between two pixels" + where);
+      owner = p;
+      pages_used = std::max<std::uint64_t>(pages_used, (l - 1) / kPagedListsPageNodes + 1);
+      list.push_back(entries[l - 1]);
+    }
+    detail::check_imported_list(list, layout, p, screen(), "imported paged lists", before);
+  }
+  std::copy(heads.begin(), heads.end(), heads_.begin());
+  std::copy(entries.begin(), entries.end(), entries_.begin());
+  std::copy(next.begin(), next.end(), next_.begin());
+  // The GPU's counter ran past the capacity by the nodes it could not give.
+  // (at least past every page a list holds, so no later page is one of them).
+  counter_ = static_cast<std::uint32_t>(std::max<std::uint64_t>(requested, pages_used * kPagedListsPageNodes));
+  wasted_ = 0;  // the GPU's count is not read back
+  PagedListsKernel<false> k(params_, buffers());
+  for (std::uint32_t p = 0; p < heads_.size(); ++p) k.pl_head_to_top(p);
+}
+
+}  // namespace habuffer
