@@ -139,6 +139,33 @@ Prediction predict_lists(const ExactCapture& c, Extent screen, Technique techniq
   return p;
 }
 
+// The recommendation: least memory among the lossless (no trial lost
+// anything), or among those whose predicted PSNR meets the target (a hash
+// table's only without failure risk).
+const Prediction* recommended(const std::vector<Prediction>& preds, const PlanSettings& s) {
+  const Prediction* best = nullptr;
+  for (const Prediction& p : preds) {
+    const bool ok = s.target_psnr
+                        ? (p.psnr && *p.psnr >= *s.target_psnr && (!uses_table(p.spec.technique) || p.risk == 0.0))
+                        : p.risk == 0.0;
+    if (ok && (!best || p.memory < best->memory)) best = &p;
+  }
+  return best;
+}
+
+// One prediction as a row of the plan's table.
+ResultRow plan_row(const Prediction& p, const PlanSettings& s, bool best) {
+  ResultRow row;
+  row.set("technique", p.spec.label()).set("memory_bytes", p.memory);
+  if (p.max_age) row.set("predicted_max_age", *p.max_age).set("predicted_max_age_max", p.max_age_max);
+  row.set("predicted_failures", p.failures).set("failure_risk", p.risk);
+  if (p.psnr) row.set("predicted_psnr", *p.psnr);
+  row.set("lossless", p.risk == 0.0);
+  if (s.target_psnr) row.set("meets_target", p.psnr && *p.psnr >= *s.target_psnr);
+  row.set("recommended", best);
+  return row;
+}
+
 }  // namespace
 
 ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSettings& s) {
@@ -171,27 +198,10 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
     preds.push_back(predict_layers(c, screen, Technique::KBuffer, k));
     preds.push_back(predict_layers(c, screen, Technique::Arrays, k));
   }
-  // The recommendation: least memory among the lossless (no trial lost
-  // anything), or among those whose predicted PSNR meets the target.
-  const Prediction* best = nullptr;
-  for (const Prediction& p : preds) {
-    const bool ok = s.target_psnr ? (p.psnr && *p.psnr >= *s.target_psnr && (!uses_table(p.spec.technique) || p.risk == 0.0))
-                                  : p.risk == 0.0;
-    if (ok && (!best || p.memory < best->memory)) best = &p;
-  }
+  const Prediction* best = recommended(preds, s);
   ResultTable table;
   table.title = "plan";
-  for (const Prediction& p : preds) {
-    ResultRow row;
-    row.set("technique", p.spec.label()).set("memory_bytes", p.memory);
-    if (p.max_age) row.set("predicted_max_age", *p.max_age).set("predicted_max_age_max", p.max_age_max);
-    row.set("predicted_failures", p.failures).set("failure_risk", p.risk);
-    if (p.psnr) row.set("predicted_psnr", *p.psnr);
-    row.set("lossless", p.risk == 0.0);
-    if (s.target_psnr) row.set("meets_target", p.psnr && *p.psnr >= *s.target_psnr);
-    row.set("recommended", &p == best);
-    table.rows.push_back(row);
-  }
+  for (const Prediction& p : preds) table.rows.push_back(plan_row(p, s, &p == best));
   std::vector<std::uint64_t> depth(deepest + 1, 0);
   for (const std::uint32_t n : c.pixel_fragments) ++depth[n];
   std::string hist;

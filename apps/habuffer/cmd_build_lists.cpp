@@ -29,17 +29,9 @@ constexpr const char* kHelp =
     "  exact technique's lists equal the HA-buffer's byte for byte. --table, --block, --iter-limit, --early-cull,\n"
     "  --offsets, --seed and the dumps are the HA-buffer's.\n";
 
-}  // namespace
 
-int run_build_lists(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp)) return 0;
-  auto valued = hash_valued_options();
-  valued.insert({"in", "out", "stats", "dump-table", "dump-max-age"});
-  valued.insert(std::begin(kTechniqueValued), std::end(kTechniqueValued));
-  const Args args(argv, valued, hash_flag_options());
-  const std::string in = args.required("in");
-  const std::string out = args.required("out");
-  HashOptions options = parse_hash_options(args, true);
+// Refuses a technique without lists and any file given two roles, before any work.
+void check_build_request(const Args& args, const HashOptions& options, const std::string& in, const std::string& out) {
   if (!stores_lists(options.technique.technique))
     throw UsageError("--technique " + to_string(options.technique.technique) +
                      " stores no lists (it blends every fragment into the image): use habuffer render");
@@ -49,30 +41,24 @@ int run_build_lists(const std::vector<std::string>& argv) {
   for (const char* o : {"stats", "dump-table", "dump-max-age"})
     if (args.has(o)) files.output(std::string("--") + o, args.required(o));
   check_files(files);
+}
 
-  const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
-  // A pixel deeper than AMAX fails at any table size. The CPU's lossless
-  // loop finds it after its first attempt (TechniqueBuild::too_deep); the
-  // GPU's cannot see records, so it is looked for first there, and no
-  // attempt grows for it.
-  const TechniqueConfig config = technique_config(options, fragments.size());
-  std::optional<PixelDepth> too_deep;
-  if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
-    options.max_attempts = 1;
-  BuildTiming timing;
+// The build on the chosen path, timed.
+TechniqueBuild build_lists(const HashOptions& options, const TechniqueConfig& config,
+                           std::span<const Fragment> fragments, BuildTiming& timing) {
   timing.threads = resolve_threads(options.insert.threads, fragments.size());
-  std::optional<TechniqueBuild> built;
-  if (options.gl) {
-    built.emplace(build_on_gl(options, fragments, timing));
-  } else {
-    const auto t0 = std::chrono::steady_clock::now();
-    built.emplace(build_technique(config, options.offsets, fragments, options.insert,
-                                  options.policy, options.max_attempts));
-    timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  }
-  TechniqueBuild& result = *built;
-  if (!options.gl) timing.insert_order = to_string(result.buffer->insert_order(fragments.size(), options.insert));
+  if (options.gl) return build_on_gl(options, fragments, timing);
+  const auto t0 = std::chrono::steady_clock::now();
+  TechniqueBuild built =
+      build_technique(config, options.offsets, fragments, options.insert, options.policy, options.max_attempts);
+  timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  timing.insert_order = to_string(built.buffer->insert_order(fragments.size(), options.insert));
+  return built;
+}
 
+// The lists, the hash table's dumps and the stats; the report, checked against the counters.
+BuildReport write_build_outputs(const Args& args, const std::string& in, const std::string& out,
+                                const HashOptions& options, const TechniqueBuild& result, const BuildTiming& timing) {
   write_lists(out, *result.buffer);
   if (const HaBuffer* ha = result.buffer->hash_table()) {
     if (args.has("dump-table")) write_table(args.required("dump-table"), *ha);
@@ -91,6 +77,12 @@ int run_build_lists(const std::vector<std::string>& argv) {
     throw std::logic_error("accounting broken: the " + to_string(result.buffer->technique()) + " buffer holds " +
                            std::to_string(report.stored) +
                            " records, counters say " + std::to_string(report.counters.stored()));
+  return report;
+}
+
+// The loss warning or the lossless failure (exit 1) of a finished build.
+int report_build_losses(const HashOptions& options, const TechniqueConfig& config, std::span<const Fragment> fragments,
+                        const TechniqueBuild& result, std::optional<PixelDepth> too_deep) {
   if (!too_deep) too_deep = result.too_deep;
   // One attempt and age failures: no loop looked, look now for the warning.
   if (!too_deep && options.max_attempts == 1 && result.counters.failed_age > 0)
@@ -100,7 +92,7 @@ int run_build_lists(const std::vector<std::string>& argv) {
                             " after " + std::to_string(result.attempts.size()) + " attempt" +
                                 (result.attempts.size() == 1 ? "" : "s") +
                                 (too_deep ? ": " + too_deep_message(*too_deep, options.config.age_bits)
-                                            : " (last " + result.buffer->capacity_text() + ")"));
+                                          : " (last " + result.buffer->capacity_text() + ")"));
     return 1;
   }
   if (too_deep) {
@@ -109,6 +101,34 @@ int run_build_lists(const std::vector<std::string>& argv) {
   }
   warn_losses("build-lists", result.counters, "", lossless_hint(options.technique.technique));
   return 0;
+}
+
+}  // namespace
+
+int run_build_lists(const std::vector<std::string>& argv) {
+  if (print_help(argv, kHelp)) return 0;
+  auto valued = hash_valued_options();
+  valued.insert({"in", "out", "stats", "dump-table", "dump-max-age"});
+  valued.insert(std::begin(kTechniqueValued), std::end(kTechniqueValued));
+  const Args args(argv, valued, hash_flag_options());
+  const std::string in = args.required("in");
+  const std::string out = args.required("out");
+  HashOptions options = parse_hash_options(args, true);
+  check_build_request(args, options, in, out);
+
+  const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
+  // A pixel deeper than AMAX fails at any table size. The CPU's lossless
+  // loop finds it after its first attempt (TechniqueBuild::too_deep); the
+  // GPU's cannot see records, so it is looked for first there, and no
+  // attempt grows for it.
+  const TechniqueConfig config = technique_config(options, fragments.size());
+  std::optional<PixelDepth> too_deep;
+  if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
+    options.max_attempts = 1;
+  BuildTiming timing;
+  const TechniqueBuild result = build_lists(options, config, fragments, timing);
+  write_build_outputs(args, in, out, options, result, timing);
+  return report_build_losses(options, config, fragments, result, too_deep);
 }
 
 }  // namespace habuffer::cli
