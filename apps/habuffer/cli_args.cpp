@@ -24,6 +24,10 @@ bool print_help(const std::vector<std::string>& argv, const char* usage) {
   return true;
 }
 
+bool print_help(const std::vector<std::string>& argv, const std::string& usage) {
+  return print_help(argv, usage.c_str());
+}
+
 Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& valued,
            const std::set<std::string>& flags) {
   for (std::size_t i = 0; i < argv.size(); ++i) {

@@ -46,6 +46,8 @@ void check_files(const FileRoles& files);
 
 /// Prints `usage` and returns true when the only argument is --help.
 bool print_help(const std::vector<std::string>& argv, const char* usage);
+/// The same for a help text assembled at run time (e.g. from the technique registry).
+bool print_help(const std::vector<std::string>& argv, const std::string& usage);
 
 /// One subcommand's parsed options (see the file comment).
 class Args {

@@ -21,7 +21,7 @@ constexpr const char* kHelp =
     "  bytes_per_fragment, every counter, psnr, rmse and max_error against the exact reference, the\n"
     "  floors and the ratios to them.\n"
     "  S: a scene name or mesh file with options (planes:order=front:count=32), or a fragment CSV (CPU).\n"
-    "  T: NAME[:KNOB...], NAME one of ha, lists, arrays, sorted-lists, kbuffer, wboit, blend; knobs\n"
+    "  T: NAME[:KNOB...], NAME a technique (habuffer techniques lists them); knobs\n"
     "     cull=TAU (ha, sorted-lists), sat (with cull), load=L (fixed table or pool for load L),\n"
     "     age=A (ha), k=K (arrays, kbuffer), occ and words=D (kbuffer), e.g. kbuffer:k=8:occ.\n";
 

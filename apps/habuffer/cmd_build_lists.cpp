@@ -14,7 +14,7 @@
 namespace habuffer::cli {
 namespace {
 
-constexpr const char* kHelp =
+const std::string kHelp =
     "usage: habuffer build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [--table WxH] [--layout 64|32]\n"
     "         [--age-bits N] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--block B] [--threads N]\n"
     "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
@@ -24,10 +24,8 @@ constexpr const char* kHelp =
     "  32768 fragments; every insert mode and order builds the same table. --path cpu is the default here (a fragment file's\n"
     "  reference build), gl in render (which rasterizes). `habuffer techniques` lists the techniques.\n"
     "  Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
-    "  --technique lists|arrays: the same lists CSV from per-pixel linked lists (--pool: nodes, auto: one per\n"
-    "  fragment) or fixed arrays (--layers K, default 16); identical records are merged as duplicates, so an\n"
-    "  exact technique's lists equal the HA-buffer's byte for byte. --table, --block, --iter-limit, --early-cull,\n"
-    "  --offsets, --seed and the dumps are the HA-buffer's.\n";
+    "  Every technique that stores lists writes the same lists CSV; identical records are merged as duplicates,\n"
+    "  so an exact technique's lists equal the HA-buffer's byte for byte.\n";
 
 
 // Refuses a technique without lists and any file given two roles, before any work.
@@ -106,7 +104,7 @@ int report_build_losses(const HashOptions& options, const TechniqueConfig& confi
 }  // namespace
 
 int run_build_lists(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp)) return 0;
+  if (print_help(argv, kHelp + technique_help())) return 0;
   auto valued = hash_valued_options();
   valued.insert({"in", "out", "stats", "dump-table", "dump-max-age"});
   valued.insert(std::begin(kTechniqueValued), std::end(kTechniqueValued));

@@ -26,7 +26,7 @@
 namespace habuffer::cli {
 namespace {
 
-constexpr const char* kHelp =
+const std::string kHelp =
     "usage: habuffer render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json]\n"
     "         [--size WxH] [--path gl|cpu] [--technique NAME] [--layers K] [--pool N|auto]\n"
     "         [--occupancy on|off [--occupancy-words D]] [--depth-range NEAR,FAR]\n"
@@ -42,11 +42,6 @@ constexpr const char* kHelp =
     "  (float) by extension.\n"
     "  --opaque-meshes: meshes (indices in file order) drawn opaque with the depth test; transparent\n"
     "  fragments behind them are rejected before insertion and counted.\n"
-    "  --technique: ha (default); lists (linked lists sorted after the gather) and sorted-lists (kept sorted\n"
-    "  by a lock-free insertion, --early-cull TAU for early termination), --pool nodes, auto by default;\n"
-    "  arrays (fixed per-pixel arrays) and kbuffer (the K nearest; --occupancy on culls with an occupancy\n"
-    "  map of 32*D buckets per pixel over --depth-range), --layers K, default 16; wboit (weighted blended\n"
-    "  OIT, weights over --depth-range) and blend (unsorted over-blending): approximate, no lists.\n"
     "  --saturation on: fragments behind a culled one are rejected before insertion (saturated_rejected).\n"
     "  --table, --block, --offsets and --seed are the HA-buffer's; --early-cull and --iter-limit also sorted lists'.\n"
     "  --reference IMAGE writes the exact reference; with it or --error the stats give psnr, rmse and\n"
@@ -276,7 +271,7 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
 }  // namespace
 
 int run_render(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp)) return 0;
+  if (print_help(argv, kHelp + technique_help())) return 0;
   const Args args(argv,
                   {"scene", "fragments", "size", "path", "layout", "opacity", "early-cull", "table", "max-attempts",
                    "frames", "yaw", "pitch", "fov", "background", "out", "stats", "heatmap", "reference", "age-bits",

@@ -1,5 +1,6 @@
 #include "technique_options.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -20,6 +21,19 @@ void refuse_other_techniques_options(const Args& args, const TechniqueDescriptor
 }
 
 }  // namespace
+
+std::string technique_help() {
+  std::string s = "  --technique NAME (default ha), one of:\n";
+  for (const TechniqueDescriptor* d : technique_registry()) {
+    std::string name(d->name);
+    name.resize(std::max<std::size_t>(name.size(), 13), ' ');
+    s += "    " + name + " " + std::string(d->summary) + "\n";
+  }
+  s += "  The options only some techniques take are refused with the others; `habuffer techniques` lists\n"
+       "  each technique's (--pool N|auto: nodes, auto by default; --layers K, default 16; --occupancy on,\n"
+       "  --occupancy-words D, --depth-range NEAR,FAR: the k-buffer's occupancy map, wboit's weights).\n";
+  return s;
+}
 
 TechniqueOptions parse_technique_options(const Args& args) {
   TechniqueOptions o;

@@ -33,4 +33,8 @@ inline constexpr const char* kTechniqueValued[] = {"technique",       "layers", 
 /// chosen technique does not take it.
 TechniqueOptions parse_technique_options(const Args& args);
 
+/// The help's lines on --technique, written from the registry: every
+/// technique's name and summary, and where its own options are listed.
+std::string technique_help();
+
 }  // namespace habuffer::cli
