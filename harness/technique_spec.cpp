@@ -148,9 +148,9 @@ void TechniqueSpec::apply(RenderSettings& s, std::uint64_t fragments) const {
   s.occupancy = occupancy;
   if (occupancy_words) s.occupancy_words = *occupancy_words;
   s.config.table = {};
-  s.pool = 0;
+  s.pool_capacity = 0;
   if (load && uses_table(technique)) s.config.table = table_for_load(s.config.screen, fragments, *load);
-  if (load && uses_pool(technique)) s.pool = capacity_for_load(fragments, *load);
+  if (load && uses_pool(technique)) s.pool_capacity = capacity_for_load(fragments, *load);
 }
 
 }  // namespace habuffer::harness

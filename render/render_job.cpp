@@ -35,7 +35,7 @@ void finish_stats(FrameStats& fs) {
 
 bool automatic_size(const RenderSettings& s) {
   if (uses_table(s.technique)) return s.config.table == Extent{};
-  if (uses_pool(s.technique)) return s.pool == 0;
+  if (uses_pool(s.technique)) return s.pool_capacity == 0;
   return false;
 }
 
@@ -43,14 +43,10 @@ std::uint32_t frame_attempts(const RenderSettings& s) { return automatic_size(s)
 
 TechniqueConfig technique_config(const RenderSettings& s) {
   TechniqueConfig c;
-  c.technique = s.technique;
+  static_cast<TechniqueChoice&>(c) = s;
   c.buffer = s.config;
   c.buffer.table = s.config.table_or_screen();
-  c.pool_capacity = s.pool != 0 ? s.pool : s.config.screen.area();  // auto: a placeholder until the counting pass
-  c.layers = s.layers;
-  c.occupancy = s.occupancy;
-  c.occupancy_words = s.occupancy_words;
-  c.depth_range = s.depth_range;
+  if (c.pool_capacity == 0) c.pool_capacity = s.config.screen.area();  // auto: a placeholder until the counting pass
   return c;
 }
 

@@ -232,7 +232,7 @@ TEST(PagedLists, ParallelKernelsRacingForFewPixelsLinkEveryFragmentAndCountEvery
   constexpr std::uint32_t kThreads = 4;
   std::vector<Fragment> frags = test::grid_stream(screen, 200000, 21, 1);  // enough for the threads to overlap
   const TechniqueConfig c = paged_config(screen, frags.size() * K);
-  const TechniqueParams params = make_technique_params(c);
+  const KernelUniforms params = kernel_uniforms(c);
   std::vector<std::uint32_t> heads(screen.area(), 0), next(c.pool_capacity, 0);
   std::vector<glm::uvec2> entries(c.pool_capacity);
   std::uint32_t counter = 0, wasted = 0;

@@ -353,7 +353,7 @@ TEST(Render, EveryPoolTechniquesAutomaticPoolIsSizedFromTheCountingPassOnBothPat
       SCOPED_TRACE(to_string(t) + (path == RenderPath::Gl ? " gl" : " cpu"));
       RenderSettings s = settings({64, 64}, path);
       s.technique = t;
-      s.pool = 0;  // auto
+      s.pool_capacity = 0;  // auto
       const RenderResult r = render(hairball, s);
       const FrameStats& f = r.frames.front();
       EXPECT_EQ(f.attempts, 1u);

@@ -123,13 +123,7 @@ RenderSettings parse_settings(const Args& args) {
   RenderSettings s;
   const Extent size = args.extent("size").value_or(Extent{1024, 1024});
   if (size.area() == 0) throw UsageError("option --size: " + size.str() + " has no pixels");
-  const TechniqueOptions technique = parse_technique_options(args);
-  s.technique = technique.technique;
-  s.layers = technique.layers;
-  s.pool = technique.pool;
-  s.occupancy = technique.occupancy;
-  s.occupancy_words = technique.occupancy_words;
-  s.depth_range = technique.depth_range;
+  static_cast<TechniqueChoice&>(s) = parse_technique_options(args);
   const std::string table = args.str("table", "auto");
   const Extent t = table == "auto" ? Extent{0, 0} : args.extent("table").value();
   s.config = parse_buffer_config(args, size, t);

@@ -55,14 +55,9 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
 }
 
 TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragments) {
-  TechniqueConfig c;
-  c.technique = options.technique.technique;
+  TechniqueConfig c = options.technique;
   c.buffer = options.config;
-  c.layers = options.technique.layers;
-  c.occupancy = options.technique.occupancy;
-  c.occupancy_words = options.technique.occupancy_words;
-  c.depth_range = options.technique.depth_range;
-  c.pool_capacity = options.technique.pool != 0 ? options.technique.pool : std::max<std::uint64_t>(fragments, 1);
+  if (c.pool_capacity == 0) c.pool_capacity = std::max<std::uint64_t>(fragments, 1);
   return c;
 }
 

@@ -44,7 +44,7 @@ TechniqueOptions parse_technique_options(const Args& args) {
   refuse_other_techniques_options(args, descriptor(o.technique));
   o.layers = args.u32("layers", HABUFFER_DEFAULT_LAYERS, 1, HABUFFER_MAX_LAYERS);
   const std::string pool = args.str("pool", "auto");
-  o.pool = pool == "auto" ? 0 : args.u64("pool", 0, 1, UINT32_MAX - 1);
+  o.pool_capacity = pool == "auto" ? 0 : args.u64("pool", 0, 1, UINT32_MAX - 1);
   const std::string occupancy = args.str("occupancy", "off");
   if (occupancy != "on" && occupancy != "off")
     throw UsageError("option --occupancy: '" + occupancy + "' is not on or off");

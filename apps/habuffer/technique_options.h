@@ -12,15 +12,11 @@
 
 namespace habuffer::cli {
 
-/// The technique options as parsed.
-struct TechniqueOptions {
-  Technique technique = Technique::Ha;  ///< --technique
-  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< arrays, kbuffer
-  std::uint64_t pool = 0;                    ///< lists, sorted-lists; 0: auto (as many as the fragments need)
-  bool occupancy = false;                    ///< kbuffer
-  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< kbuffer: --occupancy-words
-  DepthRange depth_range;                    ///< kbuffer, wboit
-};
+/// The technique options as parsed: the technique's fields of a
+/// TechniqueConfig (technique, pool_capacity with 0 for --pool auto, layers,
+/// occupancy, occupancy_words, depth_range); the buffer's fields are the
+/// hash options' (hash_options.h). No field is declared twice.
+using TechniqueOptions = TechniqueConfig;
 
 /// Names to add to a command's accepted options.
 inline constexpr const char* kTechniqueValued[] = {"technique",       "layers",      "pool", "occupancy",

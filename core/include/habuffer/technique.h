@@ -66,21 +66,34 @@ struct GrowthNeed {
   std::uint32_t most_arrived = 0;     ///< per-pixel techniques: the most fragments a pixel received
 };
 
-/// Everything that fixes one technique's container besides the HA-buffer's offsets.
-struct TechniqueConfig {
+/// Which technique, and the parameters only some techniques read: declared
+/// once here, and held (as a base) by TechniqueConfig, by render's
+/// RenderSettings and by the CLI's options, so no struct restates them and
+/// none copies them field by field. Which of them a technique reads is its
+/// descriptor's (technique_descriptor.h; TechniqueConfig::relevant()).
+struct TechniqueChoice {
   Technique technique = Technique::Ha;  ///< which container
-  /// Screen and record layout for every technique (the layout and age bits fix
-  /// the depth code, so lists of every technique compare bit for bit); table,
-  /// block, iteration limit and early cull are the HA-buffer's.
-  BufferConfig buffer;
-  std::uint64_t pool_capacity = 0;          ///< linked lists, sorted lists: nodes; 0: automatic (build_technique, GL containers)
-  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< fixed arrays, k-buffer: K (at least 1)
+  /// Pool techniques: nodes; 0: automatic (build_technique, the GL
+  /// containers and render size it from the fragments).
+  std::uint64_t pool_capacity = 0;
+  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< techniques of K layers per pixel: K (at least 1)
   /// k-buffer: occupancy-map culling (a fill pass, a count pass, then
   /// insertion rejecting what lies beyond the k-th occupied bucket) with
   /// 32 * occupancy_words buckets per pixel over depth_range.
   bool occupancy = false;
   std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< k-buffer: 32-bit occupancy words per pixel
   DepthRange depth_range;  ///< k-buffer's occupancy, wboit's weights
+  /// Memberwise equality.
+  friend bool operator==(const TechniqueChoice&, const TechniqueChoice&) = default;
+};
+
+/// Everything that fixes one technique's container besides the HA-buffer's
+/// offsets: the choice, and the screen and record layout every technique
+/// shares (the layout and age bits fix the depth code, so lists of every
+/// technique compare bit for bit) with the HA-buffer's table, block,
+/// iteration limit and early cull.
+struct TechniqueConfig : TechniqueChoice {
+  BufferConfig buffer;  ///< screen, layout, age bits; the HA-buffer's table and early cull
 
   /// Throws std::invalid_argument naming the field: the buffer's own rules,
   /// early cull on a technique without it, a pool or layers of 0 or beyond
@@ -89,13 +102,14 @@ struct TechniqueConfig {
   /// Why this configuration cannot be built, or empty (validate's message).
   [[nodiscard]] std::string limit() const;
 
-  /// Lossless mode's next configuration after an attempt that dropped
-  /// fragments: the HA-buffer's table grown by `policy`; the lists' pool to
-  /// at least the nodes asked for (and one step); fixed arrays' K to the most
-  /// fragments a pixel received (and at least one more).
-  /// Memberwise equality.
+  /// Memberwise equality (the choice and the buffer).
   friend bool operator==(const TechniqueConfig&, const TechniqueConfig&) = default;
 
+  /// Lossless mode's next configuration after an attempt that dropped
+  /// fragments (the descriptor's rule): the HA-buffer's table grown by
+  /// `policy`; a pool to at least the nodes asked for (and one step); fixed
+  /// arrays' K to the most fragments a pixel received (and at least one
+  /// more); the k-buffer's K doubled.
   [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
                                       std::uint32_t most_arrived) const;
   /// This configuration with the fields its technique does not read at

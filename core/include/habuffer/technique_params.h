@@ -1,55 +1,61 @@
 /// @file
-/// What the list and array kernels read besides their buffers (their GLSL
-/// "uniforms"), on the CPU path; the GPU path's are in the shared parameter
-/// block (core/include/habuffer/shared/ha_params.h).
+/// The "uniforms" of every technique's kernel, declared once: the GPU path's
+/// parameter block of shared/ha_params.h (the std140 uniform block every
+/// GLSL module reads) as a C++ struct, ParamBlock. The CPU kernels derive
+/// from it (KernelUniforms), so the shared GLSL reads the same members under
+/// the same names on both paths, and one function writes a configuration's
+/// fields into it for both (write_technique_params): no kernel restates a
+/// parameter, no container copies one field by field.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
-#include "habuffer/extent.h"
+#include <glm/vec2.hpp>
+
 #include "habuffer/technique.h"
-#include "shared/ha_constants.h"
+#include "habuffer/shared/ha_constants.h"
 
 namespace habuffer {
 
-/// The list, array, k-buffer and blended kernels' parameters (make_technique_params).
-struct TechniqueParams {
-  std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;  ///< fixes the depth code's bits (SPEC 2)
-  std::uint32_t payload_bits = 32;               ///< 32 for L64, 0 for L32 (data stored as 0)
-  Extent screen;  ///< V, in pixels
-  std::uint32_t pool_capacity = 0;  ///< linked lists: nodes
-  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< fixed arrays, k-buffer: K
-  std::uint32_t iter_limit = HABUFFER_DEFAULT_ITER_LIMIT;  ///< sorted lists: steps of one insertion
-  float cull_tau = 0.0f;                             ///< sorted lists: early termination (0: off)
-  bool saturation = false;                           ///< sorted lists: saturation depth
-  bool occupancy = false;                            ///< k-buffer: occupancy-map culling
-  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< k-buffer: 32-bit occupancy words per pixel
-  std::uint32_t occupancy_near_code = 0;   ///< k-buffer: the depth code of depth_range.near_t
-  std::uint32_t occupancy_bucket_codes = 1;  ///< k-buffer: depth codes per occupancy bucket
-  DepthRange depth_range;                    ///< wboit's weights
+#define HABUFFER_PARAMS_BEGIN struct ParamBlock {
+#define HABUFFER_PARAMS_END };
+#define HABUFFER_PARAM_UINT(name) std::uint32_t name = 0;
+#define HABUFFER_PARAM_FLOAT(name) float name = 0.0f;
+#define HABUFFER_PARAM_UVEC2(name) glm::uvec2 name{0u, 0u};
+#include "habuffer/shared/ha_params.h"
+#undef HABUFFER_PARAMS_BEGIN
+#undef HABUFFER_PARAMS_END
+#undef HABUFFER_PARAM_UINT
+#undef HABUFFER_PARAM_FLOAT
+#undef HABUFFER_PARAM_UVEC2
+
+static_assert(sizeof(glm::uvec2) == 8, "the block's uvec2 members are two 32-bit words (std140)");
+static_assert(offsetof(ParamBlock, ha_table_size) % 8 == 0 && offsetof(ParamBlock, ha_screen_size) % 8 == 0,
+              "std140 aligns uvec2 to 8 bytes: keep every uvec2 of shared/ha_params.h at a multiple of 8");
+static_assert(sizeof(ParamBlock) % 16 == 0,
+              "std140 rounds a block to 16 bytes: pad shared/ha_params.h with ha_unused_N members");
+
+/// What a CPU kernel reads besides its buffers: the parameter block, and the
+/// record word's payload bits, which a GLSL module gets as a constant of its
+/// atomic mode rather than in the block.
+struct KernelUniforms : ParamBlock {
+  std::uint32_t ha_payload_bits = 32;  ///< 32 for L64, 0 for L32 (data stored as 0)
 };
 
 /// The occupancy buckets' integer geometry over the depth codes of `range`
 /// (exact on both paths): bucket 0 holds near_t, the last one far_t.
 void occupancy_geometry(const TechniqueConfig& c, std::uint32_t& near_code, std::uint32_t& bucket_codes);
 
-/// The kernels' parameters for configuration `c`; throws std::invalid_argument
-/// for age bits outside 4..12.
-inline TechniqueParams make_technique_params(const TechniqueConfig& c) {
-  TechniqueParams p;
-  p.age_bits = c.buffer.age_bits;
-  p.payload_bits = c.buffer.layout == Layout::L64 ? 32 : 0;
-  p.screen = c.buffer.screen;
-  p.pool_capacity = static_cast<std::uint32_t>(c.pool_capacity);
-  p.layers = c.layers;
-  p.iter_limit = c.buffer.iter_limit;
-  p.cull_tau = c.buffer.early_cull_tau;
-  p.saturation = c.buffer.saturation;
-  p.occupancy = c.occupancy;
-  p.occupancy_words = c.occupancy_words;
-  occupancy_geometry(c, p.occupancy_near_code, p.occupancy_bucket_codes);
-  p.depth_range = c.depth_range;
-  return p;
-}
+/// Writes what configuration `c` fixes of the block for the technique
+/// kernels: age bits, pool, layers, iteration limit, early cull, saturation,
+/// occupancy map and its geometry, depth range. The screen and the frame's
+/// fields (capture, deferred calls, gather phase) are the frame driver's,
+/// the HA-buffer's table fields its own.
+void write_technique_params(const TechniqueConfig& c, ParamBlock& p);
+
+/// The CPU kernels' uniforms for `c`: write_technique_params, the screen and
+/// the payload bits.
+KernelUniforms kernel_uniforms(const TechniqueConfig& c);
 
 }  // namespace habuffer

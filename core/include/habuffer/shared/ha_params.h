@@ -5,8 +5,7 @@
 /// including it (gl/gl_params.h: a C++ struct; prelude assembly: a std140
 /// uniform block, whose members are GLSL globals). Keep every uvec2 at an
 /// offset that is a multiple of 8 (std140); gl_params.h checks the offsets.
-#ifndef HABUFFER_PARAMS_H
-#define HABUFFER_PARAMS_H
+// No include guard: an X-macro list, expanded once per reader.
 
 HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UVEC2(ha_table_size)          // HA-buffer: the table H
@@ -36,5 +35,3 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UINT(ha_unused_3)
   HABUFFER_PARAM_UINT(ha_unused_4)
 HABUFFER_PARAMS_END
-
-#endif

@@ -18,10 +18,12 @@
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/glsl_sources.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/technique_params.h"
 
 namespace habuffer::gl {
 
-struct GlParams;
+/// The parameter block every module reads (std140), one struct for both paths (technique_params.h).
+using GlParams = ParamBlock;
 
 /// One technique's container on the GPU, run by GlFrameDriver (see the file
 /// comment); make_gl_technique makes one.

@@ -36,17 +36,13 @@ enum class RenderPath {
   Cpu   ///< GL rasterizes and captures the fragments; the technique runs on the CPU
 };
 
-/// Everything one render_scene or render_fragments call runs with (validated there: std::invalid_argument).
-struct RenderSettings {
+/// Everything one render_scene or render_fragments call runs with
+/// (validated there: std::invalid_argument). The technique and its own
+/// parameters are the TechniqueChoice base (technique.h): a pool_capacity
+/// of 0 means auto: sized from a counting pass (to grow_at use), grown at
+/// once when a frame drops, adapted between frames.
+struct RenderSettings : TechniqueChoice {
   RenderPath path = RenderPath::Gl;     ///< GPU or CPU path
-  Technique technique = Technique::Ha;  ///< the container the fragments go into
-  std::uint32_t layers = HABUFFER_DEFAULT_LAYERS;  ///< fixed arrays, k-buffer: K
-  bool occupancy = false;                    ///< k-buffer: occupancy-map culling
-  std::uint32_t occupancy_words = HABUFFER_DEFAULT_OCCUPANCY_WORDS;  ///< k-buffer: 32-bit occupancy words per pixel
-  DepthRange depth_range;                    ///< k-buffer's occupancy buckets, wboit's weights
-  /// Linked lists: nodes in the pool; 0 means auto: sized from a counting pass
-  /// (to grow_at use), grown at once when a frame drops, adapted between frames.
-  std::uint64_t pool = 0;
   /// Screen, layout and age bits (every technique); block, iteration limit,
   /// early cull and table (the HA-buffer). config.table zero means auto: size
   /// the first table from a counting pass, grow at once when a frame fails,

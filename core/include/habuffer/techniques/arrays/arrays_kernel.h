@@ -22,7 +22,7 @@ struct ArraysBuffers {
 /// inserters at once); the sort and compositing need no atomics (one pixel
 /// per thread), except the note of the largest overflow.
 template <bool Concurrent>
-class ArraysKernel {
+class ArraysKernel : public KernelUniforms {
  public:
   /// GLSL's types and builtins (glsl_env.h).
   HABUFFER_GLSL_CLASS_PRELUDE
@@ -35,19 +35,11 @@ class ArraysKernel {
   /// The buffers the kernel works on.
   using Buffers = ArraysBuffers;
 
-  /// Reads the record layout, the screen and K from `params`; works on the
+  /// Reads the record layout, the screen and K from `uniforms` (technique_params.h); works on the
   /// caller's buffers `b`, which it does not own.
-  ArraysKernel(const TechniqueParams& params, const Buffers& b)
-      : ha_age_bits(params.age_bits),
-        ha_payload_bits(params.payload_bits),
-        ha_screen_size(params.screen.x, params.screen.y),
-        ha_layers(params.layers),
-        b_(b) {}
+  ArraysKernel(const KernelUniforms& uniforms, const Buffers& b)
+      : KernelUniforms(uniforms), b_(b) {}
 
-  uint ha_age_bits;  ///< A, the age bits that fix the depth code (SPEC 2)
-  uint ha_payload_bits;  ///< 32 for L64, 0 for L32
-  uvec2 ha_screen_size;  ///< V, in pixels
-  uint ha_layers;  ///< K, layers per pixel
 
   /// Increments the pixel's counter; returns the old count (it keeps counting past K).
   uint fa_count_add(uint pixel) {

@@ -24,13 +24,13 @@ class FixedArrays final : public FragmentBuffer {
 
   /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return Technique::Arrays; }
-  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] Extent screen() const override { return config_.buffer.screen; }
   /// The configuration, validated as technique arrays.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
   /// FragmentBuffer interface: the same configuration.
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
   /// K, layers per pixel.
-  [[nodiscard]] std::uint32_t layers() const { return params_.layers; }
+  [[nodiscard]] std::uint32_t layers() const { return params_.ha_layers; }
 
   /// FragmentBuffer interface: counts each pixel's fragments atomically, then
   /// sorts every pixel's layers. Throws std::invalid_argument for
@@ -45,7 +45,7 @@ class FixedArrays final : public FragmentBuffer {
   /// The sum of the pixels' sorted lengths.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// K per pixel.
-  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.layers} * screen().area(); }
+  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.ha_layers} * screen().area(); }
   /// The most fragments one pixel received since the last clear, when some
   /// pixel received more than K; else 0.
   [[nodiscard]] std::uint32_t largest_overflow() const { return max_arrived_; }
@@ -73,7 +73,7 @@ class FixedArrays final : public FragmentBuffer {
   [[nodiscard]] ArraysBuffers buffers() const;
 
   TechniqueConfig config_;
-  TechniqueParams params_;
+  KernelUniforms params_;
   std::vector<std::uint32_t> counts_;
   std::vector<glm::uvec2> layers_;
   std::uint32_t max_arrived_ = 0;

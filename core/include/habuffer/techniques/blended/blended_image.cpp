@@ -15,7 +15,7 @@ TechniqueConfig BlendedImage::checked_config(const TechniqueConfig& c) {
 }
 
 BlendedImage::BlendedImage(const TechniqueConfig& config)
-    : config_(checked_config(config)), params_(make_technique_params(config_)) {
+    : config_(checked_config(config)), params_(kernel_uniforms(config_)) {
   clear();
 }
 

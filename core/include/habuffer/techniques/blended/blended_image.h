@@ -29,7 +29,7 @@ class BlendedImage final : public FragmentBuffer {
 
   /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return config_.technique; }
-  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] Extent screen() const override { return config_.buffer.screen; }
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
 
   /// FragmentBuffer interface: blends every valid fragment into its pixel (counted
@@ -62,7 +62,7 @@ class BlendedImage final : public FragmentBuffer {
   [[nodiscard]] bool weighted() const { return config_.technique == Technique::Wboit; }
 
   TechniqueConfig config_;
-  TechniqueParams params_;
+  KernelUniforms params_;
   std::vector<glm::vec4> accum_;    ///< blend: (C, T); wboit: the weighted sums
   std::vector<float> revealage_;    ///< wboit
 };

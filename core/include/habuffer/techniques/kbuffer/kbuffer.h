@@ -26,10 +26,10 @@ class KBuffer final : public FragmentBuffer {
 
   /// FragmentBuffer interface (see fragment_buffer.h).
   [[nodiscard]] Technique technique() const override { return Technique::KBuffer; }
-  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] Extent screen() const override { return config_.buffer.screen; }
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
   /// K, layers per pixel.
-  [[nodiscard]] std::uint32_t layers() const { return params_.layers; }
+  [[nodiscard]] std::uint32_t layers() const { return params_.ha_layers; }
 
   /// FragmentBuffer interface: with the occupancy map on, a fill pass and a count
   /// pass come first; the layers stay sorted without a sort pass. Throws
@@ -44,7 +44,7 @@ class KBuffer final : public FragmentBuffer {
   /// The non-empty layer slots.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// K per pixel.
-  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.layers} * screen().area(); }
+  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.ha_layers} * screen().area(); }
 
   /// FragmentBuffer interface; returns the layers read (up to the first empty one, at most K).
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
@@ -74,7 +74,7 @@ class KBuffer final : public FragmentBuffer {
   [[nodiscard]] std::uint64_t record(std::uint64_t slot) const;
 
   TechniqueConfig config_;
-  TechniqueParams params_;
+  KernelUniforms params_;
   std::vector<std::uint64_t> slots64_;  ///< L64
   std::vector<std::uint32_t> slots32_;  ///< L32
   std::vector<std::uint32_t> occupancy_;

@@ -24,7 +24,7 @@ struct KBufferBuffers {
 /// Concurrent: slots and occupancy bits are updated atomically (several
 /// inserters at once); the count pass and compositing need none.
 template <class Word, bool Concurrent>
-class KBufferKernel {
+class KBufferKernel : public KernelUniforms {
  public:
   /// GLSL's types and builtins (glsl_env.h).
   HABUFFER_GLSL_CLASS_PRELUDE
@@ -36,25 +36,9 @@ class KBufferKernel {
 
   /// Reads the record layout, the screen, K and the occupancy geometry from
   /// `params`; works on the caller's buffers `b`, which it does not own.
-  KBufferKernel(const TechniqueParams& params, const KBufferBuffers<Word>& b)
-      : ha_age_bits(params.age_bits),
-        ha_payload_bits(params.payload_bits),
-        ha_screen_size(params.screen.x, params.screen.y),
-        ha_layers(params.layers),
-        ha_occupancy(params.occupancy ? 1u : 0u),
-        ha_occupancy_words(params.occupancy_words),
-        ha_occupancy_near_code(params.occupancy_near_code),
-        ha_occupancy_bucket_codes(params.occupancy_bucket_codes),
-        b_(b) {}
+  KBufferKernel(const KernelUniforms& uniforms, const KBufferBuffers<Word>& b)
+      : KernelUniforms(uniforms), b_(b) {}
 
-  uint ha_age_bits;  ///< A, the age bits that fix the depth code (SPEC 2)
-  uint ha_payload_bits;  ///< 32 for L64, 0 for L32
-  uvec2 ha_screen_size;  ///< V, in pixels
-  uint ha_layers;  ///< K, layers per pixel
-  uint ha_occupancy;  ///< 1: occupancy map on, 0: off
-  uint ha_occupancy_words;  ///< 32-bit occupancy words per pixel (32 buckets each)
-  uint ha_occupancy_near_code;  ///< the depth code of depth_range.near_t
-  uint ha_occupancy_bucket_codes;  ///< depth codes per occupancy bucket
 
   /// atomicMax on slot s: returns the old value, leaves max(old, r).
   Word ha_atomic_max_slot(ha_index s, Word r) { return ha_fetch_max<Concurrent>(b_.slots[s], r); }

@@ -10,7 +10,7 @@
 namespace habuffer {
 LinkedLists::LinkedLists(const TechniqueConfig& config)
     : config_(validated_as(config, lists_flavour(config.technique))),
-      params_(make_technique_params(config_)),
+      params_(kernel_uniforms(config_)),
       heads_(config_.buffer.screen.area(), 0),
       entries_(config_.pool_capacity),
       next_(config_.pool_capacity, 0),
@@ -69,14 +69,14 @@ struct Placed {
 // of the stream, one thread places them all. on_stored(kernel, fragment)
 // follows each fragment stored and returns the entries it merged.
 template <class Insert, class OnStored>
-Placed place_set_aside(const TechniqueParams& params, const ListsBuffers& b, std::span<const Fragment> fragments,
+Placed place_set_aside(const KernelUniforms& params, const ListsBuffers& b, std::span<const Fragment> fragments,
                        std::span<const SetAside> aside, bool owned_rows, std::vector<NodeRange>& left,
                        Insert insert, OnStored on_stored) {
   if (std::all_of(aside.begin(), aside.end(), [](const SetAside& a) { return a.fragments.empty(); })) return {};
   const auto threads = static_cast<std::uint32_t>(owned_rows ? aside.size() : 1);
   const std::vector<NodeRange> nodes = owned_rows ? one_by_one(left) : left;
-  std::uint32_t no_fresh = params.pool_capacity;
-  NodePool rest(&no_fresh, params.pool_capacity, nodes);
+  std::uint32_t no_fresh = params.ha_pool_capacity;
+  NodePool rest(&no_fresh, params.ha_pool_capacity, nodes);
   std::vector<detail::SliceCounters> parts(threads);
   std::vector<detail::PartCount> merged(threads);
   std::vector<NodeRange> blocks(threads);
@@ -124,10 +124,10 @@ void prefetch(const void* p) {
 // all the rows, and everything inlined (flatten): with a kernel the
 // compiler cannot keep in registers, the sort ran 10-15 % slower.
 template <class Rows>
-[[gnu::flatten]] std::uint64_t sort_rows(const TechniqueParams& params, ListsBuffers b, Rows rows) {
+[[gnu::flatten]] std::uint64_t sort_rows(const KernelUniforms& params, ListsBuffers b, Rows rows) {
   constexpr std::uint32_t kAhead = 8;
   ListsKernel<false> k(params, b);
-  const std::uint32_t width = params.screen.x;
+  const std::uint32_t width = params.ha_screen_size.x;
   std::uint64_t merged = 0;
   rows([&](std::uint32_t y) {
     const std::uint32_t* heads = b.heads + std::size_t{y} * width;

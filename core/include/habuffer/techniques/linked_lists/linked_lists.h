@@ -35,7 +35,7 @@ class LinkedLists final : public FragmentBuffer {
   /// Whether fragments are linked in at their place (technique sorted-lists).
   [[nodiscard]] bool sorted_on_insert() const { return config_.technique == Technique::SortedLists; }
   /// FragmentBuffer interface: the screen, in pixels.
-  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] Extent screen() const override { return config_.buffer.screen; }
   /// The configuration, validated as lists or sorted-lists.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
   /// FragmentBuffer interface: the same configuration.
@@ -54,7 +54,7 @@ class LinkedLists final : public FragmentBuffer {
   /// The nodes linked into the lists.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// The pool's nodes.
-  [[nodiscard]] std::uint64_t capacity() const override { return params_.pool_capacity; }
+  [[nodiscard]] std::uint64_t capacity() const override { return params_.ha_pool_capacity; }
   /// Nodes asked for since the last clear, including those the pool could not give.
   [[nodiscard]] std::uint64_t requested() const { return requested_; }
   /// FragmentBuffer interface: the nodes asked for (requested()).
@@ -88,7 +88,7 @@ class LinkedLists final : public FragmentBuffer {
   Counters gather(std::span<const Fragment> fragments, const detail::InsertPlan& plan, Insert insert);
 
   TechniqueConfig config_;
-  TechniqueParams params_;
+  KernelUniforms params_;
   std::vector<std::uint32_t> heads_;
   std::vector<glm::uvec2> entries_;
   std::vector<std::uint32_t> next_;

@@ -27,7 +27,7 @@ struct ListsBuffers {
 /// always, node_blocks.h); the sort and compositing need no atomics (one
 /// pixel per thread).
 template <bool Concurrent>
-class ListsKernel {
+class ListsKernel : public KernelUniforms {
  public:
   /// GLSL's types and builtins (glsl_env.h).
   HABUFFER_GLSL_CLASS_PRELUDE
@@ -41,24 +41,10 @@ class ListsKernel {
   using Buffers = ListsBuffers;
 
   /// Reads the record layout, the screen, the pool and the sorted lists' options
-  /// from `params`; works on the caller's buffers `b`, which it does not own.
-  ListsKernel(const TechniqueParams& params, const Buffers& b)
-      : ha_age_bits(params.age_bits),
-        ha_payload_bits(params.payload_bits),
-        ha_screen_size(params.screen.x, params.screen.y),
-        ha_pool_capacity(params.pool_capacity),
-        ha_iter_limit(params.iter_limit),
-        ha_cull_tau(params.cull_tau),
-        ha_saturation(params.saturation ? 1u : 0u),
-        b_(b) {}
+  /// from `uniforms` (technique_params.h); works on the caller's buffers `b`, which it does not own.
+  ListsKernel(const KernelUniforms& uniforms, const Buffers& b)
+      : KernelUniforms(uniforms), b_(b) {}
 
-  uint ha_age_bits;  ///< A, the age bits that fix the depth code (SPEC 2)
-  uint ha_payload_bits;  ///< 32 for L64, 0 for L32
-  uvec2 ha_screen_size;  ///< V, in pixels
-  uint ha_pool_capacity;  ///< nodes in the pool
-  uint ha_iter_limit;  ///< sorted lists: steps of one insertion
-  float ha_cull_tau;  ///< sorted lists: early termination (0: off)
-  uint ha_saturation;  ///< 1: saturation depth on, 0: off
 
   /// Inserts take nodes from blocks of `pool` (node_blocks.h).
   void use_nodes(NodePool& pool) { pool_ = &pool; }

@@ -11,7 +11,7 @@ namespace habuffer {
 
 PagedLists::PagedLists(const TechniqueConfig& config)
     : config_(validated_as(config, Technique::PagedLists)),
-      params_(make_technique_params(config_)),
+      params_(kernel_uniforms(config_)),
       heads_(config_.buffer.screen.area(), 0),
       entries_(config_.pool_capacity),
       next_(config_.pool_capacity, 0) {}

@@ -31,7 +31,7 @@ class PagedLists final : public FragmentBuffer {
   /// FragmentBuffer interface (see fragment_buffer.h): paged-lists.
   [[nodiscard]] Technique technique() const override { return Technique::PagedLists; }
   /// FragmentBuffer interface: the screen, in pixels.
-  [[nodiscard]] Extent screen() const override { return params_.screen; }
+  [[nodiscard]] Extent screen() const override { return config_.buffer.screen; }
   /// The configuration, validated.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
   /// FragmentBuffer interface: the same configuration.
@@ -51,7 +51,7 @@ class PagedLists final : public FragmentBuffer {
   /// The nodes linked into the lists.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// The pool's nodes.
-  [[nodiscard]] std::uint64_t capacity() const override { return params_.pool_capacity; }
+  [[nodiscard]] std::uint64_t capacity() const override { return params_.ha_pool_capacity; }
   /// Nodes asked for in pages since the last clear, including those the pool could not give.
   [[nodiscard]] std::uint64_t requested() const { return counter_; }
   /// Pages allocated and never linked since the last clear (races between inserting threads).
@@ -81,7 +81,7 @@ class PagedLists final : public FragmentBuffer {
   [[nodiscard]] PagedListsBuffers buffers() const;
 
   TechniqueConfig config_;
-  TechniqueParams params_;
+  KernelUniforms params_;
   std::vector<std::uint32_t> heads_;
   std::vector<glm::uvec2> entries_;
   std::vector<std::uint32_t> next_;

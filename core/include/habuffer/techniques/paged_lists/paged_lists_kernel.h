@@ -28,7 +28,7 @@ struct PagedListsBuffers {
 /// share the pool). The sort and compositing need no atomics (one pixel per
 /// thread).
 template <bool Concurrent>
-class PagedListsKernel {
+class PagedListsKernel : public KernelUniforms {
  public:
   /// GLSL's types and builtins (glsl_env.h).
   HABUFFER_GLSL_CLASS_PRELUDE
@@ -42,20 +42,10 @@ class PagedListsKernel {
   using Buffers = PagedListsBuffers;
 
   /// Reads the record layout, the screen, the pool and the iteration limit
-  /// from `params`; works on the caller's buffers `b`, which it does not own.
-  PagedListsKernel(const TechniqueParams& params, const Buffers& b)
-      : ha_age_bits(params.age_bits),
-        ha_payload_bits(params.payload_bits),
-        ha_screen_size(params.screen.x, params.screen.y),
-        ha_pool_capacity(params.pool_capacity),
-        ha_iter_limit(params.iter_limit),
-        b_(b) {}
+  /// from `uniforms` (technique_params.h); works on the caller's buffers `b`, which it does not own.
+  PagedListsKernel(const KernelUniforms& uniforms, const Buffers& b)
+      : KernelUniforms(uniforms), b_(b) {}
 
-  uint ha_age_bits;       ///< A, the age bits that fix the depth code (SPEC 2)
-  uint ha_payload_bits;   ///< 32 for L64, 0 for L32
-  uvec2 ha_screen_size;   ///< V, in pixels
-  uint ha_pool_capacity;  ///< nodes in the pool
-  uint ha_iter_limit;     ///< tries of one insertion
 
   /// The pixel's head (a relaxed atomic read when Concurrent).
   uint pl_load_head(uint pixel) const { return ha_fetch<Concurrent>(b_.heads[pixel]); }

@@ -63,8 +63,7 @@ void GlFixedArrays::change_screen(Extent screen) {
 }
 
 void GlFixedArrays::write_params(GlParams& p) const {
-  p.ha_age_bits = config_.buffer.age_bits;
-  p.ha_layers = config_.layers;
+  write_technique_params(config_, p);
 }
 
 void GlFixedArrays::bind() const {

@@ -119,9 +119,7 @@ void GlBlendedImage::change_screen(Extent screen) {
 }
 
 void GlBlendedImage::write_params(GlParams& p) const {
-  p.ha_age_bits = config_.buffer.age_bits;
-  p.ha_depth_near = config_.depth_range.near_t;
-  p.ha_depth_far = config_.depth_range.far_t;
+  write_technique_params(config_, p);
 }
 
 void GlBlendedImage::bind() const {

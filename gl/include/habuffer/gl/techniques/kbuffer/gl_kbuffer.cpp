@@ -83,13 +83,7 @@ void GlKBuffer::change_screen(Extent screen) {
 }
 
 void GlKBuffer::write_params(GlParams& p) const {
-  TechniqueParams t = make_technique_params(config_);
-  p.ha_age_bits = config_.buffer.age_bits;
-  p.ha_layers = config_.layers;
-  p.ha_occupancy = config_.occupancy ? 1u : 0u;
-  p.ha_occupancy_words = config_.occupancy_words;
-  p.ha_occupancy_near_code = t.occupancy_near_code;
-  p.ha_occupancy_bucket_codes = t.occupancy_bucket_codes;
+  write_technique_params(config_, p);
 }
 
 void GlKBuffer::bind() const {

@@ -109,11 +109,7 @@ void GlLinkedLists::resize_pool(std::uint64_t nodes) {
 }
 
 void GlLinkedLists::write_params(GlParams& p) const {
-  p.ha_age_bits = config_.buffer.age_bits;
-  p.ha_pool_capacity = static_cast<std::uint32_t>(config_.pool_capacity);
-  p.ha_iter_limit = config_.buffer.iter_limit;
-  p.ha_cull_tau = config_.buffer.early_cull_tau;
-  p.ha_saturation = config_.buffer.saturation ? 1u : 0u;
+  write_technique_params(config_, p);
 }
 
 void GlLinkedLists::bind() const {

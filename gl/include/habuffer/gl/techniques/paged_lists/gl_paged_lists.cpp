@@ -104,9 +104,7 @@ void GlPagedLists::resize_pool(std::uint64_t nodes) {
 }
 
 void GlPagedLists::write_params(GlParams& p) const {
-  p.ha_age_bits = config_.buffer.age_bits;
-  p.ha_pool_capacity = static_cast<std::uint32_t>(config_.pool_capacity);
-  p.ha_iter_limit = config_.buffer.iter_limit;
+  write_technique_params(config_, p);
 }
 
 void GlPagedLists::bind() const {
