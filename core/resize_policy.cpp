@@ -42,6 +42,10 @@ std::uint64_t ResizePolicy::next(std::uint64_t capacity, std::uint64_t used) con
   return capacity;
 }
 
+std::uint64_t ResizePolicy::automatic(std::uint64_t records) const {
+  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(records) / grow_at)));
+}
+
 std::uint64_t ResizePolicy::grown(std::uint64_t capacity, std::uint64_t needed) const {
   const auto stepped = static_cast<std::uint64_t>(std::ceil(static_cast<double>(capacity) * (1.0 + step)));
   return std::max({needed, stepped, capacity + 1});

@@ -27,7 +27,6 @@ bool has_early_cull(Technique t) { return descriptor(t).early_cull; }
 bool uses_pool(Technique t) { return descriptor(t).capacity == CapacityKind::PoolNodes; }
 bool uses_layers(Technique t) { return descriptor(t).capacity == CapacityKind::PixelLayers; }
 bool uses_table(Technique t) { return descriptor(t).capacity == CapacityKind::TableSlots; }
-Technique lists_flavour(Technique t) { return uses_pool(t) ? t : Technique::Lists; }
 
 std::string technique_names() {
   std::string s;
@@ -39,11 +38,11 @@ void TechniqueConfig::validate() const {
   const TechniqueDescriptor& d = descriptor(technique);
   buffer.validate();
   if (!d.early_cull && buffer.early_cull_tau > 0.0f)
-    throw std::invalid_argument("early cull is " + techniques_taking("early-cull") + "'s: technique " +
+    throw std::invalid_argument("early cull applies to " + techniques_taking("early-cull") + ": technique " +
                                 to_string(technique) + " has none");
   if (occupancy && !d.takes("occupancy"))
-    throw std::invalid_argument("occupancy maps are " + techniques_taking("occupancy") + "'s, not " +
-                                to_string(technique) + "'s");
+    throw std::invalid_argument("occupancy maps apply to " + techniques_taking("occupancy") + ", not " +
+                                to_string(technique));
   if (occupancy_words == 0 || occupancy_words > HABUFFER_MAX_OCCUPANCY_WORDS)
     throw std::invalid_argument("occupancy words " + std::to_string(occupancy_words) + " outside [1, " +
                                 std::to_string(HABUFFER_MAX_OCCUPANCY_WORDS) + "]");

@@ -43,10 +43,12 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
   TechniqueConfig c = config;
   c.buffer.table = config.buffer.table_or_screen();
   // The automatic pool (0), as render's --pool auto: the fragments at
-  // grow_at use, so one pool holds them all.
-  if (uses_pool(c.technique) && c.pool_capacity == 0)
-    c.pool_capacity = std::max<std::uint64_t>(
-        1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments.size()) / policy_.grow_at)));
+  // grow_at use, and grown at once (one more attempt) when that drops, as
+  // render's automatic pool is: a technique may need more nodes than
+  // fragments (paged lists take whole pages).
+  const bool automatic_pool = uses_pool(c.technique) && c.pool_capacity == 0;
+  if (automatic_pool) c.pool_capacity = policy_.automatic(fragments.size());
+  const std::uint32_t attempts = automatic_pool ? std::max<std::uint32_t>(max_attempts_, 2) : max_attempts_;
   auto b = std::make_unique<TechniqueBuild>();
   for (;;) {
     std::unique_ptr<FragmentBuffer> buffer = container_for(c);
@@ -55,7 +57,7 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
     b->attempts.push_back({uses_table(c.technique) ? c.buffer.table : Extent{}, counters, buffer->capacity()});
     b->counters = counters;
     b->buffer = std::move(buffer);
-    if (counters.failures() == 0 || b->attempts.size() >= max_attempts_) break;
+    if (counters.failures() == 0 || b->attempts.size() >= attempts) break;
     if (counters.failed_age > 0)
       if ((b->too_deep = pixel_beyond_every_table(c, fragments))) break;
     const TechniqueConfig next = next_attempt(c, *b->buffer, policy_);

@@ -198,7 +198,7 @@ ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fr
       t.load = l;
       specs.push_back(t);
     }
-    for (const char* w : {"lists", "sorted-lists", "arrays:k=16", "kbuffer:k=8", "wboit", "blend"})
+    for (const char* w : {"lists", "paged-lists", "sorted-lists", "arrays:k=16", "kbuffer:k=8", "wboit", "blend"})
       specs.push_back(parse_technique_spec(w));
     for (const TechniqueSpec& t : specs) {
       TechniqueConfig c;
@@ -238,10 +238,6 @@ ResultTable run_memory_table(Extent screen, const std::vector<std::uint64_t>& fr
       if (const std::optional<double> p = published_value(paper_row, f)) row.set("paper_table_mib", *p);
       table.rows.push_back(row);
     }
-    ResultRow paged;
-    paged.set("technique", "paged-lists:k=4 (paper only)").set("fragments", f).set("pixels", screen.area())
-        .set("paper_formula_mib", paper_paged_lists_bytes(screen.area(), f, 4) / mib);
-    table.rows.push_back(paged);
   }
   table.notes["paper_formula_mib"] = "seed 000's formulas (56-bit fragments, 32-bit pointers, max-age byte per 8x8)";
   table.notes["model_mib"] = "our record sizes (memory_model.h), what the CPU containers allocate";

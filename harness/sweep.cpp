@@ -14,6 +14,14 @@ namespace {
 
 bool sized_by_load(Technique t) { return descriptor(t).capacity != CapacityKind::None; }
 
+// "ha, lists, ...": the techniques a load sizes, for messages.
+std::string sized_techniques() {
+  std::string s;
+  for (const TechniqueDescriptor* d : technique_registry())
+    if (sized_by_load(d->technique)) s += (s.empty() ? "" : ", ") + std::string(d->name);
+  return s;
+}
+
 // The settings of one run: the technique sized for `load` of `fragments`.
 RenderSettings run_settings(const SweepSettings& s, Extent screen, std::uint64_t fragments, double load,
                             std::uint32_t repeat) {
@@ -136,8 +144,8 @@ std::uint32_t histogram_quantile(const std::vector<std::uint64_t>& h, double q) 
 
 void validate_sweep(const SweepSettings& s) {
   if (!sized_by_load(s.technique.technique))
-    throw std::invalid_argument("technique " + to_string(s.technique.technique) +
-                                " has no size to sweep (ha, lists, sorted-lists, arrays and kbuffer have)");
+    throw std::invalid_argument("technique " + to_string(s.technique.technique) + " has no size to sweep (" +
+                                sized_techniques() + " have)");
   if (s.loads.empty()) throw std::invalid_argument("--loads is empty");
   // The sweep sizes the technique itself; a size in the word would be
   // overridden yet kept in the rows' label.

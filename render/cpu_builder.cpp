@@ -15,9 +15,7 @@ Extent initial_table(const RenderSettings& s, std::uint64_t fragments) {
   return table_for_load(s.config.screen, fragments, target);
 }
 
-std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments) {
-  return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(fragments) / s.policy.grow_at)));
-}
+std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments) { return s.policy.automatic(fragments); }
 
 namespace {
 

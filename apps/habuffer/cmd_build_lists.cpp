@@ -44,7 +44,7 @@ void check_build_request(const Args& args, const HashOptions& options, const std
 // The build on the chosen path, timed.
 TechniqueBuild build_lists(const HashOptions& options, const TechniqueConfig& config,
                            std::span<const Fragment> fragments, BuildTiming& timing) {
-  timing.threads = resolve_threads(options.insert.threads, fragments.size());
+  timing.threads = resolve_threads(options.insert.threads);
   if (options.gl) return build_on_gl(options, fragments, timing);
   const auto t0 = std::chrono::steady_clock::now();
   TechniqueBuild built =
@@ -119,7 +119,7 @@ int run_build_lists(const std::vector<std::string>& argv) {
   // loop finds it after its first attempt (TechniqueBuild::too_deep); the
   // GPU's cannot see records, so it is looked for first there, and no
   // attempt grows for it.
-  const TechniqueConfig config = technique_config(options, fragments.size());
+  const TechniqueConfig config = technique_config(options);
   std::optional<PixelDepth> too_deep;
   if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
     options.max_attempts = 1;

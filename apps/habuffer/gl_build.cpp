@@ -23,8 +23,14 @@ TechniqueBuild build_on_gl(const HashOptions& options, std::span<const Fragment>
   gl::GlFrameOptions frame_options;
   frame_options.policy = options.policy;
   frame_options.max_attempts = options.max_attempts;
-  gl::GlFrameDriver gpu(
-      gl::make_gl_technique(technique_config(options, fragments.size()), options.offsets, *mode), frame_options);
+  const TechniqueConfig config = technique_config(options);
+  gl::GlFrameDriver gpu(gl::make_gl_technique(config, options.offsets, *mode), frame_options);
+  // --pool auto: the library's automatic pool, sized as the CPU's (grown at once on a drop).
+  if (uses_pool(config.technique) && config.pool_capacity == 0) {
+    TechniqueConfig wanted = config;
+    wanted.pool_capacity = options.policy.automatic(fragments.size());
+    gpu.technique().fit_automatic_size(wanted);
+  }
   gl::ComputeInserter inserter(gpu);
   const auto t0 = std::chrono::steady_clock::now();
   gl::FrameReport report = inserter.insert(fragments);

@@ -54,10 +54,9 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   return c;
 }
 
-TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragments) {
+TechniqueConfig technique_config(const HashOptions& options) {
   TechniqueConfig c = options.technique;
   c.buffer = options.config;
-  if (c.pool_capacity == 0) c.pool_capacity = std::max<std::uint64_t>(fragments, 1);
   return c;
 }
 

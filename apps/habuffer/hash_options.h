@@ -28,9 +28,10 @@ struct HashOptions {
   TechniqueOptions technique;  ///< ha unless the command takes --technique
 };
 
-/// The technique's configuration for a stream of `fragments` (an automatic
-/// pool holds them all).
-TechniqueConfig technique_config(const HashOptions& options, std::uint64_t fragments);
+/// The technique's configuration: the technique's options over the buffer's;
+/// --pool auto stays 0, the library's automatic pool (build_technique and the
+/// GL containers size it from the fragments and grow it at once on a drop).
+TechniqueConfig technique_config(const HashOptions& options);
 
 /// Names to add to a command's accepted options.
 const std::set<std::string>& hash_valued_options();

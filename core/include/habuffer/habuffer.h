@@ -16,6 +16,7 @@
 #include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/techniques/kbuffer/kbuffer.h"
 #include "habuffer/techniques/linked_lists/linked_lists.h"
+#include "habuffer/techniques/paged_lists/paged_lists.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/technique_frames.h"
 #include "habuffer/max_age_table.h"

@@ -78,8 +78,10 @@ struct TechniqueBuild {
 /// next size cannot be built, or (too_deep) when an HA-buffer's age failures
 /// come from a pixel with more distinct records than AMAX, which no table holds. Throws std::invalid_argument for max_attempts 0 or
 /// a bad policy or configuration, std::out_of_range for a fragment off the screen.
-/// A pool_capacity of 0 (lists, sorted lists) is the automatic pool: the
-/// fragments at the policy's grow_at use (the CLI's --pool auto).
+/// A pool_capacity of 0 (pool techniques) is the automatic pool: the
+/// fragments at the policy's grow_at use (ResizePolicy::automatic), grown at
+/// once when that drops (at least two attempts), as render's and the CLI's
+/// --pool auto.
 TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource& offsets,
                                std::span<const Fragment> fragments, const InsertOptions& options,
                                const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);

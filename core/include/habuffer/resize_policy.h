@@ -27,6 +27,10 @@ struct ResizePolicy {
   /// pool), at least 1: the next frame's from the records `used` this frame,
   /// and lossless growth to at least `needed` and at least one step.
   [[nodiscard]] std::uint64_t next(std::uint64_t capacity, std::uint64_t used) const;
+  /// An automatic pool's first size for `records` records: the records at
+  /// grow_at use (so one pool holds them all), at least 1. The library,
+  /// render and the CLI size every automatic pool so.
+  [[nodiscard]] std::uint64_t automatic(std::uint64_t records) const;
   /// Lossless growth of a capacity: the largest of `needed`, capacity times (1 + step) rounded up, and capacity + 1.
   [[nodiscard]] std::uint64_t grown(std::uint64_t capacity, std::uint64_t needed) const;
   /// Area times (1 - step), aspect ratio kept, sides rounded up, at least the screen.

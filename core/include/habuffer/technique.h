@@ -42,12 +42,9 @@ std::string technique_names();
 bool stores_lists(Technique t);     ///< per-pixel lists one can read (not the blended baselines)
 bool exact_technique(Technique t);  ///< lists equal the HA-buffer's when nothing is dropped or culled
 bool has_early_cull(Technique t);   ///< --early-cull applies (ha, sorted-lists)
-bool uses_pool(Technique t);        ///< its capacity is a node pool (lists, sorted-lists)
-bool uses_layers(Technique t);      ///< its capacity is K layers per pixel (arrays, kbuffer)
+bool uses_pool(Technique t);        ///< its capacity is a node pool (CapacityKind::PoolNodes)
+bool uses_layers(Technique t);      ///< its capacity is K layers per pixel (CapacityKind::PixelLayers)
 bool uses_table(Technique t);       ///< its capacity is a hash table of slots (ha)
-/// The linked-list container's technique for `t`: a pool technique stays,
-/// anything else is lists (whose container then refuses it by name).
-Technique lists_flavour(Technique t);
 
 /// The depth interval the scene's fragments lie in (window depth t): the
 /// k-buffer's occupancy buckets divide it, wboit's weight is normalized to
@@ -112,9 +109,9 @@ struct TechniqueConfig : TechniqueChoice {
   /// more); the k-buffer's K doubled.
   [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
                                       std::uint32_t most_arrived) const;
-  /// This configuration with the fields its technique does not read at
-  /// their defaults: two configurations make the same container iff their
-  /// relevant() parts are equal.
+  /// This configuration with the choice's fields its technique does not
+  /// read at their defaults: configurations whose relevant() parts are equal
+  /// make the same container (the buffer's fields are compared as they are).
   [[nodiscard]] TechniqueConfig relevant() const;
   /// The capacity this configuration asks for: the HA-buffer's table slots,
   /// the pool's nodes, K times the pixels, or 0 for the baselines.

@@ -2,7 +2,7 @@
 /// A technique as one unit: everything the library, the harness and the CLI
 /// need to know about a technique, declared once in the technique's folder
 /// (core/include/habuffer/techniques/NAME/) and listed by the registry
-/// (technique_registry.h). Code outside the folders asks the descriptor, never
+/// (technique_registry(), below). Code outside the folders asks the descriptor, never
 /// "which technique is this": no switch over Technique, no dynamic_cast to a
 /// container. The GPU path's half is gl/technique_registry.h's
 /// GlTechniqueDescriptor, in the technique's gl folder.
@@ -22,7 +22,7 @@ namespace habuffer {
 
 class FragmentBuffer;
 struct OffsetSource;
-class ResizePolicy;
+struct ResizePolicy;
 
 /// What a technique's capacity counts, and so what automatic sizing (SPEC 8's
 /// 80/30 rule) and lossless mode grow.

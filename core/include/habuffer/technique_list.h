@@ -8,7 +8,7 @@
 ///
 /// The line makes the enumerator of habuffer::Technique and names the two
 /// functions the technique's folders define, whose descriptors the
-/// registries list (technique_registry.h, gl/technique_registry.h):
+/// registries list (technique_descriptor.h, gl/technique_registry.h):
 ///
 ///     const habuffer::TechniqueDescriptor& habuffer::techniques::NS::descriptor();
 ///     const habuffer::gl::GlTechniqueDescriptor& habuffer::gl::techniques::NS::descriptor();

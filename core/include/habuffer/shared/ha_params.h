@@ -12,14 +12,14 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UINT(ha_age_bits)             // every technique: the depth code's bits (SPEC 2)
   HABUFFER_PARAM_UINT(ha_block)                // HA-buffer: max-age block B
   HABUFFER_PARAM_UINT(ha_max_age_cells_x)      // HA-buffer: max-age cells per row
-  HABUFFER_PARAM_UINT(ha_iter_limit)           // HA-buffer: probes per insert call
+  HABUFFER_PARAM_UINT(ha_iter_limit)           // HA-buffer: probes per insert call; sorted and paged lists: tries
   HABUFFER_PARAM_FLOAT(ha_cull_tau)            // HA-buffer: early cull (0: off)
   HABUFFER_PARAM_UINT(ha_lock_spin_limit)      // HA-buffer, emulated64: busy attempts before a call is cut short
   HABUFFER_PARAM_UVEC2(ha_screen_size)         // every technique
   HABUFFER_PARAM_UINT(ha_capture_capacity)     // fragments the capture buffer holds; 0: capture off
   HABUFFER_PARAM_UINT(ha_capture_only)         // 1: capture, insert nothing, count nothing
   HABUFFER_PARAM_UINT(ha_deferred_capacity)    // HA-buffer: calls cut short that the deferred-call buffer holds
-  HABUFFER_PARAM_UINT(ha_pool_capacity)        // linked lists: nodes
+  HABUFFER_PARAM_UINT(ha_pool_capacity)        // pool techniques: nodes
   HABUFFER_PARAM_UINT(ha_layers)               // fixed arrays, k-buffer: K
   HABUFFER_PARAM_UINT(ha_saturation)           // HA-buffer, sorted lists: 1: saturation depth (with early cull)
   HABUFFER_PARAM_UINT(ha_gather_phase)         // k-buffer: 1 during the occupancy fill pass, else 0

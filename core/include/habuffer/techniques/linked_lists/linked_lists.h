@@ -24,6 +24,10 @@ struct InsertPlan;  // how an insert call runs its threads (core/technique_paral
 }  // namespace detail
 
 /// Per-pixel linked lists, sorted after the gather or kept sorted (see above).
+/// The linked-list container's technique for `t`: sorted-lists stays,
+/// anything else is lists (whose container then refuses it by name).
+inline Technique lists_flavour(Technique t) { return t == Technique::SortedLists ? t : Technique::Lists; }
+
 class LinkedLists final : public FragmentBuffer {
  public:
   /// Technique sorted-lists when config.technique says so, else lists. Throws

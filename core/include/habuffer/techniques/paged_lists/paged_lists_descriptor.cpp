@@ -41,7 +41,7 @@ TechniqueConfig grown_pool(const TechniqueConfig& c, const ResizePolicy& policy,
   return next;
 }
 
-constexpr std::string_view kOptions[] = {"pool", "lossless", "max-attempts"};
+constexpr std::string_view kOptions[] = {"pool", "iter-limit", "lossless", "max-attempts"};
 
 constexpr TechniqueDescriptor kPagedLists{
     .technique = Technique::PagedLists,
@@ -73,7 +73,7 @@ constexpr TechniqueDescriptor kPagedLists{
     .reads_depth_range = false,
     .capacity = CapacityKind::PoolNodes,
     .overflow_keeps_nearest = false,
-    .paper_memory_row = "paged, K = 4, lower bound",
+    .paper_memory_row = "",
     .options = kOptions,
     .lossless_hint = "--lossless grows the node pool until they fit (or give a larger --pool)",
     .validate = validate_pool,
