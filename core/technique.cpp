@@ -52,6 +52,20 @@ void TechniqueConfig::validate() const {
   d.validate(*this);
 }
 
+void validate_pool(const TechniqueConfig& c) {
+  // Links are 32-bit node numbers with 0 for "none".
+  if (c.pool_capacity == 0 || c.pool_capacity >= UINT32_MAX)
+    throw std::invalid_argument("node pool of " + std::to_string(c.pool_capacity) +
+                                " nodes: must be in [1, 2^32 - 2] (0, automatic, is for build_technique and the GL "
+                                "containers, which size it)");
+}
+
+TechniqueConfig grown_pool(const TechniqueConfig& c, const ResizePolicy& policy, const GrowthNeed& need) {
+  TechniqueConfig next = c;
+  next.pool_capacity = policy.grown(c.pool_capacity, need.nodes_requested);
+  return next;
+}
+
 void validate_layers(const TechniqueConfig& c) {
   if (c.layers == 0) throw std::invalid_argument(to_string(c.technique) + " needs at least 1 layer per pixel");
   if (std::uint64_t{c.layers} * c.buffer.screen.area() > UINT32_MAX)

@@ -220,6 +220,34 @@ std::uint64_t sort_row_bands(Extent screen, std::uint32_t threads, MakeKernel ma
   return total;
 }
 
+// The insertion of a technique that sorts after the gather: each thread
+// inserts its share (insert_one(kernel, fragment) returns the HA_* outcome,
+// tallied locally: counters in memory could alias the buffers and force a
+// store per fragment); a thread that owns its rows sorts them at once (no
+// other thread writes them), else bands of rows are sorted after the
+// gather. Returns the outcomes with the entries the sort merged counted as
+// duplicates.
+template <class MakeKernel, class MakeSorter, class InsertOne, class Sort>
+Counters insert_then_sort(std::span<const Fragment> fragments, Extent screen, const InsertPlan& plan,
+                          MakeKernel make_kernel, MakeSorter make_sorter, InsertOne insert_one, Sort sort) {
+  std::vector<SliceCounters> parts(plan.threads);
+  std::vector<PartCount> merged(plan.threads);
+  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
+    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
+    for (const Fragment& f : mine)
+      if (owns(f)) ++tally[insert_one(k, f)];
+    parts[t].c.add_tally(tally);
+    if (plan.owned_rows)
+      merged[t].n = sort_rows(screen, make_sorter, sort, [&](auto row) { owns.rows(screen, row); });
+  };
+  for_insert_threads(fragments, screen, plan, make_kernel, insert_mine);
+  Counters c;
+  for (const auto& part : parts) c += part.c;
+  if (!plan.owned_rows) merged.assign(1, {sort_row_bands(screen, plan.threads, make_sorter, sort)});
+  for (const auto& m : merged) c.merge_duplicates(m.n);
+  return c;
+}
+
 // Every fragment through insert(kernel, fragment), which returns the HA_*
 // outcome, on contiguous slices (atomics when `shared`, as for_slices);
 // returns the tallied outcomes.

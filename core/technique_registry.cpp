@@ -17,10 +17,6 @@ HABUFFER_TECHNIQUES(HABUFFER_DECLARE_DESCRIPTOR)
 namespace habuffer {
 namespace {
 
-#define HABUFFER_COUNT_TECHNIQUE(Enumerator, ns) +1
-constexpr std::size_t kTechniqueCount = 0 HABUFFER_TECHNIQUES(HABUFFER_COUNT_TECHNIQUE);
-#undef HABUFFER_COUNT_TECHNIQUE
-
 // Built on first use, so no descriptor is read before its folder's constant
 // is initialised (they live in other translation units).
 const std::array<const TechniqueDescriptor*, kTechniqueCount>& registry() {
@@ -28,13 +24,7 @@ const std::array<const TechniqueDescriptor*, kTechniqueCount>& registry() {
   static const std::array<const TechniqueDescriptor*, kTechniqueCount> list = {
       HABUFFER_TECHNIQUES(HABUFFER_LIST_DESCRIPTOR)};
 #undef HABUFFER_LIST_DESCRIPTOR
-  static const bool checked = [] {
-    for (std::size_t i = 0; i < list.size(); ++i)
-      if (static_cast<std::size_t>(list[i]->technique) != i)
-        throw std::logic_error("technique registry: descriptor '" + std::string(list[i]->name) +
-                               "' is not at its enumerator's place in technique_list.h");
-    return true;
-  }();
+  static const bool checked = (check_registry_order<TechniqueDescriptor>(list, "technique registry"), true);
   (void)checked;
   return list;
 }

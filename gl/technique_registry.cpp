@@ -16,22 +16,12 @@ HABUFFER_TECHNIQUES(HABUFFER_DECLARE_GL_DESCRIPTOR)
 namespace habuffer::gl {
 namespace {
 
-#define HABUFFER_COUNT_TECHNIQUE(Enumerator, ns) +1
-constexpr std::size_t kTechniqueCount = 0 HABUFFER_TECHNIQUES(HABUFFER_COUNT_TECHNIQUE);
-#undef HABUFFER_COUNT_TECHNIQUE
-
 const std::array<const GlTechniqueDescriptor*, kTechniqueCount>& registry() {
 #define HABUFFER_LIST_GL_DESCRIPTOR(Enumerator, ns) &techniques::ns::descriptor(),
   static const std::array<const GlTechniqueDescriptor*, kTechniqueCount> list = {
       HABUFFER_TECHNIQUES(HABUFFER_LIST_GL_DESCRIPTOR)};
 #undef HABUFFER_LIST_GL_DESCRIPTOR
-  static const bool checked = [] {
-    for (std::size_t i = 0; i < list.size(); ++i)
-      if (static_cast<std::size_t>(list[i]->technique) != i)
-        throw GlError("GL technique registry: descriptor of " + to_string(list[i]->technique) +
-                      " is not at its enumerator's place in technique_list.h");
-    return true;
-  }();
+  static const bool checked = (check_registry_order<GlTechniqueDescriptor>(list, "GL technique registry"), true);
   (void)checked;
   return list;
 }

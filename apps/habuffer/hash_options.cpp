@@ -90,9 +90,6 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   o.insert.order = insert_order_option(args);
   if (o.insert.order == InsertOrder::Pixel && o.insert.mode == InsertMode::OwnerComputes)
     throw UsageError("option --insert-order pixel cannot go with --insert-mode owner (its owners follow the probes)");
-  if (o.insert.order != InsertOrder::Auto && !descriptor(o.technique.technique).takes("insert-order"))
-    throw UsageError("option --insert-order has no effect with --technique " + to_string(o.technique.technique) +
-                     " (it applies to " + techniques_taking("insert-order") + ")");
   o.lossless = args.has("lossless");
   o.max_attempts = o.lossless ? args.u32("max-attempts", 16, 1, 1000) : 1;
   if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");

@@ -9,6 +9,8 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,6 +29,21 @@ enum class Technique {
   HABUFFER_TECHNIQUES(HABUFFER_TECHNIQUE_ENUMERATOR)
 #undef HABUFFER_TECHNIQUE_ENUMERATOR
 };
+
+/// How many techniques technique_list.h registers.
+#define HABUFFER_COUNT_TECHNIQUE(Enumerator, ns) +1
+inline constexpr std::size_t kTechniqueCount = 0 HABUFFER_TECHNIQUES(HABUFFER_COUNT_TECHNIQUE);
+#undef HABUFFER_COUNT_TECHNIQUE
+
+/// A registry's check (the CPU's and the GPU's): throws std::logic_error
+/// naming `registry` when a descriptor is not at its enumerator's place.
+template <class Descriptor>
+void check_registry_order(std::span<const Descriptor* const> list, std::string_view registry) {
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (static_cast<std::size_t>(list[i]->technique) != i)
+      throw std::logic_error(std::string(registry) + ": the descriptor at place " + std::to_string(i) +
+                             " is not its enumerator's in technique_list.h");
+}
 
 /// The technique's name, as parse_technique reads it.
 std::string to_string(Technique t);
@@ -120,6 +137,13 @@ struct TechniqueConfig : TechniqueChoice {
 
 /// The HA-buffer of `buffer` as a technique configuration.
 TechniqueConfig ha_technique_config(const BufferConfig& buffer);
+
+/// The rules shared by the pool techniques: a pool of 1 to 2^32 - 2 nodes
+/// (links are 32-bit node numbers with 0 for "none"); throws std::invalid_argument.
+void validate_pool(const TechniqueConfig& config);
+/// Lossless growth of a pool technique: the pool to at least the nodes the
+/// attempt asked for, and one step of `policy`.
+TechniqueConfig grown_pool(const TechniqueConfig& config, const ResizePolicy& policy, const GrowthNeed& need);
 
 /// The rules shared by the techniques of K layers per pixel: K at least 1,
 /// and K times the pixels at most 2^32 - 1 slots (throws std::invalid_argument).

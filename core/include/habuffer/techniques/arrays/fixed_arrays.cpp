@@ -27,27 +27,12 @@ Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOp
   if (fragments.size() > UINT32_MAX - std::uint64_t{*std::max_element(counts_.begin(), counts_.end())})
     throw std::invalid_argument("fixed arrays count a pixel's fragments in 32 bits: " +
                                 std::to_string(fragments.size()) + " fragments in one batch are too many");
-  std::vector<detail::SliceCounters> parts(plan.threads);
-  std::vector<detail::PartCount> merged(plan.threads);
   const auto make = [&](auto concurrent) { return ArraysKernel<decltype(concurrent)::value>(params_, buffers()); };
   const auto make_sorter = [&] { return ArraysKernel<false>(params_, buffers()); };
-  const auto sort = [](auto& k, glm::uvec2 p) { return k.fa_sort_pixel(p); };
-  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
-    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
-    for (const Fragment& f : mine)
-      if (owns(f)) ++tally[k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
-    parts[t].c.add_tally(tally);
-    // A thread that owns its rows sorts them at once: no other thread writes them.
-    if (plan.owned_rows)
-      merged[t].n = detail::sort_rows(screen(), make_sorter, sort, [&](auto row) { owns.rows(screen(), row); });
-  };
-  detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
-  Counters c;
-  for (const auto& part : parts) c += part.c;
-  // Sort every pixel's layers, merging identical entries.
-  if (!plan.owned_rows) merged.assign(1, {detail::sort_row_bands(screen(), plan.threads, make_sorter, sort)});
-  for (const auto& m : merged) c.merge_duplicates(m.n);
-  return c;
+  return detail::insert_then_sort(
+      fragments, screen(), plan, make, make_sorter,
+      [](auto& k, const Fragment& f) { return k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); },
+      [](auto& k, glm::uvec2 p) { return k.fa_sort_pixel(p); });
 }
 
 std::uint64_t FixedArrays::clear() {

@@ -71,40 +71,23 @@ constexpr TechniqueDescriptor kWboit{
     .grown = grown,
 };
 
-constexpr TechniqueDescriptor kBlend{
-    .technique = Technique::Blend,
-    .name = "blend",
-    .summary = "unsorted over-blending in submission order: no lists, the floor of time",
-    .properties =
-        {
-            .source = "baseline",
-            .storage = "16 B/pixel (RGBA32F); the GPU adds a storage-buffer copy (32 B/pixel)",
-            .bytes_per_fragment = "16 V / F",
-            .passes = "gather (GPU: the fixed-function blender, in primitive order); copy to storage buffers; "
-                      "resolve",
-            .atomics_per_fragment = "none (the outcome tally's add only)",
-            .sorted = "never: no lists (submission order)",
-            .exact_when = "never: approximate",
-            .overflow = "none (`blended`)",
-            .early_cull = "no",
-            .host_shaders = kBlendedHostShaders,
-        },
-    .stores_lists = false,
-    .exact = false,
-    .early_cull = false,
-    .sorted_on_insert = false,
-    .reads_depth_range = false,
-    .capacity = CapacityKind::None,
-    .overflow_keeps_nearest = false,
-    .paper_memory_row = "",
-    .options = {},
-    .lossless_hint = "",
-    .validate = validate,
-    .memory_bytes = blend_memory_bytes,
-    .paper_memory_bytes = blend_paper_bytes,
-    .make = make,
-    .grown = grown,
-};
+// Plain blending: wboit's container and outputs without the weights; only
+// what differs is stated.
+constexpr TechniqueDescriptor kBlend = [] {
+  TechniqueDescriptor d = kWboit;
+  d.technique = Technique::Blend;
+  d.name = "blend";
+  d.summary = "unsorted over-blending in submission order: no lists, the floor of time";
+  d.properties.storage = "16 B/pixel (RGBA32F); the GPU adds a storage-buffer copy (32 B/pixel)";
+  d.properties.bytes_per_fragment = "16 V / F";
+  d.properties.passes = "gather (GPU: the fixed-function blender, in primitive order); copy to storage buffers; resolve";
+  d.properties.sorted = "never: no lists (submission order)";
+  d.reads_depth_range = false;
+  d.options = {};
+  d.memory_bytes = blend_memory_bytes;
+  d.paper_memory_bytes = blend_paper_bytes;
+  return d;
+}();
 
 }  // namespace
 

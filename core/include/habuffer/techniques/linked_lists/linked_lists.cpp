@@ -254,10 +254,15 @@ std::uint64_t LinkedLists::count_stored() const {
 
 std::uint32_t LinkedLists::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
   check_pixel(x, y, screen());
+  return read_linked_list(heads_, entries_, next_, x + std::size_t{y} * screen().x, out);
+}
+
+std::uint32_t read_linked_list(const std::vector<std::uint32_t>& heads, const std::vector<glm::uvec2>& entries,
+                               const std::vector<std::uint32_t>& next, std::size_t pixel, std::vector<ListEntry>& out) {
   out.clear();
   std::uint32_t reads = 1;
-  for (std::uint32_t l = heads_[x + std::size_t{y} * screen().x]; l != 0; l = next_[l - 1]) {
-    out.push_back({0, entries_[l - 1].x, entries_[l - 1].y});
+  for (std::uint32_t l = heads[pixel]; l != 0; l = next[l - 1]) {
+    out.push_back({0, entries[l - 1].x, entries[l - 1].y});
     reads += 2;
   }
   return reads;

@@ -24,6 +24,13 @@ struct InsertPlan;  // how an insert call runs its threads (core/technique_paral
 }  // namespace detail
 
 /// Per-pixel linked lists, sorted after the gather or kept sorted (see above).
+/// The list of the pixel at index `pixel` in node lists stored as linked
+/// lists store them (a head per pixel, node + 1 or 0; entries; links, node +
+/// 1 or 0), front to back into `out`; returns the words read (the head, then
+/// an entry and a link per node). Paged lists store theirs the same way.
+std::uint32_t read_linked_list(const std::vector<std::uint32_t>& heads, const std::vector<glm::uvec2>& entries,
+                               const std::vector<std::uint32_t>& next, std::size_t pixel, std::vector<ListEntry>& out);
+
 /// The linked-list container's technique for `t`: sorted-lists stays,
 /// anything else is lists (whose container then refuses it by name).
 inline Technique lists_flavour(Technique t) { return t == Technique::SortedLists ? t : Technique::Lists; }

@@ -12,14 +12,6 @@
 namespace habuffer::techniques {
 namespace {
 
-void validate_pool(const TechniqueConfig& c) {
-  // Links are 32-bit node numbers with 0 for "none".
-  if (c.pool_capacity == 0 || c.pool_capacity >= UINT32_MAX)
-    throw std::invalid_argument("node pool of " + std::to_string(c.pool_capacity) +
-                                " nodes: must be in [1, 2^32 - 2] (0, automatic, is for build_technique and the GL "
-                                "containers, which size it)");
-}
-
 std::uint64_t pool_memory_bytes(const TechniqueConfig& c, std::uint64_t capacity) {
   const std::uint64_t pixels = c.buffer.screen.area();
   const std::uint64_t saturation = c.buffer.saturation ? pixels * 4 : 0;  // a code per pixel
@@ -32,12 +24,6 @@ double paper_pool_bytes(std::uint64_t pixels, std::uint64_t fragments, double, s
 
 std::unique_ptr<FragmentBuffer> make_lists(const TechniqueConfig& c, const OffsetSource&) {
   return std::make_unique<LinkedLists>(c);
-}
-
-TechniqueConfig grown_pool(const TechniqueConfig& c, const ResizePolicy& policy, const GrowthNeed& need) {
-  TechniqueConfig next = c;
-  next.pool_capacity = policy.grown(c.pool_capacity, need.nodes_requested);
-  return next;
 }
 
 constexpr std::string_view kListsOptions[] = {"pool", "lossless", "max-attempts"};
@@ -80,39 +66,31 @@ constexpr TechniqueDescriptor kLists{
     .grown = grown_pool,
 };
 
-constexpr TechniqueDescriptor kSortedLists{
-    .technique = Technique::SortedLists,
-    .name = "sorted-lists",
-    .summary = "linked lists kept sorted by a lock-free insertion (guacamole's PreSortLF), early termination",
-    .properties =
-        {
-            .source = "seed 001",
-            .storage = "as `lists` (+ 4 B/pixel saturation image with `--saturation on`)",
-            .bytes_per_fragment = "as `lists`",
-            .passes = "gather (lists sorted by insertion); resolve",
-            .atomics_per_fragment = "one add (node), one 32-bit compare-and-swap per try",
-            .sorted = "always, during insertion",
-            .exact_when = "the pool holds the frame and no early termination",
-            .overflow = "`dropped_pool`; `culled` / `saturated_rejected` with `--early-cull TAU [--saturation on]`",
-            .early_cull = "`--early-cull TAU [--saturation on]`",
-            .host_shaders = "as `lists`",
-        },
-    .stores_lists = true,
-    .exact = true,
-    .early_cull = true,
-    .sorted_on_insert = true,
-    .reads_depth_range = false,
-    .capacity = CapacityKind::PoolNodes,
-    .overflow_keeps_nearest = false,
-    .paper_memory_row = "",
-    .options = kSortedListsOptions,
-    .lossless_hint = "--lossless grows the node pool until they fit (or give a larger --pool)",
-    .validate = validate_pool,
-    .memory_bytes = pool_memory_bytes,
-    .paper_memory_bytes = paper_pool_bytes,
-    .make = make_lists,
-    .grown = grown_pool,
-};
+// Sorted lists: the lists' container and pool, with the insertion that keeps
+// each list sorted (and early termination); only what differs is stated.
+constexpr TechniqueDescriptor kSortedLists = [] {
+  TechniqueDescriptor d = kLists;
+  d.technique = Technique::SortedLists;
+  d.name = "sorted-lists";
+  d.summary = "linked lists kept sorted by a lock-free insertion (guacamole's PreSortLF), early termination";
+  d.properties = {
+      .source = "seed 001",
+      .storage = "as `lists` (+ 4 B/pixel saturation image with `--saturation on`)",
+      .bytes_per_fragment = "as `lists`",
+      .passes = "gather (lists sorted by insertion); resolve",
+      .atomics_per_fragment = "one add (node), one 32-bit compare-and-swap per try",
+      .sorted = "always, during insertion",
+      .exact_when = "the pool holds the frame and no early termination",
+      .overflow = "`dropped_pool`; `culled` / `saturated_rejected` with `--early-cull TAU [--saturation on]`",
+      .early_cull = "`--early-cull TAU [--saturation on]`",
+      .host_shaders = "as `lists`",
+  };
+  d.early_cull = true;
+  d.sorted_on_insert = true;
+  d.paper_memory_row = "";
+  d.options = kSortedListsOptions;
+  return d;
+}();
 
 }  // namespace
 

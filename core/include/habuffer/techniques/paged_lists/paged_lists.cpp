@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "technique_parallel.h"
 
 namespace habuffer {
@@ -32,28 +33,13 @@ Counters PagedLists::insert(std::span<const Fragment> fragments, const InsertOpt
     throw std::invalid_argument("paged lists count nodes in 32 bits: " + std::to_string(fragments.size()) +
                                 " fragments in pages of " + std::to_string(kPagedListsPageNodes) + " after " +
                                 std::to_string(counter_) + " nodes asked for since the last clear are too many");
-  std::vector<detail::SliceCounters> parts(plan.threads);
-  std::vector<detail::PartCount> merged(plan.threads);
   const PagedListsBuffers b = buffers();
   const auto make = [&](auto concurrent) { return PagedListsKernel<decltype(concurrent)::value>(params_, b); };
   const auto make_sorter = [&] { return PagedListsKernel<false>(params_, b); };
-  const auto sort = [](auto& k, glm::uvec2 p) { return k.pl_sort_pixel(p); };
-  const auto insert_mine = [&](auto& k, std::span<const Fragment> mine, std::uint32_t t, auto owns) {
-    // A local tally: counters in memory could alias the buffers and force a store per fragment.
-    std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
-    for (const Fragment& f : mine)
-      if (owns(f)) ++tally[k.pl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
-    parts[t].c.add_tally(tally);
-    // A thread that owns its rows sorts them at once: no other thread links into them.
-    if (plan.owned_rows)
-      merged[t].n = detail::sort_rows(screen(), make_sorter, sort, [&](auto row) { owns.rows(screen(), row); });
-  };
-  detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
-  Counters c;
-  for (const auto& part : parts) c += part.c;
-  if (!plan.owned_rows) merged.assign(1, {detail::sort_row_bands(screen(), plan.threads, make_sorter, sort)});
-  for (const auto& m : merged) c.merge_duplicates(m.n);
-  return c;
+  return detail::insert_then_sort(
+      fragments, screen(), plan, make, make_sorter,
+      [](auto& k, const Fragment& f) { return k.pl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); },
+      [](auto& k, glm::uvec2 p) { return k.pl_sort_pixel(p); });
 }
 
 std::uint64_t PagedLists::clear() {
@@ -83,13 +69,7 @@ std::uint64_t PagedLists::count_stored() const {
 
 std::uint32_t PagedLists::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
   check_pixel(x, y, screen());
-  out.clear();
-  std::uint32_t reads = 1;
-  for (std::uint32_t l = heads_[x + std::size_t{y} * screen().x]; l != 0; l = next_[l - 1]) {
-    out.push_back({0, entries_[l - 1].x, entries_[l - 1].y});
-    reads += 2;
-  }
-  return reads;
+  return read_linked_list(heads_, entries_, next_, x + std::size_t{y} * screen().x, out);
 }
 
 std::vector<glm::vec4> PagedLists::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {

@@ -13,15 +13,6 @@
 namespace habuffer::techniques {
 namespace {
 
-void validate_pool(const TechniqueConfig& c) {
-  // Links are 32-bit node numbers with 0 for "none".
-  if (c.pool_capacity == 0 || c.pool_capacity >= UINT32_MAX)
-    throw std::invalid_argument("node pool of " + std::to_string(c.pool_capacity) +
-                                " nodes: must be in [1, 2^32 - 2] (0, automatic, is for build_technique and the GL "
-                                "containers, which size it)");
-  if (c.buffer.iter_limit == 0) throw std::invalid_argument("iteration limit 0: paged lists try each insertion at least once");
-}
-
 std::uint64_t pool_memory_bytes(const TechniqueConfig& c, std::uint64_t capacity) {
   // heads, (code, data, link) nodes, the node counter and the wasted-page count
   return c.buffer.screen.area() * 4 + capacity * 12 + 4 + 4;
@@ -33,12 +24,6 @@ double paper_bytes(std::uint64_t pixels, std::uint64_t fragments, double, std::u
 
 std::unique_ptr<FragmentBuffer> make(const TechniqueConfig& c, const OffsetSource&) {
   return std::make_unique<PagedLists>(c);
-}
-
-TechniqueConfig grown_pool(const TechniqueConfig& c, const ResizePolicy& policy, const GrowthNeed& need) {
-  TechniqueConfig next = c;
-  next.pool_capacity = policy.grown(c.pool_capacity, need.nodes_requested);
-  return next;
 }
 
 constexpr std::string_view kOptions[] = {"pool", "iter-limit", "lossless", "max-attempts"};
