@@ -24,7 +24,7 @@ PagedListsBuffers PagedLists::buffers() const {
 }
 
 Counters PagedLists::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  const detail::InsertPlan plan = detail::insert_plan(
+  detail::InsertPlan plan = detail::insert_plan(
       options, Technique::PagedLists, detail::insert_work(Technique::PagedLists, fragments.size(), true, screen()));
   detail::check_on_screen(fragments, screen(), plan.threads);
   const auto alone = gate_.alone();  // the batch runs alone (insert_gate.h)
@@ -33,6 +33,17 @@ Counters PagedLists::insert(std::span<const Fragment> fragments, const InsertOpt
     throw std::invalid_argument("paged lists count nodes in 32 bits: " + std::to_string(fragments.size()) +
                                 " fragments in pages of " + std::to_string(kPagedListsPageNodes) + " after " +
                                 std::to_string(counter_) + " nodes asked for since the last clear are too many");
+  // Threads racing for the pool's last pages would make which fragments drop
+  // depend on timing. A pool with a page left per fragment cannot run short
+  // (each fragment opens at most one page), so threads give one thread's
+  // lists and counters; a pool that might run short inserts on one thread.
+  const std::uint64_t room = params_.ha_pool_capacity - std::min<std::uint64_t>(counter_, params_.ha_pool_capacity);
+  if (plan.threads > 1 && room < std::uint64_t{fragments.size()} * kPagedListsPageNodes) {
+    InsertOptions one = options;
+    one.threads = 1;
+    plan = detail::insert_plan(one, Technique::PagedLists,
+                               detail::insert_work(Technique::PagedLists, fragments.size(), true, screen()));
+  }
   const PagedListsBuffers b = buffers();
   const auto make = [&](auto concurrent) { return PagedListsKernel<decltype(concurrent)::value>(params_, b); };
   const auto make_sorter = [&] { return PagedListsKernel<false>(params_, b); };
