@@ -29,12 +29,11 @@ ClearPass::ClearPass(AtomicMode mode, const GlBindings& bindings)
   glCreateFramebuffers(1, &framebuffer_);
   glCreateVertexArrays(1, &vertex_array_);
   glCreateQueries(GL_SAMPLES_PASSED, 1, &query_);
-  atomic_count_ = create_buffer(sizeof(GLuint64));
+  atomic_count_ = GlStorage(sizeof(GLuint64));
   stream_point_ = bindings.stream;
 }
 
 ClearPass::~ClearPass() {
-  delete_buffer(atomic_count_);
   glDeleteQueries(1, &query_);
   glDeleteVertexArrays(1, &vertex_array_);
   glDeleteFramebuffers(1, &framebuffer_);
@@ -62,8 +61,8 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   program_.set("ha_clear_atomic_count", atomic ? 1u : 0u);
   PassClock clock(timer_, finish);
   if (atomic) {
-    zero_buffer(atomic_count_);
-    bind_at(GL_SHADER_STORAGE_BUFFER, stream_point_, atomic_count_);  // the caller's guard restores the point
+    atomic_count_.zero();
+    bind_at(GL_SHADER_STORAGE_BUFFER, stream_point_, atomic_count_.id());  // the caller's guard restores the point
   } else {
     glBeginQuery(GL_SAMPLES_PASSED, query_);
   }
@@ -81,9 +80,9 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   if (atomic) {
     // Tables have at most 2^32 - 1 slots: the low word holds the count, the high word stays 0.
     if (result_buffer != 0)
-      glCopyNamedBufferSubData(atomic_count_, result_buffer, 0, 0, sizeof(GLuint64));
+      glCopyNamedBufferSubData(atomic_count_.id(), result_buffer, 0, 0, sizeof(GLuint64));
     else
-      glGetNamedBufferSubData(atomic_count_, 0, sizeof stored, &stored);
+      glGetNamedBufferSubData(atomic_count_.id(), 0, sizeof stored, &stored);
   } else if (result_buffer != 0) {
     // The GPU writes the result when it has it; nobody waits (the caller's
     // guard restores the host's query-buffer binding).

@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "gpu_timer.h"
+#include "habuffer/gl/gl_buffer.h"
 #include "habuffer/extent.h"
 #include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_info.h"
@@ -36,12 +37,14 @@ class ClearPass {
   // result_buffer non-zero: the count is written there (8 bytes at offset 0)
   // when the GPU has it, without waiting, and Result::stored is 0.
   Result run(Extent table, std::uint32_t tile, bool writes, bool finish, unsigned result_buffer = 0);
+  // Bytes of the buffers it allocated (the atomic route's count).
+  [[nodiscard]] std::uint64_t bytes() const { return atomic_count_.bytes(); }
 
  private:
   ShaderProgram program_;
   GpuTimer timer_;
   unsigned framebuffer_ = 0, vertex_array_ = 0, query_ = 0;
-  unsigned atomic_count_ = 0;   // the count of the atomic route (8 bytes, a query result's layout)
+  GlStorage atomic_count_;      // the count of the atomic route (8 bytes, a query result's layout)
   unsigned stream_point_ = 0;   // where the atomic route binds it (the stream point: unused by the pass)
 };
 

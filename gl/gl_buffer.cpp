@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "habuffer/gl/gl_error.h"
 
@@ -48,6 +49,56 @@ std::vector<std::uint32_t> read_words(unsigned buffer, std::uint64_t words) {
 void delete_buffer(unsigned& buffer) {
   if (buffer != 0) glDeleteBuffers(1, &buffer);
   buffer = 0;
+}
+
+GlStorage::GlStorage(std::uint64_t bytes, const void* data)
+    : id_(create_buffer(bytes, data)), bytes_(std::max<std::uint64_t>((bytes + 3) / 4 * 4, 4)) {}
+
+GlStorage::~GlStorage() { delete_buffer(id_); }
+
+GlStorage::GlStorage(GlStorage&& other) noexcept : id_(std::exchange(other.id_, 0u)), bytes_(std::exchange(other.bytes_, 0)) {}
+
+GlStorage& GlStorage::operator=(GlStorage&& other) noexcept {
+  if (this != &other) {
+    delete_buffer(id_);
+    id_ = std::exchange(other.id_, 0u);
+    bytes_ = std::exchange(other.bytes_, 0);
+  }
+  return *this;
+}
+
+void GlStorage::zero() const {
+  if (id_ != 0) zero_buffer(id_);
+}
+
+std::vector<std::uint32_t> GlStorage::read_words(std::uint64_t words) const { return gl::read_words(id_, words); }
+
+void GlStorage::read_into(void* out, std::uint64_t bytes) const {
+  if (bytes > 0) glGetNamedBufferSubData(id_, 0, static_cast<GLsizeiptr>(bytes), out);
+}
+
+void GlStorage::bind_storage(unsigned point) const {
+  if (id_ != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, id_);
+}
+
+GlTexture::GlTexture(unsigned format, Extent size, std::uint32_t texel_bytes) : bytes_(size.area() * texel_bytes) {
+  glCreateTextures(GL_TEXTURE_2D, 1, &id_);
+  glTextureStorage2D(id_, 1, format, static_cast<GLsizei>(size.x), static_cast<GLsizei>(size.y));
+}
+
+GlTexture::~GlTexture() {
+  if (id_ != 0) glDeleteTextures(1, &id_);
+}
+
+GlTexture::GlTexture(GlTexture&& other) noexcept : id_(std::exchange(other.id_, 0u)), bytes_(std::exchange(other.bytes_, 0)) {}
+
+GlTexture& GlTexture::operator=(GlTexture&& other) noexcept {
+  if (this != &other) {
+    if (id_ != 0) glDeleteTextures(1, &id_);
+    id_ = std::exchange(other.id_, 0u);
+    bytes_ = std::exchange(other.bytes_, 0);
+  }
+  return *this;
 }
 
 void bind_at(unsigned target, unsigned point, unsigned buffer) { glBindBuffersBase(target, point, 1, &buffer); }

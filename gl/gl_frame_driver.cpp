@@ -52,14 +52,11 @@ std::unique_ptr<GlTechnique> checked(std::unique_ptr<GlTechnique> t) {
 }  // namespace
 
 struct GlFrameDriver::Gpu {
-  GLuint counters = 0, capture = 0, params = 0;
-  GLuint deferred[2] = {0, 0};  // ping-pong: the calls a round resumes, the calls it defers again
+  GlStorage counters, capture, params;
+  GlStorage deferred[2];  // ping-pong: the calls a round resumes, the calls it defers again
   std::unique_ptr<ResolvePass> resolve;
   std::unique_ptr<ShaderProgram> resume;
   GpuTimer gather_timer, reset_timer;
-  ~Gpu() {
-    for (GLuint* b : {&counters, &capture, &params, &deferred[0], &deferred[1]}) delete_buffer(*b);
-  }
 };
 
 GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options)
@@ -73,9 +70,9 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
   if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
   check_viewport_fits(screen());
-  gpu_->counters = create_buffer(kCounterWords * 4);
-  gpu_->params = create_buffer(sizeof(GlParams));
-  gpu_->capture = create_buffer(kAppendHeaderBytes);
+  gpu_->counters = GlStorage(kCounterWords * 4);
+  gpu_->params = GlStorage(sizeof(GlParams));
+  gpu_->capture = GlStorage(kAppendHeaderBytes);
   if (options_.capture) grow_capture(std::max<std::uint64_t>(options_.capture_capacity, 1));
   if (technique_->defers_calls()) grow_deferred(std::max<std::uint64_t>(options_.deferred_capacity, 1));
   write_params();
@@ -110,27 +107,27 @@ void GlFrameDriver::write_params() const {
   p.ha_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
   p.ha_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
   technique_->write_params(p);
-  glNamedBufferSubData(gpu_->params, 0, sizeof p, &p);
+  glNamedBufferSubData(gpu_->params.id(), 0, sizeof p, &p);
 }
 
 void GlFrameDriver::grow_capture(std::uint64_t needed) {
   capture_capacity_ = grown_append_capacity(needed, capture_capacity_, sizeof(Fragment), "captured fragments");
-  delete_buffer(gpu_->capture);
-  gpu_->capture = create_buffer(kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment));
+  gpu_->capture = GlStorage();  // the old buffer goes first: the new one may need its memory
+  gpu_->capture = GlStorage(kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment));
 }
 
 void GlFrameDriver::grow_deferred(std::uint64_t needed) {
   deferred_capacity_ = grown_append_capacity(needed, deferred_capacity_, kDeferredCallBytes, "insert calls cut short");
-  for (GLuint& b : gpu_->deferred) {
-    delete_buffer(b);
-    b = create_buffer(kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
+  for (GlStorage& b : gpu_->deferred) {
+    b = GlStorage();
+    b = GlStorage(kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
   }
 }
 
 void GlFrameDriver::reset_frame_state() const {
-  zero_buffer(gpu_->counters);
-  zero_range(gpu_->capture, 0, kAppendHeaderBytes);
-  if (gpu_->deferred[0] != 0) zero_range(gpu_->deferred[0], 0, kAppendHeaderBytes);
+  gpu_->counters.zero();
+  zero_range(gpu_->capture.id(), 0, kAppendHeaderBytes);
+  if (gpu_->deferred[0]) zero_range(gpu_->deferred[0].id(), 0, kAppendHeaderBytes);
 }
 
 void GlFrameDriver::bind() const {
@@ -139,10 +136,10 @@ void GlFrameDriver::bind() const {
   // writes its own buffer.
   technique_->bind();
   const GlBindings& b = bindings();
-  for (const auto& [point, buffer] : {std::pair{b.counters, gpu_->counters}, std::pair{b.capture, gpu_->capture},
-                                      std::pair{b.deferred, gpu_->deferred[0]}})
-    if (buffer != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, buffer);
-  bind_at(GL_UNIFORM_BUFFER, b.params, gpu_->params);
+  gpu_->counters.bind_storage(b.counters);
+  gpu_->capture.bind_storage(b.capture);
+  gpu_->deferred[0].bind_storage(b.deferred);
+  bind_at(GL_UNIFORM_BUFFER, b.params, gpu_->params.id());
 }
 
 namespace {
@@ -170,14 +167,13 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
   const GlStateGuard guard(bindings());
   FrameReport report;
   report.index = frames_++;
-  if (technique_->draws_at_frame_start()) {
+  if (has_passes(GlPassStage::FrameStart)) {
     const GlStateGuard begin_guard(bindings());  // the gather gets the host's state back
     write_params();
     bind();
-    technique_->begin_frame(report, options_);
-  } else {
-    technique_->begin_frame(report, options_);  // sizing only, no GL state touched
+    run_passes(GlPassStage::FrameStart, report);
   }
+  technique_->begin_frame(report, options_);  // sizing only, no GL state touched
   for (;;) {
     run_gather(gather, calls, report);
     if (options_.capture && report.captured > capture_capacity_) {
@@ -208,7 +204,7 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       ++report.cut_short_retries;
       continue;
     }
-    report.attempts.push_back({technique_->table(), report.counters, technique_->capacity()});
+    report.attempts.push_back({report.table, report.counters, technique_->capacity()});
     const std::uint32_t allowed = std::max<std::uint32_t>(options_.max_attempts, technique_->grows_at_once() ? 2 : 1);
     if (report.counters.failures() == 0 || report.attempts.size() >= allowed) break;
     // Failures that are all calls cut short (contention or the driver, not
@@ -223,9 +219,44 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       break;
     }
   }
-  report.table = technique_->table();
   report.capacity = technique_->capacity();
   return report;
+}
+
+bool GlFrameDriver::has_passes(GlPassStage stage) const {
+  const auto& passes = technique_->passes();
+  return std::any_of(passes.begin(), passes.end(), [&](const GlPass& p) { return p.stage == stage; });
+}
+
+void GlFrameDriver::run_passes(GlPassStage stage, FrameReport& report) const {
+  GlPassContext context{report, options_};
+  for (const GlPass& p : technique_->passes())
+    if (p.stage == stage) p.run(context);
+}
+
+void GlFrameDriver::finish_gather_passes() const {
+  for (const GlPass& p : technique_->passes())
+    if (p.stage == GlPassStage::Gather && p.finish) p.finish();
+}
+
+double GlFrameDriver::run_fill(const std::function<void()>& gather, FrameReport& report) {
+  // A pass of the host's scene that inserts nothing (the k-buffer's
+  // occupancy fill), then the technique's own pass over what it gathered.
+  const auto t0 = std::chrono::steady_clock::now();
+  gather_phase_ = 1;
+  write_params();
+  {
+    const GlStateGuard fill_guard(bindings());
+    bind();
+    run_passes(GlPassStage::Gather, report);
+    gather();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    bind();  // the host's gather may have bound its own buffers at our points
+    run_passes(GlPassStage::Fill, report);
+  }
+  gather_phase_ = 0;
+  if (options_.finish_timing) glFinish();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
@@ -236,38 +267,19 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     technique_->before_gather();
     std::tie(report.reset.wall_ms, report.reset.gpu_ms) = clock.stop();
   }
-  double fill_ms = 0.0;
-  if (technique_->gather_passes() > 1) {
-    // A pass of the host's scene that inserts nothing (the k-buffer's
-    // occupancy fill), then the technique's own pass over what it gathered.
-    const auto t0 = std::chrono::steady_clock::now();
-    gather_phase_ = 1;
-    write_params();
-    {
-      const GlStateGuard fill_guard(bindings());
-      bind();
-      technique_->enter_gather();
-      gather();
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-      bind();  // the host's gather may have bound its own buffers at our points
-      technique_->between_passes();
-    }
-    gather_phase_ = 0;
-    if (options_.finish_timing) glFinish();
-    fill_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  }
+  const double fill_ms = has_passes(GlPassStage::Fill) ? run_fill(gather, report) : 0.0;
   write_params();
   std::uint64_t unfinished = 0;
   {
     const GlStateGuard attempt_guard(bindings());
     bind();
-    technique_->enter_gather();
+    run_passes(GlPassStage::Gather, report);
     {
       PassClock clock(gpu_->gather_timer, options_.finish_timing);
       gather();
       // Resolve, read-backs and the next clear see every insert.
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
-      technique_->leave_gather();
+      finish_gather_passes();
       std::tie(report.gather.wall_ms, report.gather.gpu_ms) = clock.stop();
     }
     // The deferred count is read after the clock (a read-back inside it
@@ -277,13 +289,13 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     // A gather frame() will repeat (a buffer overflowed) is not worth sorting.
     if (options_.capture) report.captured = read_capture_count();
     const bool repeated = deferred_overflow_ > 0 || (options_.capture && report.captured > capture_capacity_);
-    sorted_ = !repeated && !options_.capture_only && technique_->sorts();
+    sorted_ = !repeated && !options_.capture_only && has_passes(GlPassStage::Sort);
     if (sorted_) {
       bind();  // the host's gather may have bound its own buffers at our points
-      report.sort = technique_->after_gather(options_.finish_timing);
+      run_passes(GlPassStage::Sort, report);
     }
   }
-  read_counters(report);
+  const std::vector<std::uint32_t> counter_words = read_counters(report);
   check_gl_errors("the gather pass");
   report.cut_short = 0;
   if (deferred_overflow_ > 0) return;  // frame() grows the buffer and gathers again
@@ -302,7 +314,7 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     report.counters.failed_iter += ended_by_driver;
     report.cut_short += ended_by_driver;
   }
-  technique_->gathered(report);
+  technique_->gathered(counter_words, report);
 }
 
 std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
@@ -325,10 +337,10 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
   while (count > 0 && report.resume_rounds < options_.resume_rounds) {
     report.deferred += count;
     const int out = 1 - in;
-    zero_range(gpu_->deferred[out], 0, kAppendHeaderBytes);
+    zero_range(gpu_->deferred[out].id(), 0, kAppendHeaderBytes);
     glUseProgram(gpu_->resume->id());
-    bind_at(GL_SHADER_STORAGE_BUFFER, bindings().stream, gpu_->deferred[in]);
-    bind_at(GL_SHADER_STORAGE_BUFFER, bindings().deferred, gpu_->deferred[out]);
+    gpu_->deferred[in].bind_storage(bindings().stream);
+    gpu_->deferred[out].bind_storage(bindings().deferred);
     gpu_->resume->set("ha_resume_count", static_cast<unsigned>(count));
     dispatch_grid(count, 64);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -342,8 +354,8 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
   return count;
 }
 
-void GlFrameDriver::read_counters(FrameReport& report) const {
-  const auto words = read_words(gpu_->counters, kCounterWords);
+std::vector<std::uint32_t> GlFrameDriver::read_counters(FrameReport& report) const {
+  std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
   std::uint64_t tally[HABUFFER_GPU_COUNTER_COUNT] = {};
   for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
     for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
@@ -359,8 +371,7 @@ void GlFrameDriver::read_counters(FrameReport& report) const {
   report.slot_writes.reset();
   if (options_.module.count_writes) report.slot_writes = tally[HABUFFER_COUNTER_SLOT_WRITES];
   report.off_screen = tally[HABUFFER_COUNTER_OFF_SCREEN];
-  report.nodes_requested = words[HABUFFER_COUNTER_NODES];
-  report.most_arrived = words[HABUFFER_COUNTER_MOST_ARRIVED];
+  return words;  // the technique reads its own words (GlTechnique::gathered)
 }
 
 PassTiming GlFrameDriver::resolve(glm::vec3 background, unsigned background_texture) {
@@ -387,13 +398,13 @@ PassTiming GlFrameDriver::run_resolve(glm::vec3 background, unsigned background_
 
 std::uint64_t GlFrameDriver::read_capture_count() const {
   std::uint32_t count = 0;
-  glGetNamedBufferSubData(gpu_->capture, 0, 4, &count);
+  glGetNamedBufferSubData(gpu_->capture.id(), 0, 4, &count);
   return count;
 }
 
 std::uint64_t GlFrameDriver::read_deferred_count(int which) const {
   std::uint32_t count = 0;
-  glGetNamedBufferSubData(gpu_->deferred[which], 0, 4, &count);
+  glGetNamedBufferSubData(gpu_->deferred[which].id(), 0, 4, &count);
   return count;
 }
 
@@ -401,19 +412,16 @@ std::vector<Fragment> GlFrameDriver::read_capture() const {
   const std::uint64_t n = std::min(read_capture_count(), capture_capacity_);
   std::vector<Fragment> out(n);
   if (n > 0)
-    glGetNamedBufferSubData(gpu_->capture, static_cast<GLintptr>(kAppendHeaderBytes),
+    glGetNamedBufferSubData(gpu_->capture.id(), static_cast<GLintptr>(kAppendHeaderBytes),
                             static_cast<GLsizeiptr>(n * sizeof(Fragment)), out.data());
   return out;
 }
 
-std::uint64_t GlFrameDriver::capture_bytes() const {
-  return kAppendHeaderBytes + capture_capacity_ * sizeof(Fragment);
-}
+std::uint64_t GlFrameDriver::capture_bytes() const { return gpu_->capture.bytes(); }
 
 std::uint64_t GlFrameDriver::memory_bytes() const {
-  std::uint64_t bytes = technique_->memory_bytes() + kCounterWords * 4 + sizeof(GlParams) + capture_bytes();
-  if (deferred_capacity_ > 0) bytes += 2 * (kAppendHeaderBytes + deferred_capacity_ * kDeferredCallBytes);
-  return bytes;
+  return technique_->memory_bytes() +
+         bytes_of(gpu_->counters, gpu_->params, gpu_->capture, gpu_->deferred[0], gpu_->deferred[1]);
 }
 
 }  // namespace habuffer::gl

@@ -30,9 +30,13 @@ void GlTechnique::resize_screen(Extent screen) {
   screen_ = screen;
 }
 
-PassTiming GlTechnique::after_gather(bool) { return {}; }
+unsigned GlTechnique::gather_framebuffer() const {
+  for (const GlPass& p : passes_)
+    if (p.stage == GlPassStage::Gather && p.framebuffer != 0) return p.framebuffer;
+  return 0;
+}
 
-void GlTechnique::gathered(const FrameReport&) {}
+void GlTechnique::gathered(std::span<const std::uint32_t>, FrameReport&) {}
 
 void check_atomic_mode(AtomicMode mode, Layout layout) {
   if ((mode == AtomicMode::Native32) != (layout == Layout::L32))

@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cctype>
 #include <span>
 #include <string>
 
@@ -65,6 +67,13 @@ std::string parameter_block() {
   return block + "} habuffer_params;\n" + names;
 }
 
+// "HABUFFER_BINDING_HEADS" for GlBindings::Point "heads".
+std::string binding_macro(const char* name) {
+  std::string macro = std::string("HABUFFER_BINDING_") + name;
+  std::transform(macro.begin(), macro.end(), macro.begin(), [](unsigned char c) { return std::toupper(c); });
+  return macro;
+}
+
 }  // namespace
 
 ModuleVariant ModuleVariant::resolved(AtomicMode mode, const GlInfo& info) const {
@@ -89,24 +98,48 @@ std::string ModuleVariant::str() const {
          " max_age_read_first=" + choice(max_age_read_first);
 }
 
+std::span<const GlBindings::Point> GlBindings::points() {
+  static constexpr Point kPoints[] = {
+      {"counters", &GlBindings::counters, 0},  {"locks", &GlBindings::locks, 0},
+      {"capture", &GlBindings::capture, 0},    {"stream", &GlBindings::stream, 0},
+      {"deferred", &GlBindings::deferred, 0},  {"saturation", &GlBindings::saturation, 0},
+      {"table", &GlBindings::table, 1},        {"max_age", &GlBindings::max_age, 1},
+      {"offsets", &GlBindings::offsets, 1},    {"heads", &GlBindings::heads, 2},
+      {"nodes", &GlBindings::nodes, 2},        {"links", &GlBindings::links, 2},
+      {"counts", &GlBindings::counts, 3},      {"layers", &GlBindings::layers, 3},
+      {"slots", &GlBindings::slots, 4},        {"occupancy", &GlBindings::occupancy, 4},
+      {"limits", &GlBindings::limits, 4},      {"accum", &GlBindings::accum, 5},
+      {"revealage", &GlBindings::revealage, 5}};
+  return kPoints;
+}
+
+std::vector<unsigned> GlBindings::storage_points() const {
+  std::vector<unsigned> out;
+  for (const Point& p : points()) out.push_back(this->*p.member);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 void GlBindings::validate() const {
-  static constexpr const char* kNames[] = {"table",  "max_age", "offsets",  "counters",  "locks",
-                                           "capture", "stream", "deferred", "saturation"};
-  const auto points = storage_points();
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (std::size_t j = i + 1; j < points.size(); ++j)
-      if (points[i] == points[j])
-        throw GlError(std::string("shader-storage binding point ") + std::to_string(points[i]) + " is used twice (GlBindings::" +
-                      kNames[i] + " and ::" + kNames[j] + ")");
+  const auto all = points();
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = i + 1; j < all.size(); ++j) {
+      const bool together = all[i].group == 0 || all[j].group == 0 || all[i].group == all[j].group;
+      if (together && this->*all[i].member == this->*all[j].member)
+        throw GlError(std::string("shader-storage binding point ") + std::to_string(this->*all[i].member) +
+                      " is used twice (GlBindings::" + all[i].name + " and ::" + all[j].name + ")");
+    }
   GLint max_storage = 0, max_uniform = 0;
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &max_storage);
   glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &max_uniform);
   // Points run from 0 to the limit - 1: a point equal to the limit is out.
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (points[i] >= static_cast<unsigned>(max_storage))
-      throw GlError(std::string("shader-storage binding point GlBindings::") + kNames[i] + " = " +
-                    std::to_string(points[i]) + " is beyond this context's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
-                    std::to_string(max_storage) + ": points 0.." + std::to_string(max_storage - 1) + ")");
+  for (const Point& p : all)
+    if (this->*p.member >= static_cast<unsigned>(max_storage))
+      throw GlError(std::string("shader-storage binding point GlBindings::") + p.name + " = " +
+                    std::to_string(this->*p.member) +
+                    " is beyond this context's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" + std::to_string(max_storage) +
+                    ": points 0.." + std::to_string(max_storage - 1) + ")");
   if (params >= static_cast<unsigned>(max_uniform))
     throw GlError("uniform-buffer binding point GlBindings::params = " + std::to_string(params) +
                   " is beyond this context's GL_MAX_UNIFORM_BUFFER_BINDINGS (" + std::to_string(max_uniform) +
@@ -115,10 +148,17 @@ void GlBindings::validate() const {
 
 GlBindings GlBindings::from_base(unsigned storage_base, unsigned uniform_base) {
   GlBindings b;
-  unsigned next = storage_base;
-  for (unsigned* point : {&b.table, &b.max_age, &b.offsets, &b.counters, &b.locks, &b.capture, &b.stream, &b.deferred,
-                          &b.saturation})
-    *point = next++;
+  unsigned shared = storage_base + kTechniquePoints;
+  unsigned group = 0, next = storage_base;
+  for (const Point& p : points()) {
+    if (p.group == 0) {
+      b.*p.member = shared++;
+      continue;
+    }
+    if (p.group != group) next = storage_base;  // each technique's buffers from the base
+    group = p.group;
+    b.*p.member = next++;
+  }
   b.params = uniform_base;
   return b;
 }
@@ -126,55 +166,39 @@ GlBindings GlBindings::from_base(unsigned storage_base, unsigned uniform_base) {
 std::string GlBindings::glsl_defines(bool overridable) const {
   std::string s;
   const auto define = [&](const char* name, unsigned v) {
-    const std::string macro = std::string("HABUFFER_BINDING_") + name;
+    const std::string macro = binding_macro(name);
     if (overridable) s += "#ifndef " + macro + '\n';
     s += "#define " + macro + ' ' + std::to_string(v) + '\n';
     if (overridable) s += "#endif\n";
   };
-  define("TABLE", table);
-  define("MAX_AGE", max_age);
-  define("OFFSETS", offsets);
-  define("COUNTERS", counters);
-  define("LOCKS", locks);
-  define("CAPTURE", capture);
-  define("STREAM", stream);
-  define("DEFERRED", deferred);
-  define("SATURATION", saturation);
-  define("PARAMS", params);
+  for (const Point& p : points()) define(p.name, this->*p.member);
+  define("params", params);
   return s;
-}
-
-std::span<const GlBindings::DerivedName> GlBindings::derived_names() {
-  // One technique per module, so the other techniques' buffers take the
-  // HA-buffer's points.
-  static constexpr DerivedName kDerived[] = {{"HEADS", "TABLE"},  {"NODES", "MAX_AGE"}, {"LINKS", "OFFSETS"},
-                                             {"COUNTS", "TABLE"}, {"LAYERS", "MAX_AGE"}, {"ACCUM", "TABLE"},
-                                             {"REVEALAGE", "MAX_AGE"}};
-  return kDerived;
 }
 
 namespace {
 
-// The other techniques' binding names as the documented ones (macros of
-// macros), so a host that defines the documented names before an installed
-// file moves every technique's buffers: with numbers of their own, the
-// lists' buffers stayed at the defaults while the container bound the
-// host's points, and every fragment vanished with no error. A host that
-// defines a derived name itself gets a one-line #error naming the name to
-// define instead.
-std::string derived_binding_defines() {
-  std::string s;
-  for (const GlBindings::DerivedName& d : GlBindings::derived_names()) {
-    const std::string name = std::string("HABUFFER_BINDING_") + d.name, of = std::string("HABUFFER_BINDING_") + d.of;
-    s += "#ifdef " + name + "\n#error " + name + " is derived from " + of + ": define that one instead\n#endif\n";
-    s += "#define " + name + ' ' + of + '\n';
+// For the installed files (overridable points): a host that defines another
+// technique's binding names but none of this technique's own gets one
+// #error naming the names to define. Each technique's buffers have names of
+// their own, so a host that moved TABLE before the lists' file would
+// otherwise leave the lists at the defaults while the container it made
+// with moved GlBindings::heads bound elsewhere, and every fragment vanished.
+std::string own_binding_guard(unsigned group) {
+  std::string others, own, own_list;
+  for (const GlBindings::Point& p : GlBindings::points()) {
+    if (p.group == 0) continue;
+    const std::string macro = binding_macro(p.name);
+    if (p.group == group) {
+      own += (own.empty() ? "" : " || ") + std::string("defined(") + macro + ")";
+      own_list += (own_list.empty() ? "" : ", ") + macro;
+    } else {
+      others += (others.empty() ? "" : " || ") + std::string("defined(") + macro + ")";
+    }
   }
-  return s;
+  return "#if (" + others + ") && !(" + own + ")\n#error the buffers of this technique are bound at " + own_list +
+         ": define those (the binding names of another technique do not move them)\n#endif\n";
 }
-
-}  // namespace
-
-namespace {
 
 }  // namespace
 
@@ -184,8 +208,8 @@ std::string technique_module_body(Technique technique, AtomicMode mode, const Gl
                                   bool overridable_bindings) {
   std::string s;
   if (stage == ShaderStage::Fragment) s += "#define HABUFFER_STAGE_FRAGMENT\n";
+  if (overridable_bindings) s += own_binding_guard(gl_descriptor(technique).binding_group);
   s += bindings.glsl_defines(overridable_bindings);
-  s += derived_binding_defines();
   s += word_defines(mode);
   s += kHaConstants;
   s += '\n';

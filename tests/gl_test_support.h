@@ -29,12 +29,23 @@ inline OffsetSource random_offsets(std::uint64_t seed) {
   return s;
 }
 
-// Binding points a host might choose, away from the defaults.
+// Binding points a host might choose, away from the defaults, each
+// technique's own buffers at points of their own (not the HA-buffer's).
 inline gl::GlBindings host_bindings() {
   gl::GlBindings b;
   b.table = 7;
   b.max_age = 8;
   b.offsets = 9;
+  b.heads = 4;
+  b.nodes = 5;
+  b.links = 6;
+  b.counts = 5;
+  b.layers = 6;
+  b.slots = 2;
+  b.occupancy = 4;
+  b.limits = 6;
+  b.accum = 6;
+  b.revealage = 2;
   b.counters = 10;
   b.locks = 11;
   b.capture = 12;

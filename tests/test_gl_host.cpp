@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -457,13 +458,21 @@ struct HostRaster {
   }
 };
 
+// The HA-buffer's current table; zero for the other techniques.
+Extent table_of(const gl::GlTechnique& t) {
+  const auto* ha = dynamic_cast<const gl::GlHaTable*>(&t);
+  return ha ? ha->table() : Extent{};
+}
+
 // The binding names docs/embedding.md lists, written here by hand as a host
 // reads them there (not by the library's GlBindings::glsl_defines()).
 std::string documented_defines(const gl::GlBindings& b) {
   const std::pair<const char*, unsigned> names[] = {
-      {"TABLE", b.table},       {"MAX_AGE", b.max_age}, {"OFFSETS", b.offsets},   {"COUNTERS", b.counters},
-      {"LOCKS", b.locks},       {"CAPTURE", b.capture}, {"STREAM", b.stream},     {"DEFERRED", b.deferred},
-      {"SATURATION", b.saturation}, {"PARAMS", b.params}};
+      {"TABLE", b.table},       {"MAX_AGE", b.max_age}, {"OFFSETS", b.offsets},     {"HEADS", b.heads},
+      {"NODES", b.nodes},       {"LINKS", b.links},     {"COUNTS", b.counts},       {"LAYERS", b.layers},
+      {"SLOTS", b.slots},       {"OCCUPANCY", b.occupancy}, {"LIMITS", b.limits},   {"ACCUM", b.accum},
+      {"REVEALAGE", b.revealage}, {"COUNTERS", b.counters}, {"LOCKS", b.locks},     {"CAPTURE", b.capture},
+      {"STREAM", b.stream},     {"DEFERRED", b.deferred}, {"SATURATION", b.saturation}, {"PARAMS", b.params}};
   std::string s;
   for (const auto& [name, point] : names) s += "#define HABUFFER_BINDING_" + std::string(name) + " " + std::to_string(point) + "\n";
   return s;
@@ -517,25 +526,64 @@ TEST(GlHost, TheModuleAfterHostDeclarationsRendersTheSame) {
   EXPECT_GT(host_count, 0u);  // the host's own buffer, written by its own code
 }
 
-// A host that defines another technique's binding name (the lists' heads)
-// before an installed file gets one #error naming the documented name to
-// define instead, not a shader bound elsewhere than the container.
-TEST(GlHost, DefiningADerivedBindingNameIsACompileErrorNamingTheDocumentedOne) {
+// A host that defines only another technique's binding name (the
+// HA-buffer's TABLE) before an installed lists file gets one #error naming
+// the lists' own names, not lists bound elsewhere than the container binds
+// them (every fragment vanished so before issue 25); defining the lists'
+// own name compiles.
+TEST(GlHost, DefiningOnlyAnotherTechniquesBindingNameIsACompileErrorNamingThisTechniquesNames) {
   HostContext host;
   std::string lists;
   for (const gl::GlslFile& f : gl::host_glsl_files())
     if (f.path == "native32/lists.frag.glsl") lists = f.text;
   ASSERT_FALSE(lists.empty());
-  const std::string fragment = "#version 450 core\n#define HABUFFER_BINDING_HEADS 40\n" + lists +
-                               "void main() { ha_insert_here(vec4(1.0)); }\n";
+  const auto fragment = [&](const std::string& defines) {
+    return "#version 450 core\n" + defines + lists + "void main() { ha_insert_here(vec4(1.0)); }\n";
+  };
   try {
-    (void)gl::ShaderProgram::graphics(kHostVertex, fragment, "host gather");
+    (void)gl::ShaderProgram::graphics(kHostVertex, fragment("#define HABUFFER_BINDING_TABLE 40\n"), "host gather");
     ADD_FAILURE() << "compiled";
   } catch (const gl::GlError& e) {
-    EXPECT_NE(std::string(e.what()).find("HABUFFER_BINDING_HEADS is derived from HABUFFER_BINDING_TABLE"),
+    EXPECT_NE(std::string(e.what()).find("HABUFFER_BINDING_HEADS, HABUFFER_BINDING_NODES, HABUFFER_BINDING_LINKS"),
               std::string::npos)
         << e.what();
   }
+  EXPECT_NO_THROW((void)gl::ShaderProgram::graphics(
+      kHostVertex, fragment("#define HABUFFER_BINDING_TABLE 40\n#define HABUFFER_BINDING_HEADS 41\n"), "host gather"));
+}
+
+// Each technique's module declares its own buffers at binding names of its
+// own (the k-buffer's occupancy map at OCCUPANCY, not at the HA-buffer's
+// MAX_AGE) beside the shared ones: no buffer under another technique's name.
+TEST(GlHost, EachTechniquesBuffersAreDeclaredAtBindingNamesOfItsOwn) {
+  HostContext host;
+  const std::set<std::string> shared = {"COUNTERS", "LOCKS", "CAPTURE", "STREAM", "DEFERRED", "SATURATION", "PARAMS"};
+  const std::map<Technique, std::set<std::string>> own = {
+      {Technique::Ha, {"TABLE", "MAX_AGE", "OFFSETS"}},       {Technique::Lists, {"HEADS", "NODES", "LINKS"}},
+      {Technique::SortedLists, {"HEADS", "NODES", "LINKS"}},  {Technique::PagedLists, {"HEADS", "NODES", "LINKS"}},
+      {Technique::Arrays, {"COUNTS", "LAYERS"}},              {Technique::KBuffer, {"SLOTS", "OCCUPANCY", "LIMITS"}},
+      {Technique::Wboit, {"ACCUM", "REVEALAGE"}},             {Technique::Blend, {"ACCUM", "REVEALAGE"}}};
+  ASSERT_EQ(own.size(), kTechniqueCount);
+  const gl::GlBindings bindings = test::host_bindings();
+  for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info()))
+    for (const auto& [t, names] : own) {
+      SCOPED_TRACE(gl::to_string(mode) + " " + to_string(t));
+      std::string module = gl::technique_module_body(t, mode, bindings, gl::ShaderStage::Fragment);
+      // The prelude's records take the technique's own name.
+      const std::string records = "#define HABUFFER_RECORDS_BINDING HABUFFER_BINDING_";
+      if (const auto at = module.find(records); at != std::string::npos)
+        module += "binding = HABUFFER_BINDING_" + module.substr(at + records.size(), module.find('\n', at) - at - records.size()) + ")";
+      std::set<std::string> declared;
+      const std::string key = "binding = HABUFFER_BINDING_";
+      for (auto at = module.find(key); at != std::string::npos; at = module.find(key, at + 1)) {
+        const auto begin = at + key.size();
+        declared.insert(module.substr(begin, module.find(')', begin) - begin));
+      }
+      std::set<std::string> mine;
+      for (const std::string& name : declared)
+        if (!shared.count(name)) mine.insert(name);
+      EXPECT_EQ(mine, names);
+    }
 }
 
 // The host's framebuffer has a second colour attachment, an R32UI id buffer
@@ -930,7 +978,7 @@ TEST(GlHost, EveryTechniqueResizedInPlaceRendersWhatAFreshContainerOfTheNewScree
     gl::FrameReport report;
     (void)raster.render(gpu, program, a, report);
     ASSERT_TRUE(report.lossless());
-    Extent table = gpu.technique().table();
+    Extent table = table_of(gpu.technique());
     for (const Extent s : {Extent{24, 20}, Extent{12, 10}}) {
       SCOPED_TRACE("resized to " + s.str());
       const Extent old = gpu.screen();
@@ -944,15 +992,15 @@ TEST(GlHost, EveryTechniqueResizedInPlaceRendersWhatAFreshContainerOfTheNewScree
       if (k.technique == Technique::Ha) {
         // Each side scaled by the screen's, rounded up; offsets for it.
         const Extent expected{(table.x * s.x + old.x - 1) / old.x, (table.y * s.y + old.y - 1) / old.y};
-        EXPECT_EQ(gpu.technique().table(), expected);
+        EXPECT_EQ(table_of(gpu.technique()), expected);
         EXPECT_EQ(static_cast<gl::GlHaTable&>(gpu.technique()).offsets().table(), expected);
-        table = gpu.technique().table();
+        table = table_of(gpu.technique());
         fresh_config.buffer.table = table;
         if (k.table.area() == 0) {
           // An automatic table no frame grew becomes the new screen, as in a fresh container.
           gl::GlFrameDriver unused(gl::make_gl_technique(c, test::random_offsets(5), mode));
           unused.resize_screen(s);
-          EXPECT_EQ(unused.technique().table(), s);
+          EXPECT_EQ(table_of(unused.technique()), s);
         }
       }
       {
@@ -1016,7 +1064,7 @@ TEST(GlHost, ARefusedScreenResizeNamesTheSizesAndLeavesTheContainerWorkingAtItsO
     const std::vector<glm::vec4> before = raster.render(gpu, program, a, report);
     ASSERT_TRUE(report.lossless());
     const std::uint64_t memory = gpu.memory_bytes(), capacity = gpu.technique().capacity();
-    const Extent table = gpu.technique().table();
+    const Extent table = table_of(gpu.technique());
     try {
       gpu.resize_screen({0, 16});
       ADD_FAILURE() << "an empty screen was taken";
@@ -1051,7 +1099,7 @@ TEST(GlHost, ARefusedScreenResizeNamesTheSizesAndLeavesTheContainerWorkingAtItsO
     EXPECT_EQ(gpu.screen(), a);
     EXPECT_EQ(gpu.memory_bytes(), memory);
     EXPECT_EQ(gpu.technique().capacity(), capacity);
-    EXPECT_EQ(gpu.technique().table(), table);
+    EXPECT_EQ(table_of(gpu.technique()), table);
     EXPECT_TRUE(raster.render(gpu, program, a, report) == before);
     EXPECT_TRUE(report.lossless());
     EXPECT_EQ(report.off_screen, 0u);

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_support.h"
-#include "habuffer/gl/techniques/paged_lists/gl_paged_lists.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/techniques/paged_lists/paged_lists.h"
 

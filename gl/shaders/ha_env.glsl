@@ -6,6 +6,9 @@
 // HABUFFER_COUNT_WRITES variant).
 uint ha_call_writes = 0u;
 
+// The mode's prelude declares the records (ha_table) at this point.
+#define HABUFFER_RECORDS_BINDING HABUFFER_BINDING_TABLE
+
 // HABUFFER_MAX_AGE_READ_FIRST 1: read a max-age cell before raising it
 // (ModuleVariant::max_age_read_first); 0, the default: one atomicMax.
 #ifndef HABUFFER_MAX_AGE_READ_FIRST

@@ -2,7 +2,7 @@
 // 64-bit atomics (Mesa llvmpipe); atomicMax on a 64-bit slot is emulated with
 // a 32-bit lock per 2^HABUFFER_LOCK_SHIFT slots (the module assembly defines ha_word as uint64_t and
 // enables GL_ARB_gpu_shader_int64).
-layout(std430, binding = HABUFFER_BINDING_TABLE) coherent buffer HaTable { uint64_t ha_table[]; };
+layout(std430, binding = HABUFFER_RECORDS_BINDING) coherent buffer HaTable { uint64_t ha_table[]; };
 layout(std430, binding = HABUFFER_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
 
 

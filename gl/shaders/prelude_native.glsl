@@ -3,7 +3,7 @@
 // assembly defines ha_word for the mode and enables its extensions.
 // Plain reads may be stale: slots only grow in a gather, so a stale value
 // is a lower bound, which is all the read-first checks rely on.
-layout(std430, binding = HABUFFER_BINDING_TABLE) buffer HaTable { ha_word ha_table[]; };
+layout(std430, binding = HABUFFER_RECORDS_BINDING) buffer HaTable { ha_word ha_table[]; };
 
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
   ha_word old = atomicMax(ha_table[s], r);

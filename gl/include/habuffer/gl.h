@@ -21,6 +21,5 @@
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/techniques/kbuffer/gl_kbuffer.h"
 #include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
-#include "habuffer/gl/techniques/paged_lists/gl_paged_lists.h"
 #include "habuffer/gl/gl_technique.h"
 #include "habuffer/gl/glsl_sources.h"

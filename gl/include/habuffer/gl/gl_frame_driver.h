@@ -127,8 +127,18 @@ class GlFrameDriver {
   void reset_frame_state() const;
   void grow_capture(std::uint64_t needed);
   void grow_deferred(std::uint64_t needed);
-  /// Reads the tallies into the report (merged duplicates moved, sort checked).
-  void read_counters(FrameReport& report) const;
+  /// Reads the tallies into the report (merged duplicates moved, sort
+  /// checked); returns the counter words, for the technique's own.
+  std::vector<std::uint32_t> read_counters(FrameReport& report) const;
+  /// Whether the technique declared a pass of `stage`.
+  [[nodiscard]] bool has_passes(GlPassStage stage) const;
+  /// Runs the technique's passes of `stage` in their order (Gather: their `run`).
+  void run_passes(GlPassStage stage, FrameReport& report) const;
+  /// The Gather passes' `finish`, right after the host's gather.
+  void finish_gather_passes() const;
+  /// The Fill stage: a gather that inserts nothing, then the Fill passes;
+  /// returns its wall time (ms).
+  double run_fill(const std::function<void()>& gather, FrameReport& report);
   /// Resume rounds while deferred calls remain (at most resume_rounds): returns
   /// the calls still deferred after the last round; none are run when the
   /// gather deferred more than the buffer holds (deferred_overflow_).

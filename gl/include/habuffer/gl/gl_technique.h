@@ -8,6 +8,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -24,6 +27,50 @@ namespace habuffer::gl {
 
 /// The parameter block every module reads (std140), one struct for both paths (technique_params.h).
 using GlParams = ParamBlock;
+
+/// Where in a frame the driver runs a pass a technique declares (GlPass).
+/// A frame is: FrameStart passes, the technique's sizing (begin_frame), then
+/// per attempt the buffers emptied (before_gather), a Fill gather if any, the
+/// host's gather inside the Gather passes, the resume rounds of calls cut
+/// short, and the Sort passes.
+enum class GlPassStage : std::uint8_t {
+  /// Once, before the frame's first gather, inside a state guard with the
+  /// parameters written and every buffer bound: the HA-buffer's clear pass,
+  /// which counts and empties the last frame's records.
+  FrameStart,
+  /// A gather of the host's scene that inserts nothing (the parameter
+  /// ha_gather_phase 1, inside the Gather passes too), then `run` with every
+  /// buffer bound: the k-buffer's occupancy fill and its count pass. The
+  /// inserting gather follows.
+  Fill,
+  /// Around every gather of the host's, inside its state guard with every
+  /// buffer bound: `run` right before (the framebuffer and blend state the
+  /// host's draws need beyond the buffers), `finish` right after (the
+  /// blended baselines copy their accumulators out). The guard gives the
+  /// host's state back afterwards.
+  Gather,
+  /// After every gather the frame keeps (not one a full capture or deferred
+  /// buffer repeats), every buffer bound: the sort pass of lists and arrays.
+  /// Its time is the report's `sort`.
+  Sort,
+};
+
+/// What a pass is given: the frame's report and options.
+struct GlPassContext {
+  FrameReport& report;            ///< the frame's report (a pass may add its timing or counts)
+  const GlFrameOptions& options;  ///< the frame's options (finish_timing, policy, ...)
+};
+
+/// One pass of a technique's frame (see GlPassStage): its stage, a name for
+/// timings and errors, and what it runs. Declared by the container in its
+/// constructor, with the program it owns.
+struct GlPass {
+  GlPassStage stage;                           ///< when it runs
+  std::string name;                            ///< "the lists' sort pass": errors and timings name it
+  std::function<void(GlPassContext&)> run;     ///< the pass (Gather: before the host's gather)
+  std::function<void()> finish = {};           ///< Gather only: right after the host's gather
+  unsigned framebuffer = 0;                    ///< Gather only: what the host's gather draws into (0: the host's)
+};
 
 /// One technique's container on the GPU, run by GlFrameDriver (see the file
 /// comment); make_gl_technique makes one.
@@ -68,44 +115,28 @@ class GlTechnique {
   virtual void write_params(GlParams& params) const = 0;
   /// Binds the technique's storage buffers at their points.
   virtual void bind() const = 0;
-  /// At a frame's start, inside the driver's state guard with every buffer
-  /// bound: count and empty what the previous frame left where the technique
-  /// does so (the HA-buffer's clear pass), and adapt the size (SPEC 8).
+  /// The passes the technique adds to a frame, each run by the driver at its
+  /// stage (GlPass); the same list for the container's life.
+  [[nodiscard]] const std::vector<GlPass>& passes() const { return passes_; }
+  /// The framebuffer the host's gather must draw into (the Gather pass's,
+  /// for the techniques that blend there: wboit, blend; the driver binds it,
+  /// so a host that leaves the binding alone needs nothing); 0 for the
+  /// others, which draw nothing and leave the framebuffer to the host.
+  [[nodiscard]] unsigned gather_framebuffer() const;
+  /// At a frame's start, after its FrameStart passes, with no GL state
+  /// touched: adapt the size (SPEC 8) from what the last frame asked for.
   virtual void begin_frame(FrameReport& report, const GlFrameOptions& options) = 0;
-  /// Whether begin_frame will run a GL pass (the driver then guards the
-  /// host's state and binds every buffer first).
-  [[nodiscard]] virtual bool draws_at_frame_start() const { return false; }
-  /// Right before every gather, the frame's first and its regathers.
+  /// Right before every gather, the frame's first and its regathers: empty
+  /// what the last gather filled (heads, counts, max-age table, ...).
   virtual void before_gather() = 0;
-  /// Inside the gather's state guard, right before the host's gather (and its
-  /// fill pass): the GL state its insert calls need beyond the buffers. The
-  /// blended baselines bind their framebuffer and blend setup here; the guard
-  /// gives the host's state back afterwards. Nothing by default.
-  virtual void enter_gather() const {}
-  /// Right after the host's gather, still inside that guard, before any
-  /// resume or sort pass (the blended baselines copy their framebuffer into
-  /// the storage buffers the resolve reads). Nothing by default.
-  virtual void leave_gather() const {}
-  /// The framebuffer the host's gather must draw into, for the techniques
-  /// that blend there (wboit, blend; enter_gather binds it, so a host that
-  /// leaves the binding alone needs nothing); 0 for the others, which draw
-  /// nothing and leave the framebuffer to the host.
-  [[nodiscard]] virtual unsigned gather_framebuffer() const { return 0; }
-  /// Passes of the host's gather per attempt: 2 when the technique first
-  /// needs a pass that inserts nothing (the k-buffer's occupancy fill, the
-  /// parameter ha_gather_phase 1), then between_passes() with every buffer
-  /// bound, then the insertion pass.
-  [[nodiscard]] virtual std::uint32_t gather_passes() const { return 1; }
-  /// Between the two passes of such a gather (nothing by default).
-  virtual void between_passes() {}
   /// Empties what a gather inserted, for a regather of the same frame.
   virtual void reset() = 0;
-  /// After every gather, with every buffer bound: the sort pass, if any.
-  virtual PassTiming after_gather(bool finish_timing);
-  /// Whether after_gather sorts every pixel (its sort pass counts each one).
-  [[nodiscard]] virtual bool sorts() const { return false; }
-  /// After every gather's counters are read (the report holds them).
-  virtual void gathered(const FrameReport& report);
+  /// After every gather, with the driver's counter words read back (the
+  /// layout of entry_common.glsl's HaCounters; the tallies are already in
+  /// report.counters): the technique's own fields of the report, and what
+  /// it keeps for the next frame's sizing (the lists' nodes requested, the
+  /// arrays' deepest pixel, the HA-buffer's table).
+  virtual void gathered(std::span<const std::uint32_t> counter_words, FrameReport& report);
   /// Lossless mode: room for what the last gather dropped (the report's
   /// counters and counts; the driver retries calls cut short itself); false
   /// when this context cannot hold more.
@@ -118,8 +149,6 @@ class GlTechnique {
   [[nodiscard]] virtual bool defers_calls() const { return false; }
   /// Records the technique can hold now.
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
-  /// The HA-buffer's current table (zero for other techniques).
-  [[nodiscard]] virtual Extent table() const { return {}; }
   /// Sizes an automatically sized container before its first frame from the
   /// counting pass: `wanted` says the table or pool the fragments need; the
   /// container takes the largest up to it this OpenGL holds. Returns whether
@@ -138,6 +167,8 @@ class GlTechnique {
   [[nodiscard]] virtual std::unique_ptr<FragmentBuffer> read_back() const = 0;
 
  protected:
+  /// Adds a pass to passes() (a container declares its passes in its constructor).
+  void declare_pass(GlPass pass) { passes_.push_back(std::move(pass)); }
   /// resize_screen's work, for a screen that is not empty, fits the
   /// viewport and differs from screen(): check every limit, make the new
   /// buffers, and only then replace the old ones (strong guarantee).
@@ -149,6 +180,7 @@ class GlTechnique {
   AtomicMode mode_;
   GlBindings bindings_;
   Extent screen_;
+  std::vector<GlPass> passes_;
 };
 
 /// The container of config.technique on the GPU (offsets and the clear

@@ -31,6 +31,10 @@ struct GlTechniqueDescriptor {
   /// The library shaders of its own beyond the insert, sort and resolve
   /// passes every technique has (library_shaders()); nullptr for none.
   std::vector<ShaderSource> (*own_shaders)(AtomicMode mode, const GlBindings& bindings);
+  /// Its own buffers' group in GlBindings::points() (the HA-buffer's 1, the
+  /// node lists' 2, ...): the binding names its module declares besides the
+  /// shared ones.
+  unsigned binding_group;
 };
 
 /// The GPU descriptor of `t` (every enumerator has one).

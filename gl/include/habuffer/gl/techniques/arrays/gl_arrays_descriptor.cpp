@@ -16,7 +16,7 @@ std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource&,
   return std::make_unique<GlFixedArrays>(c, mode, bindings);
 }
 
-constexpr GlTechniqueDescriptor kDescriptor{Technique::Arrays, module_parts, make, nullptr};
+constexpr GlTechniqueDescriptor kDescriptor{Technique::Arrays, module_parts, make, nullptr, 3};
 
 }  // namespace
 

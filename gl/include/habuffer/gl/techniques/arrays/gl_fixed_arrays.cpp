@@ -13,11 +13,8 @@
 
 namespace habuffer::gl {
 struct GlFixedArrays::Gpu {
-  GLuint counts = 0, layers = 0;
+  GlStorage counts, layers;
   std::unique_ptr<SortPass> sort;
-  ~Gpu() {
-    for (GLuint* b : {&counts, &layers}) delete_buffer(*b);
-  }
 };
 
 GlFixedArrays::GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
@@ -26,9 +23,12 @@ GlFixedArrays::GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, con
       gpu_(std::make_unique<Gpu>()) {
   check_atomic_mode(mode, config_.buffer.layout);
   check_storage_fits(screen().area() * 4, "the counters of screen " + screen().str());
-  gpu_->counts = create_buffer(screen().area() * 4);
+  gpu_->counts = GlStorage(screen().area() * 4);
   allocate_layers(config_.layers);
   gpu_->sort = std::make_unique<SortPass>(Technique::Arrays, mode, bindings);
+  declare_pass({GlPassStage::Sort, "the arrays' sort pass", [this](GlPassContext& c) {
+                  c.report.sort = gpu_->sort->run(screen(), c.options.finish_timing);
+                }});
 }
 
 GlFixedArrays::~GlFixedArrays() = default;
@@ -39,8 +39,8 @@ void GlFixedArrays::allocate_layers(std::uint32_t layers) {
   c.validate();
   const std::uint64_t bytes = std::uint64_t{layers} * screen().area() * sizeof(glm::uvec2);
   check_storage_fits(bytes, std::to_string(layers) + " layers of screen " + screen().str());
-  delete_buffer(gpu_->layers);
-  gpu_->layers = create_buffer(bytes);
+  gpu_->layers = GlStorage();  // the old layers go first: the new ones may need their memory
+  gpu_->layers = GlStorage(bytes);
   config_.layers = layers;
 }
 
@@ -52,12 +52,12 @@ void GlFixedArrays::change_screen(Extent screen) {
   check_storage_fits(pixels * 4, "the counters of screen " + screen.str());
   const std::uint64_t bytes = std::uint64_t{config_.layers} * pixels * sizeof(glm::uvec2);
   check_storage_fits(bytes, std::to_string(config_.layers) + " layers of screen " + screen.str());
-  Gpu fresh;  // made before the old ones go; its destructor frees them on a throw
-  fresh.counts = create_buffer(pixels * 4);
-  fresh.layers = create_buffer(bytes);
+  Gpu fresh;  // made before the old ones go; its members free them on a throw
+  fresh.counts = GlStorage(pixels * 4);
+  fresh.layers = GlStorage(bytes);
   check_gl_errors("resizing the arrays' screen");
-  std::swap(gpu_->counts, fresh.counts);
-  std::swap(gpu_->layers, fresh.layers);
+  gpu_->counts = std::move(fresh.counts);
+  gpu_->layers = std::move(fresh.layers);
   config_ = next;
   most_arrived_ = 0;
 }
@@ -67,13 +67,17 @@ void GlFixedArrays::write_params(GlParams& p) const {
 }
 
 void GlFixedArrays::bind() const {
-  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->counts);    // HABUFFER_BINDING_COUNTS
-  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->layers);  // HABUFFER_BINDING_LAYERS
+  gpu_->counts.bind_storage(bindings().counts);
+  gpu_->layers.bind_storage(bindings().layers);
 }
 
-void GlFixedArrays::before_gather() { zero_buffer(gpu_->counts); }
+void GlFixedArrays::before_gather() { gpu_->counts.zero(); }
 
-PassTiming GlFixedArrays::after_gather(bool finish_timing) { return gpu_->sort->run(screen(), finish_timing); }
+void GlFixedArrays::gathered(std::span<const std::uint32_t> counter_words, FrameReport& report) {
+  // The most fragments a pixel received, tallied when some pixel overflowed.
+  report.most_arrived = counter_words[HABUFFER_COUNTER_MOST_ARRIVED];
+  most_arrived_ = report.most_arrived;
+}
 
 bool GlFixedArrays::grow(const FrameReport& report, const GlFrameOptions& options) {
   // K as large as the deepest pixel: the regather keeps every fragment.
@@ -85,15 +89,12 @@ bool GlFixedArrays::grow(const FrameReport& report, const GlFrameOptions& option
   return true;
 }
 
-std::uint64_t GlFixedArrays::memory_bytes() const {
-  return screen().area() * 4 + capacity() * sizeof(glm::uvec2);
-}
+std::uint64_t GlFixedArrays::memory_bytes() const { return bytes_of(gpu_->counts, gpu_->layers); }
 
 std::unique_ptr<FragmentBuffer> GlFixedArrays::read_back() const {
   auto arrays = std::make_unique<FixedArrays>(config_);
-  const std::vector<std::uint32_t> counts = read_words(gpu_->counts, screen().area());
-  std::vector<glm::uvec2> layers(capacity());
-  glGetNamedBufferSubData(gpu_->layers, 0, static_cast<GLsizeiptr>(layers.size() * sizeof(glm::uvec2)), layers.data());
+  const std::vector<std::uint32_t> counts = gpu_->counts.read_words(screen().area());
+  const std::vector<glm::uvec2> layers = gpu_->layers.read<glm::uvec2>(capacity());
   arrays->import_state(counts, layers, most_arrived_);
   return arrays;
 }

@@ -24,23 +24,21 @@ class GlFixedArrays final : public GlTechnique {
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
 
   /// GlTechnique interface (see gl_technique.h). before_gather zeroes the
-  /// counters; after_gather runs the sort pass; grow raises K to the most
-  /// fragments a pixel received (at least one more), false beyond the context's
-  /// limits; gathered keeps that most for read_back.
+  /// counters; its Sort pass sorts each pixel's layers; grow raises K to the
+  /// most fragments a pixel received (at least one more), false beyond the
+  /// context's limits; gathered reports that most and keeps it for read_back.
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport&, const GlFrameOptions&) override {}
   void before_gather() override;
   void reset() override {}
-  PassTiming after_gather(bool finish_timing) override;
-  [[nodiscard]] bool sorts() const override { return true; }
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] std::uint64_t capacity() const override {
     return std::uint64_t{config_.layers} * config_.buffer.screen.area();
   }
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
-  void gathered(const FrameReport& report) override { most_arrived_ = report.most_arrived; }
+  void gathered(std::span<const std::uint32_t> counter_words, FrameReport& report) override;
 
  protected:
   /// resize_screen (gl_technique.h): new zeroed counters and K layers per

@@ -21,8 +21,8 @@ std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource&,
   return std::make_unique<GlBlendedImage>(c, mode, bindings);
 }
 
-constexpr GlTechniqueDescriptor kWboit{Technique::Wboit, wboit_parts, make, nullptr};
-constexpr GlTechniqueDescriptor kBlend{Technique::Blend, blend_parts, make, nullptr};
+constexpr GlTechniqueDescriptor kWboit{Technique::Wboit, wboit_parts, make, nullptr, 5};
+constexpr GlTechniqueDescriptor kBlend{Technique::Blend, blend_parts, make, nullptr, 5};
 
 }  // namespace
 

@@ -14,23 +14,12 @@ namespace habuffer::gl {
 
 struct GlBlendedImage::Gpu {
   GLuint framebuffer = 0;
-  GLuint accum = 0, revealage = 0;              // attachments 0 and 1 (revealage: wboit only)
-  GLuint accum_copy = 0, revealage_copy = 0;    // their storage-buffer copies, read by the resolve
-  ~Gpu() {
-    glDeleteFramebuffers(1, &framebuffer);
-    for (GLuint* t : {&accum, &revealage}) glDeleteTextures(1, t);
-    for (GLuint* b : {&accum_copy, &revealage_copy}) delete_buffer(*b);
-  }
+  GlTexture accum, revealage;           // attachments 0 and 1 (revealage: wboit only)
+  GlStorage accum_copy, revealage_copy;  // their storage-buffer copies, read by the resolve
+  ~Gpu() { glDeleteFramebuffers(1, &framebuffer); }
 };
 
 namespace {
-
-GLuint make_target(GLenum format, Extent screen) {
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, format, static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
-  return texture;
-}
 
 void check_framebuffer_fits(Extent screen) {
   GLint width = 0, height = 0;
@@ -43,9 +32,9 @@ void check_framebuffer_fits(Extent screen) {
 
 // One attachment into its storage-buffer copy, row after row as the resolve
 // indexes it (x + y * width).
-void copy_target(GLuint texture, GLenum format, GLuint buffer, Extent screen, std::uint32_t bytes_per_pixel) {
-  glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
-  glGetTextureImage(texture, 0, format, GL_FLOAT, static_cast<GLsizei>(screen.area() * bytes_per_pixel), nullptr);
+void copy_target(const GlTexture& texture, GLenum format, const GlStorage& buffer) {
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer.id());
+  glGetTextureImage(texture.id(), 0, format, GL_FLOAT, static_cast<GLsizei>(texture.bytes()), nullptr);
 }
 
 }  // namespace
@@ -57,18 +46,18 @@ GlBlendedImage::GlBlendedImage(const TechniqueConfig& config, AtomicMode mode, c
   check_framebuffer_fits(screen());
   const std::uint64_t pixels = screen().area();
   check_storage_fits(pixels * 16, "the blended accumulators of screen " + screen().str());
-  gpu_->accum = make_target(GL_RGBA32F, screen());
-  gpu_->accum_copy = create_buffer(pixels * 16);
+  gpu_->accum = GlTexture(GL_RGBA32F, screen(), 16);
+  gpu_->accum_copy = GlStorage(pixels * 16);
   glCreateFramebuffers(1, &gpu_->framebuffer);
-  glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, gpu_->accum, 0);
+  glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, gpu_->accum.id(), 0);
   GLenum draw[2] = {GL_COLOR_ATTACHMENT0, GL_NONE};
   if (weighted()) {
-    gpu_->revealage = make_target(GL_R32F, screen());
-    gpu_->revealage_copy = create_buffer(pixels * 4);
-    glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, gpu_->revealage, 0);
+    gpu_->revealage = GlTexture(GL_R32F, screen(), 4);
+    gpu_->revealage_copy = GlStorage(pixels * 4);
+    glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, gpu_->revealage.id(), 0);
     draw[1] = GL_COLOR_ATTACHMENT1;
   } else {
-    gpu_->revealage_copy = create_buffer(4);  // bound for the resolve's block; never read
+    gpu_->revealage_copy = GlStorage(4);  // bound for the resolve's block; never read
   }
   glNamedFramebufferDrawBuffers(gpu_->framebuffer, 2, draw);
   if (const GLenum status = glCheckNamedFramebufferStatus(gpu_->framebuffer, GL_DRAW_FRAMEBUFFER);
@@ -77,6 +66,8 @@ GlBlendedImage::GlBlendedImage(const TechniqueConfig& config, AtomicMode mode, c
                   std::to_string(status) + ")");
   reset();
   check_gl_errors("creating the blended accumulators");
+  declare_pass({GlPassStage::Gather, "the " + to_string(technique()) + " accumulators",
+                [this](GlPassContext&) { enter_gather(); }, [this] { leave_gather(); }, gpu_->framebuffer});
 }
 
 GlBlendedImage::~GlBlendedImage() = default;
@@ -91,27 +82,26 @@ void GlBlendedImage::change_screen(Extent screen) {
   // New attachments and copies first; the framebuffer object stays the same
   // (a host may hold gather_framebuffer()), its attachments replaced by name
   // (no binding changes), and back to the old ones if it is not complete.
-  Gpu fresh;
-  fresh.accum = make_target(GL_RGBA32F, screen);
-  fresh.accum_copy = create_buffer(pixels * 16);
+  GlTexture accum(GL_RGBA32F, screen, 16), revealage;
+  GlStorage accum_copy(pixels * 16), revealage_copy;
   if (weighted()) {
-    fresh.revealage = make_target(GL_R32F, screen);
-    fresh.revealage_copy = create_buffer(pixels * 4);
+    revealage = GlTexture(GL_R32F, screen, 4);
+    revealage_copy = GlStorage(pixels * 4);
   }
-  glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, fresh.accum, 0);
-  if (weighted()) glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, fresh.revealage, 0);
+  glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, accum.id(), 0);
+  if (weighted()) glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, revealage.id(), 0);
   if (const GLenum status = glCheckNamedFramebufferStatus(gpu_->framebuffer, GL_DRAW_FRAMEBUFFER);
       status != GL_FRAMEBUFFER_COMPLETE) {
-    glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, gpu_->accum, 0);
-    if (weighted()) glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, gpu_->revealage, 0);
+    glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT0, gpu_->accum.id(), 0);
+    if (weighted()) glNamedFramebufferTexture(gpu_->framebuffer, GL_COLOR_ATTACHMENT1, gpu_->revealage.id(), 0);
     throw GlError("the " + to_string(technique()) + " accumulators' framebuffer of screen " + screen.str() +
                   " is not complete (status " + std::to_string(status) + ")");
   }
-  std::swap(gpu_->accum, fresh.accum);
-  std::swap(gpu_->accum_copy, fresh.accum_copy);
+  gpu_->accum = std::move(accum);
+  gpu_->accum_copy = std::move(accum_copy);
   if (weighted()) {
-    std::swap(gpu_->revealage, fresh.revealage);
-    std::swap(gpu_->revealage_copy, fresh.revealage_copy);
+    gpu_->revealage = std::move(revealage);
+    gpu_->revealage_copy = std::move(revealage_copy);
   }
   config_ = next;
   reset();  // the accumulators' empty values
@@ -123,17 +113,17 @@ void GlBlendedImage::write_params(GlParams& p) const {
 }
 
 void GlBlendedImage::bind() const {
-  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().table, gpu_->accum_copy);
-  bind_at(GL_SHADER_STORAGE_BUFFER, bindings().max_age, gpu_->revealage_copy);
+  gpu_->accum_copy.bind_storage(bindings().accum);
+  gpu_->revealage_copy.bind_storage(bindings().revealage);
 }
 
 void GlBlendedImage::reset() {
   // glClearTexImage ignores the colour masks and the scissor the host may have set.
   const float accum[4] = {0.0f, 0.0f, 0.0f, weighted() ? 0.0f : 1.0f};
-  glClearTexImage(gpu_->accum, 0, GL_RGBA, GL_FLOAT, accum);
+  glClearTexImage(gpu_->accum.id(), 0, GL_RGBA, GL_FLOAT, accum);
   if (weighted()) {
     const float revealage = 1.0f;
-    glClearTexImage(gpu_->revealage, 0, GL_RED, GL_FLOAT, &revealage);
+    glClearTexImage(gpu_->revealage.id(), 0, GL_RED, GL_FLOAT, &revealage);
   }
 }
 
@@ -156,21 +146,18 @@ void GlBlendedImage::enter_gather() const {
 
 void GlBlendedImage::leave_gather() const {
   GlStateGuard::prepare_pack();  // inside the driver's guard, which restores the host's
-  copy_target(gpu_->accum, GL_RGBA, gpu_->accum_copy, screen(), 16);
-  if (weighted()) copy_target(gpu_->revealage, GL_RED, gpu_->revealage_copy, screen(), 4);
+  copy_target(gpu_->accum, GL_RGBA, gpu_->accum_copy);
+  if (weighted()) copy_target(gpu_->revealage, GL_RED, gpu_->revealage_copy);
 }
 
-unsigned GlBlendedImage::gather_framebuffer() const { return gpu_->framebuffer; }
-
-std::uint64_t GlBlendedImage::memory_bytes() const { return screen().area() * (weighted() ? 40u : 32u); }
+std::uint64_t GlBlendedImage::memory_bytes() const {
+  return bytes_of(gpu_->accum, gpu_->revealage, gpu_->accum_copy, gpu_->revealage_copy);
+}
 
 std::unique_ptr<FragmentBuffer> GlBlendedImage::read_back() const {
   const std::uint64_t pixels = screen().area();
-  std::vector<glm::vec4> accum(pixels);
-  glGetNamedBufferSubData(gpu_->accum_copy, 0, static_cast<GLsizeiptr>(pixels * sizeof(glm::vec4)), accum.data());
-  std::vector<float> revealage(weighted() ? pixels : 0);
-  if (weighted())
-    glGetNamedBufferSubData(gpu_->revealage_copy, 0, static_cast<GLsizeiptr>(pixels * sizeof(float)), revealage.data());
+  const std::vector<glm::vec4> accum = gpu_->accum_copy.read<glm::vec4>(pixels);
+  const std::vector<float> revealage = gpu_->revealage_copy.read<float>(weighted() ? pixels : 0);
   auto image = std::make_unique<BlendedImage>(config_);
   image->import_state(accum, revealage);
   return image;

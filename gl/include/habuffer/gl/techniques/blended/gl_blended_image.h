@@ -32,22 +32,21 @@ class GlBlendedImage final : public GlTechnique {
 
   /// GlTechnique interface (see gl_technique.h). before_gather and reset
   /// clear the accumulators (blend: colour 0, transmittance 1; wboit: sums
-  /// 0, revealage 1); enter_gather binds the framebuffer and the blend setup;
-  /// leave_gather copies the attachments into the storage buffers; nothing
+  /// 0, revealage 1); its Gather pass binds the framebuffer and the blend
+  /// setup before the host's gather (enter_gather) and copies the
+  /// attachments into the storage buffers after it (leave_gather); nothing
   /// is ever dropped, so grow is never needed and returns false.
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport&, const GlFrameOptions&) override {}
   void before_gather() override { reset(); }
   void reset() override;
-  void enter_gather() const override;
-  void leave_gather() const override;
-  [[nodiscard]] unsigned gather_framebuffer() const override;
   bool grow(const FrameReport&, const GlFrameOptions&) override { return false; }
   /// Always 0: nothing is stored.
   [[nodiscard]] std::uint64_t capacity() const override { return 0; }
   /// The attachments and their storage-buffer copies: 32 bytes per pixel
-  /// (blend), 40 (wboit).
+  /// (blend, and the 4-byte revealage copy its resolve binds but never
+  /// reads), 40 (wboit).
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
 
@@ -59,6 +58,10 @@ class GlBlendedImage final : public GlTechnique {
 
  private:
   struct Gpu;
+  /// The Gather pass, before the host's gather: the framebuffer and blend state.
+  void enter_gather() const;
+  /// The Gather pass, after it: the attachments copied to the storage buffers.
+  void leave_gather() const;
   [[nodiscard]] bool weighted() const { return config_.technique == Technique::Wboit; }
 
   TechniqueConfig config_;

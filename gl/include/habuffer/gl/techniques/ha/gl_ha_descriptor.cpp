@@ -35,7 +35,7 @@ std::vector<ShaderSource> own_shaders(AtomicMode mode, const GlBindings& binding
            technique_module(Technique::Ha, mode, bindings, ShaderStage::Compute, other.defines()) + kResumeCompute}};
 }
 
-constexpr GlTechniqueDescriptor kDescriptor{Technique::Ha, module_parts, make, own_shaders};
+constexpr GlTechniqueDescriptor kDescriptor{Technique::Ha, module_parts, make, own_shaders, 1};
 
 }  // namespace
 

@@ -57,11 +57,9 @@ std::uint64_t scaled_side(std::uint32_t side, std::uint32_t from, std::uint32_t 
 }  // namespace
 
 struct GlHaTable::Gpu {
-  GLuint table = 0, locks = 0, max_age = 0, offsets = 0, count = 0, saturation = 0;
+  GlStorage table, locks, max_age, offsets, saturation;
+  GlStorage count;  // the query buffer the clear pass's count lands in, read a frame later
   std::unique_ptr<ClearPass> clear;
-  ~Gpu() {
-    for (GLuint* b : {&table, &locks, &max_age, &offsets, &count, &saturation}) delete_buffer(*b);
-  }
 };
 
 GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlBindings& bindings,
@@ -75,11 +73,12 @@ GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMod
   check_atomic_mode(mode, config_.layout);
   cells_ = max_age_cells(config_);
   if (const std::string why = table_limit(config_.table); !why.empty()) throw GlError(why);
-  gpu_->max_age = create_buffer(std::uint64_t{cells_} * 4);
-  gpu_->count = create_buffer(sizeof(std::uint64_t));
-  if (config_.saturation) gpu_->saturation = create_buffer(config_.screen.area() * 4);
+  gpu_->max_age = GlStorage(std::uint64_t{cells_} * 4);
+  gpu_->count = GlStorage(sizeof(std::uint64_t));
+  if (config_.saturation) gpu_->saturation = GlStorage(config_.screen.area() * 4);
   allocate_table(config_.table, false);
   gpu_->clear = std::make_unique<ClearPass>(mode, bindings);
+  declare_pass({GlPassStage::FrameStart, "the HA-buffer's clear pass", [this](GlPassContext& c) { clear(c); }});
 }
 
 GlHaTable::~GlHaTable() = default;
@@ -99,16 +98,13 @@ void GlHaTable::allocate_table(Extent table, bool new_offsets) {
   const std::uint64_t slots = table.area();
   config_.table = table;
   if (new_offsets) offsets_ = source_.make(table, config_.record_layout().max_age());
-  delete_buffer(gpu_->table);
-  delete_buffer(gpu_->locks);
-  delete_buffer(gpu_->offsets);
-  gpu_->table = create_buffer(slots * config_.record_layout().word_bytes());
-  zero_buffer(gpu_->table);
-  if (mode() == AtomicMode::Emulated64) {
-    gpu_->locks = create_buffer(emulated64_lock_words(slots) * 4);
-    zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
-  }
-  gpu_->offsets = create_buffer(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
+  gpu_->table = GlStorage();  // the old table goes first: the new one may need its memory
+  gpu_->locks = GlStorage();
+  gpu_->offsets = GlStorage();
+  gpu_->table = GlStorage(slots * config_.record_layout().word_bytes());  // zeroed
+  // Zeroed too: every critical section leaves its lock at 0 again.
+  if (mode() == AtomicMode::Emulated64) gpu_->locks = GlStorage(emulated64_lock_words(slots) * 4);
+  gpu_->offsets = GlStorage(offsets_.size() * sizeof(glm::uvec2), offsets_.values().data());
   holds_frame_ = false;
   pending_count_table_.reset();  // a count in flight belongs to a table no longer in use
 }
@@ -126,10 +122,11 @@ void GlHaTable::write_params(GlParams& p) const {
 
 void GlHaTable::bind() const {
   const GlBindings& b = bindings();
-  for (const auto& [point, buffer] : {std::pair{b.table, gpu_->table}, std::pair{b.max_age, gpu_->max_age},
-                                      std::pair{b.offsets, gpu_->offsets}, std::pair{b.locks, gpu_->locks},
-                                      std::pair{b.saturation, gpu_->saturation}})
-    if (buffer != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, buffer);
+  gpu_->table.bind_storage(b.table);
+  gpu_->max_age.bind_storage(b.max_age);
+  gpu_->offsets.bind_storage(b.offsets);
+  gpu_->locks.bind_storage(b.locks);
+  gpu_->saturation.bind_storage(b.saturation);
 }
 
 void GlHaTable::resize(Extent table) {
@@ -176,16 +173,17 @@ void GlHaTable::change_screen(Extent screen) {
   OffsetSequence offsets = new_table ? source_.make(next.table, next.record_layout().max_age()) : offsets_;
   Gpu fresh;
   const std::uint64_t slots = next.table.area();
-  fresh.table = create_buffer(slots * next.record_layout().word_bytes());
-  if (mode() == AtomicMode::Emulated64) fresh.locks = create_buffer(emulated64_lock_words(slots) * 4);
-  fresh.offsets = create_buffer(offsets.size() * sizeof(glm::uvec2), offsets.values().data());
-  fresh.max_age = create_buffer(std::uint64_t{cells} * 4);
-  if (next.saturation) fresh.saturation = create_buffer(screen.area() * 4);
+  fresh.table = GlStorage(slots * next.record_layout().word_bytes());
+  if (mode() == AtomicMode::Emulated64) fresh.locks = GlStorage(emulated64_lock_words(slots) * 4);
+  fresh.offsets = GlStorage(offsets.size() * sizeof(glm::uvec2), offsets.values().data());
+  fresh.max_age = GlStorage(std::uint64_t{cells} * 4);
+  if (next.saturation) fresh.saturation = GlStorage(screen.area() * 4);
   check_gl_errors("resizing the HA-buffer's screen");
-  for (auto [mine, theirs] : {std::pair{&gpu_->table, &fresh.table}, std::pair{&gpu_->locks, &fresh.locks},
-                              std::pair{&gpu_->offsets, &fresh.offsets}, std::pair{&gpu_->max_age, &fresh.max_age},
-                              std::pair{&gpu_->saturation, &fresh.saturation}})
-    std::swap(*mine, *theirs);
+  gpu_->table = std::move(fresh.table);
+  gpu_->locks = std::move(fresh.locks);
+  gpu_->offsets = std::move(fresh.offsets);
+  gpu_->max_age = std::move(fresh.max_age);
+  gpu_->saturation = std::move(fresh.saturation);
   config_ = next;
   cells_ = cells;
   offsets_ = std::move(offsets);
@@ -199,23 +197,27 @@ std::uint64_t GlHaTable::count_stored() {
   return stored;
 }
 
-void GlHaTable::begin_frame(FrameReport& report, const GlFrameOptions& options) {
-  if (!holds_frame_) return;
+void GlHaTable::clear(GlPassContext& context) {
+  if (!holds_frame_) return;  // nothing gathered since the table was made or cleared
+  FrameReport& report = context.report;
   // The count the previous frame's clear pass left in the query buffer (the
   // GPU wrote it a frame ago: reading it does not stall), then this frame's
   // clear pass, whose count will be read next frame.
   if (pending_count_table_) {
-    std::uint64_t count = 0;
-    glGetNamedBufferSubData(gpu_->count, 0, sizeof count, &count);
-    report.counted_stored = count;
+    report.counted_stored = gpu_->count.read<std::uint64_t>(1)[0];
     report.counted_table = *pending_count_table_;
   }
-  const ClearPass::Result r = gpu_->clear->run(config_.table, clear_tile_, true, options.finish_timing, gpu_->count);
+  const ClearPass::Result r =
+      gpu_->clear->run(config_.table, clear_tile_, true, context.options.finish_timing, gpu_->count.id());
   report.clear = {r.wall_ms, r.gpu_ms};
   check_gl_errors("the clear pass");
   pending_count_table_ = config_.table;
   report.cleared = true;
   holds_frame_ = false;
+}
+
+void GlHaTable::begin_frame(FrameReport& report, const GlFrameOptions& options) {
+  // Adaptive sizing from the count this frame's clear pass read (SPEC 8).
   if (options.adaptive && report.counted_stored && report.counted_table == config_.table) {
     const Extent next = options.policy.next(config_.table, config_.screen, *report.counted_stored);
     if (next != config_.table) {
@@ -230,12 +232,14 @@ void GlHaTable::begin_frame(FrameReport& report, const GlFrameOptions& options) 
 }
 
 void GlHaTable::before_gather() {
-  zero_buffer(gpu_->max_age);
-  if (gpu_->saturation != 0) zero_buffer(gpu_->saturation);
+  gpu_->max_age.zero();
+  gpu_->saturation.zero();
   holds_frame_ = true;  // even if the gather throws halfway, the next frame clears what it inserted
 }
 
-void GlHaTable::reset() { zero_buffer(gpu_->table); }
+void GlHaTable::reset() { gpu_->table.zero(); }
+
+void GlHaTable::gathered(std::span<const std::uint32_t>, FrameReport& report) { report.table = config_.table; }
 
 bool GlHaTable::grow(const FrameReport&, const GlFrameOptions& options) {
   const Extent grown = options.policy.grown(config_.table);
@@ -248,23 +252,19 @@ std::vector<std::uint64_t> GlHaTable::read_table() const {
   const std::uint64_t slots = config_.table.area();
   std::vector<std::uint64_t> out(slots);
   if (config_.record_layout().word_bytes() == 8) {
-    glGetNamedBufferSubData(gpu_->table, 0, static_cast<GLsizeiptr>(slots * 8), out.data());
+    out = gpu_->table.read<std::uint64_t>(slots);
   } else {
-    const auto words = read_words(gpu_->table, slots);
+    const auto words = gpu_->table.read_words(slots);
     std::copy(words.begin(), words.end(), out.begin());
   }
   return out;
 }
 
-std::vector<std::uint32_t> GlHaTable::read_max_age() const { return read_words(gpu_->max_age, cells_); }
+std::vector<std::uint32_t> GlHaTable::read_max_age() const { return gpu_->max_age.read_words(cells_); }
 
 std::uint64_t GlHaTable::memory_bytes() const {
-  const std::uint64_t slots = config_.table.area();
-  std::uint64_t bytes = slots * config_.record_layout().word_bytes() + std::uint64_t{cells_} * 4 +
-                        offsets_.size() * sizeof(glm::uvec2) + sizeof(std::uint64_t);
-  if (mode() == AtomicMode::Emulated64) bytes += emulated64_lock_words(slots) * 4;
-  if (config_.saturation) bytes += config_.screen.area() * 4;
-  return bytes;
+  return bytes_of(gpu_->table, gpu_->locks, gpu_->max_age, gpu_->offsets, gpu_->saturation, gpu_->count,
+                  *gpu_->clear);
 }
 
 std::unique_ptr<FragmentBuffer> GlHaTable::read_back() const {

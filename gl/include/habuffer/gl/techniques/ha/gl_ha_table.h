@@ -33,8 +33,8 @@ class GlHaTable final : public GlTechnique {
 
   /// The configuration, validated.
   [[nodiscard]] const BufferConfig& config() const { return config_; }  // config().table: the current table
-  /// The current table (GlTechnique interface).
-  [[nodiscard]] Extent table() const override { return config_.table; }
+  /// The current table.
+  [[nodiscard]] Extent table() const { return config_.table; }
   /// The offsets of the current table.
   [[nodiscard]] const OffsetSequence& offsets() const { return offsets_; }
 
@@ -56,18 +56,19 @@ class GlHaTable final : public GlTechnique {
   /// The max-age table: one word per cell of block x block pixels, row-major.
   [[nodiscard]] std::vector<std::uint32_t> read_max_age() const;
 
-  /// GlTechnique interface (see gl_technique.h). Once a gather filled the
-  /// table, begin_frame reads the count the previous clear pass left, runs this
-  /// frame's clear pass and adapts the table; before_gather zeroes the max-age
-  /// table and saturation codes; reset zeroes the table; grow enlarges it by
-  /// the policy's step, false beyond the context's limits; insert calls are
-  /// deferred.
+  /// GlTechnique interface (see gl_technique.h). Its FrameStart pass, once
+  /// a gather filled the table, reads the count the previous clear pass
+  /// left and runs this frame's clear pass; begin_frame adapts the table
+  /// from that count; before_gather zeroes the max-age table and saturation
+  /// codes; reset zeroes the table; gathered reports the table; grow
+  /// enlarges it by the policy's step, false beyond the context's limits;
+  /// insert calls are deferred.
   void write_params(GlParams& params) const override;
   void bind() const override;
   void begin_frame(FrameReport& report, const GlFrameOptions& options) override;
-  [[nodiscard]] bool draws_at_frame_start() const override { return holds_frame_; }  // the clear pass
   void before_gather() override;
   void reset() override;
+  void gathered(std::span<const std::uint32_t> counter_words, FrameReport& report) override;
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] bool defers_calls() const override { return true; }
   [[nodiscard]] std::uint64_t capacity() const override { return config_.table.area(); }
@@ -88,6 +89,8 @@ class GlHaTable final : public GlTechnique {
 
  private:
   struct Gpu;
+  /// The FrameStart pass (see above).
+  void clear(GlPassContext& context);
   /// Fresh zeroed table (and locks); offsets regenerated for it unless new_offsets is false.
   void allocate_table(Extent table, bool new_offsets = true);
 

@@ -15,11 +15,8 @@
 
 namespace habuffer::gl {
 struct GlKBuffer::Gpu {
-  GLuint slots = 0, locks = 0, occupancy = 0, limits = 0, saturation = 0;
+  GlStorage slots, locks, occupancy, limits;
   std::unique_ptr<ShaderProgram> count;
-  ~Gpu() {
-    for (GLuint* b : {&slots, &locks, &occupancy, &limits, &saturation}) delete_buffer(*b);
-  }
 };
 
 GlKBuffer::GlKBuffer(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
@@ -32,10 +29,11 @@ GlKBuffer::GlKBuffer(const TechniqueConfig& config, AtomicMode mode, const GlBin
   if (config_.occupancy) {
     check_storage_fits(pixels * config_.occupancy_words * 4, "an occupancy map of " +
                                                                  std::to_string(config_.occupancy_words) + " words per pixel");
-    gpu_->occupancy = create_buffer(pixels * config_.occupancy_words * 4);
-    gpu_->limits = create_buffer(pixels * 4);
+    gpu_->occupancy = GlStorage(pixels * config_.occupancy_words * 4);
+    gpu_->limits = GlStorage(pixels * 4);
     gpu_->count = std::make_unique<ShaderProgram>(
         ShaderProgram::compute(kbuffer_count_compute(mode, bindings), "k-buffer count pass"));
+    declare_pass({GlPassStage::Fill, "the k-buffer's count pass", [this](GlPassContext&) { count_limits(); }});
   }
 }
 
@@ -49,13 +47,11 @@ void GlKBuffer::allocate_layers(std::uint32_t layers) {
   c.validate();
   const std::uint64_t slots = std::uint64_t{layers} * screen().area();
   check_storage_fits(slots * word_bytes(), std::to_string(layers) + " k-buffer layers of screen " + screen().str());
-  delete_buffer(gpu_->slots);
-  delete_buffer(gpu_->locks);
-  gpu_->slots = create_buffer(slots * word_bytes());
-  if (mode() == AtomicMode::Emulated64) {
-    gpu_->locks = create_buffer(emulated64_lock_words(slots) * 4);
-    zero_buffer(gpu_->locks);  // every critical section leaves its lock at 0 again
-  }
+  gpu_->slots = GlStorage();  // the old layers go first: the new ones may need their memory
+  gpu_->locks = GlStorage();
+  gpu_->slots = GlStorage(slots * word_bytes());
+  // Zeroed: every critical section leaves its lock at 0 again.
+  if (mode() == AtomicMode::Emulated64) gpu_->locks = GlStorage(emulated64_lock_words(slots) * 4);
   config_.layers = layers;
 }
 
@@ -68,17 +64,18 @@ void GlKBuffer::change_screen(Extent screen) {
   if (config_.occupancy)
     check_storage_fits(pixels * config_.occupancy_words * 4,
                        "an occupancy map of " + std::to_string(config_.occupancy_words) + " words per pixel");
-  Gpu fresh;  // made before the old ones go; its destructor frees them on a throw
-  fresh.slots = create_buffer(slots * word_bytes());
-  if (mode() == AtomicMode::Emulated64) fresh.locks = create_buffer(emulated64_lock_words(slots) * 4);
+  Gpu fresh;  // made before the old ones go; its members free them on a throw
+  fresh.slots = GlStorage(slots * word_bytes());
+  if (mode() == AtomicMode::Emulated64) fresh.locks = GlStorage(emulated64_lock_words(slots) * 4);
   if (config_.occupancy) {
-    fresh.occupancy = create_buffer(pixels * config_.occupancy_words * 4);
-    fresh.limits = create_buffer(pixels * 4);
+    fresh.occupancy = GlStorage(pixels * config_.occupancy_words * 4);
+    fresh.limits = GlStorage(pixels * 4);
   }
   check_gl_errors("resizing the k-buffer's screen");
-  for (auto [mine, theirs] : {std::pair{&gpu_->slots, &fresh.slots}, std::pair{&gpu_->locks, &fresh.locks},
-                              std::pair{&gpu_->occupancy, &fresh.occupancy}, std::pair{&gpu_->limits, &fresh.limits}})
-    std::swap(*mine, *theirs);
+  gpu_->slots = std::move(fresh.slots);
+  gpu_->locks = std::move(fresh.locks);
+  gpu_->occupancy = std::move(fresh.occupancy);
+  gpu_->limits = std::move(fresh.limits);
   config_ = next;
 }
 
@@ -88,20 +85,20 @@ void GlKBuffer::write_params(GlParams& p) const {
 
 void GlKBuffer::bind() const {
   const GlBindings& b = bindings();
-  for (const auto& [point, buffer] : {std::pair{b.table, gpu_->slots}, std::pair{b.locks, gpu_->locks},
-                                      std::pair{b.max_age, gpu_->occupancy}, std::pair{b.offsets, gpu_->limits}})
-    if (buffer != 0) bind_at(GL_SHADER_STORAGE_BUFFER, point, buffer);
+  gpu_->slots.bind_storage(b.slots);
+  gpu_->locks.bind_storage(b.locks);
+  gpu_->occupancy.bind_storage(b.occupancy);
+  gpu_->limits.bind_storage(b.limits);
 }
 
 void GlKBuffer::before_gather() {
-  zero_buffer(gpu_->slots);
-  if (gpu_->occupancy != 0) zero_buffer(gpu_->occupancy);
+  gpu_->slots.zero();
+  gpu_->occupancy.zero();
 }
 
-void GlKBuffer::reset() { zero_buffer(gpu_->slots); }
+void GlKBuffer::reset() { gpu_->slots.zero(); }
 
-void GlKBuffer::between_passes() {
-  if (!gpu_->count) return;
+void GlKBuffer::count_limits() const {
   glUseProgram(gpu_->count->id());
   glDispatchCompute((screen().x + 7) / 8, (screen().y + 7) / 8, 1);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -116,17 +113,14 @@ bool GlKBuffer::grow(const FrameReport&, const GlFrameOptions& options) {
 }
 
 std::uint64_t GlKBuffer::memory_bytes() const {
-  std::uint64_t bytes = capacity() * word_bytes();
-  if (mode() == AtomicMode::Emulated64) bytes += emulated64_lock_words(capacity()) * 4;
-  if (config_.occupancy) bytes += screen().area() * (std::uint64_t{config_.occupancy_words} + 1) * 4;
-  return bytes;
+  return bytes_of(gpu_->slots, gpu_->locks, gpu_->occupancy, gpu_->limits);
 }
 
 std::unique_ptr<FragmentBuffer> GlKBuffer::read_back() const {
   auto kb = std::make_unique<KBuffer>(config_);
-  const std::vector<std::uint32_t> words = read_words(gpu_->slots, capacity() * word_bytes() / 4);
+  const std::vector<std::uint32_t> words = gpu_->slots.read_words(capacity() * word_bytes() / 4);
   const std::vector<std::uint32_t> limits =
-      config_.occupancy ? read_words(gpu_->limits, screen().area()) : std::vector<std::uint32_t>{};
+      config_.occupancy ? gpu_->limits.read_words(screen().area()) : std::vector<std::uint32_t>{};
   kb->import_state(words, limits);
   return kb;
 }

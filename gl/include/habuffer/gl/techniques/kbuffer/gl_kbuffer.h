@@ -28,8 +28,9 @@ class GlKBuffer final : public GlTechnique {
   /// The configuration, validated; `layers` is the current K.
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
 
-  /// GlTechnique interface (see gl_technique.h). With occupancy a gather is two
-  /// passes, and between_passes runs the count pass; before_gather zeroes the
+  /// GlTechnique interface (see gl_technique.h). With occupancy it declares a
+  /// Fill pass: a gather that fills the occupancy map, then its count pass
+  /// (the limits); before_gather zeroes the
   /// layers and the occupancy map, reset the layers; grow doubles K, false
   /// beyond the context's limits; insert calls are deferred in emulated64 only.
   void write_params(GlParams& params) const override;
@@ -37,8 +38,6 @@ class GlKBuffer final : public GlTechnique {
   void begin_frame(FrameReport&, const GlFrameOptions&) override {}
   void before_gather() override;
   void reset() override;
-  [[nodiscard]] std::uint32_t gather_passes() const override { return config_.occupancy ? 2 : 1; }
-  void between_passes() override;
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] bool defers_calls() const override { return mode() == AtomicMode::Emulated64; }
   [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{config_.layers} * screen().area(); }
@@ -52,6 +51,8 @@ class GlKBuffer final : public GlTechnique {
 
  private:
   struct Gpu;
+  /// The Fill pass's count pass: each pixel's limit from its occupancy map.
+  void count_limits() const;
   void allocate_layers(std::uint32_t layers);
   [[nodiscard]] std::uint64_t word_bytes() const;
 

@@ -23,7 +23,7 @@ std::vector<ShaderSource> own_shaders(AtomicMode mode, const GlBindings& binding
           {"kbuffer-resume", "comp", resume_compute(Technique::KBuffer, mode, bindings)}};
 }
 
-constexpr GlTechniqueDescriptor kDescriptor{Technique::KBuffer, module_parts, make, own_shaders};
+constexpr GlTechniqueDescriptor kDescriptor{Technique::KBuffer, module_parts, make, own_shaders, 4};
 
 }  // namespace
 

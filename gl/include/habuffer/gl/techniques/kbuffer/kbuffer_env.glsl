@@ -1,11 +1,12 @@
 // The k-buffer's environment on the GPU (core/include/habuffer/techniques/kbuffer/ha_kbuffer.glsl): its
-// layers are the mode's slot table (the prelude declares it, and the lock
-// words of emulated64), the occupancy map and the per-pixel limits sit at
-// the HA-buffer's max-age and offsets points.
+// layers are the mode's slot table at the k-buffer's own point (the prelude
+// declares it at HABUFFER_RECORDS_BINDING, and the lock words of
+// emulated64), then its occupancy map and per-pixel limits.
 uint ha_call_writes = 0u;
+#define HABUFFER_RECORDS_BINDING HABUFFER_BINDING_SLOTS
 
-layout(std430, binding = HABUFFER_BINDING_MAX_AGE) buffer KbOccupancy { uint kb_occupancy[]; };
-layout(std430, binding = HABUFFER_BINDING_OFFSETS) buffer KbLimits { uint kb_limits[]; };
+layout(std430, binding = HABUFFER_BINDING_OCCUPANCY) buffer KbOccupancy { uint kb_occupancy[]; };
+layout(std430, binding = HABUFFER_BINDING_LIMITS) buffer KbLimits { uint kb_limits[]; };
 
 void kb_or_occupancy(uint word, uint bits) {
   if ((kb_occupancy[word] & bits) != bits) atomicOr(kb_occupancy[word], bits);

@@ -12,41 +12,66 @@
 #include "sort_pass.h"
 
 namespace habuffer::gl {
+
+struct GlLinkedLists::Gpu {
+  GlStorage heads, nodes, links, saturation;
+  std::unique_ptr<SortPass> sort;
+};
+
 namespace {
 
-constexpr std::uint64_t kNodeBytes = sizeof(glm::uvec2) + 4;  // entry and link
-
-// pool_capacity 0 asks for an automatic pool: it starts at one node per
-// pixel (the API has no counting pass, as render has), a frame that dropped
-// is gathered again at once into a pool of the nodes it asked for, and
-// SPEC 8's rule adapts it every frame.
-TechniqueConfig with_pool(TechniqueConfig c) {
-  if (c.pool_capacity == 0) c.pool_capacity = std::max<std::uint64_t>(c.buffer.screen.area(), 1);
-  return c;
+// Validated as `kind`'s technique, with the automatic pool's first size (a
+// page per pixel) where pool_capacity is 0.
+TechniqueConfig validated_pool(TechniqueConfig c, const GlNodeListKind& kind) {
+  if (c.pool_capacity == 0)
+    c.pool_capacity = std::max<std::uint64_t>(c.buffer.screen.area(), 1) * kind.page_nodes;
+  return validated_as(c, kind.technique);
 }
+
+std::unique_ptr<FragmentBuffer> import_lists(const TechniqueConfig& config, std::span<const std::uint32_t> heads,
+                                             std::span<const glm::uvec2> entries, std::span<const std::uint32_t> links,
+                                             std::uint64_t requested) {
+  auto lists = std::make_unique<LinkedLists>(config);
+  lists->import_state(heads, entries, links, requested);
+  return lists;
+}
+
+constexpr GlNodeListKind kListsKind{Technique::Lists, 1, true, import_lists};
+constexpr GlNodeListKind kSortedListsKind{Technique::SortedLists, 1, false, import_lists};
 
 }  // namespace
 
-struct GlLinkedLists::Gpu {
-  GLuint heads = 0, nodes = 0, links = 0, saturation = 0;
-  std::unique_ptr<SortPass> sort;
-  ~Gpu() {
-    for (GLuint* b : {&heads, &nodes, &links, &saturation}) delete_buffer(*b);
-  }
-};
+const GlNodeListKind& lists_kind() { return kListsKind; }
+const GlNodeListKind& sorted_lists_kind() { return kSortedListsKind; }
 
 GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(lists_flavour(config.technique), mode, bindings,
-                  validated_as(with_pool(config), lists_flavour(config.technique)).buffer.screen),
-      config_(validated_as(with_pool(config), lists_flavour(config.technique))),
+    : GlLinkedLists(config, lists_flavour(config.technique) == Technique::SortedLists ? kSortedListsKind : kListsKind,
+                    mode, bindings) {}
+
+GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, const GlNodeListKind& kind, AtomicMode mode,
+                             const GlBindings& bindings)
+    : GlTechnique(kind.technique, mode, bindings, validated_pool(config, kind).buffer.screen),
+      kind_(kind),
+      config_(validated_pool(config, kind)),
       auto_pool_(config.pool_capacity == 0),
       gpu_(std::make_unique<Gpu>()) {
   check_atomic_mode(mode, config_.buffer.layout);
   check_storage_fits(screen().area() * 4, "the head image of screen " + screen().str());
-  gpu_->heads = create_buffer(screen().area() * 4);
+  gpu_->heads = GlStorage(screen().area() * 4);
   allocate_pool(config_.pool_capacity);
-  if (config_.buffer.saturation) gpu_->saturation = create_buffer(screen().area() * 4);
-  if (!sorted_on_insert()) gpu_->sort = std::make_unique<SortPass>(Technique::Lists, mode, bindings);
+  if (config_.buffer.saturation) gpu_->saturation = GlStorage(screen().area() * 4);
+  if (kind_.sort_pass) {
+    gpu_->sort = std::make_unique<SortPass>(kind_.technique, mode, bindings);
+    declare_pass({GlPassStage::Sort, to_string(kind_.technique) + " sort pass", [this](GlPassContext& c) {
+                    c.report.sort = gpu_->sort->run(screen(), c.options.finish_timing);
+                  }});
+  }
+}
+
+GlLinkedLists::~GlLinkedLists() = default;
+
+std::uint64_t GlLinkedLists::page_per_pixel(Extent screen) const {
+  return std::max<std::uint64_t>(screen.area(), 1) * kind_.page_nodes;
 }
 
 bool GlLinkedLists::fit_automatic_size(const TechniqueConfig& wanted) {
@@ -55,17 +80,15 @@ bool GlLinkedLists::fit_automatic_size(const TechniqueConfig& wanted) {
   return fitted != wanted.pool_capacity;
 }
 
-GlLinkedLists::~GlLinkedLists() = default;
-
 void GlLinkedLists::allocate_pool(std::uint64_t nodes) {
   TechniqueConfig c = config_;
   c.pool_capacity = nodes;
   c.validate();
   check_storage_fits(nodes * sizeof(glm::uvec2), "a node pool of " + std::to_string(nodes) + " nodes");
-  delete_buffer(gpu_->nodes);
-  delete_buffer(gpu_->links);
-  gpu_->nodes = create_buffer(nodes * sizeof(glm::uvec2));
-  gpu_->links = create_buffer(nodes * 4);
+  gpu_->nodes = GlStorage();  // the old pool goes first: the new one may need its memory
+  gpu_->links = GlStorage();
+  gpu_->nodes = GlStorage(nodes * sizeof(glm::uvec2));
+  gpu_->links = GlStorage(nodes * 4);
   config_.pool_capacity = nodes;
 }
 
@@ -74,28 +97,28 @@ void GlLinkedLists::change_screen(Extent screen) {
   next.buffer.screen = screen;
   const std::uint64_t from = this->screen().area(), to = screen.area();
   // The pool holds fragments, which grow with the area: scaled by its ratio
-  // (rounded up; the automatic pool at least one node per pixel, as a fresh
+  // (rounded up; the automatic pool at least a page per pixel, as a fresh
   // one starts), or kept when the scaled pool is beyond the limits.
   const std::uint64_t scaled = (config_.pool_capacity * to + from - 1) / from;
-  next.pool_capacity = std::max<std::uint64_t>(scaled, auto_pool_ ? to : 1);
+  next.pool_capacity = std::max<std::uint64_t>(scaled, auto_pool_ ? page_per_pixel(screen) : 1);
   if (!pool_limit(next.pool_capacity).empty()) next.pool_capacity = config_.pool_capacity;
   next.validate();
   if (const std::string why = pool_limit(next.pool_capacity); !why.empty()) throw GlError(why);
   check_storage_fits(to * 4, "the head image of screen " + screen.str());
-  // Made before the old ones go (fresh's destructor frees them on a throw).
+  // Made before the old ones go (fresh's members free them on a throw).
   Gpu fresh;
-  fresh.heads = create_buffer(to * 4);
+  fresh.heads = GlStorage(to * 4);
   if (next.pool_capacity != config_.pool_capacity) {
-    fresh.nodes = create_buffer(next.pool_capacity * sizeof(glm::uvec2));
-    fresh.links = create_buffer(next.pool_capacity * 4);
+    fresh.nodes = GlStorage(next.pool_capacity * sizeof(glm::uvec2));
+    fresh.links = GlStorage(next.pool_capacity * 4);
   }
-  if (next.buffer.saturation) fresh.saturation = create_buffer(to * 4);
+  if (next.buffer.saturation) fresh.saturation = GlStorage(to * 4);
   check_gl_errors("resizing the lists' screen");
-  std::swap(gpu_->heads, fresh.heads);
-  std::swap(gpu_->saturation, fresh.saturation);
-  if (fresh.nodes != 0) {
-    std::swap(gpu_->nodes, fresh.nodes);
-    std::swap(gpu_->links, fresh.links);
+  gpu_->heads = std::move(fresh.heads);
+  gpu_->saturation = std::move(fresh.saturation);
+  if (fresh.nodes) {
+    gpu_->nodes = std::move(fresh.nodes);
+    gpu_->links = std::move(fresh.links);
   }
   config_ = next;
   // The last request was made on the old screen: SPEC 8's rule waits for a
@@ -108,16 +131,14 @@ void GlLinkedLists::resize_pool(std::uint64_t nodes) {
   if (nodes != config_.pool_capacity) allocate_pool(nodes);
 }
 
-void GlLinkedLists::write_params(GlParams& p) const {
-  write_technique_params(config_, p);
-}
+void GlLinkedLists::write_params(GlParams& p) const { write_technique_params(config_, p); }
 
 void GlLinkedLists::bind() const {
   const GlBindings& b = bindings();
-  bind_at(GL_SHADER_STORAGE_BUFFER, b.table, gpu_->heads);   // HABUFFER_BINDING_HEADS
-  bind_at(GL_SHADER_STORAGE_BUFFER, b.max_age, gpu_->nodes);  // HABUFFER_BINDING_NODES
-  bind_at(GL_SHADER_STORAGE_BUFFER, b.offsets, gpu_->links);  // HABUFFER_BINDING_LINKS
-  if (gpu_->saturation != 0) bind_at(GL_SHADER_STORAGE_BUFFER, b.saturation, gpu_->saturation);
+  gpu_->heads.bind_storage(b.heads);
+  gpu_->nodes.bind_storage(b.nodes);
+  gpu_->links.bind_storage(b.links);
+  gpu_->saturation.bind_storage(b.saturation);
 }
 
 std::string GlLinkedLists::pool_limit(std::uint64_t nodes) const {
@@ -143,16 +164,14 @@ void GlLinkedLists::begin_frame(FrameReport& report, const GlFrameOptions& optio
 }
 
 void GlLinkedLists::before_gather() {
-  zero_buffer(gpu_->heads);  // the node counter is zeroed with the driver's tallies
-  if (gpu_->saturation != 0) zero_buffer(gpu_->saturation);
+  gpu_->heads.zero();  // the node counter is zeroed with the driver's tallies
+  gpu_->saturation.zero();
 }
 
-PassTiming GlLinkedLists::after_gather(bool finish_timing) {
-  if (!gpu_->sort) return {};
-  return gpu_->sort->run(screen(), finish_timing);
-}
-
-void GlLinkedLists::gathered(const FrameReport& report) {
+void GlLinkedLists::gathered(std::span<const std::uint32_t> counter_words, FrameReport& report) {
+  // The node counter counted every node asked for, dropped ones included
+  // (in pages for paged lists).
+  report.nodes_requested = counter_words[HABUFFER_COUNTER_NODES];
   last_requested_ = report.nodes_requested;
   has_request_ = true;
 }
@@ -166,17 +185,14 @@ bool GlLinkedLists::grow(const FrameReport& report, const GlFrameOptions& option
 }
 
 std::uint64_t GlLinkedLists::memory_bytes() const {
-  return screen().area() * (config_.buffer.saturation ? 8 : 4) + config_.pool_capacity * kNodeBytes;
+  return bytes_of(gpu_->heads, gpu_->nodes, gpu_->links, gpu_->saturation);
 }
 
 std::unique_ptr<FragmentBuffer> GlLinkedLists::read_back() const {
-  auto lists = std::make_unique<LinkedLists>(config_);
-  const std::vector<std::uint32_t> heads = read_words(gpu_->heads, screen().area());
-  std::vector<glm::uvec2> entries(config_.pool_capacity);
-  glGetNamedBufferSubData(gpu_->nodes, 0, static_cast<GLsizeiptr>(entries.size() * sizeof(glm::uvec2)), entries.data());
-  const std::vector<std::uint32_t> links = read_words(gpu_->links, config_.pool_capacity);
-  lists->import_state(heads, entries, links, last_requested_);
-  return lists;
+  const std::vector<std::uint32_t> heads = gpu_->heads.read_words(screen().area());
+  const std::vector<glm::uvec2> entries = gpu_->nodes.read<glm::uvec2>(config_.pool_capacity);
+  const std::vector<std::uint32_t> links = gpu_->links.read_words(config_.pool_capacity);
+  return kind_.import(config_, heads, entries, links, last_requested_);
 }
 
 }  // namespace habuffer::gl

@@ -19,13 +19,18 @@ std::string sorted_lists_parts(AtomicMode) {
                      kHaSaturation, kHaSortedLists, kInsertEntry});
 }
 
-std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource&, AtomicMode mode,
-                                  const GlBindings& bindings, std::uint32_t) {
-  return std::make_unique<GlLinkedLists>(c, mode, bindings);
+std::unique_ptr<GlTechnique> make_lists(const TechniqueConfig& c, const OffsetSource&, AtomicMode mode,
+                                        const GlBindings& bindings, std::uint32_t) {
+  return std::make_unique<GlLinkedLists>(c, lists_kind(), mode, bindings);
 }
 
-constexpr GlTechniqueDescriptor kLists{Technique::Lists, lists_parts, make, nullptr};
-constexpr GlTechniqueDescriptor kSortedLists{Technique::SortedLists, sorted_lists_parts, make, nullptr};
+std::unique_ptr<GlTechnique> make_sorted_lists(const TechniqueConfig& c, const OffsetSource&, AtomicMode mode,
+                                               const GlBindings& bindings, std::uint32_t) {
+  return std::make_unique<GlLinkedLists>(c, sorted_lists_kind(), mode, bindings);
+}
+
+constexpr GlTechniqueDescriptor kLists{Technique::Lists, lists_parts, make_lists, nullptr, 2};
+constexpr GlTechniqueDescriptor kSortedLists{Technique::SortedLists, sorted_lists_parts, make_sorted_lists, nullptr, 2};
 
 }  // namespace
 

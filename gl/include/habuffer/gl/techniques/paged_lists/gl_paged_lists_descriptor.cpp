@@ -4,7 +4,8 @@
 #include <string>
 
 #include "habuffer/gl/technique_registry.h"
-#include "habuffer/gl/techniques/paged_lists/gl_paged_lists.h"
+#include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
+#include "habuffer/techniques/paged_lists/paged_lists.h"
 #include "habuffer/gl/techniques/paged_lists/paged_lists_glsl.h"
 #include "habuffer/techniques/paged_lists/paged_lists_kernel.h"
 
@@ -20,12 +21,23 @@ std::string paged_lists_parts(AtomicMode) {
                      kInsertEntry});
 }
 
-std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource&, AtomicMode mode,
-                                  const GlBindings& bindings, std::uint32_t) {
-  return std::make_unique<GlPagedLists>(c, mode, bindings);
+std::unique_ptr<FragmentBuffer> import_pages(const TechniqueConfig& config, std::span<const std::uint32_t> heads,
+                                             std::span<const glm::uvec2> entries, std::span<const std::uint32_t> links,
+                                             std::uint64_t requested) {
+  auto lists = std::make_unique<PagedLists>(config);
+  lists->import_state(heads, entries, links, requested);
+  return lists;
 }
 
-constexpr GlTechniqueDescriptor kPagedLists{Technique::PagedLists, paged_lists_parts, make, nullptr};
+// The linked lists' container, taking pages of nodes (ha_paged_lists.glsl).
+constexpr GlNodeListKind kPagedKind{Technique::PagedLists, kPagedListsPageNodes, true, import_pages};
+
+std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource&, AtomicMode mode,
+                                  const GlBindings& bindings, std::uint32_t) {
+  return std::make_unique<GlLinkedLists>(c, kPagedKind, mode, bindings);
+}
+
+constexpr GlTechniqueDescriptor kPagedLists{Technique::PagedLists, paged_lists_parts, make, nullptr, 2};
 
 }  // namespace
 
