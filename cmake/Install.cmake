@@ -1,11 +1,11 @@
-# Install rules: the libraries a host links (habuffer::offsets, ::core and,
+# Install rules: the libraries a host links (habuffer::common, ::offsets, ::core and,
 # with the GL path, ::gl), their headers (the shared C++/GLSL sources
 # included), the host GLSL files, the CMake package habufferConfig.cmake
 # with its version file, and pkg-config files habuffer-core.pc and
 # habuffer-gl.pc, and the license (MIT).
 include(CMakePackageConfigHelpers)
 
-set(_habuffer_targets habuffer_offsets habuffer_core)
+set(_habuffer_targets habuffer_common habuffer_offsets habuffer_core)
 set(_habuffer_components offsets core)
 if(HABUFFER_WITH_GL)
   list(APPEND _habuffer_targets habuffer_gl)
@@ -17,7 +17,7 @@ install(TARGETS ${_habuffer_targets} EXPORT habufferTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # The technique folders keep their sources beside their headers: not installed.
-install(DIRECTORY offsets/include/ core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.cpp" EXCLUDE)
+install(DIRECTORY common/include/ offsets/include/ core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.cpp" EXCLUDE)
 install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})  # MIT; named by the CMake and pkg-config packages
 if(HABUFFER_WITH_GL)
   install(DIRECTORY gl/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.cpp" EXCLUDE)
