@@ -12,7 +12,7 @@ namespace {
 template <class Word>
 class OwnerComputes {
   using Kernel = HashKernel<Word, false>;
-  using Carry = typename Kernel::HaCarry;
+  using Carry = typename Kernel::HabufferCarry;
 
   // Everything one owner writes during a round, on cache lines of its own.
   struct alignas(64) Owner {
@@ -77,7 +77,7 @@ class OwnerComputes {
   // Runs insert steps while the carried record probes this owner's slots.
   void drive(std::uint32_t t, Kernel& k, Carry c, unsigned parity) {
     Owner& me = owners_[t];
-    const bool cull = k.ha_cull_tau > 0.0f;
+    const bool cull = k.habuffer_cull_tau > 0.0f;
     for (;;) {
       std::uint32_t outcome = k.ha_insert_limit(c);
       if (outcome == HABUFFER_PENDING) {
@@ -107,7 +107,7 @@ class OwnerComputes {
         ++owners_[t].tally[HABUFFER_INVALID];
         continue;
       }
-      drive(t, k, k.ha_carry_begin(p, k.ha_depth_code(f.depth), f.rgba), 0);
+      drive(t, k, k.habuffer_carry_begin(p, k.ha_depth_code(f.depth), f.rgba), 0);
     }
   }
 

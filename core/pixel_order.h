@@ -145,7 +145,7 @@ template <class Kernel>
 class JumpStartCursor {
  public:
   using Word = typename Kernel::ha_word;
-  using Carry = typename Kernel::HaCarry;
+  using Carry = typename Kernel::HabufferCarry;
 
   // Starts pixel p's records; `tally` receives each record's outcome.
   void begin(glm::uvec2 p, std::span<const Word> records) {
@@ -171,7 +171,7 @@ class JumpStartCursor {
       const std::uint32_t start = r == previous_ ? twin_start_ : next_start_;
       previous_ = r;
       ++next_;
-      c_ = k.ha_carry_begin(p_, k.ha_code(r), k.ha_data(r));
+      c_ = k.habuffer_carry_begin(p_, k.ha_code(r), k.ha_data(r));
       c_.a = start;
       c_.iter = start - 1;  // the skipped probes count, so the iteration limit reads the same
       if (start <= k.ha_max_age()) c_.r = k.ha_with_age(r, start);
@@ -339,7 +339,7 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
     buckets[b].fill(
         fragments, screen, bands[b], [&](const Fragment& f) { return k.ha_depth_valid(f.depth); },
         [&](const Fragment& f) { return k.ha_pack(1u, k.ha_depth_code(f.depth), f.rgba); }, tally[HABUFFER_INVALID]);
-    if (k.ha_cull_tau > 0.0f)
+    if (k.habuffer_cull_tau > 0.0f)
       insert_pixels_in_order(k, buckets[b], tally);
     else if (interleave.applies(buckets[b].mean_depth()))
       insert_pixels_interleaved(k, buckets[b], tally);

@@ -12,10 +12,10 @@ template <class Word>
 struct RecordCodec {
   HABUFFER_GLSL_CLASS_PRELUDE
   using ha_word = Word;
-  uint ha_age_bits;
+  uint habuffer_age_bits;
   static constexpr uint ha_word_bits = sizeof(Word) * 8;
   static constexpr uint ha_payload_bits = sizeof(Word) == 8 ? 32u : 0u;
-  explicit RecordCodec(uint age_bits) : ha_age_bits(age_bits) {}
+  explicit RecordCodec(uint age_bits) : habuffer_age_bits(age_bits) {}
 #include "habuffer/shared/ha_record.glsl"
 };
 

@@ -138,23 +138,23 @@ void occupancy_geometry(const TechniqueConfig& c, std::uint32_t& near_code, std:
 namespace habuffer {
 
 void write_technique_params(const TechniqueConfig& c, ParamBlock& p) {
-  p.ha_age_bits = c.buffer.age_bits;
-  p.ha_pool_capacity = static_cast<std::uint32_t>(c.pool_capacity);
-  p.ha_layers = c.layers;
-  p.ha_iter_limit = c.buffer.iter_limit;
-  p.ha_cull_tau = c.buffer.early_cull_tau;
-  p.ha_saturation = c.buffer.saturation ? 1u : 0u;
-  p.ha_occupancy = c.occupancy ? 1u : 0u;
-  p.ha_occupancy_words = c.occupancy_words;
-  occupancy_geometry(c, p.ha_occupancy_near_code, p.ha_occupancy_bucket_codes);
-  p.ha_depth_near = c.depth_range.near_t;
-  p.ha_depth_far = c.depth_range.far_t;
+  p.habuffer_age_bits = c.buffer.age_bits;
+  p.ll_pool_capacity = static_cast<std::uint32_t>(c.pool_capacity);
+  p.habuffer_layers = c.layers;
+  p.habuffer_iter_limit = c.buffer.iter_limit;
+  p.habuffer_cull_tau = c.buffer.early_cull_tau;
+  p.habuffer_saturation = c.buffer.saturation ? 1u : 0u;
+  p.kb_occupancy_culling = c.occupancy ? 1u : 0u;
+  p.kb_occupancy_words = c.occupancy_words;
+  occupancy_geometry(c, p.kb_occupancy_near_code, p.kb_occupancy_bucket_codes);
+  p.habuffer_depth_near = c.depth_range.near_t;
+  p.habuffer_depth_far = c.depth_range.far_t;
 }
 
 KernelUniforms kernel_uniforms(const TechniqueConfig& c) {
   KernelUniforms u;
   write_technique_params(c, u);
-  u.ha_screen_size = glm::uvec2(c.buffer.screen.x, c.buffer.screen.y);
+  u.habuffer_screen_size = glm::uvec2(c.buffer.screen.x, c.buffer.screen.y);
   u.ha_payload_bits = c.buffer.layout == Layout::L64 ? 32u : 0u;
   return u;
 }

@@ -98,14 +98,14 @@ void GlFrameDriver::resize_screen(Extent screen) {
 
 void GlFrameDriver::write_params() const {
   GlParams p;
-  p.ha_gather_phase = gather_phase_;
-  p.ha_lock_spin_limit = options_.lock_spin_limit;
-  p.ha_screen_size[0] = screen().x;
-  p.ha_screen_size[1] = screen().y;
-  p.ha_capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
-  p.ha_capture_only = options_.capture_only ? 1u : 0u;
-  p.ha_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
-  p.ha_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
+  p.habuffer_gather_phase = gather_phase_;
+  p.habuffer_lock_spin_limit = options_.lock_spin_limit;
+  p.habuffer_screen_size[0] = screen().x;
+  p.habuffer_screen_size[1] = screen().y;
+  p.habuffer_capture_capacity = static_cast<std::uint32_t>(capture_capacity_);
+  p.habuffer_capture_only = options_.capture_only ? 1u : 0u;
+  p.habuffer_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
+  p.habuffer_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
   technique_->write_params(p);
   glNamedBufferSubData(gpu_->params.id(), 0, sizeof p, &p);
 }
@@ -145,7 +145,7 @@ void GlFrameDriver::bind() const {
 namespace {
 
 // Throws GlError when the depth test enabled now keeps the other
-// convention's nearest fragments: ha_insert_here would sort every list
+// convention's nearest fragments: habuffer_insert_here would sort every list
 // back to front, silently.
 void check_depth_convention(DepthConvention convention) {
   if (!glIsEnabled(GL_DEPTH_TEST)) return;

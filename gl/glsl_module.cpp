@@ -60,7 +60,8 @@ std::string parameter_block() {
   std::string block = "layout(std140, binding = HABUFFER_BINDING_PARAMS) uniform HabufferParams {\n";
   std::string names;
   for (const ParamField& f : kParamFields) {
-    const std::string member = std::string(f.name).substr(3);  // without "ha_"
+    // The member is the name without its owner's prefix (habuffer_, ha_, ll_, kb_).
+    const std::string name(f.name), member = name.substr(name.find('_') + 1);
     block += "  " + std::string(f.type) + " " + member + ";\n";
     names += "#define " + std::string(f.name) + " habuffer_params." + member + "\n";
   }
@@ -328,7 +329,7 @@ std::vector<GlslFile> host_glsl_files() {
         head +=
             "// Place after `#version 450 core` and the lines of extensions.glsl, anywhere at global scope\n"
             "// (after the host's own declarations too), then call\n"
-            "//   uint ha_insert(uvec2 pixel, float depth, uint rgba)  // rgba: packUnorm4x8, straight alpha\n"
+            "//   uint habuffer_insert(uvec2 pixel, float depth, uint rgba)  // rgba: packUnorm4x8, straight alpha\n"
             "// once per fragment. Binding points (defaults 16..24, uniform 16): #define any of\n"
             "//   HABUFFER_BINDING_TABLE MAX_AGE OFFSETS COUNTERS LOCKS CAPTURE STREAM DEFERRED SATURATION\n"
             "//   (shader-storage) and HABUFFER_BINDING_PARAMS (uniform) before this file to move them, with\n"
@@ -338,8 +339,8 @@ std::vector<GlslFile> host_glsl_files() {
         if (!stores_lists(t))
           head +=
               "// This technique blends: it declares `out vec4 ha_blended_accum` at location 0 (wboit also\n"
-              "// ha_blended_revealage at 1; declare no outputs of your own there). Call ha_insert at most once\n"
-              "// per invocation with the invocation's own pixel (ha_insert_here), discard where you call none,\n"
+              "// ha_blended_revealage at 1; declare no outputs of your own there). Call habuffer_insert at most once\n"
+              "// per invocation with the invocation's own pixel (habuffer_insert_here), discard where you call none,\n"
               "// and draw into the technique's gather_framebuffer() (the frame driver binds it and the blend\n"
               "// setup around your gather).\n";
         files.push_back({dir + to_string(t) + (fragment ? ".frag.glsl" : ".comp.glsl"),

@@ -130,7 +130,7 @@ TEST(EarlyCull, ACallCountsAFrontRecordOnceWhenAnotherCallMovesItAhead) {
   const auto code = [&](float t) { return k.ha_depth_code(t); };
 
   ASSERT_EQ(k.ha_insert_code(p, code(0.3f), rgba(128)), HABUFFER_STORED);  // R, age 1
-  Kernel::HaCarry a = k.ha_carry_begin(p, code(0.8f), rgba(255));         // X
+  Kernel::HabufferCarry a = k.habuffer_carry_begin(p, code(0.8f), rgba(255));         // X
   ASSERT_EQ(k.ha_insert_step(a, true), HABUFFER_PENDING);
   const float counted_r = a.acc;
   EXPECT_FLOAT_EQ(counted_r, 128.0f / 255.0f) << "A passed R and counted it";

@@ -58,7 +58,7 @@ void main() { out_colour = colour; }
 const char* const kPaneMain = R"(                            // [habuffer]
 layout(early_fragment_tests) in;                             // [habuffer]
 uniform vec4 colour;                                         // [habuffer]
-void main() { ha_insert_here(colour); }                      // [habuffer]
+void main() { habuffer_insert_here(colour); }                      // [habuffer]
 )";                                                          // [habuffer]
 
 void check(bool ok, const std::string& what) {
@@ -144,21 +144,50 @@ std::vector<float> expected_pixel(int px, int py) {
   return {c[0] + transmittance * opaque.r, c[1] + transmittance * opaque.g, c[2] + transmittance * opaque.b};
 }
 
+// The host's framebuffer: a colour and a depth renderbuffer.
+GLuint make_framebuffer() {
+  GLuint colour = 0, depth = 0, framebuffer = 0;
+  glCreateRenderbuffers(1, &colour);
+  glNamedRenderbufferStorage(colour, GL_RGBA8, kWidth, kHeight);
+  glCreateRenderbuffers(1, &depth);
+  glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, kWidth, kHeight);
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  check(glCheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE, "framebuffer");
+  return framebuffer;
+}
+
+// The framebuffer's pixels against expected_pixel: the channels off by more
+// than rounding, the first three printed; prints the largest error.
+int count_wrong_channels(GLuint framebuffer) {
+  std::vector<unsigned char> pixels(4 * kWidth * kHeight);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  int wrong = 0;
+  float worst = 0.0f;
+  for (int py = 0; py < kHeight; ++py)
+    for (int px = 0; px < kWidth; ++px) {
+      const std::vector<float> want = expected_pixel(px, py);
+      for (int k = 0; k < 3; ++k) {
+        const float got = pixels[4 * (px + py * kWidth) + k] / 255.0f, error = std::fabs(got - want[k]);
+        worst = std::max(worst, error);
+        if (error > 1.5f / 255.0f && ++wrong <= 3)
+          std::fprintf(stderr, "pixel (%d, %d) channel %d: %.4f, expected %.4f\n", px, py, k, got, want[k]);
+      }
+    }
+  std::printf("host_app: %d x %d pixels, largest error %.5f, %d channels off\n", kWidth, kHeight, worst, wrong);
+  return wrong;
+}
+
 }  // namespace
 
 int main() {
   try {
     make_context();
     // The host's framebuffer, shaders and vertex array.
-    GLuint colour = 0, depth = 0, framebuffer = 0, vertex_array = 0;
-    glCreateRenderbuffers(1, &colour);
-    glNamedRenderbufferStorage(colour, GL_RGBA8, kWidth, kHeight);
-    glCreateRenderbuffers(1, &depth);
-    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, kWidth, kHeight);
-    glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
-    glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    check(glCheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE, "framebuffer");
+    const GLuint framebuffer = make_framebuffer();
+    GLuint vertex_array = 0;
     glCreateVertexArrays(1, &vertex_array);
     const GLuint opaque = link_program(kVertex, kOpaqueFragment);
 
@@ -197,22 +226,7 @@ int main() {
     const hb::Counters& c = report.counters;                                                  // [habuffer]
     std::printf("habuffer: %llu fragments, %llu lost\n", (unsigned long long)c.fragments, (unsigned long long)c.failures());  // [habuffer]
 
-    std::vector<unsigned char> pixels(4 * kWidth * kHeight);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
-    glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-    int wrong = 0;
-    float worst = 0.0f;
-    for (int py = 0; py < kHeight; ++py)
-      for (int px = 0; px < kWidth; ++px) {
-        const std::vector<float> want = expected_pixel(px, py);
-        for (int k = 0; k < 3; ++k) {
-          const float got = pixels[4 * (px + py * kWidth) + k] / 255.0f, error = std::fabs(got - want[k]);
-          worst = std::max(worst, error);
-          if (error > 1.5f / 255.0f && ++wrong <= 3)
-            std::fprintf(stderr, "pixel (%d, %d) channel %d: %.4f, expected %.4f\n", px, py, k, got, want[k]);
-        }
-      }
-    std::printf("host_app: %d x %d pixels, largest error %.5f, %d channels off\n", kWidth, kHeight, worst, wrong);
+    const int wrong = count_wrong_channels(framebuffer);
     return wrong == 0 && c.failures() == 0 ? 0 : 1;  // [habuffer]
   } catch (const std::exception& e) {
     std::fprintf(stderr, "host_app: %s\n", e.what());

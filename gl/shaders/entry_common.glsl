@@ -21,7 +21,7 @@ layout(std430, binding = HABUFFER_BINDING_CAPTURE) buffer HaCapture {
 
 void ha_capture(uvec2 pixel, float depth, uint rgba) {
   uint i = atomicAdd(ha_capture_count, 1u);
-  if (i < ha_capture_capacity) ha_captured[i] = HaFragment(pixel.x, pixel.y, depth, rgba);
+  if (i < habuffer_capture_capacity) ha_captured[i] = HaFragment(pixel.x, pixel.y, depth, rgba);
 }
 
 // The counter stripe of a call: neighbouring pixels (the lanes of one SIMD

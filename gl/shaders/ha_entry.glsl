@@ -7,7 +7,7 @@
 // (resume.comp.glsl) runs on until every call has ended, so contention and
 // the driver's loop budget lose nothing.
 
-// A HaCarry in a buffer (std430, 40 bytes): the records split in 32-bit halves.
+// A HabufferCarry in a buffer (std430, 40 bytes): the records split in 32-bit halves.
 struct HaDeferred {
   uvec2 p;
   uint a;
@@ -26,13 +26,13 @@ layout(std430, binding = HABUFFER_BINDING_DEFERRED) buffer HaDeferredCalls {
   HaDeferred ha_deferred[];
 };
 
-void ha_defer(HaCarry c) {
+void ha_defer(HabufferCarry c) {
   uint i = atomicAdd(ha_deferred_count, 1u);
-  if (i < ha_deferred_capacity) ha_deferred[i] = HaDeferred(c.p, c.a, c.acc, c.iter, 0u, ha_word_split(c.r), ha_word_split(c.front));
+  if (i < habuffer_deferred_capacity) ha_deferred[i] = HaDeferred(c.p, c.a, c.acc, c.iter, 0u, ha_word_split(c.r), ha_word_split(c.front));
 }
 
-HaCarry ha_carry_from(HaDeferred d) {
-  HaCarry c;
+HabufferCarry ha_carry_from(HaDeferred d) {
+  HabufferCarry c;
   c.p = d.p;
   c.a = d.a;
   c.r = ha_word_join(d.r);
@@ -46,7 +46,7 @@ HaCarry ha_carry_from(HaDeferred d) {
 // writes (in the HABUFFER_COUNT_WRITES variant), and defers a call cut short,
 // returning HABUFFER_PENDING (its outcome is counted when the resume pass ends
 // it); any other outcome is returned for the caller to count.
-uint ha_end_run(uvec2 pixel, HaCarry c, uint outcome) {
+uint ha_end_run(uvec2 pixel, HabufferCarry c, uint outcome) {
 #ifdef HABUFFER_COUNT_WRITES
   if (ha_call_writes != 0u) ha_counter_add(pixel, HABUFFER_COUNTER_SLOT_WRITES, ha_call_writes);
 #endif
@@ -62,12 +62,12 @@ uint ha_end_run(uvec2 pixel, HaCarry c, uint outcome) {
 // or HABUFFER_PENDING for a call cut short and deferred to the resume pass.
 uint ha_call_code(uvec2 pixel, uint code, uint rgba) {
   ha_call_writes = 0u;
-  HaCarry c = ha_carry_begin(pixel, code, rgba);
+  HabufferCarry c = habuffer_carry_begin(pixel, code, rgba);
   uint outcome = HABUFFER_CARRY_RUN(c);
   return ha_end_run(pixel, c, outcome);
 }
 
-// The HA-buffer's insert call for insert_entry.glsl's ha_insert.
+// The HA-buffer's insert call for insert_entry.glsl's habuffer_insert.
 uint ha_call(uvec2 pixel, float depth, uint rgba) {
   if (!ha_depth_valid(depth)) return HABUFFER_INVALID;
   uint code = ha_depth_code(depth);

@@ -1,5 +1,5 @@
 // Compute entry: inserts a fragment stream held in a buffer through the same
-// ha_insert a host fragment shader calls, one fragment per invocation (a 2D
+// habuffer_insert a host fragment shader calls, one fragment per invocation (a 2D
 // grid of work groups, so no invocation loops over several fragments and
 // shares its loop budget on drivers that limit it, such as llvmpipe).
 layout(local_size_x = 64) in;
@@ -12,5 +12,5 @@ void main() {
   uint i = group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   if (i >= ha_stream_count) return;
   HaFragment f = ha_stream[i];
-  ha_insert(uvec2(f.x, f.y), f.depth, f.rgba);
+  habuffer_insert(uvec2(f.x, f.y), f.depth, f.rgba);
 }

@@ -9,6 +9,6 @@ flat out uint ha_point_index;
 void main() {
   ha_point_index = uint(gl_VertexID);
   HaFragment f = ha_stream[ha_point_index];
-  vec2 centre = (vec2(f.x, f.y) + 0.5f) / vec2(ha_screen_size);
+  vec2 centre = (vec2(f.x, f.y) + 0.5f) / vec2(habuffer_screen_size);
   gl_Position = vec4(centre * 2.0f - 1.0f, 0.0f, 1.0f);
 }

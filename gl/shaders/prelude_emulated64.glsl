@@ -38,7 +38,7 @@ uint ha_atomic_missed() { return ha_missed; }
 // place a driver's loop budget can stop it (llvmpipe gives an invocation about
 // 65535 iterations in all): a nested spin loop stopped there was seen to leave
 // lanes whose write had happened looking as if it had not. After
-// ha_lock_spin_limit busy attempts in a row the call is cut short (HABUFFER_CUT) and
+// habuffer_lock_spin_limit busy attempts in a row the call is cut short (HABUFFER_CUT) and
 // the frame's resume pass goes on with it.
 ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
   ha_word old = ha_word(0);
@@ -48,7 +48,7 @@ ha_word ha_atomic_max_slot(ha_index s, ha_word r) {
     return old;
   }
   ha_busy_attempts += 1u;
-  ha_missed = ha_busy_attempts >= ha_lock_spin_limit ? HABUFFER_CUT : HABUFFER_PENDING;
+  ha_missed = ha_busy_attempts >= habuffer_lock_spin_limit ? HABUFFER_CUT : HABUFFER_PENDING;
   if (ha_missed == HABUFFER_CUT) ha_busy_attempts = 0u;
   return ha_word(0);
 }

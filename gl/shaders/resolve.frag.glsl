@@ -9,7 +9,7 @@ layout(location = 0) out vec4 ha_color;
 
 void main() {
   uvec2 p = uvec2(gl_FragCoord.xy);
-  if (any(greaterThanEqual(p, ha_screen_size))) discard;
+  if (any(greaterThanEqual(p, habuffer_screen_size))) discard;
   vec3 background = ha_background;
   if (ha_background_from_image != 0u) background = texelFetch(ha_background_image, ivec2(p), 0).rgb;
   ha_color = HABUFFER_TECHNIQUE_COMPOSITE(p, background);

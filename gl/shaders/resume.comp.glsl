@@ -15,7 +15,7 @@ void main() {
   uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
   uint i = group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   if (i >= ha_resume_count) return;
-  HaCarry c = ha_carry_from(ha_resume[i]);
+  HabufferCarry c = ha_carry_from(ha_resume[i]);
   ha_call_writes = 0u;
   // Two statements: arguments are evaluated left to right, so one call would
   // pass the carry as it was before the run.

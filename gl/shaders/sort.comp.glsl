@@ -8,7 +8,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(p, ha_screen_size))) return;
+  if (any(greaterThanEqual(p, habuffer_screen_size))) return;
   uint merged = HABUFFER_TECHNIQUE_SORT(p);
   if (merged != 0u) ha_counter_add(p, HABUFFER_COUNTER_MERGED, merged);
   ha_counter_add(p, HABUFFER_COUNTER_SORT_DONE, 1u);

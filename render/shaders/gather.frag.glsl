@@ -1,5 +1,5 @@
 // Gather pass: every transparent fragment in front of the opaque surfaces
-// goes through ha_insert; those behind are rejected first and counted. The
+// goes through habuffer_insert; those behind are rejected first and counted. The
 // same program is the counting pass (r_count_only 1: fragments per pixel,
 // nothing inserted; sizing the table, depth complexity), so it compiles
 // once, and on llvmpipe, which compiles a program at its first draw, the
@@ -40,7 +40,7 @@ void main() {
 #ifdef R_COUNT_FRAGMENTS
   atomicAdd(r_pixel_fragments[i], 1u);
 #endif
-  uint outcome = ha_insert(p, t, rgba);
+  uint outcome = habuffer_insert(p, t, rgba);
 #ifdef R_COUNT_CULLED
   if (outcome == HABUFFER_CULLED) atomicAdd(r_pixel_culled[i], 1u);
 #endif

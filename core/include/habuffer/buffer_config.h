@@ -1,5 +1,9 @@
 /// @file
-/// Everything that fixes one HA-buffer besides its offsets.
+/// The fragment buffer's configuration every technique shares (screen,
+/// record layout, age bits: they fix the depth code, so the lists of every
+/// technique compare bit for bit), with the coherent hash's own fields
+/// (table, max-age block) and those of the techniques that cull early (the
+/// iteration limit, early cull, saturation: the HA-buffer, sorted lists).
 #pragma once
 
 #include <cstdint>
@@ -10,8 +14,12 @@
 
 namespace habuffer {
 
-/// One HA-buffer: screen, table, record layout, max-age block, iteration
-/// limit and early cull.
+/// A fragment buffer's configuration (see the file comment): what every
+/// technique reads (screen, layout, age bits), what the HA-buffer reads
+/// besides (table, block) and what the techniques with early cull read
+/// (iteration limit, early cull, saturation). An HaBuffer is made from it
+/// alone; the other techniques take it inside a TechniqueConfig, whose
+/// relevant() sets the fields a technique does not read to their defaults.
 struct BufferConfig {
   Extent screen;  ///< V, in pixels
   Extent table;  ///< 0x0: the screen size (one zero side is refused)

@@ -10,7 +10,7 @@
 /// shared/ are plain GLSL that is also valid C++ once glsl_env.h has supplied
 /// GLSL's types and builtins; HashKernel #includes them inside its class body,
 /// so every `ha_*` function becomes a member that reads the "uniforms" below
-/// (ha_age_bits, ha_table_size, ...) and calls the "buffer" hooks below
+/// (habuffer_age_bits, ha_table_size, ...) and calls the "buffer" hooks below
 /// (ha_atomic_max_slot, ha_load_slot, ...). The GPU path compiles the very same
 /// files, with a prelude per atomic mode in place of this class. The CPU and GPU
 /// paths therefore cannot drift apart: SPEC 9 demands that they build the same
@@ -78,7 +78,7 @@
 /// An insert call moves one record at a time: the fragment's, then whichever
 /// record it evicts, and so on until a record lands in an empty slot, is a
 /// duplicate, is culled, or fails (age beyond AMAX, or the iteration limit).
-/// Everything the call knows between two probes is the HaCarry of
+/// Everything the call knows between two probes is the HabufferCarry of
 /// shared/ha_carry.glsl: the carried record r and its pixel p, the age a it is
 /// about to try, the probes made (iter), and early cull's accumulated opacity
 /// (acc) and last counted front record (front). There is no other state, so
@@ -141,7 +141,7 @@
 ///   ran probes in at most 65535 chunks of 4096, below llvmpipe's loop cut
 ///   (commit 63b9d85). Deferral has since replaced the chunks, and the bound is
 ///   kept on both paths so they accept the same --iter-limit. It also keeps
-///   HaCarry's 32-bit iter from wrapping (asserted below).
+///   HabufferCarry's 32-bit iter from wrapping (asserted below).
 /// - HABUFFER_DEFAULT_LOCK_SPIN_LIMIT 2^24: how long an emulated 64-bit atomic
 ///   tries a busy slot lock before the call is cut short and deferred; long
 ///   enough to outlast a lock holder the OS preempted.
@@ -184,7 +184,7 @@ static_assert(HABUFFER_MIN_AGE_BITS <= HABUFFER_DEFAULT_AGE_BITS && HABUFFER_DEF
 static_assert(HABUFFER_DEFAULT_ITER_LIMIT >= 1u && HABUFFER_DEFAULT_ITER_LIMIT <= HABUFFER_MAX_ITER_LIMIT,
               "the default iteration limit must be one --iter-limit accepts: keep it in [1, HABUFFER_MAX_ITER_LIMIT]");
 static_assert(HABUFFER_MAX_ITER_LIMIT < 0xFFFFFFFFu,
-              "HaCarry::iter is a 32-bit uint counted up to the limit: "
+              "HabufferCarry::iter is a 32-bit uint counted up to the limit: "
               "HABUFFER_MAX_ITER_LIMIT must stay below 2^32 - 1");
 static_assert(HABUFFER_PENDING >= HABUFFER_OUTCOME_COUNT && HABUFFER_CUT >= HABUFFER_OUTCOME_COUNT &&
                   HABUFFER_UNCOUNTED >= HABUFFER_OUTCOME_COUNT,
@@ -227,15 +227,15 @@ class HashKernel {
   /// Works on the caller's offsets (AMAX of them), table slots and max-age cells
   /// (and params.saturation's image when set); it owns none of them.
   HashKernel(const KernelParams& params, const glm::uvec2* offsets, Word* table, std::uint32_t* max_age)
-      : ha_age_bits(params.age_bits),
+      : habuffer_age_bits(params.age_bits),
         ha_payload_bits(params.payload_bits),
         ha_table_size(params.table.x, params.table.y),
         ha_block(params.block),
         ha_max_age_cells_x(params.max_age_cells_x),
-        ha_iter_limit(params.iter_limit),
-        ha_cull_tau(params.cull_tau),
-        ha_screen_size(params.screen.x, params.screen.y),
-        ha_saturation(params.saturation != nullptr ? 1u : 0u),
+        habuffer_iter_limit(params.iter_limit),
+        habuffer_cull_tau(params.cull_tau),
+        habuffer_screen_size(params.screen.x, params.screen.y),
+        habuffer_saturation(params.saturation != nullptr ? 1u : 0u),
         block_(params.block),
         saturation_(params.saturation),
         offsets_(offsets),
@@ -244,15 +244,15 @@ class HashKernel {
 
   /// --- the environment the shared GLSL expects -----------------------------
   static constexpr uint ha_word_bits = sizeof(Word) * 8;  ///< bits of Word
-  uint ha_age_bits;  ///< A
+  uint habuffer_age_bits;  ///< A
   uint ha_payload_bits;  ///< 32 for L64, 0 for L32
   uvec2 ha_table_size;  ///< H
   uint ha_block;  ///< B
   uint ha_max_age_cells_x;  ///< max-age cells per row
-  uint ha_iter_limit;  ///< LIMIT of SPEC 6
-  float ha_cull_tau;  ///< 0: early cull off
-  uvec2 ha_screen_size;  ///< V
-  uint ha_saturation;  ///< 1: saturation depth on, 0: off
+  uint habuffer_iter_limit;  ///< LIMIT of SPEC 6
+  float habuffer_cull_tau;  ///< 0: early cull off
+  uvec2 habuffer_screen_size;  ///< V
+  uint habuffer_saturation;  ///< 1: saturation depth on, 0: off
 
   /// O[i] (SPEC 3).
   uvec2 ha_offset(uint i) const { return offsets_[i]; }
@@ -295,13 +295,13 @@ class HashKernel {
   std::uint32_t* max_age_;
 };
 
-// The GPU path defers an insert call cut short by storing its HaCarry as HaDeferred (gl/shaders/ha_entry.glsl:
+// The GPU path defers an insert call cut short by storing its HabufferCarry as HaDeferred (gl/shaders/ha_entry.glsl:
 // std430, 40 bytes: p, a, acc, iter, pad, r and front as 32-bit halves; ha_defer and ha_carry_from copy each field),
-// and sizes its buffers by kDeferredCallBytes = 40 (gl/gl_frame_driver.cpp). The C++ HaCarry of L64 is 40 bytes
+// and sizes its buffers by kDeferredCallBytes = 40 (gl/gl_frame_driver.cpp). The C++ HabufferCarry of L64 is 40 bytes
 // too (p 8, a 4, pad 4, r 8, acc 4, iter 4, front 8), so a field added to or retyped in shared/ha_carry.glsl
 // changes it.
-static_assert(sizeof(HashKernel<std::uint64_t, false>::HaCarry) == 40,
-              "HaCarry changed (shared/ha_carry.glsl): carry every field through HaDeferred, ha_defer and "
+static_assert(sizeof(HashKernel<std::uint64_t, false>::HabufferCarry) == 40,
+              "HabufferCarry changed (shared/ha_carry.glsl): carry every field through HaDeferred, ha_defer and "
               "ha_carry_from in gl/shaders/ha_entry.glsl, update kDeferredCallBytes in gl/gl_frame_driver.cpp to "
               "HaDeferred's std430 size, then this number to the new sizeof");
 

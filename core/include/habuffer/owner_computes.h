@@ -4,7 +4,7 @@
 ///
 /// A thread runs the shared insert steps (ha_insert_step) while the carried
 /// record probes slots of its own bands, and hands the record over (a message
-/// with the whole insert state, HaCarry) as soon as it probes another owner's
+/// with the whole insert state, HabufferCarry) as soon as it probes another owner's
 /// slot. Messages are exchanged in rounds until none is left. Since each slot
 /// keeps the largest record proposed to it, the final table does not depend on
 /// the order of proposals (SPEC 9), so this gives the very table a serial

@@ -47,7 +47,7 @@ struct TechniqueProperties {
   std::string_view exact_when;            ///< when its lists equal the HA-buffer's
   std::string_view overflow;              ///< what it does when full, and the counters that say so
   std::string_view early_cull;            ///< its early cull, or "no"
-  std::string_view host_shaders;          ///< what a host shader calling ha_insert must know
+  std::string_view host_shaders;          ///< what a host shader calling habuffer_insert must know
 };
 
 /// One technique (see above). Descriptors are constants with static storage,

@@ -31,7 +31,7 @@ namespace habuffer {
 #undef HABUFFER_PARAM_UVEC2
 
 static_assert(sizeof(glm::uvec2) == 8, "the block's uvec2 members are two 32-bit words (std140)");
-static_assert(offsetof(ParamBlock, ha_table_size) % 8 == 0 && offsetof(ParamBlock, ha_screen_size) % 8 == 0,
+static_assert(offsetof(ParamBlock, ha_table_size) % 8 == 0 && offsetof(ParamBlock, habuffer_screen_size) % 8 == 0,
               "std140 aligns uvec2 to 8 bytes: keep every uvec2 of shared/ha_params.h at a multiple of 8");
 static_assert(sizeof(ParamBlock) % 16 == 0,
               "std140 rounds a block to 16 bytes: pad shared/ha_params.h with ha_unused_N members");

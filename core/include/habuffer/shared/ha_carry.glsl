@@ -4,7 +4,7 @@
 // resumes either through the same buffer (gl/shaders/ha_entry.glsl).
 // Needs ha_record.glsl.
 
-struct HaCarry {
+struct HabufferCarry {
   uvec2 p;      // pixel of the carried record (age equivalence gives it back after an eviction)
   uint a;       // HA-buffer: age about to be tried (may reach AMAX + 1); k-buffer: layer + 1
   ha_word r;    // the carried record, with age a while a <= AMAX (k-buffer: age 1 always)
@@ -13,8 +13,8 @@ struct HaCarry {
   ha_word front;  // early cull: the last record counted into acc (its age is ignored; see ha_front_is_new)
 };
 
-HaCarry ha_carry_begin(uvec2 p, uint code, uint data) {
-  HaCarry c;
+HabufferCarry habuffer_carry_begin(uvec2 p, uint code, uint data) {
+  HabufferCarry c;
   c.p = p;
   c.a = 1u;
   c.r = ha_pack(1u, code, data);

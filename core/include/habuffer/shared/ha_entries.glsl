@@ -4,11 +4,11 @@
 // code, then data: larger is nearer), sorting in a private array and merging
 // identical entries, which the HA-buffer stores once.
 //
-// Host environment provides: uvec2 ha_screen_size, and a private array of
+// Host environment provides: uvec2 habuffer_screen_size, and a private array of
 // HABUFFER_SORT_LOCAL entries through uvec2 ha_local_get(uint k) and
 // void ha_local_set(uint k, uvec2 e).
 
-uint ha_pixel_index(uvec2 p) { return p.x + p.y * ha_screen_size.x; }
+uint ha_pixel_index(uvec2 p) { return p.x + p.y * habuffer_screen_size.x; }
 
 // Whether entry a lies in front of entry b in a pixel's list.
 bool ha_entry_before(uvec2 a, uvec2 b) { return a.x > b.x || (a.x == b.x && a.y > b.y); }

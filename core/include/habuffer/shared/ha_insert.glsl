@@ -10,8 +10,8 @@
 // atomic that found its slot busy changed nothing and says HABUFFER_PENDING, probe
 // again, or HABUFFER_CUT once it has been busy too long; always 0 where atomics are
 // native),
-// void ha_atomic_max_age(uint cell, uint age), uint ha_iter_limit, float
-// ha_cull_tau (0 = early cull off), ha_word ha_load_slot(ha_index s) (a
+// void ha_atomic_max_age(uint cell, uint age), uint habuffer_iter_limit, float
+// habuffer_cull_tau (0 = early cull off), ha_word ha_load_slot(ha_index s) (a
 // plain read), and HABUFFER_INOUT(T) (GLSL: inout T; C++: T&). A host may
 // define HABUFFER_SLOT_READ_FIRST 0 to give every probe its atomic without
 // the plain load first (the GL path's ModuleVariant::slot_read_first; the
@@ -23,9 +23,9 @@
 
 // HABUFFER_PENDING while the carried record may probe again, else the failure
 // that ends the call (SPEC 6 checks the age, then the iteration budget).
-uint ha_insert_limit(HaCarry c) {
+uint ha_insert_limit(HabufferCarry c) {
   if (c.a > ha_max_age()) return HABUFFER_FAILED_AGE;
-  if (c.iter >= ha_iter_limit) return HABUFFER_FAILED_ITER;
+  if (c.iter >= habuffer_iter_limit) return HABUFFER_FAILED_ITER;
   return HABUFFER_PENDING;
 }
 
@@ -41,10 +41,10 @@ uint ha_insert_limit(HaCarry c) {
 // nothing. Early cull needs the opacity of a front record of the same pixel,
 // which only a slot record of the carried age can be (age equivalence): that
 // case still takes the atomic.
-bool ha_slot_known_larger(ha_index s, HaCarry c, bool cull) {
+bool ha_slot_known_larger(ha_index s, HabufferCarry c, bool cull) {
   uint high = ha_high(ha_load_slot(s));
   if (high <= ha_high(c.r)) return false;
-  return !cull || (high >> (32u - ha_age_bits)) > c.a;
+  return !cull || (high >> (32u - habuffer_age_bits)) > c.a;
 }
 
 // Whether the front record `old` (the carried pixel's, age c.a) may add its
@@ -57,14 +57,14 @@ bool ha_slot_known_larger(ha_index s, HaCarry c, bool cull) {
 // Records counted thus strictly decrease, so none counts twice; one left out
 // only culls less. While acc is 0, every record counted had opacity 0, and
 // counting it again adds nothing.
-bool ha_front_is_new(HaCarry c, ha_word old) {
+bool ha_front_is_new(HabufferCarry c, ha_word old) {
   return c.acc == 0.0f || old < ha_with_age(c.front, c.a);
 }
 
-// `cull`: ha_cull_tau > 0, an argument so that a run without early cull is
+// `cull`: habuffer_cull_tau > 0, an argument so that a run without early cull is
 // compiled without it (ha_insert_run): carrying the cull's record cost the
 // CPU path about 10 % of its inserts with the cull off.
-uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h, bool cull) {
+uint ha_insert_step_at(HABUFFER_INOUT(HabufferCarry) c, uvec2 h, bool cull) {
   ha_index s = ha_slot(h);
   // A slot that loses to a record in place costs one plain load, not an
   // atomic (and, in emulated64, not a lock): at high depth complexity most
@@ -100,7 +100,7 @@ uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h, bool cull) {
     HABUFFER_PRECISE float acc = c.acc + (1.0f - c.acc) * ha_alpha(old);  // culls as the CPU path does
     c.acc = acc;
     c.front = old;
-    if (c.acc > ha_cull_tau) {
+    if (c.acc > habuffer_cull_tau) {
       ha_saturate(c.p, ha_code(c.r));
       return HABUFFER_CULLED;
     }
@@ -110,7 +110,7 @@ uint ha_insert_step_at(HABUFFER_INOUT(HaCarry) c, uvec2 h, bool cull) {
   return HABUFFER_PENDING;
 }
 
-uint ha_insert_step(HABUFFER_INOUT(HaCarry) c, bool cull) {
+uint ha_insert_step(HABUFFER_INOUT(HabufferCarry) c, bool cull) {
   uint limit = ha_insert_limit(c);
   if (limit != HABUFFER_PENDING) return limit;
   return ha_insert_step_at(c, ha_probe(c.p, c.a), cull);
@@ -121,9 +121,9 @@ uint ha_insert_step(HABUFFER_INOUT(HaCarry) c, bool cull) {
 // atomic gave up on a contended lock, or the driver ended the loop (Mesa
 // llvmpipe gives a shader invocation about 65535 loop iterations in all, every
 // loop together). Neither happens on the CPU path.
-uint ha_insert_run(HABUFFER_INOUT(HaCarry) c) {
+uint ha_insert_run(HABUFFER_INOUT(HabufferCarry) c) {
   uint outcome = HABUFFER_PENDING;
-  if (ha_cull_tau > 0.0f) {
+  if (habuffer_cull_tau > 0.0f) {
     while (outcome == HABUFFER_PENDING) outcome = ha_insert_step(c, true);
   } else {
     while (outcome == HABUFFER_PENDING) outcome = ha_insert_step(c, false);
@@ -133,12 +133,12 @@ uint ha_insert_run(HABUFFER_INOUT(HaCarry) c) {
 
 uint ha_insert_code(uvec2 p, uint code, uint data) {
   if (ha_saturated(p, code)) return HABUFFER_SATURATED;
-  HaCarry c = ha_carry_begin(p, code, data);
+  HabufferCarry c = habuffer_carry_begin(p, code, data);
   return ha_insert_run(c);
 }
 
 // The whole insert call of one fragment on the CPU path (the GL entry
-// ha_insert adds counting, capture and the deferral of calls cut short).
+// habuffer_insert adds counting, capture and the deferral of calls cut short).
 uint ha_insert_fragment(uvec2 p, float t, uint data) {
   if (!ha_depth_valid(t)) return HABUFFER_INVALID;
   return ha_insert_code(p, ha_depth_code(t), data);

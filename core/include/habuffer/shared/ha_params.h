@@ -9,29 +9,29 @@
 
 HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UVEC2(ha_table_size)          // HA-buffer: the table H
-  HABUFFER_PARAM_UINT(ha_age_bits)             // every technique: the depth code's bits (SPEC 2)
+  HABUFFER_PARAM_UINT(habuffer_age_bits)             // every technique: the depth code's bits (SPEC 2)
   HABUFFER_PARAM_UINT(ha_block)                // HA-buffer: max-age block B
   HABUFFER_PARAM_UINT(ha_max_age_cells_x)      // HA-buffer: max-age cells per row
-  HABUFFER_PARAM_UINT(ha_iter_limit)           // HA-buffer: probes per insert call; sorted and paged lists: tries
-  HABUFFER_PARAM_FLOAT(ha_cull_tau)            // HA-buffer: early cull (0: off)
-  HABUFFER_PARAM_UINT(ha_lock_spin_limit)      // HA-buffer, emulated64: busy attempts before a call is cut short
-  HABUFFER_PARAM_UVEC2(ha_screen_size)         // every technique
-  HABUFFER_PARAM_UINT(ha_capture_capacity)     // fragments the capture buffer holds; 0: capture off
-  HABUFFER_PARAM_UINT(ha_capture_only)         // 1: capture, insert nothing, count nothing
-  HABUFFER_PARAM_UINT(ha_deferred_capacity)    // HA-buffer: calls cut short that the deferred-call buffer holds
-  HABUFFER_PARAM_UINT(ha_pool_capacity)        // pool techniques: nodes
-  HABUFFER_PARAM_UINT(ha_layers)               // fixed arrays, k-buffer: K
-  HABUFFER_PARAM_UINT(ha_saturation)           // HA-buffer, sorted lists: 1: saturation depth (with early cull)
-  HABUFFER_PARAM_UINT(ha_gather_phase)         // k-buffer: 1 during the occupancy fill pass, else 0
-  HABUFFER_PARAM_UINT(ha_occupancy)            // k-buffer: 1: occupancy-map culling
-  HABUFFER_PARAM_UINT(ha_occupancy_words)      // k-buffer: 32-bit words of a pixel's map
-  HABUFFER_PARAM_UINT(ha_occupancy_near_code)  // k-buffer: the depth code of the range's near end
-  HABUFFER_PARAM_UINT(ha_occupancy_bucket_codes)  // k-buffer: depth codes per bucket
-  HABUFFER_PARAM_FLOAT(ha_depth_near)         // wboit: the depth range its weights span
-  HABUFFER_PARAM_FLOAT(ha_depth_far)
-  HABUFFER_PARAM_UINT(ha_depth_reversed)       // every technique: 1: ha_insert_here reads 1 - gl_FragCoord.z (reversed-Z)
-  HABUFFER_PARAM_UINT(ha_unused_1)             // (block size a multiple of 16 bytes, as std140 rounds it)
-  HABUFFER_PARAM_UINT(ha_unused_2)
-  HABUFFER_PARAM_UINT(ha_unused_3)
-  HABUFFER_PARAM_UINT(ha_unused_4)
+  HABUFFER_PARAM_UINT(habuffer_iter_limit)           // HA-buffer: probes per insert call; sorted and paged lists: tries
+  HABUFFER_PARAM_FLOAT(habuffer_cull_tau)            // HA-buffer: early cull (0: off)
+  HABUFFER_PARAM_UINT(habuffer_lock_spin_limit)      // HA-buffer, emulated64: busy attempts before a call is cut short
+  HABUFFER_PARAM_UVEC2(habuffer_screen_size)         // every technique
+  HABUFFER_PARAM_UINT(habuffer_capture_capacity)     // fragments the capture buffer holds; 0: capture off
+  HABUFFER_PARAM_UINT(habuffer_capture_only)         // 1: capture, insert nothing, count nothing
+  HABUFFER_PARAM_UINT(habuffer_deferred_capacity)    // HA-buffer: calls cut short that the deferred-call buffer holds
+  HABUFFER_PARAM_UINT(ll_pool_capacity)        // pool techniques: nodes
+  HABUFFER_PARAM_UINT(habuffer_layers)               // fixed arrays, k-buffer: K
+  HABUFFER_PARAM_UINT(habuffer_saturation)           // HA-buffer, sorted lists: 1: saturation depth (with early cull)
+  HABUFFER_PARAM_UINT(habuffer_gather_phase)         // k-buffer: 1 during the occupancy fill pass, else 0
+  HABUFFER_PARAM_UINT(kb_occupancy_culling)            // k-buffer: 1: occupancy-map culling
+  HABUFFER_PARAM_UINT(kb_occupancy_words)      // k-buffer: 32-bit words of a pixel's map
+  HABUFFER_PARAM_UINT(kb_occupancy_near_code)  // k-buffer: the depth code of the range's near end
+  HABUFFER_PARAM_UINT(kb_occupancy_bucket_codes)  // k-buffer: depth codes per bucket
+  HABUFFER_PARAM_FLOAT(habuffer_depth_near)         // wboit: the depth range its weights span
+  HABUFFER_PARAM_FLOAT(habuffer_depth_far)
+  HABUFFER_PARAM_UINT(habuffer_depth_reversed)       // every technique: 1: habuffer_insert_here reads 1 - gl_FragCoord.z (reversed-Z)
+  HABUFFER_PARAM_UINT(habuffer_unused_1)             // (block size a multiple of 16 bytes, as std140 rounds it)
+  HABUFFER_PARAM_UINT(habuffer_unused_2)
+  HABUFFER_PARAM_UINT(habuffer_unused_3)
+  HABUFFER_PARAM_UINT(habuffer_unused_4)
 HABUFFER_PARAMS_END

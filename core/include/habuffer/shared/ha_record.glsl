@@ -1,11 +1,11 @@
 // Record packing of SPEC 2, written once for both paths.
-// Host environment provides: type ha_word (uint or uint64_t), uint ha_age_bits,
+// Host environment provides: type ha_word (uint or uint64_t), uint habuffer_age_bits,
 // uint ha_word_bits (32 or 64), uint ha_payload_bits (32 for L64, 0 for L32),
 // and ha_floor / ha_float_bits as the GLSL builtins floor / floatBitsToUint.
 
-uint ha_age_shift() { return ha_word_bits - ha_age_bits; }
-uint ha_depth_bits() { return 32u - ha_age_bits; }
-uint ha_max_age() { return (1u << ha_age_bits) - 1u; }
+uint ha_age_shift() { return ha_word_bits - habuffer_age_bits; }
+uint ha_depth_bits() { return 32u - habuffer_age_bits; }
+uint ha_max_age() { return (1u << habuffer_age_bits) - 1u; }
 uint ha_max_code() { return uint((ha_word(1) << ha_depth_bits()) - ha_word(1)); }
 
 ha_word ha_pack(uint age, uint code, uint data) {

@@ -1,6 +1,6 @@
 /// @file
 /// The GPU path's compute entry: a compute shader that inserts a fragment
-/// stream held in a buffer through the same ha_insert host fragment shaders
+/// stream held in a buffer through the same habuffer_insert host fragment shaders
 /// call (tests, sweeps and `build-lists --path gl` use it). For the blended
 /// baselines (wboit, blend), whose insert needs the fixed-function blender,
 /// the same stream is drawn as points instead, one per fragment in stream order.
@@ -16,7 +16,7 @@
 namespace habuffer::gl {
 
 /// The GPU path's compute entry for one frame driver: uploads a fragment stream
-/// and inserts it through the same ha_insert host fragment shaders call.
+/// and inserts it through the same habuffer_insert host fragment shaders call.
 class ComputeInserter {
  public:
   /// Compiles the entry for `buffer`'s atomic mode and binding points (throws

@@ -18,7 +18,7 @@ namespace habuffer::gl {
 /// Options of every frame of a GlFrameDriver; its constructor throws
 /// std::invalid_argument for bad ones (an invalid policy, max_attempts or
 /// lock_spin_limit 0, capture_only without capture).
-/// The host's depth convention, which ha_insert_here() reads
+/// The host's depth convention, which habuffer_insert_here() reads
 /// gl_FragCoord.z by (records are always nearest first, SPEC 2).
 enum class DepthConvention {
   Standard,  ///< window depth 0 is nearest (GL_LESS / GL_LEQUAL; the default depth range)
@@ -55,7 +55,7 @@ struct GlFrameOptions {
   /// The insertion module's compile-time variant (slot-write tally, read-first
   /// loads): in module_source() and every pass of the driver.
   ModuleVariant module;
-  /// How ha_insert_here() reads gl_FragCoord.z. frame() refuses a depth test
+  /// How habuffer_insert_here() reads gl_FragCoord.z. frame() refuses a depth test
   /// enabled at the call with a function of the other convention (GL_GREATER
   /// or GL_GEQUAL with Standard, GL_LESS or GL_LEQUAL with Reversed), which
   /// would otherwise composite back to front with no error.

@@ -11,7 +11,7 @@
 /// OpenGL 4.5 core context is current (it never creates or assumes one).
 ///
 /// Host use: compile fragment shaders from module_source(ShaderStage::Fragment)
-/// followed by code that calls ha_insert(pixel, depth, rgba); each frame call
+/// followed by code that calls habuffer_insert(pixel, depth, rgba); each frame call
 /// frame([&] { draw the scene }) and then resolve(background) into the bound
 /// framebuffer.
 #pragma once
@@ -87,9 +87,9 @@ class GlFrameDriver {
   void bind() const;
 
   /// One frame around `gather`, which draws or dispatches shaders calling
-  /// ha_insert with our buffers bound, in the GL state the host had when it
+  /// habuffer_insert with our buffers bound, in the GL state the host had when it
   /// called frame() (restored before every gather and after the frame).
-  /// `calls`, when the host can tell, returns how many ha_insert calls the
+  /// `calls`, when the host can tell, returns how many habuffer_insert calls the
   /// gather made: calls a driver ended without an outcome (llvmpipe's loop
   /// budget can stop a SIMD group's lanes) are then counted as failed_iter
   /// and cut short, and retried like the others, so nothing goes uncounted.
@@ -157,7 +157,7 @@ class GlFrameDriver {
   std::uint64_t frames_ = 0;
   bool sorted_ = false;  ///< the last gather ran the technique's sort pass
   bool needs_call_count_ = false;
-  std::uint32_t gather_phase_ = 0;  ///< the parameter ha_gather_phase: 1 in a fill pass
+  std::uint32_t gather_phase_ = 0;  ///< the parameter habuffer_gather_phase: 1 in a fill pass
   std::unique_ptr<Gpu> gpu_;
 };
 

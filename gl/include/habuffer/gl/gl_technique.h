@@ -39,7 +39,7 @@ enum class GlPassStage : std::uint8_t {
   /// which counts and empties the last frame's records.
   FrameStart,
   /// A gather of the host's scene that inserts nothing (the parameter
-  /// ha_gather_phase 1, inside the Gather passes too), then `run` with every
+  /// habuffer_gather_phase 1, inside the Gather passes too), then `run` with every
   /// buffer bound: the k-buffer's occupancy fill and its count pass. The
   /// inserting gather follows.
   Fill,

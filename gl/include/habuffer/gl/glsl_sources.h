@@ -63,7 +63,7 @@ enum class ShaderStage { Compute, Fragment };
 /// technique_module_body(). Do not repeat #version.
 std::string ha_module(AtomicMode mode, const GlBindings& bindings, ShaderStage stage, std::string_view header = {});
 /// The same for any technique: its buffers and algorithm, and the same entry
-/// ha_insert(pixel, depth, rgba) (outcomes HABUFFER_*, counted). The atomic
+/// habuffer_insert(pixel, depth, rgba) (outcomes HABUFFER_*, counted). The atomic
 /// mode fixes the record layout (native32: L32, else L64) for every technique.
 std::string technique_module(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,
                              std::string_view header = {});
@@ -77,8 +77,8 @@ std::string module_extensions(AtomicMode mode);
 /// (HABUFFER_BINDING_*; with `overridable_bindings`, each inside #ifndef so a
 /// host may #define it first), the shared constants (HABUFFER_*), the
 /// parameter block `HabufferParams habuffer_params`, the technique's buffers
-/// and algorithm, and the entries ha_insert(uvec2 pixel, float depth, uint
-/// rgba) and ha_insert(uvec2 pixel, float depth). Every name it declares
+/// and algorithm, and the entries habuffer_insert(uvec2 pixel, float depth, uint
+/// rgba) and habuffer_insert(uvec2 pixel, float depth). Every name it declares
 /// starts with ha_, Ha, habuffer_, HABUFFER_ or a technique's prefix (ll_,
 /// fa_, sl_, kb_).
 std::string technique_module_body(Technique technique, AtomicMode mode, const GlBindings& bindings, ShaderStage stage,

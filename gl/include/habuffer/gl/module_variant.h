@@ -4,7 +4,7 @@
 /// its shaders at all (a branch on a uniform would still cost its test and
 /// registers per fragment). The frame driver writes them into
 /// GlFrameDriver::module_source() and into its own passes: compile every
-/// shader that calls ha_insert from that text.
+/// shader that calls habuffer_insert from that text.
 #pragma once
 
 #include <optional>

@@ -1,7 +1,7 @@
 /// @file
 /// The GL side of `habuffer render`: a scene's meshes in vertex buffers, the
 /// opaque pass (depth-tested, into a colour and a depth image) and the gather
-/// pass (transparent meshes through the GLSL module's ha_insert, fragments
+/// pass (transparent meshes through the GLSL module's habuffer_insert, fragments
 /// behind the opaque surfaces rejected and counted). Owns the state of the
 /// context it runs in (the render command's own).
 #pragma once
@@ -88,7 +88,7 @@ class SceneRenderer {
   [[nodiscard]] std::vector<std::uint32_t> read_pixel_culled() const;
   /// Fragments the last gather or counting pass rejected behind the opaque surfaces.
   [[nodiscard]] std::uint64_t read_rejected() const;
-  /// ha_insert calls of the last gather (the per-pixel fragment counts summed).
+  /// habuffer_insert calls of the last gather (the per-pixel fragment counts summed).
   [[nodiscard]] std::uint64_t inserted();
   /// What the gather counts (fixed at construction).
   [[nodiscard]] const GatherCounts& gather_counts() const { return counts_; }

@@ -86,8 +86,8 @@ void FixedArrays::import_state(std::span<const std::uint32_t> counts, std::span<
     throw std::invalid_argument("imported arrays have " + std::to_string(counts.size()) + " pixels and " +
                                 std::to_string(layers.size()) + " layers, the buffer " + std::to_string(counts_.size()) +
                                 " and " + std::to_string(layers_.size()));
-  if (std::any_of(counts.begin(), counts.end(), [&](std::uint32_t n) { return n > params_.ha_layers; }))
-    throw std::invalid_argument("imported arrays hold more than " + std::to_string(params_.ha_layers) + " layers in a pixel");
+  if (std::any_of(counts.begin(), counts.end(), [&](std::uint32_t n) { return n > params_.habuffer_layers; }))
+    throw std::invalid_argument("imported arrays hold more than " + std::to_string(params_.habuffer_layers) + " layers in a pixel");
   const RecordLayout layout = config_.buffer.record_layout();
   ArraysKernel<false> order(params_, buffers());  // the arrays' entry order (ha_entries.glsl)
   const auto before = [&](glm::uvec2 a, glm::uvec2 b) { return order.ha_entry_before(a, b); };

@@ -30,7 +30,7 @@ class FixedArrays final : public FragmentBuffer {
   /// FragmentBuffer interface: the same configuration.
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
   /// K, layers per pixel.
-  [[nodiscard]] std::uint32_t layers() const { return params_.ha_layers; }
+  [[nodiscard]] std::uint32_t layers() const { return params_.habuffer_layers; }
 
   /// FragmentBuffer interface: counts each pixel's fragments atomically, then
   /// sorts every pixel's layers. Throws std::invalid_argument for
@@ -45,7 +45,7 @@ class FixedArrays final : public FragmentBuffer {
   /// The sum of the pixels' sorted lengths.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// K per pixel.
-  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.ha_layers} * screen().area(); }
+  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.habuffer_layers} * screen().area(); }
   /// The most fragments one pixel received since the last clear, when some
   /// pixel received more than K; else 0.
   [[nodiscard]] std::uint32_t largest_overflow() const { return max_arrived_; }

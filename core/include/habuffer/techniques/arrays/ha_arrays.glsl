@@ -7,19 +7,19 @@
 // fragment touch neighbouring words, as Crassin's 3D texture does.
 //
 // Host environment provides, besides ha_record.glsl, ha_blend.glsl and
-// ha_entries.glsl: uint ha_layers (K), uint fa_count_add(uint pixel)
+// ha_entries.glsl: uint habuffer_layers (K), uint fa_count_add(uint pixel)
 // (atomic; the old count: it keeps counting past K), uint fa_load_count(uint
 // pixel), void fa_store_count(uint pixel, uint n), uvec2 fa_load_layer(uint
 // slot), void fa_store_layer(uint slot, uvec2 e), and
 // void fa_note_overflow(uint arrived) (the host keeps the largest, to size
 // the layers of a lossless regather).
 
-uint fa_slot(uint pixel, uint layer) { return layer * (ha_screen_size.x * ha_screen_size.y) + pixel; }
+uint fa_slot(uint pixel, uint layer) { return layer * (habuffer_screen_size.x * habuffer_screen_size.y) + pixel; }
 
 uint fa_insert_code(uvec2 p, uint code, uint data) {
   uint pixel = ha_pixel_index(p);
   uint k = fa_count_add(pixel);
-  if (k >= ha_layers) return HABUFFER_DROPPED_LAYERS;
+  if (k >= habuffer_layers) return HABUFFER_DROPPED_LAYERS;
   fa_store_layer(fa_slot(pixel, k), uvec2(code, data));
   return HABUFFER_STORED;
 }
@@ -80,8 +80,8 @@ uint fa_merge_layers(uint pixel, uint n) {
 uint fa_sort_pixel(uvec2 p) {
   uint pixel = ha_pixel_index(p);
   uint arrived = fa_load_count(pixel);
-  if (arrived > ha_layers) fa_note_overflow(arrived);
-  uint n = arrived > ha_layers ? ha_layers : arrived;
+  if (arrived > habuffer_layers) fa_note_overflow(arrived);
+  uint n = arrived > habuffer_layers ? habuffer_layers : arrived;
   if (n == 0u) return 0u;
   uint m = 0u;
   if (n > HABUFFER_SORT_LOCAL) {

@@ -31,8 +31,8 @@ std::unique_ptr<FragmentBuffer> make(const TechniqueConfig& c, const OffsetSourc
 TechniqueConfig grown(const TechniqueConfig& c, const ResizePolicy&, const GrowthNeed&) { return c; }
 
 constexpr std::string_view kBlendedHostShaders =
-    "call `ha_insert` at most once per invocation and `discard` where it is not called with the invocation's own "
-    "pixel (`ha_insert_here`; another pixel counts invalid), declaring no colour outputs of its own at locations 0 "
+    "call `habuffer_insert` at most once per invocation and `discard` where it is not called with the invocation's own "
+    "pixel (`habuffer_insert_here`; another pixel counts invalid), declaring no colour outputs of its own at locations 0 "
     "and 1 (the module's blend outputs; wboit uses both); draw into `gather_framebuffer()`, which the frame driver "
     "binds around the gather";
 

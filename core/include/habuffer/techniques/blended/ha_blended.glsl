@@ -15,8 +15,8 @@
 // resolve is accum.rgb / clamp(accum.a, 1e-4, 5e4) * (1 - revealage) +
 // background * revealage. Order-dependent only through float addition.
 //
-// Host environment provides, besides ha_blend.glsl: float ha_depth_near,
-// float ha_depth_far (the depth range).
+// Host environment provides, besides ha_blend.glsl: float habuffer_depth_near,
+// float habuffer_depth_far (the depth range).
 
 // A fragment's term for blend: premultiplied colour and alpha, what the
 // GPU's fragment output hands the blender.
@@ -36,7 +36,7 @@ vec4 bl_finish(vec4 acc, vec3 background) {
 }
 
 float wb_weight(float t, float alpha) {
-  float d = min(max((t - ha_depth_near) / (ha_depth_far - ha_depth_near), 0.0f), 1.0f);
+  float d = min(max((t - habuffer_depth_near) / (habuffer_depth_far - habuffer_depth_near), 0.0f), 1.0f);
   float k = 1.0f - d;
   return alpha * max(1e-2f, 3e3f * k * k * k);
 }

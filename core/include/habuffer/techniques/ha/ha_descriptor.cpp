@@ -58,7 +58,7 @@ constexpr TechniqueDescriptor kDescriptor{
                           "AMAX records per pixel)",
             .overflow = "`failed_age` / `failed_iter`, counted; `--lossless` grows the table",
             .early_cull = "`--early-cull TAU [--saturation on]`",
-            .host_shaders = "call `ha_insert` any number of times per invocation, for any pixel",
+            .host_shaders = "call `habuffer_insert` any number of times per invocation, for any pixel",
         },
     .stores_lists = true,
     .exact = true,

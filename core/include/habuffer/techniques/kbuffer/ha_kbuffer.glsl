@@ -8,11 +8,11 @@
 // the K largest records that reached them, in order: the K nearest entries,
 // sorted, without a sort pass. Records are SPEC 2 records with age 1 (never
 // 0, so 0 is an empty slot), comparing by (code, data) as every technique's
-// entries do. An insert call carries a HaCarry (a = layer + 1), so the GPU
+// entries do. An insert call carries a HabufferCarry (a = layer + 1), so the GPU
 // path defers and resumes a call cut short as it does the HA-buffer's.
 //
 // Occupancy-map culling (seed 003): a fill pass sets one bit per occupied
-// depth bucket (32 * ha_occupancy_words buckets per pixel over the scene's
+// depth bucket (32 * kb_occupancy_words buckets per pixel over the scene's
 // depth range), a count pass finds the bucket of the k-th occupied bit, and
 // the insertion rejects fragments in buckets beyond it (HABUFFER_OCCUPANCY_REJECTED):
 // at least k fragments lie in front (each occupied bucket holds one), so
@@ -20,30 +20,30 @@
 // depth codes with integers, so both paths reject the same fragments.
 //
 // Host environment provides, besides ha_record.glsl, ha_carry.glsl and
-// ha_blend.glsl: uint ha_layers (K), uvec2 ha_screen_size, the slot atomics
+// ha_blend.glsl: uint habuffer_layers (K), uvec2 habuffer_screen_size, the slot atomics
 // of ha_insert.glsl's environment (ha_atomic_max_slot, ha_atomic_missed,
-// ha_load_slot), uint ha_occupancy (0: off), uint ha_occupancy_words, uint
-// ha_occupancy_near_code, uint ha_occupancy_bucket_codes, void
+// ha_load_slot), uint kb_occupancy_culling (0: off), uint kb_occupancy_words, uint
+// kb_occupancy_near_code, uint kb_occupancy_bucket_codes, void
 // kb_or_occupancy(uint word, uint bits) (atomic or), uint
 // kb_load_occupancy(uint word), uint kb_load_limit(uint pixel), void
 // kb_store_limit(uint pixel, uint bucket), uint ha_lowest_bit(uint w)
 // (index of the lowest set bit of a non-zero word).
 
-uint kb_pixel(uvec2 p) { return p.x + p.y * ha_screen_size.x; }
-ha_index kb_slot(uint pixel, uint layer) { return ha_index(layer) * ha_index(ha_screen_size.x * ha_screen_size.y) + ha_index(pixel); }
+uint kb_pixel(uvec2 p) { return p.x + p.y * habuffer_screen_size.x; }
+ha_index kb_slot(uint pixel, uint layer) { return ha_index(layer) * ha_index(habuffer_screen_size.x * habuffer_screen_size.y) + ha_index(pixel); }
 
 // --- occupancy map ----------------------------------------------------------
-uint kb_buckets() { return 32u * ha_occupancy_words; }
+uint kb_buckets() { return 32u * kb_occupancy_words; }
 
 uint kb_bucket(uint code) {
-  uint nearer = ha_occupancy_near_code - min(code, ha_occupancy_near_code);
-  return min(nearer / ha_occupancy_bucket_codes, kb_buckets() - 1u);
+  uint nearer = kb_occupancy_near_code - min(code, kb_occupancy_near_code);
+  return min(nearer / kb_occupancy_bucket_codes, kb_buckets() - 1u);
 }
 
 // Fill pass: the bucket of one fragment.
 void kb_fill(uvec2 p, uint code) {
   uint b = kb_bucket(code);
-  kb_or_occupancy(kb_pixel(p) * ha_occupancy_words + b / 32u, 1u << (b & 31u));
+  kb_or_occupancy(kb_pixel(p) * kb_occupancy_words + b / 32u, 1u << (b & 31u));
 }
 
 // Count pass: the bucket holding the k-th occupied bit of pixel p (nearest
@@ -53,11 +53,11 @@ void kb_count_pixel(uvec2 p) {
   uint pixel = kb_pixel(p);
   uint seen = 0u;
   uint limit = kb_buckets();
-  for (uint w = 0u; w < ha_occupancy_words && limit == kb_buckets(); ++w) {
-    uint bits = kb_load_occupancy(pixel * ha_occupancy_words + w);
+  for (uint w = 0u; w < kb_occupancy_words && limit == kb_buckets(); ++w) {
+    uint bits = kb_load_occupancy(pixel * kb_occupancy_words + w);
     while (bits != 0u) {
       seen += 1u;
-      if (seen == ha_layers) {
+      if (seen == habuffer_layers) {
         limit = w * 32u + ha_lowest_bit(bits);
         break;
       }
@@ -68,15 +68,15 @@ void kb_count_pixel(uvec2 p) {
 }
 
 bool kb_occupancy_rejects(uvec2 p, uint code) {
-  return ha_occupancy != 0u && kb_bucket(code) > kb_load_limit(kb_pixel(p));
+  return kb_occupancy_culling != 0u && kb_bucket(code) > kb_load_limit(kb_pixel(p));
 }
 
 // --- insertion ---------------------------------------------------------------
 // One layer: HABUFFER_PENDING while the carried record goes on to the next layer
 // (or tries the same one again: an emulated atomic found it busy), HABUFFER_CUT
 // when that atomic gave up, else the call's outcome.
-uint kb_insert_step(HABUFFER_INOUT(HaCarry) c) {
-  if (c.a > ha_layers) return HABUFFER_DROPPED_LAYERS;
+uint kb_insert_step(HABUFFER_INOUT(HabufferCarry) c) {
+  if (c.a > habuffer_layers) return HABUFFER_DROPPED_LAYERS;
   ha_index s = kb_slot(kb_pixel(c.p), c.a - 1u);
   // Slots only grow: a larger value read is larger still (no atomic needed).
   if (ha_high(ha_load_slot(s)) > ha_high(c.r)) {
@@ -97,7 +97,7 @@ uint kb_insert_step(HABUFFER_INOUT(HaCarry) c) {
   return HABUFFER_PENDING;
 }
 
-uint kb_insert_run(HABUFFER_INOUT(HaCarry) c) {
+uint kb_insert_run(HABUFFER_INOUT(HabufferCarry) c) {
   uint outcome = HABUFFER_PENDING;
   while (outcome == HABUFFER_PENDING) outcome = kb_insert_step(c);
   return outcome;
@@ -109,7 +109,7 @@ uint kb_insert_fragment(uvec2 p, float t, uint data) {
   if (!ha_depth_valid(t)) return HABUFFER_INVALID;
   uint code = ha_depth_code(t);
   if (kb_occupancy_rejects(p, code)) return HABUFFER_OCCUPANCY_REJECTED;
-  HaCarry c = ha_carry_begin(p, code, data);
+  HabufferCarry c = habuffer_carry_begin(p, code, data);
   return kb_insert_run(c);
 }
 
@@ -117,14 +117,14 @@ uint kb_insert_fragment(uvec2 p, float t, uint data) {
 uint kb_length(uvec2 p) {
   uint pixel = kb_pixel(p);
   uint n = 0u;
-  while (n < ha_layers && ha_load_slot(kb_slot(pixel, n)) != ha_word(0)) n += 1u;
+  while (n < habuffer_layers && ha_load_slot(kb_slot(pixel, n)) != ha_word(0)) n += 1u;
   return n;
 }
 
 vec4 kb_composite(uvec2 p, vec3 background) {
   uint pixel = kb_pixel(p);
   vec4 c = vec4(0.0f);
-  for (uint k = 0u; k < ha_layers; ++k) {
+  for (uint k = 0u; k < habuffer_layers; ++k) {
     ha_word r = ha_load_slot(kb_slot(pixel, k));
     if (r == ha_word(0)) break;
     c = ha_blend_under(c, ha_unpack_rgba(ha_data(r)));

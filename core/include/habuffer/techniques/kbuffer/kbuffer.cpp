@@ -117,7 +117,7 @@ std::uint32_t KBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEn
   const RecordLayout layout = config_.buffer.record_layout();
   const std::uint64_t pixel = x + std::uint64_t{y} * screen().x;
   std::uint32_t reads = 0;
-  for (std::uint32_t k = 0; k < params_.ha_layers; ++k) {
+  for (std::uint32_t k = 0; k < params_.habuffer_layers; ++k) {
     ++reads;
     const std::uint64_t r = record(std::uint64_t{k} * screen().area() + pixel);
     if (r == 0) break;
@@ -159,7 +159,7 @@ void KBuffer::import_state(std::span<const std::uint32_t> slot_words, std::span<
   for (std::uint64_t p = 0; p < pixels; ++p) {
     list.clear();
     bool ended = false;
-    for (std::uint32_t k = 0; k < params_.ha_layers; ++k) {
+    for (std::uint32_t k = 0; k < params_.habuffer_layers; ++k) {
       const std::uint64_t r = word(k * pixels + p);
       const std::string where = "imported k-buffer: layer " + std::to_string(k) + " of pixel (" +
                                 std::to_string(p % screen().x) + "," + std::to_string(p / screen().x) + ")";

@@ -29,7 +29,7 @@ class KBuffer final : public FragmentBuffer {
   [[nodiscard]] Extent screen() const override { return config_.buffer.screen; }
   [[nodiscard]] TechniqueConfig technique_config() const override { return config_; }
   /// K, layers per pixel.
-  [[nodiscard]] std::uint32_t layers() const { return params_.ha_layers; }
+  [[nodiscard]] std::uint32_t layers() const { return params_.habuffer_layers; }
 
   /// FragmentBuffer interface: with the occupancy map on, a fill pass and a count
   /// pass come first; the layers stay sorted without a sort pass. Throws
@@ -44,7 +44,7 @@ class KBuffer final : public FragmentBuffer {
   /// The non-empty layer slots.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// K per pixel.
-  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.ha_layers} * screen().area(); }
+  [[nodiscard]] std::uint64_t capacity() const override { return std::uint64_t{params_.habuffer_layers} * screen().area(); }
 
   /// FragmentBuffer interface; returns the layers read (up to the first empty one, at most K).
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;

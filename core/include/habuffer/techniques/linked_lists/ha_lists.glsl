@@ -8,8 +8,8 @@
 // Links are 1-based node numbers, 0 ending a list, so a zeroed head image is
 // empty; node n is stored at index n - 1.
 // Host environment provides, besides ha_record.glsl, ha_blend.glsl and
-// ha_entries.glsl: uint ha_pool_capacity (nodes), uint ll_allocate_node()
-// (a free node, or ha_pool_capacity or more when the pool has none left: on
+// ha_entries.glsl: uint ll_pool_capacity (nodes), uint ll_allocate_node()
+// (a free node, or ll_pool_capacity or more when the pool has none left: on
 // the GPU the counter's old value, atomically incremented, which keeps
 // counting past the capacity, so the host learns how many nodes a frame
 // wanted; on the CPU the next node of the thread's block, node_blocks.h),
@@ -20,7 +20,7 @@
 
 uint ll_insert_code(uvec2 p, uint code, uint data) {
   uint n = ll_allocate_node();
-  if (n >= ha_pool_capacity) return HABUFFER_DROPPED_POOL;
+  if (n >= ll_pool_capacity) return HABUFFER_DROPPED_POOL;
   ll_store_entry(n, uvec2(code, data));
   ll_store_next(n, ll_exchange_head(ha_pixel_index(p), n + 1u));
   return HABUFFER_STORED;

@@ -10,15 +10,15 @@
 // get the same lists): a failed swap means another node was linked right
 // there, and the walk goes on from the same link.
 //
-// Early termination (PreSortLF*): with ha_cull_tau > 0, the walk composites
+// Early termination (PreSortLF*): with habuffer_cull_tau > 0, the walk composites
 // the nodes it passes (the SPEC's accumulator, acc += (1 - acc) * alpha) and
 // stops with HABUFFER_CULLED once acc > tau: the fragment lies behind that much
 // opacity, which only grows. Identical entries are kept once (HABUFFER_DUPLICATE),
 // as the HA-buffer keeps them.
 //
 // Host environment provides, besides ha_record.glsl, ha_entries.glsl,
-// ha_saturation.glsl and ha_lists.glsl's: uint ha_iter_limit (steps of one
-// insertion; beyond, HABUFFER_FAILED_ITER), float ha_cull_tau, uint
+// ha_saturation.glsl and ha_lists.glsl's: uint habuffer_iter_limit (steps of one
+// insertion; beyond, HABUFFER_FAILED_ITER), float habuffer_cull_tau, uint
 // sl_load_link(uint pixel, uint where) (where 0: the pixel's head, else
 // node `where` - 1's link; an acquire read) and uint sl_swap_link(uint
 // pixel, uint where, uint expected, uint link) (compare-and-swap with release
@@ -37,15 +37,15 @@ uint sl_insert_code(uvec2 p, uint code, uint data) {
   float acc = 0.0f;
   // Each step passes a node or retries a swap another insertion just won:
   // the total is bounded by the pixel's nodes, but a budget keeps it so.
-  for (uint step = 0u; step < ha_iter_limit; ++step) {
+  for (uint step = 0u; step < habuffer_iter_limit; ++step) {
     if (next != 0u) {
       uvec2 n = ll_load_entry(next - 1u);
       if (n == e) return HABUFFER_DUPLICATE;
       if (ha_entry_before(n, e)) {
-        if (ha_cull_tau > 0.0f) {
+        if (habuffer_cull_tau > 0.0f) {
           HABUFFER_PRECISE float next_acc = acc + (1.0f - acc) * sl_alpha(n.y);  // as the CPU path computes it
           acc = next_acc;
-          if (acc > ha_cull_tau) {
+          if (acc > habuffer_cull_tau) {
             ha_saturate(p, code);
             return HABUFFER_CULLED;
           }
@@ -57,7 +57,7 @@ uint sl_insert_code(uvec2 p, uint code, uint data) {
     }
     if (node == 0u) {
       uint n = ll_allocate_node();
-      if (n >= ha_pool_capacity) return HABUFFER_DROPPED_POOL;
+      if (n >= ll_pool_capacity) return HABUFFER_DROPPED_POOL;
       node = n + 1u;
       ll_store_entry(n, e);
     }

@@ -75,8 +75,8 @@ Placed place_set_aside(const KernelUniforms& params, const ListsBuffers& b, std:
   if (std::all_of(aside.begin(), aside.end(), [](const SetAside& a) { return a.fragments.empty(); })) return {};
   const auto threads = static_cast<std::uint32_t>(owned_rows ? aside.size() : 1);
   const std::vector<NodeRange> nodes = owned_rows ? one_by_one(left) : left;
-  std::uint32_t no_fresh = params.ha_pool_capacity;
-  NodePool rest(&no_fresh, params.ha_pool_capacity, nodes);
+  std::uint32_t no_fresh = params.ll_pool_capacity;
+  NodePool rest(&no_fresh, params.ll_pool_capacity, nodes);
   std::vector<detail::SliceCounters> parts(threads);
   std::vector<detail::PartCount> merged(threads);
   std::vector<NodeRange> blocks(threads);
@@ -127,7 +127,7 @@ template <class Rows>
 [[gnu::flatten]] std::uint64_t sort_rows(const KernelUniforms& params, ListsBuffers b, Rows rows) {
   constexpr std::uint32_t kAhead = 8;
   ListsKernel<false> k(params, b);
-  const std::uint32_t width = params.ha_screen_size.x;
+  const std::uint32_t width = params.habuffer_screen_size.x;
   std::uint64_t merged = 0;
   rows([&](std::uint32_t y) {
     const std::uint32_t* heads = b.heads + std::size_t{y} * width;

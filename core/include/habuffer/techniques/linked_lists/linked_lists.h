@@ -65,7 +65,7 @@ class LinkedLists final : public FragmentBuffer {
   /// The nodes linked into the lists.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// The pool's nodes.
-  [[nodiscard]] std::uint64_t capacity() const override { return params_.ha_pool_capacity; }
+  [[nodiscard]] std::uint64_t capacity() const override { return params_.ll_pool_capacity; }
   /// Nodes asked for since the last clear, including those the pool could not give.
   [[nodiscard]] std::uint64_t requested() const { return requested_; }
   /// FragmentBuffer interface: the nodes asked for (requested()).

@@ -56,7 +56,7 @@ class ListsKernel : public KernelUniforms {
   /// asked for from the outcomes (stored and dropped_pool).
   uint ll_allocate_node() {
     if (block_.empty()) block_ = pool_->take();
-    return block_.empty() ? ha_pool_capacity : block_.begin;
+    return block_.empty() ? ll_pool_capacity : block_.begin;
   }
   /// The node ll_allocate_node gave was linked: the next insertion takes the next one.
   void ll_commit_node() { ++block_.begin; }

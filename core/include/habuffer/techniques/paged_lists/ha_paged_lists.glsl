@@ -15,7 +15,7 @@
 // the old head; a failed swap (another invocation linked a node to this
 // pixel) retries with the head it found, keeping a page it allocated for a
 // later try of the same call. No invocation waits for another; every try
-// either links a node or sees another one linked, and ha_iter_limit bounds
+// either links a node or sees another one linked, and habuffer_iter_limit bounds
 // the tries (HABUFFER_FAILED_ITER beyond). A page allocated and left unused
 // (the pixel's page got room meanwhile, or the tries ran out) is counted
 // (pl_waste_page), so requested nodes = linked nodes + the unused rest of
@@ -28,9 +28,9 @@
 //
 // Host environment provides, besides ha_record.glsl, ha_blend.glsl,
 // ha_entries.glsl and ha_lists.glsl's (whose ll_allocate_node and
-// ll_exchange_head these functions do not call): uint ha_pool_capacity
+// ll_exchange_head these functions do not call): uint ll_pool_capacity
 // (nodes; pages are its first floor(capacity / HABUFFER_PAGE_NODES) blocks
-// of HABUFFER_PAGE_NODES), uint ha_iter_limit, uint pl_load_head(uint pixel)
+// of HABUFFER_PAGE_NODES), uint habuffer_iter_limit, uint pl_load_head(uint pixel)
 // (a read of a head other invocations may swap), uint pl_swap_head(uint
 // pixel, uint expected, uint link) (compare-and-swap; returns the head it
 // found), uint pl_allocate_page() (atomically adds HABUFFER_PAGE_NODES to the
@@ -46,11 +46,11 @@ uint pl_insert_code(uvec2 p, uint code, uint data) {
   uint pixel = ha_pixel_index(p);
   uint page = HABUFFER_NO_PAGE;  // the first node of a page this call allocated and has not linked
   uint head = pl_load_head(pixel);
-  for (uint attempt = 0u; attempt < ha_iter_limit; ++attempt) {
+  for (uint attempt = 0u; attempt < habuffer_iter_limit; ++attempt) {
     bool room = head != 0u && head % HABUFFER_PAGE_NODES != 0u;
     if (!room && page == HABUFFER_NO_PAGE) {
       page = pl_allocate_page();
-      if (page >= ha_pool_capacity || ha_pool_capacity - page < HABUFFER_PAGE_NODES) return HABUFFER_DROPPED_POOL;
+      if (page >= ll_pool_capacity || ll_pool_capacity - page < HABUFFER_PAGE_NODES) return HABUFFER_DROPPED_POOL;
     }
     uint node = room ? head : page;
     uint found = pl_swap_head(pixel, head, node + 1u);

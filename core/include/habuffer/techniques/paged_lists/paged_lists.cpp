@@ -37,7 +37,7 @@ Counters PagedLists::insert(std::span<const Fragment> fragments, const InsertOpt
   // depend on timing. A pool with a page left per fragment cannot run short
   // (each fragment opens at most one page), so threads give one thread's
   // lists and counters; a pool that might run short inserts on one thread.
-  const std::uint64_t room = params_.ha_pool_capacity - std::min<std::uint64_t>(counter_, params_.ha_pool_capacity);
+  const std::uint64_t room = params_.ll_pool_capacity - std::min<std::uint64_t>(counter_, params_.ll_pool_capacity);
   if (plan.threads > 1 && room < std::uint64_t{fragments.size()} * kPagedListsPageNodes) {
     InsertOptions one = options;
     one.threads = 1;

@@ -51,7 +51,7 @@ class PagedLists final : public FragmentBuffer {
   /// The nodes linked into the lists.
   [[nodiscard]] std::uint64_t count_stored() const override;
   /// The pool's nodes.
-  [[nodiscard]] std::uint64_t capacity() const override { return params_.ha_pool_capacity; }
+  [[nodiscard]] std::uint64_t capacity() const override { return params_.ll_pool_capacity; }
   /// Nodes asked for in pages since the last clear, including those the pool could not give.
   [[nodiscard]] std::uint64_t requested() const { return counter_; }
   /// Pages allocated and never linked since the last clear (races between inserting threads).

@@ -69,7 +69,7 @@ class PagedListsKernel : public KernelUniforms {
   void pl_waste_page() { std::atomic_ref<std::uint32_t>(*b_.wasted).fetch_add(1, std::memory_order_relaxed); }
 
   /// ha_lists.glsl's allocation, which paged lists do not call: no node.
-  uint ll_allocate_node() const { return ha_pool_capacity; }
+  uint ll_allocate_node() const { return ll_pool_capacity; }
   /// ha_lists.glsl's exchange, which paged lists do not call (plain).
   uint ll_exchange_head(uint pixel, uint link) {
     const uint old = b_.heads[pixel];

@@ -23,12 +23,12 @@ uint bl_insert_fragment(uvec2 pixel, float depth, uint rgba) {
 #endif
   return HABUFFER_BLENDED;
 #else
-  return HABUFFER_INVALID;  // no blender outside a fragment shader: ha_insert counts the call invalid
+  return HABUFFER_INVALID;  // no blender outside a fragment shader: habuffer_insert counts the call invalid
 #endif
 }
 
 vec4 bl_composite(uvec2 p, vec3 background) {
-  uint i = p.x + p.y * ha_screen_size.x;
+  uint i = p.x + p.y * habuffer_screen_size.x;
 #ifdef HABUFFER_WBOIT
   return wb_finish(ha_accum[i], ha_revealage[i], background);
 #else

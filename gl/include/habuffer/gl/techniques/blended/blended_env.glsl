@@ -9,8 +9,8 @@
 //           (ZERO, ONE_MINUS_SRC_ALPHA): C = a c + (1 - a) C, T = (1 - a) T;
 //   wboit:  output 0 wb_accum_term, (ONE, ONE); output 1 (a), revealage
 //           (ZERO, ONE_MINUS_SRC_COLOR): r = (1 - a) r.
-// Every ha_insert call first zeroes the outputs (a call that blends nothing
-// leaves the pixel as it was), so a host shader calls ha_insert at most once
+// Every habuffer_insert call first zeroes the outputs (a call that blends nothing
+// leaves the pixel as it was), so a host shader calls habuffer_insert at most once
 // per invocation and discards where it calls none. After the gather the
 // container copies the attachments into its storage buffers, which the
 // resolve reads. Outputs are declared in fragment modules except the

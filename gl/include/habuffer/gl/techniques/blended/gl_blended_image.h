@@ -7,7 +7,7 @@
 /// the frame driver binds around the host's gather together with the blend
 /// setup (GlStateGuard restores the host's). After each gather the
 /// attachments are copied into storage buffers for the resolve and the
-/// read-back (a CPU BlendedImage). Host shaders call ha_insert at most once
+/// read-back (a CPU BlendedImage). Host shaders call habuffer_insert at most once
 /// per invocation and discard where they call none
 /// (gl/include/habuffer/gl/techniques/blended/blended_env.glsl); the compute entry draws a stream as points.
 #pragma once

@@ -112,12 +112,12 @@ void GlHaTable::allocate_table(Extent table, bool new_offsets) {
 void GlHaTable::write_params(GlParams& p) const {
   p.ha_table_size[0] = config_.table.x;
   p.ha_table_size[1] = config_.table.y;
-  p.ha_age_bits = config_.age_bits;
+  p.habuffer_age_bits = config_.age_bits;
   p.ha_block = config_.block;
   p.ha_max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
-  p.ha_iter_limit = config_.iter_limit;
-  p.ha_cull_tau = config_.early_cull_tau;
-  p.ha_saturation = config_.saturation ? 1u : 0u;
+  p.habuffer_iter_limit = config_.iter_limit;
+  p.habuffer_cull_tau = config_.early_cull_tau;
+  p.habuffer_saturation = config_.saturation ? 1u : 0u;
 }
 
 void GlHaTable::bind() const {

@@ -4,6 +4,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
   uvec2 p = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(p, ha_screen_size))) return;
+  if (any(greaterThanEqual(p, habuffer_screen_size))) return;
   kb_count_pixel(p);
 }

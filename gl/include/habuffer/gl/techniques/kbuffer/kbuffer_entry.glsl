@@ -4,7 +4,7 @@
 // with deferral (HABUFFER_CARRY_RUN is kb_insert_run).
 uint kb_call(uvec2 pixel, float depth, uint rgba) {
   bool valid = ha_depth_valid(depth);
-  if (ha_gather_phase != 0u) {
+  if (habuffer_gather_phase != 0u) {
     if (valid) kb_fill(pixel, ha_depth_code(depth));
     return HABUFFER_UNCOUNTED;
   }

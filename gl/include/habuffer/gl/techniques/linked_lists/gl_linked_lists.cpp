@@ -28,16 +28,8 @@ TechniqueConfig validated_pool(TechniqueConfig c, const GlNodeListKind& kind) {
   return validated_as(c, kind.technique);
 }
 
-std::unique_ptr<FragmentBuffer> import_lists(const TechniqueConfig& config, std::span<const std::uint32_t> heads,
-                                             std::span<const glm::uvec2> entries, std::span<const std::uint32_t> links,
-                                             std::uint64_t requested) {
-  auto lists = std::make_unique<LinkedLists>(config);
-  lists->import_state(heads, entries, links, requested);
-  return lists;
-}
-
-constexpr GlNodeListKind kListsKind{Technique::Lists, 1, true, import_lists};
-constexpr GlNodeListKind kSortedListsKind{Technique::SortedLists, 1, false, import_lists};
+constexpr GlNodeListKind kListsKind{Technique::Lists, 1, true, import_node_lists<LinkedLists>};
+constexpr GlNodeListKind kSortedListsKind{Technique::SortedLists, 1, false, import_node_lists<LinkedLists>};
 
 }  // namespace
 

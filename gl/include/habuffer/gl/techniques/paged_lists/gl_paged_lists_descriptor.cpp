@@ -21,16 +21,8 @@ std::string paged_lists_parts(AtomicMode) {
                      kInsertEntry});
 }
 
-std::unique_ptr<FragmentBuffer> import_pages(const TechniqueConfig& config, std::span<const std::uint32_t> heads,
-                                             std::span<const glm::uvec2> entries, std::span<const std::uint32_t> links,
-                                             std::uint64_t requested) {
-  auto lists = std::make_unique<PagedLists>(config);
-  lists->import_state(heads, entries, links, requested);
-  return lists;
-}
-
 // The linked lists' container, taking pages of nodes (ha_paged_lists.glsl).
-constexpr GlNodeListKind kPagedKind{Technique::PagedLists, kPagedListsPageNodes, true, import_pages};
+constexpr GlNodeListKind kPagedKind{Technique::PagedLists, kPagedListsPageNodes, true, import_node_lists<PagedLists>};
 
 std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource&, AtomicMode mode,
                                   const GlBindings& bindings, std::uint32_t) {
