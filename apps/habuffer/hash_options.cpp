@@ -29,20 +29,14 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   const std::string layout = args.str("layout", "64");
   if (layout != "64" && layout != "32") throw UsageError("option --layout: '" + layout + "' is not 64 or 32");
   c.layout = layout == "64" ? Layout::L64 : Layout::L32;
-  c.age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
-  c.block = args.u32("block", HABUFFER_DEFAULT_BLOCK, 1, 1u << 16);
-  c.iter_limit = args.u32("iter-limit", HABUFFER_DEFAULT_ITER_LIMIT, 1, HABUFFER_MAX_ITER_LIMIT);
-  if (args.has("early-cull")) {
-    // The threshold is used as a float32 on both paths; below the smallest
-    // normal float32 a GPU may flush it to 0, which turns cull off.
-    c.early_cull_tau = usage_errors("early-cull", [&] { return parse_cull_threshold(args.str("early-cull", "")); });
-  }
-  const std::string saturation = args.str("saturation", "off");
-  if (saturation != "on" && saturation != "off")
-    throw UsageError("option --saturation: '" + saturation + "' is not on or off");
-  c.saturation = saturation == "on";
-  if (c.saturation && c.early_cull_tau <= 0.0f)
-    throw UsageError("option --saturation on needs --early-cull TAU (it records where culling began)");
+  // The technique option table's BufferConfig part: --early-cull (the
+  // threshold is a float32 on both paths; below the smallest normal float32
+  // a GPU may flush it to 0, which turns cull off), --saturation, --age-bits,
+  // --block, --iter-limit.
+  TechniqueConfig t;
+  t.buffer = c;
+  set_technique_options(args, t, true);
+  c = t.buffer;
   usage_errors("", [&] {
     c.validate();
     // The least any technique allocates: per-pixel images and counts (32
