@@ -1,6 +1,7 @@
 #include "technique_options.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 #include "habuffer/technique_descriptor.h"
@@ -22,18 +23,12 @@ void refuse_other_techniques_options(const Args& args, const TechniqueDescriptor
 
 }  // namespace
 
-std::string technique_option_help(bool buffer_part) {
-  std::string s;
-  for (const TechniqueOption& o : technique_options()) {
-    if (o.flag.empty() || o.buffer_field != buffer_part) continue;
-    std::string usage = option_usage(o);
-    usage.resize(std::max<std::size_t>(usage.size(), 26), ' ');
-    const std::string fallback = option_default_text(o);
-    const std::string takers = techniques_taking(o.flag);
-    s += "    " + usage + " " + std::string(o.help) + (fallback.empty() ? "" : "; default " + fallback) + " (" +
-         (takers.empty() ? std::string("every technique") : takers) + ")\n";
-  }
-  return s;
+OptionSpec technique_option_spec(std::string_view flag) {
+  const TechniqueOption* o = find_option_flag(flag);
+  if (o == nullptr) throw std::logic_error("--" + std::string(flag) + " is no technique option");
+  const std::string takers = techniques_taking(o->flag);
+  return {std::string(o->flag), std::string(o->value_name), option_default_text(*o),
+          std::string(o->help) + (takers.empty() ? std::string() : " [" + takers + "]")};
 }
 
 std::string technique_help() {
@@ -43,9 +38,8 @@ std::string technique_help() {
     name.resize(std::max<std::size_t>(name.size(), 13), ' ');
     s += "    " + name + " " + std::string(d->summary) + "\n";
   }
-  s += "  The options only some techniques take are refused with the others (`habuffer techniques` lists\n"
-       "  each technique's); the technique's own options:\n";
-  return s + technique_option_help(false);
+  return s + "  The options only some techniques take (the techniques in [...] above) are refused with the others;\n"
+             "  `habuffer techniques` lists each technique's.\n";
 }
 
 void set_technique_options(const Args& args, TechniqueConfig& config, bool buffer_part) {
@@ -64,7 +58,7 @@ void set_technique_options(const Args& args, TechniqueConfig& config, bool buffe
 
 TechniqueOptions parse_technique_options(const Args& args) {
   TechniqueOptions o;
-  const std::string name = args.str("technique", "ha");
+  const std::string name = args.str("technique");
   const std::optional<Technique> t = parse_technique(name);
   if (!t) throw UsageError("option --technique: '" + name + "' is not one of " + technique_names());
   o.technique = *t;

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
+#include <vector>
 
 #include "cli_args.h"
 #include "habuffer/technique.h"
@@ -16,10 +18,6 @@ namespace habuffer::cli {
 /// occupancy, occupancy_words, depth_range); the buffer's fields are the
 /// hash options' (hash_options.h). No field is declared twice.
 using TechniqueOptions = TechniqueConfig;
-
-/// Names to add to a command's accepted options.
-inline constexpr const char* kTechniqueValued[] = {"technique",       "layers",      "pool", "occupancy",
-                                                   "occupancy-words", "depth-range", "saturation"};
 
 /// Parses --technique and the technique's options of the option table
 /// (habuffer/technique_options.h: --layers, --pool, --occupancy,
@@ -35,13 +33,13 @@ TechniqueOptions parse_technique_options(const Args& args);
 /// without the option it needs (--occupancy-words without --occupancy on).
 void set_technique_options(const Args& args, TechniqueConfig& config, bool buffer_part);
 
-/// One help line per option of the table's `buffer_part` (see
-/// set_technique_options): usage, what it sets, its default (TechniqueConfig's
-/// own) and the techniques that take it.
-std::string technique_option_help(bool buffer_part);
+/// The option table's row of CLI option `flag` as a command's declaration:
+/// its value's shape, its default (TechniqueConfig's) and its help phrase
+/// with the techniques that take it. std::logic_error for another name.
+OptionSpec technique_option_spec(std::string_view flag);
 
 /// The help's lines on --technique, written from the registry: every
-/// technique's name and summary, and the technique's own options (the table's).
+/// technique's name and summary.
 std::string technique_help();
 
 }  // namespace habuffer::cli
