@@ -17,7 +17,7 @@ std::uint32_t u32(const OptionValue& v) { return static_cast<std::uint32_t>(std:
 // technique words' labels and checks, and of the report fields.
 constexpr TechniqueOption kOptions[] = {
     {.flag = "early-cull", .knob = "cull", .value_name = "TAU", .kind = OptionKind::Threshold,
-     .help = "early cull: a pixel's list ends where its opacity reaches TAU (off when absent)",
+     .help = "early cull: a pixel's list ends where its opacity reaches TAU",
      .buffer_field = true,
      .get = [](const TechniqueConfig& c) { return OptionValue{c.buffer.early_cull_tau}; },
      .put = [](TechniqueConfig& c, const OptionValue& v) { c.buffer.early_cull_tau = std::get<float>(v); },
@@ -177,7 +177,8 @@ std::string knob_usage(const TechniqueOption& o) {
 std::string techniques_taking_knob(const TechniqueOption& o) {
   std::string s;
   for (const TechniqueDescriptor* d : technique_registry())
-    if (o.knob_applies == nullptr || o.knob_applies(*d)) s += (s.empty() ? "" : ", ") + std::string(d->name);
+    if (o.knob_applies != nullptr ? o.knob_applies(*d) : o.flag.empty() || d->takes(o.flag))
+      s += (s.empty() ? "" : ", ") + std::string(d->name);
   return s;
 }
 

@@ -29,11 +29,7 @@ bool print_help(const std::vector<std::string>& argv, const std::string& usage) 
   return print_help(argv, usage.c_str());
 }
 
-namespace {
-
-// `text` after `left` (padded to the help column), wrapped at 110 columns,
-// continuation lines indented to the help column.
-std::string help_line(const std::string& left, const std::string& text) {
+std::string help_row(const std::string& left, const std::string& text) {
   constexpr std::size_t column = 30, width = 110;
   std::string out, line = left;
   if (line.size() + 2 > column) {
@@ -58,12 +54,10 @@ std::string help_line(const std::string& left, const std::string& text) {
   return out + line + "\n";
 }
 
-}  // namespace
-
 std::string CommandSpec::help() const {
   std::string s = "usage: habuffer " + usage + "\n";
   for (const OptionSpec& o : options)
-    s += help_line("  --" + o.name + (o.value.empty() ? "" : " " + o.value),
+    s += help_row("  --" + o.name + (o.value.empty() ? "" : " " + o.value),
                    o.help + (o.fallback.empty() ? "" : " (default " + o.fallback + ")"));
   return s + notes;
 }
@@ -212,7 +206,7 @@ std::optional<Extent> Args::extent(const std::string& name) const {
 }
 
 InsertOrder insert_order_option(const Args& args) {
-  const std::string name = args.str("insert-order", "auto");
+  const std::string name = args.str("insert-order");
   const std::optional<InsertOrder> order = parse_insert_order(name);
   if (!order) throw UsageError("option --insert-order: '" + name + "' is not auto, arrival or pixel");
   return *order;

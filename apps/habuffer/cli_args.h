@@ -75,6 +75,10 @@ struct CommandSpec {
   [[nodiscard]] std::set<std::string> flags() const;  ///< see valued()
 };
 
+/// One help row: `left` ("  --size WxH") padded to the help column, then
+/// `text` wrapped at 110 columns (on the next line when `left` is too wide).
+std::string help_row(const std::string& left, const std::string& text);
+
 /// `a` then `b`: a command's own options and a shared group's.
 std::vector<OptionSpec> operator+(std::vector<OptionSpec> a, const std::vector<OptionSpec>& b);
 

@@ -95,15 +95,10 @@ const CommandSpec& stats_spec() {
 
 }  // namespace
 
-int run_stats(const std::vector<std::string>& argv) {
-  if (print_help(argv, stats_spec())) return 0;
-  const Args args(argv, stats_spec());
-  if (args.has("out")) {
-    FileRoles files;
-    files.output("--out", args.required("out"));
-    check_files(files);
-  }
-  ExperimentConfig c;
+namespace {
+
+// --screen, --table and --loads: the sizes, checked to fit in memory.
+void parse_experiment_sizes(const Args& args, ExperimentConfig& c) {
   c.screen = args.size("screen");
   c.table = args.extent("table").value_or(c.screen);
   if (c.table.x < c.screen.x || c.table.y < c.screen.y)
@@ -126,6 +121,12 @@ int run_stats(const std::vector<std::string>& argv) {
     check_fits_in_memory("option --screen " + c.screen.str() + " (table " + c.table.str() + ")",
                          saturating_product(c.table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
   });
+}
+
+// The experiment of the command line (see stats_spec).
+ExperimentConfig parse_experiment(const Args& args) {
+  ExperimentConfig c;
+  parse_experiment_sizes(args, c);
   c.trials = args.u32_in("trials", 1, 100000);
   c.seed = args.u64_in("seed");
   try {
@@ -150,13 +151,10 @@ int run_stats(const std::vector<std::string>& argv) {
     for (auto po : policies)
       for (auto of : offsets)
         if (pr == Probing::Coherent || of == offsets.front()) c.variants.push_back({pr, po, of});  // offsets only matter when coherent
+  return c;
+}
 
-  std::vector<ExperimentRow> rows;
-  {
-    ProgressBar progress = ProgressBar::for_terminal("habuffer stats", "trials", args.has("quiet"));
-    c.on_progress = progress.callback();
-    rows = run_age_experiment(c);
-  }
+void print_rows(const std::vector<ExperimentRow>& rows) {
   std::printf("%-32s %6s %7s %16s %8s %4s %4s %4s %6s %8s %8s %7s %8s\n", "variant", "load", "stored", "mean age (95%)",
               "var", "p50", "p99", "max", "bound", "excess", "probes", "trav", "failed");
   for (const auto& r : rows)
@@ -164,6 +162,26 @@ int run_stats(const std::vector<std::string>& argv) {
                 r.variant.name().c_str(), r.load, r.stored_load, r.mean_age, r.mean_age_ci95, r.age_variance, r.p50,
                 r.p99, r.max_age, r.rank_bound, r.excess, r.mean_probes, r.traversal_probes,
                 static_cast<unsigned long long>(r.failures));
+}
+
+}  // namespace
+
+int run_stats(const std::vector<std::string>& argv) {
+  if (print_help(argv, stats_spec())) return 0;
+  const Args args(argv, stats_spec());
+  if (args.has("out")) {
+    FileRoles files;
+    files.output("--out", args.required("out"));
+    check_files(files);
+  }
+  ExperimentConfig c = parse_experiment(args);
+  std::vector<ExperimentRow> rows;
+  {
+    ProgressBar progress = ProgressBar::for_terminal("habuffer stats", "trials", args.has("quiet"));
+    c.on_progress = progress.callback();
+    rows = run_age_experiment(c);
+  }
+  print_rows(rows);
   if (args.has("out")) {
     const std::string out = args.required("out");
     if (out.size() > 4 && out.substr(out.size() - 4) == ".csv")

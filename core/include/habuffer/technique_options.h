@@ -92,7 +92,8 @@ std::string option_default_text(const TechniqueOption& option);
 std::string option_usage(const TechniqueOption& option);
 /// "k=K", "occ": the knob as a technique word writes it.
 std::string knob_usage(const TechniqueOption& option);
-/// "(it applies to arrays, kbuffer)"-style names: the techniques whose words take the knob.
+/// "arrays, kbuffer": the techniques whose words take the knob (by
+/// knob_applies; without one, those whose descriptors take the flag).
 std::string techniques_taking_knob(const TechniqueOption& option);
 
 }  // namespace habuffer
