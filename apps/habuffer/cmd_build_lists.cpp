@@ -7,6 +7,7 @@
 #include "habuffer/file_roles.h"
 #include "habuffer/interchange.h"
 #include "hash_options.h"
+#include "technique_options.h"
 #include "loss_report.h"
 #include "report_json.h"
 
@@ -26,9 +27,9 @@ const CommandSpec& build_lists_spec() {
           {"path", "cpu|gl", "cpu", "where the lists are built: cpu here (a fragment file's reference build), gl in "
                                     "render (which rasterizes)"},
           {"table", "WxH", "", "the HA-buffer's table (default: the screen)"}} +
-          shared_options({"technique", "layers", "pool", "occupancy", "occupancy-words", "depth-range", "layout",
-                          "age-bits", "offsets", "seed", "block", "early-cull", "saturation", "iter-limit", "lossless",
-                          "max-attempts", "threads", "insert-mode", "insert-order"}),
+          shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
+          shared_options(
+              {"layout", "offsets", "seed", "lossless", "max-attempts", "threads", "insert-mode", "insert-order"}),
       "  Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
       "  Every technique that stores lists writes the same lists CSV; identical records are merged as duplicates,\n"
       "  so an exact technique's lists equal the HA-buffer's byte for byte.\n"};

@@ -67,9 +67,8 @@ const CommandSpec& render_spec() {
            "(--path gl) the stats' slot_writes, tallied by one more atomic per insert call (compiled in only then; "
            "null otherwise)"}} +
           scene_option_specs() +
-          shared_options({"technique", "layers", "pool", "occupancy", "occupancy-words", "depth-range", "layout",
-                          "age-bits", "offsets", "seed", "block", "early-cull", "saturation", "iter-limit", "lossless",
-                          "max-attempts", "threads", "insert-order"}),
+          shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
+          shared_options({"layout", "offsets", "seed", "lossless", "max-attempts", "threads", "insert-order"}),
       "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
       "  --lossless render that still lost fragments, 2 bad usage.\n"};
   return spec;

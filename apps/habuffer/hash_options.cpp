@@ -15,7 +15,7 @@ namespace {
 // The shared declarations (see shared_options), besides the technique table's rows.
 const std::vector<OptionSpec>& shared_declarations() {
   static const std::vector<OptionSpec> specs{
-      {"technique", "NAME", "ha", "the technique (the list below)"},
+      {"technique", "NAME", "ha", "the technique (listed below)"},
       {"layout", "64|32", "64", "record layout: 64 bits (depth and colour) or 32 (depth only)"},
       {"offsets", "random|farthest|OFFSETS.csv", "random", "the HA-buffer's probe offsets"},
       {"seed", "N", "1", "the offsets' seed"},

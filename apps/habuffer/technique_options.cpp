@@ -31,8 +31,15 @@ OptionSpec technique_option_spec(std::string_view flag) {
           std::string(o->help) + (takers.empty() ? std::string() : " [" + takers + "]")};
 }
 
+std::vector<OptionSpec> technique_option_specs(bool buffer_part) {
+  std::vector<OptionSpec> specs;
+  for (const TechniqueOption& o : technique_options())
+    if (!o.flag.empty() && o.buffer_field == buffer_part) specs.push_back(technique_option_spec(o.flag));
+  return specs;
+}
+
 std::string technique_help() {
-  std::string s = "  --technique NAME (default ha), one of:\n";
+  std::string s = "  The techniques (--technique NAME):\n";
   for (const TechniqueDescriptor* d : technique_registry()) {
     std::string name(d->name);
     name.resize(std::max<std::size_t>(name.size(), 13), ' ');

@@ -38,6 +38,11 @@ void set_technique_options(const Args& args, TechniqueConfig& config, bool buffe
 /// with the techniques that take it. std::logic_error for another name.
 OptionSpec technique_option_spec(std::string_view flag);
 
+/// Every row of the option table's `buffer_part` (see set_technique_options)
+/// as declarations, in the table's order: a command that takes them all lists
+/// none by name.
+std::vector<OptionSpec> technique_option_specs(bool buffer_part);
+
 /// The help's lines on --technique, written from the registry: every
 /// technique's name and summary.
 std::string technique_help();
