@@ -48,7 +48,8 @@ constexpr TechniqueOption kOptions[] = {
        return pixels > 0 ? capacity / pixels : 0;
      }},
     {.flag = "pool", .knob = "", .value_name = "N|auto", .kind = OptionKind::CountOrAuto, .min = 1,
-     .max = UINT32_MAX - 1, .help = "nodes of the node pool; auto sizes it from the fragments, grows it at once on a drop",
+     .max = UINT32_MAX - 1,
+     .help = "nodes of the node pool; auto sizes it from the fragments, grows it at once on a drop",
      .json = "pool_nodes",
      .get = [](const TechniqueConfig& c) { return OptionValue{c.pool_capacity}; },
      .put = [](TechniqueConfig& c, const OptionValue& v) { c.pool_capacity = std::get<std::uint64_t>(v); },
@@ -168,7 +169,9 @@ std::string option_default_text(const TechniqueOption& o) {
   return o.get == nullptr ? std::string() : option_value_text(o, o.get(TechniqueConfig{}));
 }
 
-std::string option_usage(const TechniqueOption& o) { return "--" + std::string(o.flag) + " " + std::string(o.value_name); }
+std::string option_usage(const TechniqueOption& o) {
+  return "--" + std::string(o.flag) + " " + std::string(o.value_name);
+}
 
 std::string knob_usage(const TechniqueOption& o) {
   return o.kind == OptionKind::Switch ? std::string(o.knob) : std::string(o.knob) + "=" + std::string(o.value_name);

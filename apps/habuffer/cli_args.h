@@ -98,9 +98,11 @@ class Args {
   /// has none). std::logic_error for a name the command did not declare.
   [[nodiscard]] std::string str(const std::string& name) const;
   /// str(name) as an unsigned integer in [min, max]; UsageError "option --NAME: ..." for bad text.
-  [[nodiscard]] std::uint64_t u64_in(const std::string& name, std::uint64_t min = 0, std::uint64_t max = UINT64_MAX) const;
+  [[nodiscard]] std::uint64_t u64_in(const std::string& name, std::uint64_t min = 0,
+                                     std::uint64_t max = UINT64_MAX) const;
   /// As u64_in, for 32 bits.
-  [[nodiscard]] std::uint32_t u32_in(const std::string& name, std::uint32_t min = 0, std::uint32_t max = UINT32_MAX) const;
+  [[nodiscard]] std::uint32_t u32_in(const std::string& name, std::uint32_t min = 0,
+                                     std::uint32_t max = UINT32_MAX) const;
   /// str(name) as a double (as real(name, fallback)).
   [[nodiscard]] double real(const std::string& name) const;
   /// str(name) as a comma-separated list (as list(name, fallback)).

@@ -26,7 +26,8 @@ const CommandSpec& build_lists_spec() {
           {"dump-max-age", "MAXAGE.csv", "", "the HA-buffer's max-age table"},
           {"path", "cpu|gl", "cpu", "where the lists are built: cpu here (a fragment file's reference build), gl in "
                                     "render (which rasterizes)"},
-          {"table", "WxH", "", "the HA-buffer's table (default: the screen)"}} +
+          {"table", "WxH", "",
+           "the HA-buffer's table (default: the screen; render's auto sizes it from a counting pass)"}} +
           shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
           shared_options(
               {"layout", "offsets", "seed", "lossless", "max-attempts", "threads", "insert-mode", "insert-order"}),

@@ -38,7 +38,8 @@ const CommandSpec& demo_spec() {
           {"fragments", "N", "", "the stream's fragments (default: the screen's area)"},
           {"load", "L", "0.5", "sizes the table for this load of the fragments, in (0, 1] (unless --table)"},
           {"table", "WxH", "", "the table (default: from --load)"},
-          {"path", "cpu|gl", "cpu", "the second build: parallel on the CPU, or on the GPU"},
+          {"path", "cpu|gl", "cpu",
+           "the second build: parallel on the CPU (the default: demo checks SPEC 9 on the CPU path), or on the GPU"},
           {"stats", "STATS.json", "", "the builds' counters, sizes and times"},
           {"lists", "LISTS.csv", "", "the per-pixel sorted lists"}} +
           shared_options({"layout", "age-bits", "offsets", "seed", "block", "early-cull", "iter-limit", "lossless",

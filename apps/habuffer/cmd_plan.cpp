@@ -20,7 +20,8 @@ const CommandSpec& plan_spec() {
           {"fragments", "F.csv", "", "a fragment file instead"},
           {"target-psnr", "DB", "", "recommend the cheapest configuration that meets it (default: lossless)"},
           {"loads", "L1,L2,...", "0.5,0.6,0.7,0.8,0.9,0.95", "the loads in (0, 1] predicted (as sweep's)"},
-          {"trials", "N", "3", "seeds of the HA-buffer's simulated insertion"},
+          {"trials", "N", "3",
+           "seeds of the HA-buffer's simulated insertion (a prediction: fewer than stats' 5 trials)"},
           {"seed", "S", "1", "the first of them"},
           technique_option_spec("age-bits")} +
           harness_options({"out", "size", "quiet"}),

@@ -34,7 +34,8 @@ std::vector<OptionSpec> scene_option_specs() {
   for (const SceneOptionRule& r : scene_option_rules())
     for (const auto& [flag, shape] : shapes)
       if (std::string(r.flag) == flag)
-        specs.push_back({flag, shape, "", std::string("the scene's ") + r.key + " (" + scenes_taking_text(r.key) + ")"});
+        specs.push_back(
+            {flag, shape, "", std::string("the scene's ") + r.key + " (" + scenes_taking_text(r.key) + ")"});
   return specs;
 }
 
@@ -42,7 +43,8 @@ const CommandSpec& render_spec() {
   static const CommandSpec spec{
       "render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json] [OPTIONS]",
       std::vector<OptionSpec>{
-          {"scene", "NAME|FILE", "", "engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file"},
+          {"scene", "NAME|FILE", "",
+           "engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file"},
           {"fragments", "FRAGS.csv", "", "a recorded fragment stream instead of a scene (CPU path)"},
           {"out", "IMAGE", "", "the image: PNG, or EXR/HDR/TIFF (float) by extension"},
           {"stats", "STATS.json", "", "counters, sizes, times per frame"},

@@ -76,7 +76,9 @@ const CommandSpec& stats_spec() {
       "stats [OPTIONS]",
       {{"screen", "WxH", "128x128", "the screen (small: every trial builds a table)"},
        {"table", "WxH", "", "the table (default: the screen)"},
-       {"loads", "L1,L2,...", "0.5,0.8,0.9", "loads in (0, 4]: fragments per trial = load x table slots"},
+       {"loads", "L1,L2,...", "0.5,0.8,0.9",
+        "loads in (0, 4]: fragments per trial = load x table slots (three: each runs every variant and trial; "
+        "sweep and plan take six)"},
        {"trials", "N", "5", "trials per load and variant"},
        {"seed", "S", "1", "the streams' seed"},
        {"stream", "random|coherent|stacked|hot", "random", "the streams' shape"},
