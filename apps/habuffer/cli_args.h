@@ -88,10 +88,9 @@ bool print_help(const std::vector<std::string>& argv, const CommandSpec& spec);
 /// One subcommand's parsed options (see the file comment).
 class Args {
  public:
-  /// valued: options that take a value; flags: switches. Throws UsageError on
-  /// an unknown option, a missing value or a repeated option.
-  Args(const std::vector<std::string>& argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
-  /// The same with the names and defaults of `spec` (which must outlive the Args).
+  /// The options of `argv` by the names and defaults of `spec` (which must
+  /// outlive the Args): its valued options and its switches. Throws
+  /// UsageError on an unknown option, a missing value or a repeated option.
   Args(const std::vector<std::string>& argv, const CommandSpec& spec);
 
   /// The value of `name`, or its declared default (CommandSpec; "" when it
@@ -137,6 +136,8 @@ class Args {
   [[nodiscard]] std::optional<Extent> extent(const std::string& name) const;
 
  private:
+  // valued: options that take a value; flags: switches (see above).
+  Args(const std::vector<std::string>& argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
   [[nodiscard]] const std::string& declared_default(const std::string& name) const;
 
   std::map<std::string, std::string> values_;
