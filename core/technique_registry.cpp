@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <stdexcept>
+#include <type_traits>
 
 #include "habuffer/technique_list.h"
+#include "habuffer/technique_options.h"
 
 // Each technique's folder defines its descriptor(); the list names them.
 #define HABUFFER_DECLARE_DESCRIPTOR(Enumerator, ns) \
@@ -66,14 +68,24 @@ std::string techniques_taking(std::string_view option) {
 std::vector<ReportField> technique_report_fields(const TechniqueConfig& c, std::uint64_t capacity) {
   const TechniqueDescriptor& d = descriptor(c.technique);
   std::vector<ReportField> fields;
-  const std::uint64_t pixels = c.buffer.screen.area();
-  if (d.capacity == CapacityKind::PixelLayers) fields.push_back({"layers", pixels > 0 ? capacity / pixels : 0});
-  if (d.capacity == CapacityKind::PoolNodes) fields.push_back({"pool_nodes", capacity});
-  if (d.takes("occupancy")) {
-    fields.push_back({"occupancy", c.occupancy});
-    if (c.occupancy) fields.push_back({"occupancy_words", std::uint64_t{c.occupancy_words}});
+  for (const TechniqueOption& o : technique_options()) {
+    if (o.json.empty() || !d.takes(o.flag)) continue;
+    const TechniqueOption* needed = o.needs.empty() ? nullptr : find_option_flag(o.needs);
+    if (needed != nullptr && !option_on(*needed, c)) continue;
+    if (o.reported != nullptr) {
+      fields.push_back({o.json, o.reported(c, capacity)});
+      continue;
+    }
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, std::uint64_t> || std::is_same_v<V, bool> || std::is_same_v<V, DepthRange>)
+            fields.push_back({o.json, v});
+          else
+            throw std::logic_error("technique option --" + std::string(o.flag) + ": no report type for its value");
+        },
+        o.get(c));
   }
-  if (d.reads_depth_range) fields.push_back({"depth_range", c.depth_range});
   return fields;
 }
 

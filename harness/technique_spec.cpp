@@ -9,6 +9,7 @@
 
 #include "habuffer/number_text.h"
 #include "habuffer/option_rules.h"
+#include "habuffer/technique_options.h"
 
 namespace habuffer::harness {
 namespace {
@@ -33,11 +34,6 @@ auto knob(const std::string& word, const std::string& key, const std::string& te
   }
 }
 
-std::uint32_t whole(const std::string& word, const std::string& key, const std::string& text, std::uint32_t lo,
-                    std::uint32_t hi) {
-  return static_cast<std::uint32_t>(knob(word, key, text, [&](const std::string& t) { return parse_unsigned(t, lo, hi); }));
-}
-
 std::string number_text(double v) {
   std::ostringstream o;
   o << v;
@@ -48,17 +44,64 @@ void require(bool ok, const std::string& word, const std::string& what) {
   if (!ok) throw std::invalid_argument("technique '" + word + "': " + what);
 }
 
+// Where each knob of the option table (habuffer/technique_options.h) is kept
+// in a TechniqueSpec: its value stored, whether it was given, its text in a
+// label. The knobs' names, kinds, ranges, rules and refusals are the table's.
+struct KnobField {
+  std::string_view knob;
+  void (*store)(TechniqueSpec& t, const OptionValue& v);
+  bool (*given)(const TechniqueSpec& t);
+  std::string (*text)(const TechniqueSpec& t);  ///< the value in a label (a switch has none)
+};
+
+std::uint32_t whole(const OptionValue& v) { return static_cast<std::uint32_t>(std::get<std::uint64_t>(v)); }
+
+constexpr KnobField kKnobFields[] = {
+    {"cull", [](TechniqueSpec& t, const OptionValue& v) { t.cull = std::get<float>(v); },
+     [](const TechniqueSpec& t) { return t.cull > 0.0f; }, [](const TechniqueSpec& t) { return number_text(t.cull); }},
+    {"sat", [](TechniqueSpec& t, const OptionValue&) { t.saturation = true; },
+     [](const TechniqueSpec& t) { return t.saturation; }, nullptr},
+    {"load", [](TechniqueSpec& t, const OptionValue& v) { t.load = std::get<double>(v); },
+     [](const TechniqueSpec& t) { return t.load.has_value(); },
+     [](const TechniqueSpec& t) { return number_text(*t.load); }},
+    {"age", [](TechniqueSpec& t, const OptionValue& v) { t.age_bits = whole(v); },
+     [](const TechniqueSpec& t) { return t.age_bits.has_value(); },
+     [](const TechniqueSpec& t) { return std::to_string(*t.age_bits); }},
+    {"k", [](TechniqueSpec& t, const OptionValue& v) { t.layers = whole(v); },
+     [](const TechniqueSpec& t) { return t.layers.has_value(); },
+     [](const TechniqueSpec& t) { return std::to_string(*t.layers); }},
+    {"occ", [](TechniqueSpec& t, const OptionValue&) { t.occupancy = true; },
+     [](const TechniqueSpec& t) { return t.occupancy; }, nullptr},
+    {"words", [](TechniqueSpec& t, const OptionValue& v) { t.occupancy_words = whole(v); },
+     [](const TechniqueSpec& t) { return t.occupancy_words.has_value(); },
+     [](const TechniqueSpec& t) { return std::to_string(*t.occupancy_words); }},
+};
+
+const KnobField& knob_field(const TechniqueOption& o) {
+  for (const KnobField& f : kKnobFields)
+    if (f.knob == o.knob) return f;
+  throw std::logic_error("technique words: knob '" + std::string(o.knob) + "' has no TechniqueSpec field");
+}
+
+// "(cull=TAU, sat, load=L, ...)": every knob, for the refusal of an unknown one.
+std::string knob_list() {
+  std::string s;
+  for (const TechniqueOption& o : technique_options())
+    if (!o.knob.empty()) s += (s.empty() ? "" : ", ") + knob_usage(o);
+  return "(" + s + ")";
+}
+
 }  // namespace
 
 std::string TechniqueSpec::label() const {
   std::string s = to_string(technique);
-  if (cull > 0.0f) s += ":cull=" + number_text(cull);
-  if (saturation) s += ":sat";
-  if (load) s += ":load=" + number_text(*load);
-  if (age_bits) s += ":age=" + std::to_string(*age_bits);
-  if (layers) s += ":k=" + std::to_string(*layers);
-  if (occupancy) s += ":occ";
-  if (occupancy_words) s += ":words=" + std::to_string(*occupancy_words);
+  for (const TechniqueOption& o : technique_options()) {
+    if (o.knob.empty()) continue;
+    const KnobField& f = knob_field(o);
+    if (!f.given(*this)) continue;
+    s.append(":").append(o.knob);
+    if (f.text != nullptr) s.append("=").append(f.text(*this));
+  }
   return s;
 }
 
@@ -66,12 +109,31 @@ bool TechniqueSpec::exact() const { return exact_technique(technique) && cull ==
 
 namespace {
 
-// "ha, lists, sorted-lists": the techniques a load sizes.
-std::string automatically_sized_techniques() {
-  std::string s;
-  for (const TechniqueDescriptor* d : technique_registry())
-    if (d->sized_automatically()) s += (s.empty() ? "" : ", ") + std::string(d->name);
-  return s;
+// The knob `part` ("k=8", "occ") of `word`, parsed by its table row and stored.
+void parse_knob(const std::string& word, const std::string& part, TechniqueSpec& t, std::set<std::string>& given) {
+  const std::size_t eq = part.find('=');
+  const std::string key = part.substr(0, eq), value = eq == std::string::npos ? "" : part.substr(eq + 1);
+  const bool flag = eq == std::string::npos;
+  require(given.insert(key).second, word, key + " given twice");
+  const TechniqueOption* o = find_option_knob(key);
+  if (o == nullptr || flag != (o->kind == OptionKind::Switch))
+    throw std::invalid_argument("technique '" + word + "': unknown knob '" + part + "' " + knob_list());
+  knob_field(*o).store(t, flag ? OptionValue{true} : knob(word, key, value, [&](const std::string& v) {
+    return parse_option_value(*o, v);
+  }));
+}
+
+// Each knob where its row says it applies, and with the knob it needs.
+void check_knobs(const std::string& word, const TechniqueSpec& t) {
+  const TechniqueDescriptor& d = descriptor(t.technique);
+  for (const TechniqueOption& o : technique_options()) {
+    if (o.knob.empty() || !knob_field(o).given(t)) continue;
+    require(o.knob_applies == nullptr || o.knob_applies(d), word,
+            std::string(o.knob) + " applies to " + techniques_taking_knob(o));
+    const TechniqueOption* needed = o.needs.empty() ? nullptr : find_option_flag(o.needs);
+    require(needed == nullptr || knob_field(*needed).given(t), word,
+            std::string(o.knob) + " needs " + (needed != nullptr ? knob_usage(*needed) : ""));
+  }
 }
 
 }  // namespace
@@ -83,39 +145,8 @@ TechniqueSpec parse_technique_spec(const std::string& word) {
   if (!technique) throw std::invalid_argument("technique '" + word + "': unknown name '" + (parts.empty() ? "" : parts[0]) + "'");
   t.technique = *technique;
   std::set<std::string> given;
-  for (std::size_t i = 1; i < parts.size(); ++i) {
-    const std::size_t eq = parts[i].find('=');
-    const std::string key = parts[i].substr(0, eq), value = eq == std::string::npos ? "" : parts[i].substr(eq + 1);
-    const bool flag = eq == std::string::npos;
-    require(given.insert(key).second, word, key + " given twice");
-    if (key == "cull" && !flag) {
-      t.cull = knob(word, key, value, [](const std::string& v) { return parse_cull_threshold(v); });
-    } else if (key == "sat" && flag) {
-      t.saturation = true;
-    } else if (key == "load" && !flag) {
-      t.load = knob(word, key, value, [](const std::string& v) { return parse_load_factor(v); });
-    } else if (key == "age" && !flag) {
-      t.age_bits = whole(word, key, value, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
-    } else if (key == "k" && !flag) {
-      t.layers = whole(word, key, value, 1, HABUFFER_MAX_LAYERS);
-    } else if (key == "occ" && flag) {
-      t.occupancy = true;
-    } else if (key == "words" && !flag) {
-      t.occupancy_words = whole(word, key, value, 1, HABUFFER_MAX_OCCUPANCY_WORDS);
-    } else {
-      throw std::invalid_argument("technique '" + word + "': unknown knob '" + parts[i] +
-                                  "' (cull=TAU, sat, load=L, age=A, k=K, occ, words=D)");
-    }
-  }
-  // Each knob is a CLI option of the technique's descriptor.
-  const TechniqueDescriptor& d = descriptor(t.technique);
-  require(t.cull == 0.0f || d.takes("early-cull"), word, "cull applies to " + techniques_taking("early-cull"));
-  require(!t.saturation || t.cull > 0.0f, word, "sat needs cull=TAU");
-  require(!t.load || d.sized_automatically(), word, "load applies to " + automatically_sized_techniques());
-  require(!t.age_bits || d.capacity == CapacityKind::TableSlots, word, "age applies to " + techniques_taking("table"));
-  require(!t.layers || d.takes("layers"), word, "k applies to " + techniques_taking("layers"));
-  require(!t.occupancy || d.takes("occupancy"), word, "occ applies to " + techniques_taking("occupancy"));
-  require(!t.occupancy_words || t.occupancy, word, "words needs occ");
+  for (std::size_t i = 1; i < parts.size(); ++i) parse_knob(word, parts[i], t, given);
+  check_knobs(word, t);
   return t;
 }
 

@@ -49,12 +49,65 @@ bool print_help(const std::vector<std::string>& argv, const char* usage);
 /// The same for a help text assembled at run time (e.g. from the technique registry).
 bool print_help(const std::vector<std::string>& argv, const std::string& usage);
 
+/// One option of a command, declared once in the command's CommandSpec: the
+/// accepted names, the help line and the default that parsing reads all come
+/// from it.
+struct OptionSpec {
+  std::string name;      ///< --NAME
+  std::string value;     ///< the value's shape in help ("WxH", "N"); empty for a switch (no value)
+  std::string fallback;  ///< the default parsing reads (Args::str(name)) and help shows; empty: none
+  std::string help;      ///< one phrase; where the default is not a constant, it says so in words
+};
+
+/// A command's declaration: its usage line, its options, and the notes the
+/// help prints after them.
+struct CommandSpec {
+  std::string usage;  ///< after "usage: habuffer ": the command and its required shape
+  std::vector<OptionSpec> options;  ///< every option it accepts, in help order
+  std::string notes;  ///< lines after the options, each "  ...\n"; may be empty
+
+  /// "usage: ...", one line per option (its default added), then the notes.
+  [[nodiscard]] std::string help() const;
+  /// The option named `name`, or nullptr.
+  [[nodiscard]] const OptionSpec* find(const std::string& name) const;
+  /// Accepted names (valued, switches), as the set constructor of Args takes them.
+  [[nodiscard]] std::set<std::string> valued() const;
+  [[nodiscard]] std::set<std::string> flags() const;  ///< see valued()
+};
+
+/// One help row: `left` ("  --size WxH") padded to the help column, then
+/// `text` wrapped at 110 columns (on the next line when `left` is too wide).
+std::string help_row(const std::string& left, const std::string& text);
+
+/// `a` then `b`: a command's own options and a shared group's.
+std::vector<OptionSpec> operator+(std::vector<OptionSpec> a, const std::vector<OptionSpec>& b);
+
+/// Prints `spec`'s help and returns true when the only argument is --help.
+bool print_help(const std::vector<std::string>& argv, const CommandSpec& spec);
+
 /// One subcommand's parsed options (see the file comment).
 class Args {
  public:
-  /// valued: options that take a value; flags: switches. Throws UsageError on
-  /// an unknown option, a missing value or a repeated option.
-  Args(const std::vector<std::string>& argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
+  /// The options of `argv` by the names and defaults of `spec` (which must
+  /// outlive the Args): its valued options and its switches. Throws
+  /// UsageError on an unknown option, a missing value or a repeated option.
+  Args(const std::vector<std::string>& argv, const CommandSpec& spec);
+
+  /// The value of `name`, or its declared default (CommandSpec; "" when it
+  /// has none). std::logic_error for a name the command did not declare.
+  [[nodiscard]] std::string str(const std::string& name) const;
+  /// str(name) as an unsigned integer in [min, max]; UsageError "option --NAME: ..." for bad text.
+  [[nodiscard]] std::uint64_t u64_in(const std::string& name, std::uint64_t min = 0,
+                                     std::uint64_t max = UINT64_MAX) const;
+  /// As u64_in, for 32 bits.
+  [[nodiscard]] std::uint32_t u32_in(const std::string& name, std::uint32_t min = 0,
+                                     std::uint32_t max = UINT32_MAX) const;
+  /// str(name) as a double (as real(name, fallback)).
+  [[nodiscard]] double real(const std::string& name) const;
+  /// str(name) as a comma-separated list (as list(name, fallback)).
+  [[nodiscard]] std::vector<std::string> list(const std::string& name) const;
+  /// str(name) as a size WxH with positive sides; UsageError for anything else.
+  [[nodiscard]] Extent size(const std::string& name) const;
 
   /// Whether option or flag `name` was given.
   [[nodiscard]] bool has(const std::string& name) const { return values_.count(name) != 0 || flags_.count(name) != 0; }
@@ -83,8 +136,13 @@ class Args {
   [[nodiscard]] std::optional<Extent> extent(const std::string& name) const;
 
  private:
+  // valued: options that take a value; flags: switches (see above).
+  Args(const std::vector<std::string>& argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
+  [[nodiscard]] const std::string& declared_default(const std::string& name) const;
+
   std::map<std::string, std::string> values_;
   std::set<std::string> flags_;
+  const CommandSpec* spec_ = nullptr;  ///< the declaration, when made from one
 };
 
 /// --insert-order auto|arrival|pixel (the HA-buffer's order on the CPU path;

@@ -10,35 +10,38 @@
 namespace habuffer::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: habuffer bench --scenes S1,S2,... --techniques T1,T2,... --out F.json[,F.csv]\n"
-    "         [--size WxH[,WxH...] (256x256)] [--path gl|cpu] [--repeats N (3)] [--seed S] [--threads N]\n"
-    "         [--insert-order auto|arrival|pixel]\n"
-    "         [--no-floors] [--quiet]\n"
-    "  Every technique on every scene at every size, repetitions interleaved (each combination once per\n"
-    "  round) with the floors (one atomic add per fragment; unsorted blending) measured in every round.\n"
-    "  One row per combination: gather_ms, resolve_ms, total_ms (medians, min and max), memory_bytes,\n"
-    "  bytes_per_fragment, every counter, psnr, rmse and max_error against the exact reference, the\n"
-    "  floors and the ratios to them.\n"
-    "  S: a scene name or mesh file with options (planes:order=front:count=32), or a fragment CSV (CPU).\n"
-    "  T: NAME[:KNOB...], NAME a technique (habuffer techniques lists them); knobs\n"
-    "     cull=TAU (ha, sorted-lists), sat (with cull), load=L (fixed table or pool for load L),\n"
-    "     age=A (ha), k=K (arrays, kbuffer), occ and words=D (kbuffer), e.g. kbuffer:k=8:occ.\n";
+const CommandSpec& bench_spec() {
+  static const CommandSpec spec{
+      "bench --scenes S1,S2,... --techniques T1,T2,... --out F.json[,F.csv] [OPTIONS]",
+      std::vector<OptionSpec>{
+          {"scenes", "S1,S2,...", "", "the scenes (required; S below)"},
+          {"techniques", "T1,T2,...", "", "the techniques and their knobs (required; T below)"},
+          {"no-floors", "", "", "skip the floors"}} +
+          harness_options({"out", "size", "path", "repeats", "seed", "threads", "insert-order", "quiet"}),
+      "  Every technique on every scene at every size, repetitions interleaved (each combination once per\n"
+      "  round) with the floors (one atomic add per fragment; unsorted blending) measured in every round.\n"
+      "  One row per combination: gather_ms, resolve_ms, total_ms (medians, min and max), memory_bytes,\n"
+      "  bytes_per_fragment, every counter, psnr, rmse and max_error against the exact reference, the\n"
+      "  floors and the ratios to them.\n"
+      "  S: a scene name or mesh file with options (planes:order=front:count=32), or a fragment CSV (CPU).\n"
+      "  T: NAME[:KNOB...], NAME a technique (habuffer techniques lists them); knobs\n" +
+      technique_knob_help() + "     e.g. kbuffer:k=8:occ.\n"};
+  return spec;
+}
 
 }  // namespace
 
 int run_bench(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp)) return 0;
-  const Args args(argv, {"scenes", "techniques", "size", "path", "repeats", "seed", "threads", "insert-order", "out"},
-                  {"no-floors", "quiet"});
+  if (print_help(argv, bench_spec())) return 0;
+  const Args args(argv, bench_spec());
   harness::BenchSettings s;
   s.path = parse_path(args);
   s.scenes = parse_scenes(args, "scenes");
-  s.techniques = parse_techniques(args, "techniques", "");
-  s.sizes = parse_sizes(args, "256x256");
-  s.repeats = args.u32("repeats", 3, 1, 1000);
-  s.seed = args.u64("seed", 1);
-  s.threads = args.u32("threads", 0, 0, kMaxThreads);
+  s.techniques = parse_techniques(args, "techniques");
+  s.sizes = parse_sizes(args);
+  s.repeats = args.u32_in("repeats", 1, 1000);
+  s.seed = args.u64_in("seed");
+  s.threads = args.u32_in("threads", 0, kMaxThreads);
   s.insert_order = insert_order_option(args);
   args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"}, "with --path gl (the GPU inserts)");
   s.floors = !args.has("no-floors");

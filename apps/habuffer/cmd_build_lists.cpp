@@ -1,32 +1,41 @@
 // habuffer build-lists: fragment CSV in, per-pixel sorted lists out.
 #include <chrono>
 #include <cstdio>
-#include <iterator>
 
 #include "commands.h"
 #include "gl_build.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/interchange.h"
 #include "hash_options.h"
+#include "technique_options.h"
 #include "loss_report.h"
 #include "report_json.h"
 
 namespace habuffer::cli {
 namespace {
 
-const std::string kHelp =
-    "usage: habuffer build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [--table WxH] [--layout 64|32]\n"
-    "         [--age-bits N] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--block B] [--threads N]\n"
-    "         [--early-cull TAU] [--lossless [--max-attempts N]] [--iter-limit N] [--stats STATS.json]\n"
-    "         [--insert-mode auto|serial|atomic|owner] [--insert-order auto|arrival|pixel] [--path cpu|gl] [--technique NAME]\n"
-    "         [--layers K] [--pool N|auto] [--dump-table TABLE.csv] [--dump-max-age MAXAGE.csv]\n"
-    "  --threads 0 (the default, as in every command; 1 with --insert-mode serial) uses every hardware thread, at most one per\n"
-    "  32768 fragments; every insert mode and order builds the same table. --path cpu is the default here (a fragment file's\n"
-    "  reference build), gl in render (which rasterizes). `habuffer techniques` lists the techniques.\n"
-    "  Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
-    "  Every technique that stores lists writes the same lists CSV; identical records are merged as duplicates,\n"
-    "  so an exact technique's lists equal the HA-buffer's byte for byte.\n";
-
+const CommandSpec& build_lists_spec() {
+  static const CommandSpec spec{
+      "build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [OPTIONS]",
+      std::vector<OptionSpec>{
+          {"in", "FRAGS.csv", "", "the fragments (required)"},
+          {"out", "LISTS.csv", "", "the per-pixel sorted lists (required)"},
+          {"screen", "WxH", "", "the screen (required)"},
+          {"stats", "STATS.json", "", "the build's counters, sizes and times"},
+          {"dump-table", "TABLE.csv", "", "the HA-buffer's table, slot by slot"},
+          {"dump-max-age", "MAXAGE.csv", "", "the HA-buffer's max-age table"},
+          {"path", "cpu|gl", "cpu", "where the lists are built: cpu here (a fragment file's reference build), gl in "
+                                    "render (which rasterizes)"},
+          {"table", "WxH", "",
+           "the HA-buffer's table (default: the screen; render's auto sizes it from a counting pass)"}} +
+          shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
+          shared_options(
+              {"layout", "offsets", "seed", "lossless", "max-attempts", "threads", "insert-mode", "insert-order"}),
+      "  Exit codes: 0 ok, 1 bad data or lossless failure, 2 bad usage.\n"
+      "  Every technique that stores lists writes the same lists CSV; identical records are merged as duplicates,\n"
+      "  so an exact technique's lists equal the HA-buffer's byte for byte.\n"};
+  return spec;
+}
 
 // Refuses a technique without lists and any file given two roles, before any work.
 void check_build_request(const Args& args, const HashOptions& options, const std::string& in, const std::string& out) {
@@ -104,11 +113,8 @@ int report_build_losses(const HashOptions& options, const TechniqueConfig& confi
 }  // namespace
 
 int run_build_lists(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp + technique_help())) return 0;
-  auto valued = hash_valued_options();
-  valued.insert({"in", "out", "stats", "dump-table", "dump-max-age"});
-  valued.insert(std::begin(kTechniqueValued), std::end(kTechniqueValued));
-  const Args args(argv, valued, hash_flag_options());
+  if (print_help(argv, build_lists_spec().help() + technique_help())) return 0;
+  const Args args(argv, build_lists_spec());
   const std::string in = args.required("in");
   const std::string out = args.required("out");
   HashOptions options = parse_hash_options(args, true);

@@ -8,10 +8,19 @@
 
 namespace habuffer::cli {
 
+namespace {
+
+// Two positional image files and no option.
+const CommandSpec& compare_spec() {
+  static const CommandSpec spec{
+      "compare A B", {}, "  Prints RMSE, PSNR and the largest channel error over RGB (values in [0, 1]).\n"};
+  return spec;
+}
+
+}  // namespace
+
 int run_compare(const std::vector<std::string>& argv) {
-  if (print_help(argv, "usage: habuffer compare A B\n  prints RMSE, PSNR and the largest channel error over RGB "
-                       "(values in [0, 1]).\n"))
-    return 0;
+  if (print_help(argv, compare_spec())) return 0;
   if (argv.size() != 2 || argv[0].rfind("--", 0) == 0 || argv[1].rfind("--", 0) == 0)
     throw UsageError("give exactly two image files");
   try {

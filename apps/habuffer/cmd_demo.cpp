@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cstdio>
 #include <optional>
-#include <set>
 #include <span>
 
 #include "commands.h"
@@ -30,22 +29,34 @@ bool same_tables(const HaBuffer& a, const HaBuffer& b) {
   return true;
 }
 
-constexpr const char* kHelp =
-    "usage: habuffer demo [--screen WxH (1024x1024)] [--stream coherent|random] [--fragments N (screen area)]\n"
-    "         [--load L (0.5)] [--seed N] [--threads N (0: all)] [--path cpu|gl] [--stats STATS.json]\n"
-    "         [--lists LISTS.csv] and the hash options of build-lists (--layout, --age-bits, --offsets, --block, ...)\n"
-    "  Builds the table serially on the CPU, then in parallel (--path cpu) or on the GPU (--path gl), and\n"
-    "  checks that both tables are bit-identical (SPEC 9).\n";
+const CommandSpec& demo_spec() {
+  static const CommandSpec spec{
+      "demo [OPTIONS]",
+      std::vector<OptionSpec>{
+          {"screen", "WxH", "1024x1024", "the screen (a full frame's, as render's --size)"},
+          {"stream", "coherent|random", "coherent", "the generated stream's shape"},
+          {"fragments", "N", "", "the stream's fragments (default: the screen's area)"},
+          {"load", "L", "0.5", "sizes the table for this load of the fragments, in (0, 1] (unless --table)"},
+          {"table", "WxH", "", "the table (default: from --load)"},
+          {"path", "cpu|gl", "cpu",
+           "the second build: parallel on the CPU (the default: demo checks SPEC 9 on the CPU path), or on the GPU"},
+          {"stats", "STATS.json", "", "the builds' counters, sizes and times"},
+          {"lists", "LISTS.csv", "", "the per-pixel sorted lists"}} +
+          shared_options({"layout", "age-bits", "offsets", "seed", "block", "early-cull", "iter-limit", "lossless",
+                          "max-attempts", "threads", "insert-mode", "insert-order"}),
+      "  --seed seeds the stream and the offsets. Builds the table serially on the CPU, then in parallel\n"
+      "  (--path cpu) or on the GPU (--path gl), and checks that both tables are bit-identical (SPEC 9).\n"};
+  return spec;
+}
 
 // The command line with demo's defaults added: the screen, and the table of
 // --load for --fragments; the stream's size in `count`.
-std::vector<std::string> with_demo_defaults(const std::vector<std::string>& argv, const std::set<std::string>& valued,
-                                            std::uint64_t& count) {
+std::vector<std::string> with_demo_defaults(const std::vector<std::string>& argv, std::uint64_t& count) {
   std::vector<std::string> with_defaults = argv;
-  const Args probe(argv, valued, hash_flag_options());
-  const Extent screen = probe.extent("screen").value_or(Extent{1024, 1024});
+  const Args probe(argv, demo_spec());
+  const Extent screen = probe.size("screen");
   count = probe.u64("fragments", screen.area(), 1, std::uint64_t{1} << 32);
-  const double load = probe.real("load", 0.5);
+  const double load = probe.real("load");
   if (!(load > 0.0 && load <= 1.0)) throw UsageError("option --load: must be in (0, 1]");
   if (!probe.has("screen")) with_defaults.insert(with_defaults.end(), {"--screen", screen.str()});
   if (!probe.has("table"))
@@ -108,11 +119,9 @@ void print_demo(const HashOptions& options, const StreamOptions& so, std::size_t
 }  // namespace
 
 int run_demo(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp)) return 0;
-  auto valued = hash_valued_options();
-  valued.insert({"stream", "fragments", "load", "stats", "lists"});
+  if (print_help(argv, demo_spec())) return 0;
   std::uint64_t count = 0;
-  const Args args(with_demo_defaults(argv, valued, count), valued, hash_flag_options());
+  const Args args(with_demo_defaults(argv, count), demo_spec());
   HashOptions options = parse_hash_options(args);
   FileRoles files;
   add_offsets_input(files, options);
@@ -121,9 +130,9 @@ int run_demo(const std::vector<std::string>& argv) {
   check_files(files);
 
   StreamOptions so;
-  so.kind = parse_stream_kind(args.str("stream", "coherent"));
+  so.kind = parse_stream_kind(args.str("stream"));
   so.count = count;
-  so.seed = args.u64("seed", 1);
+  so.seed = args.u64_in("seed");
   const std::vector<Fragment> fragments = make_stream(options.config.screen, so);
 
   if (options.lossless) throw UsageError("demo does not take --lossless (use build-lists)");

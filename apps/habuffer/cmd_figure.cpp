@@ -1,5 +1,6 @@
 // habuffer figure: the papers' figures and the speed-accuracy frontier as
 // presets of the harness (harness/figures.h, harness/frontier.h).
+#include <algorithm>
 #include <cstdio>
 
 #include "commands.h"
@@ -14,131 +15,209 @@
 namespace habuffer::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: habuffer figure fig2|fig8|fig10|table1|frontier --out F.json[,F.csv] [--size WxH (256x256)]\n"
-    "         [--path gl|cpu] [--repeats N (3)] [--threads N] [--tau T (0.99)] [--quiet]\n"
-    "  fig2      seed 000 Fig. 2: early cull vs opacity, [--scene S (hairball)] [--opacities A,.. (0.125,0.25,0.5,1)];\n"
-    "            stored fragments, gather time and fill rate with and without cull (opacity 1 inserted)\n"
-    "  fig8      seed 000 Fig. 8: quads pulled together over [--frames N (16)] frames into a table fixed at\n"
-    "            [--load L (0.64)], [--scene S (quads:count=64)]; time and max age per frame, with and without cull\n"
-    "  fig10     seed 001 Fig. 10: [--planes N (32)] planes front to back and back to front, ha and sorted-lists,\n"
-    "            exact, with cull, with cull and saturation\n"
-    "  table1    seed 000 Table 1: memory by formula, our model and allocated, at [--fragments F,.. (850000,\n"
-    "            1500000,10000000)] and [--loads L,.. (0.9,0.8,0.5)] on --size (default here 1024x1024);\n"
-    "            [--no-allocate] skips the allocation\n"
-    "  frontier  techniques and knobs on [--scenes S,.. (engine,hairball)]: time, memory and psnr, Pareto rows\n"
-    "            marked; [--picks F.json[,F.csv]] the fastest configuration at [--targets DB,.. (30,40,50)]\n";
+// What a figure's run reads and writes: its options, the settings every
+// figure shares, its outputs, and the command line (for a second table).
+struct FigureRun {
+  const Args& args;
+  harness::FigureSettings& s;
+  HarnessOutputs outputs;
+  const std::vector<std::string>& argv;
+};
+
+// One figure: its name, what it draws, its own options and its run.
+struct Figure {
+  std::string name;
+  std::string what;  ///< one or two help lines, "  " indented, each ending in "\n"
+  std::vector<OptionSpec> own;
+  harness::ResultTable (*run)(FigureRun& r);
+};
+
+// Every figure's options (--size 256x256 but table1's, as the paper's screen).
+std::vector<OptionSpec> figure_common(bool table1) {
+  std::vector<OptionSpec> common = harness_options({"out"});
+  if (table1)
+    common.push_back({"size", "WxH", "1024x1024", "the screen (the paper's Table 1 sizes 1024x1024)"});
+  else
+    common = common + harness_options({"size"});
+  return common + harness_options({"path", "repeats", "threads"}) +
+         std::vector<OptionSpec>{{"tau", "T", "0.99", "early cull's threshold in the runs with cull"}} +
+         harness_options({"quiet"});
+}
+
+// --size, one WxH but for the frontier, into `s`.
+std::vector<Extent> figure_sizes(const Args& args, harness::FigureSettings& s, const std::string& name) {
+  const std::vector<Extent> sizes = parse_sizes(args);
+  s.size = sizes.at(0);
+  if (sizes.size() != 1 && name != "frontier") throw UsageError("--size takes one WxH for figure " + name);
+  return sizes;
+}
+
+// --scene, one scene word, checked by `check`.
+harness::WorkloadSpec one_scene(const Args& args, const char* figure, void (*check)(const harness::WorkloadSpec&)) {
+  const std::vector<harness::WorkloadSpec> scene = parse_scenes(args, "scene");
+  if (scene.size() != 1) throw UsageError(std::string("--scene takes one scene for ") + figure);
+  usage_errors("", [&] { check(scene[0]); });
+  return scene[0];
+}
+
+harness::ResultTable run_fig2(FigureRun& r) {
+  figure_sizes(r.args, r.s, "fig2");
+  const harness::WorkloadSpec scene = one_scene(r.args, "fig2", harness::check_fig2_scene);
+  std::vector<float> opacities;
+  SceneOptions probe;  // each opacity by the scene option's rule
+  for (const std::string& o : r.args.list("opacities")) {
+    usage_errors("opacities", [&] { set_scene_option(probe, "opacity", o); });
+    opacities.push_back(probe.opacity);
+  }
+  r.outputs = parse_outputs(r.args, {scene});
+  const auto context = context_for(true, "figure");
+  return harness::run_fig2(scene, opacities, r.s);
+}
+
+harness::ResultTable run_fig8(FigureRun& r) {
+  figure_sizes(r.args, r.s, "fig8");
+  const harness::WorkloadSpec scene = one_scene(r.args, "fig8", harness::check_fig8_scene);
+  const std::uint32_t frames = r.args.u32_in("frames", 2, 100000);
+  const double load = usage_errors("load", [&] { return parse_load_factor(r.args.str("load")); });
+  r.outputs = parse_outputs(r.args, {scene});
+  const auto context = context_for(true, "figure");
+  return harness::run_fig8(scene, frames, load, r.s);
+}
+
+// fig10 and the frontier: bench presets.
+harness::ResultTable run_bench_figure(FigureRun& r, const std::string& name, harness::BenchSettings b) {
+  b.on_progress = r.s.on_progress;
+  usage_errors("", [&] { harness::validate_bench(b); });
+  const std::vector<double> targets =
+      r.args.has("picks") ? parse_reals(r.args, "targets", 0.0, 1000.0) : std::vector<double>{};
+  r.outputs = parse_outputs(r.args, b.scenes);
+  const auto context = context_for(true, "figure");
+  harness::ResultTable table = harness::run_bench(b);
+  table.title = name;
+  if (name == "frontier") {
+    harness::mark_pareto(table);
+    if (!r.outputs.picks.empty()) {
+      harness::ResultTable p = harness::frontier_picks(table, targets);
+      write_outputs(("figure " + name).c_str(), p, r.outputs.picks, r.argv);
+    }
+  }
+  return table;
+}
+
+harness::ResultTable run_fig10(FigureRun& r) {
+  figure_sizes(r.args, r.s, "fig10");
+  return run_bench_figure(r, "fig10", harness::fig10_bench_settings(r.args.u32_in("planes", 1, 4096), r.s));
+}
+
+harness::ResultTable run_frontier(FigureRun& r) {
+  harness::BenchSettings b;
+  b.sizes = figure_sizes(r.args, r.s, "frontier");
+  b.path = r.s.path;
+  b.repeats = r.s.repeats;
+  b.threads = r.s.threads;
+  b.scenes = parse_scenes(r.args, "scenes");
+  b.techniques = harness::frontier_techniques(r.s.path);
+  return run_bench_figure(r, "frontier", b);
+}
+
+harness::ResultTable run_table1(FigureRun& r) {
+  r.args.refuse_unless(false, {"path", "repeats", "threads", "tau"}, "on table1 (sizes only, nothing is rendered)");
+  const std::vector<Extent> size = parse_sizes(r.args);
+  if (size.size() != 1) throw UsageError("--size takes one WxH for table1");
+  std::vector<std::uint64_t> counts;
+  for (const std::string& f : r.args.list("fragments"))
+    counts.push_back(usage_errors("fragments", [&] { return parse_unsigned(f, 1, harness::kMaxTableFragments); }));
+  std::vector<double> loads;
+  for (const std::string& l : r.args.list("loads"))
+    loads.push_back(usage_errors("loads", [&] { return parse_load_factor(l); }));
+  usage_errors("", [&] { harness::validate_memory_table(size[0], counts, loads); });
+  r.outputs = parse_outputs(r.args, {});
+  return harness::run_memory_table(size[0], counts, loads, !r.args.has("no-allocate"));
+}
+
+const std::vector<Figure>& figures() {
+  static const std::vector<Figure> list{
+      {"fig2", "  seed 000 Fig. 2: early cull vs opacity; stored fragments, gather time and fill rate with and\n"
+               "  without cull (opacity 1 inserted)\n",
+       {{"scene", "S", "hairball", "the scene"}, {"opacities", "A,..", "0.125,0.25,0.5,1", "the opacities"}},
+       run_fig2},
+      {"fig8", "  seed 000 Fig. 8: quads pulled together over N frames into a table fixed at load L; time and max\n"
+               "  age per frame, with and without cull\n",
+       {{"scene", "S", "quads:count=64", "the scene"},
+        {"frames", "N", "16", "frames"},
+        {"load", "L", "0.64", "the fixed table's load of the first frame"}},
+       run_fig8},
+      {"fig10", "  seed 001 Fig. 10: N planes front to back and back to front, ha and sorted-lists, exact, with\n"
+                "  cull, with cull and saturation\n",
+       {{"planes", "N", "32", "planes"}}, run_fig10},
+      {"table1", "  seed 000 Table 1: memory by formula, our model and allocated\n",
+       {{"fragments", "F,..", "850000,1500000,10000000", "fragment counts (Table 1's)"},
+        {"loads", "L,..", "0.9,0.8,0.5", "loads (Table 1's)"},
+        {"no-allocate", "", "", "skip the allocation"}},
+       run_table1},
+      {"frontier", "  techniques and knobs: time, memory and psnr, Pareto rows marked\n",
+       {{"scenes", "S,..", "engine,hairball", "the scenes"},
+        {"picks", "F.json[,F.csv]", "", "the fastest configuration at each target"},
+        {"targets", "DB,..", "30,40,50", "the picks' psnr targets (with --picks)"}},
+       run_frontier},
+  };
+  return list;
+}
+
+std::string figure_help() {
+  std::string s = CommandSpec{"figure fig2|fig8|fig10|table1|frontier --out F.json[,F.csv] [OPTIONS]",
+                              figure_common(false), ""}
+                      .help();
+  for (const Figure& f : figures()) {
+    const std::string own = CommandSpec{"", f.own, ""}.help();
+    s += f.name + ":\n" + f.what + own.substr(own.find('\n') + 1);
+  }
+  return s + "table1: --size defaults to 1024x1024 there (the paper's screen).\n";
+}
+
+// An option of another figure: "option --NAME does not apply to figure FIG".
+void refuse_other_figures_options(const Args& all, const Figure& figure) {
+  for (const Figure& other : figures())
+    for (const OptionSpec& o : other.own)
+      if (all.has(o.name) && std::none_of(figure.own.begin(), figure.own.end(),
+                                          [&](const OptionSpec& m) { return m.name == o.name; }))
+        throw UsageError("option --" + o.name + " does not apply to figure " + figure.name);
+}
 
 }  // namespace
 
 int run_figure(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp) || argv.empty()) {
+  if (print_help(argv, figure_help()) || argv.empty()) {
     if (argv.empty()) throw UsageError("name a figure: fig2, fig8, fig10, table1 or frontier");
     return 0;
   }
   const std::string name = argv[0];
   const std::vector<std::string> rest(argv.begin() + 1, argv.end());
-  const Args args(rest,
-                  {"out", "size", "path", "repeats", "threads", "tau", "scene", "scenes", "opacities", "frames", "load",
-                   "planes", "fragments", "loads", "picks", "targets"},
-                  {"quiet", "no-allocate"});
+  static const CommandSpec every = [] {
+    CommandSpec c{"", figure_common(false), ""};
+    for (const Figure& f : figures()) c.options = c.options + f.own;
+    return c;
+  }();
+  const Args all(rest, every);
+  const auto figure = std::find_if(figures().begin(), figures().end(), [&](const Figure& f) { return f.name == name; });
+  if (figure == figures().end())
+    throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier)");
+  refuse_other_figures_options(all, *figure);
+  const CommandSpec spec{"", figure_common(name == "table1") + figure->own, ""};
+  const Args args(rest, spec);
   harness::FigureSettings s;
   s.path = parse_path(args);
-  s.repeats = args.u32("repeats", 3, 1, 1000);
-  s.threads = args.u32("threads", 0, 0, kMaxThreads);
+  s.repeats = args.u32_in("repeats", 1, 1000);
+  s.threads = args.u32_in("threads", 0, kMaxThreads);
   if (name != "table1") args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
-  if (args.has("tau")) s.tau = usage_errors("tau", [&] { return parse_cull_threshold(args.str("tau", "")); });
-  const auto allowed = [&](std::initializer_list<const char*> own) {
-    for (const char* o : {"scene", "scenes", "opacities", "frames", "load", "planes", "fragments", "loads", "picks",
-                          "targets", "no-allocate"}) {
-      bool mine = false;
-      for (const char* m : own) mine |= std::string(m) == o;
-      if (!mine && args.has(o)) throw UsageError("option --" + std::string(o) + " does not apply to figure " + name);
-    }
-  };
+  s.tau = usage_errors("tau", [&] { return parse_cull_threshold(args.str("tau")); });
   args.refuse_unless(args.has("picks"), {"targets"}, "without --picks (the targets choose the picks)");
-  harness::ResultTable table;
   ProgressBar progress = ProgressBar::for_terminal("habuffer figure " + name, "runs", args.has("quiet"));
   s.on_progress = progress.callback();
   // Every file and value is checked before the first render.
-  HarnessOutputs outputs;
-  if (name == "table1") {
-    allowed({"fragments", "loads", "no-allocate"});
-    args.refuse_unless(false, {"path", "repeats", "threads", "tau"}, "on table1 (sizes only, nothing is rendered)");
-    const std::vector<Extent> size = parse_sizes(args, "1024x1024");
-    if (size.size() != 1) throw UsageError("--size takes one WxH for table1");
-    std::vector<std::uint64_t> counts;
-    for (const std::string& f : args.list("fragments", "850000,1500000,10000000"))
-      counts.push_back(usage_errors("fragments", [&] { return parse_unsigned(f, 1, harness::kMaxTableFragments); }));
-    std::vector<double> loads;
-    for (const std::string& l : args.list("loads", "0.9,0.8,0.5"))
-      loads.push_back(usage_errors("loads", [&] { return parse_load_factor(l); }));
-    usage_errors("", [&] { harness::validate_memory_table(size[0], counts, loads); });
-    outputs = parse_outputs(args, {});
-    table = harness::run_memory_table(size[0], counts, loads, !args.has("no-allocate"));
-  } else {
-    const std::vector<Extent> sizes = parse_sizes(args, "256x256");
-    s.size = sizes.at(0);
-    if (sizes.size() != 1 && name != "frontier") throw UsageError("--size takes one WxH for figure " + name);
-    if (name == "fig2") {
-      allowed({"scene", "opacities"});
-      const std::vector<harness::WorkloadSpec> scene = parse_scenes_or(args, "scene", "hairball");
-      if (scene.size() != 1) throw UsageError("--scene takes one scene for fig2");
-      usage_errors("", [&] { harness::check_fig2_scene(scene[0]); });
-      std::vector<float> opacities;
-      SceneOptions probe;  // each opacity by the scene option's rule
-      for (const std::string& o : args.list("opacities", "0.125,0.25,0.5,1")) {
-        usage_errors("opacities", [&] { set_scene_option(probe, "opacity", o); });
-        opacities.push_back(probe.opacity);
-      }
-      outputs = parse_outputs(args, scene);
-      const auto context = context_for(true, "figure");
-      table = harness::run_fig2(scene[0], opacities, s);
-    } else if (name == "fig8") {
-      allowed({"scene", "frames", "load"});
-      const std::vector<harness::WorkloadSpec> scene = parse_scenes_or(args, "scene", "quads:count=64");
-      if (scene.size() != 1) throw UsageError("--scene takes one scene for fig8");
-      usage_errors("", [&] { harness::check_fig8_scene(scene[0]); });
-      const std::uint32_t frames = args.u32("frames", 16, 2, 100000);
-      double load = 0.64;
-      if (args.has("load")) load = usage_errors("load", [&] { return parse_load_factor(args.str("load", "")); });
-      outputs = parse_outputs(args, scene);
-      const auto context = context_for(true, "figure");
-      table = harness::run_fig8(scene[0], frames, load, s);
-    } else if (name == "fig10" || name == "frontier") {
-      harness::BenchSettings b;
-      if (name == "fig10") {
-        allowed({"planes"});
-        b = harness::fig10_bench_settings(args.u32("planes", 32, 1, 4096), s);
-      } else {
-        allowed({"scenes", "picks", "targets"});
-        b.path = s.path;
-        b.repeats = s.repeats;
-        b.threads = s.threads;
-        b.sizes = sizes;
-        b.scenes = parse_scenes_or(args, "scenes", "engine,hairball");
-        b.techniques = harness::frontier_techniques(s.path);
-      }
-      b.on_progress = s.on_progress;
-      usage_errors("", [&] { harness::validate_bench(b); });
-      const std::vector<double> targets =
-          args.has("picks") ? parse_reals(args, "targets", "30,40,50", 0.0, 1000.0) : std::vector<double>{};
-      outputs = parse_outputs(args, b.scenes);
-      const auto context = context_for(true, "figure");
-      table = harness::run_bench(b);
-      table.title = name;
-      if (name == "frontier") {
-        harness::mark_pareto(table);
-        if (!outputs.picks.empty()) {
-          harness::ResultTable p = harness::frontier_picks(table, targets);
-          write_outputs(("figure " + name).c_str(), p, outputs.picks, argv);
-        }
-      }
-    } else {
-      throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier)");
-    }
-  }
-  write_outputs(("figure " + name).c_str(), table, outputs.out, rest);
+  FigureRun run{args, s, {}, argv};
+  harness::ResultTable table = figure->run(run);
+  write_outputs(("figure " + name).c_str(), table, run.outputs.out, rest);
   return 0;
 }
 

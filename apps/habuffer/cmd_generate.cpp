@@ -10,33 +10,49 @@
 
 namespace habuffer::cli {
 
+namespace {
+
+const CommandSpec& generate_spec() {
+  static const CommandSpec spec{
+      "generate --screen WxH --out FRAGS.csv (--fragments N | --load L [--table WxH]) [OPTIONS]",
+      {{"screen", "WxH", "", "the screen the fragments fall on (required)"},
+       {"out", "FRAGS.csv", "", "the fragment stream (required)"},
+       {"stream", "coherent|random", "coherent", "the stream's shape"},
+       {"fragments", "N", "", "this many fragments"},
+       {"load", "L", "", "as many fragments as fill L of the table's slots, L in (0, 4]"},
+       {"table", "WxH", "", "the table --load fills (default: the screen)"},
+       {"seed", "N", "1", "the stream's seed"},
+       {"min-side", "S", std::to_string(StreamOptions{}.min_side), "coherent: the smallest rectangle side"},
+       {"max-side", "S", std::to_string(StreamOptions{}.max_side), "coherent: the largest rectangle side"}},
+      ""};
+  return spec;
+}
+
+}  // namespace
+
 int run_generate(const std::vector<std::string>& argv) {
-  if (print_help(argv,
-        "usage: habuffer generate --screen WxH --out FRAGS.csv [--stream coherent|random]\n"
-        "         (--fragments N | --load L [--table WxH]) [--seed N] [--min-side S] [--max-side S]\n"
-        "  --load L: as many fragments as fill L of the table's slots (default table: the screen).\n"))
-    return 0;
-  const Args args(argv, {"screen", "out", "stream", "fragments", "load", "table", "seed", "min-side", "max-side"}, {});
+  if (print_help(argv, generate_spec())) return 0;
+  const Args args(argv, generate_spec());
   const auto screen = args.extent("screen");
   if (!screen) throw UsageError("option --screen is required");
   const std::string out = args.required("out");
   StreamOptions o;
   try {
-    o.kind = parse_stream_kind(args.str("stream", "coherent"));
+    o.kind = parse_stream_kind(args.str("stream"));
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("option --stream: ") + e.what());
   }
-  o.seed = args.u64("seed", 1);
+  o.seed = args.u64_in("seed");
   args.refuse_unless(o.kind == StreamKind::Coherent, {"min-side", "max-side"}, "on a --stream other than coherent");
   args.refuse_unless(args.has("load"), {"table"}, "without --load");
   FileRoles files;
   files.output("--out", out);
   check_files(files);
-  o.min_side = args.u32("min-side", o.min_side, 1);
+  o.min_side = args.u32_in("min-side", 1);
   if (!args.has("max-side") && o.max_side < o.min_side)
     throw UsageError("option --min-side: " + std::to_string(o.min_side) + " is above the default --max-side " +
                      std::to_string(o.max_side) + ": give --max-side too");
-  o.max_side = args.u32("max-side", o.max_side, o.min_side);
+  o.max_side = args.u32_in("max-side", o.min_side);
   if (args.has("fragments") == args.has("load")) throw UsageError("give exactly one of --fragments and --load");
   if (args.has("fragments")) {
     o.count = args.u64("fragments", 0, 0, std::uint64_t{1} << 34);

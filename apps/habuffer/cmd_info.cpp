@@ -14,9 +14,18 @@
 
 namespace habuffer::cli {
 
+namespace {
+
+const CommandSpec& info_spec() {
+  static const CommandSpec spec{"info", {}, "  Version, build type, techniques and the paths this machine offers.\n"};
+  return spec;
+}
+
+}  // namespace
+
 int run_info(const std::vector<std::string>& argv) {
-  if (print_help(argv, "usage: habuffer info\n")) return 0;
-  const Args args(argv, {}, {});
+  if (print_help(argv, info_spec())) return 0;
+  const Args args(argv, info_spec());
   std::printf("habuffer %s\n", HABUFFER_VERSION);
   std::printf("build type: %s%s%s\n", HABUFFER_BUILD_TYPE, *HABUFFER_SANITIZE_NAME ? ", sanitizers: " : "",
               HABUFFER_SANITIZE_NAME);

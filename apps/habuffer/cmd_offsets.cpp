@@ -6,32 +6,47 @@
 #include "commands.h"
 #include "habuffer/interchange.h"
 #include "habuffer/buffer_config.h"
+#include "technique_options.h"
 
 namespace habuffer::cli {
 
+namespace {
+
+const CommandSpec& offsets_spec() {
+  static const CommandSpec spec{
+      "offsets --table WxH [OPTIONS]",
+      {{"table", "WxH", "", "the table the offsets are for (required)"},
+       {"generator", "random|farthest", "random", "how the offsets are chosen"},
+       {"seed", "N", "1", "the random generator's seed"},
+       technique_option_spec("age-bits"),
+       {"count", "N", "", "this many offsets instead of 2^A - 1, one per age (not with --age-bits)"},
+       {"out", "OFFSETS.csv", "", "the offsets"},
+       {"quality", "QUALITY.csv", "", "k,min_distance for the first k offsets, k = 2..count"}},
+      "  Prints the generation time.\n"};
+  return spec;
+}
+
+}  // namespace
+
 int run_offsets(const std::vector<std::string>& argv) {
-  if (print_help(argv,
-        "usage: habuffer offsets --table WxH [--generator random|farthest] [--seed N] [--age-bits N | --count N]\n"
-        "         [--out OFFSETS.csv] [--quality QUALITY.csv]\n"
-        "  Prints the generation time. --quality writes k,min_distance for the first k offsets, k = 2..count.\n"))
-    return 0;
-  const Args args(argv, {"table", "generator", "seed", "age-bits", "count", "out", "quality"}, {});
+  if (print_help(argv, offsets_spec())) return 0;
+  const Args args(argv, offsets_spec());
   const auto table = args.extent("table");
   if (!table) throw UsageError("option --table is required");
   if (args.has("age-bits") && args.has("count")) throw UsageError("give at most one of --age-bits and --count");
-  const std::uint32_t age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
+  const std::uint32_t age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   const std::uint32_t count = args.u32("count", (1u << age_bits) - 1, 1, 1u << 20);
   FileRoles files;
   for (const char* o : {"out", "quality"})
     if (args.has(o)) files.output(std::string("--") + o, args.required(o));
   check_files(files);
-  const std::string gen = args.str("generator", "random");
+  const std::string gen = args.str("generator");
   if (gen != "random" && gen != "farthest") throw UsageError("option --generator: '" + gen + "' is not random or farthest");
   if (gen == "farthest" && table->area() > kFarthestMaxSlots)
     throw UsageError("--generator farthest: table " + table->str() + " has more than 2^28 slots");
   const auto t0 = std::chrono::steady_clock::now();
   const OffsetSequence offsets = OffsetSequence::make(
-      gen == "farthest" ? OffsetGenerator::Farthest : OffsetGenerator::Random, *table, count, args.u64("seed", 1));
+      gen == "farthest" ? OffsetGenerator::Farthest : OffsetGenerator::Random, *table, count, args.u64_in("seed"));
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::printf("generated %u %s offsets for table %s in %.1f ms\n", count, gen.c_str(), table->str().c_str(), ms);
   if (args.has("out")) write_offsets(args.required("out"), offsets);

@@ -6,36 +6,48 @@
 #include "habuffer/option_rules.h"
 #include "habuffer/progress.h"
 #include "harness_cli.h"
+#include "technique_options.h"
 #include "habuffer/harness/plan.h"
 
 namespace habuffer::cli {
 namespace {
 
-constexpr const char* kHelp =
-    "usage: habuffer plan (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [--size WxH (256x256)]\n"
-    "         [--target-psnr DB] [--loads L,.. (0.5,0.6,0.7,0.8,0.9,0.95)] [--trials N (3)] [--seed S] [--age-bits A]\n"
-    "         [--quiet]\n"
-    "  One counting pass (the exact capture) gives the fragment count and the depth complexity per pixel;\n"
-    "  from them: memory of every technique and setting, the HA-buffer's max age and failure risk (SPEC 3's\n"
-    "  insertion of a stream with the same per-pixel counts over N seeds), the layers' overflow and the\n"
-    "  PSNR of the truncating ones. Recommends the cheapest lossless configuration, or the cheapest that\n"
-    "  meets --target-psnr. A progress bar (loads simulated) shows on a terminal unless --quiet.\n";
+const CommandSpec& plan_spec() {
+  static const CommandSpec spec{
+      "plan (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [OPTIONS]",
+      std::vector<OptionSpec>{
+          {"scene", "NAME|FILE", "", "the scene, with options"},
+          {"fragments", "F.csv", "", "a fragment file instead"},
+          {"target-psnr", "DB", "", "recommend the cheapest configuration that meets it (default: lossless)"},
+          {"loads", "L1,L2,...", "0.5,0.6,0.7,0.8,0.9,0.95", "the loads in (0, 1] predicted (as sweep's)"},
+          {"trials", "N", "3",
+           "seeds of the HA-buffer's simulated insertion (a prediction: fewer than stats' 5 trials)"},
+          {"seed", "S", "1", "the first of them"},
+          technique_option_spec("age-bits")} +
+          harness_options({"out", "size", "quiet"}),
+      "  One counting pass (the exact capture) gives the fragment count and the depth complexity per pixel;\n"
+      "  from them: memory of every technique and setting, the HA-buffer's max age and failure risk (SPEC 3's\n"
+      "  insertion of a stream with the same per-pixel counts over N seeds), the layers' overflow and the\n"
+      "  PSNR of the truncating ones. Recommends the cheapest lossless configuration, or the cheapest that\n"
+      "  meets --target-psnr. A progress bar (loads simulated) shows on a terminal unless --quiet.\n"};
+  return spec;
+}
 
 }  // namespace
 
 int run_plan(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp)) return 0;
-  const Args args(argv, {"scene", "fragments", "size", "target-psnr", "loads", "trials", "seed", "age-bits", "out"}, {"quiet"});
+  if (print_help(argv, plan_spec())) return 0;
+  const Args args(argv, plan_spec());
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   harness::PlanSettings s;
   if (args.has("target-psnr")) s.target_psnr = args.real("target-psnr", 0.0);
-  s.trials = args.u32("trials", 3, 1, 1000);
-  s.seed = args.u64("seed", 1);
-  s.age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
+  s.trials = args.u32_in("trials", 1, 1000);
+  s.seed = args.u64_in("seed");
+  s.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   s.loads.clear();
-  for (const std::string& l : args.list("loads", "0.5,0.6,0.7,0.8,0.9,0.95"))
+  for (const std::string& l : args.list("loads"))
     s.loads.push_back(usage_errors("loads", [&] { return parse_load_factor(l); }));
-  const std::vector<Extent> sizes = parse_sizes(args, "256x256");
+  const std::vector<Extent> sizes = parse_sizes(args);
   if (sizes.size() != 1) throw UsageError("--size takes one WxH");
   const harness::WorkloadSpec w =
       harness::parse_workload_spec(args.has("fragments") ? args.required("fragments") : args.required("scene"));

@@ -26,31 +26,55 @@
 namespace habuffer::cli {
 namespace {
 
-const std::string kHelp =
-    "usage: habuffer render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json]\n"
-    "         [--size WxH] [--path gl|cpu] [--technique NAME] [--layers K] [--pool N|auto]\n"
-    "         [--occupancy on|off [--occupancy-words D]] [--depth-range NEAR,FAR]\n"
-    "         [--layout 64|32] [--opacity A] [--early-cull TAU [--saturation on|off]]\n"
-    "         [--table WxH|auto] [--lossless [--max-attempts N]] [--frames N] [--yaw DEG] [--pitch DEG] [--fov DEG]\n"
-    "         [--background R,G,B] [--heatmap depth|age|culled:IMAGE[,...]] [--reference IMAGE] [--error]\n"
-    "         [--age-bits N] [--block B] [--offsets random|farthest|OFFSETS.csv] [--seed N] [--threads N]\n"
-    "         [--insert-order auto|arrival|pixel] [--count N] [--spread S] [--order front|back] [--scene-seed N] [--opaque-meshes I,J,...] [--quiet]\n"
-    "         [--slot-writes]\n"
-    "  scenes: engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file.\n"
-    "  --size defaults to 1024x1024; --table auto (default) sizes the first table from a counting pass,\n"
-    "  grows at once when a frame fails and adapts between frames (SPEC 8). Images: PNG, or EXR/HDR/TIFF\n"
-    "  (float) by extension.\n"
-    "  --opaque-meshes: meshes (indices in file order) drawn opaque with the depth test; transparent\n"
-    "  fragments behind them are rejected before insertion and counted.\n"
-    "  --saturation on: fragments behind a culled one are rejected before insertion (saturated_rejected).\n"
-    "  --table, --block, --offsets and --seed are the HA-buffer's; --early-cull and --iter-limit also sorted lists'.\n"
-    "  --reference IMAGE writes the exact reference; with it or --error the stats give psnr, rmse and\n"
-    "  max_error of the image against it.\n"
-    "  --quiet: no summary and no progress bar (shown on a terminal for --frames above 1).\n"
-    "  --slot-writes (--path gl): the stats' slot_writes, tallied by one more atomic per insert call\n"
-    "  (compiled in only then; null in the stats otherwise).\n"
-    "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
-    "  --lossless render that still lost fragments, 2 bad usage.\n";
+// The scene options (scene_catalog.h's rules), with the scenes that take each.
+std::vector<OptionSpec> scene_option_specs() {
+  const std::pair<const char*, const char*> shapes[] = {
+      {"count", "N"}, {"scene-seed", "N"}, {"opacity", "A"}, {"spread", "S"}, {"order", "front|back"}};
+  std::vector<OptionSpec> specs;
+  for (const SceneOptionRule& r : scene_option_rules())
+    for (const auto& [flag, shape] : shapes)
+      if (std::string(r.flag) == flag)
+        specs.push_back(
+            {flag, shape, "", std::string("the scene's ") + r.key + " (" + scenes_taking_text(r.key) + ")"});
+  return specs;
+}
+
+const CommandSpec& render_spec() {
+  static const CommandSpec spec{
+      "render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json] [OPTIONS]",
+      std::vector<OptionSpec>{
+          {"scene", "NAME|FILE", "",
+           "engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file"},
+          {"fragments", "FRAGS.csv", "", "a recorded fragment stream instead of a scene (CPU path)"},
+          {"out", "IMAGE", "", "the image: PNG, or EXR/HDR/TIFF (float) by extension"},
+          {"stats", "STATS.json", "", "counters, sizes, times per frame"},
+          {"size", "WxH", "1024x1024", "the image (harness commands default to 256x256: many runs)"},
+          {"path", "gl|cpu", "gl", "gl here (render rasterizes), cpu in build-lists (a fragment file's build)"},
+          {"table", "WxH|auto", "auto",
+           "the HA-buffer's table; auto sizes the first from a counting pass, grows it at once when a frame fails "
+           "and adapts between frames (SPEC 8)"},
+          {"frames", "N", "1", "frames rendered (kept containers between them)"},
+          {"yaw", "DEG", "", "camera yaw (default: the scene's)"},
+          {"pitch", "DEG", "", "camera pitch in [-90, 90] (default: the scene's)"},
+          {"fov", "DEG", "45", "vertical field of view in (1, 179)"},
+          {"background", "R,G,B", "1,1,1", "each in [0, 1]"},
+          {"heatmap", "depth|age|culled:IMAGE[,...]", "", "heat maps: fragments, max age, culled per pixel"},
+          {"reference", "IMAGE", "", "the exact reference; the stats then give psnr, rmse and max_error"},
+          {"error", "", "", "psnr, rmse and max_error against the reference without writing it"},
+          {"opaque-meshes", "I,J,...", "",
+           "meshes (indices in file order) drawn opaque with the depth test; transparent fragments behind them are "
+           "rejected before insertion and counted"},
+          {"quiet", "", "", "no summary and no progress bar (shown on a terminal for --frames above 1)"},
+          {"slot-writes", "", "",
+           "(--path gl) the stats' slot_writes, tallied by one more atomic per insert call (compiled in only then; "
+           "null otherwise)"}} +
+          scene_option_specs() +
+          shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
+          shared_options({"layout", "offsets", "seed", "lossless", "max-attempts", "threads", "insert-order"}),
+      "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
+      "  --lossless render that still lost fragments, 2 bad usage.\n"};
+  return spec;
+}
 
 glm::vec3 parse_background(const std::string& text) {
   glm::vec3 c(1.0f);
@@ -121,22 +145,22 @@ SceneOptions parse_scene_options(const Args& args) {
 
 RenderSettings parse_settings(const Args& args) {
   RenderSettings s;
-  const Extent size = args.extent("size").value_or(Extent{1024, 1024});
+  const Extent size = args.size("size");
   if (size.area() == 0) throw UsageError("option --size: " + size.str() + " has no pixels");
   static_cast<TechniqueChoice&>(s) = parse_technique_options(args);
-  const std::string table = args.str("table", "auto");
+  const std::string table = args.str("table");
   const Extent t = table == "auto" ? Extent{0, 0} : args.extent("table").value();
   s.config = parse_buffer_config(args, size, t);
   s.offsets = parse_offset_source(args, s.config);
-  const std::string path = args.str("path", "gl");
+  const std::string path = args.str("path");
   if (path != "gl" && path != "cpu") throw UsageError("option --path: '" + path + "' is not gl or cpu");
   s.path = path == "gl" ? RenderPath::Gl : RenderPath::Cpu;
   s.lossless = args.has("lossless");
   if (!s.lossless && args.has("max-attempts") && !automatic_size(s))
     throw UsageError("option --max-attempts needs --lossless or an automatic size (--table auto, --pool auto)");
-  s.max_attempts = args.u32("max-attempts", 16, 1, 1000);
-  s.frames = args.u32("frames", 1, 1, 100000);
-  s.threads = args.u32("threads", 0, 0, kMaxThreads);
+  s.max_attempts = args.u32_in("max-attempts", 1, 1000);
+  s.frames = args.u32_in("frames", 1, 100000);
+  s.threads = args.u32_in("threads", 0, kMaxThreads);
   s.insert_order = insert_order_option(args);
   args.refuse_unless(s.path == RenderPath::Cpu || args.has("fragments"), {"threads", "insert-order"},
                      "with --path gl (the GPU inserts and composites)");
@@ -145,14 +169,14 @@ RenderSettings parse_settings(const Args& args) {
                          techniques_taking("insert-order") + ")");
   args.refuse_unless(s.path == RenderPath::Gl && !args.has("fragments"), {"slot-writes"},
                      "on the CPU path (the GPU path's tally)");
-  s.background = args.has("background") ? parse_background(args.required("background")) : glm::vec3(1.0f);
+  s.background = parse_background(args.str("background"));
   return s;
 }
 
 void apply_camera(const Args& args, const Scene& scene, RenderSettings& s) {
   s.camera.yaw = static_cast<float>(args.real("yaw", scene.default_yaw));
   s.camera.pitch = static_cast<float>(args.real("pitch", scene.default_pitch));
-  s.camera.fov = static_cast<float>(args.real("fov", 45.0));
+  s.camera.fov = static_cast<float>(args.real("fov"));
 }
 
 // Before any file is read or context made: camera values out of range are bad usage.
@@ -160,7 +184,7 @@ void check_camera_args(const Args& args) {
   if (!std::isfinite(static_cast<float>(args.real("yaw", 0.0))))
     throw UsageError("option --yaw: must be a finite angle in degrees");
   if (!(std::abs(args.real("pitch", 0.0)) <= 90.0)) throw UsageError("option --pitch: must be in [-90, 90] degrees");
-  const double fov = args.real("fov", 45.0);
+  const double fov = args.real("fov");
   if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov: must be in (1, 179) degrees");
 }
 
@@ -265,14 +289,8 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
 }  // namespace
 
 int run_render(const std::vector<std::string>& argv) {
-  if (print_help(argv, kHelp + technique_help())) return 0;
-  const Args args(argv,
-                  {"scene", "fragments", "size", "path", "layout", "opacity", "early-cull", "table", "max-attempts",
-                   "frames", "yaw", "pitch", "fov", "background", "out", "stats", "heatmap", "reference", "age-bits",
-                   "block", "offsets", "seed", "threads", "iter-limit", "count", "spread", "order", "scene-seed",
-                   "opaque-meshes", "technique", "layers", "pool", "occupancy", "occupancy-words", "depth-range",
-                   "saturation", "insert-order"},
-                  {"lossless", "quiet", "error", "slot-writes"});
+  if (print_help(argv, render_spec().help() + technique_help())) return 0;
+  const Args args(argv, render_spec());
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   if (!args.has("out") && !args.has("stats")) throw UsageError("give --out IMAGE (and/or --stats STATS.json)");
   RenderSettings s = parse_settings(args);

@@ -8,6 +8,7 @@
 #include "cli_args.h"
 #include "habuffer/memory_budget.h"
 #include "commands.h"
+#include "technique_options.h"
 #include "habuffer/age_experiment.h"
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
@@ -19,10 +20,9 @@ namespace habuffer::cli {
 namespace {
 
 template <class T>
-std::vector<T> choices(const Args& args, const std::string& name, const std::string& fallback,
-                       const std::vector<std::pair<std::string, T>>& named) {
+std::vector<T> choices(const Args& args, const std::string& name, const std::vector<std::pair<std::string, T>>& named) {
   std::vector<T> out;
-  for (const std::string& item : args.list(name, fallback)) {
+  for (const std::string& item : args.list(name)) {
     bool found = false;
     for (const auto& [key, value] : named)
       if (item == key || item == "all") {
@@ -71,32 +71,42 @@ void write_json(const std::string& path, const ExperimentConfig& c, const std::v
   j.save(path);
 }
 
+const CommandSpec& stats_spec() {
+  static const CommandSpec spec{
+      "stats [OPTIONS]",
+      {{"screen", "WxH", "128x128", "the screen (small: every trial builds a table)"},
+       {"table", "WxH", "", "the table (default: the screen)"},
+       {"loads", "L1,L2,...", "0.5,0.8,0.9",
+        "loads in (0, 4]: fragments per trial = load x table slots (three: each runs every variant and trial; "
+        "sweep and plan take six)"},
+       {"trials", "N", "5", "trials per load and variant"},
+       {"seed", "S", "1", "the streams' seed"},
+       {"stream", "random|coherent|stacked|hot", "random", "the streams' shape"},
+       {"spread", "S", "1", "stacked streams: their spread in [0, 1]"},
+       {"probing", "coherent,independent|all", "coherent,independent", "probing variants"},
+       {"policy", "robinhood,fcfs|all", "robinhood", "insertion policies"},
+       {"offsets", "random,farthest|all", "random",
+        "offset generators (a list, unlike the build commands' one --offsets: each is a variant)"},
+       technique_option_spec("age-bits"),
+       technique_option_spec("block"),
+       {"out", "FILE.json|FILE.csv", "", "the rows, JSON or CSV by extension"},
+       {"quiet", "", "", "no progress bar (shown on stderr on a terminal)"}},
+      "  Every variant sees the same streams.\n"};
+  return spec;
+}
+
 }  // namespace
 
-int run_stats(const std::vector<std::string>& argv) {
-  if (print_help(argv,
-        "usage: habuffer stats [--screen WxH (128x128)] [--table WxH (screen)] [--loads L1,L2,... (0.5,0.8,0.9)]\n"
-        "         [--trials N (5)] [--seed S] [--stream random|coherent|stacked|hot] [--spread S]\n"
-        "         [--probing coherent,independent|all] [--policy robinhood,fcfs|all] [--offsets random,farthest|all]\n"
-        "         [--age-bits N] [--block B] [--out FILE.json|FILE.csv] [--quiet]\n"
-        "  Fragments per trial = load x table slots; every variant sees the same streams. On a terminal a\n"
-        "  progress bar shows on stderr (--quiet: none).\n"))
-    return 0;
-  const Args args(argv, {"screen", "table", "loads", "trials", "seed", "stream", "spread", "probing", "policy",
-                         "offsets", "age-bits", "block", "out"},
-                  {"quiet"});
-  if (args.has("out")) {
-    FileRoles files;
-    files.output("--out", args.required("out"));
-    check_files(files);
-  }
-  ExperimentConfig c;
-  c.screen = args.extent("screen").value_or(Extent{128, 128});
+namespace {
+
+// --screen, --table and --loads: the sizes, checked to fit in memory.
+void parse_experiment_sizes(const Args& args, ExperimentConfig& c) {
+  c.screen = args.size("screen");
   c.table = args.extent("table").value_or(c.screen);
   if (c.table.x < c.screen.x || c.table.y < c.screen.y)
     throw UsageError("table " + c.table.str() + " is smaller than screen " + c.screen.str());
   c.loads.clear();
-  for (const std::string& l : args.list("loads", "0.5,0.8,0.9")) {
+  for (const std::string& l : args.list("loads")) {
     double v = 0.0;
     const auto [end, ec] = std::from_chars(l.data(), l.data() + l.size(), v);
     if (ec != std::errc() || end != l.data() + l.size() || !(v > 0.0 && v <= 4.0))
@@ -113,37 +123,40 @@ int run_stats(const std::vector<std::string>& argv) {
     check_fits_in_memory("option --screen " + c.screen.str() + " (table " + c.table.str() + ")",
                          saturating_product(c.table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
   });
-  c.trials = args.u32("trials", 5, 1, 100000);
-  c.seed = args.u64("seed", 1);
+}
+
+// The experiment of the command line (see stats_spec).
+ExperimentConfig parse_experiment(const Args& args) {
+  ExperimentConfig c;
+  parse_experiment_sizes(args, c);
+  c.trials = args.u32_in("trials", 1, 100000);
+  c.seed = args.u64_in("seed");
   try {
-    c.stream.kind = parse_stream_kind(args.str("stream", "random"));
+    c.stream.kind = parse_stream_kind(args.str("stream"));
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("option --stream: ") + e.what());
   }
   args.refuse_unless(c.stream.kind == StreamKind::Stacked, {"spread"}, "on a --stream other than stacked");
-  c.stream.spread = args.real("spread", 1.0);
+  c.stream.spread = args.real("spread");
   if (!(c.stream.spread >= 0.0 && c.stream.spread <= 1.0)) throw UsageError("option --spread: must be in [0, 1]");
-  c.age_bits = args.u32("age-bits", 8, 4, 12);
-  c.block = args.u32("block", 8, 1, 1u << 16);
+  c.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
+  c.block = args.u32_in("block", 1, 1u << 16);
   c.stream.hot_depth = (1u << c.age_bits) - 1;
-  const auto probings = choices<Probing>(args, "probing", "coherent,independent",
+  const auto probings = choices<Probing>(args, "probing",
                                          {{"coherent", Probing::Coherent}, {"independent", Probing::Independent}});
   const auto policies =
-      choices<Policy>(args, "policy", "robinhood", {{"robinhood", Policy::RobinHood}, {"fcfs", Policy::Fcfs}});
+      choices<Policy>(args, "policy", {{"robinhood", Policy::RobinHood}, {"fcfs", Policy::Fcfs}});
   const auto offsets = choices<OffsetGenerator>(
-      args, "offsets", "random", {{"random", OffsetGenerator::Random}, {"farthest", OffsetGenerator::Farthest}});
+      args, "offsets", {{"random", OffsetGenerator::Random}, {"farthest", OffsetGenerator::Farthest}});
   c.variants.clear();
   for (auto pr : probings)
     for (auto po : policies)
       for (auto of : offsets)
         if (pr == Probing::Coherent || of == offsets.front()) c.variants.push_back({pr, po, of});  // offsets only matter when coherent
+  return c;
+}
 
-  std::vector<ExperimentRow> rows;
-  {
-    ProgressBar progress = ProgressBar::for_terminal("habuffer stats", "trials", args.has("quiet"));
-    c.on_progress = progress.callback();
-    rows = run_age_experiment(c);
-  }
+void print_rows(const std::vector<ExperimentRow>& rows) {
   std::printf("%-32s %6s %7s %16s %8s %4s %4s %4s %6s %8s %8s %7s %8s\n", "variant", "load", "stored", "mean age (95%)",
               "var", "p50", "p99", "max", "bound", "excess", "probes", "trav", "failed");
   for (const auto& r : rows)
@@ -151,6 +164,26 @@ int run_stats(const std::vector<std::string>& argv) {
                 r.variant.name().c_str(), r.load, r.stored_load, r.mean_age, r.mean_age_ci95, r.age_variance, r.p50,
                 r.p99, r.max_age, r.rank_bound, r.excess, r.mean_probes, r.traversal_probes,
                 static_cast<unsigned long long>(r.failures));
+}
+
+}  // namespace
+
+int run_stats(const std::vector<std::string>& argv) {
+  if (print_help(argv, stats_spec())) return 0;
+  const Args args(argv, stats_spec());
+  if (args.has("out")) {
+    FileRoles files;
+    files.output("--out", args.required("out"));
+    check_files(files);
+  }
+  ExperimentConfig c = parse_experiment(args);
+  std::vector<ExperimentRow> rows;
+  {
+    ProgressBar progress = ProgressBar::for_terminal("habuffer stats", "trials", args.has("quiet"));
+    c.on_progress = progress.callback();
+    rows = run_age_experiment(c);
+  }
+  print_rows(rows);
   if (args.has("out")) {
     const std::string out = args.required("out");
     if (out.size() > 4 && out.substr(out.size() - 4) == ".csv")

@@ -8,13 +8,22 @@
 
 namespace habuffer::cli {
 
+namespace {
+
+const CommandSpec& techniques_spec() {
+  static const CommandSpec spec{
+      "techniques [--markdown]",
+      {{"markdown", "", "", "print the README's property table instead"}},
+      "  Lists every registered technique: its name, what it is, and the options only it\n"
+      "  and some others take.\n"};
+  return spec;
+}
+
+}  // namespace
+
 int run_techniques(const std::vector<std::string>& argv) {
-  if (print_help(argv,
-                 "usage: habuffer techniques [--markdown]\n"
-                 "  Lists every registered technique: its name, what it is, and the options only it\n"
-                 "  and some others take. --markdown prints the README's property table instead.\n"))
-    return 0;
-  const Args args(argv, {}, {"markdown"});
+  if (print_help(argv, techniques_spec())) return 0;
+  const Args args(argv, techniques_spec());
   if (args.has("markdown")) {
     std::fputs(property_table_markdown().c_str(), stdout);
     return 0;

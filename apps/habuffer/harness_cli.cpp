@@ -1,19 +1,48 @@
 #include "harness_cli.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "habuffer/csv.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/memory_budget.h"
 #include "habuffer/printable.h"
+#include "habuffer/technique_options.h"
+#include "hash_options.h"
 #include "loss_report.h"
 
 namespace habuffer::cli {
 
-std::vector<double> parse_reals(const Args& args, const std::string& name, const std::string& fallback, double lo,
-                                double hi) {
+std::vector<OptionSpec> harness_options(std::initializer_list<std::string_view> names) {
+  static const std::vector<OptionSpec> own{
+      {"out", "F.json[,F.csv]", "", "the table, JSON and/or CSV by extension (required)"},
+      {"size", "WxH", "256x256", "the image (a harness command renders many times; render's default is 1024x1024)"},
+      {"path", "gl|cpu", "gl", "rasterize and insert on the GPU, or insert on the CPU"},
+      {"repeats", "N", "3", "runs of each combination (medians, min and max)"},
+      {"quiet", "", "", "no progress bar (shown on stderr on a terminal)"},
+  };
+  std::vector<OptionSpec> out;
+  for (std::string_view name : names) {
+    const auto it = std::find_if(own.begin(), own.end(), [&](const OptionSpec& o) { return o.name == name; });
+    out.push_back(it != own.end() ? *it : shared_options({name}).front());
+  }
+  return out;
+}
+
+std::string technique_knob_help() {
+  std::string s;
+  for (const TechniqueOption& o : technique_options()) {
+    if (o.knob.empty()) continue;
+    const TechniqueOption* needed = o.needs.empty() ? nullptr : find_option_flag(o.needs);
+    s += help_row("     " + knob_usage(o), std::string(o.help) + " [" + techniques_taking_knob(o) + "]" +
+                                               (needed != nullptr ? " (with " + knob_usage(*needed) + ")" : ""));
+  }
+  return s;
+}
+
+std::vector<double> parse_reals(const Args& args, const std::string& name, double lo, double hi) {
   std::vector<double> out;
-  for (const std::string& w : args.list(name, fallback)) {
+  for (const std::string& w : args.list(name)) {
     char* end = nullptr;
     const double v = std::strtod(w.c_str(), &end);
     if (end != w.c_str() + w.size() || !(v >= lo && v <= hi))
@@ -25,14 +54,14 @@ std::vector<double> parse_reals(const Args& args, const std::string& name, const
 }
 
 RenderPath parse_path(const Args& args) {
-  const std::string p = args.str("path", "gl");
+  const std::string p = args.str("path");
   if (p != "gl" && p != "cpu") throw UsageError("--path must be gl or cpu, not '" + p + "'");
   return p == "gl" ? RenderPath::Gl : RenderPath::Cpu;
 }
 
-std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback) {
+std::vector<Extent> parse_sizes(const Args& args) {
   std::vector<Extent> out;
-  for (const std::string& w : args.list("size", fallback)) {
+  for (const std::string& w : args.list("size")) {
     const std::optional<Extent> e = parse_extent(w);
     if (!e) throw UsageError("--size: '" + w + "' is not WxH with positive sides");
     // The least a render allocates: 32 bytes a pixel over its buffers.
@@ -47,10 +76,10 @@ namespace {
 // Each word of the list option `name` through `parse`; a word it refuses
 // becomes a UsageError naming the option.
 template <class Parse>
-auto parse_words(const Args& args, const std::string& name, const std::string& fallback, Parse parse) {
+auto parse_words(const Args& args, const std::string& name, Parse parse) {
   std::vector<decltype(parse(std::string{}))> out;
   try {
-    for (const std::string& w : args.list(name, fallback)) out.push_back(parse(w));
+    for (const std::string& w : args.list(name)) out.push_back(parse(w));
   } catch (const std::invalid_argument& e) {
     throw UsageError("--" + name + ": " + e.what());
   }
@@ -59,17 +88,12 @@ auto parse_words(const Args& args, const std::string& name, const std::string& f
 
 }  // namespace
 
-std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name,
-                                                     const std::string& fallback) {
-  return parse_words(args, name, fallback, harness::parse_technique_spec);
+std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name) {
+  return parse_words(args, name, harness::parse_technique_spec);
 }
 
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name) {
-  return parse_scenes_or(args, name, "");
-}
-
-std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::string& name, const std::string& fallback) {
-  return parse_words(args, name, fallback, harness::parse_workload_spec);
+  return parse_words(args, name, harness::parse_workload_spec);
 }
 
 namespace {

@@ -5,7 +5,9 @@
 /// commands read their options and write their tables by one set of rules.
 #pragma once
 
+#include <initializer_list>
 #include <memory>
+#include <string_view>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,21 +20,30 @@
 
 namespace habuffer::cli {
 
-/// Option `name`'s comma-separated list of numbers (`fallback` when absent), each in [lo, hi]; UsageError
-/// otherwise.
-std::vector<double> parse_reals(const Args& args, const std::string& name, const std::string& fallback,
-                                double lo = -1e300, double hi = 1e300);
-/// --path gl|cpu (default gl).
+/// The declarations the harness commands share, picked by name (each
+/// declared once): --out, --size (256x256: a harness command renders many
+/// times; render's one image is 1024x1024), --path (gl, as render's),
+/// --repeats, --quiet; the build commands' shared ones (shared_options:
+/// --seed, --threads, --insert-order, ...) by the same call.
+std::vector<OptionSpec> harness_options(std::initializer_list<std::string_view> names);
+
+/// The technique words' knobs, one help line each ("     cull=TAU  early
+/// cull: ... [ha, sorted-lists]"), from the technique option table.
+std::string technique_knob_help();
+
+/// Option `name`'s comma-separated list of numbers (its declared default when absent), each in [lo, hi];
+/// UsageError otherwise.
+std::vector<double> parse_reals(const Args& args, const std::string& name, double lo = -1e300, double hi = 1e300);
+/// --path gl|cpu (its declared default).
 RenderPath parse_path(const Args& args);
-/// --size WxH[,WxH...]: at least one, each positive.
-std::vector<Extent> parse_sizes(const Args& args, const std::string& fallback);
-/// Option `name`'s technique words (harness/technique_spec.h), `fallback` when absent; UsageError naming the
-/// option for a bad word.
-std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name, const std::string& fallback);
-/// Option `name`'s scene words (harness/workload.h); UsageError naming the option for a bad word or none.
+/// --size WxH[,WxH...] (its declared default when absent): at least one, each positive.
+std::vector<Extent> parse_sizes(const Args& args);
+/// Option `name`'s technique words (harness/technique_spec.h), its declared default when absent; UsageError
+/// naming the option for a bad word.
+std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name);
+/// Option `name`'s scene words (harness/workload.h), its declared default when absent; UsageError naming the
+/// option for a bad word or none.
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name);
-/// The same with a default list.
-std::vector<harness::WorkloadSpec> parse_scenes_or(const Args& args, const std::string& name, const std::string& fallback);
 /// A harness command's files, checked together before any work (one rule
 /// for every command): --out F.json[,F.csv] and, where the command has it,
 /// --picks F.json[,F.csv] (extensions, writable, no two the same file), none

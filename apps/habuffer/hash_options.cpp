@@ -10,39 +10,54 @@
 
 namespace habuffer::cli {
 
-const std::set<std::string>& hash_valued_options() {
-  static const std::set<std::string> names{"screen", "table", "layout", "age-bits", "offsets", "seed", "block",
-                                           "threads", "early-cull", "iter-limit", "max-attempts",
-                                           "insert-mode", "insert-order", "path"};
-  return names;
+namespace {
+
+// The shared declarations (see shared_options), besides the technique table's rows.
+const std::vector<OptionSpec>& shared_declarations() {
+  static const std::vector<OptionSpec> specs{
+      {"technique", "NAME", "ha", "the technique (listed below)"},
+      {"layout", "64|32", "64", "record layout: 64 bits (depth and colour) or 32 (depth only)"},
+      {"offsets", "random|farthest|OFFSETS.csv", "random", "the HA-buffer's probe offsets"},
+      {"seed", "N", "1", "the offsets' seed"},
+      {"threads", "N", "0",
+       "CPU insertion threads: 0 uses every hardware thread, at most one per 32768 fragments"},
+      {"insert-mode", "auto|serial|atomic|owner", "auto",
+       "how CPU threads insert (serial: one thread, the default --threads then 1); every mode builds the same "
+       "table"},
+      {"insert-order", "auto|arrival|pixel", "auto", "the HA-buffer's insertion order on the CPU (habuffer info)"},
+      {"lossless", "", "", "grow the technique's buffers and rebuild until nothing is dropped"},
+      {"max-attempts", "N", "16", "lossless mode's builds at most"},
+  };
+  return specs;
 }
 
-const std::set<std::string>& hash_flag_options() {
-  static const std::set<std::string> names{"lossless"};
-  return names;
+}  // namespace
+
+std::vector<OptionSpec> shared_options(std::initializer_list<std::string_view> names) {
+  std::vector<OptionSpec> out;
+  for (std::string_view name : names) {
+    const auto& shared = shared_declarations();
+    const auto it = std::find_if(shared.begin(), shared.end(), [&](const OptionSpec& o) { return o.name == name; });
+    out.push_back(it != shared.end() ? *it : technique_option_spec(name));
+  }
+  return out;
 }
 
 BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) {
   BufferConfig c;
   c.screen = screen;
   c.table = table;
-  const std::string layout = args.str("layout", "64");
+  const std::string layout = args.str("layout");
   if (layout != "64" && layout != "32") throw UsageError("option --layout: '" + layout + "' is not 64 or 32");
   c.layout = layout == "64" ? Layout::L64 : Layout::L32;
-  c.age_bits = args.u32("age-bits", HABUFFER_DEFAULT_AGE_BITS, HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
-  c.block = args.u32("block", HABUFFER_DEFAULT_BLOCK, 1, 1u << 16);
-  c.iter_limit = args.u32("iter-limit", HABUFFER_DEFAULT_ITER_LIMIT, 1, HABUFFER_MAX_ITER_LIMIT);
-  if (args.has("early-cull")) {
-    // The threshold is used as a float32 on both paths; below the smallest
-    // normal float32 a GPU may flush it to 0, which turns cull off.
-    c.early_cull_tau = usage_errors("early-cull", [&] { return parse_cull_threshold(args.str("early-cull", "")); });
-  }
-  const std::string saturation = args.str("saturation", "off");
-  if (saturation != "on" && saturation != "off")
-    throw UsageError("option --saturation: '" + saturation + "' is not on or off");
-  c.saturation = saturation == "on";
-  if (c.saturation && c.early_cull_tau <= 0.0f)
-    throw UsageError("option --saturation on needs --early-cull TAU (it records where culling began)");
+  // The technique option table's BufferConfig part: --early-cull (the
+  // threshold is a float32 on both paths; below the smallest normal float32
+  // a GPU may flush it to 0, which turns cull off), --saturation, --age-bits,
+  // --block, --iter-limit.
+  TechniqueConfig t;
+  t.buffer = c;
+  set_technique_options(args, t, true);
+  c = t.buffer;
   usage_errors("", [&] {
     c.validate();
     // The least any technique allocates: per-pixel images and counts (32
@@ -69,9 +84,8 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   const BufferConfig& c = o.config;
   // The default thread count is every command's: 0, the default count for
   // the batch (resolve_threads); serial insertion is one thread.
-  const bool serial_mode = args.str("insert-mode", "auto") == "serial";
-  o.insert.threads = args.u32("threads", serial_mode ? 1 : 0, 0, kMaxThreads);
-  const std::string mode = args.str("insert-mode", "auto");
+  const std::string mode = args.str("insert-mode");
+  o.insert.threads = mode == "serial" ? args.u32("threads", 1, 0, kMaxThreads) : args.u32_in("threads", 0, kMaxThreads);
   if (mode == "auto") {
     o.insert.mode = InsertMode::Auto;
   } else if (mode == "serial") {
@@ -91,15 +105,15 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   if (o.insert.order == InsertOrder::Pixel && o.insert.mode == InsertMode::OwnerComputes)
     throw UsageError("option --insert-order pixel cannot go with --insert-mode owner (its owners follow the probes)");
   o.lossless = args.has("lossless");
-  o.max_attempts = o.lossless ? args.u32("max-attempts", 16, 1, 1000) : 1;
+  o.max_attempts = o.lossless ? args.u32_in("max-attempts", 1, 1000) : 1;
   if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");
 
-  const std::string path = args.str("path", "cpu");
+  const std::string path = args.str("path");
   if (path != "cpu" && path != "gl") throw UsageError("option --path: '" + path + "' is not cpu or gl");
   o.gl = path == "gl";
   args.refuse_unless(!o.gl, {"threads", "insert-mode", "insert-order"}, "with --path gl (the GPU inserts)");
 
-  o.offsets_name = args.str("offsets", "random");
+  o.offsets_name = args.str("offsets");
   o.offsets = parse_offset_source(args, c);
   return o;
 }
@@ -110,8 +124,8 @@ void add_offsets_input(FileRoles& files, const HashOptions& options) {
 
 OffsetSource parse_offset_source(const Args& args, const BufferConfig& c) {
   OffsetSource s;
-  const std::string name = args.str("offsets", "random");
-  s.seed = args.u64("seed", 1);
+  const std::string name = args.str("offsets");
+  s.seed = args.u64_in("seed");
   if (name == "random") {
     s.generator = OffsetGenerator::Random;
   } else if (name == "farthest") {

@@ -5,8 +5,10 @@
 /// library's configuration, so every such command reads them by the same rules.
 #pragma once
 
-#include <set>
+#include <initializer_list>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "cli_args.h"
 #include "habuffer/file_roles.h"
@@ -33,10 +35,13 @@ struct HashOptions {
 /// GL containers size it from the fragments and grow it at once on a drop).
 TechniqueConfig technique_config(const HashOptions& options);
 
-/// Names to add to a command's accepted options.
-const std::set<std::string>& hash_valued_options();
-/// Flags (no value) to add to a command's accepted options.
-const std::set<std::string>& hash_flag_options();
+/// The declarations of options several commands take, each declared once
+/// (its value, default and help), picked by name: the build options above,
+/// --technique and the technique option table's rows (technique_options.h),
+/// --threads, --insert-order. A command whose default differs (--path,
+/// --table, --screen, --size) declares its own, saying why in its help.
+/// std::logic_error for a name not shared.
+std::vector<OptionSpec> shared_options(std::initializer_list<std::string_view> names);
 
 /// Throws UsageError for bad values or conflicting sizes, DataError for a bad
 /// offsets file. `screen` is required. With `techniques`, --technique,

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "habuffer/technique_descriptor.h"
+#include "habuffer/technique_options.h"
 
 namespace habuffer::cli {
 
@@ -22,52 +23,54 @@ void refuse_other_techniques_options(const Args& args, const TechniqueDescriptor
 
 }  // namespace
 
+OptionSpec technique_option_spec(std::string_view flag) {
+  const TechniqueOption* o = find_option_flag(flag);
+  if (o == nullptr) throw std::logic_error("--" + std::string(flag) + " is no technique option");
+  const std::string takers = techniques_taking(o->flag);
+  return {std::string(o->flag), std::string(o->value_name), option_default_text(*o),
+          std::string(o->help) + (takers.empty() ? std::string() : " [" + takers + "]")};
+}
+
+std::vector<OptionSpec> technique_option_specs(bool buffer_part) {
+  std::vector<OptionSpec> specs;
+  for (const TechniqueOption& o : technique_options())
+    if (!o.flag.empty() && o.buffer_field == buffer_part) specs.push_back(technique_option_spec(o.flag));
+  return specs;
+}
+
 std::string technique_help() {
-  std::string s = "  --technique NAME (default ha), one of:\n";
+  std::string s = "  The techniques (--technique NAME):\n";
   for (const TechniqueDescriptor* d : technique_registry()) {
     std::string name(d->name);
     name.resize(std::max<std::size_t>(name.size(), 13), ' ');
     s += "    " + name + " " + std::string(d->summary) + "\n";
   }
-  s += "  The options only some techniques take are refused with the others; `habuffer techniques` lists\n"
-       "  each technique's (--pool N|auto: nodes, auto by default; --layers K, default 16; --occupancy on,\n"
-       "  --occupancy-words D, --depth-range NEAR,FAR: the k-buffer's occupancy map, wboit's weights).\n";
-  return s;
+  return s + "  The options only some techniques take (the techniques in [...] above) are refused with the others;\n"
+             "  `habuffer techniques` lists each technique's.\n";
+}
+
+void set_technique_options(const Args& args, TechniqueConfig& config, bool buffer_part) {
+  for (const TechniqueOption& o : technique_options()) {
+    const std::string flag(o.flag);
+    if (!flag.empty() && o.buffer_field == buffer_part && args.has(flag))
+      usage_errors(flag, [&] { set_option(o, config, args.required(flag)); });
+  }
+  for (const TechniqueOption& o : technique_options()) {
+    const TechniqueOption* needed = o.needs.empty() ? nullptr : find_option_flag(o.needs);
+    if (needed != nullptr && o.buffer_field == buffer_part && args.has(std::string(o.flag)) &&
+        option_on(o, config) && !option_on(*needed, config))
+      throw UsageError("option --" + std::string(o.flag) + " " + std::string(o.without_needed));
+  }
 }
 
 TechniqueOptions parse_technique_options(const Args& args) {
   TechniqueOptions o;
-  const std::string name = args.str("technique", "ha");
+  const std::string name = args.str("technique");
   const std::optional<Technique> t = parse_technique(name);
   if (!t) throw UsageError("option --technique: '" + name + "' is not one of " + technique_names());
   o.technique = *t;
   refuse_other_techniques_options(args, descriptor(o.technique));
-  o.layers = args.u32("layers", HABUFFER_DEFAULT_LAYERS, 1, HABUFFER_MAX_LAYERS);
-  const std::string pool = args.str("pool", "auto");
-  o.pool_capacity = pool == "auto" ? 0 : args.u64("pool", 0, 1, UINT32_MAX - 1);
-  const std::string occupancy = args.str("occupancy", "off");
-  if (occupancy != "on" && occupancy != "off")
-    throw UsageError("option --occupancy: '" + occupancy + "' is not on or off");
-  o.occupancy = occupancy == "on";
-  o.occupancy_words = args.u32("occupancy-words", HABUFFER_DEFAULT_OCCUPANCY_WORDS, 1, HABUFFER_MAX_OCCUPANCY_WORDS);
-  args.refuse_unless(o.occupancy, {"occupancy-words"}, "with --occupancy off");
-  if (args.has("depth-range")) {
-    const std::string v = args.required("depth-range");
-    const std::size_t comma = v.find(',');
-    float near_t = 0.0f, far_t = 0.0f;
-    try {
-      if (comma == std::string::npos) throw std::invalid_argument(v);
-      std::size_t used_near = 0, used_far = 0;
-      near_t = std::stof(v.substr(0, comma), &used_near);
-      far_t = std::stof(v.substr(comma + 1), &used_far);
-      if (used_near != comma || used_far != v.size() - comma - 1) throw std::invalid_argument(v);
-    } catch (const std::exception&) {
-      throw UsageError("option --depth-range: '" + v + "' is not NEAR,FAR (two depths in [0, 1])");
-    }
-    if (!(near_t >= 0.0f && near_t < far_t && far_t <= 1.0f))
-      throw UsageError("option --depth-range: " + v + " is not an interval NEAR < FAR within [0, 1]");
-    o.depth_range = {near_t, far_t};
-  }
+  set_technique_options(args, o, false);
   return o;
 }
 

@@ -71,6 +71,8 @@ struct TechniqueDescriptor {
   std::string_view paper_memory_row;
   /// The CLI options only some techniques take that this one takes
   /// ("table", "pool", "layers", ...): the CLI refuses any other technique's.
+  /// Those that set a configuration field are rows of the technique option
+  /// table (habuffer/technique_options.h); this is the technique's view of it.
   std::span<const std::string_view> options;
   /// What --lossless does for it, for the warning a lossy run prints ("" when
   /// it drops nothing).
@@ -104,10 +106,11 @@ struct ReportField {
   std::string_view name;  ///< the JSON key: "layers", "pool_nodes", "occupancy", ...
   std::variant<std::uint64_t, bool, DepthRange> value;  ///< its value
 };
-/// The configuration fields `config`'s technique reports, in this order:
-/// "layers" (K: `capacity` over the pixels) and "pool_nodes" (`capacity`) by
-/// what its capacity counts; "occupancy" and, when on, "occupancy_words"
-/// where it takes --occupancy; "depth_range" where it reads one.
+/// The configuration fields `config`'s technique reports: the JSON keys of
+/// the technique option table's rows (habuffer/technique_options.h) whose
+/// option it takes, in the table's order, a row that needs another only when
+/// that one is on: "layers" (K: `capacity` over the pixels), "pool_nodes"
+/// (`capacity`), "occupancy" and, when on, "occupancy_words", "depth_range".
 std::vector<ReportField> technique_report_fields(const TechniqueConfig& config, std::uint64_t capacity);
 
 /// The descriptor of `t` (every enumerator has one).

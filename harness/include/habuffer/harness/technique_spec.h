@@ -9,7 +9,10 @@
 ///   k=K         layers (arrays, kbuffer)
 ///   occ         the k-buffer's occupancy map; words=D its 32-bit words per pixel
 /// e.g. "ha:cull=0.99:sat", "kbuffer:k=8:occ", "lists:load=0.8". One word per
-/// configuration lets bench, sweep and frontier take lists of them.
+/// configuration lets bench, sweep and frontier take lists of them. The knobs
+/// are rows of the technique option table (habuffer/technique_options.h):
+/// their names, ranges, rules (where each applies, what each needs) and
+/// refusals are the CLI options' own.
 #pragma once
 
 #include <cstdint>
