@@ -12,6 +12,7 @@
 #include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
 #include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/technique_descriptor.h"
 
 namespace habuffer {
 namespace {
@@ -32,6 +33,40 @@ class GlTechniques : public ::testing::Test {
   void SetUp() override { test::gl_context(); }
   static std::vector<gl::AtomicMode> modes() { return {gl::AtomicMode::Native32, gl::AtomicMode::Emulated64}; }
 };
+
+// Each technique declares the passes its frame needs beyond the gather, and
+// only those: the HA-buffer its clear pass at the frame's start, the
+// techniques that sort after the gather a sort pass (and those sorted while
+// inserting none, as their descriptors say), the k-buffer its fill and count
+// pass only with occupancy culling, the blended baselines the framebuffer
+// their gather draws into.
+TEST_F(GlTechniques, EachTechniqueDeclaresThePassesItsFrameNeeds) {
+  using gl::GlPassStage;
+  const auto stages = [](const gl::GlTechnique& t) {
+    std::vector<GlPassStage> out;
+    for (const gl::GlPass& p : t.passes()) {
+      out.push_back(p.stage);
+      EXPECT_FALSE(p.name.empty());
+      EXPECT_TRUE(p.run);
+      EXPECT_EQ(p.framebuffer != 0, p.stage == GlPassStage::Gather) << p.name;
+    }
+    return out;
+  };
+  for (const TechniqueDescriptor* d : technique_registry()) {
+    SCOPED_TRACE(std::string(d->name));
+    TechniqueConfig c = technique_config(d->technique, {8, 8}, gl::AtomicMode::Native32);
+    const auto t = gl_technique(c, gl::AtomicMode::Native32);
+    std::vector<GlPassStage> expected;
+    if (d->capacity == CapacityKind::TableSlots) expected = {GlPassStage::FrameStart};
+    else if (d->capacity == CapacityKind::None) expected = {GlPassStage::Gather};
+    else if (!d->sorted_on_insert) expected = {GlPassStage::Sort};
+    EXPECT_EQ(stages(*t), expected);
+    EXPECT_EQ(t->gather_framebuffer() != 0, d->capacity == CapacityKind::None);
+  }
+  TechniqueConfig occupancy = technique_config(Technique::KBuffer, {8, 8}, gl::AtomicMode::Native32);
+  occupancy.occupancy = true;
+  EXPECT_EQ(stages(*gl_technique(occupancy, gl::AtomicMode::Native32)), std::vector<GlPassStage>{GlPassStage::Fill});
+}
 
 TEST_F(GlTechniques, ListsAndArraysOnTheGpuGiveTheCpuAndHaBufferListsOverSeedsAndLayouts) {
   for (gl::AtomicMode mode : modes())
