@@ -23,3 +23,28 @@ vec4 ha_composite(uvec2 p, vec3 background) {
   }
   return ha_finish(c, background);
 }
+
+// The light's transmittance at pixel p of a light-view buffer, for a
+// receiver whose depth code from the light is `code` (seed 000's
+// translucent shadow map, section 6): SPEC 7's walk, nearest first,
+// multiplying (1 - alpha) of every record nearer than the receiver by more
+// than `bias` codes (a record's code above code + bias; codes grow toward
+// the light), stopping at the first record that is not. The bias keeps a
+// surface's own records (at the receiver's code, or a few codes off where the
+// surface is slanted to the light) from shadowing it. Alpha is the record's
+// colour byte (L64); L32 records carry none and read as transparent.
+float ha_transmittance(uvec2 p, uint code, uint bias) {
+  uint front = code + min(bias, ha_max_code() - code);
+  float t = 1.0f;
+  uint amax = ha_load_max_age(ha_cell(p));
+  for (uint a = 1u; a <= amax; ++a) {
+    ha_word r = ha_load_slot(ha_slot(ha_probe(p, a)));
+    uint v = ha_visit(r, a);
+    if (v == HABUFFER_VISIT_STOP) break;
+    if (v == HABUFFER_VISIT_EMIT) {
+      if (ha_code(r) <= front) break;
+      t *= 1.0f - ha_alpha(r);
+    }
+  }
+  return t;
+}

@@ -316,6 +316,13 @@ void HaBuffer::import_state(std::span<const std::uint64_t> table_words, std::spa
   std::copy(max_ages.begin(), max_ages.end(), impl_->max_age.data());
 }
 
+float HaBuffer::transmittance(std::uint32_t x, std::uint32_t y, std::uint32_t code, std::uint32_t bias) const {
+  check_pixel(x, y, screen());
+  if (config().layout != Layout::L64)
+    throw std::logic_error("a light buffer of L32 records carries no opacity: build it with L64 records");
+  return impl_->with_kernel([&](auto& k) { return k.ha_transmittance(glm::uvec2(x, y), code, bias); });
+}
+
 std::uint32_t HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const {
   check_pixel(x, y, screen());
   out.clear();

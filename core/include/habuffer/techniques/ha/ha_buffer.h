@@ -104,6 +104,14 @@ class HaBuffer final : public FragmentBuffer {
   [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
 
+  /// The light's transmittance at pixel (x, y) of a buffer built from a
+  /// light's view, for a receiver whose depth code from the light is `code`:
+  /// the product of (1 - alpha) over the records nearer than code + `bias`
+  /// (shared/ha_traverse.glsl's ha_transmittance, the GPU path's very
+  /// code). Throws std::out_of_range for a pixel off the screen and
+  /// std::logic_error for L32 records, which carry no opacity.
+  [[nodiscard]] float transmittance(std::uint32_t x, std::uint32_t y, std::uint32_t code, std::uint32_t bias) const;
+
   /// Stored records per age: result[a] for a = 0..AMAX (result[0] is 0).
   [[nodiscard]] std::vector<std::uint64_t> age_histogram() const;
   /// Bytes of T, M and O.

@@ -1,0 +1,69 @@
+/// @file
+/// The light of a translucent shadow map (seed 000, section 6): where it
+/// shines from, the frustum fitted to the scene, and the mapping of a world
+/// point to a light pixel and a depth t in [0, 1] (linear in the light's eye
+/// depth, as Camera's), from which the light buffer is built and looked up
+/// (habuffer/transmittance.h).
+#pragma once
+
+#include <optional>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "habuffer/camera.h"
+#include "habuffer/extent.h"
+#include "habuffer/scene.h"
+
+namespace habuffer {
+
+/// A light: directional (orthographic, parallel rays) or a spot
+/// (perspective from `position`), and its map's resolution.
+struct LightParams {
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< where the light shines, from the light into the scene (any length > 0)
+  bool orthographic = true;                 ///< directional; false: a spot at `position`
+  glm::vec3 position{0.0f};                 ///< spot: the light's position, outside the scene's bounding sphere
+  float fov = 60.0f;                        ///< spot: the cone's full angle in degrees, in (1, 179)
+  Extent size{1024, 1024};                  ///< the light map's pixels (the light buffer's screen)
+};
+
+/// Where a world point falls in the light's view.
+struct LightSample {
+  glm::uvec2 pixel;  ///< the light pixel (window coordinates, floored)
+  float depth;       ///< t in [0, 1]: 0 at the near plane, 1 at the far plane
+};
+
+/// A light framed on a scene (frame_light makes one).
+struct LightView {
+  Camera camera;  ///< the light's view and projection; near and far map to t = 0 and 1
+  Extent size;    ///< the light map's pixels
+  bool orthographic = true;  ///< directional light
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional: where the light shines (unit length)
+  glm::vec3 position{0.0f};                ///< spot: where the light is
+
+  /// The light pixel and depth of world point `p`; nullopt outside the
+  /// frustum (beside the map, nearer than its near plane or beyond its far).
+  [[nodiscard]] std::optional<LightSample> sample(glm::vec3 p) const;
+  /// The world-space side of one light pixel at depth t (orthographic: the
+  /// same everywhere), for the slope bias (see shadow_bias_codes).
+  [[nodiscard]] float pixel_world_size(float t) const;
+};
+
+/// The light framed on `scene`: an orthographic frustum around the scene's
+/// bounding sphere (directional), or a perspective one from `position`
+/// whose cone holds the sphere (spot; `fov` is its upper limit), near and
+/// far hugging the scene's extent along the light. Throws SceneError naming
+/// the parameter for a zero or non-finite direction, an empty map, a fov
+/// outside (1, 179) degrees, a spot inside the scene's bounding sphere or one
+/// whose cone of `fov` cannot hold the scene, and an empty scene.
+LightView frame_light(const Scene& scene, const LightParams& params);
+
+/// The bias in depth codes that keeps a surface's own records from shadowing
+/// it: a surface at angle `theta` between its normal and the light's
+/// direction moves in depth by tan(theta) * one light pixel's side across
+/// the pixel, so `max_slope` (tan of the largest angle allowed) times that
+/// side, over the depth range, in codes of `depth_bits`, plus one code for
+/// rounding. Surfaces steeper than `max_slope` may shadow themselves.
+std::uint32_t shadow_bias_codes(const LightView& light, float max_slope, std::uint32_t depth_bits);
+
+}  // namespace habuffer

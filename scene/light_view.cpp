@@ -1,0 +1,116 @@
+#include "habuffer/light_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace habuffer {
+namespace {
+
+constexpr float kMargin = 1.02f;  // the frustum a little outside the bounding sphere and the depth extent
+
+std::string text(glm::vec3 v) {
+  return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+}
+
+// An up vector not parallel to `dir`.
+glm::vec3 up_for(glm::vec3 dir) {
+  return std::abs(dir.y) > 0.99f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+// Near and far hugging every vertex's depth along the light (a margin of 2%).
+void fit_depth(const Scene& scene, Camera& c) {
+  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
+  for (const Mesh& m : scene.meshes)
+    for (const glm::vec3& p : m.positions) {
+      const float d = -(c.view * glm::vec4(p, 1.0f)).z;
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  const float margin = std::max(hi - lo, 1e-3f) * (kMargin - 1.0f);
+  c.near_plane = std::max(lo - margin, 1e-4f);
+  c.far_plane = hi + margin;
+}
+
+void check_params(const LightParams& p) {
+  const float length = glm::length(p.direction);
+  if (!std::isfinite(length) || length == 0.0f)
+    throw SceneError("light direction " + text(p.direction) + " is not a finite non-zero vector");
+  if (p.size.area() == 0) throw SceneError("light map size " + p.size.str() + " has no pixels");
+  if (!p.orthographic) {
+    if (!(p.fov > 1.0f && p.fov < 179.0f))
+      throw SceneError("light fov " + std::to_string(p.fov) + " is not in (1, 179) degrees");
+    if (!std::isfinite(glm::length(p.position))) throw SceneError("light position " + text(p.position) + " is not finite");
+  }
+}
+
+}  // namespace
+
+LightView frame_light(const Scene& scene, const LightParams& params) {
+  check_params(params);
+  const Bounds b = scene.bounds();
+  if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices to light");
+  const glm::vec3 dir = glm::normalize(params.direction), centre = b.centre();
+  const float r = std::max(scene.radius_around(centre), 1e-6f);
+  const float aspect = static_cast<float>(params.size.x) / static_cast<float>(params.size.y);
+  LightView v;
+  v.size = params.size;
+  v.orthographic = params.orthographic;
+  v.direction = dir;
+  v.position = params.position;
+  if (params.orthographic) {
+    v.camera.view = glm::lookAt(centre - dir * (2.0f * r), centre, up_for(dir));
+    fit_depth(scene, v.camera);
+    const float half = r * kMargin, hx = aspect >= 1.0f ? half * aspect : half, hy = aspect >= 1.0f ? half : half / aspect;
+    v.camera.projection = glm::ortho(-hx, hx, -hy, hy, v.camera.near_plane, v.camera.far_plane);
+    return v;
+  }
+  const float distance = glm::length(centre - params.position);
+  if (!(distance > r * kMargin))
+    throw SceneError("light position " + text(params.position) + " is inside the scene's bounding sphere (centre " +
+                     text(centre) + ", radius " + std::to_string(r) + "): a spot must see the scene from outside");
+  const float half_needed = std::asin(std::min(1.0f, r * kMargin / distance));
+  if (2.0f * half_needed > glm::radians(params.fov))
+    throw SceneError("light fov " + std::to_string(params.fov) + " cannot hold the scene from " + text(params.position) +
+                     " (it needs " + std::to_string(glm::degrees(2.0f * half_needed)) + " degrees)");
+  const glm::vec3 towards = glm::normalize(centre - params.position);
+  v.camera.view = glm::lookAt(params.position, centre, up_for(towards));
+  fit_depth(scene, v.camera);
+  const float fovy = aspect >= 1.0f ? 2.0f * half_needed : 2.0f * std::atan(std::tan(half_needed) / aspect);
+  v.camera.projection = glm::perspective(fovy, aspect, v.camera.near_plane, v.camera.far_plane);
+  return v;
+}
+
+std::optional<LightSample> LightView::sample(glm::vec3 p) const {
+  const glm::vec4 eye = camera.view * glm::vec4(p, 1.0f);
+  const glm::vec4 clip = camera.projection * eye;
+  if (!(clip.w > 0.0f)) return std::nullopt;
+  const float nx = clip.x / clip.w, ny = clip.y / clip.w;
+  const float wx = (nx * 0.5f + 0.5f) * static_cast<float>(size.x), wy = (ny * 0.5f + 0.5f) * static_cast<float>(size.y);
+  const float t = camera.depth(eye.z);
+  if (!(wx >= 0.0f && wy >= 0.0f && wx < static_cast<float>(size.x) && wy < static_cast<float>(size.y)) ||
+      !(t >= 0.0f && t <= 1.0f))
+    return std::nullopt;
+  return LightSample{glm::uvec2(static_cast<std::uint32_t>(wx), static_cast<std::uint32_t>(wy)), t};
+}
+
+float LightView::pixel_world_size(float t) const {
+  // Orthographic: 2 / P[0][0] world units span the map's width; perspective:
+  // the same at eye distance d is 2 d / P[0][0].
+  const float width = 2.0f / camera.projection[0][0];
+  const float d = camera.near_plane + t * (camera.far_plane - camera.near_plane);
+  return (orthographic ? width : width * d) / static_cast<float>(size.x);
+}
+
+std::uint32_t shadow_bias_codes(const LightView& light, float max_slope, std::uint32_t depth_bits) {
+  // The deepest point has the widest pixels under a spot: bias for t = 1.
+  const double depth_step = double(max_slope) * light.pixel_world_size(1.0f);
+  const double codes = depth_step / double(light.camera.far_plane - light.camera.near_plane) * std::ldexp(1.0, int(depth_bits));
+  return static_cast<std::uint32_t>(std::min(std::ceil(codes), double(UINT32_MAX - 1))) + 1u;
+}
+
+}  // namespace habuffer
