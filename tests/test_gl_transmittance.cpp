@@ -1,0 +1,80 @@
+// The translucent shadow map's lookup on the GPU: ha_transmittance of the
+// HA-buffer's GLSL module (the shared walk of shared/ha_traverse.glsl), run
+// in a host compute shader over a light buffer the GPU gathered, gives the
+// CPU's transmittance bit for bit at every pixel, receiver depth and bias.
+#include <gtest/gtest.h>
+
+#include <epoxy/gl.h>
+
+#include <cstring>
+
+#include "gl_test_support.h"
+#include "habuffer/transmittance.h"
+
+namespace habuffer {
+namespace {
+
+constexpr const char* kLookupMain = R"(
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 2) writeonly buffer LookupOut { float lookup_out[]; };
+uniform uint lookup_code;
+uniform uint lookup_bias;
+void main() {
+  uvec2 p = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(p, habuffer_screen_size))) return;
+  lookup_out[p.x + p.y * habuffer_screen_size.x] = ha_transmittance(p, lookup_code, lookup_bias);
+}
+)";
+
+TEST(GlTransmittance, TheGpusLookupGivesTheCpusTransmittanceBitForBit) {
+  test::gl_context();
+  for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info())) {
+    if (mode == gl::AtomicMode::Native32) continue;  // L32 records carry no opacity
+    SCOPED_TRACE(gl::to_string(mode));
+    const BufferConfig c = test::config({23, 17}, {48, 40}, Layout::L64, 8);
+    gl::GlHaBuffer gpu(c, test::random_offsets(7), mode);
+    gl::ComputeInserter inserter(gpu);
+    const std::vector<Fragment> frags = test::grid_stream(c.screen, 1200, 5, 1);
+    ASSERT_EQ(inserter.insert(frags).counters.failures(), 0u);
+    const HaBuffer cpu = test::cpu_twin(gpu, frags);
+    const gl::ShaderProgram program =
+        gl::ShaderProgram::compute(gpu.module_source(gl::ShaderStage::Compute) + kLookupMain, "transmittance lookup");
+    const std::uint64_t pixels = c.screen.area();
+    GLuint out = 0;
+    glCreateBuffers(1, &out);
+    glNamedBufferStorage(out, static_cast<GLsizeiptr>(pixels * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    const RecordLayout layout = c.record_layout();
+    for (const float receiver : {0.0f, 0.3f, 0.7f, 1.0f})
+      for (const std::uint32_t bias : {0u, 5u, 1u << 16}) {
+        const std::uint32_t code = layout.depth_code(receiver);
+        gpu.bind();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out);
+        glUseProgram(program.id());
+        program.set("lookup_code", code);
+        program.set("lookup_bias", bias);
+        glDispatchCompute((c.screen.x + 7) / 8, (c.screen.y + 7) / 8, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        std::vector<float> got(pixels);
+        glGetNamedBufferSubData(out, 0, static_cast<GLsizeiptr>(pixels * 4), got.data());
+        int shadowed = 0;
+        for (std::uint32_t y = 0; y < c.screen.y; ++y) {
+          for (std::uint32_t x = 0; x < c.screen.x; ++x) {
+            const float want = cpu.transmittance(x, y, code, bias), have = got[x + y * c.screen.x];
+            std::uint32_t a = 0, b = 0;
+            std::memcpy(&a, &want, 4);
+            std::memcpy(&b, &have, 4);
+            ASSERT_EQ(a, b) << "pixel " << x << "," << y << " receiver " << receiver << " bias " << bias;
+            shadowed += want < 1.0f ? 1 : 0;
+          }
+        }
+        if (receiver == 1.0f && bias == 0u) {
+          EXPECT_GT(shadowed, 0);
+        }
+      }
+    glDeleteBuffers(1, &out);
+    glUseProgram(0);
+  }
+}
+
+}  // namespace
+}  // namespace habuffer
