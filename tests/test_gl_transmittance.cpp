@@ -8,7 +8,10 @@
 
 #include <cstring>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "gl_test_support.h"
+#include "habuffer/gl/shadow_lookup.h"
 #include "habuffer/transmittance.h"
 
 namespace habuffer {
@@ -74,6 +77,74 @@ TEST(GlTransmittance, TheGpusLookupGivesTheCpusTransmittanceBitForBit) {
     glDeleteBuffers(1, &out);
     glUseProgram(0);
   }
+}
+
+// A view frame of another technique (lists) reads the light buffer beside
+// its own module: light_lookup_part instantiates the shared walk under hs_,
+// and habuffer_shadow_transmittance gives the CPU's transmittance bit for
+// bit, by light pixel and depth and by world point (an orthographic light
+// whose matrices map a point to its pixel and depth exactly).
+TEST(GlTransmittance, AViewOfAnotherTechniqueLooksTheLightBufferUpAsTheCpuDoes) {
+  test::gl_context();
+  const gl::GlInfo info = gl::query_gl_info();
+  if (!info.int64_types) GTEST_SKIP() << "no 64-bit shader integers: no L64 light buffer";
+  const gl::AtomicMode mode = info.atomic_int64 ? gl::AtomicMode::Native64 : gl::AtomicMode::Emulated64;
+  const BufferConfig lc = test::config({16, 16}, {40, 32}, Layout::L64, 8);
+  gl::GlHaBuffer light(lc, test::random_offsets(3), mode);
+  gl::ComputeInserter inserter(light);
+  const std::vector<Fragment> frags = test::grid_stream(lc.screen, 900, 8, 1);
+  ASSERT_EQ(inserter.insert(frags).counters.failures(), 0u);
+  const HaBuffer cpu = test::cpu_twin(light, frags);
+  // The view: lists on another screen, its own module and buffers at the default points.
+  TechniqueConfig view_config = test::technique_config(Technique::Lists, {8, 8}, Layout::L64);
+  view_config.pool_capacity = 64;
+  gl::GlFrameDriver view(gl::make_gl_technique(view_config, {}, mode));
+  gl::GlLightMapping mapping;
+  mapping.projection = glm::ortho(0.0f, 16.0f, 0.0f, 16.0f, 0.0f, 1.0f);  // eye (x, y, -t) to pixel (x, y), depth t
+  const std::uint32_t bias = 2;
+  gl::GlShadowLookup lookup(light.container(), mapping, bias, view.bindings());
+  const std::string main = R"(
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 2) writeonly buffer LookupOut { float lookup_out[]; };
+uniform float lookup_depth;
+void main() {
+  uvec2 p = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(p, uvec2(16u)))) return;
+  uint i = p.x + p.y * 16u;
+  lookup_out[2u * i] = habuffer_shadow_transmittance(p, lookup_depth);
+  lookup_out[2u * i + 1u] = habuffer_shadow_transmittance(vec3(vec2(p) + 0.5, -lookup_depth));
+}
+)";
+  const gl::ShaderProgram program = gl::ShaderProgram::compute(
+      view.module_source(gl::ShaderStage::Compute) + gl::light_lookup_part(lookup.bindings()) + main, "view lookup");
+  GLuint out = 0;
+  glCreateBuffers(1, &out);
+  glNamedBufferStorage(out, 2 * 256 * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const RecordLayout layout = lc.record_layout();
+  int shadowed = 0;
+  for (const float depth : {0.25f, 0.5f, 0.9375f}) {
+    view.bind();
+    lookup.bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out);
+    glUseProgram(program.id());
+    program.set("lookup_depth", depth);
+    glDispatchCompute(2, 2, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<float> got(512);
+    glGetNamedBufferSubData(out, 0, 512 * 4, got.data());
+    for (std::uint32_t y = 0; y < 16; ++y) {
+      for (std::uint32_t x = 0; x < 16; ++x) {
+        const float want = cpu.transmittance(x, y, layout.depth_code(depth), bias);
+        const std::uint32_t i = x + y * 16;
+        EXPECT_EQ(got[2 * i], want) << "pixel " << x << "," << y << " depth " << depth;
+        EXPECT_EQ(got[2 * i + 1], want) << "world point over pixel " << x << "," << y << " depth " << depth;
+        shadowed += want < 1.0f ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_GT(shadowed, 0);
+  glDeleteBuffers(1, &out);
+  glUseProgram(0);
 }
 
 }  // namespace

@@ -28,3 +28,4 @@
 #include "habuffer/resize_policy.h"
 #include "habuffer/technique.h"
 #include "habuffer/technique_params.h"
+#include "habuffer/transmittance.h"

@@ -35,7 +35,8 @@ vec4 ha_composite(uvec2 p, vec3 background) {
 // colour byte (L64); L32 records carry none and read as transparent.
 float ha_transmittance(uvec2 p, uint code, uint bias) {
   uint front = code + min(bias, ha_max_code() - code);
-  float t = 1.0f;
+  // precise: no fused multiply-add, so every GPU gives the C++ path's products.
+  HABUFFER_PRECISE float t = 1.0f;
   uint amax = ha_load_max_age(ha_cell(p));
   for (uint a = 1u; a <= amax; ++a) {
     ha_word r = ha_load_slot(ha_slot(ha_probe(p, a)));
@@ -43,7 +44,8 @@ float ha_transmittance(uvec2 p, uint code, uint bias) {
     if (v == HABUFFER_VISIT_STOP) break;
     if (v == HABUFFER_VISIT_EMIT) {
       if (ha_code(r) <= front) break;
-      t *= 1.0f - ha_alpha(r);
+      HABUFFER_PRECISE float keep = 1.0f - ha_alpha(r);
+      t *= keep;
     }
   }
   return t;

@@ -52,6 +52,8 @@ extern const char* const kInsertStreamCompute;  ///< gl/shaders/insert_stream.co
 extern const char* const kResumeCompute;        ///< gl/shaders/resume.comp.glsl: the resume pass
 extern const char* const kFullScreenVertex;     ///< gl/shaders/clear_pass.vert.glsl: one triangle covering the viewport
 extern const char* const kClearPassFragment;    ///< gl/shaders/clear_pass.frag.glsl: the clear pass
+extern const char* const kLightEnv;             ///< gl/shaders/light_env.glsl: a light buffer's environment (translucent shadows)
+extern const char* const kLightLookup;          ///< gl/shaders/light_lookup.glsl: habuffer_shadow_transmittance
 extern const char* const kResolveFragment;      ///< gl/shaders/resolve.frag.glsl: the resolve pass
 
 /// The stage a module is for (Fragment defines HABUFFER_STAGE_FRAGMENT).

@@ -26,6 +26,8 @@ class GlHaBuffer : public GlFrameDriver {
   [[nodiscard]] const BufferConfig& config() const { return table_.config(); }  // config().table: the current table
   /// The current table.
   [[nodiscard]] Extent table() const { return table_.table(); }
+  /// The HA-buffer's container (a light buffer for GlShadowLookup, ...).
+  [[nodiscard]] const GlHaTable& container() const { return table_; }
   /// The offsets of the current table.
   [[nodiscard]] const OffsetSequence& offsets() const { return table_.offsets(); }
 

@@ -129,6 +129,12 @@ void GlHaTable::bind() const {
   gpu_->saturation.bind_storage(b.saturation);
 }
 
+void GlHaTable::bind_for_lookup(unsigned table, unsigned max_age, unsigned offsets) const {
+  gpu_->table.bind_storage(table);
+  gpu_->max_age.bind_storage(max_age);
+  gpu_->offsets.bind_storage(offsets);
+}
+
 void GlHaTable::resize(Extent table) {
   BufferConfig c = config_;
   c.table = table;

@@ -48,6 +48,10 @@ class GlHaTable final : public GlTechnique {
   [[nodiscard]] std::uint32_t read_largest_max_age() const override;
   /// Why `table` cannot be allocated here (slot indices, buffer size), or empty.
   [[nodiscard]] std::string table_limit(Extent table) const;
+  /// Binds the table, max-age table and offsets at these points (indexed
+  /// bindings only), for another frame's shaders to read it as a light
+  /// buffer (GlShadowLookup).
+  void bind_for_lookup(unsigned table, unsigned max_age, unsigned offsets) const;
   /// The counting pass without clearing (needs the buffers bound and a state guard).
   std::uint64_t count_stored();
 

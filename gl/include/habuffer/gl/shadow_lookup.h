@@ -1,0 +1,88 @@
+/// @file
+/// Translucent shadows on the GPU (seed 000, section 6): a light buffer (an
+/// HA-buffer the host gathered from the light's view, GlHaTable) looked up
+/// from the shaders of another frame, the view's, whatever its technique.
+/// The view shader appends light_lookup_part() to its module and calls
+///
+///   float habuffer_shadow_transmittance(vec3 world_point);
+///   float habuffer_shadow_transmittance(uvec2 light_pixel, float light_depth);
+///
+/// which walk the light buffer's records with the very shared sources the
+/// CPU path runs (shared/ha_traverse.glsl's ha_transmittance, instantiated
+/// under the prefix hs_ beside the view's own ha_ instance), so a receiver
+/// mapped to the same light pixel and depth gets the same transmittance bit
+/// for bit (habuffer/transmittance.h has the formula and the bias rule).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <glm/mat4x4.hpp>
+
+#include "habuffer/extent.h"
+#include "habuffer/gl/gl_bindings.h"
+#include "habuffer/gl/gl_buffer.h"
+
+namespace habuffer::gl {
+
+class GlHaTable;
+
+/// Where the light buffer is bound for the lookup: storage points of its own
+/// beside the view's (GlBindings), and a uniform point for its block.
+struct GlLightBindings {
+  unsigned table = GlBindings::kDefaultStorageBase + 9;     ///< the light buffer's records
+  unsigned max_age = GlBindings::kDefaultStorageBase + 10;  ///< its max-age table
+  unsigned offsets = GlBindings::kDefaultStorageBase + 11;  ///< its offsets
+  unsigned params = GlBindings::kDefaultUniformBase + 1;    ///< the block HabufferLight
+  /// Throws GlError when a point coincides with one of `view`'s or another
+  /// of these, or is beyond this context's limits; needs a current context.
+  void validate(const GlBindings& view) const;
+  /// "#define HABUFFER_LIGHT_BINDING_TABLE 25\n...", for light_lookup_part.
+  [[nodiscard]] std::string glsl_defines() const;
+};
+
+/// How the light maps world points (habuffer::LightView's camera): the
+/// view and projection matrices, the eye distances of t = 0 and 1, and the
+/// map's pixels.
+struct GlLightMapping {
+  glm::mat4 view{1.0f};        ///< world to the light's eye space
+  glm::mat4 projection{1.0f};  ///< eye to clip space
+  float near_plane = 0.0f;     ///< eye distance of t = 0
+  float far_plane = 1.0f;      ///< eye distance of t = 1
+};
+
+/// The GLSL a view module appends for the lookup (see the file comment): the
+/// light buffer's environment at `bindings`, the shared record, probe, blend
+/// and traversal sources under the prefix hs_, and the two
+/// habuffer_shadow_transmittance functions. Needs 64-bit shader integers
+/// (the view module's atomic mode native64 or emulated64).
+std::string light_lookup_part(const GlLightBindings& bindings);
+
+/// A light buffer ready for lookups: its parameter block (mapping, table,
+/// bias) and the binding of its buffers (see the file comment).
+class GlShadowLookup {
+ public:
+  /// `light` must hold L64 records (colour and opacity) and stay alive while
+  /// this is used. Throws std::invalid_argument for L32 records and GlError
+  /// for bindings that collide with `view` or exceed this context's limits.
+  GlShadowLookup(const GlHaTable& light, const GlLightMapping& mapping, std::uint32_t bias,
+                 const GlBindings& view = {}, const GlLightBindings& bindings = {});
+  /// Writes the block again from the light buffer's current table (after
+  /// its table grew or the host resized it) and from `mapping`.
+  void update(const GlLightMapping& mapping);
+  /// Binds the light buffer and the block at their points (indexed
+  /// bindings only; the host's generic bindings stay), for the view's gather.
+  void bind() const;
+  /// The bindings the shaders were assembled with.
+  [[nodiscard]] const GlLightBindings& bindings() const { return bindings_; }
+  /// Bytes of the block (the light buffer's own are its container's).
+  [[nodiscard]] std::uint64_t memory_bytes() const { return params_.bytes(); }
+
+ private:
+  const GlHaTable& light_;
+  GlLightBindings bindings_;
+  std::uint32_t bias_;
+  GlStorage params_;
+};
+
+}  // namespace habuffer::gl

@@ -1,0 +1,109 @@
+#include "habuffer/gl/shadow_lookup.h"
+
+#include <epoxy/gl.h>
+
+#include <regex>
+#include <stdexcept>
+
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/techniques/ha/gl_ha_table.h"
+
+namespace habuffer::gl {
+namespace {
+
+// The block HabufferLight of light_env.glsl, std140.
+struct LightBlock {
+  glm::mat4 view;
+  glm::mat4 projection;
+  std::uint32_t table_size[2];
+  std::uint32_t map_size[2];
+  std::uint32_t age_bits, block, max_age_cells_x, bias;
+  float near_plane, far_plane;
+  std::uint32_t pad[2];
+};
+static_assert(sizeof(LightBlock) == 176, "HabufferLight's std140 layout (light_env.glsl)");
+
+// A shared source under the prefix hs_: the light buffer's instance beside
+// the view module's ha_ one (its environment in light_env.glsl).
+std::string light_instance(const char* source) {
+  static const std::regex kHa("\\bha_"), kAgeBits("\\bhabuffer_age_bits\\b");
+  return std::regex_replace(std::regex_replace(source, kHa, "hs_"), kAgeBits, "hs_age_bits");
+}
+
+}  // namespace
+
+void GlLightBindings::validate(const GlBindings& view) const {
+  const unsigned points[] = {table, max_age, offsets};
+  const char* names[] = {"table", "max_age", "offsets"};
+  GLint max_storage = 0, max_uniform = 0;
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &max_storage);
+  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &max_uniform);
+  const std::vector<unsigned> taken = view.storage_points();
+  for (int i = 0; i < 3; ++i) {
+    if (points[i] >= static_cast<unsigned>(max_storage))
+      throw GlError(std::string("shader-storage binding point GlLightBindings::") + names[i] + " = " +
+                    std::to_string(points[i]) + " is beyond this context's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
+                    std::to_string(max_storage) + ")");
+    for (const unsigned p : taken)
+      if (p == points[i])
+        throw GlError(std::string("GlLightBindings::") + names[i] + " = " + std::to_string(p) +
+                      " is a point of the view's GlBindings");
+    for (int j = i + 1; j < 3; ++j)
+      if (points[i] == points[j])
+        throw GlError(std::string("GlLightBindings::") + names[i] + " and ::" + names[j] + " are both " +
+                      std::to_string(points[i]));
+  }
+  if (params >= static_cast<unsigned>(max_uniform) || params == view.params)
+    throw GlError("uniform-buffer binding point GlLightBindings::params = " + std::to_string(params) +
+                  " is the view's or beyond this context's GL_MAX_UNIFORM_BUFFER_BINDINGS (" +
+                  std::to_string(max_uniform) + ")");
+}
+
+std::string GlLightBindings::glsl_defines() const {
+  return "#define HABUFFER_LIGHT_BINDING_TABLE " + std::to_string(table) + "\n#define HABUFFER_LIGHT_BINDING_MAX_AGE " +
+         std::to_string(max_age) + "\n#define HABUFFER_LIGHT_BINDING_OFFSETS " + std::to_string(offsets) +
+         "\n#define HABUFFER_LIGHT_BINDING_PARAMS " + std::to_string(params) + "\n";
+}
+
+std::string light_lookup_part(const GlLightBindings& bindings) {
+  std::string s = bindings.glsl_defines();
+  s += kLightEnv;
+  for (const char* shared : {kHaRecord, kHaProbe, kHaBlend, kHaTraverse}) s += light_instance(shared) + "\n";
+  return s + kLightLookup;
+}
+
+GlShadowLookup::GlShadowLookup(const GlHaTable& light, const GlLightMapping& mapping, std::uint32_t bias,
+                               const GlBindings& view, const GlLightBindings& bindings)
+    : light_(light), bindings_(bindings), bias_(bias) {
+  if (light.config().layout != Layout::L64)
+    throw std::invalid_argument("a light buffer of L32 records carries no opacity: build it with L64 records");
+  bindings_.validate(view);
+  params_ = GlStorage(sizeof(LightBlock));
+  update(mapping);
+}
+
+void GlShadowLookup::update(const GlLightMapping& mapping) {
+  const BufferConfig& c = light_.config();
+  LightBlock b{};
+  b.view = mapping.view;
+  b.projection = mapping.projection;
+  b.table_size[0] = c.table.x;
+  b.table_size[1] = c.table.y;
+  b.map_size[0] = c.screen.x;
+  b.map_size[1] = c.screen.y;
+  b.age_bits = c.age_bits;
+  b.block = c.block;
+  b.max_age_cells_x = (c.screen.x - 1) / c.block + 1;
+  b.bias = bias_;
+  b.near_plane = mapping.near_plane;
+  b.far_plane = mapping.far_plane;
+  glNamedBufferSubData(params_.id(), 0, sizeof b, &b);
+}
+
+void GlShadowLookup::bind() const {
+  light_.bind_for_lookup(bindings_.table, bindings_.max_age, bindings_.offsets);
+  bind_at(GL_UNIFORM_BUFFER, bindings_.params, params_.id());
+}
+
+}  // namespace habuffer::gl
