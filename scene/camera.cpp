@@ -28,16 +28,7 @@ Camera orthographic(const Scene& scene, float half, const CameraParams& params, 
   const glm::vec3 up = std::abs(params.pitch) > 89.0f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
   Camera c;
   c.view = glm::lookAt(eye, glm::vec3(0.0f), up);
-  float lo = std::numeric_limits<float>::max(), hi = 0.0f;
-  for (const Mesh& m : scene.meshes)
-    for (const glm::vec3& p : m.positions) {
-      const float d = -(c.view * glm::vec4(p, 1.0f)).z;
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
-  const float margin = std::max(hi - lo, 1e-3f) * (kMargin - 1.0f);
-  c.near_plane = std::max(lo - margin, 1e-4f);
-  c.far_plane = hi + margin;
+  fit_depth_range(scene, c);
   const float hx = aspect >= 1.0f ? half * aspect : half, hy = aspect >= 1.0f ? half : half / aspect;
   c.projection = glm::ortho(-hx, hx, -hy, hy, c.near_plane, c.far_plane);
   return c;
@@ -86,6 +77,19 @@ void check_depth_range(const Scene& scene, const Bounds& b, const Camera& c) {
 }
 
 }  // namespace
+
+void fit_depth_range(const Scene& scene, Camera& camera) {
+  float lo = std::numeric_limits<float>::max(), hi = 0.0f;
+  for (const Mesh& m : scene.meshes)
+    for (const glm::vec3& p : m.positions) {
+      const float d = -(camera.view * glm::vec4(p, 1.0f)).z;
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  const float margin = std::max(hi - lo, 1e-3f) * (kMargin - 1.0f);
+  camera.near_plane = std::max(lo - margin, 1e-4f);
+  camera.far_plane = hi + margin;
+}
 
 Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen) {
   if (!(params.fov > 1.0f && params.fov < 179.0f))

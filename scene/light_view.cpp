@@ -22,20 +22,6 @@ glm::vec3 up_for(glm::vec3 dir) {
   return std::abs(dir.y) > 0.99f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
-// Near and far hugging every vertex's depth along the light (a margin of 2%).
-void fit_depth(const Scene& scene, Camera& c) {
-  float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
-  for (const Mesh& m : scene.meshes)
-    for (const glm::vec3& p : m.positions) {
-      const float d = -(c.view * glm::vec4(p, 1.0f)).z;
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
-  const float margin = std::max(hi - lo, 1e-3f) * (kMargin - 1.0f);
-  c.near_plane = std::max(lo - margin, 1e-4f);
-  c.far_plane = hi + margin;
-}
-
 void check_params(const LightParams& p) {
   const float length = glm::length(p.direction);
   if (!std::isfinite(length) || length == 0.0f)
@@ -64,7 +50,7 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
   v.position = params.position;
   if (params.orthographic) {
     v.camera.view = glm::lookAt(centre - dir * (2.0f * r), centre, up_for(dir));
-    fit_depth(scene, v.camera);
+    fit_depth_range(scene, v.camera);
     const float half = r * kMargin, hx = aspect >= 1.0f ? half * aspect : half, hy = aspect >= 1.0f ? half : half / aspect;
     v.camera.projection = glm::ortho(-hx, hx, -hy, hy, v.camera.near_plane, v.camera.far_plane);
     return v;
@@ -79,7 +65,7 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
                      " (it needs " + std::to_string(glm::degrees(2.0f * half_needed)) + " degrees)");
   const glm::vec3 towards = glm::normalize(centre - params.position);
   v.camera.view = glm::lookAt(params.position, centre, up_for(towards));
-  fit_depth(scene, v.camera);
+  fit_depth_range(scene, v.camera);
   const float fovy = aspect >= 1.0f ? 2.0f * half_needed : 2.0f * std::atan(std::tan(half_needed) / aspect);
   v.camera.projection = glm::perspective(fovy, aspect, v.camera.near_plane, v.camera.far_plane);
   return v;

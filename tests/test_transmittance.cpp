@@ -163,6 +163,40 @@ TEST(Transmittance, EarlyCullChangesTheTransmittanceByAtMostOneMinusTau) {
     }
 }
 
+// The k-buffer as the approximate light buffer: it keeps each pixel's K
+// nearest records, so a receiver's product has the same leading factors and
+// possibly fewer: its T is never below the exact one, equals it at pixels
+// that did not overflow, and differs somewhere when pixels did.
+TEST(Transmittance, TheKBuffersTransmittanceIsNeverBelowTheExactOneAndEqualWhereNothingOverflowed) {
+  const Extent screen{16, 12};
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const std::vector<Fragment> frags = test::grid_stream(screen, 1500, seed, 8);
+    BufferConfig c = test::config(screen, {48, 48});
+    HaBuffer exact(c, random_offsets(seed).make(c.table, c.record_layout().max_age()));
+    ASSERT_EQ(exact.insert(frags).failures(), 0u);
+    TechniqueConfig kc = test::technique_config(Technique::KBuffer, screen);
+    kc.layers = 4;
+    const auto kbuffer = make_fragment_buffer(kc, {});
+    ASSERT_GT(kbuffer->insert(frags).dropped_layers, 0u);
+    int differ = 0;
+    std::vector<ListEntry> list;
+    for (std::uint32_t y = 0; y < screen.y; ++y)
+      for (std::uint32_t x = 0; x < screen.x; ++x) {
+        exact.list(x, y, list);
+        const bool overflowed = list.size() > kc.layers;
+        for (std::uint32_t code : {0u, 1u << 12, 1u << 20, 1u << 23}) {
+          const float want = exact.transmittance(x, y, code, 0), approx = transmittance(*kbuffer, x, y, code, 0);
+          EXPECT_GE(approx, want) << x << "," << y;
+          if (!overflowed) {
+            EXPECT_EQ(approx, want) << x << "," << y;
+          }
+          differ += approx != want ? 1 : 0;
+        }
+      }
+    EXPECT_GT(differ, 0) << "no receiver saw the k-buffer's missing records";
+  }
+}
+
 TEST(Transmittance, ALightBufferWithoutOpacityOrListsIsRefusedByName) {
   const Extent screen{8, 8};
   BufferConfig l32 = test::config(screen, screen, Layout::L32);

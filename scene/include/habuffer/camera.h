@@ -26,6 +26,11 @@ struct Camera {
   [[nodiscard]] float depth(float eye_z) const { return (-eye_z - near_plane) / (far_plane - near_plane); }
 };
 
+/// Sets `camera`'s near and far planes to hug every vertex of `scene` along
+/// its view (2% of the extent outside it; near at least 1e-4), so t spans
+/// [0, 1] over the scene: orthographic cameras and lights.
+void fit_depth_range(const Scene& scene, Camera& camera);
+
 /// The camera orbiting `scene`'s bounds at `params`, framed for `screen` (orthographic scenes along -z).
 /// Throws SceneError for an empty scene or screen, or parameters out of range
 /// (fov in (1, 179), pitch in [-90, 90] degrees, yaw finite).
