@@ -230,8 +230,12 @@ bool GlFrameDriver::has_passes(GlPassStage stage) const {
 
 void GlFrameDriver::run_passes(GlPassStage stage, FrameReport& report) const {
   GlPassContext context{report, options_};
-  for (const GlPass& p : technique_->passes())
-    if (p.stage == stage) p.run(context);
+  for (const GlPass& p : technique_->passes()) {
+    if (p.stage != stage) continue;
+    p.run(context);
+    // The Gather stage's GL calls are state for the host's draws: checked with the gather.
+    if (stage != GlPassStage::Gather) check_gl_errors(p.name.c_str());
+  }
 }
 
 void GlFrameDriver::finish_gather_passes() const {

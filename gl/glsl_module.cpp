@@ -179,6 +179,19 @@ std::string GlBindings::glsl_defines(bool overridable) const {
 
 namespace {
 
+// The binding names a file of technique group `group` reads: its own
+// buffers', the shared ones and PARAMS, as "HABUFFER_BINDING_TABLE MAX_AGE ...".
+std::string binding_names(unsigned group) {
+  std::string own, shared;
+  for (const GlBindings::Point& p : GlBindings::points()) {
+    if (p.group != 0 && p.group != group) continue;
+    std::string& list = p.group == 0 ? shared : own;
+    const std::string name = binding_macro(p.name).substr(std::string("HABUFFER_BINDING_").size());
+    list += (list.empty() ? "" : " ") + name;
+  }
+  return "HABUFFER_BINDING_" + own + " " + shared + " PARAMS";
+}
+
 // For the installed files (overridable points): a host that defines another
 // technique's binding names but none of this technique's own gets one
 // #error naming the names to define. Each technique's buffers have names of
@@ -330,11 +343,12 @@ std::vector<GlslFile> host_glsl_files() {
             "// Place after `#version 450 core` and the lines of extensions.glsl, anywhere at global scope\n"
             "// (after the host's own declarations too), then call\n"
             "//   uint habuffer_insert(uvec2 pixel, float depth, uint rgba)  // rgba: packUnorm4x8, straight alpha\n"
-            "// once per fragment. Binding points (defaults 16..24, uniform 16): #define any of\n"
-            "//   HABUFFER_BINDING_TABLE MAX_AGE OFFSETS COUNTERS LOCKS CAPTURE STREAM DEFERRED SATURATION\n"
-            "//   (shader-storage) and HABUFFER_BINDING_PARAMS (uniform) before this file to move them, with\n"
-            "// the same numbers as the host's habuffer::gl::GlBindings (GlBindings::glsl_defines() writes\n"
-            "// them). Every technique's buffers take these points; define no other HABUFFER_BINDING_ name.\n"
+            "// once per fragment. Binding points (defaults: this technique's own buffers from 16, the shared\n"
+            "// ones 19..24, uniform 16): #define any of\n"
+            "//   " + binding_names(gl_descriptor(t).binding_group) + "\n"
+            "// before this file to move them, with the same numbers as the host's habuffer::gl::GlBindings\n"
+            "// (GlBindings::glsl_defines() writes them). Another technique's names do not move this one's\n"
+            "// buffers: defining only those is an #error.\n"
             "// Reserved names: ha_*, Ha*, habuffer_*, HABUFFER_*, ll_*, fa_*, sl_*, kb_*, bl_*, wb_*.\n";
         if (!stores_lists(t))
           head +=

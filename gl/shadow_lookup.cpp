@@ -66,7 +66,10 @@ std::string GlLightBindings::glsl_defines() const {
          "\n#define HABUFFER_LIGHT_BINDING_PARAMS " + std::to_string(params) + "\n";
 }
 
-std::string light_lookup_part(const GlLightBindings& bindings) {
+std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode) {
+  if (mode == AtomicMode::Native32)
+    throw GlError("the light lookup reads 64-bit records: atomic mode native32 has no 64-bit shader integers "
+                  "(use native64 or emulated64)");
   std::string s = bindings.glsl_defines();
   s += kLightEnv;
   for (const char* shared : {kHaRecord, kHaProbe, kHaBlend, kHaTraverse}) s += light_instance(shared) + "\n";
@@ -84,7 +87,10 @@ GlShadowLookup::GlShadowLookup(const GlHaTable& light, const GlLightMapping& map
 }
 
 void GlShadowLookup::update(const GlLightMapping& mapping) {
+  mapping_ = mapping;
   const BufferConfig& c = light_.config();
+  written_table_ = c.table;
+  written_screen_ = c.screen;
   LightBlock b{};
   b.view = mapping.view;
   b.projection = mapping.projection;
@@ -101,7 +107,8 @@ void GlShadowLookup::update(const GlLightMapping& mapping) {
   glNamedBufferSubData(params_.id(), 0, sizeof b, &b);
 }
 
-void GlShadowLookup::bind() const {
+void GlShadowLookup::bind() {
+  if (light_.config().table != written_table_ || light_.config().screen != written_screen_) update(mapping_);
   light_.bind_for_lookup(bindings_.table, bindings_.max_age, bindings_.offsets);
   bind_at(GL_UNIFORM_BUFFER, bindings_.params, params_.id());
 }

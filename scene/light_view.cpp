@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include <glm/geometric.hpp>
@@ -24,7 +25,7 @@ glm::vec3 up_for(glm::vec3 dir) {
 
 void check_params(const LightParams& p) {
   const float length = glm::length(p.direction);
-  if (!std::isfinite(length) || length == 0.0f)
+  if (p.orthographic && (!std::isfinite(length) || length == 0.0f))
     throw SceneError("light direction " + text(p.direction) + " is not a finite non-zero vector");
   if (p.size.area() == 0) throw SceneError("light map size " + p.size.str() + " has no pixels");
   if (!p.orthographic) {
@@ -40,7 +41,9 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
   check_params(params);
   const Bounds b = scene.bounds();
   if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices to light");
-  const glm::vec3 dir = glm::normalize(params.direction), centre = b.centre();
+  const glm::vec3 centre = b.centre();
+  // A spot looks at the scene's centre: its direction is that, whatever `direction` says.
+  const glm::vec3 dir = params.orthographic ? glm::normalize(params.direction) : glm::normalize(centre - params.position);
   const float r = std::max(scene.radius_around(centre), 1e-6f);
   const float aspect = static_cast<float>(params.size.x) / static_cast<float>(params.size.y);
   LightView v;
@@ -93,6 +96,10 @@ float LightView::pixel_world_size(float t) const {
 }
 
 std::uint32_t shadow_bias_codes(const LightView& light, float max_slope, std::uint32_t depth_bits) {
+  if (!(std::isfinite(max_slope) && max_slope >= 0.0f))
+    throw std::invalid_argument("shadow bias: max slope " + std::to_string(max_slope) + " is not a finite number >= 0");
+  if (depth_bits == 0 || depth_bits > 32)
+    throw std::invalid_argument("shadow bias: " + std::to_string(depth_bits) + " depth bits outside 1..32");
   // The deepest point has the widest pixels under a spot: bias for t = 1.
   const double depth_step = double(max_slope) * light.pixel_world_size(1.0f);
   const double codes = depth_step / double(light.camera.far_plane - light.camera.near_plane) * std::ldexp(1.0, int(depth_bits));

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <cmath>
 #include <utility>
 
@@ -108,7 +110,18 @@ double TransmittanceReference::hit(const Triangle& t, const Segment& s) {
   return d <= s.length ? d : -1.0;
 }
 
+namespace {
+
+void check_self_distance(double self_distance) {
+  if (!(self_distance >= 0.0 && std::isfinite(self_distance)))
+    throw std::invalid_argument("transmittance reference: self distance " + std::to_string(self_distance) +
+                                " is not a finite number >= 0");
+}
+
+}  // namespace
+
 double TransmittanceReference::transmittance(glm::dvec3 point, const LightView& light, double self_distance) const {
+  check_self_distance(self_distance);
   if (nodes_.empty()) return 1.0;
   const Segment s = segment_to_light(point, light);
   const glm::dvec3 inverse = 1.0 / s.direction;
@@ -133,6 +146,7 @@ double TransmittanceReference::transmittance(glm::dvec3 point, const LightView& 
 
 double TransmittanceReference::transmittance_brute_force(glm::dvec3 point, const LightView& light,
                                                          double self_distance) const {
+  check_self_distance(self_distance);
   const Segment s = segment_to_light(point, light);
   double t = 1.0;
   for (const Triangle& tri : triangles_) {

@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_support.h"
+#include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/shadow_lookup.h"
 #include "habuffer/transmittance.h"
 
@@ -116,7 +117,7 @@ void main() {
 }
 )";
   const gl::ShaderProgram program = gl::ShaderProgram::compute(
-      view.module_source(gl::ShaderStage::Compute) + gl::light_lookup_part(lookup.bindings()) + main, "view lookup");
+      view.module_source(gl::ShaderStage::Compute) + gl::light_lookup_part(lookup.bindings(), mode) + main, "view lookup");
   GLuint out = 0;
   glCreateBuffers(1, &out);
   glNamedBufferStorage(out, 2 * 256 * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -143,6 +144,23 @@ void main() {
     }
   }
   EXPECT_GT(shadowed, 0);
+  // The light buffer's table changes (as adaptive sizing or lossless growth
+  // change it): bind() writes the block again, and the lookup follows.
+  light.resize({56, 48});
+  ASSERT_EQ(inserter.insert(frags).counters.failures(), 0u);
+  const HaBuffer grown = test::cpu_twin(light, frags);
+  view.bind();
+  lookup.bind();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out);
+  glUseProgram(program.id());
+  program.set("lookup_depth", 0.9375f);
+  glDispatchCompute(2, 2, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<float> got(512);
+  glGetNamedBufferSubData(out, 0, 512 * 4, got.data());
+  for (std::uint32_t i = 0; i < 256; ++i)
+    EXPECT_EQ(got[2 * i], grown.transmittance(i % 16, i / 16, layout.depth_code(0.9375f), bias)) << "pixel " << i;
+  EXPECT_THROW((void)gl::light_lookup_part(lookup.bindings(), gl::AtomicMode::Native32), gl::GlError);
   glDeleteBuffers(1, &out);
   glUseProgram(0);
 }

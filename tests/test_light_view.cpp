@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "habuffer/light_view.h"
 #include "habuffer/lossless_build.h"
@@ -76,6 +77,7 @@ TEST(LightView, BadLightsAreRefusedNamingTheParameter) {
   EXPECT_NE(refusal(scene, narrow).find("light fov 10"), std::string::npos);
   LightParams spot = narrow;
   spot.fov = 90.0f;
+  spot.direction = glm::vec3(0.0f);  // a spot aims at the scene's centre: its direction is not read
   EXPECT_EQ(refusal(scene, spot), "accepted");
   EXPECT_NE(refusal(Scene{}, LightParams{}).find("no vertices"), std::string::npos);
 }
@@ -181,6 +183,8 @@ TEST(TransmittanceReference, TheHierarchyGivesWhatTestingEveryTriangleGivesOverS
       }
     }
     EXPECT_GT(shadowed, 0);
+    EXPECT_THROW((void)reference.transmittance(glm::dvec3(0.0), frame_light(soup, directional), -1.0),
+                 std::invalid_argument);
   }
 }
 
@@ -195,6 +199,9 @@ TEST(LightView, TheSlopeBiasGrowsWithTheSlopeAndThePixelSize) {
   EXPECT_LT(shadow_bias_codes(fine, 1.0f, 24), shadow_bias_codes(coarse, 1.0f, 24));
   EXPECT_LT(shadow_bias_codes(coarse, 0.5f, 24), shadow_bias_codes(coarse, 2.0f, 24));
   EXPECT_EQ(shadow_bias_codes(coarse, 0.0f, 24), 1u);
+  EXPECT_THROW((void)shadow_bias_codes(coarse, -1.0f, 24), std::invalid_argument);
+  EXPECT_THROW((void)shadow_bias_codes(coarse, std::nanf(""), 24), std::invalid_argument);
+  EXPECT_THROW((void)shadow_bias_codes(coarse, 1.0f, 0), std::invalid_argument);
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ namespace habuffer {
 /// A light: directional (orthographic, parallel rays) or a spot
 /// (perspective from `position`), and its map's resolution.
 struct LightParams {
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< where the light shines, from the light into the scene (any length > 0)
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional: where the light shines (any length > 0); a spot ignores it
   bool orthographic = true;                 ///< directional; false: a spot at `position`
   glm::vec3 position{0.0f};                 ///< spot: the light's position, outside the scene's bounding sphere
   float fov = 60.0f;                        ///< spot: the cone's full angle in degrees, in (1, 179)
@@ -38,7 +38,7 @@ struct LightView {
   Camera camera;  ///< the light's view and projection; near and far map to t = 0 and 1
   Extent size;    ///< the light map's pixels
   bool orthographic = true;  ///< directional light
-  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional: where the light shines (unit length)
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< where the light shines (unit length; a spot: toward the scene's centre)
   glm::vec3 position{0.0f};                ///< spot: where the light is
 
   /// The light pixel and depth of world point `p`; nullopt outside the
@@ -64,6 +64,8 @@ LightView frame_light(const Scene& scene, const LightParams& params);
 /// the pixel, so `max_slope` (tan of the largest angle allowed) times that
 /// side, over the depth range, in codes of `depth_bits`, plus one code for
 /// rounding. Surfaces steeper than `max_slope` may shadow themselves.
+/// Throws std::invalid_argument for a negative or non-finite `max_slope` or
+/// depth bits outside 1..32.
 std::uint32_t shadow_bias_codes(const LightView& light, float max_slope, std::uint32_t depth_bits);
 
 }  // namespace habuffer

@@ -27,7 +27,8 @@ class TransmittanceReference {
 
   /// T of the segment from `point` to `light` (to its position for a spot;
   /// against its direction past the scene's bounds for a directional light),
-  /// in double. Hits at distance at most `self_distance` from `point` are skipped.
+  /// in double. Hits at distance at most `self_distance` from `point` are
+  /// skipped; throws std::invalid_argument for a negative or non-finite one.
   [[nodiscard]] double transmittance(glm::dvec3 point, const LightView& light, double self_distance) const;
   /// The same by testing every triangle (no hierarchy): what the tests hold it against.
   [[nodiscard]] double transmittance_brute_force(glm::dvec3 point, const LightView& light,

@@ -51,7 +51,7 @@ enum class GlPassStage : std::uint8_t {
   Gather,
   /// After every gather the frame keeps (not one a full capture or deferred
   /// buffer repeats), every buffer bound: the sort pass of lists and arrays.
-  /// Its time is the report's `sort`.
+  /// It writes its time into the report's `sort` (a technique declares one).
   Sort,
 };
 
@@ -66,7 +66,7 @@ struct GlPassContext {
 /// constructor, with the program it owns.
 struct GlPass {
   GlPassStage stage;                           ///< when it runs
-  std::string name;                            ///< "the lists' sort pass": errors and timings name it
+  std::string name;                            ///< "the lists' sort pass": the driver's GL error check names it
   std::function<void(GlPassContext&)> run;     ///< the pass (Gather: before the host's gather)
   std::function<void()> finish = {};           ///< Gather only: right after the host's gather
   unsigned framebuffer = 0;                    ///< Gather only: what the host's gather draws into (0: the host's)

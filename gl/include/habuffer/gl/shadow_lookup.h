@@ -22,6 +22,7 @@
 #include "habuffer/extent.h"
 #include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_info.h"
 
 namespace habuffer::gl {
 
@@ -54,9 +55,10 @@ struct GlLightMapping {
 /// The GLSL a view module appends for the lookup (see the file comment): the
 /// light buffer's environment at `bindings`, the shared record, probe, blend
 /// and traversal sources under the prefix hs_, and the two
-/// habuffer_shadow_transmittance functions. Needs 64-bit shader integers
-/// (the view module's atomic mode native64 or emulated64).
-std::string light_lookup_part(const GlLightBindings& bindings);
+/// habuffer_shadow_transmittance functions. Throws GlError for atomic mode
+/// native32: the lookup reads 64-bit records, which need 64-bit shader
+/// integers (the view module's mode native64 or emulated64).
+std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode);
 
 /// A light buffer ready for lookups: its parameter block (mapping, table,
 /// bias) and the binding of its buffers (see the file comment).
@@ -67,12 +69,15 @@ class GlShadowLookup {
   /// for bindings that collide with `view` or exceed this context's limits.
   GlShadowLookup(const GlHaTable& light, const GlLightMapping& mapping, std::uint32_t bias,
                  const GlBindings& view = {}, const GlLightBindings& bindings = {});
-  /// Writes the block again from the light buffer's current table (after
-  /// its table grew or the host resized it) and from `mapping`.
+  /// Writes the block again from the light buffer's current table and from
+  /// `mapping` (a light that moved).
   void update(const GlLightMapping& mapping);
   /// Binds the light buffer and the block at their points (indexed
   /// bindings only; the host's generic bindings stay), for the view's gather.
-  void bind() const;
+  /// A light buffer whose table or screen changed since the block was
+  /// written (adaptive sizing, lossless growth, a resize) gets the block
+  /// written again first, so a lookup never probes a table it does not hold.
+  void bind();
   /// The bindings the shaders were assembled with.
   [[nodiscard]] const GlLightBindings& bindings() const { return bindings_; }
   /// Bytes of the block (the light buffer's own are its container's).
@@ -82,6 +87,8 @@ class GlShadowLookup {
   const GlHaTable& light_;
   GlLightBindings bindings_;
   std::uint32_t bias_;
+  GlLightMapping mapping_;
+  Extent written_table_, written_screen_;  ///< the light buffer's sizes the block holds
   GlStorage params_;
 };
 

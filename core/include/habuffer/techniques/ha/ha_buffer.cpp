@@ -319,7 +319,7 @@ void HaBuffer::import_state(std::span<const std::uint64_t> table_words, std::spa
 float HaBuffer::transmittance(std::uint32_t x, std::uint32_t y, std::uint32_t code, std::uint32_t bias) const {
   check_pixel(x, y, screen());
   if (config().layout != Layout::L64)
-    throw std::logic_error("a light buffer of L32 records carries no opacity: build it with L64 records");
+    throw std::invalid_argument("a light buffer of L32 records carries no opacity: build it with L64 records");
   return impl_->with_kernel([&](auto& k) { return k.ha_transmittance(glm::uvec2(x, y), code, bias); });
 }
 

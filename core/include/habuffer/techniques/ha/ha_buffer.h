@@ -109,7 +109,7 @@ class HaBuffer final : public FragmentBuffer {
   /// the product of (1 - alpha) over the records nearer than code + `bias`
   /// (shared/ha_traverse.glsl's ha_transmittance, the GPU path's very
   /// code). Throws std::out_of_range for a pixel off the screen and
-  /// std::logic_error for L32 records, which carry no opacity.
+  /// std::invalid_argument for L32 records, which carry no opacity.
   [[nodiscard]] float transmittance(std::uint32_t x, std::uint32_t y, std::uint32_t code, std::uint32_t bias) const;
 
   /// Stored records per age: result[a] for a = 0..AMAX (result[0] is 0).
