@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cctype>
 #include <span>
+#include <sstream>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -8,6 +9,7 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
 #include "habuffer/gl/module_variant.h"
+#include "habuffer/gl/shadow_lookup.h"
 #include "habuffer/gl/technique_registry.h"
 #include "habuffer/technique_descriptor.h"
 
@@ -322,6 +324,33 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
 
 namespace habuffer::gl {
 
+namespace {
+
+// The light lookup for file-based pipelines (gl/shadow_lookup.h): its
+// binding points overridable, after a technique file of the same mode.
+std::string light_lookup_file(AtomicMode mode) {
+  const GlLightBindings defaults;
+  std::string defines;
+  std::istringstream lines(defaults.glsl_defines());
+  for (std::string line; std::getline(lines, line);) {
+    const std::string name = line.substr(8, line.find(' ', 8) - 8);  // after "#define "
+    defines += "#ifndef " + name + "\n" + line + "\n#endif\n";
+  }
+  const std::string part = light_lookup_part(defaults, mode);
+  return "// habuffer " HABUFFER_VERSION ": translucent shadows' light lookup, atomic mode " + to_string(mode) +
+         ".\n"
+         "// Place after a technique file of the same mode (it needs its constants), then call\n"
+         "//   float habuffer_shadow_transmittance(vec3 world_point)\n"
+         "//   float habuffer_shadow_transmittance(uvec2 light_pixel, float light_depth)\n"
+         "// with the light buffer bound as habuffer::gl::GlShadowLookup binds it (or the block HabufferLight\n"
+         "// written by the host with its own light matrices). Binding points: #define any of\n"
+         "//   HABUFFER_LIGHT_BINDING_TABLE MAX_AGE OFFSETS (shader-storage) PARAMS (uniform)\n"
+         "// before this file to move them, with the same numbers as habuffer::gl::GlLightBindings.\n" +
+         defines + part.substr(part.find(kLightEnv));
+}
+
+}  // namespace
+
 std::vector<GlslFile> host_glsl_files() {
   const GlBindings defaults;
   std::vector<GlslFile> files;
@@ -360,6 +389,7 @@ std::vector<GlslFile> host_glsl_files() {
         files.push_back({dir + to_string(t) + (fragment ? ".frag.glsl" : ".comp.glsl"),
                          head + technique_module_body(t, mode, defaults, stage, true)});
       }
+    if (mode != AtomicMode::Native32) files.push_back({dir + "light_lookup.glsl", light_lookup_file(mode)});
   }
   return files;
 }

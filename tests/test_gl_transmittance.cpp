@@ -7,6 +7,7 @@
 #include <epoxy/gl.h>
 
 #include <cstring>
+#include <map>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -161,6 +162,23 @@ void main() {
   for (std::uint32_t i = 0; i < 256; ++i)
     EXPECT_EQ(got[2 * i], grown.transmittance(i % 16, i / 16, layout.depth_code(0.9375f), bias)) << "pixel " << i;
   EXPECT_THROW((void)gl::light_lookup_part(lookup.bindings(), gl::AtomicMode::Native32), gl::GlError);
+  // The installed files (file-based pipelines): the lists' compute file, then
+  // the light lookup's, at their default points, give the same lookups.
+  std::map<std::string, std::string> files;
+  for (const gl::GlslFile& f : gl::host_glsl_files()) files[f.path] = f.text;
+  const std::string dir = gl::to_string(mode) + "/";
+  ASSERT_EQ(files.count(dir + "light_lookup.glsl"), 1u);
+  const gl::ShaderProgram installed = gl::ShaderProgram::compute(
+      "#version 450 core\n" + files[dir + "extensions.glsl"] + files[dir + "lists.comp.glsl"] +
+          files[dir + "light_lookup.glsl"] + main,
+      "view lookup from the installed files");
+  glUseProgram(installed.id());
+  installed.set("lookup_depth", 0.9375f);
+  glDispatchCompute(2, 2, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<float> from_files(512);
+  glGetNamedBufferSubData(out, 0, 512 * 4, from_files.data());
+  EXPECT_TRUE(from_files == got);
   glDeleteBuffers(1, &out);
   glUseProgram(0);
 }

@@ -42,19 +42,26 @@ int main(int argc, char** argv) {
   // The installed files after a host's declarations, with a host main.
   const std::vector<gl::GlslFile> files = gl::host_glsl_files();
   std::map<std::string, std::string> extensions;  // by mode
-  for (const gl::GlslFile& f : files)
+  std::map<std::string, std::string> texts;       // by path
+  for (const gl::GlslFile& f : files) {
+    texts[f.path] = f.text;
     if (f.path.ends_with("/extensions.glsl")) extensions[f.path.substr(0, f.path.find('/'))] = f.text;
+  }
   for (const gl::GlslFile& f : files) {
     const std::string name = f.path.substr(f.path.find('/') + 1);
     if (name == "extensions.glsl") continue;
     const std::string mode = f.path.substr(0, f.path.find('/'));
     const std::string& ext = extensions.at(mode);
-    const bool fragment = name.find(".frag.") != std::string::npos;
+    // The light lookup goes after a technique file of its mode: the HA-buffer's here.
+    const bool light = name == "light_lookup.glsl";
+    const bool fragment = light || name.find(".frag.") != std::string::npos;
     std::string source = "#version 450 core\n" + ext;
     source += fragment ? "layout(std140, binding = 0) uniform HostBlock { vec4 host_tint; };\nin vec4 host_colour;\n"
                        : "layout(local_size_x = 64) in;\nlayout(std430, binding = 0) buffer HostIn { vec4 host_in[]; };\n";
+    if (light) source += texts.at(mode + "/ha.frag.glsl");
     source += f.text;
-    source += fragment ? "void main() { ha_insert_here(host_colour * host_tint); }\n"
+    source += light      ? "void main() { ha_insert_here(host_colour * habuffer_shadow_transmittance(host_colour.xyz)); }\n"
+              : fragment ? "void main() { ha_insert_here(host_colour * host_tint); }\n"
                        : "void main() { uint i = gl_GlobalInvocationID.x;\n"
                          "  ha_insert(uvec2(i % 16u, i / 16u), host_in[i].w, ha_pack_rgba(vec4(host_in[i].rgb, 0.5))); }\n";
     const std::string base = name.substr(0, name.find('.'));
