@@ -4,19 +4,30 @@
 #include <string>
 #include <vector>
 
+#include "habuffer/glsl_env.h"
 #include "habuffer/technique_descriptor.h"
 
 namespace habuffer {
 
+namespace {
+
+// shared/ha_shadow.glsl compiled as C++: the step the HA-buffer's walk takes.
+struct ShadowStep {
+  HABUFFER_GLSL_CLASS_PRELUDE
+#include "habuffer/shared/ha_shadow.glsl"
+};
+
+}  // namespace
+
 float list_transmittance(std::span<const ListEntry> nearest_first, std::uint32_t code, std::uint32_t bias) {
-  // In 64 bits: code + bias never wraps (the GLSL clamps it to the largest code instead, the same test).
-  const std::uint64_t front = std::uint64_t{code} + bias;
+  // Capped at the largest 32-bit code: no record's code exceeds it, so the
+  // test is the HA-buffer's, whose cap is its layout's largest code.
+  ShadowStep step;
+  const std::uint32_t front = step.ha_shadow_front(code, bias, UINT32_MAX);
   float t = 1.0f;
   for (const ListEntry& e : nearest_first) {
     if (e.code <= front) break;
-    // ha_alpha and the product as shared/ha_traverse.glsl writes them, so the paths agree bit for bit.
-    const float alpha = static_cast<float>(e.data & 255u) * (1.0f / 255.0f);
-    t *= 1.0f - alpha;
+    t = step.ha_shadow_through(t, e.data);
   }
   return t;
 }

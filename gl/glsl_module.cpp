@@ -1,7 +1,6 @@
 #include <algorithm>
 #include <cctype>
 #include <span>
-#include <sstream>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -329,14 +328,6 @@ namespace {
 // The light lookup for file-based pipelines (gl/shadow_lookup.h): its
 // binding points overridable, after a technique file of the same mode.
 std::string light_lookup_file(AtomicMode mode) {
-  const GlLightBindings defaults;
-  std::string defines;
-  std::istringstream lines(defaults.glsl_defines());
-  for (std::string line; std::getline(lines, line);) {
-    const std::string name = line.substr(8, line.find(' ', 8) - 8);  // after "#define "
-    defines += "#ifndef " + name + "\n" + line + "\n#endif\n";
-  }
-  const std::string part = light_lookup_part(defaults, mode);
   return "// habuffer " HABUFFER_VERSION ": translucent shadows' light lookup, atomic mode " + to_string(mode) +
          ".\n"
          "// Place after a technique file of the same mode (it needs its constants), then call\n"
@@ -346,7 +337,7 @@ std::string light_lookup_file(AtomicMode mode) {
          "// written by the host with its own light matrices). Binding points: #define any of\n"
          "//   HABUFFER_LIGHT_BINDING_TABLE MAX_AGE OFFSETS (shader-storage) PARAMS (uniform)\n"
          "// before this file to move them, with the same numbers as habuffer::gl::GlLightBindings.\n" +
-         defines + part.substr(part.find(kLightEnv));
+         light_lookup_part(GlLightBindings{}, mode, true);
 }
 
 }  // namespace

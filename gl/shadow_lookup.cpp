@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <regex>
+#include <utility>
 #include <stdexcept>
 
 #include "habuffer/gl/gl_error.h"
@@ -60,20 +61,26 @@ void GlLightBindings::validate(const GlBindings& view) const {
                   std::to_string(max_uniform) + ")");
 }
 
-std::string GlLightBindings::glsl_defines() const {
-  return "#define HABUFFER_LIGHT_BINDING_TABLE " + std::to_string(table) + "\n#define HABUFFER_LIGHT_BINDING_MAX_AGE " +
-         std::to_string(max_age) + "\n#define HABUFFER_LIGHT_BINDING_OFFSETS " + std::to_string(offsets) +
-         "\n#define HABUFFER_LIGHT_BINDING_PARAMS " + std::to_string(params) + "\n";
+std::string GlLightBindings::glsl_defines(bool overridable) const {
+  std::string s;
+  for (const auto& [name, point] : {std::pair{"TABLE", table}, std::pair{"MAX_AGE", max_age},
+                                    std::pair{"OFFSETS", offsets}, std::pair{"PARAMS", params}}) {
+    const std::string macro = std::string("HABUFFER_LIGHT_BINDING_") + name;
+    if (overridable) s += "#ifndef " + macro + "\n";
+    s += "#define " + macro + " " + std::to_string(point) + "\n";
+    if (overridable) s += "#endif\n";
+  }
+  return s;
 }
 
-std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode) {
+std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode, bool overridable) {
   if (mode == AtomicMode::Native32)
     throw GlError("the light lookup reads 64-bit records: atomic mode native32 has no 64-bit shader integers "
                   "(use native64 or emulated64)");
-  std::string s = bindings.glsl_defines();
+  std::string s = bindings.glsl_defines(overridable);
   s += kLightEnv;
-  for (const char* shared : {kHaRecord, kHaProbe, kHaBlend, kHaTraverse}) s += light_instance(shared) + "\n";
-  return s + kLightLookup;
+  for (const char* shared : {kHaRecord, kHaProbe, kHaBlend, kHaShadow, kHaTraverse}) s += light_instance(shared) + "\n";
+  return s + kHaLightMap + "\n" + kLightLookup;
 }
 
 GlShadowLookup::GlShadowLookup(const GlHaTable& light, const GlLightMapping& mapping, std::uint32_t bias,

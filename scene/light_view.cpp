@@ -7,6 +7,11 @@
 #include <string>
 
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+#include "habuffer/glsl_env.h"
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace habuffer {
@@ -74,17 +79,26 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
   return v;
 }
 
+namespace {
+
+// shared/ha_light_map.glsl compiled as C++: the mapping the GPU lookup runs.
+struct LightMap {
+  HABUFFER_GLSL_CLASS_PRELUDE
+  using vec2 = glm::vec2;
+  using mat4 = glm::mat4;
+#include "habuffer/shared/ha_light_map.glsl"
+};
+
+}  // namespace
+
 std::optional<LightSample> LightView::sample(glm::vec3 p) const {
-  const glm::vec4 eye = camera.view * glm::vec4(p, 1.0f);
-  const glm::vec4 clip = camera.projection * eye;
-  if (!(clip.w > 0.0f)) return std::nullopt;
-  const float nx = clip.x / clip.w, ny = clip.y / clip.w;
-  const float wx = (nx * 0.5f + 0.5f) * static_cast<float>(size.x), wy = (ny * 0.5f + 0.5f) * static_cast<float>(size.y);
-  const float t = camera.depth(eye.z);
-  if (!(wx >= 0.0f && wy >= 0.0f && wx < static_cast<float>(size.x) && wy < static_cast<float>(size.y)) ||
-      !(t >= 0.0f && t <= 1.0f))
+  glm::vec2 window{0.0f};
+  float t = 0.0f;
+  LightMap map;
+  if (!map.habuffer_light_map(camera.view, camera.projection, glm::vec2(size.x, size.y), camera.near_plane,
+                              camera.far_plane, p, window, t))
     return std::nullopt;
-  return LightSample{glm::uvec2(static_cast<std::uint32_t>(wx), static_cast<std::uint32_t>(wy)), t};
+  return LightSample{glm::uvec2(static_cast<std::uint32_t>(window.x), static_cast<std::uint32_t>(window.y)), t};
 }
 
 float LightView::pixel_world_size(float t) const {

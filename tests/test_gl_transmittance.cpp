@@ -123,17 +123,22 @@ void main() {
   glCreateBuffers(1, &out);
   glNamedBufferStorage(out, 2 * 256 * 4, nullptr, GL_DYNAMIC_STORAGE_BIT);
   const RecordLayout layout = lc.record_layout();
-  int shadowed = 0;
-  for (const float depth : {0.25f, 0.5f, 0.9375f}) {
+  // Each pixel's two lookups (by pixel and depth, by world point) at `depth`, through `p`.
+  const auto run = [&](const gl::ShaderProgram& p, float depth) {
     view.bind();
     lookup.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out);
-    glUseProgram(program.id());
-    program.set("lookup_depth", depth);
+    glUseProgram(p.id());
+    p.set("lookup_depth", depth);
     glDispatchCompute(2, 2, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<float> got(512);
-    glGetNamedBufferSubData(out, 0, 512 * 4, got.data());
+    std::vector<float> values(512);
+    glGetNamedBufferSubData(out, 0, 512 * 4, values.data());
+    return values;
+  };
+  int shadowed = 0;
+  for (const float depth : {0.25f, 0.5f, 0.9375f}) {
+    const std::vector<float> got = run(program, depth);
     for (std::uint32_t y = 0; y < 16; ++y) {
       for (std::uint32_t x = 0; x < 16; ++x) {
         const float want = cpu.transmittance(x, y, layout.depth_code(depth), bias);
@@ -150,15 +155,7 @@ void main() {
   light.resize({56, 48});
   ASSERT_EQ(inserter.insert(frags).counters.failures(), 0u);
   const HaBuffer grown = test::cpu_twin(light, frags);
-  view.bind();
-  lookup.bind();
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, out);
-  glUseProgram(program.id());
-  program.set("lookup_depth", 0.9375f);
-  glDispatchCompute(2, 2, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<float> got(512);
-  glGetNamedBufferSubData(out, 0, 512 * 4, got.data());
+  const std::vector<float> got = run(program, 0.9375f);
   for (std::uint32_t i = 0; i < 256; ++i)
     EXPECT_EQ(got[2 * i], grown.transmittance(i % 16, i / 16, layout.depth_code(0.9375f), bias)) << "pixel " << i;
   EXPECT_THROW((void)gl::light_lookup_part(lookup.bindings(), gl::AtomicMode::Native32), gl::GlError);
@@ -172,12 +169,7 @@ void main() {
       "#version 450 core\n" + files[dir + "extensions.glsl"] + files[dir + "lists.comp.glsl"] +
           files[dir + "light_lookup.glsl"] + main,
       "view lookup from the installed files");
-  glUseProgram(installed.id());
-  installed.set("lookup_depth", 0.9375f);
-  glDispatchCompute(2, 2, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<float> from_files(512);
-  glGetNamedBufferSubData(out, 0, 512 * 4, from_files.data());
+  const std::vector<float> from_files = run(installed, 0.9375f);
   EXPECT_TRUE(from_files == got);
   glDeleteBuffers(1, &out);
   glUseProgram(0);

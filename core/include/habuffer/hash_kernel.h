@@ -285,6 +285,7 @@ class HashKernel {
 #include "shared/ha_saturation.glsl"
 #include "shared/ha_insert.glsl"
 #include "shared/ha_blend.glsl"
+#include "shared/ha_shadow.glsl"
 #include "shared/ha_traverse.glsl"
 
  private:

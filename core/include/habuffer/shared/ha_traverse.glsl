@@ -33,10 +33,10 @@ vec4 ha_composite(uvec2 p, vec3 background) {
 // surface's own records (at the receiver's code, or a few codes off where the
 // surface is slanted to the light) from shadowing it. Alpha is the record's
 // colour byte (L64); L32 records carry none and read as transparent.
+// Needs ha_shadow.glsl (the step every path shares).
 float ha_transmittance(uvec2 p, uint code, uint bias) {
-  uint front = code + min(bias, ha_max_code() - code);
-  // precise: no fused multiply-add, so every GPU gives the C++ path's products.
-  HABUFFER_PRECISE float t = 1.0f;
+  uint front = ha_shadow_front(code, bias, ha_max_code());
+  float t = 1.0f;
   uint amax = ha_load_max_age(ha_cell(p));
   for (uint a = 1u; a <= amax; ++a) {
     ha_word r = ha_load_slot(ha_slot(ha_probe(p, a)));
@@ -44,8 +44,7 @@ float ha_transmittance(uvec2 p, uint code, uint bias) {
     if (v == HABUFFER_VISIT_STOP) break;
     if (v == HABUFFER_VISIT_EMIT) {
       if (ha_code(r) <= front) break;
-      HABUFFER_PRECISE float keep = 1.0f - ha_alpha(r);
-      t *= keep;
+      t = ha_shadow_through(t, ha_data(r));
     }
   }
   return t;

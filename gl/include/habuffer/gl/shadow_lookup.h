@@ -38,8 +38,9 @@ struct GlLightBindings {
   /// Throws GlError when a point coincides with one of `view`'s or another
   /// of these, or is beyond this context's limits; needs a current context.
   void validate(const GlBindings& view) const;
-  /// "#define HABUFFER_LIGHT_BINDING_TABLE 25\n...", for light_lookup_part.
-  [[nodiscard]] std::string glsl_defines() const;
+  /// "#define HABUFFER_LIGHT_BINDING_TABLE 25\n...", for light_lookup_part;
+  /// with `overridable`, each inside #ifndef (the installed file).
+  [[nodiscard]] std::string glsl_defines(bool overridable = false) const;
 };
 
 /// How the light maps world points (habuffer::LightView's camera): the
@@ -58,7 +59,8 @@ struct GlLightMapping {
 /// habuffer_shadow_transmittance functions. Throws GlError for atomic mode
 /// native32: the lookup reads 64-bit records, which need 64-bit shader
 /// integers (the view module's mode native64 or emulated64).
-std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode);
+/// With `overridable`, the points sit inside #ifndef (the installed file).
+std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode, bool overridable = false);
 
 /// A light buffer ready for lookups: its parameter block (mapping, table,
 /// bias) and the binding of its buffers (see the file comment).

@@ -9,7 +9,7 @@ namespace {
 std::string module_parts(AtomicMode mode) {
   return "#define HABUFFER_TECHNIQUE_CALL ha_call\n#define HABUFFER_TECHNIQUE_COMPOSITE ha_composite\n" +
          join_parts({kHaEnv, mode_prelude(mode), kHaRecord, kHaCarry, kSaturationEnv, kHaSaturation, kHaProbe,
-                     kHaInsert, kHaBlend, kHaTraverse, kHaEntry, kInsertEntry});
+                     kHaInsert, kHaBlend, kHaShadow, kHaTraverse, kHaEntry, kInsertEntry});
 }
 
 std::unique_ptr<GlTechnique> make(const TechniqueConfig& c, const OffsetSource& offsets, AtomicMode mode,
