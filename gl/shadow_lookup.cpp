@@ -2,7 +2,8 @@
 
 #include <epoxy/gl.h>
 
-#include <regex>
+#include <cctype>
+#include <string_view>
 #include <utility>
 #include <stdexcept>
 
@@ -25,11 +26,33 @@ struct LightBlock {
 };
 static_assert(sizeof(LightBlock) == 176, "HabufferLight's std140 layout (light_env.glsl)");
 
+bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
+
+// Replaces `from` where it starts an identifier (and, when `whole`, where it
+// is the whole identifier). Hand-written rather than std::regex: GCC 12's
+// <regex> trips -Wmaybe-uninitialized under -fsanitize=address with -Werror.
+std::string replace_identifiers(std::string_view source, std::string_view from, std::string_view to, bool whole) {
+  std::string out;
+  out.reserve(source.size());
+  std::size_t i = 0;
+  while (i < source.size()) {
+    const bool starts = source.compare(i, from.size(), from) == 0 && (i == 0 || !is_identifier_char(source[i - 1]));
+    const std::size_t end = i + from.size();
+    if (starts && (!whole || end >= source.size() || !is_identifier_char(source[end]))) {
+      out += to;
+      i = end;
+    } else {
+      out += source[i++];
+    }
+  }
+  return out;
+}
+
 // A shared source under the prefix hs_: the light buffer's instance beside
 // the view module's ha_ one (its environment in light_env.glsl).
 std::string light_instance(const char* source) {
-  static const std::regex kHa("\\bha_"), kAgeBits("\\bhabuffer_age_bits\\b");
-  return std::regex_replace(std::regex_replace(source, kHa, "hs_"), kAgeBits, "hs_age_bits");
+  return replace_identifiers(replace_identifiers(source, "ha_", "hs_", false), "habuffer_age_bits", "hs_age_bits",
+                             true);
 }
 
 }  // namespace
