@@ -106,6 +106,11 @@ std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode, 
   return s + kHaLightMap + "\n" + kLightLookup;
 }
 
+std::string light_lookup_shader_head(const GlLightBindings& bindings, AtomicMode mode) {
+  std::string part = light_lookup_part(bindings, mode);  // refuses native32 first
+  return "#version 450 core\n" + module_extensions(mode) + kHaConstants + "\n" + kGlslEnv + "\n" + part;
+}
+
 GlShadowLookup::GlShadowLookup(const GlHaTable& light, const GlLightMapping& mapping, std::uint32_t bias,
                                const GlBindings& view, const GlLightBindings& bindings)
     : light_(light), bindings_(bindings), bias_(bias) {

@@ -25,6 +25,7 @@ void validate(const RenderSettings& s) {
   if (s.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (s.max_attempts == 0) throw std::invalid_argument("--max-attempts must be at least 1");
   technique_config(s).validate();
+  if (s.shadows) s.shadows->validate();
 }
 
 void finish_stats(FrameStats& fs) {
@@ -72,12 +73,23 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   if (!mode) throw gl::GlError("--layout 64 needs 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   const std::unique_ptr<FramePath> path = make_frame_path(s, *mode);
   gl::GlFrameDriver& driver = path->driver();
+  // The light does not move while the camera orbits: its buffer is built once.
+  std::unique_ptr<LightPass> light;
+  if (s.shadows) {
+    light = std::make_unique<LightPass>(scene, *s.shadows, driver.bindings());
+    light->build();
+  }
   // The gather counts only what this render reads: fragments per pixel where
   // the driver needs the call count, culled ones for a culled heat map.
   SceneRenderer renderer(scene, screen, driver,
                          SceneRenderer::GatherCounts{driver.needs_call_count(),
-                                                     s.per_pixel_culled && s.config.early_cull_tau > 0.0f});
+                                                     s.per_pixel_culled && s.config.early_cull_tau > 0.0f},
+                         light ? std::optional(light->bindings()) : std::nullopt);
+  const auto bind_light = [&] {
+    if (light) light->bind();
+  };
   RenderResult result;
+  std::optional<Camera> last_camera;
   for (std::uint32_t k = 0; k < s.frames; ++k) {
     const auto t0 = Clock::now();
     FrameStats fs;
@@ -86,6 +98,8 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
     CameraParams params = s.camera;
     params.yaw = fs.yaw;
     const Camera camera = frame_scene(scene, params, screen);
+    last_camera = camera;
+    bind_light();
     renderer.draw_opaque(camera, s.background);
     if (k == 0) {
       driver.bind();  // the gather shader's uniform block, even though counting inserts nothing
@@ -100,7 +114,12 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
       if (age_limit_applies(s) && frame_attempts(s) > 1)
         if ((result.too_deep = pixel_beyond_amax(s, renderer.read_pixel_fragments()))) driver.limit_attempts(1);
     }
-    const gl::FrameReport report = driver.frame([&] { renderer.gather(camera); }, [&] { return renderer.inserted(); });
+    const gl::FrameReport report = driver.frame(
+        [&] {
+          bind_light();
+          renderer.gather(camera);
+        },
+        [&] { return renderer.inserted(); });
     fs.opaque_rejected = renderer.read_rejected();
     path->complete_frame(report, renderer, fs, result);
     finish_stats(fs);
@@ -114,12 +133,27 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
                                       [](const FrameStats& f) { return f.counters.failed_age > 0; });
   if (!result.too_deep && failed_age && age_limit_applies(s)) result.too_deep = pixel_beyond_amax(s, result.pixel_fragments);
   path->finish(renderer, result);
+  if (light) {
+    LightStats stats = light->stats();
+    bind_light();
+    stats.lookup_ms = renderer.shadow_map_pass(*last_camera);
+    result.shadow_map = renderer.read_shadow_map();
+    stats.lookup_pixels = static_cast<std::uint64_t>(
+        std::count_if(result.shadow_map.begin(), result.shadow_map.end(), [](float t) { return t >= 0.0f; }));
+    result.light = stats;
+    if (s.shadows->read_back) {
+      result.light_buffer = light->read_back();
+      result.opaque_depth = renderer.read_opaque_depth();
+    }
+  }
+  if (last_camera) result.camera = *last_camera;
   gl::check_gl_errors("rendering");
   return result;
 }
 
 RenderResult render_fragments(std::span<const Fragment> fragments, const RenderSettings& s) {
   validate(s);
+  if (s.shadows) throw std::invalid_argument("--shadows needs a scene: a recorded stream has no world positions to light");
   RenderResult result;
   CpuBuilder builder(s);
   builder.size_for(fragments.size());

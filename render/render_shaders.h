@@ -12,5 +12,6 @@ extern const char* const kOpaqueFragment;       ///< opaque.frag.glsl: the opaqu
 extern const char* const kGatherFragment;       ///< gather.frag.glsl: the gather (and counting) pass
 extern const char* const kBlendFragment;        ///< blend.frag.glsl: the unsorted blending floor
 extern const char* const kAtomicFloorFragment;  ///< atomic_floor.frag.glsl: the one-atomic-add floor
+extern const char* const kShadowMapFragment;    ///< shadow_map.frag.glsl: T at each pixel's nearest surface
 
 }  // namespace habuffer::render

@@ -32,7 +32,24 @@ std::string gather_header(const gl::GlBindings& b, SceneRenderer::GatherCounts c
 
 std::string gather_code() { return std::string(render::kShading) + render::kGatherFragment; }
 
-std::string opaque_source() { return std::string("#version 450 core\n") + render::kShading + render::kOpaqueFragment; }
+// Translucent shadows: the light lookup and R_SHADOWS (shading.glsl) before
+// the shading, after the technique's module (the gather) or in a head of its
+// own (the passes without one).
+std::string shadow_part(const std::optional<gl::GlLightBindings>& shadows, gl::AtomicMode mode) {
+  return shadows ? gl::light_lookup_part(*shadows, mode) + "#define R_SHADOWS\n" : std::string();
+}
+std::string standalone_head(const std::optional<gl::GlLightBindings>& shadows, gl::AtomicMode mode) {
+  return shadows ? gl::light_lookup_shader_head(*shadows, mode) + "#define R_SHADOWS\n"
+                 : std::string("#version 450 core\n");
+}
+
+std::string opaque_source(const std::optional<gl::GlLightBindings>& shadows, gl::AtomicMode mode) {
+  return standalone_head(shadows, mode) + render::kShading + render::kOpaqueFragment;
+}
+
+std::string shadow_map_source(const gl::GlLightBindings& shadows, gl::AtomicMode mode) {
+  return standalone_head(shadows, mode) + render::kShading + render::kShadowMapFragment;
+}
 
 bool same_view(const Camera& a, const Camera& b) {
   return a.view == b.view && a.projection == b.projection && a.near_plane == b.near_plane && a.far_plane == b.far_plane;
@@ -45,26 +62,30 @@ SceneRenderer::GatherCounts SceneRenderer::GatherCounts::for_driver(const gl::Gl
 }
 
 SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b, Technique technique,
-                                                     GatherCounts counts) {
+                                                     GatherCounts counts, std::optional<gl::GlLightBindings> shadows) {
   Sources s;
   s.vertex = render::kSceneVertex;
-  s.opaque_fragment = opaque_source();
-  s.gather_fragment =
-      gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, gather_header(b, counts)) + gather_code();
+  s.opaque_fragment = opaque_source(shadows, mode);
+  s.gather_fragment = gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, gather_header(b, counts)) +
+                      shadow_part(shadows, mode) + gather_code();
+  if (shadows) s.shadow_map_fragment = shadow_map_source(*shadows, mode);
   return s;
 }
 
 SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer)
     : SceneRenderer(scene, screen, buffer, GatherCounts::for_driver(buffer)) {}
 
-SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts)
+SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts,
+                             std::optional<gl::GlLightBindings> shadows)
     : screen_(screen),
       counts_(counts),
       buffer_(buffer),
-      opaque_program_(gl::ShaderProgram::graphics(render::kSceneVertex, opaque_source(), "opaque pass")),
+      opaque_program_(
+          gl::ShaderProgram::graphics(render::kSceneVertex, opaque_source(shadows, buffer.mode()), "opaque pass")),
       gather_program_(gl::ShaderProgram::graphics(
           render::kSceneVertex,
-          buffer.module_source(gl::ShaderStage::Fragment, gather_header(buffer.bindings(), counts)) + gather_code(),
+          buffer.module_source(gl::ShaderStage::Fragment, gather_header(buffer.bindings(), counts)) +
+              shadow_part(shadows, buffer.mode()) + gather_code(),
           "gather pass")),
       blend_program_(gl::ShaderProgram::graphics(
           render::kSceneVertex, std::string("#version 450 core\n") + render::kShading + render::kBlendFragment,
@@ -112,6 +133,17 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
   for (const gl::ShaderProgram* p : {&gather_program_, &atomic_floor_program_}) p->set("r_screen_width", screen.x);
+  if (shadows) {
+    shadow_program_.emplace(
+        gl::ShaderProgram::graphics(render::kSceneVertex, shadow_map_source(*shadows, buffer.mode()), "shadow map pass"));
+    glCreateTextures(GL_TEXTURE_2D, 1, &shadow_map_);
+    glTextureStorage2D(shadow_map_, 1, GL_R32F, w, h);
+    glCreateFramebuffers(1, &shadow_framebuffer_);
+    glNamedFramebufferTexture(shadow_framebuffer_, GL_COLOR_ATTACHMENT0, shadow_map_, 0);
+    glNamedFramebufferRenderbuffer(shadow_framebuffer_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer_);
+    if (glCheckNamedFramebufferStatus(shadow_framebuffer_, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw gl::GlError("the shadow map pass's framebuffer " + screen.str() + " is not complete");
+  }
   pixel_fragments_ = gl::create_buffer(screen.area() * 4);
   pixel_culled_ = gl::create_buffer(screen.area() * 4);
   rejected_ = gl::create_buffer(4);
@@ -125,11 +157,11 @@ SceneRenderer::~SceneRenderer() {
   }
   const GLuint buffers[] = {pixel_fragments_, pixel_culled_, rejected_};
   glDeleteBuffers(3, buffers);
-  const GLuint framebuffers[] = {opaque_framebuffer_, gather_framebuffer_, blend_framebuffer_};
-  glDeleteFramebuffers(3, framebuffers);
+  const GLuint framebuffers[] = {opaque_framebuffer_, gather_framebuffer_, blend_framebuffer_, shadow_framebuffer_};
+  glDeleteFramebuffers(4, framebuffers);  // 0 (no shadows) is ignored
   glDeleteRenderbuffers(1, &depth_buffer_);
-  const GLuint textures[] = {colour_, depth_};
-  glDeleteTextures(2, textures);
+  const GLuint textures[] = {colour_, depth_, shadow_map_};
+  glDeleteTextures(3, textures);
 }
 
 void SceneRenderer::draw_meshes(const gl::ShaderProgram& program, const Camera& camera, bool opaque) const {
@@ -243,6 +275,39 @@ double SceneRenderer::atomic_floor(const Camera& camera) {
   draw_transparent(atomic_floor_program_, camera, gather_framebuffer_);
   latest_ = counted_ = camera;  // its atomic adds are the per-pixel counts
   return finished_ms(t0);
+}
+
+double SceneRenderer::shadow_map_pass(const Camera& camera) {
+  if (!shadow_program_) throw std::logic_error("shadow_map_pass on a renderer made without shadows");
+  glFinish();
+  const auto t0 = std::chrono::steady_clock::now();
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, shadow_framebuffer_);
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  const float none[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
+  glClearNamedFramebufferfv(shadow_framebuffer_, GL_COLOR, 0, none);
+  glClearNamedFramebufferfi(shadow_framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  draw_meshes(*shadow_program_, camera, true);
+  draw_meshes(*shadow_program_, camera, false);
+  glDisable(GL_DEPTH_TEST);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  return finished_ms(t0);
+}
+
+std::vector<float> SceneRenderer::read_opaque_depth() const {
+  std::vector<float> out(screen_.area());
+  glGetTextureImage(depth_, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+  return out;
+}
+
+std::vector<float> SceneRenderer::read_shadow_map() const {
+  if (!shadow_program_) return {};
+  std::vector<float> out(screen_.area());
+  glGetTextureImage(shadow_map_, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+  return out;
 }
 
 std::vector<glm::vec3> SceneRenderer::read_opaque_colour() const {

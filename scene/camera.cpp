@@ -7,6 +7,7 @@
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
 
 namespace habuffer {
 namespace {
@@ -104,6 +105,20 @@ Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen
                                            : perspective(b, scene.radius_around(b.centre()), params, screen);
   check_depth_range(scene, b, c);
   return c;
+}
+
+}  // namespace habuffer
+
+namespace habuffer {
+
+glm::dvec3 unproject(const Camera& camera, Extent screen, glm::dvec2 window, double t) {
+  const glm::dvec2 ndc = window / glm::dvec2(screen.x, screen.y) * 2.0 - 1.0;
+  const glm::dmat4 inverse_projection = glm::inverse(glm::dmat4(camera.projection));
+  const glm::dvec4 a4 = inverse_projection * glm::dvec4(ndc, -1.0, 1.0), b4 = inverse_projection * glm::dvec4(ndc, 1.0, 1.0);
+  const glm::dvec3 a = glm::dvec3(a4) / a4.w, b = glm::dvec3(b4) / b4.w;  // the pixel's ray, near to far plane
+  const double eye_z = -(double{camera.near_plane} + t * (double{camera.far_plane} - double{camera.near_plane}));
+  const glm::dvec3 eye = a + (b - a) * ((eye_z - a.z) / (b.z - a.z));
+  return glm::dvec3(glm::inverse(glm::dmat4(camera.view)) * glm::dvec4(eye, 1.0));
 }
 
 }  // namespace habuffer

@@ -42,6 +42,23 @@ void check_params(const LightParams& p) {
 
 }  // namespace
 
+LightParams spot_along(const Scene& scene, glm::vec3 direction, float fov, Extent size) {
+  LightParams p;
+  p.direction = direction;
+  p.fov = fov;
+  p.size = size;
+  check_params(p);  // orthographic: checks the direction
+  p.orthographic = false;
+  check_params(p);  // a spot: checks the fov
+  const Bounds b = scene.bounds();
+  if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices to light");
+  const glm::vec3 centre = b.centre();
+  const float r = std::max(scene.radius_around(centre), 1e-6f);
+  const float touching = r * kMargin / std::sin(glm::radians(fov) / 2.0f);
+  p.position = centre - glm::normalize(direction) * (1.5f * touching);
+  return p;
+}
+
 LightView frame_light(const Scene& scene, const LightParams& params) {
   check_params(params);
   const Bounds b = scene.bounds();

@@ -144,6 +144,28 @@ double TransmittanceReference::transmittance(glm::dvec3 point, const LightView& 
   return t;
 }
 
+std::vector<TransmittanceReference::Hit> TransmittanceReference::hits(glm::dvec3 point, const LightView& light) const {
+  std::vector<Hit> out;
+  if (nodes_.empty()) return out;
+  const Segment s = segment_to_light(point, light);
+  const glm::dvec3 inverse = 1.0 / s.direction;
+  std::vector<std::uint32_t> stack = {0};
+  while (!stack.empty()) {
+    const Node& n = nodes_[stack.back()];
+    stack.pop_back();
+    if (!meets(n.lo, n.hi, s.origin, inverse, s.length)) continue;
+    if (n.count == 0) {
+      stack.push_back(n.first);
+      stack.push_back(n.right);
+      continue;
+    }
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
+      if (const double d = hit(triangles_[i], s); d >= 0.0) out.push_back({d, triangles_[i].alpha});
+  }
+  std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
+  return out;
+}
+
 double TransmittanceReference::transmittance_brute_force(glm::dvec3 point, const LightView& light,
                                                          double self_distance) const {
   check_self_distance(self_distance);

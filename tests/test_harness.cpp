@@ -187,6 +187,15 @@ TEST(Harness, Fig2InsertsOpacityOneAndCullingStoresLessAsOpacityGrows) {
   for (const ResultRow& r : t.rows) EXPECT_GT(num(r, "fragments"), 0.0);  // opacity 1 reached the buffer
   EXPECT_EQ(num(t.rows[2], "stored"), num(t.rows[2], "fragments"));      // opacity 1, no cull: all stored
   EXPECT_LT(num(t.rows[3], "stored"), num(t.rows[1], "stored"));         // cull stores less at opacity 1
+  // The shadow columns: the light buffer built once, its fragments beside the view's, both frame times.
+  for (const ResultRow& r : t.rows) {
+    EXPECT_EQ(num(r, "light_builds"), 1.0);
+    EXPECT_GT(num(r, "light_fragments"), 0.0);
+    EXPECT_EQ(num(r, "fragments_with_shadows"), num(r, "fragments") + num(r, "light_fragments"));
+    EXPECT_GT(num(r, "fps"), 0.0);
+    EXPECT_GT(num(r, "fps_shadows"), 0.0);
+  }
+  EXPECT_LT(num(t.rows[3], "light_stored"), num(t.rows[2], "light_stored"));  // the light buffer culled too
 }
 
 TEST(Harness, Fig8KeepsTheTableAndTheFragmentCountWhileTheQuadsStack) {

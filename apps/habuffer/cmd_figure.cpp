@@ -138,7 +138,7 @@ harness::ResultTable run_table1(FigureRun& r) {
 const std::vector<Figure>& figures() {
   static const std::vector<Figure> list{
       {"fig2", "  seed 000 Fig. 2: early cull vs opacity; stored fragments, gather time and fill rate with and\n"
-               "  without cull (opacity 1 inserted)\n",
+               "  without cull (opacity 1 inserted); frame time and fragments with and without translucent shadows\n",
        {{"scene", "S", "hairball", "the scene"}, {"opacities", "A,..", "0.125,0.25,0.5,1", "the opacities"}},
        run_fig2},
       {"fig8", "  seed 000 Fig. 8: quads pulled together over N frames into a table fixed at load L; time and max\n"

@@ -13,6 +13,9 @@
 #include "habuffer/json_writer.h"
 #include "habuffer/render/heatmap.h"
 #include "habuffer/render/render_job.h"
+#include "habuffer/render/shadow_accuracy.h"
+#include "habuffer/transmittance_reference.h"
+#include "habuffer/light_view.h"
 #include "habuffer/scene_catalog.h"
 #include "habuffer/technique_descriptor.h"
 #include "habuffer/file_roles.h"
@@ -58,7 +61,8 @@ const CommandSpec& render_spec() {
           {"pitch", "DEG", "", "camera pitch in [-90, 90] (default: the scene's)"},
           {"fov", "DEG", "45", "vertical field of view in (1, 179)"},
           {"background", "R,G,B", "1,1,1", "each in [0, 1]"},
-          {"heatmap", "depth|age|culled:IMAGE[,...]", "", "heat maps: fragments, max age, culled per pixel"},
+          {"heatmap", "depth|age|culled|shadow:IMAGE[,...]", "",
+           "heat maps: fragments, max age, culled per pixel, the light's T at the nearest surface (--shadows)"},
           {"reference", "IMAGE", "", "the exact reference; the stats then give psnr, rmse and max_error"},
           {"error", "", "", "psnr, rmse and max_error against the reference without writing it"},
           {"opaque-meshes", "I,J,...", "",
@@ -67,13 +71,87 @@ const CommandSpec& render_spec() {
           {"quiet", "", "", "no summary and no progress bar (shown on a terminal for --frames above 1)"},
           {"slot-writes", "", "",
            "(--path gl) the stats' slot_writes, tallied by one more atomic per insert call (compiled in only then; "
-           "null otherwise)"}} +
+           "null otherwise)"},
+          {"shadows", "", "",
+           "translucent shadows (seed 000, section 6): an HA-buffer of every mesh from the light (opaque ones at "
+           "opacity 1), built once, and each fragment's lit colour times the light's transmittance T"},
+          {"light-dir", "X,Y,Z", "-0.4,-1,-0.3",
+           "(--shadows) where the light shines: a spot placed along it outside the scene, or with --light-ortho a "
+           "directional light"},
+          {"light-ortho", "", "", "(--shadows) a directional light: an orthographic frustum along --light-dir"},
+          {"light-pos", "X,Y,Z", "", "(--shadows) a spot at this point (outside the scene) looking at its centre"},
+          {"light-fov", "DEG", "60", "(--shadows) a spot's widest cone in (1, 179); narrowed to the scene"},
+          {"light-size", "WxH", "1024x1024", "(--shadows) the light map's pixels (the light buffer's screen)"},
+          {"light-table", "WxH|auto", "auto",
+           "(--shadows) the light buffer's table; auto sizes it from the light's counting pass and grows it until "
+           "nothing is dropped"},
+          {"light-cull", "TAU", "0", "(--shadows) the light buffer's early cull, in [0, 1) (0: off; T errs by at most "
+                                     "1 - TAU)"},
+          {"shadow-error", "N", "",
+           "(--shadows) T against the ray-traced reference at up to N receiving points (0: all): the stats' "
+           "light.reference"},
+          {"shadow-slope", "S", "2",
+           "(--shadows) the bias rule: surfaces up to atan(S) from facing the light never shadow themselves"}} +
           scene_option_specs() +
           shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
           shared_options({"layout", "offsets", "seed", "lossless", "max-attempts", "threads", "insert-order"}),
       "  Exit codes: 0 ok (lost fragments are warned about on stderr), 1 bad data (scene, file, GL limits) or a\n"
       "  --lossless render that still lost fragments, 2 bad usage.\n"};
   return spec;
+}
+
+glm::vec3 parse_point(const char* option, const std::string& text) {
+  glm::vec3 v(0.0f);
+  std::istringstream in(text);
+  char comma = 0;
+  if (!(in >> v.x >> comma >> v.y >> comma >> v.z) || !in.eof() || !std::isfinite(glm::length(v)))
+    throw UsageError(std::string("option --") + option + ": '" + text + "' is not X,Y,Z of finite numbers");
+  return v;
+}
+
+// The light of --shadows, before the scene is known (a spot along a
+// direction is placed from the scene's bounds: light_for).
+struct LightArgs {
+  ShadowSettings settings;
+  bool spot_along = false;  // --light-dir without --light-ortho
+  std::uint64_t error_receivers = 0;  // --shadow-error N (with settings.read_back)
+};
+
+std::optional<LightArgs> parse_light(const Args& args) {
+  const bool on = args.has("shadows");
+  args.refuse_unless(on, {"light-dir", "light-ortho", "light-pos", "light-fov", "light-size", "light-table",
+                          "light-cull", "shadow-slope", "shadow-error"},
+                     "without --shadows");
+  if (!on) return std::nullopt;
+  args.refuse_unless(!args.has("fragments"), {"shadows"}, "with --fragments (a stream has no world positions)");
+  args.refuse_unless(!args.has("light-pos"), {"light-dir", "light-ortho"}, "with --light-pos (a spot looks at the scene)");
+  LightArgs l;
+  ShadowSettings& s = l.settings;
+  s.light.size = args.size("light-size");
+  if (s.light.size.area() == 0) throw UsageError("option --light-size: " + s.light.size.str() + " has no pixels");
+  const double fov = args.real("light-fov");
+  if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --light-fov: must be in (1, 179) degrees");
+  s.light.fov = static_cast<float>(fov);
+  if (args.has("light-pos")) {
+    s.light.orthographic = false;
+    s.light.position = parse_point("light-pos", args.str("light-pos"));
+  } else {
+    s.light.direction = parse_point("light-dir", args.str("light-dir"));
+    if (glm::length(s.light.direction) == 0.0f) throw UsageError("option --light-dir: the zero vector has no direction");
+    s.light.orthographic = args.has("light-ortho");
+    l.spot_along = !s.light.orthographic;
+  }
+  s.table = args.str("light-table") == "auto" ? Extent{} : args.extent("light-table").value();
+  const double tau = args.real("light-cull");
+  if (!(tau >= 0.0 && tau < 1.0)) throw UsageError("option --light-cull: must be in [0, 1) (0: off)");
+  s.early_cull_tau = static_cast<float>(tau);
+  const double slope = args.real("shadow-slope");
+  if (!(std::isfinite(slope) && slope >= 0.0)) throw UsageError("option --shadow-slope: must be a finite slope >= 0");
+  s.max_slope = static_cast<float>(slope);
+  usage_errors("light-table", [&] { s.validate(); });
+  s.read_back = args.has("shadow-error");
+  if (s.read_back) l.error_receivers = args.u64_in("shadow-error");
+  return l;
 }
 
 glm::vec3 parse_background(const std::string& text) {
@@ -96,9 +174,13 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args, Technique technique
   for (const std::string& item : args.list("heatmap", "")) {
     const auto colon = item.find(':');
     const std::string kind = item.substr(0, colon);
-    if (colon == std::string::npos || colon + 1 == item.size() || (kind != "depth" && kind != "age" && kind != "culled"))
-      throw UsageError("option --heatmap: " + excerpt(item) + " is not depth:IMAGE, age:IMAGE or culled:IMAGE");
-    if (kind != "depth" && !uses_table(technique))
+    if (colon == std::string::npos || colon + 1 == item.size() ||
+        (kind != "depth" && kind != "age" && kind != "culled" && kind != "shadow"))
+      throw UsageError("option --heatmap: " + excerpt(item) +
+                       " is not depth:IMAGE, age:IMAGE, culled:IMAGE or shadow:IMAGE");
+    if (kind == "shadow" && !args.has("shadows"))
+      throw UsageError("option --heatmap shadow: the light's transmittance needs --shadows");
+    if ((kind == "age" || kind == "culled") && !uses_table(technique))
       throw UsageError("option --heatmap " + kind + ": the HA-buffer's (ages, early cull), not technique " +
                        to_string(technique) + "'s");
     out.push_back({kind, item.substr(colon + 1)});
@@ -206,11 +288,26 @@ void make_opaque(const std::vector<std::string>& indices, Scene& scene) {
   }
 }
 
-RenderResult render_with_gl(const Args& args, const std::vector<std::string>& opaque_meshes, RenderSettings& s,
-                            SceneDescription& described) {
+// --shadow-error: the light buffer's T at every receiving point of the view against the ray-traced reference.
+ShadowAccuracy shadow_error(const Scene& scene, const RenderSettings& s, const RenderResult& r, std::uint64_t receivers) {
+  const TransmittanceReference reference(scene);
+  const ShadowReceivers at{&r.camera, s.config.screen, r.fragments, r.opaque_depth};
+  return measure_shadow_accuracy(reference, r.light->view, *r.light_buffer,
+                                 RecordLayout(Layout::L64, s.shadows->age_bits), r.light->bias_codes, at, receivers);
+}
+
+RenderResult render_with_gl(const Args& args, const std::vector<std::string>& opaque_meshes,
+                            const std::optional<LightArgs>& light, RenderSettings& s, SceneDescription& described,
+                            std::optional<ShadowAccuracy>& accuracy) {
   const SceneOptions options = parse_scene_options(args);
   Scene scene = make_scene(args.required("scene"), options);
   make_opaque(opaque_meshes, scene);
+  if (light) {
+    s.shadows = light->settings;
+    if (light->spot_along)
+      s.shadows->light = spot_along(scene, light->settings.light.direction, light->settings.light.fov,
+                                    light->settings.light.size);
+  }
   described = {scene.name, scene.meshes.size(), scene.triangle_count()};
   apply_camera(args, scene, s);
   std::optional<gl::EglContext> context;
@@ -219,7 +316,9 @@ RenderResult render_with_gl(const Args& args, const std::vector<std::string>& op
   } catch (const gl::GlError& e) {
     throw DataError(std::string("render: no usable OpenGL: ") + e.what());
   }
-  return render_scene(scene, s);
+  RenderResult r = render_scene(scene, s);
+  if (light && light->settings.read_back) accuracy = shadow_error(scene, s, r, light->error_receivers);
+  return r;
 }
 
 std::vector<float> as_floats(const std::vector<std::uint32_t>& v) { return {v.begin(), v.end()}; }
@@ -247,6 +346,10 @@ std::vector<HeatmapOutput> write_heatmaps(const std::vector<HeatmapRequest>& req
     } else if (h.kind == "age") {
       values = max_age_per_pixel(*r.ha_buffer());
       title = "max age per pixel";
+    } else if (h.kind == "shadow") {
+      values = r.shadow_map;  // -1 where no surface: drawn as 0, the ramp's dark end
+      for (float& v : values) v = std::max(v, 0.0f);
+      title = "light transmittance T at the nearest surface";
     } else {
       values = as_floats(r.pixel_culled);
       title = "culled fragments per pixel";
@@ -270,6 +373,14 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
     std::fprintf(stderr, "habuffer render: warning: no transparent fragment reached the screen in %zu frame%s: the "
                          "scene is out of view, fully opaque or degenerate\n",
                  r.frames.size(), r.frames.size() == 1 ? "" : "s");
+  if (r.light && r.light->counters.fragments == 0)
+    std::fprintf(stderr, "habuffer render: warning: the light's view holds no fragment: nothing casts a shadow\n");
+  if (r.light && r.light->counters.failures() > 0)
+    std::fprintf(stderr,
+                 "habuffer render: warning: the light buffer lost %llu of %llu fragments (table %s): shadows are "
+                 "lighter where they were; use --light-table auto or a larger one\n",
+                 static_cast<unsigned long long>(r.light->counters.failures()),
+                 static_cast<unsigned long long>(r.light->counters.fragments), r.light->table.str().c_str());
   const std::string frames = r.frames.size() == 1 ? "" : " over " + std::to_string(r.frames.size()) + " frames";
   // Age failures from a pixel deeper than AMAX are not the buffers' size:
   // say which pixel and what age bits would hold it.
@@ -298,13 +409,16 @@ int run_render(const std::vector<std::string>& argv) {
   refuse_scene_options_that_do_not_apply(args);
   const std::vector<std::string> opaque_meshes =
       args.has("opaque-meshes") ? args.list("opaque-meshes", "") : std::vector<std::string>{};
+  const std::optional<LightArgs> light = parse_light(args);
   const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args, s.technique);
   check_render_files(args, s, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
   s.keep_fragments = args.has("reference") || args.has("error");
   s.count_slot_writes = args.has("slot-writes");
+  if (light && light->settings.read_back) s.keep_fragments = true;  // the transparent receivers
   SceneDescription described;
   RenderResult r;
+  RenderOutputs outputs;
   if (args.has("fragments")) {
     if (s.path == RenderPath::Gl && args.has("path")) throw UsageError("--fragments renders on the CPU path: drop --path gl");
     for (const char* scene_only : {"frames", "yaw", "pitch", "fov", "opacity", "count", "spread", "order", "scene-seed",
@@ -318,13 +432,12 @@ int run_render(const std::vector<std::string>& argv) {
   } else {
     ProgressBar progress = ProgressBar::for_terminal("habuffer render", "frames", args.has("quiet") || s.frames == 1);
     s.on_progress = progress.callback();
-    r = render_with_gl(args, opaque_meshes, s, described);
+    r = render_with_gl(args, opaque_meshes, light, s, described, outputs.shadow_error);
     s.on_progress = nullptr;
   }
   if (s.config.layout == Layout::L32 && args.has("out"))
     std::fprintf(stderr, "habuffer render: note: L32 records carry no colour; the image shows the opaque parts only, "
                          "the stats and heat maps show the lists\n");
-  RenderOutputs outputs;
   if (args.has("out")) {
     outputs.image = args.required("out");
     write_image(outputs.image, r.image);

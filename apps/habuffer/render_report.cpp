@@ -34,6 +34,42 @@ void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
 
 const char* path_name(RenderPath p) { return p == RenderPath::Gl ? "gl" : "cpu"; }
 
+void write_vec3(JsonWriter& json, std::string_view key, glm::vec3 v) {
+  json.key(key).begin_array();
+  for (int i = 0; i < 3; ++i) json.value(static_cast<double>(v[i]));
+  json.end_array();
+}
+
+// Translucent shadows: the light and its buffer (LightStats).
+void light(JsonWriter& json, const ShadowSettings& set, const LightStats& l, const std::optional<ShadowAccuracy>& a) {
+  json.key("light").begin_object();
+  json.field("kind", l.view.orthographic ? "directional" : "spot");
+  write_vec3(json, "direction", l.view.direction);
+  if (!l.view.orthographic) write_vec3(json, "position", l.view.position);
+  write_extent(json, "size", l.size);
+  json.field("technique", "ha").field("layout", "64").field("table_mode", set.table == Extent{} ? "auto" : "fixed");
+  write_extent(json, "table", l.table);
+  json.field("early_cull", static_cast<double>(set.early_cull_tau)).field("age_bits", set.age_bits);
+  json.field("max_slope", static_cast<double>(set.max_slope)).field("bias_codes", l.bias_codes);
+  json.field("filter", "nearest");
+  json.field("builds", l.builds).field("attempts", l.attempts);
+  write_counters(json, l.counters);
+  json.field("load_factor", l.load_factor).field("max_age", l.max_age).field("memory_bytes", l.memory_bytes);
+  json.field("build_ms", l.build_ms).field("lookup_ms", l.lookup_ms).field("lookup_pixels", l.lookup_pixels);
+  json.field("lookup_ns_per_pixel",
+             l.lookup_pixels > 0 ? l.lookup_ms * 1e6 / static_cast<double>(l.lookup_pixels) : 0.0);
+  if (a) {
+    // habuffer/render/shadow_accuracy.h defines the bands and the reference.
+    json.key("reference").begin_object().field("receivers", a->receivers).field("stride", a->stride);
+    json.field("silhouette_band", a->silhouette_band).field("depth_band", a->depth_band).field("band", a->band);
+    json.field("within_1_255", a->within).field("within_fraction", a->within_fraction);
+    json.field("rmse", a->rmse).field("max_error", a->max_error);
+    json.field("rmse_outside_band", a->rmse_outside).field("max_error_outside_band", a->max_error_outside);
+    json.field("ms", a->ms).end_object();
+  }
+  json.end_object();
+}
+
 }  // namespace
 
 RenderSummary summarize_render(const SceneDescription& scene, const RenderSettings& settings, const RenderResult& result,
@@ -102,6 +138,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
     const ImageDifference& d = *s.outputs->error;
     json.field("psnr", d.psnr).field("rmse", d.rmse).field("max_error", d.max_error);
   }
+  if (r.light && set.shadows) light(json, *set.shadows, *r.light, s.outputs->shadow_error);
   json.key("frames").begin_array();
   for (const FrameStats& f : r.frames) frame(json, f, set.path == RenderPath::Gl);
   json.end_array();
@@ -127,6 +164,21 @@ void print_render_summary(const RenderSummary& s, const RenderOutputs& outputs) 
               outputs.reference_difference
                   ? (", PSNR vs reference " + std::to_string(outputs.reference_difference->psnr) + " dB").c_str()
                   : "");
+  if (const std::optional<LightStats>& l = s.result->light) {
+    std::printf("light %s %s: %.3g M fragments, table %s, load %.2f, max age %u, %.1f MiB; built %u time%s in "
+                "%.1f ms; lookups %.1f ms for %.3g M pixels\n",
+                l->view.orthographic ? "directional" : "spot", l->size.str().c_str(),
+                static_cast<double>(l->counters.fragments) * 1e-6, l->table.str().c_str(), l->load_factor, l->max_age,
+                static_cast<double>(l->memory_bytes) / (1 << 20), l->builds, l->builds == 1 ? "" : "s", l->build_ms,
+                l->lookup_ms, static_cast<double>(l->lookup_pixels) * 1e-6);
+  }
+  if (const std::optional<ShadowAccuracy>& a = outputs.shadow_error)
+    std::printf("shadow T vs reference: %.4f%% of %llu receivers outside the bands within 1/255 (bands %.2f%%: "
+                "silhouette %llu, depth %llu); RMSE %.4f, max error %.4f\n",
+                100.0 * a->within_fraction, static_cast<unsigned long long>(a->receivers - a->band),
+                a->receivers > 0 ? 100.0 * static_cast<double>(a->band) / static_cast<double>(a->receivers) : 0.0,
+                static_cast<unsigned long long>(a->silhouette_band), static_cast<unsigned long long>(a->depth_band),
+                a->rmse, a->max_error);
   std::string files;
   for (const std::string& f : {outputs.image, outputs.stats, outputs.reference})
     if (!f.empty()) files += (files.empty() ? "" : ", ") + f;

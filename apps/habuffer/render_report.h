@@ -11,6 +11,7 @@
 
 #include "habuffer/render/image.h"
 #include "habuffer/render/render_job.h"
+#include "habuffer/render/shadow_accuracy.h"
 
 namespace habuffer::cli {
 
@@ -34,6 +35,8 @@ struct RenderOutputs {
   std::optional<ImageDifference> reference_difference;  ///< the image against the reference (8-bit files)
   /// The float image against the exact reference (--error, --reference).
   std::optional<ImageDifference> error;
+  /// --shadow-error: the light buffer's T against the ray-traced reference.
+  std::optional<ShadowAccuracy> shadow_error;
 };
 
 /// Everything the stats and the summary say; the pointers are borrowed from summarize_render's

@@ -13,8 +13,8 @@ float habuffer_shadow_transmittance(uvec2 pixel, float depth) {
 // habuffer::LightView::sample's code (shared/ha_light_map.glsl); a point
 // outside the light's frustum is lit: 1.
 float habuffer_shadow_transmittance(vec3 p) {
-  vec2 w;
-  float t;
+  vec2 w = vec2(0.0);  // initialised: the map writes them through HABUFFER_INOUT (inout), which Mesa warns about
+  float t = 0.0;
   if (!habuffer_light_map(habuffer_light.view, habuffer_light.projection, vec2(habuffer_light.map_size),
                           habuffer_light.near_plane, habuffer_light.far_plane, p, w, t))
     return 1.0;

@@ -1,11 +1,17 @@
 // What the opaque and the transparent passes share: flat shading of a mesh's
 // constant colour, and the paper's depth t, linear eye depth between the near
-// and far planes.
+// and far planes. With R_SHADOWS (translucent shadows, seed 000 section 6)
+// the lit colour is multiplied by the light's transmittance T at the
+// fragment's world point (light_lookup.glsl, appended before this file):
+// colour = lit colour * T, for the opaque pass and every inserted fragment.
 uniform vec3 r_colour;
 uniform float r_opacity;
 uniform float r_near;
 uniform float r_far;
 in vec3 v_eye;
+#ifdef R_SHADOWS
+in vec3 v_world;
+#endif
 
 // The face normal from screen-space derivatives, lit from the eye (either
 // side of a face: transparent surfaces show both).
@@ -13,7 +19,11 @@ vec3 r_shaded_colour() {
   vec3 n = cross(dFdx(v_eye), dFdy(v_eye));
   float len = length(n);
   float facing = len > 0.0 ? abs(n.z) / len : 1.0;
-  return r_colour * (0.35 + 0.65 * facing);
+  vec3 lit = r_colour * (0.35 + 0.65 * facing);
+#ifdef R_SHADOWS
+  lit *= habuffer_shadow_transmittance(v_world);
+#endif
+  return lit;
 }
 
 float r_depth() { return (-v_eye.z - r_near) / (r_far - r_near); }

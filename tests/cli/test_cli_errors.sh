@@ -137,6 +137,22 @@ expect 2 "option --size: '0x64'" -- render --scene quads --size 0x64 --out x.png
 ASAN_OPTIONS=detect_leaks=0 expect 1 "exceeds this OpenGL's largest viewport" -- render --scene quads --size 40000x64 --out x.png
 expect 2 "option --heatmap: 'depth'" -- render --scene quads --heatmap depth --out x.png
 expect 2 "give exactly one of --scene and --fragments" -- render --out x.png
+# render --shadows: the light's stats, its T heat map, the reference check; bad lights refused by name.
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene engine --size 48x48 --shadows --light-size 96x96 \
+  --light-ortho --stats r_shadow.json --heatmap shadow:r_shadow_t.png --shadow-error 0 --frames 2
+for key in '"light":' '"builds":1' '"bias_codes":' '"lookup_ms":' '"within_fraction":' '"silhouette_band":'; do
+  grep -q "$key" r_shadow.json && pass=$((pass + 1)) || { echo "FAIL: shadow stats lack $key"; fail=$((fail + 1)); }
+done
+[[ -s r_shadow_t.png ]] && pass=$((pass + 1)) || { echo "FAIL: render did not write the shadow heat map"; fail=$((fail + 1)); }
+expect 2 "option --light-dir has no effect without --shadows" -- render --scene quads --light-dir 0,-1,0 --out x.png
+expect 2 "option --light-size: '0x64'" -- render --scene quads --shadows --light-size 0x64 --out x.png
+expect 2 "option --light-dir: '0,1' is not X,Y,Z" -- render --scene quads --shadows --light-dir 0,1 --out x.png
+expect 2 "option --light-dir: the zero vector" -- render --scene quads --shadows --light-dir 0,0,0 --out x.png
+expect 2 "option --light-cull: must be in [0, 1)" -- render --scene quads --shadows --light-cull 1 --out x.png
+expect 2 "option --heatmap shadow: the light's transmittance needs --shadows" -- render --scene quads \
+  --heatmap shadow:x.png --out y.png
+ASAN_OPTIONS=detect_leaks=0 expect 1 "inside the scene's bounding sphere" -- render --scene quads --shadows \
+  --light-pos 0,0,0 --out x.png
 expect 1 "images differ in size" -- compare r_engine.png r_frags.png
 expect 0 "" -- stats --screen 32x32 --trials 2 --loads 0.5,0.9 --probing all --policy all --out st.csv
 if [[ "$(head -1 st.csv | cut -d, -f1-6)" != "variant,load,stored_load,trials,mean_age,mean_age_ci95" || $(wc -l <st.csv) -ne 9 ]]; then

@@ -28,6 +28,13 @@ int main(int argc, char** argv) {
     shaders.push_back({"gather", "frag", r.gather_fragment});
     // The gather counting nothing per pixel (every count's #if left out).
     shaders.push_back({"gather-plain", "frag", SceneRenderer::shader_sources(mode, {}, Technique::Ha, {}).gather_fragment});
+    if (mode != gl::AtomicMode::Native32) {  // translucent shadows read 64-bit light records
+      const SceneRenderer::Sources lit =
+          SceneRenderer::shader_sources(mode, {}, Technique::Ha, {true, true}, gl::GlLightBindings{});
+      shaders.push_back({"opaque-shadowed", "frag", lit.opaque_fragment});
+      shaders.push_back({"gather-shadowed", "frag", lit.gather_fragment});
+      shaders.push_back({"shadow-map", "frag", lit.shadow_map_fragment});
+    }
     for (const gl::ShaderSource& s : shaders) {
       const std::string path = dir + "/" + gl::to_string(mode) + "-" + s.name + "." + s.stage;
       std::ofstream out(path);

@@ -5,6 +5,8 @@
 #pragma once
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "habuffer/extent.h"
 #include "habuffer/scene.h"
@@ -35,5 +37,11 @@ void fit_depth_range(const Scene& scene, Camera& camera);
 /// Throws SceneError for an empty scene or screen, or parameters out of range
 /// (fov in (1, 179), pitch in [-90, 90] degrees, yaw finite).
 Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen);
+
+/// The world point that `camera`, seeing a `screen` of pixels, shows at
+/// window position `window` (pixels from the bottom left: a pixel's centre
+/// is its index + 0.5) and depth t, in double: the inverse of rasterizing
+/// it (perspective and orthographic alike).
+glm::dvec3 unproject(const Camera& camera, Extent screen, glm::dvec2 window, double t);
 
 }  // namespace habuffer

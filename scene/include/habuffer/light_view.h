@@ -58,6 +58,13 @@ struct LightView {
 /// whose cone of `fov` cannot hold the scene, and an empty scene.
 LightView frame_light(const Scene& scene, const LightParams& params);
 
+/// A spot shining along `direction` at the scene: on the line through the
+/// bounding sphere's centre, at 1.5 times the distance where a cone of `fov`
+/// degrees just holds the sphere (frame_light then narrows the cone to the
+/// sphere). Throws SceneError like frame_light (direction, fov, size, an
+/// empty scene).
+LightParams spot_along(const Scene& scene, glm::vec3 direction, float fov, Extent size);
+
 /// The bias in depth codes that keeps a surface's own records from shadowing
 /// it: a surface at angle `theta` between its normal and the light's
 /// direction moves in depth by tan(theta) * one light pixel's side across

@@ -33,6 +33,15 @@ class TransmittanceReference {
   /// The same by testing every triangle (no hierarchy): what the tests hold it against.
   [[nodiscard]] double transmittance_brute_force(glm::dvec3 point, const LightView& light,
                                                  double self_distance) const;
+  /// One crossing of the segment to the light.
+  struct Hit {
+    double distance;  ///< from the receiving point, along the segment
+    double alpha;     ///< the triangle's opacity, as packed
+  };
+  /// Every crossing of the segment from `point` to the light, nearest the
+  /// point first (transmittance() is the product of 1 - alpha over those
+  /// beyond self_distance).
+  [[nodiscard]] std::vector<Hit> hits(glm::dvec3 point, const LightView& light) const;
   /// Triangles in the hierarchy.
   [[nodiscard]] std::size_t triangles() const { return triangles_.size(); }
 

@@ -62,6 +62,12 @@ struct GlLightMapping {
 /// With `overridable`, the points sit inside #ifndef (the installed file).
 std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode, bool overridable = false);
 
+/// The same for a shader without a technique module (a host's opaque
+/// pass): `#version 450 core`, the mode's extensions, the constants and
+/// GLSL environment the shared sources need, then light_lookup_part. The
+/// shader's own code follows. Throws GlError for native32.
+std::string light_lookup_shader_head(const GlLightBindings& bindings, AtomicMode mode);
+
 /// A light buffer ready for lookups: its parameter block (mapping, table,
 /// bias) and the binding of its buffers (see the file comment).
 class GlShadowLookup {

@@ -25,6 +25,7 @@
 #include "habuffer/lossless_build.h"
 #include "habuffer/pixel_depth.h"
 #include "habuffer/render/image.h"
+#include "habuffer/render/light_pass.h"
 #include "habuffer/resize_policy.h"
 #include "habuffer/scene.h"
 
@@ -65,6 +66,10 @@ struct RenderSettings : TechniqueChoice {
   bool count_slot_writes = false;
   std::uint32_t threads = 0;      ///< CPU path: worker threads; 0: the default count (resolve_threads)
   InsertOrder insert_order = InsertOrder::Auto;  ///< CPU path, the HA-buffer (InsertOrder)
+  /// Translucent shadows (render_scene only): the light buffer built once
+  /// before the first frame (the camera orbits, the light stays), every
+  /// opaque and inserted fragment's lit colour times the light's T.
+  std::optional<ShadowSettings> shadows;
   /// Called after each frame with (frames done, frames).
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
@@ -122,6 +127,16 @@ struct RenderResult {
   /// records; the GPU path, which sees only the counting pass, counts
   /// fragments (duplicates included).
   std::optional<PixelDepth> too_deep;
+  /// With shadows: the light buffer's stats, and the light's T at each
+  /// pixel's nearest surface in the last frame's view (row 0 at the bottom;
+  /// -1 where no surface covers the pixel).
+  std::optional<LightStats> light;
+  std::vector<float> shadow_map;
+  /// With ShadowSettings::read_back: the light buffer on the CPU, and the
+  /// last frame's opaque t per pixel (2 where no opaque surface).
+  std::unique_ptr<FragmentBuffer> light_buffer;
+  std::vector<float> opaque_depth;
+  Camera camera;  ///< the last frame's camera (render_scene)
 };
 
 /// Renders settings.frames frames of `scene` on settings.path. Needs a current OpenGL 4.5 core context.

@@ -14,6 +14,7 @@
 
 #include "habuffer/camera.h"
 #include "habuffer/gl/gl_frame_driver.h"
+#include "habuffer/gl/shadow_lookup.h"
 #include "habuffer/gl/shader_program.h"
 #include "habuffer/scene.h"
 
@@ -42,17 +43,25 @@ class SceneRenderer {
   /// writes them out); the gather with `counts`, in the module's default variant.
   struct Sources {
     std::string vertex, opaque_fragment, gather_fragment;  ///< the gather is also the counting pass
+    std::string shadow_map_fragment;  ///< with shadows: the transmittance map's pass; else empty
   };
-  /// See Sources.
+  /// See Sources; with `shadows`, as the constructor's (throws GlError for native32).
   static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings,
-                                Technique technique = Technique::Ha, GatherCounts counts = {true, true});
+                                Technique technique = Technique::Ha, GatherCounts counts = {true, true},
+                                std::optional<gl::GlLightBindings> shadows = std::nullopt);
 
   /// Compiles the gather shader from `buffer`'s module (technique, mode,
   /// binding points and variant), counting GatherCounts::for_driver(buffer).
   /// `buffer` must outlive the renderer (its counting passes bind its blocks).
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer);
-  /// The same, counting `counts`.
-  SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts);
+  /// The same, counting `counts`. With `shadows`, the opaque pass and every
+  /// inserted fragment are shaded by the light buffer bound at those points
+  /// (translucent shadows: lit colour times the light's transmittance T,
+  /// gl::GlShadowLookup::bind before each pass), and shadow_map_pass() is
+  /// available. Throws GlError for a module in atomic mode native32 (the
+  /// lookup reads 64-bit records).
+  SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts,
+                std::optional<gl::GlLightBindings> shadows = std::nullopt);
   /// Deletes every GL object it made.
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;
@@ -77,10 +86,22 @@ class SceneRenderer {
   /// One atomic add per fragment; see blend_floor.
   double atomic_floor(const Camera& camera);
 
+  /// With shadows: the light's T at each pixel's nearest surface (every
+  /// mesh, depth-tested; the light buffer bound), one lookup per covered
+  /// pixel. Returns the pass's wall-clock milliseconds (to glFinish).
+  /// Throws std::logic_error without shadows.
+  double shadow_map_pass(const Camera& camera);
+  /// The last shadow_map_pass's T per pixel, row 0 at the bottom; -1 where no surface covers the pixel.
+  [[nodiscard]] std::vector<float> read_shadow_map() const;
+  /// Whether the passes are shaded by a light buffer (the constructor's `shadows`).
+  [[nodiscard]] bool shadows() const { return shadow_program_.has_value(); }
+
   /// The opaque pass's colour texture (GL name), the background the resolve composites over.
   [[nodiscard]] unsigned opaque_colour_texture() const { return colour_; }
   /// The opaque pass's colour, row-major, row 0 at the bottom.
   [[nodiscard]] std::vector<glm::vec3> read_opaque_colour() const;
+  /// The opaque pass's t per pixel, row 0 at the bottom (2 where no opaque surface).
+  [[nodiscard]] std::vector<float> read_opaque_depth() const;
   /// The fragments per pixel of the last gather, counting pass or atomic
   /// floor (a counting pass first where they were not counted).
   [[nodiscard]] std::vector<std::uint32_t> read_pixel_fragments();
@@ -114,6 +135,8 @@ class SceneRenderer {
   const gl::GlFrameDriver& buffer_;  // whose module the gather compiles
   std::vector<GpuMesh> meshes_;
   gl::ShaderProgram opaque_program_, gather_program_, blend_program_, atomic_floor_program_;
+  std::optional<gl::ShaderProgram> shadow_program_;  // with shadows: T at the nearest surface
+  unsigned shadow_map_ = 0, shadow_framebuffer_ = 0;
   unsigned opaque_framebuffer_ = 0, colour_ = 0, depth_ = 0, depth_buffer_ = 0;
   unsigned gather_framebuffer_ = 0, blend_framebuffer_ = 0;
   unsigned technique_framebuffer_ = 0;  // where the technique blends (wboit, blend), else 0

@@ -1,0 +1,121 @@
+#include "habuffer/render/light_pass.h"
+
+#include <epoxy/gl.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "habuffer/fragment_streams.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
+#include "habuffer/render/scene_renderer.h"
+
+namespace habuffer {
+namespace {
+
+// Every mesh through the light buffer: opaque ones inserted at opacity 1
+// (see the file comment of light_pass.h), none drawn by the opaque pass.
+Scene light_scene(const Scene& scene) {
+  Scene s = scene;
+  for (Mesh& m : s.meshes) m.insert_opaque = true;
+  return s;
+}
+
+BufferConfig light_config(const ShadowSettings& s) {
+  BufferConfig c;
+  c.screen = s.light.size;
+  c.layout = Layout::L64;
+  c.age_bits = s.age_bits;
+  c.table = s.table == Extent{} ? s.light.size : s.table;
+  c.early_cull_tau = s.early_cull_tau;
+  return c;
+}
+
+gl::AtomicMode light_mode() {
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
+  if (!mode)
+    throw gl::GlError("--shadows: the light buffer's L64 records need 64-bit shader types "
+                      "(GL_ARB_gpu_shader_int64), which this OpenGL lacks");
+  return *mode;
+}
+
+gl::GlFrameOptions light_options(const ShadowSettings& s) {
+  gl::GlFrameOptions o;
+  o.max_attempts = s.table == Extent{} ? 16 : 1;  // automatic: grown until nothing is dropped
+  return o;
+}
+
+gl::GlLightMapping mapping_of(const LightView& v) {
+  return {v.camera.view, v.camera.projection, v.camera.near_plane, v.camera.far_plane};
+}
+
+}  // namespace
+
+void ShadowSettings::validate() const {
+  if (light.size.area() == 0) throw std::invalid_argument("--light-size " + light.size.str() + " has no pixels");
+  if (!(std::isfinite(max_slope) && max_slope >= 0.0f))
+    throw std::invalid_argument("--shadow-slope must be a finite slope at least 0");
+  if (!(early_cull_tau >= 0.0f && early_cull_tau < 1.0f))
+    throw std::invalid_argument("--light-cull must be in [0, 1) (0: off)");
+  light_config(*this).validate();
+}
+
+struct LightPass::Gpu {
+  Gpu(const Scene& original, const ShadowSettings& s, const gl::GlBindings& view_bindings, const LightView& light,
+      std::uint32_t bias)
+      : scene(light_scene(original)),
+        buffer(light_config(s), OffsetSource{}, light_mode(), light_options(s)),
+        renderer(this->scene, s.light.size, buffer, SceneRenderer::GatherCounts{buffer.needs_call_count(), false}),
+        lookup(buffer.container(), mapping_of(light), bias, view_bindings) {}
+  Scene scene;
+  gl::GlHaBuffer buffer;
+  SceneRenderer renderer;
+  gl::GlShadowLookup lookup;
+};
+
+LightPass::LightPass(const Scene& scene, const ShadowSettings& settings, const gl::GlBindings& view)
+    : settings_(settings) {
+  settings_.validate();
+  stats_.view = frame_light(scene, settings_.light);
+  stats_.size = settings_.light.size;
+  stats_.bias_codes =
+      shadow_bias_codes(stats_.view, settings_.max_slope, light_config(settings_).record_layout().depth_bits());
+  gpu_ = std::make_unique<Gpu>(scene, settings_, view, stats_.view, stats_.bias_codes);
+}
+
+LightPass::~LightPass() = default;
+
+bool LightPass::build() {
+  glFinish();
+  const auto t0 = std::chrono::steady_clock::now();
+  const Camera& camera = stats_.view.camera;
+  Gpu& g = *gpu_;
+  g.renderer.draw_opaque(camera, glm::vec3(1.0f));  // nothing is opaque here: the depth image says "none"
+  if (settings_.table == Extent{}) {
+    g.buffer.bind();
+    const std::uint64_t fragments = g.renderer.count_fragments(camera);
+    const ResizePolicy policy;
+    g.buffer.resize(table_for_load(settings_.light.size, fragments, (policy.grow_at + policy.shrink_at) / 2.0));
+  }
+  const gl::FrameReport report =
+      g.buffer.frame([&] { g.renderer.gather(camera); }, [&] { return g.renderer.inserted(); });
+  glFinish();
+  stats_.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  ++stats_.builds;
+  stats_.attempts = static_cast<std::uint32_t>(report.attempts.size());
+  stats_.counters = report.counters;
+  stats_.table = g.buffer.table();
+  stats_.load_factor = static_cast<double>(report.counters.stored()) / static_cast<double>(stats_.table.area());
+  stats_.memory_bytes = g.buffer.technique().memory_bytes() + g.lookup.memory_bytes();
+  stats_.max_age = g.buffer.technique().read_largest_max_age();
+  return report.counters.failures() == 0;
+}
+
+void LightPass::bind() { gpu_->lookup.bind(); }
+
+const gl::GlLightBindings& LightPass::bindings() const { return gpu_->lookup.bindings(); }
+
+std::unique_ptr<FragmentBuffer> LightPass::read_back() const { return gpu_->buffer.technique().read_back(); }
+
+}  // namespace habuffer
