@@ -43,6 +43,7 @@ gl::AtomicMode light_mode() {
 gl::GlFrameOptions light_options(const ShadowSettings& s) {
   gl::GlFrameOptions o;
   o.max_attempts = s.table == Extent{} ? 16 : 1;  // automatic: grown until nothing is dropped
+  o.capture = s.capture;
   return o;
 }
 
@@ -107,7 +108,7 @@ bool LightPass::build() {
   stats_.counters = report.counters;
   stats_.table = g.buffer.table();
   stats_.load_factor = static_cast<double>(report.counters.stored()) / static_cast<double>(stats_.table.area());
-  stats_.memory_bytes = g.buffer.technique().memory_bytes() + g.lookup.memory_bytes();
+  stats_.memory_bytes = g.buffer.technique().memory_bytes() + g.lookup.memory_bytes();  // the capture is a tool's
   stats_.max_age = g.buffer.technique().read_largest_max_age();
   return report.counters.failures() == 0;
 }
@@ -115,6 +116,10 @@ bool LightPass::build() {
 void LightPass::bind() { gpu_->lookup.bind(); }
 
 const gl::GlLightBindings& LightPass::bindings() const { return gpu_->lookup.bindings(); }
+
+std::vector<Fragment> LightPass::read_capture() const {
+  return settings_.capture ? gpu_->buffer.read_capture() : std::vector<Fragment>{};
+}
 
 std::unique_ptr<FragmentBuffer> LightPass::read_back() const { return gpu_->buffer.technique().read_back(); }
 

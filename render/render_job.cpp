@@ -145,6 +145,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
       result.light_buffer = light->read_back();
       result.opaque_depth = renderer.read_opaque_depth();
     }
+    if (s.shadows->capture) result.light_fragments = light->read_capture();
   }
   if (last_camera) result.camera = *last_camera;
   gl::check_gl_errors("rendering");

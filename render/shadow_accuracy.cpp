@@ -46,11 +46,6 @@ double code_distance(const LightView& light, const RecordLayout& layout, glm::dv
   return std::max(0.0, codes) * per_code / cosine;
 }
 
-struct Outcome {
-  double error;
-  bool silhouette, depth;
-};
-
 using Hits = std::vector<TransmittanceReference::Hit>;
 
 double product_beyond(const Hits& hits, double self_distance) {
@@ -73,21 +68,19 @@ bool near_code_boundary(const Hits& hits, double window_lo, double window_hi, do
   return false;
 }
 
-Outcome compare_one(const TransmittanceReference& reference, const LightView& light, const FragmentBuffer& buffer,
-                    const RecordLayout& layout, std::uint32_t bias, glm::dvec3 p) {
+ShadowTruth truth_at(const TransmittanceReference& reference, const LightView& light, const RecordLayout& layout,
+                     std::uint32_t bias, glm::dvec3 p) {
   const double b = bias;
-  const Hits at_point = reference.hits(p, light);
-  const double t_ref = product_beyond(at_point, code_distance(light, layout, p, b + 0.5));
-  float t_buffer = 1.0f;  // outside the light's frustum: lit, as the GPU's lookup says
-  Outcome o{0.0, false, false};
-  if (const std::optional<LightSample> s = light.sample(glm::vec3(p))) {
-    t_buffer = transmittance(buffer, s->pixel.x, s->pixel.y, layout.depth_code(s->depth), bias);
+  ShadowTruth o;
+  o.reference = product_beyond(reference.hits(p, light), code_distance(light, layout, p, b + 0.5));
+  o.sample = light.sample(glm::vec3(p));
+  if (const std::optional<LightSample>& s = o.sample) {
     // What the light pixel's records sampled: the ray through its centre, at the receiver's light depth.
     const glm::dvec3 centre = unproject(light.camera, light.size, glm::dvec2(s->pixel) + 0.5, double{s->depth});
     const Hits at_centre = reference.hits(centre, light);
     const double code = code_distance(light, layout, centre, 1.0);
     const double t_centre = product_beyond(at_centre, code * (b + 0.5));
-    o.silhouette = std::abs(t_centre - t_ref) > kStep;
+    o.silhouette = std::abs(t_centre - o.reference) > kStep;
     // An edge within the rasterizer's snapping of the centre (sub-pixel
     // precision: 1/256 of a pixel on llvmpipe and NVIDIA) may be covered or
     // not whatever the exact ray says: the band takes those too.
@@ -98,55 +91,77 @@ Outcome compare_one(const TransmittanceReference& reference, const LightView& li
     }
     o.depth = near_code_boundary(at_centre, code * (b - kCodeSlack), code * (b + kCodeSlack), code);
   }
-  o.error = std::abs(double{t_buffer} - t_ref);
   return o;
 }
 
 }  // namespace
 
-ShadowAccuracy measure_shadow_accuracy(const TransmittanceReference& reference, const LightView& light,
-                                       const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias,
-                                       const ShadowReceivers& receivers, std::uint64_t max_receivers) {
+ShadowTruths shadow_truths(const TransmittanceReference& reference, const LightView& light, RecordLayout layout,
+                           std::uint32_t bias, const ShadowReceivers& receivers, std::uint64_t max_receivers) {
   if (receivers.camera == nullptr) throw std::invalid_argument("shadow accuracy: the receivers have no camera");
-  if (layout.layout() != Layout::L64)
-    throw std::invalid_argument("shadow accuracy: a light buffer of L32 records carries no opacity");
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<Receiver> all = receivers_of(receivers);
-  ShadowAccuracy a;
-  a.stride = max_receivers == 0 || all.size() <= max_receivers
-                 ? 1u
-                 : static_cast<std::uint32_t>((all.size() + max_receivers - 1) / max_receivers);
-  const std::size_t n = (all.size() + a.stride - 1) / a.stride;
-  std::vector<Outcome> outcomes(n);
+  ShadowTruths truths;
+  truths.stride = max_receivers == 0 || all.size() <= max_receivers
+                      ? 1u
+                      : static_cast<std::uint32_t>((all.size() + max_receivers - 1) / max_receivers);
+  const std::size_t n = (all.size() + truths.stride - 1) / truths.stride;
+  truths.at.resize(n);
   const std::uint32_t tasks = std::max<std::uint32_t>(1, std::min<std::uint32_t>(64, static_cast<std::uint32_t>(n)));
   fork_join(tasks, [&](std::uint32_t k) {
     for (std::size_t i = k; i < n; i += tasks) {
-      const Receiver& r = all[i * a.stride];
+      const Receiver& r = all[i * truths.stride];
       const glm::dvec3 p = unproject(*receivers.camera, receivers.screen, {r.x, r.y}, r.t);
-      outcomes[i] = compare_one(reference, light, light_buffer, layout, bias, p);
+      truths.at[i] = truth_at(reference, light, layout, bias, p);
     }
   });
+  truths.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return truths;
+}
+
+ShadowAccuracy score_shadows(const ShadowTruths& truths, const ShadowLookup& lookup) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ShadowAccuracy a;
+  a.stride = truths.stride;
   double sum = 0.0, sum_outside = 0.0;
-  for (const Outcome& o : outcomes) {
+  for (const ShadowTruth& o : truths.at) {
+    // Outside the light's frustum: lit, as the GPU's lookup says.
+    const double t = o.sample ? double{lookup(o.sample->pixel.x, o.sample->pixel.y, o.sample->depth)} : 1.0;
+    const double error = std::abs(t - o.reference);
     ++a.receivers;
     a.silhouette_band += o.silhouette;
     a.depth_band += o.depth;
-    sum += o.error * o.error;
-    a.max_error = std::max(a.max_error, o.error);
+    sum += error * error;
+    a.max_error = std::max(a.max_error, error);
     if (o.silhouette || o.depth) {
       ++a.band;
       continue;
     }
-    a.within += o.error <= kStep * (1.0 + 1e-6);
-    sum_outside += o.error * o.error;
-    a.max_error_outside = std::max(a.max_error_outside, o.error);
+    a.within += error <= kStep * (1.0 + 1e-6);
+    sum_outside += error * error;
+    a.max_error_outside = std::max(a.max_error_outside, error);
   }
   const std::uint64_t outside = a.receivers - a.band;
   a.rmse = a.receivers > 0 ? std::sqrt(sum / static_cast<double>(a.receivers)) : 0.0;
   a.rmse_outside = outside > 0 ? std::sqrt(sum_outside / static_cast<double>(outside)) : 0.0;
   a.within_fraction = outside > 0 ? static_cast<double>(a.within) / static_cast<double>(outside) : 1.0;
-  a.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  a.ms = truths.ms + std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return a;
+}
+
+ShadowLookup buffer_lookup(const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias) {
+  if (layout.layout() != Layout::L64)
+    throw std::invalid_argument("shadow accuracy: a light buffer of L32 records carries no opacity");
+  return [&light_buffer, layout, bias](std::uint32_t x, std::uint32_t y, float t) {
+    return transmittance(light_buffer, x, y, layout.depth_code(t), bias);
+  };
+}
+
+ShadowAccuracy measure_shadow_accuracy(const TransmittanceReference& reference, const LightView& light,
+                                       const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias,
+                                       const ShadowReceivers& receivers, std::uint64_t max_receivers) {
+  const ShadowLookup lookup = buffer_lookup(light_buffer, layout, bias);
+  return score_shadows(shadow_truths(reference, light, layout, bias, receivers, max_receivers), lookup);
 }
 
 }  // namespace habuffer

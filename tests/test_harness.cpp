@@ -13,6 +13,7 @@
 #include "habuffer/harness/figures.h"
 #include "habuffer/harness/frontier.h"
 #include "habuffer/harness/plan.h"
+#include "habuffer/harness/shadow_frontier.h"
 #include "habuffer/harness/sweep.h"
 #include "habuffer/harness/technique_spec.h"
 
@@ -196,6 +197,31 @@ TEST(Harness, Fig2InsertsOpacityOneAndCullingStoresLessAsOpacityGrows) {
     EXPECT_GT(num(r, "fps_shadows"), 0.0);
   }
   EXPECT_LT(num(t.rows[3], "light_stored"), num(t.rows[2], "light_stored"));  // the light buffer culled too
+}
+
+// The shadow frontier: every light buffer scored at the same receivers; the
+// HA-buffer built on the GPU and on the CPU from its captured stream give
+// the same T everywhere; the exact one meets the goal outside the bands and
+// beats the opacity maps, which smear each slice.
+TEST(Harness, TheShadowFrontierScoresEveryLightBufferAtTheSameReceivers) {
+  gl_context();
+  ShadowFrontierSettings f;
+  f.size = {64, 64};
+  f.light_size = {128, 128};
+  f.repeats = 1;
+  const ResultTable t = run_shadow_frontier(parse_workload_spec("engine"), f);
+  ASSERT_EQ(t.rows.size(), 8u);
+  for (const ResultRow& r : t.rows) EXPECT_EQ(num(r, "receivers"), num(t.rows[0], "receivers"));
+  EXPECT_EQ(text(t.rows[0], "build_path"), "gl");
+  EXPECT_EQ(text(t.rows[1], "parameter"), "exact");
+  EXPECT_EQ(num(t.rows[0], "rmse"), num(t.rows[1], "rmse"));
+  EXPECT_EQ(num(t.rows[0], "stored"), num(t.rows[1], "stored"));
+  EXPECT_GE(num(t.rows[1], "within_fraction"), 0.999);
+  EXPECT_LE(num(t.rows[1], "rmse"), num(t.rows[3], "rmse"));  // culling at 0.9 loses accuracy
+  EXPECT_EQ(num(t.rows[4], "memory_bytes"), 4.0 * 128 * 128 * 8);  // k-buffer k 4: 4 records per pixel
+  EXPECT_EQ(num(t.rows[6], "memory_bytes"), 17.0 * 128 * 128 * 4);  // 16 slices: 17 planes of floats
+  EXPECT_LT(num(t.rows[1], "rmse_outside_band"), num(t.rows[7], "rmse_outside_band"));
+  EXPECT_THROW((void)run_shadow_frontier(parse_workload_spec("f.csv"), f), std::invalid_argument);
 }
 
 TEST(Harness, Fig8KeepsTheTableAndTheFragmentCountWhileTheQuadsStack) {

@@ -10,6 +10,7 @@
 #include "habuffer/lossless_build.h"
 #include "habuffer/technique_descriptor.h"
 #include "habuffer/transmittance.h"
+#include "habuffer/opacity_shadow_map.h"
 #include "test_support.h"
 
 namespace habuffer {
@@ -215,6 +216,35 @@ TEST(Transmittance, ALightBufferWithoutOpacityOrListsIsRefusedByName) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("wboit stores no lists"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace habuffer
+
+namespace habuffer {
+namespace {
+
+// The opacity shadow map baseline: exact at its planes, linear between them,
+// and refusing what it cannot hold.
+TEST(OpacityShadowMap, PlanesHoldTheProductInFrontAndReceiversBetweenThemInterpolate) {
+  OpacityShadowMap map({2, 1}, 4);  // planes at t = 0, 0.25, 0.5, 0.75, 1
+  const Fragment layers[] = {{0, 0, 0.1f, 0xFFFFFF80u}, {0, 0, 0.6f, 0xFFFFFF40u}, {1, 0, 0.3f, 0xFFFFFFFFu}};
+  map.insert(layers);
+  const float a = 1.0f - 128.0f / 255.0f, b = 1.0f - 64.0f / 255.0f;
+  EXPECT_EQ(map.transmittance(0, 0, 0.0f), 1.0f);
+  EXPECT_EQ(map.transmittance(0, 0, 0.25f), a);
+  EXPECT_EQ(map.transmittance(0, 0, 0.5f), a);
+  EXPECT_EQ(map.transmittance(0, 0, 1.0f), a * b);
+  EXPECT_FLOAT_EQ(map.transmittance(0, 0, 0.125f), 0.5f * (1.0f + a));  // halfway through the first slice
+  EXPECT_EQ(map.transmittance(1, 0, 0.5f), 0.0f);                       // an opaque fragment in front
+  EXPECT_EQ(map.memory_bytes(), 2u * 5u * sizeof(float));
+  EXPECT_THROW(OpacityShadowMap({0, 4}, 4), std::invalid_argument);
+  EXPECT_THROW(OpacityShadowMap({4, 4}, 0), std::invalid_argument);
+  const Fragment off[] = {{2, 0, 0.5f, 1u}};
+  EXPECT_THROW(map.insert(off), std::out_of_range);
+  const Fragment deep[] = {{0, 0, 1.5f, 1u}};
+  EXPECT_THROW(map.insert(deep), std::invalid_argument);
+  EXPECT_THROW((void)map.transmittance(0, 1, 0.5f), std::out_of_range);
 }
 
 }  // namespace

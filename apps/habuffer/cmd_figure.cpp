@@ -7,6 +7,7 @@
 #include "harness_cli.h"
 #include "habuffer/harness/figures.h"
 #include "habuffer/harness/frontier.h"
+#include "habuffer/harness/shadow_frontier.h"
 #include "habuffer/number_text.h"
 #include "habuffer/option_rules.h"
 #include "habuffer/progress.h"
@@ -120,6 +121,26 @@ harness::ResultTable run_frontier(FigureRun& r) {
   return run_bench_figure(r, "frontier", b);
 }
 
+harness::ResultTable run_shadows(FigureRun& r) {
+  r.args.refuse_unless(false, {"path", "tau"},
+                       "on figure shadows (the light pass runs on gl; its other light buffers are built on the cpu)");
+  figure_sizes(r.args, r.s, "shadows");
+  const std::vector<harness::WorkloadSpec> scene = parse_scenes(r.args, "scene");
+  if (scene.size() != 1) throw UsageError("--scene takes one scene for figure shadows");
+  if (!scene[0].fragments.empty())
+    throw UsageError("option --scene: the shadow frontier lights a scene, not a fragment file");
+  harness::ShadowFrontierSettings f;
+  f.size = r.s.size;
+  f.light_size = r.args.size("light-size");
+  f.repeats = r.s.repeats;
+  f.threads = r.s.threads;
+  f.max_receivers = r.args.u64_in("receivers");
+  f.on_progress = r.s.on_progress;
+  r.outputs = parse_outputs(r.args, {scene[0]});
+  const auto context = context_for(true, "figure");
+  return harness::run_shadow_frontier(scene[0], f);
+}
+
 harness::ResultTable run_table1(FigureRun& r) {
   r.args.refuse_unless(false, {"path", "repeats", "threads", "tau"}, "on table1 (sizes only, nothing is rendered)");
   const std::vector<Extent> size = parse_sizes(r.args);
@@ -160,12 +181,18 @@ const std::vector<Figure>& figures() {
         {"picks", "F.json[,F.csv]", "", "the fastest configuration at each target"},
         {"targets", "DB,..", "30,40,50", "the picks' psnr targets (with --picks)"}},
        run_frontier},
+      {"shadows", "  the shadow frontier: light buffers (ha exact and culled, k-buffer, opacity shadow maps) from one\n"
+                  "  light pass, RMSE of T against the ray-traced reference vs memory vs build time\n",
+       {{"scene", "S", "hairball", "the scene"},
+        {"light-size", "WxH", "512x512", "the light map"},
+        {"receivers", "N", "0", "receivers checked, every k-th (0: all)"}},
+       run_shadows},
   };
   return list;
 }
 
 std::string figure_help() {
-  std::string s = CommandSpec{"figure fig2|fig8|fig10|table1|frontier --out F.json[,F.csv] [OPTIONS]",
+  std::string s = CommandSpec{"figure fig2|fig8|fig10|table1|frontier|shadows --out F.json[,F.csv] [OPTIONS]",
                               figure_common(false), ""}
                       .help();
   for (const Figure& f : figures()) {
@@ -188,7 +215,7 @@ void refuse_other_figures_options(const Args& all, const Figure& figure) {
 
 int run_figure(const std::vector<std::string>& argv) {
   if (print_help(argv, figure_help()) || argv.empty()) {
-    if (argv.empty()) throw UsageError("name a figure: fig2, fig8, fig10, table1 or frontier");
+    if (argv.empty()) throw UsageError("name a figure: fig2, fig8, fig10, table1, frontier or shadows");
     return 0;
   }
   const std::string name = argv[0];
@@ -201,7 +228,7 @@ int run_figure(const std::vector<std::string>& argv) {
   const Args all(rest, every);
   const auto figure = std::find_if(figures().begin(), figures().end(), [&](const Figure& f) { return f.name == name; });
   if (figure == figures().end())
-    throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier)");
+    throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier, shadows)");
   refuse_other_figures_options(all, *figure);
   const CommandSpec spec{"", figure_common(name == "table1") + figure->own, ""};
   const Args args(rest, spec);

@@ -41,6 +41,9 @@ struct ShadowSettings {
   /// Read the light buffer back after the frames (RenderResult::light_buffer:
   /// the accuracy check's records) and the view's opaque t per pixel.
   bool read_back = false;
+  /// Capture the light pass's fragments (RenderResult::light_fragments: other
+  /// light buffers built from the same stream, the shadow frontier).
+  bool capture = false;
   /// Throws std::invalid_argument naming the field (an empty map, a bad
   /// slope, tau outside [0, 1), BufferConfig's rules).
   void validate() const;
@@ -89,6 +92,8 @@ class LightPass {
   [[nodiscard]] const gl::GlLightBindings& bindings() const;
   /// The light buffer, read back to the CPU (tests: the CPU path's lookup over the same records).
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const;
+  /// The fragments the last build captured, in arrival order (empty unless ShadowSettings::capture).
+  [[nodiscard]] std::vector<Fragment> read_capture() const;
   /// What was built so far (lookup_ms and lookup_pixels are the caller's).
   [[nodiscard]] const LightStats& stats() const { return stats_; }
 

@@ -136,6 +136,7 @@ struct RenderResult {
   /// last frame's opaque t per pixel (2 where no opaque surface).
   std::unique_ptr<FragmentBuffer> light_buffer;
   std::vector<float> opaque_depth;
+  std::vector<Fragment> light_fragments;  ///< with ShadowSettings::capture: the light pass's fragments
   Camera camera;  ///< the last frame's camera (render_scene)
 };
 

@@ -27,7 +27,10 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <span>
+#include <vector>
 
 #include "habuffer/camera.h"
 #include "habuffer/fragment.h"
@@ -59,6 +62,36 @@ struct ShadowAccuracy {
   double rmse_outside = 0.0, max_error_outside = 0.0;  ///< outside the bands
   double ms = 0.0;                    ///< wall clock of the comparison
 };
+
+/// What the reference says at one receiver: where it falls in the light,
+/// its exact T, and whether it lies in a band.
+struct ShadowTruth {
+  std::optional<LightSample> sample;  ///< nullopt: outside the light's frustum (lit)
+  double reference = 1.0;             ///< T ray-traced in double
+  bool silhouette = false, depth = false;  ///< in the silhouette band, the depth band
+};
+/// The truths at a view's receivers (every stride-th).
+struct ShadowTruths {
+  std::vector<ShadowTruth> at;
+  std::uint32_t stride = 1;
+  double ms = 0.0;  ///< wall clock of the ray tracing
+};
+/// A light buffer's T at light pixel (x, y) for a receiver at light depth t.
+using ShadowLookup = std::function<float(std::uint32_t x, std::uint32_t y, float t)>;
+
+/// The truths at `receivers` (every k-th for k = ceil(receivers /
+/// max_receivers) when max_receivers is not 0): ray-traced once, scored for
+/// any number of light buffers. `layout` and `bias` are the exact light
+/// buffer's, whose codes fix the depth band. Throws std::invalid_argument
+/// for receivers without a camera.
+ShadowTruths shadow_truths(const TransmittanceReference& reference, const LightView& light, RecordLayout layout,
+                           std::uint32_t bias, const ShadowReceivers& receivers, std::uint64_t max_receivers = 0);
+/// `lookup` scored against `truths` (see ShadowAccuracy).
+ShadowAccuracy score_shadows(const ShadowTruths& truths, const ShadowLookup& lookup);
+/// The lookup of a light buffer that stores lists (habuffer/transmittance.h,
+/// the GPU's walk); it borrows `light_buffer`. Throws std::invalid_argument
+/// for L32 records.
+ShadowLookup buffer_lookup(const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias);
 
 /// Compares `light_buffer` (built from `light`, records of `layout`, looked
 /// up with `bias` codes) with `reference` at every receiver, or at every
