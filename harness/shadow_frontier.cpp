@@ -93,7 +93,7 @@ std::vector<Variant> variants(Extent light_size, std::uint64_t fragments, std::u
 void set_scores(ResultRow& row, const ShadowAccuracy& a) {
   row.set("rmse", a.rmse).set("max_error", a.max_error).set("within_fraction", a.within_fraction)
       .set("rmse_outside_band", a.rmse_outside).set("max_error_outside_band", a.max_error_outside)
-      .set("receivers", a.receivers).set("band", a.band);
+      .set("receivers", a.receivers).set("band", a.band).set("self_shadow", a.self_shadow);
 }
 
 }  // namespace

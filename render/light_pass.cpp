@@ -88,6 +88,14 @@ LightPass::LightPass(const Scene& scene, const ShadowSettings& settings, const g
 LightPass::~LightPass() = default;
 
 bool LightPass::build() {
+  try {
+    return gather();
+  } catch (const gl::GlError& e) {
+    throw gl::GlError(std::string("the light buffer (--light-size ") + settings_.light.size.str() + "): " + e.what());
+  }
+}
+
+bool LightPass::gather() {
   glFinish();
   const auto t0 = std::chrono::steady_clock::now();
   const Camera& camera = stats_.view.camera;

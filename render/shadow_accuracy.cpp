@@ -15,9 +15,14 @@ namespace habuffer {
 namespace {
 
 constexpr double kStep = 1.0 / 255.0;  // the goal's tolerance: one step of an 8-bit colour
-// Depth codes of rounding: a float32 t carries about one code at 24 depth
-// bits (its ulp near 1), and the vertex transforms that make it a few more.
-constexpr double kCodeSlack = 4.0;
+// Depth codes of rounding in a light's t: t = (eye distance - near) / (far -
+// near) in float32 carries the eye distance's rounding, up to ulp(far) =
+// far * 2^-23, over the depth range, in codes; the transforms that make the
+// eye distance take a few of those. Four of them, and at least 4 codes.
+double code_slack(const LightView& light, const RecordLayout& layout) {
+  const double near = light.camera.near_plane, far = light.camera.far_plane;
+  return std::max(4.0, 4.0 * std::ldexp(far / (far - near), -23) * layout.max_code());
+}
 constexpr double kSnap = 1.0 / 128.0;  // light pixels: twice the rasterizers' sub-pixel step
 
 // A receiving point: pixel centre and depth t in the view.
@@ -56,13 +61,13 @@ double product_beyond(const Hits& hits, double self_distance) {
 }
 
 // Whether rounding to depth codes may change what the lookup counts along
-// these hits: a surface within kCodeSlack codes of the bias boundary, or two
-// surfaces beyond it within kCodeSlack codes of each other (at one code
+// these hits: a surface within `slack` (a distance) of the bias boundary, or
+// two surfaces beyond it within `slack` of each other (at one code
 // equal records merge, SPEC 10; near it, float rounding decides).
-bool near_code_boundary(const Hits& hits, double window_lo, double window_hi, double code) {
+bool near_code_boundary(const Hits& hits, double window_lo, double window_hi, double slack) {
   for (std::size_t i = 0; i < hits.size(); ++i) {
     if (hits[i].distance >= window_lo && hits[i].distance <= window_hi) return true;
-    if (i > 0 && hits[i - 1].distance > window_lo && hits[i].distance - hits[i - 1].distance < kCodeSlack * code)
+    if (i > 0 && hits[i - 1].distance > window_lo && hits[i].distance - hits[i - 1].distance < slack)
       return true;
   }
   return false;
@@ -72,7 +77,9 @@ ShadowTruth truth_at(const TransmittanceReference& reference, const LightView& l
                      std::uint32_t bias, glm::dvec3 p) {
   const double b = bias;
   ShadowTruth o;
-  o.reference = product_beyond(reference.hits(p, light), code_distance(light, layout, p, b + 0.5));
+  const Hits at_point = reference.hits(p, light);
+  const double skipped = code_distance(light, layout, p, b + 0.5);
+  o.reference = product_beyond(at_point, skipped);
   o.sample = light.sample(glm::vec3(p));
   if (const std::optional<LightSample>& s = o.sample) {
     // What the light pixel's records sampled: the ray through its centre, at the receiver's light depth.
@@ -81,6 +88,12 @@ ShadowTruth truth_at(const TransmittanceReference& reference, const LightView& l
     const double code = code_distance(light, layout, centre, 1.0);
     const double t_centre = product_beyond(at_centre, code * (b + 0.5));
     o.silhouette = std::abs(t_centre - o.reference) > kStep;
+    // Self-shadowing: the centre ray meets a triangle of the receiver's own
+    // surface (one its own ray skipped as itself) beyond the bias.
+    for (const TransmittanceReference::Hit& own : at_point)
+      if (own.distance <= skipped)
+        for (const TransmittanceReference::Hit& h : at_centre)
+          o.self_shadow = o.self_shadow || (h.triangle == own.triangle && h.distance > code * (b + 0.5));
     // An edge within the rasterizer's snapping of the centre (sub-pixel
     // precision: 1/256 of a pixel on llvmpipe and NVIDIA) may be covered or
     // not whatever the exact ray says: the band takes those too.
@@ -89,7 +102,8 @@ ShadowTruth truth_at(const TransmittanceReference& reference, const LightView& l
       const glm::dvec3 q = unproject(light.camera, light.size, glm::dvec2(s->pixel) + 0.5 + d, double{s->depth});
       o.silhouette = product_beyond(reference.hits(q, light), code * (b + 0.5)) != t_centre;
     }
-    o.depth = near_code_boundary(at_centre, code * (b - kCodeSlack), code * (b + kCodeSlack), code);
+    const double slack = code_slack(light, layout);
+    o.depth = near_code_boundary(at_centre, code * (b - slack), code * (b + slack), code * slack);
   }
   return o;
 }
@@ -131,6 +145,7 @@ ShadowAccuracy score_shadows(const ShadowTruths& truths, const ShadowLookup& loo
     ++a.receivers;
     a.silhouette_band += o.silhouette;
     a.depth_band += o.depth;
+    a.self_shadow += o.self_shadow;
     sum += error * error;
     a.max_error = std::max(a.max_error, error);
     if (o.silhouette || o.depth) {

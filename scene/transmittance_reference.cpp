@@ -39,7 +39,7 @@ TransmittanceReference::TransmittanceReference(const Scene& scene) {
     for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
       const glm::dvec3 a(m.positions.at(m.indices[i])), b(m.positions.at(m.indices[i + 1])),
           c(m.positions.at(m.indices[i + 2]));
-      triangles_.push_back({a, b - a, c - a, alpha});
+      triangles_.push_back({a, b - a, c - a, alpha, static_cast<std::uint32_t>(triangles_.size())});
     }
   }
   const Bounds bounds = scene.bounds();
@@ -160,7 +160,7 @@ std::vector<TransmittanceReference::Hit> TransmittanceReference::hits(glm::dvec3
       continue;
     }
     for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
-      if (const double d = hit(triangles_[i], s); d >= 0.0) out.push_back({d, triangles_[i].alpha});
+      if (const double d = hit(triangles_[i], s); d >= 0.0) out.push_back({d, triangles_[i].alpha, triangles_[i].id});
   }
   std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
   return out;

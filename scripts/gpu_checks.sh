@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The GPU path's checks on a machine with a real GPU (NVIDIA, headless EGL),
 # from the bundle of scripts/device_bundle.sh, in one command of under 10
-# minutes: what the machine is, the GL tests, issue 26's measurements (render's
+# minutes: what the machine is, the GL tests, issue 20's translucent shadows
+# (Fig. 2 with and without them, the shadow frontier), issue 26's measurements (render's
 # gather with and without its per-fragment bookkeeping, the module's
 # read-first variants, the captured hairball stream through the compute entry
 # in arrival and in pixel order, the compute entry at 2^24 fragments, the
@@ -31,7 +32,7 @@ case "${1:-}" in
   --dry-run) mode=dry; shift ;;
 esac
 out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
-all_steps=info,gl-tests,gather,harness,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+all_steps=info,gl-tests,shadows,gather,harness,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
 steps=${2:-$all_steps}
 budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
@@ -82,9 +83,11 @@ sharded() {
 if [[ $mode == smoke ]]; then
   sizes=64x64 repeats=1 sides='256' gtest_filter='GlBookkeeping.*:GlFrame.*:Render.Planes*'
   render_size=96x96 bench_time=0.05 bench_reps=1 log2n='18' l64=emulated64  # llvmpipe has no native64
+  fig2_size=64x64 light_size=128x128
 else
   sizes=512x512,1024x1024 repeats=3 sides='512|1024' gtest_filter='*'
   render_size=2048x2048 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
+  fig2_size=1024x1024 light_size=2048x2048
 fi
 bench_flags=(--benchmark_min_time="$bench_time" --benchmark_repetitions="$bench_reps"
              --benchmark_enable_random_interleaving=true --benchmark_out_format=json)
@@ -98,6 +101,18 @@ if want info; then
 fi
 # Every GL test in the default mode (native64 on NVIDIA).
 want gl-tests && sharded 4 120 gl-tests habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
+# Issue 20: seed 000's Fig. 2 with and without translucent shadows (hairball,
+# the four opacities, cull 0.99 in the culled rows: the paper's frame ratio
+# 0.63-0.71 on a GTX 680), a render with shadows' stats, and the shadow
+# frontier (light buffers scored against the ray-traced reference).
+if want shadows; then
+  step 150 fig2-shadows habuffer figure fig2 --quiet --size "$fig2_size" --repeats "$repeats" \
+    --out fig2-shadows.json,fig2-shadows.csv
+  step 60 render-shadows habuffer render --scene hairball --size "$fig2_size" --shadows --light-size "$light_size" \
+    --quiet --stats render-shadows.json
+  step 120 shadow-frontier habuffer figure shadows --quiet --scene hairball --size 512x512 \
+    --light-size "$light_size" --receivers 200000 --repeats 1 --out shadow-frontier.json,shadow-frontier.csv
+fi
 # render's gather in steady state, with and without the bookkeeping of issue
 # 26 part 5 (bookkeeping:1 = the slot-write tally and the per-pixel counts
 # render paid in every frame before), and native64 with and without the

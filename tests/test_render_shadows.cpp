@@ -111,6 +111,28 @@ TEST(ShadowRender, AnUnoccludedPlaneIsLitEverywhereFacingOrSlantedWithinTheBiasS
   }
 }
 
+// The bias rule's residue: a plane steeper than the bias slope shadows
+// itself at some pixels, which the accuracy check counts as self_shadow
+// (inside the silhouette band); one within the slope never does.
+TEST(ShadowRender, APlaneSteeperThanTheBiasSlopeShadowsItselfAndTheCheckCountsIt) {
+  gl_context();
+  for (const float tilt : {30.0f, 84.0f}) {  // tan 84 = 9.5 > the default slope 2
+    SCOPED_TRACE(std::to_string(tilt) + " degrees");
+    Scene scene;
+    scene.name = "plane";
+    scene.meshes = {square("plane", 0.0f, 1.0f, 1.0f, tilt)};
+    RenderSettings s = shadowed({64, 64}, {0.0f, -1.0f, 0.0f}, {64, 64});
+    s.camera.pitch = 10.0f;
+    s.shadows->read_back = true;
+    const RenderResult r = render_scene(scene, s);
+    const ShadowAccuracy a = accuracy(scene, s, r);
+    ASSERT_GT(a.receivers, 100u);
+    EXPECT_LE(a.self_shadow, a.silhouette_band);
+    if (tilt < 60.0f) EXPECT_EQ(a.self_shadow, 0u);
+    else EXPECT_GT(a.self_shadow, 0u);
+  }
+}
+
 TEST(ShadowRender, TheLightBufferIsBuiltOnceWhileTheCameraOrbits) {
   gl_context();
   RenderSettings s = shadowed({64, 64}, {-0.3f, -1.0f, 0.2f}, {96, 96});

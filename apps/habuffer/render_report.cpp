@@ -62,6 +62,7 @@ void light(JsonWriter& json, const ShadowSettings& set, const LightStats& l, con
     // habuffer/render/shadow_accuracy.h defines the bands and the reference.
     json.key("reference").begin_object().field("receivers", a->receivers).field("stride", a->stride);
     json.field("silhouette_band", a->silhouette_band).field("depth_band", a->depth_band).field("band", a->band);
+    json.field("self_shadow", a->self_shadow);
     json.field("within_1_255", a->within).field("within_fraction", a->within_fraction);
     json.field("rmse", a->rmse).field("max_error", a->max_error);
     json.field("rmse_outside_band", a->rmse_outside).field("max_error_outside_band", a->max_error_outside);
@@ -174,10 +175,11 @@ void print_render_summary(const RenderSummary& s, const RenderOutputs& outputs) 
   }
   if (const std::optional<ShadowAccuracy>& a = outputs.shadow_error)
     std::printf("shadow T vs reference: %.4f%% of %llu receivers outside the bands within 1/255 (bands %.2f%%: "
-                "silhouette %llu, depth %llu); RMSE %.4f, max error %.4f\n",
+                "silhouette %llu of which self-shadowed %llu, depth %llu); RMSE %.4f, max error %.4f\n",
                 100.0 * a->within_fraction, static_cast<unsigned long long>(a->receivers - a->band),
                 a->receivers > 0 ? 100.0 * static_cast<double>(a->band) / static_cast<double>(a->receivers) : 0.0,
-                static_cast<unsigned long long>(a->silhouette_band), static_cast<unsigned long long>(a->depth_band),
+                static_cast<unsigned long long>(a->silhouette_band), static_cast<unsigned long long>(a->self_shadow),
+                static_cast<unsigned long long>(a->depth_band),
                 a->rmse, a->max_error);
   std::string files;
   for (const std::string& f : {outputs.image, outputs.stats, outputs.reference})

@@ -37,6 +37,7 @@ class TransmittanceReference {
   struct Hit {
     double distance;  ///< from the receiving point, along the segment
     double alpha;     ///< the triangle's opacity, as packed
+    std::uint32_t triangle;  ///< which triangle: its index over the scene's meshes in order
   };
   /// Every crossing of the segment from `point` to the light, nearest the
   /// point first (transmittance() is the product of 1 - alpha over those
@@ -49,6 +50,7 @@ class TransmittanceReference {
   struct Triangle {
     glm::dvec3 a, e1, e2;  // a vertex and the two edges from it
     double alpha;          // its mesh's opacity, as packed
+    std::uint32_t id;      // its index over the scene's meshes in order (the hierarchy reorders)
   };
   struct Node {
     glm::dvec3 lo, hi;          // bounds

@@ -85,6 +85,7 @@ class LightPass {
   /// Gathers the light buffer from the light's view (again only when the
   /// light moved: the render calls it once). Returns whether every fragment
   /// was stored (a given table may drop; an automatic one grows until none is).
+  /// Throws GlError naming the light buffer (a table beyond this context's limits).
   bool build();
   /// Binds the light buffer and its block for the view's passes.
   void bind();
@@ -99,6 +100,7 @@ class LightPass {
 
  private:
   struct Gpu;
+  bool gather();  // build's work
   std::unique_ptr<Gpu> gpu_;
   ShadowSettings settings_;
   LightStats stats_;

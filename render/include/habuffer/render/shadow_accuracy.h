@@ -12,16 +12,18 @@
 /// - the silhouette band: the reference along the light pixel's centre ray
 ///   (at the receiver's light depth) differs from the reference at the
 ///   receiver's own point by more than 1/255 (an edge crosses the light
-///   pixel, or a surface steeper than the bias rule's slope);
+///   pixel, or a surface steeper than the bias rule's slope: those are
+///   counted apart as self_shadow, the bias rule's residue);
 /// - the silhouette band also takes receivers whose light pixel has an edge
 ///   within 1/128 pixel of its centre (the rasterizers snap vertices to
 ///   1/256 pixel, so coverage there is the rasterizer's, not the ray's);
 /// - the depth band: along the light pixel's centre ray, some surface lies
-///   within 4 codes of the bias boundary (bias codes from the receiver),
-///   where rounding decides whether it shadows, or two surfaces in front
-///   lie within 4 codes of each other (at one code equal records merge,
-///   SPEC 10; float32 t carries about a code of rounding at 24 depth bits,
-///   the vertex transforms a few more).
+///   within the rounding slack of the bias boundary (bias codes from the
+///   receiver), where rounding decides whether it shadows, or two surfaces
+///   in front lie within the slack of each other (at one code equal records
+///   merge, SPEC 10; near that, rounding decides). The slack is four times
+///   float32's rounding of the light's t, ulp(far) / (far - near) in codes
+///   (t is an eye distance over the depth range), and at least 4 codes.
 /// The reference skips, as the receiver's own surface, hits nearer than
 /// bias + 1/2 codes (the lookup skips records within bias codes).
 #pragma once
@@ -56,6 +58,9 @@ struct ShadowAccuracy {
   std::uint64_t silhouette_band = 0;  ///< receivers in the silhouette band
   std::uint64_t depth_band = 0;       ///< receivers in the depth band
   std::uint64_t band = 0;             ///< in either
+  /// Of the silhouette band: receivers whose own surface shadows them (the
+  /// bias rule's measured residue: surfaces steeper than its slope).
+  std::uint64_t self_shadow = 0;
   std::uint64_t within = 0;           ///< outside the bands, |T - T_ref| <= 1/255
   double within_fraction = 1.0;       ///< within / receivers outside the bands
   double rmse = 0.0, max_error = 0.0;  ///< over every receiver
@@ -69,6 +74,7 @@ struct ShadowTruth {
   std::optional<LightSample> sample;  ///< nullopt: outside the light's frustum (lit)
   double reference = 1.0;             ///< T ray-traced in double
   bool silhouette = false, depth = false;  ///< in the silhouette band, the depth band
+  bool self_shadow = false;  ///< its own surface crosses its light pixel's centre ray beyond the bias (steeper than the bias slope)
 };
 /// The truths at a view's receivers (every stride-th).
 struct ShadowTruths {
