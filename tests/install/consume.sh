@@ -37,6 +37,7 @@ cmake -S "$source/examples" -B "$work/examples" -G Ninja -DCMAKE_BUILD_TYPE=Rele
 cmake --build "$work/examples" >"$work/build.log" 2>&1 || { cat "$work/build.log"; fail "building the examples failed"; }
 "$work/examples/cpu_only" || fail "cpu_only failed"
 "$work/examples/host_app" || fail "host_app failed"
+"$work/examples/host_shadows" || fail "host_shadows failed"
 
 echo "== a version the package must refuse"
 mkdir -p "$work/too_new"
