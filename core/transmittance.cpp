@@ -1,5 +1,7 @@
 #include "habuffer/transmittance.h"
 
+#include <algorithm>
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -43,6 +45,18 @@ float transmittance(const FragmentBuffer& light, std::uint32_t x, std::uint32_t 
   thread_local std::vector<ListEntry> entries;
   light.list(x, y, entries);
   return list_transmittance(entries, code, bias);
+}
+
+float transmittance_pcf(const FragmentBuffer& light, float wx, float wy, std::uint32_t code, std::uint32_t bias) {
+  const Extent size = light.screen();
+  const float gx = std::max(wx - 0.5f, 0.0f), gy = std::max(wy - 0.5f, 0.0f);
+  const auto bx = std::min(static_cast<std::uint32_t>(gx), size.x - 1), by = std::min(static_cast<std::uint32_t>(gy), size.y - 1);
+  const float fx = gx - static_cast<float>(bx), fy = gy - static_cast<float>(by);
+  const std::uint32_t nx = std::min(bx + 1, size.x - 1), ny = std::min(by + 1, size.y - 1);
+  const auto mix = [](float a, float b, float f) { return a * (1.0f - f) + b * f; };  // GLSL's mix
+  const float low = mix(transmittance(light, bx, by, code, bias), transmittance(light, nx, by, code, bias), fx);
+  const float high = mix(transmittance(light, bx, ny, code, bias), transmittance(light, nx, ny, code, bias), fx);
+  return mix(low, high, fy);
 }
 
 }  // namespace habuffer

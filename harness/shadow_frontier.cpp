@@ -79,8 +79,8 @@ std::vector<Variant> variants(Extent light_size, std::uint64_t fragments, std::u
                    auto map = std::make_shared<OpacityShadowMap>(light_size, n);
                    map->insert(f);
                    Built out;
-                   out.lookup = [m = map.get()](std::uint32_t x, std::uint32_t y, float t) {
-                     return m->transmittance(x, y, t);
+                   out.lookup = [m = map.get()](const LightSample& at) {
+                     return m->transmittance(at.pixel.x, at.pixel.y, at.depth);
                    };
                    out.memory_bytes = map->memory_bytes();
                    out.stored = f.size();

@@ -80,8 +80,8 @@ LightPass::LightPass(const Scene& scene, const ShadowSettings& settings, const g
   settings_.validate();
   stats_.view = frame_light(scene, settings_.light);
   stats_.size = settings_.light.size;
-  stats_.bias_codes =
-      shadow_bias_codes(stats_.view, settings_.max_slope, light_config(settings_).record_layout().depth_bits());
+  const float slope = settings_.filter == ShadowFilter::Pcf ? 2.0f * settings_.max_slope : settings_.max_slope;
+  stats_.bias_codes = shadow_bias_codes(stats_.view, slope, light_config(settings_).record_layout().depth_bits());
   gpu_ = std::make_unique<Gpu>(scene, settings_, view, stats_.view, stats_.bias_codes);
 }
 
@@ -123,7 +123,11 @@ bool LightPass::gather() {
 
 void LightPass::bind() { gpu_->lookup.bind(); }
 
-const gl::GlLightBindings& LightPass::bindings() const { return gpu_->lookup.bindings(); }
+ShadowReceiving LightPass::receiving() const {
+  return {gpu_->lookup.bindings(), settings_.filter == ShadowFilter::Pcf};
+}
+
+std::string to_string(ShadowFilter f) { return f == ShadowFilter::Pcf ? "pcf" : "nearest"; }
 
 std::vector<Fragment> LightPass::read_capture() const {
   return settings_.capture ? gpu_->buffer.read_capture() : std::vector<Fragment>{};

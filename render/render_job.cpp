@@ -84,7 +84,7 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   SceneRenderer renderer(scene, screen, driver,
                          SceneRenderer::GatherCounts{driver.needs_call_count(),
                                                      s.per_pixel_culled && s.config.early_cull_tau > 0.0f},
-                         light ? std::optional(light->bindings()) : std::nullopt);
+                         light ? std::optional(light->receiving()) : std::nullopt);
   const auto bind_light = [&] {
     if (light) light->bind();
   };

@@ -35,19 +35,22 @@ std::string gather_code() { return std::string(render::kShading) + render::kGath
 // Translucent shadows: the light lookup and R_SHADOWS (shading.glsl) before
 // the shading, after the technique's module (the gather) or in a head of its
 // own (the passes without one).
-std::string shadow_part(const std::optional<gl::GlLightBindings>& shadows, gl::AtomicMode mode) {
-  return shadows ? gl::light_lookup_part(*shadows, mode) + "#define R_SHADOWS\n" : std::string();
+std::string shadow_defines(const ShadowReceiving& shadows) {
+  return std::string("#define R_SHADOWS\n") + (shadows.pcf ? "#define R_SHADOWS_PCF\n" : "");
 }
-std::string standalone_head(const std::optional<gl::GlLightBindings>& shadows, gl::AtomicMode mode) {
-  return shadows ? gl::light_lookup_shader_head(*shadows, mode) + "#define R_SHADOWS\n"
+std::string shadow_part(const std::optional<ShadowReceiving>& shadows, gl::AtomicMode mode) {
+  return shadows ? gl::light_lookup_part(shadows->bindings, mode) + shadow_defines(*shadows) : std::string();
+}
+std::string standalone_head(const std::optional<ShadowReceiving>& shadows, gl::AtomicMode mode) {
+  return shadows ? gl::light_lookup_shader_head(shadows->bindings, mode) + shadow_defines(*shadows)
                  : std::string("#version 450 core\n");
 }
 
-std::string opaque_source(const std::optional<gl::GlLightBindings>& shadows, gl::AtomicMode mode) {
+std::string opaque_source(const std::optional<ShadowReceiving>& shadows, gl::AtomicMode mode) {
   return standalone_head(shadows, mode) + render::kShading + render::kOpaqueFragment;
 }
 
-std::string shadow_map_source(const gl::GlLightBindings& shadows, gl::AtomicMode mode) {
+std::string shadow_map_source(const ShadowReceiving& shadows, gl::AtomicMode mode) {
   return standalone_head(shadows, mode) + render::kShading + render::kShadowMapFragment;
 }
 
@@ -62,7 +65,7 @@ SceneRenderer::GatherCounts SceneRenderer::GatherCounts::for_driver(const gl::Gl
 }
 
 SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b, Technique technique,
-                                                     GatherCounts counts, std::optional<gl::GlLightBindings> shadows) {
+                                                     GatherCounts counts, std::optional<ShadowReceiving> shadows) {
   Sources s;
   s.vertex = render::kSceneVertex;
   s.opaque_fragment = opaque_source(shadows, mode);
@@ -76,7 +79,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
     : SceneRenderer(scene, screen, buffer, GatherCounts::for_driver(buffer)) {}
 
 SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts,
-                             std::optional<gl::GlLightBindings> shadows)
+                             std::optional<ShadowReceiving> shadows)
     : screen_(screen),
       counts_(counts),
       buffer_(buffer),

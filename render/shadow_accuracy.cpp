@@ -140,7 +140,7 @@ ShadowAccuracy score_shadows(const ShadowTruths& truths, const ShadowLookup& loo
   double sum = 0.0, sum_outside = 0.0;
   for (const ShadowTruth& o : truths.at) {
     // Outside the light's frustum: lit, as the GPU's lookup says.
-    const double t = o.sample ? double{lookup(o.sample->pixel.x, o.sample->pixel.y, o.sample->depth)} : 1.0;
+    const double t = o.sample ? double{lookup(*o.sample)} : 1.0;
     const double error = std::abs(t - o.reference);
     ++a.receivers;
     a.silhouette_band += o.silhouette;
@@ -164,18 +164,22 @@ ShadowAccuracy score_shadows(const ShadowTruths& truths, const ShadowLookup& loo
   return a;
 }
 
-ShadowLookup buffer_lookup(const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias) {
+ShadowLookup buffer_lookup(const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias, bool pcf) {
   if (layout.layout() != Layout::L64)
     throw std::invalid_argument("shadow accuracy: a light buffer of L32 records carries no opacity");
-  return [&light_buffer, layout, bias](std::uint32_t x, std::uint32_t y, float t) {
-    return transmittance(light_buffer, x, y, layout.depth_code(t), bias);
+  if (pcf)
+    return [&light_buffer, layout, bias](const LightSample& at) {
+      return transmittance_pcf(light_buffer, at.window.x, at.window.y, layout.depth_code(at.depth), bias);
+    };
+  return [&light_buffer, layout, bias](const LightSample& at) {
+    return transmittance(light_buffer, at.pixel.x, at.pixel.y, layout.depth_code(at.depth), bias);
   };
 }
 
 ShadowAccuracy measure_shadow_accuracy(const TransmittanceReference& reference, const LightView& light,
                                        const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias,
-                                       const ShadowReceivers& receivers, std::uint64_t max_receivers) {
-  const ShadowLookup lookup = buffer_lookup(light_buffer, layout, bias);
+                                       const ShadowReceivers& receivers, std::uint64_t max_receivers, bool pcf) {
+  const ShadowLookup lookup = buffer_lookup(light_buffer, layout, bias, pcf);
   return score_shadows(shadow_truths(reference, light, layout, bias, receivers, max_receivers), lookup);
 }
 

@@ -115,7 +115,7 @@ std::optional<LightSample> LightView::sample(glm::vec3 p) const {
   if (!map.habuffer_light_map(camera.view, camera.projection, glm::vec2(size.x, size.y), camera.near_plane,
                               camera.far_plane, p, window, t))
     return std::nullopt;
-  return LightSample{glm::uvec2(static_cast<std::uint32_t>(window.x), static_cast<std::uint32_t>(window.y)), t};
+  return LightSample{glm::uvec2(static_cast<std::uint32_t>(window.x), static_cast<std::uint32_t>(window.y)), t, window};
 }
 
 float LightView::pixel_world_size(float t) const {

@@ -133,6 +133,31 @@ TEST(ShadowRender, APlaneSteeperThanTheBiasSlopeShadowsItselfAndTheCheckCountsIt
   }
 }
 
+// PCF: where the four light pixels around a receiver agree (off the quads'
+// edges) it gives the nearest lookup's T; across an edge, a value between.
+TEST(ShadowRender, PcfGivesTheNearestLookupsTOffTheEdgesAndBlendsAcrossThem) {
+  gl_context();
+  const Scene scene = quads_over_floor();
+  const RenderSettings nearest = shadowed({96, 96}, {0.0f, -1.0f, 0.0f}, {128, 128});
+  RenderSettings pcf = nearest;
+  pcf.shadows->filter = ShadowFilter::Pcf;
+  const RenderResult a = render_scene(scene, nearest), b = render_scene(scene, pcf);
+  ASSERT_EQ(a.shadow_map.size(), b.shadow_map.size());
+  std::size_t covered = 0, equal = 0, between = 0;
+  for (std::size_t i = 0; i < a.shadow_map.size(); ++i) {
+    if (a.shadow_map[i] < 0.0f) continue;
+    ++covered;
+    ASSERT_GE(b.shadow_map[i], 0.0f);
+    ASSERT_LE(b.shadow_map[i], 1.0f);
+    equal += b.shadow_map[i] == a.shadow_map[i];
+    between += b.shadow_map[i] != a.shadow_map[i];
+  }
+  EXPECT_GT(equal, covered * 8 / 10);
+  EXPECT_GT(between, 0u);
+  // Twice the slope's codes (each rounded up, plus one for rounding).
+  EXPECT_NEAR(static_cast<double>(b.light->bias_codes), 2.0 * a.light->bias_codes, 2.0);
+}
+
 TEST(ShadowRender, TheLightBufferIsBuiltOnceWhileTheCameraOrbits) {
   gl_context();
   RenderSettings s = shadowed({64, 64}, {-0.3f, -1.0f, 0.2f}, {96, 96});

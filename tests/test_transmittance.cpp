@@ -224,6 +224,26 @@ TEST(Transmittance, ALightBufferWithoutOpacityOrListsIsRefusedByName) {
 namespace habuffer {
 namespace {
 
+// 2x2 percentage-closer filtering: bilinear between the four light pixels
+// around the window position, the nearest pixel's T at its centre, clamped
+// at the map's edge.
+TEST(Transmittance, PercentageCloserFilteringWeighsTheFourPixelsAroundThePointBilinearly) {
+  const Extent screen{2, 2};
+  const std::vector<Quad> quads = {{0, 0, 1, 2, 0.25f, 128}};  // the left column, alpha 128
+  TechniqueConfig c = test::technique_config(Technique::Ha, screen);
+  c.buffer.table = {4, 4};
+  const TechniqueBuild b = build_technique(c, random_offsets(1), rasterize(quads, screen), InsertOptions{});
+  const RecordLayout layout = c.buffer.record_layout();
+  const std::uint32_t code = layout.depth_code(0.75f);
+  const float shadowed = 1.0f - 128.0f / 255.0f;
+  EXPECT_EQ(transmittance_pcf(*b.buffer, 0.5f, 0.5f, code, 0), shadowed);  // a pixel's centre: its own T
+  EXPECT_EQ(transmittance_pcf(*b.buffer, 1.5f, 1.5f, code, 0), 1.0f);
+  EXPECT_FLOAT_EQ(transmittance_pcf(*b.buffer, 1.0f, 1.0f, code, 0), 0.5f * (shadowed + 1.0f));  // halfway
+  EXPECT_FLOAT_EQ(transmittance_pcf(*b.buffer, 0.75f, 0.6f, code, 0), 0.75f * shadowed + 0.25f);
+  EXPECT_EQ(transmittance_pcf(*b.buffer, 0.1f, 0.1f, code, 0), shadowed);  // clamped at the edge
+  EXPECT_FLOAT_EQ(transmittance_pcf(*b.buffer, 1.99f, 0.2f, code, 0), 1.0f);
+}
+
 // The opacity shadow map baseline: exact at its planes, linear between them,
 // and refusing what it cannot hold.
 TEST(OpacityShadowMap, PlanesHoldTheProductInFrontAndReceiversBetweenThemInterpolate) {

@@ -90,6 +90,9 @@ const CommandSpec& render_spec() {
           {"shadow-error", "N", "",
            "(--shadows) T against the ray-traced reference at up to N receiving points (0: all): the stats' "
            "light.reference"},
+          {"shadow-filter", "nearest|pcf", "nearest",
+           "(--shadows) T of the nearest light pixel, or pcf: of the four nearest, bilinearly weighted (the bias "
+           "doubles)"},
           {"shadow-slope", "S", "2",
            "(--shadows) the bias rule: surfaces up to atan(S) from facing the light never shadow themselves"}} +
           scene_option_specs() +
@@ -120,7 +123,7 @@ struct LightArgs {
 std::optional<LightArgs> parse_light(const Args& args) {
   const bool on = args.has("shadows");
   args.refuse_unless(on, {"light-dir", "light-ortho", "light-pos", "light-fov", "light-size", "light-table",
-                          "light-cull", "shadow-slope", "shadow-error"},
+                          "light-cull", "shadow-slope", "shadow-error", "shadow-filter"},
                      "without --shadows");
   if (!on) return std::nullopt;
   args.refuse_unless(!args.has("fragments"), {"shadows"}, "with --fragments (a stream has no world positions)");
@@ -148,6 +151,10 @@ std::optional<LightArgs> parse_light(const Args& args) {
   const double slope = args.real("shadow-slope");
   if (!(std::isfinite(slope) && slope >= 0.0)) throw UsageError("option --shadow-slope: must be a finite slope >= 0");
   s.max_slope = static_cast<float>(slope);
+  const std::string filter = args.str("shadow-filter");
+  if (filter != "nearest" && filter != "pcf")
+    throw UsageError("option --shadow-filter: '" + filter + "' is not nearest or pcf");
+  s.filter = filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Nearest;
   usage_errors("light-table", [&] { s.validate(); });
   s.read_back = args.has("shadow-error");
   if (s.read_back) l.error_receivers = args.u64_in("shadow-error");
@@ -293,7 +300,8 @@ ShadowAccuracy shadow_error(const Scene& scene, const RenderSettings& s, const R
   const TransmittanceReference reference(scene);
   const ShadowReceivers at{&r.camera, s.config.screen, r.fragments, r.opaque_depth};
   return measure_shadow_accuracy(reference, r.light->view, *r.light_buffer,
-                                 RecordLayout(Layout::L64, s.shadows->age_bits), r.light->bias_codes, at, receivers);
+                                 RecordLayout(Layout::L64, s.shadows->age_bits), r.light->bias_codes, at, receivers,
+                                 s.shadows->filter == ShadowFilter::Pcf);
 }
 
 RenderResult render_with_gl(const Args& args, const std::vector<std::string>& opaque_meshes,

@@ -51,7 +51,7 @@ void light(JsonWriter& json, const ShadowSettings& set, const LightStats& l, con
   write_extent(json, "table", l.table);
   json.field("early_cull", static_cast<double>(set.early_cull_tau)).field("age_bits", set.age_bits);
   json.field("max_slope", static_cast<double>(set.max_slope)).field("bias_codes", l.bias_codes);
-  json.field("filter", "nearest");
+  json.field("filter", to_string(set.filter));
   json.field("builds", l.builds).field("attempts", l.attempts);
   write_counters(json, l.counters);
   json.field("load_factor", l.load_factor).field("max_age", l.max_age).field("memory_bytes", l.memory_bytes);

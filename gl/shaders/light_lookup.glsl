@@ -20,3 +20,24 @@ float habuffer_shadow_transmittance(vec3 p) {
     return 1.0;
   return habuffer_shadow_transmittance(uvec2(w), t);
 }
+
+// 2x2 percentage-closer filtering of the same: T at the four light pixels
+// whose centres surround the point's window position (clamped to the map),
+// weighted bilinearly (habuffer::transmittance_pcf does the same on the
+// CPU). The receiver's own surface at the farthest of the four lies up to
+// 1.4 pixels away, twice the nearest pixel's 0.7: the bias must double.
+float habuffer_shadow_transmittance_pcf(vec3 p) {
+  vec2 w = vec2(0.0);
+  float t = 0.0;
+  if (!habuffer_light_map(habuffer_light.view, habuffer_light.projection, vec2(habuffer_light.map_size),
+                          habuffer_light.near_plane, habuffer_light.far_plane, p, w, t))
+    return 1.0;
+  vec2 g = max(w - 0.5, vec2(0.0));
+  uvec2 last = habuffer_light.map_size - 1u;
+  uvec2 b = min(uvec2(g), last);
+  vec2 f = g - vec2(b);
+  uvec2 n = min(b + 1u, last);
+  float low = mix(habuffer_shadow_transmittance(b, t), habuffer_shadow_transmittance(uvec2(n.x, b.y), t), f.x);
+  float high = mix(habuffer_shadow_transmittance(uvec2(b.x, n.y), t), habuffer_shadow_transmittance(n, t), f.x);
+  return mix(low, high, f.y);
+}

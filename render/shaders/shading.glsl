@@ -3,7 +3,8 @@
 // and far planes. With R_SHADOWS (translucent shadows, seed 000 section 6)
 // the lit colour is multiplied by the light's transmittance T at the
 // fragment's world point (light_lookup.glsl, appended before this file):
-// colour = lit colour * T, for the opaque pass and every inserted fragment.
+// colour = lit colour * T, for the opaque pass and every inserted fragment;
+// with R_SHADOWS_PCF too, T filtered over 2x2 light pixels.
 uniform vec3 r_colour;
 uniform float r_opacity;
 uniform float r_near;
@@ -20,7 +21,9 @@ vec3 r_shaded_colour() {
   float len = length(n);
   float facing = len > 0.0 ? abs(n.z) / len : 1.0;
   vec3 lit = r_colour * (0.35 + 0.65 * facing);
-#ifdef R_SHADOWS
+#if defined(R_SHADOWS_PCF)
+  lit *= habuffer_shadow_transmittance_pcf(v_world);
+#elif defined(R_SHADOWS)
   lit *= habuffer_shadow_transmittance(v_world);
 #endif
   return lit;

@@ -149,6 +149,8 @@ expect 2 "option --light-size: '0x64'" -- render --scene quads --shadows --light
 expect 2 "option --light-dir: '0,1' is not X,Y,Z" -- render --scene quads --shadows --light-dir 0,1 --out x.png
 expect 2 "option --light-dir: the zero vector" -- render --scene quads --shadows --light-dir 0,0,0 --out x.png
 expect 2 "option --light-cull: must be in [0, 1)" -- render --scene quads --shadows --light-cull 1 --out x.png
+expect 2 "option --shadow-filter: 'box' is not nearest or pcf" -- render --scene quads --shadows --shadow-filter box \
+  --out x.png
 expect 2 "option --heatmap shadow: the light's transmittance needs --shadows" -- render --scene quads \
   --heatmap shadow:x.png --out y.png
 ASAN_OPTIONS=detect_leaks=0 expect 1 "inside the scene's bounding sphere" -- render --scene quads --shadows \

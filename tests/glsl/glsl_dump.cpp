@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
     shaders.push_back({"gather-plain", "frag", SceneRenderer::shader_sources(mode, {}, Technique::Ha, {}).gather_fragment});
     if (mode != gl::AtomicMode::Native32) {  // translucent shadows read 64-bit light records
       const SceneRenderer::Sources lit =
-          SceneRenderer::shader_sources(mode, {}, Technique::Ha, {true, true}, gl::GlLightBindings{});
+          SceneRenderer::shader_sources(mode, {}, Technique::Ha, {true, true}, ShadowReceiving{{}, true});
       shaders.push_back({"opaque-shadowed", "frag", lit.opaque_fragment});
       shaders.push_back({"gather-shadowed", "frag", lit.gather_fragment});
       shaders.push_back({"shadow-map", "frag", lit.shadow_map_fragment});

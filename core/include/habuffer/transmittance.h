@@ -43,4 +43,13 @@ float list_transmittance(std::span<const ListEntry> nearest_first, std::uint32_t
 float transmittance(const FragmentBuffer& light, std::uint32_t x, std::uint32_t y, std::uint32_t code,
                     std::uint32_t bias);
 
+/// 2x2 percentage-closer filtering: T at the four light pixels whose centres
+/// surround window position (wx, wy) (pixels; clamped to the map), weighted
+/// bilinearly, the same operations as gl/shaders/light_lookup.glsl's
+/// habuffer_shadow_transmittance_pcf. A surface's own records at the
+/// farthest of the four lie up to 1.4 pixels from the receiver (the nearest
+/// pixel's centre up to 0.7), so the bias must cover twice the distance:
+/// shadow_bias_codes for twice the slope. Throws as transmittance().
+float transmittance_pcf(const FragmentBuffer& light, float wx, float wy, std::uint32_t code, std::uint32_t bias);
+
 }  // namespace habuffer

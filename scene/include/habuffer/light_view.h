@@ -31,6 +31,7 @@ struct LightParams {
 struct LightSample {
   glm::uvec2 pixel;  ///< the light pixel (window coordinates, floored)
   float depth;       ///< t in [0, 1]: 0 at the near plane, 1 at the far plane
+  glm::vec2 window{0.0f};  ///< the window position, pixels (`pixel` is its floor): filtered lookups
 };
 
 /// A light framed on a scene (frame_light makes one).

@@ -20,6 +20,7 @@
 #include "habuffer/fragment_buffer.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shadow_lookup.h"
+#include "habuffer/render/scene_renderer.h"
 #include "habuffer/light_view.h"
 #include "habuffer/resize_policy.h"
 #include "habuffer/scene.h"
@@ -27,6 +28,15 @@
 namespace habuffer {
 
 /// The light and its buffer (`habuffer render --shadows`).
+/// How the receivers read the light buffer.
+enum class ShadowFilter {
+  Nearest,  ///< T of the light pixel the point falls in
+  Pcf       ///< 2x2 percentage-closer filtering: T of the four nearest pixels, bilinearly weighted
+};
+
+/// "nearest" or "pcf".
+std::string to_string(ShadowFilter f);
+
 struct ShadowSettings {
   LightParams light;   ///< direction or spot, and the map's pixels (the light buffer's screen)
   /// The light buffer's table; zero: automatic (sized from the light's
@@ -38,6 +48,9 @@ struct ShadowSettings {
   /// The bias rule's largest slope (shadow_bias_codes): surfaces up to
   /// atan(max_slope) from facing the light never shadow themselves.
   float max_slope = 2.0f;
+  /// How T is sampled; Pcf doubles the bias (its farthest tap lies twice as
+  /// far as the nearest pixel's centre: transmittance_pcf).
+  ShadowFilter filter = ShadowFilter::Nearest;
   /// Read the light buffer back after the frames (RenderResult::light_buffer:
   /// the accuracy check's records) and the view's opaque t per pixel.
   bool read_back = false;
@@ -89,8 +102,8 @@ class LightPass {
   bool build();
   /// Binds the light buffer and its block for the view's passes.
   void bind();
-  /// Where the view's shaders find the light buffer (SceneRenderer's `shadows`).
-  [[nodiscard]] const gl::GlLightBindings& bindings() const;
+  /// Where and how the view's shaders read the light buffer (SceneRenderer's `shadows`).
+  [[nodiscard]] ShadowReceiving receiving() const;
   /// The light buffer, read back to the CPU (tests: the CPU path's lookup over the same records).
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const;
   /// The fragments the last build captured, in arrival order (empty unless ShadowSettings::capture).

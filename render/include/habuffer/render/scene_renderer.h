@@ -20,6 +20,12 @@
 
 namespace habuffer {
 
+/// How the view's passes read a light buffer (translucent shadows).
+struct ShadowReceiving {
+  gl::GlLightBindings bindings;  ///< where the light buffer and its block are bound
+  bool pcf = false;              ///< T filtered over 2x2 light pixels; false: the nearest light pixel
+};
+
 /// A scene on the GPU and its passes (see the file comment); needs a current OpenGL 4.5 core context.
 class SceneRenderer {
  public:
@@ -48,7 +54,7 @@ class SceneRenderer {
   /// See Sources; with `shadows`, as the constructor's (throws GlError for native32).
   static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings,
                                 Technique technique = Technique::Ha, GatherCounts counts = {true, true},
-                                std::optional<gl::GlLightBindings> shadows = std::nullopt);
+                                std::optional<ShadowReceiving> shadows = std::nullopt);
 
   /// Compiles the gather shader from `buffer`'s module (technique, mode,
   /// binding points and variant), counting GatherCounts::for_driver(buffer).
@@ -61,7 +67,7 @@ class SceneRenderer {
   /// available. Throws GlError for a module in atomic mode native32 (the
   /// lookup reads 64-bit records).
   SceneRenderer(const Scene& scene, Extent screen, const gl::GlFrameDriver& buffer, GatherCounts counts,
-                std::optional<gl::GlLightBindings> shadows = std::nullopt);
+                std::optional<ShadowReceiving> shadows = std::nullopt);
   /// Deletes every GL object it made.
   ~SceneRenderer();
   SceneRenderer(const SceneRenderer&) = delete;

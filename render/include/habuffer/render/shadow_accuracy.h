@@ -82,8 +82,8 @@ struct ShadowTruths {
   std::uint32_t stride = 1;
   double ms = 0.0;  ///< wall clock of the ray tracing
 };
-/// A light buffer's T at light pixel (x, y) for a receiver at light depth t.
-using ShadowLookup = std::function<float(std::uint32_t x, std::uint32_t y, float t)>;
+/// A light buffer's T for a receiver where the light sees it.
+using ShadowLookup = std::function<float(const LightSample& at)>;
 
 /// The truths at `receivers` (every k-th for k = ceil(receivers /
 /// max_receivers) when max_receivers is not 0): ray-traced once, scored for
@@ -95,9 +95,11 @@ ShadowTruths shadow_truths(const TransmittanceReference& reference, const LightV
 /// `lookup` scored against `truths` (see ShadowAccuracy).
 ShadowAccuracy score_shadows(const ShadowTruths& truths, const ShadowLookup& lookup);
 /// The lookup of a light buffer that stores lists (habuffer/transmittance.h,
-/// the GPU's walk); it borrows `light_buffer`. Throws std::invalid_argument
-/// for L32 records.
-ShadowLookup buffer_lookup(const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias);
+/// the GPU's walk), at the nearest light pixel or with `pcf` filtered over
+/// 2x2 (transmittance_pcf); it borrows `light_buffer`. Throws
+/// std::invalid_argument for L32 records.
+ShadowLookup buffer_lookup(const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias,
+                           bool pcf = false);
 
 /// Compares `light_buffer` (built from `light`, records of `layout`, looked
 /// up with `bias` codes) with `reference` at every receiver, or at every
@@ -106,6 +108,7 @@ ShadowLookup buffer_lookup(const FragmentBuffer& light_buffer, RecordLayout layo
 /// or receivers without a camera.
 ShadowAccuracy measure_shadow_accuracy(const TransmittanceReference& reference, const LightView& light,
                                        const FragmentBuffer& light_buffer, RecordLayout layout, std::uint32_t bias,
-                                       const ShadowReceivers& receivers, std::uint64_t max_receivers = 0);
+                                       const ShadowReceivers& receivers, std::uint64_t max_receivers = 0,
+                                       bool pcf = false);
 
 }  // namespace habuffer
