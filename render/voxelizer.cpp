@@ -6,8 +6,13 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
+#include "habuffer/atomic_file.h"
+#include "habuffer/csv.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
@@ -103,7 +108,8 @@ struct GpuMeshes {
 };
 
 // The lists' parity at each voxel centre of column (i, j).
-void column_parity(std::vector<ListEntry>& crossings, const RecordLayout& layout, std::uint32_t i, std::uint32_t j,
+// Returns whether the column's crossings are odd (not a closed surface).
+bool column_parity(std::vector<ListEntry>& crossings, const RecordLayout& layout, std::uint32_t i, std::uint32_t j,
                    VoxelAxis axis, VoxelGrid& grid) {
   std::sort(crossings.begin(), crossings.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
   std::size_t nearer = 0;  // crossings with a code above the centre's: nearer than it
@@ -116,6 +122,7 @@ void column_parity(std::vector<ListEntry>& crossings, const RecordLayout& layout
       grid.set(v.x, v.y, v.z);
     }
   }
+  return crossings.size() % 2 == 1;
 }
 
 }  // namespace
@@ -212,11 +219,93 @@ Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
   for (std::uint32_t j = 0; j < s.grid; ++j)
     for (std::uint32_t i = 0; i < s.grid; ++i) {
       buffer->list(i, j, crossings);
-      column_parity(crossings, layout, i, j, s.axis, out.grid);
+      out.stats.odd_columns += column_parity(crossings, layout, i, j, s.axis, out.grid);
     }
   out.stats.parity_ms = ms_since(p0);
   gl::check_gl_errors("voxelize");
   return out;
+}
+
+Voxelization voxelize_voting(const Scene& scene, const VoxelizeSettings& settings) {
+  Voxelization votes[3];
+  for (int a = 0; a < 3; ++a) {
+    VoxelizeSettings s = settings;
+    s.axis = static_cast<VoxelAxis>(a);
+    votes[a] = voxelize(scene, s);
+  }
+  Voxelization out;
+  out.grid = VoxelGrid(settings.grid, votes[0].grid.box);
+  for (std::size_t w = 0; w < out.grid.words.size(); ++w) {
+    const std::uint64_t x = votes[0].grid.words[w], y = votes[1].grid.words[w], z = votes[2].grid.words[w];
+    out.grid.words[w] = (x & y) | (y & z) | (x & z);  // two of three
+  }
+  for (const Voxelization& v : votes) {
+    out.stats.counters += v.stats.counters;
+    out.stats.merged += v.stats.merged;
+    out.stats.attempts += v.stats.attempts;
+    out.stats.table_slots = std::max(out.stats.table_slots, v.stats.table_slots);
+    out.stats.list_bytes = std::max(out.stats.list_bytes, v.stats.list_bytes);
+    out.stats.gather_ms += v.stats.gather_ms;
+    out.stats.parity_ms += v.stats.parity_ms;
+    out.stats.odd_columns += v.stats.odd_columns;
+  }
+  out.stats.load_factor = votes[2].stats.load_factor;
+  return out;
+}
+
+namespace {
+
+constexpr char kGridMagic[8] = {'H', 'A', 'V', 'O', 'X', 'E', 'L', '1'};
+constexpr std::size_t kGridHeader = 40;
+
+template <class T>
+void put(std::string& out, T v) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));  // little-endian hosts only: checked below
+  out.append(b, sizeof(T));
+}
+template <class T>
+T take(const std::string& in, std::size_t at) {
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof(T));
+  return v;
+}
+static_assert(std::endian::native == std::endian::little, "the grid file is little-endian: add byte swapping here");
+
+}  // namespace
+
+void save_voxel_grid(const std::string& path, const VoxelGrid& grid) {
+  std::string bytes(kGridMagic, sizeof kGridMagic);
+  put<std::uint32_t>(bytes, grid.n);
+  put<std::uint32_t>(bytes, 0);
+  for (const float f : {grid.box.lo.x, grid.box.lo.y, grid.box.lo.z, grid.box.hi.x, grid.box.hi.y, grid.box.hi.z})
+    put<float>(bytes, f);
+  for (const std::uint64_t w : grid.words) put<std::uint64_t>(bytes, w);
+  AtomicFile file(path);
+  file.write(bytes);
+  file.commit();
+}
+
+VoxelGrid load_voxel_grid(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DataError(path + ": cannot open the voxel grid");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < kGridHeader || bytes.compare(0, 8, kGridMagic, 8) != 0)
+    throw DataError(path + ": not a voxel grid (no HAVOXEL1 header)");
+  const auto n = take<std::uint32_t>(bytes, 8);
+  if (n == 0 || n > 4096) throw DataError(path + ": voxel grid side " + std::to_string(n) + " is outside 1..4096");
+  const std::uint64_t words = (std::uint64_t{n} * n * n + 63) / 64;
+  if (bytes.size() != kGridHeader + words * 8)
+    throw DataError(path + ": " + std::to_string(bytes.size()) + " bytes, a grid of side " + std::to_string(n) +
+                    " has " + std::to_string(kGridHeader + words * 8));
+  Bounds box;
+  box.add({take<float>(bytes, 16), take<float>(bytes, 20), take<float>(bytes, 24)});
+  box.add({take<float>(bytes, 28), take<float>(bytes, 32), take<float>(bytes, 36)});
+  if (!(box.hi.x > box.lo.x && box.hi.y > box.lo.y && box.hi.z > box.lo.z))
+    throw DataError(path + ": the voxel grid's box is empty or not finite");
+  VoxelGrid g(n, box);
+  for (std::uint64_t w = 0; w < words; ++w) g.words[w] = take<std::uint64_t>(bytes, kGridHeader + w * 8);
+  return g;
 }
 
 VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& s, std::vector<bool>* band, double band_depth) {
@@ -231,10 +320,21 @@ VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& s, std::ve
   VoxelGrid grid(s.grid, box);
   const std::uint32_t n = s.grid;
   if (band) band->assign(std::uint64_t{n} * n * n, false);
+  // A ray through an edge or vertex meets every triangle there (the test
+  // is inclusive, and thin triangles round either way): crossings of one
+  // facing at one distance are one crossing of the surface, as the
+  // voxelizer's equal records merge; opposite facings (touching solids)
+  // stay two.
+  const double same = 1e-9 * glm::length(extent);
   const auto crossings_w = [&](double u, double v) {
+    std::vector<TransmittanceReference::Hit> hits = reference.hits(unpermute({u, v, far_w}, s.axis), along);
     std::vector<double> w;
-    for (const TransmittanceReference::Hit& h : reference.hits(unpermute({u, v, far_w}, s.axis), along))
-      w.push_back(far_w - h.distance);
+    for (std::size_t h = 0; h < hits.size(); ++h) {
+      bool repeat = false;
+      for (std::size_t g = h; g-- > 0 && hits[h].distance - hits[g].distance <= same;)
+        repeat = repeat || hits[g].toward == hits[h].toward;
+      if (!repeat) w.push_back(far_w - hits[h].distance);
+    }
     std::sort(w.begin(), w.end());
     return w;
   };
@@ -242,19 +342,25 @@ VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& s, std::ve
   for (std::uint32_t j = 0; j < n; ++j)
     for (std::uint32_t i = 0; i < n; ++i) {
       const double u = lo.x + (i + 0.5) * du, v = lo.y + (j + 0.5) * dv;
-      const std::vector<double> w = crossings_w(u, v);
-      bool edge = false;
-      for (const auto& [ou, ov] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
-        edge = edge || crossings_w(u + ou * du / 128.0, v + ov * dv / 128.0).size() != w.size();
-      std::size_t before = 0;
+      // The column's ray, and four rays 1/256 voxel beside it: where their
+      // parities differ, an edge passes within the rasterizer's snapping.
+      std::vector<double> rays[5] = {crossings_w(u, v)};
+      if (band) {
+        int r = 1;
+        for (const auto& [ou, ov] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
+          rays[r++] = crossings_w(u + ou * du / 256.0, v + ov * dv / 256.0);
+      }
+      std::size_t before[5] = {0, 0, 0, 0, 0};
       for (std::uint32_t k = 0; k < n; ++k) {
         const double centre = lo.z + (k + 0.5) * dw;
-        while (before < w.size() && w[before] < centre) ++before;
+        for (int r = 0; r < (band ? 5 : 1); ++r)
+          while (before[r] < rays[r].size() && rays[r][before[r]] < centre) ++before[r];
         const glm::uvec3 vox = voxel_of(i, j, k, s.axis);
-        if (before % 2 == 1) grid.set(vox.x, vox.y, vox.z);
+        if (before[0] % 2 == 1) grid.set(vox.x, vox.y, vox.z);
         if (band) {
-          bool near = edge;
-          for (const double c : w) near = near || std::abs(c - centre) <= band_depth * dw;
+          bool near = false;
+          for (int r = 1; r < 5; ++r) near = near || before[r] % 2 != before[0] % 2;
+          for (const double c : rays[0]) near = near || std::abs(c - centre) <= band_depth * dw;
           (*band)[vox.x + std::uint64_t{n} * (vox.y + std::uint64_t{n} * vox.z)] = near;
         }
       }

@@ -94,7 +94,7 @@ TransmittanceReference::Segment TransmittanceReference::segment_to_light(glm::dv
   return {point, -glm::normalize(glm::dvec3(light.direction)), reach};
 }
 
-double TransmittanceReference::hit(const Triangle& t, const Segment& s) {
+double TransmittanceReference::hit(const Triangle& t, const Segment& s, bool* toward) {
   // Moller-Trumbore, two-sided, in double.
   const glm::dvec3 p = glm::cross(s.direction, t.e2);
   const double det = glm::dot(t.e1, p);
@@ -107,6 +107,7 @@ double TransmittanceReference::hit(const Triangle& t, const Segment& s) {
   const double v = glm::dot(s.direction, q) * inv;
   if (v < 0.0 || u + v > 1.0) return -1.0;
   const double d = glm::dot(t.e2, q) * inv;
+  if (toward) *toward = det < 0.0;  // its normal e1 x e2 points along the segment
   return d <= s.length ? d : -1.0;
 }
 
@@ -159,8 +160,11 @@ std::vector<TransmittanceReference::Hit> TransmittanceReference::hits(glm::dvec3
       stack.push_back(n.right);
       continue;
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i)
-      if (const double d = hit(triangles_[i], s); d >= 0.0) out.push_back({d, triangles_[i].alpha, triangles_[i].id});
+    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+      bool toward = false;
+      if (const double d = hit(triangles_[i], s, &toward); d >= 0.0)
+        out.push_back({d, triangles_[i].alpha, triangles_[i].id, toward});
+    }
   }
   std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
   return out;

@@ -22,5 +22,6 @@ int run_bench(const std::vector<std::string>& args);  ///< `habuffer bench`
 int run_figure(const std::vector<std::string>& args);  ///< `habuffer figure`
 int run_plan(const std::vector<std::string>& args);  ///< `habuffer plan`
 int run_techniques(const std::vector<std::string>& args);  ///< `habuffer techniques`
+int run_voxelize(const std::vector<std::string>& args);  ///< `habuffer voxelize`
 
 }  // namespace habuffer::cli

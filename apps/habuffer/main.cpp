@@ -29,6 +29,7 @@ constexpr const char* kUsage =
     "  plan         predict memory, max age, overflow and error per technique from one counting pass\n"
     "  info         version, build type and available paths\n"
     "  techniques   the registered techniques and their properties (--markdown: the README table)\n"
+    "  voxelize     a mesh's solid voxels from lossless sorted depth lists (grid file, stats, slices)\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
 
 // One short printable line whatever a library put in its message: text with
@@ -54,7 +55,7 @@ int main(int argc, char** argv) {
       {"render", cli::run_render},           {"compare", cli::run_compare},
       {"sweep", cli::run_sweep},             {"bench", cli::run_bench},
       {"figure", cli::run_figure},           {"plan", cli::run_plan},
-      {"techniques", cli::run_techniques}};
+      {"techniques", cli::run_techniques},   {"voxelize", cli::run_voxelize}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

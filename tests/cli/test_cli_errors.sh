@@ -137,6 +137,18 @@ expect 2 "option --size: '0x64'" -- render --scene quads --size 0x64 --out x.png
 ASAN_OPTIONS=detect_leaks=0 expect 1 "exceeds this OpenGL's largest viewport" -- render --scene quads --size 40000x64 --out x.png
 expect 2 "option --heatmap: 'depth'" -- render --scene quads --heatmap depth --out x.png
 expect 2 "give exactly one of --scene and --fragments" -- render --out x.png
+# voxelize: a solid's grid, stats and reference; bad input refused.
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- voxelize --mesh torus --grid 24 --out v_torus.vox --stats v_torus.json \
+  --reference --quiet
+for key in '"voxels":' '"merged":' '"odd_columns":' '"dense_bytes":' '"mismatches":0'; do
+  grep -q "$key" v_torus.json && pass=$((pass + 1)) || { echo "FAIL: voxelize stats lack $key"; fail=$((fail + 1)); }
+done
+[[ $(stat -c %s v_torus.vox) -eq $((40 + (24 * 24 * 24 + 63) / 64 * 8)) ]] && pass=$((pass + 1)) ||
+  { echo "FAIL: voxelize grid file size"; fail=$((fail + 1)); }
+expect 2 "option --axis: 'w' is not x, y, z or all" -- voxelize --mesh sphere --axis w --out v.vox
+expect 2 "option --grid" -- voxelize --mesh sphere --grid 0 --out v.vox
+expect 2 "option --reference has no effect with --axis all" -- voxelize --mesh sphere --axis all --reference --out v.vox
+expect 1 "unknown scene 'teapotx'" -- voxelize --mesh teapotx --out v.vox
 # render --shadows: the light's stats, its T heat map, the reference check; bad lights refused by name.
 ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene engine --size 48x48 --shadows --light-size 96x96 \
   --light-ortho --stats r_shadow.json --heatmap shadow:r_shadow_t.png --shadow-error 0 --frames 2

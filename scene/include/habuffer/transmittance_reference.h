@@ -38,6 +38,7 @@ class TransmittanceReference {
     double distance;  ///< from the receiving point, along the segment
     double alpha;     ///< the triangle's opacity, as packed
     std::uint32_t triangle;  ///< which triangle: its index over the scene's meshes in order
+    bool toward = false;     ///< the triangle faces the segment's far end (its winding, counter-clockwise, seen from there)
   };
   /// Every crossing of the segment from `point` to the light, nearest the
   /// point first (transmittance() is the product of 1 - alpha over those
@@ -63,7 +64,7 @@ class TransmittanceReference {
   };
   [[nodiscard]] Segment segment_to_light(glm::dvec3 point, const LightView& light) const;
   /// The hit's distance along `s`, or a negative number for none.
-  [[nodiscard]] static double hit(const Triangle& t, const Segment& s);
+  [[nodiscard]] static double hit(const Triangle& t, const Segment& s, bool* toward = nullptr);
   std::uint32_t build(std::uint32_t first, std::uint32_t count);
 
   std::vector<Triangle> triangles_;

@@ -67,6 +67,9 @@ struct VoxelStats {
   double load_factor = 0.0;        ///< stored / slots
   std::uint64_t list_bytes = 0;    ///< the HA-buffer's storage
   double gather_ms = 0.0, parity_ms = 0.0;  ///< the GPU gather(s), and the parity walk on the CPU
+  /// Columns with an odd number of crossings: a closed surface gives none,
+  /// so these say the mesh is not watertight (or a crossing merged).
+  std::uint64_t odd_columns = 0;
 };
 
 /// A voxelization: the grid and its stats.
@@ -81,12 +84,32 @@ struct Voxelization {
 /// (the context's limits, or crossings lost after every growth).
 Voxelization voxelize(const Scene& scene, const VoxelizeSettings& settings);
 
+/// Three-axis voting for meshes that are not watertight: voxelize along x,
+/// y and z and keep a voxel solid where at least two of the three agree. It
+/// fixes voxels that only one axis's column reaches through a hole (a missing
+/// triangle, a crack); it does not fix a hole two axes see, nor make a
+/// self-intersecting or inside-out mesh consistent. `settings.axis` is
+/// ignored; the stats add the three voxelizations' counters, times and odd
+/// columns.
+Voxelization voxelize_voting(const Scene& scene, const VoxelizeSettings& settings);
+
+/// The grid file: 8 bytes "HAVOXEL1", u32 N, u32 0 (reserved), six float32
+/// (the box's lo x y z, hi x y z), then ceil(N^3 / 64) u64 words, bit i of
+/// the grid at bit i % 64 of word i / 64 (i = x + N (y + N z)), all
+/// little-endian. Written whole or not at all (habuffer/atomic_file.h);
+/// throws DataError naming the path.
+void save_voxel_grid(const std::string& path, const VoxelGrid& grid);
+/// Reads a grid file; throws DataError naming the path and what is wrong
+/// (magic, N outside 1..4096, a size that does not match, a bad box).
+VoxelGrid load_voxel_grid(const std::string& path);
+
 /// The exact reference: each column's ray along the axis through its centre
 /// intersected with every triangle in double, a voxel solid iff an odd
 /// number of crossings lie before its centre. `band` (when given) receives,
 /// per voxel, whether it lies near the surface: a crossing within
-/// `band_depth` voxels of its centre along the column, or an edge within
-/// 1/128 voxel of the column's ray (coverage there is the rasterizer's).
+/// `band_depth` voxels of its centre along the column, or a parity that
+/// differs on a ray 1/256 voxel beside the column's (an edge passes within
+/// the rasterizer's snapping: its coverage there is the rasterizer's).
 VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& settings, std::vector<bool>* band = nullptr,
                           double band_depth = 1e-3);
 

@@ -1,0 +1,157 @@
+// habuffer voxelize: a mesh's solid voxels from lossless sorted depth lists
+// (habuffer/render/voxelizer.h), with their stats, PNG slices and the
+// ray-parity reference.
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "commands.h"
+#include "habuffer/csv.h"
+#include "habuffer/file_roles.h"
+#include "habuffer/gl/egl_context.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/json_writer.h"
+#include "habuffer/render/image.h"
+#include "habuffer/render/voxelizer.h"
+#include "habuffer/scene_catalog.h"
+#include "habuffer/solids.h"
+#include "report_json.h"
+
+namespace habuffer::cli {
+namespace {
+
+const CommandSpec& voxelize_spec() {
+  static const CommandSpec spec{
+      "voxelize --mesh FILE|NAME --out GRID [--grid N] [--axis x|y|z|all] [--stats S.json] [OPTIONS]",
+      {{"mesh", "FILE|NAME", "",
+        "a closed mesh file, a catalog scene (engine, wuson, spider, ...) or a solid: sphere, torus, box"},
+       {"grid", "N", "128", "voxels per side, the grid fitted to the mesh's bounding box"},
+       {"axis", "x|y|z|all", "z", "the views' axis; all: three-axis voting (for meshes that are not watertight)"},
+       {"out", "GRID", "", "the grid file (HAVOXEL1: header, then N^3 bits; habuffer/render/voxelizer.h)"},
+       {"stats", "S.json", "", "voxels, crossings, merged crossings, odd columns, memory, load, times"},
+       {"slices", "DIR", "", "one PNG per z layer of voxels (slice_0000.png, ...), solid white"},
+       {"reference", "", "", "compare with the ray-parity reference: mismatches outside the near-surface band"},
+       {"quiet", "", "", "no summary"}},
+      "  Exit codes: 0 ok (odd columns and merged crossings are warned about), 1 bad data, 2 bad usage.\n"};
+  return spec;
+}
+
+Scene solid_or_scene(const std::string& name) {
+  Scene s;
+  s.name = name;
+  if (name == "sphere") s.meshes = {sphere_mesh({0, 0, 0}, 1.0f)};
+  else if (name == "torus") s.meshes = {torus_mesh({0, 0, 0}, 1.0f, 0.4f)};
+  else if (name == "box") s.meshes = {box_mesh({0, 0, 0}, {1, 1, 1})};
+  else return make_scene(name, {});
+  return s;
+}
+
+void write_slices(const std::string& dir, const VoxelGrid& g) {
+  std::filesystem::create_directories(dir);
+  for (std::uint32_t z = 0; z < g.n; ++z) {
+    Image image{{g.n, g.n}, std::vector<glm::vec4>(std::size_t{g.n} * g.n, glm::vec4(0, 0, 0, 1))};
+    for (std::uint32_t y = 0; y < g.n; ++y)
+      for (std::uint32_t x = 0; x < g.n; ++x)
+        if (g.solid(x, y, z)) image.pixels[x + std::size_t{y} * g.n] = glm::vec4(1.0f);
+    char name[32];
+    std::snprintf(name, sizeof name, "/slice_%04u.png", z);
+    write_image(dir + name, image);
+  }
+}
+
+struct ReferenceCheck {
+  std::uint64_t mismatches = 0, band = 0;
+};
+
+ReferenceCheck check_reference(const Scene& scene, const VoxelizeSettings& s, const VoxelGrid& got) {
+  std::vector<bool> band;
+  const VoxelGrid want = voxel_reference(scene, s, &band);
+  ReferenceCheck r;
+  for (std::uint32_t z = 0; z < got.n; ++z)
+    for (std::uint32_t y = 0; y < got.n; ++y)
+      for (std::uint32_t x = 0; x < got.n; ++x) {
+        const std::uint64_t i = x + std::uint64_t{got.n} * (y + std::uint64_t{got.n} * z);
+        if (band[i]) ++r.band;
+        else r.mismatches += got.solid(x, y, z) != want.solid(x, y, z);
+      }
+  return r;
+}
+
+void write_stats(const std::string& path, const std::string& mesh, const std::string& axis, const Voxelization& v,
+                 const std::optional<ReferenceCheck>& ref) {
+  const VoxelStats& s = v.stats;
+  JsonWriter json;
+  json.begin_object().field("mesh", mesh).field("grid", v.grid.n).field("axis", axis);
+  json.field("voxels", v.grid.count());
+  write_counters(json, s.counters);
+  json.field("merged", s.merged).field("odd_columns", s.odd_columns).field("attempts", s.attempts);
+  json.field("table_slots", s.table_slots).field("load_factor", s.load_factor);
+  json.field("memory_bytes", s.list_bytes).field("dense_bytes", v.grid.memory_bytes());
+  json.field("gather_ms", s.gather_ms).field("parity_ms", s.parity_ms);
+  if (ref) {
+    const double voxels = static_cast<double>(v.grid.n) * v.grid.n * v.grid.n;
+    json.key("reference").begin_object().field("mismatches", ref->mismatches).field("band", ref->band);
+    json.field("band_fraction", static_cast<double>(ref->band) / voxels).end_object();
+  }
+  json.end_object();
+  json.save(path);
+}
+
+}  // namespace
+
+int run_voxelize(const std::vector<std::string>& argv) {
+  if (print_help(argv, voxelize_spec())) return 0;
+  const Args args(argv, voxelize_spec());
+  VoxelizeSettings s;
+  s.grid = args.u32_in("grid", 1, 4096);
+  const std::string axis = args.str("axis");
+  if (axis != "x" && axis != "y" && axis != "z" && axis != "all")
+    throw UsageError("option --axis: '" + axis + "' is not x, y, z or all");
+  s.axis = axis == "x" ? VoxelAxis::X : axis == "y" ? VoxelAxis::Y : VoxelAxis::Z;
+  const std::string mesh = args.required("mesh");
+  args.refuse_unless(axis != "all", {"reference"}, "with --axis all (the reference is one axis's parity)");
+  if (args.has("slices") && !has_image_support())
+    throw UsageError("option --slices: this habuffer was built without image files (" + image_support() + ")");
+  FileRoles files;
+  if (mesh != "sphere" && mesh != "torus" && mesh != "box" && !is_scene_name(mesh)) files.input("--mesh", mesh);
+  files.output("--out", args.required("out"), true);
+  if (args.has("stats")) files.output("--stats", args.required("stats"));
+  check_files(files);
+  const Scene scene = solid_or_scene(mesh);
+  std::optional<gl::EglContext> context;
+  try {
+    context.emplace();
+  } catch (const gl::GlError& e) {
+    throw DataError(std::string("voxelize: no usable OpenGL: ") + e.what());
+  }
+  const Voxelization v = axis == "all" ? voxelize_voting(scene, s) : voxelize(scene, s);
+  save_voxel_grid(args.required("out"), v.grid);
+  if (args.has("slices")) write_slices(args.required("slices"), v.grid);
+  std::optional<ReferenceCheck> ref;
+  if (args.has("reference")) ref = check_reference(scene, s, v.grid);
+  if (args.has("stats")) write_stats(args.required("stats"), mesh, axis, v, ref);
+  if (v.stats.odd_columns > 0)
+    std::fprintf(stderr, "habuffer voxelize: warning: %llu columns cross the surface an odd number of times: the mesh "
+                         "is not watertight%s\n",
+                 static_cast<unsigned long long>(v.stats.odd_columns), axis == "all" ? "" : "; try --axis all");
+  if (v.stats.merged > 0)
+    std::fprintf(stderr, "habuffer voxelize: warning: %llu crossings merged with an equal one (same facing, same "
+                         "depth code): coincident faces, the parity behind them flips\n",
+                 static_cast<unsigned long long>(v.stats.merged));
+  if (!args.has("quiet")) {
+    std::printf("%s %u^3 along %s: %llu voxels solid of %llu, %llu crossings (%llu merged, %llu odd columns), lists "
+                "%.1f MiB against %.1f MiB of dense bits, gather %.1f ms, parity %.1f ms\n",
+                mesh.c_str(), s.grid, axis.c_str(), static_cast<unsigned long long>(v.grid.count()),
+                static_cast<unsigned long long>(std::uint64_t{s.grid} * s.grid * s.grid),
+                static_cast<unsigned long long>(v.stats.counters.fragments),
+                static_cast<unsigned long long>(v.stats.merged), static_cast<unsigned long long>(v.stats.odd_columns),
+                static_cast<double>(v.stats.list_bytes) / (1 << 20),
+                static_cast<double>(v.grid.memory_bytes()) / (1 << 20), v.stats.gather_ms, v.stats.parity_ms);
+    if (ref)
+      std::printf("reference: %llu mismatches outside a near-surface band of %llu voxels\n",
+                  static_cast<unsigned long long>(ref->mismatches), static_cast<unsigned long long>(ref->band));
+  }
+  return 0;
+}
+
+}  // namespace habuffer::cli
