@@ -57,9 +57,13 @@ void ShadowSettings::validate() const {
   if (light.size.area() == 0) throw std::invalid_argument("--light-size " + light.size.str() + " has no pixels");
   if (!(std::isfinite(max_slope) && max_slope >= 0.0f))
     throw std::invalid_argument("--shadow-slope must be a finite slope at least 0");
-  if (!(early_cull_tau >= 0.0f && early_cull_tau < 1.0f))
-    throw std::invalid_argument("--light-cull must be in [0, 1) (0: off)");
-  light_config(*this).validate();
+  if (!(early_cull_tau >= 0.0f && early_cull_tau <= 1.0f))
+    throw std::invalid_argument("--light-cull must be in [0, 1] (0: off)");
+  try {
+    light_config(*this).validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("the light buffer (--light-size, --light-table): ") + e.what());
+  }
 }
 
 struct LightPass::Gpu {
@@ -82,7 +86,11 @@ LightPass::LightPass(const Scene& scene, const ShadowSettings& settings, const g
   stats_.size = settings_.light.size;
   const float slope = settings_.filter == ShadowFilter::Pcf ? 2.0f * settings_.max_slope : settings_.max_slope;
   stats_.bias_codes = shadow_bias_codes(stats_.view, slope, light_config(settings_).record_layout().depth_bits());
-  gpu_ = std::make_unique<Gpu>(scene, settings_, view, stats_.view, stats_.bias_codes);
+  try {
+    gpu_ = std::make_unique<Gpu>(scene, settings_, view, stats_.view, stats_.bias_codes);
+  } catch (const gl::GlError& e) {
+    throw gl::GlError(std::string("the light buffer (--light-size ") + settings_.light.size.str() + "): " + e.what());
+  }
 }
 
 LightPass::~LightPass() = default;
@@ -104,6 +112,11 @@ bool LightPass::gather() {
   if (settings_.table == Extent{}) {
     g.buffer.bind();
     const std::uint64_t fragments = g.renderer.count_fragments(camera);
+    // A pixel deeper than AMAX fails at any table: no growth for it (render_job's rule for the view).
+    if (settings_.early_cull_tau <= 0.0f)
+      if ((stats_.too_deep = pixel_counted_beyond(g.renderer.read_pixel_fragments(), settings_.light.size,
+                                                  light_config(settings_).record_layout().max_age())))
+        g.buffer.limit_attempts(1);
     const ResizePolicy policy;
     g.buffer.resize(table_for_load(settings_.light.size, fragments, (policy.grow_at + policy.shrink_at) / 2.0));
   }

@@ -26,6 +26,9 @@ void validate(const RenderSettings& s) {
   if (s.max_attempts == 0) throw std::invalid_argument("--max-attempts must be at least 1");
   technique_config(s).validate();
   if (s.shadows) s.shadows->validate();
+  if (s.shadows && s.config.layout == Layout::L32)
+    throw std::invalid_argument("--shadows needs --layout 64: the view's shaders read the light buffer's 64-bit "
+                                "records with 64-bit shader integers, which an L32 view's module does not enable");
 }
 
 void finish_stats(FrameStats& fs) {

@@ -36,8 +36,23 @@ void check_params(const LightParams& p) {
   if (!p.orthographic) {
     if (!(p.fov > 1.0f && p.fov < 179.0f))
       throw SceneError("light fov " + std::to_string(p.fov) + " is not in (1, 179) degrees");
-    if (!std::isfinite(glm::length(p.position))) throw SceneError("light position " + text(p.position) + " is not finite");
+    if (!std::isfinite(p.position.x) || !std::isfinite(p.position.y) || !std::isfinite(p.position.z))
+      throw SceneError("light position " + text(p.position) + " is not finite");
   }
+}
+
+// The frustum must leave float32 a depth range to work in (as the view's
+// camera, camera.cpp): a light very far from a small scene has near and far
+// equal in float32, and t would be 0 / 0.
+void check_light_range(const LightParams& p, const LightView& v) {
+  const float near = v.camera.near_plane, far = v.camera.far_plane;
+  bool finite = std::isfinite(near) && std::isfinite(far);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(v.camera.view[c][r]) && std::isfinite(v.camera.projection[c][r]);
+  if (finite && far - near > far * 0x1.0p-20f && (p.orthographic || near > 0.0f)) return;
+  throw SceneError(std::string("light ") + (p.orthographic ? "direction " + text(p.direction) : "position " + text(p.position)) +
+                   " leaves no usable depth range over the scene in float32 (near " + std::to_string(near) +
+                   ", far " + std::to_string(far) + "): bring the light closer to the scene");
 }
 
 }  // namespace
@@ -78,6 +93,7 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
     fit_depth_range(scene, v.camera);
     const float half = r * kMargin, hx = aspect >= 1.0f ? half * aspect : half, hy = aspect >= 1.0f ? half : half / aspect;
     v.camera.projection = glm::ortho(-hx, hx, -hy, hy, v.camera.near_plane, v.camera.far_plane);
+    check_light_range(params, v);
     return v;
   }
   const float distance = glm::length(centre - params.position);
@@ -92,7 +108,9 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
   v.camera.view = glm::lookAt(params.position, centre, up_for(towards));
   fit_depth_range(scene, v.camera);
   const float fovy = aspect >= 1.0f ? 2.0f * half_needed : 2.0f * std::atan(std::tan(half_needed) / aspect);
+  check_light_range(params, v);  // before the projection divides by far - near
   v.camera.projection = glm::perspective(fovy, aspect, v.camera.near_plane, v.camera.far_plane);
+  check_light_range(params, v);
   return v;
 }
 

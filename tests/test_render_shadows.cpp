@@ -227,8 +227,15 @@ TEST(ShadowRender, BadLightsAreRefusedNamingTheParameter) {
   s.shadows->light.position = {0.0f, 0.0f, 0.0f};  // inside the scene
   EXPECT_NE(refusal(s).find("inside the scene's bounding sphere"), std::string::npos) << refusal(s);
   s = shadowed({32, 32}, {0.0f, -1.0f, 0.0f}, {64, 64});
-  s.shadows->early_cull_tau = 1.0f;
+  s.shadows->early_cull_tau = 1.5f;
   EXPECT_NE(refusal(s).find("--light-cull"), std::string::npos) << refusal(s);
+  s.shadows->early_cull_tau = 0.0f;
+  s.config.layout = Layout::L32;
+  EXPECT_NE(refusal(s).find("--shadows needs --layout 64"), std::string::npos) << refusal(s);
+  s = shadowed({32, 32}, {0.0f, -1.0f, 0.0f}, {64, 64});
+  s.shadows->light.orthographic = false;
+  s.shadows->light.position = {1e30f, 0.0f, 0.0f};  // so far that float32 has no depth range left
+  EXPECT_NE(refusal(s).find("leaves no usable depth range"), std::string::npos) << refusal(s);
   s = shadowed({32, 32}, {0.0f, -1.0f, 0.0f}, {64, 64});
   s.shadows->max_slope = -1.0f;
   EXPECT_NE(refusal(s).find("--shadow-slope"), std::string::npos) << refusal(s);

@@ -11,6 +11,7 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/interchange.h"
 #include "habuffer/json_writer.h"
+#include "habuffer/option_rules.h"
 #include "habuffer/render/heatmap.h"
 #include "habuffer/render/render_job.h"
 #include "habuffer/render/shadow_accuracy.h"
@@ -85,7 +86,7 @@ const CommandSpec& render_spec() {
           {"light-table", "WxH|auto", "auto",
            "(--shadows) the light buffer's table; auto sizes it from the light's counting pass and grows it until "
            "nothing is dropped"},
-          {"light-cull", "TAU", "0", "(--shadows) the light buffer's early cull, in [0, 1) (0: off; T errs by at most "
+          {"light-cull", "TAU", "0", "(--shadows) the light buffer's early cull, in [0, 1] (0: off; T errs by at most "
                                      "1 - TAU)"},
           {"shadow-error", "N", "",
            "(--shadows) T against the ray-traced reference at up to N receiving points (0: all): the stats' "
@@ -107,7 +108,8 @@ glm::vec3 parse_point(const char* option, const std::string& text) {
   glm::vec3 v(0.0f);
   std::istringstream in(text);
   char comma = 0;
-  if (!(in >> v.x >> comma >> v.y >> comma >> v.z) || !in.eof() || !std::isfinite(glm::length(v)))
+  if (!(in >> v.x >> comma >> v.y >> comma >> v.z) || !in.eof() || !std::isfinite(v.x) || !std::isfinite(v.y) ||
+      !std::isfinite(v.z))
     throw UsageError(std::string("option --") + option + ": '" + text + "' is not X,Y,Z of finite numbers");
   return v;
 }
@@ -145,17 +147,20 @@ std::optional<LightArgs> parse_light(const Args& args) {
     l.spot_along = !s.light.orthographic;
   }
   s.table = args.str("light-table") == "auto" ? Extent{} : args.extent("light-table").value();
-  const double tau = args.real("light-cull");
-  if (!(tau >= 0.0 && tau < 1.0)) throw UsageError("option --light-cull: must be in [0, 1) (0: off)");
-  s.early_cull_tau = static_cast<float>(tau);
+  // 0 is off; anything else early cull's threshold by its rule (a float32 in (0, 1], no subnormal).
+  s.early_cull_tau = args.real("light-cull") == 0.0
+                         ? 0.0f
+                         : usage_errors("light-cull", [&] { return parse_cull_threshold(args.str("light-cull")); });
   const double slope = args.real("shadow-slope");
-  if (!(std::isfinite(slope) && slope >= 0.0)) throw UsageError("option --shadow-slope: must be a finite slope >= 0");
   s.max_slope = static_cast<float>(slope);
+  if (!(std::isfinite(s.max_slope) && slope >= 0.0))
+    throw UsageError("option --shadow-slope: must be a slope >= 0 that float32 holds");
+  args.refuse_unless(!args.has("light-ortho"), {"light-fov"}, "with --light-ortho (a directional light has no cone)");
   const std::string filter = args.str("shadow-filter");
   if (filter != "nearest" && filter != "pcf")
     throw UsageError("option --shadow-filter: '" + filter + "' is not nearest or pcf");
   s.filter = filter == "pcf" ? ShadowFilter::Pcf : ShadowFilter::Nearest;
-  usage_errors("light-table", [&] { s.validate(); });
+  usage_errors("", [&] { s.validate(); });  // its messages name their options
   s.read_back = args.has("shadow-error");
   if (s.read_back) l.error_receivers = args.u64_in("shadow-error");
   return l;
@@ -386,9 +391,16 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
   if (r.light && r.light->counters.failures() > 0)
     std::fprintf(stderr,
                  "habuffer render: warning: the light buffer lost %llu of %llu fragments (table %s): shadows are "
-                 "lighter where they were; use --light-table auto or a larger one\n",
+                 "lighter where they were; %s\n",
                  static_cast<unsigned long long>(r.light->counters.failures()),
-                 static_cast<unsigned long long>(r.light->counters.fragments), r.light->table.str().c_str());
+                 static_cast<unsigned long long>(r.light->counters.fragments), r.light->table.str().c_str(),
+                 r.light->too_deep ? ("light pixel (" + std::to_string(r.light->too_deep->pixel.x) + ", " +
+                                      std::to_string(r.light->too_deep->pixel.y) + ") receives " +
+                                      std::to_string(r.light->too_deep->records) +
+                                      " fragments, more than any table holds (AMAX): use --light-cull")
+                                         .c_str()
+                 : r.light->counters.failed_age > 0 ? "a light pixel is deeper than AMAX: use --light-cull"
+                                                    : "use --light-table auto or a larger one");
   const std::string frames = r.frames.size() == 1 ? "" : " over " + std::to_string(r.frames.size()) + " frames";
   // Age failures from a pixel deeper than AMAX are not the buffers' size:
   // say which pixel and what age bits would hold it.
@@ -418,6 +430,8 @@ int run_render(const std::vector<std::string>& argv) {
   const std::vector<std::string> opaque_meshes =
       args.has("opaque-meshes") ? args.list("opaque-meshes", "") : std::vector<std::string>{};
   const std::optional<LightArgs> light = parse_light(args);
+  if (light && s.config.layout == Layout::L32)
+    throw UsageError("option --shadows needs --layout 64 (the view's shaders read the light's 64-bit records)");
   const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args, s.technique);
   check_render_files(args, s, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";

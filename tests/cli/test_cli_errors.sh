@@ -160,7 +160,13 @@ expect 2 "option --light-dir has no effect without --shadows" -- render --scene 
 expect 2 "option --light-size: '0x64'" -- render --scene quads --shadows --light-size 0x64 --out x.png
 expect 2 "option --light-dir: '0,1' is not X,Y,Z" -- render --scene quads --shadows --light-dir 0,1 --out x.png
 expect 2 "option --light-dir: the zero vector" -- render --scene quads --shadows --light-dir 0,0,0 --out x.png
-expect 2 "option --light-cull: must be in [0, 1)" -- render --scene quads --shadows --light-cull 1 --out x.png
+expect 2 "option --light-cull: threshold must be in (0, 1]" -- render --scene quads --shadows --light-cull 1.5 \
+  --out x.png
+expect 2 "option --light-fov has no effect with --light-ortho" -- render --scene quads --shadows --light-ortho \
+  --light-fov 30 --out x.png
+expect 2 "option --shadows needs --layout 64" -- render --scene quads --shadows --layout 32 --out x.png
+ASAN_OPTIONS=detect_leaks=0 expect 1 "leaves no usable depth range" -- render --scene quads --shadows \
+  --light-pos 1e30,0,0 --out x.png
 expect 2 "option --shadow-filter: 'box' is not nearest or pcf" -- render --scene quads --shadows --shadow-filter box \
   --out x.png
 expect 2 "option --heatmap shadow: the light's transmittance needs --shadows" -- render --scene quads \

@@ -22,6 +22,7 @@
 #include "habuffer/gl/shadow_lookup.h"
 #include "habuffer/render/scene_renderer.h"
 #include "habuffer/light_view.h"
+#include "habuffer/pixel_depth.h"
 #include "habuffer/resize_policy.h"
 #include "habuffer/scene.h"
 
@@ -43,7 +44,7 @@ struct ShadowSettings {
   /// counting pass and regathered into a grown table until nothing is
   /// dropped, at most 16 gathers).
   Extent table{};
-  float early_cull_tau = 0.0f;  ///< the light buffer's early cull (0: off; T then errs by at most 1 - tau)
+  float early_cull_tau = 0.0f;  ///< the light buffer's early cull in [0, 1] (0: off; T then errs by at most 1 - tau)
   std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;  ///< its records' age bits (BufferConfig's rule)
   /// The bias rule's largest slope (shadow_bias_codes): surfaces up to
   /// atan(max_slope) from facing the light never shadow themselves.
@@ -58,7 +59,7 @@ struct ShadowSettings {
   /// light buffers built from the same stream, the shadow frontier).
   bool capture = false;
   /// Throws std::invalid_argument naming the field (an empty map, a bad
-  /// slope, tau outside [0, 1), BufferConfig's rules).
+  /// slope, tau outside [0, 1], BufferConfig's rules).
   void validate() const;
 };
 
@@ -79,6 +80,9 @@ struct LightStats {
   double lookup_ms = 0.0;
   std::uint64_t lookup_pixels = 0;
   LightView view;              ///< the light as framed on the scene
+  /// Without early cull: a light pixel receiving more fragments than AMAX,
+  /// which no table holds (so the automatic table did not grow for it).
+  std::optional<PixelDepth> too_deep;
 };
 
 /// The light buffer of a render (see the file comment); needs a current
