@@ -21,6 +21,8 @@
 #include "habuffer/gl/shader_program.h"
 #include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/light_view.h"
+#include "habuffer/lossless_build.h"
+#include "habuffer/memory_model.h"
 #include "habuffer/transmittance_reference.h"
 
 namespace habuffer {
@@ -170,7 +172,8 @@ Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
   // A closed surface crosses a column an even number of times: start from two per pixel.
   config.table = table_for_load(screen, 2 * screen.area(), 0.5);
   gl::GlFrameOptions options;
-  options.max_attempts = 16;  // lossless: a gather that drops a crossing is redone larger
+  options.max_attempts = s.cpu ? 1 : 16;  // lossless: a gather that drops a crossing is redone larger
+  options.capture = options.capture_only = s.cpu;  // the CPU path: rasterize and capture only
   gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
   const gl::ShaderProgram program = gl::ShaderProgram::graphics(
       kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "voxelization gather");
@@ -198,21 +201,36 @@ Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   });
   glDeleteFramebuffers(1, &framebuffer);
-  out.stats.gather_ms = ms_since(t0);
-  out.stats.counters = report.counters;
-  out.stats.merged = report.counters.duplicates;
+  std::unique_ptr<FragmentBuffer> buffer;
+  Counters counters = report.counters;
+  Extent table = lists.table();
   out.stats.attempts = static_cast<std::uint32_t>(report.attempts.size());
-  out.stats.table_slots = lists.table().area();
-  out.stats.load_factor =
-      static_cast<double>(report.counters.stored()) / static_cast<double>(std::max<std::uint64_t>(1, out.stats.table_slots));
   out.stats.list_bytes = lists.technique().memory_bytes();
-  if (report.counters.failures() > 0)
-    throw gl::GlError("voxelize: " + std::to_string(report.counters.failures()) + " of " +
-                      std::to_string(report.counters.fragments) + " crossings lost after " +
-                      std::to_string(out.stats.attempts) + " gathers (table " + lists.table().str() +
+  if (s.cpu) {
+    // The captured crossings into the CPU path's HA-buffer, the table grown until nothing is dropped.
+    InsertOptions insert;
+    insert.threads = s.threads;
+    TechniqueBuild b =
+        build_technique(ha_technique_config(config), OffsetSource{}, lists.read_capture(), insert, ResizePolicy{}, 16);
+    counters = b.counters;
+    out.stats.attempts = static_cast<std::uint32_t>(b.attempts.size());
+    buffer = std::move(b.buffer);
+    table = buffer->technique_config().buffer.table;
+    out.stats.list_bytes = memory_model_bytes(*buffer);
+  }
+  out.stats.gather_ms = ms_since(t0);
+  out.stats.counters = counters;
+  out.stats.merged = counters.duplicates;
+  out.stats.table_slots = table.area();
+  out.stats.load_factor =
+      static_cast<double>(counters.stored()) / static_cast<double>(std::max<std::uint64_t>(1, out.stats.table_slots));
+  if (counters.failures() > 0)
+    throw gl::GlError("voxelize: " + std::to_string(counters.failures()) + " of " +
+                      std::to_string(counters.fragments) + " crossings lost after " +
+                      std::to_string(out.stats.attempts) + " gathers (table " + table.str() +
                       "): a lost crossing is a wrong column; a smaller --grid needs a smaller table");
   const auto p0 = Clock::now();
-  const std::unique_ptr<FragmentBuffer> buffer = lists.technique().read_back();
+  if (!buffer) buffer = lists.technique().read_back();
   const RecordLayout layout = config.record_layout();
   out.grid = VoxelGrid(s.grid, box);
   std::vector<ListEntry> crossings;

@@ -96,6 +96,26 @@ TEST(Voxelize, ASphereAndATorusMatchTheRayParityReferenceOutsideTheNearSurfaceBa
   }
 }
 
+// The CPU path (GL rasterizes and captures, the CPU builds the lists): the
+// same crossings, so the same grid as the GPU's, voxel for voxel.
+TEST(Voxelize, TheCpuAndGlPathsGiveTheSameGrid) {
+  gl_context();
+  const Scene scene = scene_of({torus_mesh({0, 0, 0}, 1.0f, 0.4f), box_mesh({-0.2f, -0.2f, -0.2f}, {0.2f, 0.2f, 0.2f})});
+  for (const VoxelAxis axis : {VoxelAxis::X, VoxelAxis::Z}) {
+    SCOPED_TRACE(to_string(axis));
+    VoxelizeSettings s;
+    s.grid = 24;
+    s.axis = axis;
+    const Voxelization gl = voxelize(scene, s);
+    s.cpu = true;
+    s.threads = 2;
+    const Voxelization cpu = voxelize(scene, s);
+    EXPECT_EQ(gl.grid.words, cpu.grid.words);
+    EXPECT_EQ(gl.stats.counters, cpu.stats.counters);
+    EXPECT_GT(cpu.grid.count(), 0u);
+  }
+}
+
 TEST(Voxelize, BadSettingsAreRefusedNamingTheField) {
   gl_context();
   const Scene scene = scene_of({box_mesh({0, 0, 0}, {1, 1, 1})});

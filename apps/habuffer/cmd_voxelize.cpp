@@ -31,6 +31,8 @@ const CommandSpec& voxelize_spec() {
        {"stats", "S.json", "", "voxels, crossings, merged crossings, odd columns, memory, load, times"},
        {"slices", "DIR", "", "one PNG per z layer of voxels (slice_0000.png, ...), solid white"},
        {"reference", "", "", "compare with the ray-parity reference: mismatches outside the near-surface band"},
+       {"path", "gl|cpu", "gl", "where the lists are built: on the GPU, or captured and built on the CPU (same grid)"},
+       {"threads", "N", "0", "(--path cpu) worker threads; 0: the default count"},
        {"quiet", "", "", "no summary"}},
       "  Exit codes: 0 ok (odd columns and merged crossings are warned about), 1 bad data, 2 bad usage.\n"};
   return spec;
@@ -108,6 +110,11 @@ int run_voxelize(const std::vector<std::string>& argv) {
   if (axis != "x" && axis != "y" && axis != "z" && axis != "all")
     throw UsageError("option --axis: '" + axis + "' is not x, y, z or all");
   s.axis = axis == "x" ? VoxelAxis::X : axis == "y" ? VoxelAxis::Y : VoxelAxis::Z;
+  const std::string path = args.str("path");
+  if (path != "gl" && path != "cpu") throw UsageError("option --path: '" + path + "' is not gl or cpu");
+  s.cpu = path == "cpu";
+  s.threads = args.u32_in("threads", 0, 1024);
+  args.refuse_unless(s.cpu, {"threads"}, "with --path gl (the GPU builds the lists)");
   const std::string mesh = args.required("mesh");
   args.refuse_unless(axis != "all", {"reference"}, "with --axis all (the reference is one axis's parity)");
   if (args.has("slices") && !has_image_support())

@@ -145,7 +145,10 @@ for key in '"voxels":' '"merged":' '"odd_columns":' '"dense_bytes":' '"mismatche
 done
 [[ $(stat -c %s v_torus.vox) -eq $((40 + (24 * 24 * 24 + 63) / 64 * 8)) ]] && pass=$((pass + 1)) ||
   { echo "FAIL: voxelize grid file size"; fail=$((fail + 1)); }
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- voxelize --mesh torus --grid 24 --path cpu --threads 2 --out v_cpu.vox --quiet
+cmp -s v_torus.vox v_cpu.vox && pass=$((pass + 1)) || { echo "FAIL: voxelize gl and cpu grids differ"; fail=$((fail + 1)); }
 expect 2 "option --axis: 'w' is not x, y, z or all" -- voxelize --mesh sphere --axis w --out v.vox
+expect 2 "option --threads has no effect with --path gl" -- voxelize --mesh sphere --threads 2 --out v.vox
 expect 2 "option --grid" -- voxelize --mesh sphere --grid 0 --out v.vox
 expect 2 "option --reference has no effect with --axis all" -- voxelize --mesh sphere --axis all --reference --out v.vox
 expect 1 "unknown scene 'teapotx'" -- voxelize --mesh teapotx --out v.vox

@@ -53,6 +53,11 @@ struct VoxelizeSettings {
   std::uint32_t grid = 128;      ///< voxels per side N (the views' N x N pixels)
   VoxelAxis axis = VoxelAxis::Z; ///< the axis the views look along
   std::optional<Bounds> box;     ///< the grid's region; default: the scene's bounding box
+  /// Gl: the lists built on the GPU; Cpu: GL only rasterizes and captures
+  /// the crossings, the lists are built on the CPU (the same lists, so the
+  /// same grid: tested).
+  bool cpu = false;
+  std::uint32_t threads = 0;     ///< the CPU path's worker threads (0: the default)
   /// Throws std::invalid_argument naming the field (grid outside 1..4096, an
   /// empty or flat box).
   void validate() const;
