@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gl_test_support.h"
+#include "habuffer/harness/voxel_figure.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/solids.h"
 
@@ -114,6 +115,21 @@ TEST(Voxelize, TheCpuAndGlPathsGiveTheSameGrid) {
     EXPECT_EQ(gl.stats.counters, cpu.stats.counters);
     EXPECT_GT(cpu.grid.count(), 0u);
   }
+}
+
+TEST(Voxelize, TheFiguresTableHasOneRowPerMeshAndGridWithNoMismatchOnABox) {
+  gl_context();
+  harness::VoxelFigureSettings f;
+  f.meshes = {"box", "torus"};
+  f.grids = {8, 16};
+  f.repeats = 1;
+  const harness::ResultTable t = harness::run_voxel_figure(f);
+  ASSERT_EQ(t.rows.size(), 4u);
+  for (const harness::ResultRow& r : t.rows) EXPECT_EQ(r.number("mismatches"), 0.0);
+  EXPECT_EQ(t.rows[1].number("voxels"), 16.0 * 16 * 16);  // the box fills its grid
+  EXPECT_GT(t.rows[3].number("voxels"), 0.0);
+  f.grids = {};
+  EXPECT_THROW((void)harness::run_voxel_figure(f), std::invalid_argument);
 }
 
 TEST(Voxelize, BadSettingsAreRefusedNamingTheField) {

@@ -8,6 +8,7 @@
 #include "habuffer/harness/figures.h"
 #include "habuffer/harness/frontier.h"
 #include "habuffer/harness/shadow_frontier.h"
+#include "habuffer/harness/voxel_figure.h"
 #include "habuffer/number_text.h"
 #include "habuffer/option_rules.h"
 #include "habuffer/progress.h"
@@ -141,6 +142,29 @@ harness::ResultTable run_shadows(FigureRun& r) {
   return harness::run_shadow_frontier(scene[0], f);
 }
 
+harness::ResultTable run_voxels(FigureRun& r) {
+  r.args.refuse_unless(false, {"size", "tau"}, "on figure voxels (--grids sets the sizes)");
+  harness::VoxelFigureSettings f;
+  f.meshes = r.args.list("meshes");
+  f.grids.clear();
+  for (const std::string& g : r.args.list("grids"))
+    f.grids.push_back(usage_errors("grids", [&] {
+      std::size_t used = 0;
+      const unsigned long n = std::stoul(g, &used);
+      if (used != g.size() || n == 0 || n > 4096) throw std::invalid_argument("'" + g + "' is not a side in 1..4096");
+      return static_cast<std::uint32_t>(n);
+    }));
+  const std::string axis = r.args.str("axis");
+  if (axis != "x" && axis != "y" && axis != "z") throw UsageError("option --axis: '" + axis + "' is not x, y or z");
+  f.axis = axis == "x" ? VoxelAxis::X : axis == "y" ? VoxelAxis::Y : VoxelAxis::Z;
+  f.cpu = r.s.path == RenderPath::Cpu;
+  f.repeats = r.s.repeats;
+  f.on_progress = r.s.on_progress;
+  r.outputs = parse_outputs(r.args, {});
+  const auto context = context_for(true, "figure");
+  return harness::run_voxel_figure(f);
+}
+
 harness::ResultTable run_table1(FigureRun& r) {
   r.args.refuse_unless(false, {"path", "repeats", "threads", "tau"}, "on table1 (sizes only, nothing is rendered)");
   const std::vector<Extent> size = parse_sizes(r.args);
@@ -187,12 +211,18 @@ const std::vector<Figure>& figures() {
         {"light-size", "WxH", "512x512", "the light map"},
         {"receivers", "N", "0", "receivers checked, every k-th (0: all)"}},
        run_shadows},
+      {"voxels", "  issue 21's voxelization table: meshes x grid sizes, time, lists vs dense bytes, mismatches\n"
+                 "  against the ray-parity reference outside its band\n",
+       {{"meshes", "M,..", "sphere,torus,wuson,spider", "solids (sphere, torus, box) or scenes"},
+        {"grids", "N,..", "128,256,512", "voxels per side"},
+        {"axis", "x|y|z", "z", "the views' axis"}},
+       run_voxels},
   };
   return list;
 }
 
 std::string figure_help() {
-  std::string s = CommandSpec{"figure fig2|fig8|fig10|table1|frontier|shadows --out F.json[,F.csv] [OPTIONS]",
+  std::string s = CommandSpec{"figure fig2|fig8|fig10|table1|frontier|shadows|voxels --out F.json[,F.csv] [OPTIONS]",
                               figure_common(false), ""}
                       .help();
   for (const Figure& f : figures()) {
@@ -215,7 +245,7 @@ void refuse_other_figures_options(const Args& all, const Figure& figure) {
 
 int run_figure(const std::vector<std::string>& argv) {
   if (print_help(argv, figure_help()) || argv.empty()) {
-    if (argv.empty()) throw UsageError("name a figure: fig2, fig8, fig10, table1, frontier or shadows");
+    if (argv.empty()) throw UsageError("name a figure: fig2, fig8, fig10, table1, frontier, shadows or voxels");
     return 0;
   }
   const std::string name = argv[0];
@@ -228,7 +258,7 @@ int run_figure(const std::vector<std::string>& argv) {
   const Args all(rest, every);
   const auto figure = std::find_if(figures().begin(), figures().end(), [&](const Figure& f) { return f.name == name; });
   if (figure == figures().end())
-    throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier, shadows)");
+    throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier, shadows, voxels)");
   refuse_other_figures_options(all, *figure);
   const CommandSpec spec{"", figure_common(name == "table1") + figure->own, ""};
   const Args args(rest, spec);

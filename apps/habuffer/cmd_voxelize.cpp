@@ -14,7 +14,7 @@
 #include "habuffer/render/image.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/scene_catalog.h"
-#include "habuffer/solids.h"
+#include "habuffer/harness/voxel_figure.h"
 #include "report_json.h"
 
 namespace habuffer::cli {
@@ -36,16 +36,6 @@ const CommandSpec& voxelize_spec() {
        {"quiet", "", "", "no summary"}},
       "  Exit codes: 0 ok (odd columns and merged crossings are warned about), 1 bad data, 2 bad usage.\n"};
   return spec;
-}
-
-Scene solid_or_scene(const std::string& name) {
-  Scene s;
-  s.name = name;
-  if (name == "sphere") s.meshes = {sphere_mesh({0, 0, 0}, 1.0f)};
-  else if (name == "torus") s.meshes = {torus_mesh({0, 0, 0}, 1.0f, 0.4f)};
-  else if (name == "box") s.meshes = {box_mesh({0, 0, 0}, {1, 1, 1})};
-  else return make_scene(name, {});
-  return s;
 }
 
 void write_slices(const std::string& dir, const VoxelGrid& g) {
@@ -124,7 +114,7 @@ int run_voxelize(const std::vector<std::string>& argv) {
   files.output("--out", args.required("out"), true);
   if (args.has("stats")) files.output("--stats", args.required("stats"));
   check_files(files);
-  const Scene scene = solid_or_scene(mesh);
+  const Scene scene = harness::voxel_mesh(mesh);
   std::optional<gl::EglContext> context;
   try {
     context.emplace();
