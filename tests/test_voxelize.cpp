@@ -3,6 +3,7 @@
 // mismatch against the ray-parity reference outside the near-surface band.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -77,6 +78,28 @@ TEST(Voxelize, TwoBoxesSharingAFaceFillTheGridAndCoincidentFacesAreReportedAsMer
   EXPECT_EQ(touching.stats.merged, 0u);  // an exit and an entry: two records, different facings
   const Voxelization doubled = voxelize(scene_of({box_mesh({0, 0, 0}, {1, 1, 1}), box_mesh({0, 0, 0}, {1, 1, 1})}), s);
   EXPECT_GT(doubled.stats.merged, 0u);  // equal crossings (same facing, same code) merged and counted
+}
+
+// cuda_voxelizer's users found a cube at grid 8 coming out 8x8x7; a sheet
+// thinner than a depth code has its entry and exit at one code, two records
+// of opposite facing: no voxel between them, nothing merged, no odd column.
+TEST(Voxelize, ACubeAtGridEightIsEightCubedAndASheetThinnerThanACodeHasNoVoxel) {
+  gl_context();
+  for (const std::uint32_t n : {8u, 7u, 1u}) {
+    VoxelizeSettings s;
+    s.grid = n;
+    EXPECT_EQ(voxelize(scene_of({box_mesh({-1, -1, -1}, {1, 1, 1})}), s).grid.count(), std::uint64_t{n} * n * n);
+  }
+  VoxelizeSettings s;
+  s.grid = 16;
+  s.box = unit_box();
+  // z from 0.25 to the next float32: half a depth code (2^-24 of the box) thick.
+  const float top = std::nextafter(0.25f, 1.0f);
+  const Voxelization sheet = voxelize(scene_of({box_mesh({0.1f, 0.1f, 0.25f}, {0.9f, 0.9f, top})}), s);
+  EXPECT_EQ(sheet.grid.count(), 0u);
+  EXPECT_EQ(sheet.stats.merged, 0u);
+  EXPECT_EQ(sheet.stats.odd_columns, 0u);
+  EXPECT_GT(sheet.stats.counters.stored(), 0u);
 }
 
 TEST(Voxelize, ASphereAndATorusMatchTheRayParityReferenceOutsideTheNearSurfaceBand) {
