@@ -127,7 +127,7 @@ CsgSurface csg_resolve(std::span<const ListEntry> nearest_first, const CsgExpres
       if (id >= expression.primitives())
         throw CsgError("csg resolve: a record names primitive " + std::to_string(id) + ", the expression has " +
                        std::to_string(expression.primitives()));
-      inside.set(id, (nearest_first[i].data & 1u) == 0);  // entering sets, leaving clears
+      inside.toggle(id);  // parity: a grazing pair cancels whichever facing the rasterizer gave it
       if (id < first) {
         first = id;
         first_exit = (nearest_first[i].data & 1u) != 0;

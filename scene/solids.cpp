@@ -55,6 +55,38 @@ Mesh sphere_mesh(glm::vec3 centre, float radius, std::uint32_t slices, std::uint
   return m;
 }
 
+Mesh cylinder_mesh(glm::vec3 base, glm::vec3 axis, float length, float radius, std::uint32_t sides,
+                   std::string name) {
+  const float axis_length = std::sqrt(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z);
+  if (!(radius > 0.0f && length > 0.0f && axis_length > 0.0f) || sides < 3)
+    throw std::invalid_argument("cylinder " + name + ": radius, length and axis must be positive, sides at least 3");
+  const glm::vec3 w = axis / axis_length;
+  const glm::vec3 helper = std::abs(w.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  glm::vec3 u = glm::vec3(helper.y * w.z - helper.z * w.y, helper.z * w.x - helper.x * w.z, helper.x * w.y - helper.y * w.x);
+  u /= std::sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+  const glm::vec3 v(w.y * u.z - w.z * u.y, w.z * u.x - w.x * u.z, w.x * u.y - w.y * u.x);  // u, v, w right-handed
+  Mesh m;
+  m.name = std::move(name);
+  m.opacity = 1.0f;
+  const glm::vec3 top = base + w * length;
+  for (std::uint32_t i = 0; i < sides; ++i) {
+    const float a = 2.0f * kPi * static_cast<float>(i) / static_cast<float>(sides);
+    const glm::vec3 r = radius * (std::cos(a) * u + std::sin(a) * v);
+    m.positions.push_back(base + r);
+    m.positions.push_back(top + r);
+  }
+  const auto centre_base = static_cast<std::uint32_t>(m.positions.size());
+  m.positions.push_back(base);
+  m.positions.push_back(top);
+  for (std::uint32_t i = 0; i < sides; ++i) {
+    const std::uint32_t b0 = 2 * i, t0 = 2 * i + 1, b1 = 2 * ((i + 1) % sides), t1 = b1 + 1;
+    m.indices.insert(m.indices.end(), {b0, b1, t1, b0, t1, t0});                  // the side, outward
+    m.indices.insert(m.indices.end(), {centre_base, b1, b0});                    // the base cap, facing -w
+    m.indices.insert(m.indices.end(), {centre_base + 1, t0, t1});                // the top cap, facing +w
+  }
+  return m;
+}
+
 Mesh torus_mesh(glm::vec3 centre, float major, float minor, std::uint32_t rings, std::uint32_t sides, std::string name) {
   if (!(minor > 0.0f && major > minor) || rings < 3 || sides < 3)
     throw std::invalid_argument("torus " + name + ": need 0 < minor < major radius and at least 3 rings and sides");

@@ -13,9 +13,13 @@
 /// coplanar solids do not depend on the order records of one code come in:
 /// A's exit and B's entry at one depth keep A | B true there (no surface
 /// shows inside a union), A - B with B's entry at A's entry shows nothing.
-/// An entry sets its primitive's bit and an exit clears it (not a toggle:
-/// two equal crossings merged into one record, SPEC 10, leave the bit
-/// right). The camera is outside every primitive (every bit starts clear).
+/// Each crossing toggles its primitive's bit (parity, as the voxelizer's):
+/// a triangle pair grazed near a silhouette cancels whichever facing the
+/// rasterizer rounds it to (setting on entry and clearing on exit did not:
+/// an exit rounded nearer than its entry left the primitive "inside" for
+/// the rest of the list). The facing stays in the record so that an entry
+/// and an exit at one depth are two records, not one merged (SPEC 10). The
+/// camera is outside every primitive (every bit starts clear).
 #pragma once
 
 #include <cstdint>

@@ -1,0 +1,249 @@
+#include "habuffer/render/csg_renderer.h"
+
+#include <epoxy/gl.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "habuffer/fragment_streams.h"
+#include "habuffer/gl/debug_output.h"
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/shader_program.h"
+#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
+#include "habuffer/light_view.h"
+#include "habuffer/lossless_build.h"
+#include "habuffer/memory_model.h"
+#include "habuffer/transmittance_reference.h"
+
+namespace habuffer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+const char* const kVertex = R"(#version 450 core
+layout(location = 0) in vec3 position;
+uniform mat4 view;
+uniform mat4 projection;
+out vec3 v_eye;
+void main() {
+  vec4 eye = view * vec4(position, 1.0);
+  v_eye = eye.xyz;
+  gl_Position = projection * eye;
+}
+)";
+const char* const kCrossing = R"(
+in vec3 v_eye;
+uniform float near_plane;
+uniform float far_plane;
+uniform uint primitive;
+void main() {
+  float t = (-v_eye.z - near_plane) / (far_plane - near_plane);
+  habuffer_insert(uvec2(gl_FragCoord.xy), clamp(t, 0.0, 1.0), (primitive << 1u) | (gl_FrontFacing ? 0u : 1u));
+}
+)";
+
+// One primitive's triangles on the GPU.
+struct GpuMesh {
+  explicit GpuMesh(const Mesh& m)
+      : vertices(m.positions.size() * sizeof(glm::vec3), m.positions.data()),
+        elements(m.indices.size() * 4, m.indices.data()),
+        count(static_cast<GLsizei>(m.indices.size())) {
+    glCreateVertexArrays(1, &array);
+    glVertexArrayVertexBuffer(array, 0, vertices.id(), 0, sizeof(glm::vec3));
+    glVertexArrayElementBuffer(array, elements.id());
+    glEnableVertexArrayAttrib(array, 0);
+    glVertexArrayAttribFormat(array, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(array, 0, 0);
+  }
+  ~GpuMesh() { glDeleteVertexArrays(1, &array); }
+  GpuMesh(GpuMesh&& o) noexcept
+      : vertices(std::move(o.vertices)), elements(std::move(o.elements)), array(o.array), count(o.count) {
+    o.array = 0;
+  }
+  GpuMesh(const GpuMesh&) = delete;
+  GpuMesh& operator=(const GpuMesh&) = delete;
+  gl::GlStorage vertices, elements;
+  GLuint array = 0;
+  GLsizei count = 0;
+};
+
+// A flat-ish shade of primitive `id` (a colour per id) lit by the surface's
+// normal from the depth image: the positions of the neighbouring pixels.
+glm::vec3 palette(std::int32_t id) {
+  const float h = std::fmod(static_cast<float>(id) * 0.618034f, 1.0f);
+  return glm::vec3(0.55f + 0.4f * std::cos(6.2832f * h), 0.55f + 0.4f * std::cos(6.2832f * (h - 0.333f)),
+                   0.55f + 0.4f * std::cos(6.2832f * (h - 0.667f)));
+}
+
+void shade(CsgRender& r, const RecordLayout& layout, Extent screen) {
+  std::vector<glm::dvec3> eye(screen.area(), glm::dvec3(0.0));
+  const glm::dmat4 view(r.camera.view);
+  for (std::size_t i = 0; i < screen.area(); ++i)
+    if (r.primitive[i] >= 0) {
+      const double t = (static_cast<double>(layout.max_code() - r.codes[i]) + 0.5) / std::ldexp(1.0, static_cast<int>(layout.depth_bits()));
+      const glm::dvec3 w = unproject(r.camera, screen, {static_cast<double>(i % screen.x) + 0.5, static_cast<double>(i / screen.x) + 0.5}, t);
+      eye[i] = glm::dvec3(view * glm::dvec4(w, 1.0));
+    }
+  r.image = Image{screen, std::vector<glm::vec4>(screen.area(), glm::vec4(1.0f))};
+  const auto at = [&](std::int64_t x, std::int64_t y, std::size_t fallback) {
+    if (x < 0 || y < 0 || x >= screen.x || y >= screen.y) return fallback;
+    const std::size_t j = static_cast<std::size_t>(x) + static_cast<std::size_t>(y) * screen.x;
+    return r.primitive[j] >= 0 ? j : fallback;
+  };
+  for (std::size_t i = 0; i < screen.area(); ++i) {
+    if (r.primitive[i] < 0) continue;
+    const std::int64_t x = static_cast<std::int64_t>(i % screen.x), y = static_cast<std::int64_t>(i / screen.x);
+    const glm::dvec3 dx = eye[at(x + 1, y, i)] - eye[at(x - 1, y, i)], dy = eye[at(x, y + 1, i)] - eye[at(x, y - 1, i)];
+    const glm::dvec3 n = glm::cross(dx, dy);
+    const double len = glm::length(n);
+    const float facing = len > 0.0 ? static_cast<float>(std::abs(n.z) / len) : 1.0f;
+    r.image.pixels[i] = glm::vec4(palette(r.primitive[i]) * (0.3f + 0.7f * facing), 1.0f);
+  }
+}
+
+}  // namespace
+
+CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, const CsgRenderSettings& s) {
+  if (expression.primitives() != primitives.meshes.size())
+    throw CsgError("csg: the expression names " + std::to_string(expression.primitives()) + " primitives, the scene has " +
+                   std::to_string(primitives.meshes.size()) + " meshes");
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
+  if (!mode) throw gl::GlError("csg: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
+  CsgRender r;
+  r.camera = frame_scene(primitives, s.camera, s.screen);
+  BufferConfig config;
+  config.screen = s.screen;
+  config.layout = Layout::L64;
+  config.table = table_for_load(s.screen, 2 * s.screen.area(), 0.5);
+  gl::GlFrameOptions options;
+  options.max_attempts = s.cpu ? 1 : 16;
+  options.capture = options.capture_only = s.cpu;
+  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
+  const gl::ShaderProgram program =
+      gl::ShaderProgram::graphics(kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "csg gather");
+  std::vector<GpuMesh> meshes;
+  meshes.reserve(primitives.meshes.size());
+  for (const Mesh& m : primitives.meshes) meshes.emplace_back(m);
+  glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "view"), 1, GL_FALSE, glm::value_ptr(r.camera.view));
+  glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "projection"), 1, GL_FALSE,
+                            glm::value_ptr(r.camera.projection));
+  program.set("near_plane", r.camera.near_plane);
+  program.set("far_plane", r.camera.far_plane);
+  GLuint framebuffer = 0;
+  glCreateFramebuffers(1, &framebuffer);
+  glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(s.screen.x));
+  glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(s.screen.y));
+  const auto t0 = Clock::now();
+  const gl::FrameReport report = lists.frame([&] {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, static_cast<GLsizei>(s.screen.x), static_cast<GLsizei>(s.screen.y));
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glUseProgram(program.id());
+    for (std::size_t id = 0; id < meshes.size(); ++id) {
+      program.set("primitive", static_cast<unsigned>(id));
+      glBindVertexArray(meshes[id].array);
+      glDrawElements(GL_TRIANGLES, meshes[id].count, GL_UNSIGNED_INT, nullptr);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  });
+  glDeleteFramebuffers(1, &framebuffer);
+  std::unique_ptr<FragmentBuffer> buffer;
+  r.counters = report.counters;
+  r.attempts = static_cast<std::uint32_t>(report.attempts.size());
+  r.list_bytes = lists.technique().memory_bytes();
+  if (s.cpu) {
+    InsertOptions insert;
+    insert.threads = s.threads;
+    TechniqueBuild b =
+        build_technique(ha_technique_config(config), OffsetSource{}, lists.read_capture(), insert, ResizePolicy{}, 16);
+    r.counters = b.counters;
+    r.attempts = static_cast<std::uint32_t>(b.attempts.size());
+    r.list_bytes = memory_model_bytes(*b.buffer);
+    buffer = std::move(b.buffer);
+  }
+  r.gather_ms = ms_since(t0);
+  if (r.counters.failures() > 0)
+    throw gl::GlError("csg: " + std::to_string(r.counters.failures()) + " of " + std::to_string(r.counters.fragments) +
+                      " records lost after " + std::to_string(r.attempts) + " gathers: a lost record is a wrong pixel");
+  if (!buffer) buffer = lists.technique().read_back();
+  const auto p0 = Clock::now();
+  r.primitive.assign(s.screen.area(), -1);
+  r.codes.assign(s.screen.area(), 0);
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < s.screen.y; ++y)
+    for (std::uint32_t x = 0; x < s.screen.x; ++x) {
+      buffer->list(x, y, list);
+      std::sort(list.begin(), list.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
+      const CsgSurface surface = csg_resolve(list, expression);
+      if (!surface.visible) continue;
+      const std::size_t i = x + std::size_t{y} * s.screen.x;
+      r.primitive[i] = static_cast<std::int32_t>(surface.primitive);
+      r.codes[i] = surface.code;
+    }
+  shade(r, config.record_layout(), s.screen);
+  r.resolve_ms = ms_since(p0);
+  gl::check_gl_errors("csg");
+  return r;
+}
+
+std::vector<std::int32_t> csg_reference(const Scene& primitives, const CsgExpression& expression, const Camera& camera,
+                                        Extent screen, std::vector<bool>* band) {
+  const TransmittanceReference reference(primitives);
+  std::vector<std::uint32_t> owner;  // triangle index -> primitive
+  for (std::uint32_t m = 0; m < primitives.meshes.size(); ++m) owner.insert(owner.end(), primitives.meshes[m].indices.size() / 3, m);
+  const RecordLayout layout(Layout::L64, BufferConfig{}.age_bits);
+  // The visible primitive and code along the ray through window position (wx, wy).
+  const auto cast = [&](double wx, double wy) {
+    const glm::dvec3 near_point = unproject(camera, screen, {wx, wy}, 0.0), far_point = unproject(camera, screen, {wx, wy}, 1.0);
+    LightView to_far;  // a "spot" at the far point: hits from the near point toward it
+    to_far.orthographic = false;
+    to_far.position = glm::vec3(far_point);
+    const double length = glm::length(far_point - near_point);
+    // A ray through an edge meets both triangles there (an inclusive test):
+    // crossings of one primitive and facing at one distance count once, as
+    // the rasterizer covers one of the two.
+    std::vector<TransmittanceReference::Hit> hits = reference.hits(near_point, to_far);
+    std::vector<ListEntry> list;
+    for (std::size_t h = 0; h < hits.size(); ++h) {
+      bool repeat = false;
+      for (std::size_t g = h; g-- > 0 && hits[h].distance - hits[g].distance <= 1e-9 * length;)
+        repeat = repeat || (owner[hits[g].triangle] == owner[hits[h].triangle] && hits[g].toward == hits[h].toward);
+      if (!repeat)
+        list.push_back({0, layout.depth_code(static_cast<float>(hits[h].distance / length)),
+                        csg_data(owner[hits[h].triangle], hits[h].toward)});
+    }
+    std::stable_sort(list.begin(), list.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
+    const CsgSurface s = csg_resolve(list, expression);
+    bool tie = false;
+    if (s.visible)
+      for (const ListEntry& e : list)
+        tie = tie || ((e.data >> 1) != s.primitive && std::abs(static_cast<double>(e.code) - s.code) <= 4.0);
+    return std::pair{s.visible ? static_cast<std::int32_t>(s.primitive) : -1, tie};
+  };
+  std::vector<std::int32_t> out(screen.area(), -1);
+  if (band) band->assign(screen.area(), false);
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x) {
+      const std::size_t i = x + std::size_t{y} * screen.x;
+      const auto [id, tie] = cast(x + 0.5, y + 0.5);
+      out[i] = id;
+      if (!band) continue;
+      bool near = tie;
+      for (const auto& [dx, dy] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
+        near = near || cast(x + 0.5 + dx / 256.0, y + 0.5 + dy / 256.0).first != id;
+      (*band)[i] = near;
+    }
+  return out;
+}
+
+}  // namespace habuffer
