@@ -23,5 +23,6 @@ int run_figure(const std::vector<std::string>& args);  ///< `habuffer figure`
 int run_plan(const std::vector<std::string>& args);  ///< `habuffer plan`
 int run_techniques(const std::vector<std::string>& args);  ///< `habuffer techniques`
 int run_voxelize(const std::vector<std::string>& args);  ///< `habuffer voxelize`
+int run_csg(const std::vector<std::string>& args);  ///< `habuffer csg`
 
 }  // namespace habuffer::cli

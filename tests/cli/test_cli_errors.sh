@@ -152,7 +152,20 @@ expect 2 "option --threads has no effect with --path gl" -- voxelize --mesh sphe
 expect 2 "option --grid" -- voxelize --mesh sphere --grid 0 --out v.vox
 expect 2 "option --reference has no effect with --axis all" -- voxelize --mesh sphere --axis all --reference --out v.vox
 expect 1 "unknown scene 'teapotx'" -- voxelize --mesh teapotx --out v.vox
-# render --shadows: the light's stats, its T heat map, the reference check; bad lights refused by name.
+# csg: an expression over named solids, its image and stats, the ray caster; bad solids and expressions refused.
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- csg --solids "cube=box:-1,-1,-1,1,1,1; hole=cylinder:0,0,-2,0,0,1,4,0.5" \
+  --expr "cube - hole" --size 48x48 --out c.png --stats c.json --reference --quiet
+for key in '"expression":"(cube - hole)"' '"mismatches":0' '"covered_pixels":'; do
+  grep -q "$key" c.json && pass=$((pass + 1)) || { echo "FAIL: csg stats lack $key"; fail=$((fail + 1)); }
+done
+expect 2 "option --expr: csg expression, column 8: unknown primitive 'hol'" -- csg --solids "cube=box:0,0,0,1,1,1" \
+  --expr "cube - hol" --out c.png
+expect 2 "option --solids: cube=box takes 6 numbers, not 5" -- csg --solids "cube=box:0,0,0,1,1" --expr cube --out c.png
+expect 2 "option --solids: 'cube' is named twice" -- csg --solids "cube=box:0,0,0,1,1,1;cube=sphere:0,0,0,1" \
+  --expr cube --out c.png
+expect 2 "option --solids: box box: every side must be positive" -- csg --solids "box=box:0,0,0,0,1,1" --expr box \
+  --out c.png
+, its T heat map, the reference check; bad lights refused by name.
 ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene engine --size 48x48 --shadows --light-size 96x96 \
   --light-ortho --stats r_shadow.json --heatmap shadow:r_shadow_t.png --shadow-error 0 --frames 2
 for key in '"light":' '"builds":1' '"bias_codes":' '"lookup_ms":' '"within_fraction":' '"silhouette_band":'; do
