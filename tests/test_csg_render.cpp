@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gl_test_support.h"
+#include "habuffer/harness/csg_figure.h"
 #include "habuffer/render/csg_renderer.h"
 #include "habuffer/solids.h"
 
@@ -138,6 +139,19 @@ TEST(CsgRender, FiveHundredTwelveSubtractedCylindersRenderLosslessly) {
   EXPECT_EQ(wrong, 0u);
   const CsgExpression other = CsgExpression::parse("a", std::vector<std::string>{"a"});
   EXPECT_THROW((void)render_csg(s.scene, other, view({16, 16})), CsgError);
+}
+
+TEST(CsgRender, TheFiguresCurveHasOneRowPerCylinderCountWithoutMismatch) {
+  gl_context();
+  harness::CsgFigureSettings f;
+  f.cylinders = {1, 9};
+  f.size = {32, 32};
+  f.repeats = 1;
+  const harness::ResultTable t = harness::run_csg_figure(f);
+  ASSERT_EQ(t.rows.size(), 2u);
+  for (const harness::ResultRow& r : t.rows) EXPECT_EQ(r.number("mismatches"), 0.0);
+  EXPECT_EQ(t.rows[1].number("primitives"), 10.0);
+  EXPECT_THROW((void)harness::csg_cylinders(0), std::invalid_argument);
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include "habuffer/harness/frontier.h"
 #include "habuffer/harness/shadow_frontier.h"
 #include "habuffer/harness/voxel_figure.h"
+#include "habuffer/csg.h"
+#include "habuffer/harness/csg_figure.h"
 #include "habuffer/number_text.h"
 #include "habuffer/option_rules.h"
 #include "habuffer/progress.h"
@@ -165,6 +167,28 @@ harness::ResultTable run_voxels(FigureRun& r) {
   return harness::run_voxel_figure(f);
 }
 
+harness::ResultTable run_csg(FigureRun& r) {
+  r.args.refuse_unless(false, {"tau"}, "on figure csg (nothing is culled)");
+  figure_sizes(r.args, r.s, "csg");
+  harness::CsgFigureSettings f;
+  f.size = r.s.size;
+  f.cpu = r.s.path == RenderPath::Cpu;
+  f.repeats = r.s.repeats;
+  f.on_progress = r.s.on_progress;
+  f.cylinders.clear();
+  for (const std::string& c : r.args.list("cylinders"))
+    f.cylinders.push_back(usage_errors("cylinders", [&] {
+      std::size_t used = 0;
+      const unsigned long n = std::stoul(c, &used);
+      if (used != c.size() || n == 0 || n >= kMaxCsgPrimitives)
+        throw std::invalid_argument("'" + c + "' is not a count in 1.." + std::to_string(kMaxCsgPrimitives - 1));
+      return static_cast<std::uint32_t>(n);
+    }));
+  r.outputs = parse_outputs(r.args, {});
+  const auto context = context_for(true, "figure");
+  return harness::run_csg_figure(f);
+}
+
 harness::ResultTable run_table1(FigureRun& r) {
   r.args.refuse_unless(false, {"path", "repeats", "threads", "tau"}, "on table1 (sizes only, nothing is rendered)");
   const std::vector<Extent> size = parse_sizes(r.args);
@@ -217,12 +241,16 @@ const std::vector<Figure>& figures() {
         {"grids", "N,..", "128,256,512", "voxels per side"},
         {"axis", "x|y|z", "z", "the views' axis"}},
        run_voxels},
+      {"csg", "  issue 21's CSG curve: a cube minus 1..512 cylinders, time, records, mismatches against the ray\n"
+              "  caster outside its edge band\n",
+       {{"cylinders", "N,..", "1,2,4,8,16,32,64,128,256,512", "subtracted cylinders"}},
+       run_csg},
   };
   return list;
 }
 
 std::string figure_help() {
-  std::string s = CommandSpec{"figure fig2|fig8|fig10|table1|frontier|shadows|voxels --out F.json[,F.csv] [OPTIONS]",
+  std::string s = CommandSpec{"figure fig2|fig8|fig10|table1|frontier|shadows|voxels|csg --out F.json[,F.csv] [OPTIONS]",
                               figure_common(false), ""}
                       .help();
   for (const Figure& f : figures()) {
@@ -245,7 +273,7 @@ void refuse_other_figures_options(const Args& all, const Figure& figure) {
 
 int run_figure(const std::vector<std::string>& argv) {
   if (print_help(argv, figure_help()) || argv.empty()) {
-    if (argv.empty()) throw UsageError("name a figure: fig2, fig8, fig10, table1, frontier, shadows or voxels");
+    if (argv.empty()) throw UsageError("name a figure: fig2, fig8, fig10, table1, frontier, shadows, voxels or csg");
     return 0;
   }
   const std::string name = argv[0];
@@ -258,7 +286,7 @@ int run_figure(const std::vector<std::string>& argv) {
   const Args all(rest, every);
   const auto figure = std::find_if(figures().begin(), figures().end(), [&](const Figure& f) { return f.name == name; });
   if (figure == figures().end())
-    throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier, shadows, voxels)");
+    throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier, shadows, voxels, csg)");
   refuse_other_figures_options(all, *figure);
   const CommandSpec spec{"", figure_common(name == "table1") + figure->own, ""};
   const Args args(rest, spec);

@@ -46,7 +46,7 @@ done
 # figure's own in its section; another figure's option is refused by name.
 "$bin" figure --help >help.txt || bad "figure --help"
 common=$(sed '/^[a-z0-9]*:$/,$d' help.txt | flags_of)
-for fig in fig2 fig8 fig10 table1 frontier shadows voxels; do
+for fig in fig2 fig8 fig10 table1 frontier shadows voxels csg; do
   own=$(sed -n "/^$fig:\$/,/^[a-z0-9]*:\$/p" help.txt | sed '1d' | flags_of)
   [[ -n $own ]] && ok || bad "figure $fig lists no options of its own"
   for flag in $common $own; do accepted figure $fig -- "$flag"; done
