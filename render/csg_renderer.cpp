@@ -48,6 +48,12 @@ void main() {
 }
 )";
 
+// The counting pass: every primitive's fragments (no depth test), by an
+// occlusion query, so the table is sized once instead of grown by regathers.
+const char* const kCountFragment = R"(#version 450 core
+void main() {}
+)";
+
 // One primitive's triangles on the GPU.
 struct GpuMesh {
   explicit GpuMesh(const Mesh& m)
@@ -117,30 +123,14 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
   if (!mode) throw gl::GlError("csg: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   CsgRender r;
   r.camera = frame_scene(primitives, s.camera, s.screen);
-  BufferConfig config;
-  config.screen = s.screen;
-  config.layout = Layout::L64;
-  config.table = table_for_load(s.screen, 2 * s.screen.area(), 0.5);
-  gl::GlFrameOptions options;
-  options.max_attempts = s.cpu ? 1 : 16;
-  options.capture = options.capture_only = s.cpu;
-  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
-  const gl::ShaderProgram program =
-      gl::ShaderProgram::graphics(kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "csg gather");
   std::vector<GpuMesh> meshes;
   meshes.reserve(primitives.meshes.size());
   for (const Mesh& m : primitives.meshes) meshes.emplace_back(m);
-  glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "view"), 1, GL_FALSE, glm::value_ptr(r.camera.view));
-  glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "projection"), 1, GL_FALSE,
-                            glm::value_ptr(r.camera.projection));
-  program.set("near_plane", r.camera.near_plane);
-  program.set("far_plane", r.camera.far_plane);
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);
   glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(s.screen.x));
   glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(s.screen.y));
-  const auto t0 = Clock::now();
-  const gl::FrameReport report = lists.frame([&] {
+  const auto draw_all = [&](const gl::ShaderProgram& program, bool ids) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, static_cast<GLsizei>(s.screen.x), static_cast<GLsizei>(s.screen.y));
     glDisable(GL_DEPTH_TEST);
@@ -148,14 +138,50 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
     glDisable(GL_BLEND);
     glUseProgram(program.id());
     for (std::size_t id = 0; id < meshes.size(); ++id) {
-      program.set("primitive", static_cast<unsigned>(id));
+      if (ids) program.set("primitive", static_cast<unsigned>(id));
       glBindVertexArray(meshes[id].array);
       glDrawElements(GL_TRIANGLES, meshes[id].count, GL_UNSIGNED_INT, nullptr);
     }
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  });
+  };
+  const auto set_view = [&](const gl::ShaderProgram& program) {
+    glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "view"), 1, GL_FALSE,
+                              glm::value_ptr(r.camera.view));
+    glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "projection"), 1, GL_FALSE,
+                              glm::value_ptr(r.camera.projection));
+  };
+  const auto t0 = Clock::now();
+  std::uint64_t fragments = 0;
+  {
+    const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountFragment, "csg counting pass");
+    set_view(counting);
+    GLuint query = 0;
+    glCreateQueries(GL_SAMPLES_PASSED, 1, &query);
+    glBeginQuery(GL_SAMPLES_PASSED, query);
+    draw_all(counting, false);
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 samples = 0;
+    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &samples);
+    glDeleteQueries(1, &query);
+    fragments = samples;
+  }
+  BufferConfig config;
+  config.screen = s.screen;
+  config.layout = Layout::L64;
+  // Sized from the counting pass at load 0.5 (lossless growth covers the rest).
+  config.table = table_for_load(s.screen, std::max<std::uint64_t>(fragments, s.screen.area()), 0.5);
+  gl::GlFrameOptions options;
+  options.max_attempts = s.cpu ? 1 : 16;
+  options.capture = options.capture_only = s.cpu;
+  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
+  const gl::ShaderProgram program =
+      gl::ShaderProgram::graphics(kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "csg gather");
+  set_view(program);
+  program.set("near_plane", r.camera.near_plane);
+  program.set("far_plane", r.camera.far_plane);
+  const gl::FrameReport report = lists.frame([&] { draw_all(program, true); });
   glDeleteFramebuffers(1, &framebuffer);
   std::unique_ptr<FragmentBuffer> buffer;
   r.counters = report.counters;

@@ -6,7 +6,9 @@
 /// each pixel's list walked by habuffer/csg.h's csg_resolve. The visible
 /// surface is shaded from the depth image the walk leaves (its normal from
 /// the neighbouring pixels' positions), so the records need nothing more
-/// than id and facing. The build is lossless: the table grows until
+/// than id and facing. The table is sized from a counting pass (an
+/// occlusion query over every primitive) at load 0.5, and the build is
+/// lossless: the table grows until
 /// nothing is dropped, and a render that still lost a record throws (a
 /// lost record is a wrong pixel, not a faint one).
 #pragma once
