@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "gpu_triangles.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
@@ -54,31 +55,6 @@ const char* const kCountFragment = R"(#version 450 core
 void main() {}
 )";
 
-// One primitive's triangles on the GPU.
-struct GpuMesh {
-  explicit GpuMesh(const Mesh& m)
-      : vertices(m.positions.size() * sizeof(glm::vec3), m.positions.data()),
-        elements(m.indices.size() * 4, m.indices.data()),
-        count(static_cast<GLsizei>(m.indices.size())) {
-    glCreateVertexArrays(1, &array);
-    glVertexArrayVertexBuffer(array, 0, vertices.id(), 0, sizeof(glm::vec3));
-    glVertexArrayElementBuffer(array, elements.id());
-    glEnableVertexArrayAttrib(array, 0);
-    glVertexArrayAttribFormat(array, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(array, 0, 0);
-  }
-  ~GpuMesh() { glDeleteVertexArrays(1, &array); }
-  GpuMesh(GpuMesh&& o) noexcept
-      : vertices(std::move(o.vertices)), elements(std::move(o.elements)), array(o.array), count(o.count) {
-    o.array = 0;
-  }
-  GpuMesh(const GpuMesh&) = delete;
-  GpuMesh& operator=(const GpuMesh&) = delete;
-  gl::GlStorage vertices, elements;
-  GLuint array = 0;
-  GLsizei count = 0;
-};
-
 // A flat-ish shade of primitive `id` (a colour per id) lit by the surface's
 // normal from the depth image: the positions of the neighbouring pixels.
 glm::vec3 palette(std::int32_t id) {
@@ -123,9 +99,9 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
   if (!mode) throw gl::GlError("csg: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   CsgRender r;
   r.camera = frame_scene(primitives, s.camera, s.screen);
-  std::vector<GpuMesh> meshes;
+  std::vector<GpuTriangles> meshes;
   meshes.reserve(primitives.meshes.size());
-  for (const Mesh& m : primitives.meshes) meshes.emplace_back(m);
+  for (const Mesh& m : primitives.meshes) meshes.emplace_back(m.positions, m.indices);
   GLuint framebuffer = 0;
   glCreateFramebuffers(1, &framebuffer);
   glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(s.screen.x));
@@ -139,10 +115,8 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
     glUseProgram(program.id());
     for (std::size_t id = 0; id < meshes.size(); ++id) {
       if (ids) program.set("primitive", static_cast<unsigned>(id));
-      glBindVertexArray(meshes[id].array);
-      glDrawElements(GL_TRIANGLES, meshes[id].count, GL_UNSIGNED_INT, nullptr);
+      meshes[id].draw();
     }
-    glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   };

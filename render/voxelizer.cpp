@@ -11,6 +11,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "gpu_triangles.h"
 #include "habuffer/atomic_file.h"
 #include "habuffer/csv.h"
 #include "habuffer/fragment_streams.h"
@@ -82,34 +83,17 @@ void main() { habuffer_insert(uvec2(gl_FragCoord.xy), clamp(v_t, 0.0, 1.0), gl_F
 )";
 
 // Every triangle of the scene in one buffer, permuted for the axis.
-struct GpuMeshes {
-  GpuMeshes(const Scene& scene, VoxelAxis axis) {
-    std::vector<glm::vec3> positions;
-    std::vector<std::uint32_t> indices;
-    for (const Mesh& m : scene.meshes) {
-      const auto base = static_cast<std::uint32_t>(positions.size());
-      for (const glm::vec3& p : m.positions) positions.push_back(permute(p, axis));
-      for (std::uint32_t i : m.indices) indices.push_back(base + i);
-    }
-    count = static_cast<GLsizei>(indices.size());
-    vertices = gl::GlStorage(positions.size() * sizeof(glm::vec3), positions.data());
-    elements = gl::GlStorage(indices.size() * 4, indices.data());
-    glCreateVertexArrays(1, &array);
-    glVertexArrayVertexBuffer(array, 0, vertices.id(), 0, sizeof(glm::vec3));
-    glVertexArrayElementBuffer(array, elements.id());
-    glEnableVertexArrayAttrib(array, 0);
-    glVertexArrayAttribFormat(array, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(array, 0, 0);
+GpuTriangles scene_triangles(const Scene& scene, VoxelAxis axis) {
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> indices;
+  for (const Mesh& m : scene.meshes) {
+    const auto base = static_cast<std::uint32_t>(positions.size());
+    for (const glm::vec3& p : m.positions) positions.push_back(permute(p, axis));
+    for (std::uint32_t i : m.indices) indices.push_back(base + i);
   }
-  ~GpuMeshes() { glDeleteVertexArrays(1, &array); }
-  GpuMeshes(const GpuMeshes&) = delete;
-  GpuMeshes& operator=(const GpuMeshes&) = delete;
-  gl::GlStorage vertices, elements;
-  GLuint array = 0;
-  GLsizei count = 0;
-};
+  return GpuTriangles(positions, indices);
+}
 
-// The lists' parity at each voxel centre of column (i, j).
 // Returns whether the column's crossings are odd (not a closed surface).
 bool column_parity(std::vector<ListEntry>& crossings, const RecordLayout& layout, std::uint32_t i, std::uint32_t j,
                    VoxelAxis axis, VoxelGrid& grid) {
@@ -177,7 +161,7 @@ Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
   gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
   const gl::ShaderProgram program = gl::ShaderProgram::graphics(
       kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "voxelization gather");
-  const GpuMeshes meshes(scene, s.axis);
+  const GpuTriangles meshes = scene_triangles(scene, s.axis);
   const glm::vec3 lo = permute(box.lo, s.axis), extent = permute(box.hi - box.lo, s.axis);
   program.set("lo", lo.x, lo.y, lo.z);
   program.set("extent", extent.x, extent.y, extent.z);
@@ -194,9 +178,7 @@ Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
     glDisable(GL_CULL_FACE);  // both facings: entries and exits
     glDisable(GL_BLEND);
     glUseProgram(program.id());
-    glBindVertexArray(meshes.array);
-    glDrawElements(GL_TRIANGLES, meshes.count, GL_UNSIGNED_INT, nullptr);
-    glBindVertexArray(0);
+    meshes.draw();
     glUseProgram(0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   });

@@ -121,34 +121,9 @@ void check_self_distance(double self_distance) {
 
 }  // namespace
 
-double TransmittanceReference::transmittance(glm::dvec3 point, const LightView& light, double self_distance) const {
-  check_self_distance(self_distance);
-  if (nodes_.empty()) return 1.0;
-  const Segment s = segment_to_light(point, light);
-  const glm::dvec3 inverse = 1.0 / s.direction;
-  double t = 1.0;
-  std::vector<std::uint32_t> stack = {0};
-  while (!stack.empty() && t > 0.0) {
-    const Node& n = nodes_[stack.back()];
-    stack.pop_back();
-    if (!meets(n.lo, n.hi, s.origin, inverse, s.length)) continue;
-    if (n.count == 0) {
-      stack.push_back(n.first);
-      stack.push_back(n.right);
-      continue;
-    }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
-      const double d = hit(triangles_[i], s);
-      if (d > self_distance) t *= 1.0 - triangles_[i].alpha;
-    }
-  }
-  return t;
-}
-
-std::vector<TransmittanceReference::Hit> TransmittanceReference::hits(glm::dvec3 point, const LightView& light) const {
-  std::vector<Hit> out;
-  if (nodes_.empty()) return out;
-  const Segment s = segment_to_light(point, light);
+template <class Visit>
+void TransmittanceReference::for_each_leaf(const Segment& s, Visit visit) const {
+  if (nodes_.empty()) return;
   const glm::dvec3 inverse = 1.0 / s.direction;
   std::vector<std::uint32_t> stack = {0};
   while (!stack.empty()) {
@@ -160,12 +135,33 @@ std::vector<TransmittanceReference::Hit> TransmittanceReference::hits(glm::dvec3
       stack.push_back(n.right);
       continue;
     }
-    for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+    if (!visit(n.first, n.first + n.count)) return;
+  }
+}
+
+double TransmittanceReference::transmittance(glm::dvec3 point, const LightView& light, double self_distance) const {
+  check_self_distance(self_distance);
+  const Segment s = segment_to_light(point, light);
+  double t = 1.0;
+  for_each_leaf(s, [&](std::uint32_t first, std::uint32_t end) {
+    for (std::uint32_t i = first; i < end; ++i)
+      if (hit(triangles_[i], s) > self_distance) t *= 1.0 - triangles_[i].alpha;
+    return t > 0.0;  // nothing passes an opaque hit: stop
+  });
+  return t;
+}
+
+std::vector<TransmittanceReference::Hit> TransmittanceReference::hits(glm::dvec3 point, const LightView& light) const {
+  std::vector<Hit> out;
+  const Segment s = segment_to_light(point, light);
+  for_each_leaf(s, [&](std::uint32_t first, std::uint32_t end) {
+    for (std::uint32_t i = first; i < end; ++i) {
       bool toward = false;
       if (const double d = hit(triangles_[i], s, &toward); d >= 0.0)
         out.push_back({d, triangles_[i].alpha, triangles_[i].id, toward});
     }
-  }
+    return true;
+  });
   std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
   return out;
 }

@@ -63,6 +63,10 @@ class TransmittanceReference {
     double length;
   };
   [[nodiscard]] Segment segment_to_light(glm::dvec3 point, const LightView& light) const;
+  /// Calls visit(first, end) with each leaf's triangle range the segment's
+  /// bounds meet, until it returns false.
+  template <class Visit>
+  void for_each_leaf(const Segment& s, Visit visit) const;
   /// The hit's distance along `s`, or a negative number for none.
   [[nodiscard]] static double hit(const Triangle& t, const Segment& s, bool* toward = nullptr);
   std::uint32_t build(std::uint32_t first, std::uint32_t count);

@@ -1,0 +1,35 @@
+/// @file
+/// Triangles on the GPU for the render library's own passes (the voxelizer,
+/// CSG): positions and indices in storage buffers and one vertex array
+/// (attribute 0, a vec3 position). Private to the render library.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include <glm/vec3.hpp>
+
+#include "habuffer/gl/gl_buffer.h"
+
+namespace habuffer {
+
+/// See the file comment; needs a current OpenGL 4.5 context.
+class GpuTriangles {
+ public:
+  GpuTriangles(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices);
+  ~GpuTriangles();
+  GpuTriangles(GpuTriangles&& o) noexcept;
+  GpuTriangles(const GpuTriangles&) = delete;
+  GpuTriangles& operator=(const GpuTriangles&) = delete;
+  GpuTriangles& operator=(GpuTriangles&&) = delete;
+
+  /// Draws every triangle with the bound program (the vertex array bound for the call only).
+  void draw() const;
+
+ private:
+  gl::GlStorage vertices_, elements_;
+  unsigned array_ = 0;
+  std::int32_t count_ = 0;
+};
+
+}  // namespace habuffer
