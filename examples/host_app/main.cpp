@@ -23,9 +23,14 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include "../host_gl.h"
+
 #include <habuffer/gl.h>  // [habuffer]
 
 namespace {
+
+using host_gl::check;
+using host_gl::link_program;
 
 constexpr int kWidth = 160, kHeight = 120;
 
@@ -61,58 +66,6 @@ uniform vec4 colour;                                         // [habuffer]
 void main() { habuffer_insert_here(colour); }                      // [habuffer]
 )";                                                          // [habuffer]
 
-void check(bool ok, const std::string& what) {
-  if (!ok) throw std::runtime_error(what);
-}
-
-// A headless OpenGL 4.5 core context (Mesa's surfaceless platform, else the
-// first EGL device: NVIDIA's driver).
-void make_context() {
-  EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr)) {
-    EGLDeviceEXT device = nullptr;
-    EGLint n = 0;
-    check(eglQueryDevicesEXT(1, &device, &n) && n > 0, "no EGL display or device");
-    display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-    check(display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr), "EGL device display failed");
-  }
-  check(eglBindAPI(EGL_OPENGL_API), "no desktop OpenGL through EGL");
-  const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                               EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-  const EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
-  check(context != EGL_NO_CONTEXT, "no OpenGL 4.5 core context");
-  check(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context), "eglMakeCurrent failed");
-}
-
-GLuint compile(GLenum stage, const std::string& source) {
-  const GLuint shader = glCreateShader(stage);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("shader compile failed: ") + log);
-  }
-  return shader;
-}
-
-GLuint link_program(const std::string& vertex, const std::string& fragment) {
-  const GLuint program = glCreateProgram();
-  const GLuint vs = compile(GL_VERTEX_SHADER, vertex), fs = compile(GL_FRAGMENT_SHADER, fragment);
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  check(ok != 0, "program link failed");
-  return program;
-}
-
 void draw(GLuint program, const Quad& q) {
   glUseProgram(program);
   glUniform4f(glGetUniformLocation(program, "rect"), q.x0, q.y0, q.x1, q.y1);
@@ -144,49 +97,13 @@ std::vector<float> expected_pixel(int px, int py) {
   return {c[0] + transmittance * opaque.r, c[1] + transmittance * opaque.g, c[2] + transmittance * opaque.b};
 }
 
-// The host's framebuffer: a colour and a depth renderbuffer.
-GLuint make_framebuffer() {
-  GLuint colour = 0, depth = 0, framebuffer = 0;
-  glCreateRenderbuffers(1, &colour);
-  glNamedRenderbufferStorage(colour, GL_RGBA8, kWidth, kHeight);
-  glCreateRenderbuffers(1, &depth);
-  glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, kWidth, kHeight);
-  glCreateFramebuffers(1, &framebuffer);
-  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
-  glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-  check(glCheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE, "framebuffer");
-  return framebuffer;
-}
-
-// The framebuffer's pixels against expected_pixel: the channels off by more
-// than rounding, the first three printed; prints the largest error.
-int count_wrong_channels(GLuint framebuffer) {
-  std::vector<unsigned char> pixels(4 * kWidth * kHeight);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
-  glReadPixels(0, 0, kWidth, kHeight, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-  int wrong = 0;
-  float worst = 0.0f;
-  for (int py = 0; py < kHeight; ++py)
-    for (int px = 0; px < kWidth; ++px) {
-      const std::vector<float> want = expected_pixel(px, py);
-      for (int k = 0; k < 3; ++k) {
-        const float got = pixels[4 * (px + py * kWidth) + k] / 255.0f, error = std::fabs(got - want[k]);
-        worst = std::max(worst, error);
-        if (error > 1.5f / 255.0f && ++wrong <= 3)
-          std::fprintf(stderr, "pixel (%d, %d) channel %d: %.4f, expected %.4f\n", px, py, k, got, want[k]);
-      }
-    }
-  std::printf("host_app: %d x %d pixels, largest error %.5f, %d channels off\n", kWidth, kHeight, worst, wrong);
-  return wrong;
-}
-
 }  // namespace
 
 int main() {
   try {
-    make_context();
+    host_gl::make_context();
     // The host's framebuffer, shaders and vertex array.
-    const GLuint framebuffer = make_framebuffer();
+    const GLuint framebuffer = host_gl::make_framebuffer(kWidth, kHeight);
     GLuint vertex_array = 0;
     glCreateVertexArrays(1, &vertex_array);
     const GLuint opaque = link_program(kVertex, kOpaqueFragment);
@@ -226,7 +143,7 @@ int main() {
     const hb::Counters& c = report.counters;                                                  // [habuffer]
     std::printf("habuffer: %llu fragments, %llu lost\n", (unsigned long long)c.fragments, (unsigned long long)c.failures());  // [habuffer]
 
-    const int wrong = count_wrong_channels(framebuffer);
+    const int wrong = host_gl::count_wrong_channels(framebuffer, kWidth, kHeight, expected_pixel, "host_app");
     return wrong == 0 && c.failures() == 0 ? 0 : 1;  // [habuffer]
   } catch (const std::exception& e) {
     std::fprintf(stderr, "host_app: %s\n", e.what());
