@@ -144,18 +144,30 @@ harness::ResultTable run_shadows(FigureRun& r) {
   return harness::run_shadow_frontier(scene[0], f);
 }
 
+// A comma list of counts in 1..most (--grids, --cylinders).
+std::vector<std::uint32_t> counts(const Args& args, const char* option, std::uint32_t most) {
+  std::vector<std::uint32_t> out;
+  for (const std::string& item : args.list(option))
+    out.push_back(usage_errors(option, [&] {
+      std::size_t used = 0;
+      unsigned long n = 0;
+      try {
+        n = std::stoul(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != item.size() || n == 0 || n > most)
+        throw std::invalid_argument("'" + item + "' is not a count in 1.." + std::to_string(most));
+      return static_cast<std::uint32_t>(n);
+    }));
+  return out;
+}
+
 harness::ResultTable run_voxels(FigureRun& r) {
   r.args.refuse_unless(false, {"size", "tau"}, "on figure voxels (--grids sets the sizes)");
   harness::VoxelFigureSettings f;
   f.meshes = r.args.list("meshes");
-  f.grids.clear();
-  for (const std::string& g : r.args.list("grids"))
-    f.grids.push_back(usage_errors("grids", [&] {
-      std::size_t used = 0;
-      const unsigned long n = std::stoul(g, &used);
-      if (used != g.size() || n == 0 || n > 4096) throw std::invalid_argument("'" + g + "' is not a side in 1..4096");
-      return static_cast<std::uint32_t>(n);
-    }));
+  f.grids = counts(r.args, "grids", 4096);
   const std::string axis = r.args.str("axis");
   if (axis != "x" && axis != "y" && axis != "z") throw UsageError("option --axis: '" + axis + "' is not x, y or z");
   f.axis = axis == "x" ? VoxelAxis::X : axis == "y" ? VoxelAxis::Y : VoxelAxis::Z;
@@ -175,15 +187,7 @@ harness::ResultTable run_csg(FigureRun& r) {
   f.cpu = r.s.path == RenderPath::Cpu;
   f.repeats = r.s.repeats;
   f.on_progress = r.s.on_progress;
-  f.cylinders.clear();
-  for (const std::string& c : r.args.list("cylinders"))
-    f.cylinders.push_back(usage_errors("cylinders", [&] {
-      std::size_t used = 0;
-      const unsigned long n = std::stoul(c, &used);
-      if (used != c.size() || n == 0 || n >= kMaxCsgPrimitives)
-        throw std::invalid_argument("'" + c + "' is not a count in 1.." + std::to_string(kMaxCsgPrimitives - 1));
-      return static_cast<std::uint32_t>(n);
-    }));
+  f.cylinders = counts(r.args, "cylinders", kMaxCsgPrimitives - 1);
   r.outputs = parse_outputs(r.args, {});
   const auto context = context_for(true, "figure");
   return harness::run_csg_figure(f);

@@ -168,10 +168,12 @@ std::optional<LightArgs> parse_light(const Args& args) {
 
 glm::vec3 parse_background(const std::string& text) {
   glm::vec3 c(1.0f);
-  std::istringstream in(text);
-  char comma = 0;
-  if (!(in >> c.r >> comma >> c.g >> comma >> c.b) || !in.eof() || glm::any(glm::lessThan(c, glm::vec3(0.0f))) ||
-      glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+  try {
+    c = parse_point("background", text);
+  } catch (const UsageError&) {
+    c = glm::vec3(-1.0f);  // refused below with the option's own wording
+  }
+  if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
     throw UsageError("option --background: '" + text + "' is not R,G,B with each in [0, 1]");
   return c;
 }
