@@ -32,7 +32,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-constexpr std::uint32_t kFront = 1, kBack = 2;  // the facing in a record's data word
 
 // The view's coordinates: the axis last (cyclic, so triangles keep their winding).
 glm::vec3 permute(glm::vec3 p, VoxelAxis a) {
