@@ -114,7 +114,8 @@ bool CsgExpression::evaluate(const CsgInside& inside) const {
   return stack.back() != 0;
 }
 
-CsgSurface csg_resolve(std::span<const ListEntry> nearest_first, const CsgExpression& expression) {
+CsgSurface csg_resolve(std::span<const ListEntry> nearest_first, const CsgExpression& expression,
+                       std::uint32_t coincident) {
   CsgInside inside(expression.primitives());
   bool was = false;  // the camera is outside every primitive
   for (std::size_t i = 0; i < nearest_first.size();) {
@@ -122,7 +123,7 @@ CsgSurface csg_resolve(std::span<const ListEntry> nearest_first, const CsgExpres
     const std::uint32_t code = nearest_first[i].code;
     std::uint32_t first = UINT32_MAX;
     bool first_exit = false;
-    for (; i < nearest_first.size() && nearest_first[i].code == code; ++i) {
+    for (; i < nearest_first.size() && code - nearest_first[i].code <= coincident; ++i) {
       const std::uint32_t id = nearest_first[i].data >> 1;
       if (id >= expression.primitives())
         throw CsgError("csg resolve: a record names primitive " + std::to_string(id) + ", the expression has " +

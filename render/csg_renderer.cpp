@@ -184,7 +184,7 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
     for (std::uint32_t x = 0; x < s.screen.x; ++x) {
       buffer->list(x, y, list);
       std::sort(list.begin(), list.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
-      const CsgSurface surface = csg_resolve(list, expression);
+      const CsgSurface surface = csg_resolve(list, expression, kCsgCoincidentCodes);
       if (!surface.visible) continue;
       const std::size_t i = x + std::size_t{y} * s.screen.x;
       r.primitive[i] = static_cast<std::int32_t>(surface.primitive);
@@ -223,7 +223,7 @@ std::vector<std::int32_t> csg_reference(const Scene& primitives, const CsgExpres
                         csg_data(owner[hits[h].triangle], hits[h].toward)});
     }
     std::stable_sort(list.begin(), list.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
-    const CsgSurface s = csg_resolve(list, expression);
+    const CsgSurface s = csg_resolve(list, expression, kCsgCoincidentCodes);
     bool tie = false;
     if (s.visible)
       for (const ListEntry& e : list)

@@ -91,6 +91,18 @@ TEST(Csg, CoplanarAndTouchingSolidsDoNotDependOnTheRecordsOrderAtOneDepth) {
   EXPECT_FALSE(csg_resolve(touching, CsgExpression::parse("a & b", kNames)).visible);
 }
 
+// Coplanar faces rounded a few codes apart (the GPU interpolates each
+// triangle's depth): within `coincident` codes they are one depth.
+TEST(Csg, CrossingsWithinTheCoincidenceWindowAreOneDepth) {
+  const std::vector<ListEntry> list = {crossing(803, 0, false), crossing(800, 1, false), crossing(400, 1, true),
+                                       crossing(200, 0, true)};
+  const CsgExpression e = CsgExpression::parse("a - b", kNames);
+  EXPECT_EQ(csg_resolve(list, e).code, 803u);  // a's face 3 codes nearer shows for a sliver
+  const CsgSurface s = csg_resolve(list, e, 4);
+  EXPECT_EQ(s.code, 400u);  // one depth: the hole's far side
+  EXPECT_EQ(s.primitive, 1u);
+}
+
 TEST(Csg, MoreThanSixtyFourPrimitivesAreWalkedWithAWordPerSixtyFour) {
   std::vector<std::string> names = {"box"};
   std::string text = "box - (";

@@ -113,6 +113,28 @@ TEST(CsgRender, NestedDifferencesATorusTimesABoxAndTouchingUnionsMatchTheRayCast
   }
 }
 
+// Coplanar faces (a cylinder whose caps lie exactly on the cube's faces) and
+// an OpenSCAD-style part: a plate and a post united, minus a hole and a slot.
+TEST(CsgRender, CoplanarCapsAndAnOpenScadStylePartMatchTheRayCaster) {
+  gl_context();
+  Solids s;
+  s.scene.name = "part";
+  s.add(box_mesh({-1, -1, -1}, {1, 1, 1}, "cube"));
+  s.add(cylinder_mesh({0, 0, -1}, {0, 0, 1}, 2.0f, 0.5f, 32, "flush"));  // caps on z = -1 and z = 1
+  s.add(box_mesh({-1.5f, -1.5f, -0.2f}, {1.5f, 1.5f, 0.2f}, "plate"));
+  s.add(cylinder_mesh({0.8f, 0.8f, 0.2f}, {0, 0, 1}, 1.2f, 0.3f, 24, "post"));
+  s.add(cylinder_mesh({-0.8f, -0.8f, -1.0f}, {0, 0, 1}, 2.0f, 0.25f, 24, "hole"));
+  s.add(box_mesh({-0.1f, -1.6f, -0.5f}, {0.1f, 0.0f, 0.5f}, "slot"));
+  for (const char* text : {"cube - flush", "flush - cube", "(plate | post) - (hole | slot)"}) {
+    SCOPED_TRACE(text);
+    const CsgExpression e = CsgExpression::parse(text, s.names);
+    const CsgRender r = render_csg(s.scene, e, view({64, 64}));
+    const auto [wrong, band] = mismatches(s, e, r, {64, 64});
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_LT(band, 64u * 64u / 4);
+  }
+}
+
 TEST(CsgRender, TheCpuAndGlPathsGiveTheSamePixels) {
   gl_context();
   const Solids s = cube_minus_cylinders(8);

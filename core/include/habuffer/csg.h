@@ -104,7 +104,12 @@ struct CsgSurface {
 
 /// Walks a pixel's records nearest first (codes falling) and returns the
 /// first depth where `expression` turns true. Records' data words are
-/// csg_data's. Throws CsgError for a primitive id beyond the expression's.
-CsgSurface csg_resolve(std::span<const ListEntry> nearest_first, const CsgExpression& expression);
+/// csg_data's. Records within `coincident` codes of the first of a run are
+/// one depth: coplanar faces of different primitives, whose depths the GPU
+/// rounds from different triangles a few codes apart, are applied together
+/// (0: equal codes only). Throws CsgError for a primitive id beyond the
+/// expression's.
+CsgSurface csg_resolve(std::span<const ListEntry> nearest_first, const CsgExpression& expression,
+                       std::uint32_t coincident = 0);
 
 }  // namespace habuffer

@@ -32,6 +32,11 @@ struct CsgRenderSettings {
   std::uint32_t threads = 0;  ///< the CPU path's worker threads (0: the default)
 };
 
+/// Codes within which crossings of different primitives are one depth
+/// (csg_resolve's `coincident`): coplanar faces, rounded by the GPU from
+/// different triangles, land a few codes apart at 24 depth bits.
+inline constexpr std::uint32_t kCsgCoincidentCodes = 16;
+
 /// A CSG image and what it took.
 struct CsgRender {
   Image image;                          ///< the visible surface shaded over white
