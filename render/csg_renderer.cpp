@@ -49,12 +49,6 @@ void main() {
 }
 )";
 
-// The counting pass: every primitive's fragments (no depth test), by an
-// occlusion query, so the table is sized once instead of grown by regathers.
-const char* const kCountFragment = R"(#version 450 core
-void main() {}
-)";
-
 // A flat-ish shade of primitive `id` (a colour per id) lit by the surface's
 // normal from the depth image: the positions of the neighbouring pixels.
 glm::vec3 palette(std::int32_t id) {
@@ -127,19 +121,12 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
                               glm::value_ptr(r.camera.projection));
   };
   const auto t0 = Clock::now();
+  // The counting pass: every primitive's fragments, so the table is sized once, not grown by regathers.
   std::uint64_t fragments = 0;
   {
-    const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountFragment, "csg counting pass");
+    const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountingFragment, "csg counting pass");
     set_view(counting);
-    GLuint query = 0;
-    glCreateQueries(GL_SAMPLES_PASSED, 1, &query);
-    glBeginQuery(GL_SAMPLES_PASSED, query);
-    draw_all(counting, false);
-    glEndQuery(GL_SAMPLES_PASSED);
-    GLuint64 samples = 0;
-    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &samples);
-    glDeleteQueries(1, &query);
-    fragments = samples;
+    fragments = count_samples([&] { draw_all(counting, false); });
   }
   BufferConfig config;
   config.screen = s.screen;

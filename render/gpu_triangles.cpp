@@ -31,4 +31,16 @@ void GpuTriangles::draw() const {
   glBindVertexArray(0);
 }
 
+std::uint64_t count_samples(const std::function<void()>& draw) {
+  GLuint query = 0;
+  glCreateQueries(GL_SAMPLES_PASSED, 1, &query);
+  glBeginQuery(GL_SAMPLES_PASSED, query);
+  draw();
+  glEndQuery(GL_SAMPLES_PASSED);
+  GLuint64 samples = 0;
+  glGetQueryObjectui64v(query, GL_QUERY_RESULT, &samples);
+  glDeleteQueries(1, &query);
+  return samples;
+}
+
 }  // namespace habuffer

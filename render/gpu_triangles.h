@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 
 #include <glm/vec3.hpp>
@@ -31,5 +32,12 @@ class GpuTriangles {
   unsigned array_ = 0;
   std::int32_t count_ = 0;
 };
+
+/// The samples `draw` rasterizes (an occlusion query around it): the
+/// fragments of a counting pass, from which a table is sized once.
+std::uint64_t count_samples(const std::function<void()>& draw);
+
+/// A fragment shader that writes nothing: with a scene's vertex shader, the counting pass.
+inline constexpr const char* kCountingFragment = "#version 450 core\nvoid main() {}\n";
 
 }  // namespace habuffer

@@ -149,28 +149,13 @@ Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
   const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
   if (!mode) throw gl::GlError("voxelize: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   const Extent screen{s.grid, s.grid};
-  BufferConfig config;
-  config.screen = screen;
-  config.layout = Layout::L64;
-  // A closed surface crosses a column an even number of times: start from two per pixel.
-  config.table = table_for_load(screen, 2 * screen.area(), 0.5);
-  gl::GlFrameOptions options;
-  options.max_attempts = s.cpu ? 1 : 16;  // lossless: a gather that drops a crossing is redone larger
-  options.capture = options.capture_only = s.cpu;  // the CPU path: rasterize and capture only
-  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
-  const gl::ShaderProgram program = gl::ShaderProgram::graphics(
-      kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "voxelization gather");
   const GpuTriangles meshes = scene_triangles(scene, s.axis);
   const glm::vec3 lo = permute(box.lo, s.axis), extent = permute(box.hi - box.lo, s.axis);
-  program.set("lo", lo.x, lo.y, lo.z);
-  program.set("extent", extent.x, extent.y, extent.z);
-  GLuint framebuffer = 0;  // no attachment: the gather writes no colour
+  GLuint framebuffer = 0;  // no attachment: the passes write no colour
   glCreateFramebuffers(1, &framebuffer);
   glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(s.grid));
   glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(s.grid));
-  Voxelization out;
-  const auto t0 = Clock::now();
-  const gl::FrameReport report = lists.frame([&] {
+  const auto draw = [&](const gl::ShaderProgram& program) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
     glViewport(0, 0, static_cast<GLsizei>(s.grid), static_cast<GLsizei>(s.grid));
     glDisable(GL_DEPTH_TEST);
@@ -180,7 +165,30 @@ Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
     meshes.draw();
     glUseProgram(0);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  });
+  };
+  const auto t0 = Clock::now();
+  // The counting pass: the crossings, so the table is sized once, not grown by regathers.
+  std::uint64_t counted = 0;
+  {
+    const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountingFragment, "voxelization counting pass");
+    counting.set("lo", lo.x, lo.y, lo.z);
+    counting.set("extent", extent.x, extent.y, extent.z);
+    counted = count_samples([&] { draw(counting); });
+  }
+  BufferConfig config;
+  config.screen = screen;
+  config.layout = Layout::L64;
+  config.table = table_for_load(screen, std::max<std::uint64_t>(counted, screen.area()), 0.5);
+  gl::GlFrameOptions options;
+  options.max_attempts = s.cpu ? 1 : 16;  // lossless: a gather that drops a crossing is redone larger
+  options.capture = options.capture_only = s.cpu;  // the CPU path: rasterize and capture only
+  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
+  const gl::ShaderProgram program = gl::ShaderProgram::graphics(
+      kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "voxelization gather");
+  program.set("lo", lo.x, lo.y, lo.z);
+  program.set("extent", extent.x, extent.y, extent.z);
+  Voxelization out;
+  const gl::FrameReport report = lists.frame([&] { draw(program); });
   glDeleteFramebuffers(1, &framebuffer);
   std::unique_ptr<FragmentBuffer> buffer;
   Counters counters = report.counters;
