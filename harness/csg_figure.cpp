@@ -51,13 +51,8 @@ ResultTable run_csg_figure(const CsgFigureSettings& f) {
       r = render_csg(c.scene, e, s);
       ms.push_back(r.gather_ms + r.resolve_ms);
     }
-    std::vector<bool> band;
-    const std::vector<std::int32_t> want = csg_reference(c.scene, e, r.camera, f.size, &band);
-    std::uint64_t wrong = 0, in_band = 0;
-    for (std::size_t i = 0; i < want.size(); ++i) {
-      if (band[i]) ++in_band;
-      else wrong += want[i] != r.primitive[i];
-    }
+    const CsgCheck check = check_csg(c.scene, e, r, f.size);
+    const std::uint64_t wrong = check.mismatches, in_band = check.band;
     const Spread t = spread_of(ms);
     ResultRow row;
     row.set("cylinders", n).set("primitives", n + 1).set("path", f.cpu ? "cpu" : "gl");

@@ -38,16 +38,8 @@ ResultTable run_voxel_figure(const VoxelFigureSettings& f) {
         v = voxelize(scene, s);
         ms.push_back(v.stats.gather_ms + v.stats.parity_ms);
       }
-      std::vector<bool> band;
-      const VoxelGrid want = voxel_reference(scene, s, &band);
-      std::uint64_t mismatches = 0, in_band = 0;
-      for (std::uint32_t z = 0; z < n; ++z)
-        for (std::uint32_t y = 0; y < n; ++y)
-          for (std::uint32_t x = 0; x < n; ++x) {
-            const std::uint64_t i = x + std::uint64_t{n} * (y + std::uint64_t{n} * z);
-            if (band[i]) ++in_band;
-            else mismatches += v.grid.solid(x, y, z) != want.solid(x, y, z);
-          }
+      const VoxelCheck check = check_voxels(scene, s, v.grid);
+      const std::uint64_t mismatches = check.mismatches, in_band = check.band;
       const Spread t = spread_of(ms);
       const double voxels = static_cast<double>(n) * n * n;
       ResultRow row;

@@ -183,11 +183,20 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
   return r;
 }
 
+CsgCheck check_csg(const Scene& primitives, const CsgExpression& expression, const CsgRender& r, Extent screen) {
+  std::vector<bool> band;
+  const std::vector<std::int32_t> want = csg_reference(primitives, expression, r.camera, screen, &band);
+  CsgCheck c;
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    if (band[i]) ++c.band;
+    else c.mismatches += want[i] != r.primitive[i];
+  }
+  return c;
+}
+
 std::vector<std::int32_t> csg_reference(const Scene& primitives, const CsgExpression& expression, const Camera& camera,
                                         Extent screen, std::vector<bool>* band) {
   const TransmittanceReference reference(primitives);
-  std::vector<std::uint32_t> owner;  // triangle index -> primitive
-  for (std::uint32_t m = 0; m < primitives.meshes.size(); ++m) owner.insert(owner.end(), primitives.meshes[m].indices.size() / 3, m);
   const RecordLayout layout(Layout::L64, BufferConfig{}.age_bits);
   // The visible primitive and code along the ray through window position (wx, wy).
   const auto cast = [&](double wx, double wy) {
@@ -196,19 +205,9 @@ std::vector<std::int32_t> csg_reference(const Scene& primitives, const CsgExpres
     to_far.orthographic = false;
     to_far.position = glm::vec3(far_point);
     const double length = glm::length(far_point - near_point);
-    // A ray through an edge meets both triangles there (an inclusive test):
-    // crossings of one primitive and facing at one distance count once, as
-    // the rasterizer covers one of the two.
-    std::vector<TransmittanceReference::Hit> hits = reference.hits(near_point, to_far);
     std::vector<ListEntry> list;
-    for (std::size_t h = 0; h < hits.size(); ++h) {
-      bool repeat = false;
-      for (std::size_t g = h; g-- > 0 && hits[h].distance - hits[g].distance <= 1e-9 * length;)
-        repeat = repeat || (owner[hits[g].triangle] == owner[hits[h].triangle] && hits[g].toward == hits[h].toward);
-      if (!repeat)
-        list.push_back({0, layout.depth_code(static_cast<float>(hits[h].distance / length)),
-                        csg_data(owner[hits[h].triangle], hits[h].toward)});
-    }
+    for (const TransmittanceReference::Hit& h : reference.crossings(near_point, to_far, 1e-9 * length))
+      list.push_back({0, layout.depth_code(static_cast<float>(h.distance / length)), csg_data(h.mesh, h.toward)});
     std::stable_sort(list.begin(), list.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
     const CsgSurface s = csg_resolve(list, expression, kCsgCoincidentCodes);
     bool tie = false;

@@ -315,6 +315,19 @@ VoxelGrid load_voxel_grid(const std::string& path) {
   return g;
 }
 
+VoxelCheck check_voxels(const Scene& scene, const VoxelizeSettings& s, const VoxelGrid& got) {
+  std::vector<bool> band;
+  const VoxelGrid want = voxel_reference(scene, s, &band);
+  VoxelCheck c;
+  for (std::uint32_t z = 0; z < got.n; ++z)
+    for (std::uint32_t y = 0; y < got.n; ++y)
+      for (std::uint32_t x = 0; x < got.n; ++x) {
+        if (band[x + std::uint64_t{got.n} * (y + std::uint64_t{got.n} * z)]) ++c.band;
+        else c.mismatches += got.solid(x, y, z) != want.solid(x, y, z);
+      }
+  return c;
+}
+
 VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& s, std::vector<bool>* band, double band_depth) {
   s.validate();
   const Bounds box = grid_box(scene, s);
@@ -327,21 +340,11 @@ VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& s, std::ve
   VoxelGrid grid(s.grid, box);
   const std::uint32_t n = s.grid;
   if (band) band->assign(std::uint64_t{n} * n * n, false);
-  // A ray through an edge or vertex meets every triangle there (the test
-  // is inclusive, and thin triangles round either way): crossings of one
-  // facing at one distance are one crossing of the surface, as the
-  // voxelizer's equal records merge; opposite facings (touching solids)
-  // stay two.
-  const double same = 1e-9 * glm::length(extent);
+  const double same = 1e-9 * glm::length(extent);  // one crossing of a surface (TransmittanceReference::crossings)
   const auto crossings_w = [&](double u, double v) {
-    std::vector<TransmittanceReference::Hit> hits = reference.hits(unpermute({u, v, far_w}, s.axis), along);
     std::vector<double> w;
-    for (std::size_t h = 0; h < hits.size(); ++h) {
-      bool repeat = false;
-      for (std::size_t g = h; g-- > 0 && hits[h].distance - hits[g].distance <= same;)
-        repeat = repeat || hits[g].toward == hits[h].toward;
-      if (!repeat) w.push_back(far_w - hits[h].distance);
-    }
+    for (const TransmittanceReference::Hit& h : reference.crossings(unpermute({u, v, far_w}, s.axis), along, same))
+      w.push_back(far_w - h.distance);
     std::sort(w.begin(), w.end());
     return w;
   };

@@ -34,12 +34,13 @@ bool meets(glm::dvec3 lo, glm::dvec3 hi, glm::dvec3 origin, glm::dvec3 inverse, 
 }  // namespace
 
 TransmittanceReference::TransmittanceReference(const Scene& scene) {
-  for (const Mesh& m : scene.meshes) {
+  for (std::uint32_t mesh = 0; mesh < scene.meshes.size(); ++mesh) {
+    const Mesh& m = scene.meshes[mesh];
     const double alpha = m.opacity >= 1.0f ? 1.0 : std::round(std::clamp(double(m.opacity), 0.0, 1.0) * 255.0) / 255.0;
     for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3) {
       const glm::dvec3 a(m.positions.at(m.indices[i])), b(m.positions.at(m.indices[i + 1])),
           c(m.positions.at(m.indices[i + 2]));
-      triangles_.push_back({a, b - a, c - a, alpha, static_cast<std::uint32_t>(triangles_.size())});
+      triangles_.push_back({a, b - a, c - a, alpha, static_cast<std::uint32_t>(triangles_.size()), mesh});
     }
   }
   const Bounds bounds = scene.bounds();
@@ -158,11 +159,24 @@ std::vector<TransmittanceReference::Hit> TransmittanceReference::hits(glm::dvec3
     for (std::uint32_t i = first; i < end; ++i) {
       bool toward = false;
       if (const double d = hit(triangles_[i], s, &toward); d >= 0.0)
-        out.push_back({d, triangles_[i].alpha, triangles_[i].id, toward});
+        out.push_back({d, triangles_[i].alpha, triangles_[i].id, toward, triangles_[i].mesh});
     }
     return true;
   });
   std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
+  return out;
+}
+
+std::vector<TransmittanceReference::Hit> TransmittanceReference::crossings(glm::dvec3 point, const LightView& light,
+                                                                          double same) const {
+  const std::vector<Hit> all = hits(point, light);
+  std::vector<Hit> out;
+  for (const Hit& h : all) {
+    bool repeat = false;
+    for (auto g = out.rbegin(); g != out.rend() && h.distance - g->distance <= same; ++g)
+      repeat = repeat || (g->mesh == h.mesh && g->toward == h.toward);
+    if (!repeat) out.push_back(h);
+  }
   return out;
 }
 

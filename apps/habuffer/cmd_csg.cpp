@@ -157,17 +157,8 @@ int run_csg(const std::vector<std::string>& argv) {
     throw DataError(std::string("csg: no usable OpenGL: ") + e.what());
   }
   const CsgRender r = render_csg(scene, *expression, s);
-  std::optional<std::pair<std::uint64_t, std::uint64_t>> check;  // mismatches, band
-  if (args.has("reference")) {
-    std::vector<bool> band;
-    const std::vector<std::int32_t> want = csg_reference(scene, *expression, r.camera, s.screen, &band);
-    std::uint64_t wrong = 0, in_band = 0;
-    for (std::size_t i = 0; i < want.size(); ++i) {
-      if (band[i]) ++in_band;
-      else wrong += want[i] != r.primitive[i];
-    }
-    check = {wrong, in_band};
-  }
+  std::optional<CsgCheck> check;
+  if (args.has("reference")) check = check_csg(scene, *expression, r, s.screen);
   if (args.has("out")) write_image(args.required("out"), r.image);
   std::uint64_t covered = 0;
   for (const std::int32_t id : r.primitive) covered += id >= 0;
@@ -179,7 +170,7 @@ int run_csg(const std::vector<std::string>& argv) {
     write_counters(json, r.counters);
     json.field("attempts", r.attempts).field("memory_bytes", r.list_bytes);
     json.field("gather_ms", r.gather_ms).field("resolve_ms", r.resolve_ms);
-    if (check) json.key("reference").begin_object().field("mismatches", check->first).field("band", check->second).end_object();
+    if (check) json.key("reference").begin_object().field("mismatches", check->mismatches).field("band", check->band).end_object();
     json.end_object();
     json.save(args.required("stats"));
   }
@@ -191,7 +182,7 @@ int run_csg(const std::vector<std::string>& argv) {
                 static_cast<double>(r.list_bytes) / (1 << 20), r.gather_ms, r.resolve_ms);
     if (check)
       std::printf("reference: %llu pixels differ outside an edge band of %llu\n",
-                  static_cast<unsigned long long>(check->first), static_cast<unsigned long long>(check->second));
+                  static_cast<unsigned long long>(check->mismatches), static_cast<unsigned long long>(check->band));
   }
   return 0;
 }

@@ -51,26 +51,8 @@ void write_slices(const std::string& dir, const VoxelGrid& g) {
   }
 }
 
-struct ReferenceCheck {
-  std::uint64_t mismatches = 0, band = 0;
-};
-
-ReferenceCheck check_reference(const Scene& scene, const VoxelizeSettings& s, const VoxelGrid& got) {
-  std::vector<bool> band;
-  const VoxelGrid want = voxel_reference(scene, s, &band);
-  ReferenceCheck r;
-  for (std::uint32_t z = 0; z < got.n; ++z)
-    for (std::uint32_t y = 0; y < got.n; ++y)
-      for (std::uint32_t x = 0; x < got.n; ++x) {
-        const std::uint64_t i = x + std::uint64_t{got.n} * (y + std::uint64_t{got.n} * z);
-        if (band[i]) ++r.band;
-        else r.mismatches += got.solid(x, y, z) != want.solid(x, y, z);
-      }
-  return r;
-}
-
 void write_stats(const std::string& path, const std::string& mesh, const std::string& axis, const Voxelization& v,
-                 const std::optional<ReferenceCheck>& ref) {
+                 const std::optional<VoxelCheck>& ref) {
   const VoxelStats& s = v.stats;
   JsonWriter json;
   json.begin_object().field("mesh", mesh).field("grid", v.grid.n).field("axis", axis);
@@ -124,8 +106,8 @@ int run_voxelize(const std::vector<std::string>& argv) {
   const Voxelization v = axis == "all" ? voxelize_voting(scene, s) : voxelize(scene, s);
   save_voxel_grid(args.required("out"), v.grid);
   if (args.has("slices")) write_slices(args.required("slices"), v.grid);
-  std::optional<ReferenceCheck> ref;
-  if (args.has("reference")) ref = check_reference(scene, s, v.grid);
+  std::optional<VoxelCheck> ref;
+  if (args.has("reference")) ref = check_voxels(scene, s, v.grid);
   if (args.has("stats")) write_stats(args.required("stats"), mesh, axis, v, ref);
   if (v.stats.odd_columns > 0)
     std::fprintf(stderr, "habuffer voxelize: warning: %llu columns cross the surface an odd number of times: the mesh "

@@ -39,11 +39,18 @@ class TransmittanceReference {
     double alpha;     ///< the triangle's opacity, as packed
     std::uint32_t triangle;  ///< which triangle: its index over the scene's meshes in order
     bool toward = false;     ///< the triangle faces the segment's far end (its winding, counter-clockwise, seen from there)
+    std::uint32_t mesh = 0;  ///< the triangle's mesh (its index in the scene)
   };
   /// Every crossing of the segment from `point` to the light, nearest the
   /// point first (transmittance() is the product of 1 - alpha over those
   /// beyond self_distance).
   [[nodiscard]] std::vector<Hit> hits(glm::dvec3 point, const LightView& light) const;
+  /// The same as crossings of surfaces: a segment through an edge or vertex
+  /// meets every triangle there (the test is inclusive, and thin triangles
+  /// round either way), so hits of one mesh and one facing within `same` of
+  /// each other are one crossing (as a rasterizer covers one of them);
+  /// other meshes' and opposite facings' stay (touching solids).
+  [[nodiscard]] std::vector<Hit> crossings(glm::dvec3 point, const LightView& light, double same) const;
   /// Triangles in the hierarchy.
   [[nodiscard]] std::size_t triangles() const { return triangles_.size(); }
 
@@ -52,6 +59,7 @@ class TransmittanceReference {
     glm::dvec3 a, e1, e2;  // a vertex and the two edges from it
     double alpha;          // its mesh's opacity, as packed
     std::uint32_t id;      // its index over the scene's meshes in order (the hierarchy reorders)
+    std::uint32_t mesh;    // its mesh
   };
   struct Node {
     glm::dvec3 lo, hi;          // bounds

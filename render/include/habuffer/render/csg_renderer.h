@@ -65,4 +65,11 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
 std::vector<std::int32_t> csg_reference(const Scene& primitives, const CsgExpression& expression, const Camera& camera,
                                         Extent screen, std::vector<bool>* band = nullptr);
 
+/// A render against csg_reference: pixels whose visible primitive differs outside the band, and the band's size.
+struct CsgCheck {
+  std::uint64_t mismatches = 0, band = 0;
+};
+/// Compares `render` (of `expression` over `primitives`) with csg_reference at its camera.
+CsgCheck check_csg(const Scene& primitives, const CsgExpression& expression, const CsgRender& render, Extent screen);
+
 }  // namespace habuffer

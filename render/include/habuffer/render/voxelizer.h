@@ -118,4 +118,11 @@ VoxelGrid load_voxel_grid(const std::string& path);
 VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& settings, std::vector<bool>* band = nullptr,
                           double band_depth = 1e-3);
 
+/// A grid against voxel_reference: voxels that differ outside the band, and the band's size.
+struct VoxelCheck {
+  std::uint64_t mismatches = 0, band = 0;
+};
+/// Compares `grid` (voxelized with `settings`) with voxel_reference.
+VoxelCheck check_voxels(const Scene& scene, const VoxelizeSettings& settings, const VoxelGrid& grid);
+
 }  // namespace habuffer
