@@ -16,7 +16,9 @@ namespace {
 // shared/ha_shadow.glsl compiled as C++: the step the HA-buffer's walk takes.
 struct ShadowStep {
   HABUFFER_GLSL_CLASS_PRELUDE
+  using vec2 = glm::vec2;
 #include "habuffer/shared/ha_shadow.glsl"
+#include "habuffer/shared/ha_shadow_pcf.glsl"
 };
 
 }  // namespace
@@ -48,15 +50,12 @@ float transmittance(const FragmentBuffer& light, std::uint32_t x, std::uint32_t 
 }
 
 float transmittance_pcf(const FragmentBuffer& light, float wx, float wy, std::uint32_t code, std::uint32_t bias) {
-  const Extent size = light.screen();
-  const float gx = std::max(wx - 0.5f, 0.0f), gy = std::max(wy - 0.5f, 0.0f);
-  const auto bx = std::min(static_cast<std::uint32_t>(gx), size.x - 1), by = std::min(static_cast<std::uint32_t>(gy), size.y - 1);
-  const float fx = gx - static_cast<float>(bx), fy = gy - static_cast<float>(by);
-  const std::uint32_t nx = std::min(bx + 1, size.x - 1), ny = std::min(by + 1, size.y - 1);
-  const auto mix = [](float a, float b, float f) { return a * (1.0f - f) + b * f; };  // GLSL's mix
-  const float low = mix(transmittance(light, bx, by, code, bias), transmittance(light, nx, by, code, bias), fx);
-  const float high = mix(transmittance(light, bx, ny, code, bias), transmittance(light, nx, ny, code, bias), fx);
-  return mix(low, high, fy);
+  ShadowStep step;
+  glm::uvec2 lo{0u}, hi{0u};
+  glm::vec2 f{0.0f};
+  step.ha_pcf_taps({wx, wy}, {light.screen().x, light.screen().y}, lo, hi, f);
+  return step.ha_pcf_blend(transmittance(light, lo.x, lo.y, code, bias), transmittance(light, hi.x, lo.y, code, bias),
+                           transmittance(light, lo.x, hi.y, code, bias), transmittance(light, hi.x, hi.y, code, bias), f);
 }
 
 }  // namespace habuffer

@@ -102,7 +102,7 @@ std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode, 
                   "(use native64 or emulated64)");
   std::string s = bindings.glsl_defines(overridable);
   s += kLightEnv;
-  for (const char* shared : {kHaRecord, kHaProbe, kHaBlend, kHaShadow, kHaTraverse}) s += light_instance(shared) + "\n";
+  for (const char* shared : {kHaRecord, kHaProbe, kHaBlend, kHaShadow, kHaShadowPcf, kHaTraverse}) s += light_instance(shared) + "\n";
   return s + kHaLightMap + "\n" + kLightLookup;
 }
 

@@ -32,12 +32,10 @@ float habuffer_shadow_transmittance_pcf(vec3 p) {
   if (!habuffer_light_map(habuffer_light.view, habuffer_light.projection, vec2(habuffer_light.map_size),
                           habuffer_light.near_plane, habuffer_light.far_plane, p, w, t))
     return 1.0;
-  vec2 g = max(w - 0.5, vec2(0.0));
-  uvec2 last = habuffer_light.map_size - 1u;
-  uvec2 b = min(uvec2(g), last);
-  vec2 f = g - vec2(b);
-  uvec2 n = min(b + 1u, last);
-  float low = mix(habuffer_shadow_transmittance(b, t), habuffer_shadow_transmittance(uvec2(n.x, b.y), t), f.x);
-  float high = mix(habuffer_shadow_transmittance(uvec2(b.x, n.y), t), habuffer_shadow_transmittance(n, t), f.x);
-  return mix(low, high, f.y);
+  uvec2 lo = uvec2(0u);
+  uvec2 hi = uvec2(0u);
+  vec2 f = vec2(0.0);
+  hs_pcf_taps(w, habuffer_light.map_size, lo, hi, f);  // shared/ha_shadow_pcf.glsl
+  return hs_pcf_blend(habuffer_shadow_transmittance(lo, t), habuffer_shadow_transmittance(uvec2(hi.x, lo.y), t),
+                      habuffer_shadow_transmittance(uvec2(lo.x, hi.y), t), habuffer_shadow_transmittance(hi, t), f);
 }

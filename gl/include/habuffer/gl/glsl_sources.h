@@ -29,6 +29,7 @@ extern const char* const kHaProbe;              ///< shared/ha_probe.glsl: coher
 extern const char* const kHaInsert;             ///< shared/ha_insert.glsl: insertion (SPEC 6)
 extern const char* const kHaBlend;              ///< shared/ha_blend.glsl: front-to-back compositing (SPEC 7)
 extern const char* const kHaShadow;            ///< shared/ha_shadow.glsl: translucent shadows' per-record step
+extern const char* const kHaShadowPcf;         ///< shared/ha_shadow_pcf.glsl: translucent shadows' 2x2 filtering
 extern const char* const kHaLightMap;          ///< shared/ha_light_map.glsl: a world point in a light's view
 extern const char* const kHaTraverse;           ///< shared/ha_traverse.glsl: traversal (SPEC 7)
 extern const char* const kHaEntries;            ///< shared/ha_entries.glsl: a pixel's entries, sorted after the gather
