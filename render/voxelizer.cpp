@@ -293,6 +293,35 @@ void save_voxel_grid(const std::string& path, const VoxelGrid& grid) {
   file.commit();
 }
 
+void save_voxel_nrrd(const std::string& path, const VoxelGrid& grid, const std::string& comment) {
+  std::string note = comment;
+  std::replace(note.begin(), note.end(), '\n', ' ');
+  std::replace(note.begin(), note.end(), '\r', ' ');
+  const glm::dvec3 lo(grid.box.lo), size = (glm::dvec3(grid.box.hi) - lo) / static_cast<double>(grid.n);
+  const glm::dvec3 origin = lo + 0.5 * size;
+  char geometry[512];
+  std::snprintf(geometry, sizeof geometry,
+                "space dimension: 3\nspace directions: (%.9g,0,0) (0,%.9g,0) (0,0,%.9g)\n"
+                "space origin: (%.9g,%.9g,%.9g)\n",
+                size.x, size.y, size.z, origin.x, origin.y, origin.z);
+  std::string header = "NRRD0004\n";
+  if (!note.empty()) header += "# " + note + "\n";
+  header += "# habuffer solid voxels: 1 solid, 0 empty; x fastest\ntype: uint8\ndimension: 3\n";
+  const std::string n = std::to_string(grid.n);
+  header += "sizes: " + n + " " + n + " " + n + "\n";
+  header += geometry;
+  header += "kinds: domain domain domain\ncenters: cell cell cell\nencoding: raw\n\n";
+  AtomicFile file(path);
+  file.write(header);
+  std::string row(grid.n, '\0');
+  for (std::uint32_t z = 0; z < grid.n; ++z)
+    for (std::uint32_t y = 0; y < grid.n; ++y) {
+      for (std::uint32_t x = 0; x < grid.n; ++x) row[x] = grid.solid(x, y, z) ? '\1' : '\0';
+      file.write(row);
+    }
+  file.commit();
+}
+
 VoxelGrid load_voxel_grid(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(path + ": cannot open the voxel grid");
@@ -328,6 +357,29 @@ VoxelCheck check_voxels(const Scene& scene, const VoxelizeSettings& s, const Vox
   return c;
 }
 
+VoxelCheck check_voxels_voting(const Scene& scene, const VoxelizeSettings& settings, const VoxelGrid& got) {
+  std::vector<bool> bands[3];
+  VoxelGrid want[3];
+  for (int a = 0; a < 3; ++a) {
+    VoxelizeSettings s = settings;
+    s.axis = static_cast<VoxelAxis>(a);
+    want[a] = voxel_reference(scene, s, &bands[a]);
+  }
+  VoxelCheck c;
+  for (std::uint32_t z = 0; z < got.n; ++z)
+    for (std::uint32_t y = 0; y < got.n; ++y)
+      for (std::uint32_t x = 0; x < got.n; ++x) {
+        const std::uint64_t i = x + std::uint64_t{got.n} * (y + std::uint64_t{got.n} * z);
+        if (bands[0][i] || bands[1][i] || bands[2][i]) {
+          ++c.band;
+          continue;
+        }
+        const int votes = int{want[0].solid(x, y, z)} + int{want[1].solid(x, y, z)} + int{want[2].solid(x, y, z)};
+        c.mismatches += got.solid(x, y, z) != (votes >= 2);
+      }
+  return c;
+}
+
 VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& s, std::vector<bool>* band, double band_depth) {
   s.validate();
   const Bounds box = grid_box(scene, s);
@@ -352,13 +404,14 @@ VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& s, std::ve
   for (std::uint32_t j = 0; j < n; ++j)
     for (std::uint32_t i = 0; i < n; ++i) {
       const double u = lo.x + (i + 0.5) * du, v = lo.y + (j + 0.5) * dv;
-      // The column's ray, and four rays 1/256 voxel beside it: where their
+      // The column's ray, and four rays 1/512 voxel beside it (the snapping's
+      // largest move of a coordinate): where their
       // parities differ, an edge passes within the rasterizer's snapping.
       std::vector<double> rays[5] = {crossings_w(u, v)};
       if (band) {
         int r = 1;
         for (const auto& [ou, ov] : {std::pair{1.0, 0.0}, {-1.0, 0.0}, {0.0, 1.0}, {0.0, -1.0}})
-          rays[r++] = crossings_w(u + ou * du / 256.0, v + ov * dv / 256.0);
+          rays[r++] = crossings_w(u + ou * du / 512.0, v + ov * dv / 512.0);
       }
       std::size_t before[5] = {0, 0, 0, 0, 0};
       for (std::uint32_t k = 0; k < n; ++k) {

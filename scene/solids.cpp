@@ -50,7 +50,12 @@ Mesh sphere_mesh(glm::vec3 centre, float radius, std::uint32_t slices, std::uint
   wrap_grid(m, slices, stacks, false, [&](std::uint32_t i, std::uint32_t j) {
     const float phi = 2.0f * kPi * static_cast<float>(i) / static_cast<float>(slices);
     const float theta = kPi * static_cast<float>(j) / static_cast<float>(stacks) - 0.5f * kPi;
-    return centre + radius * glm::vec3(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), std::sin(theta));
+    // The poles exact: float's cos(-pi/2) is -4.4e-8, not 0, which would make
+    // the pole a tiny mirrored ring and its "degenerate" triangles slivers
+    // facing inward (a ray along the axis then crossed them).
+    const float ring = j == 0 || j == stacks ? 0.0f : std::cos(theta);
+    const float height = j == 0 ? -1.0f : j == stacks ? 1.0f : std::sin(theta);
+    return centre + radius * glm::vec3(ring * std::cos(phi), ring * std::sin(phi), height);
   });
   return m;
 }

@@ -4,6 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <unistd.h>
 #include <stdexcept>
 #include <string>
 
@@ -120,6 +126,26 @@ TEST(Voxelize, ASphereAndATorusMatchTheRayParityReferenceOutsideTheNearSurfaceBa
   }
 }
 
+// Three-axis voting against the same vote of the three references: a torus
+// (watertight: every axis agrees) and a box missing its top face (each axis
+// that sees the hole is wrong, the vote over the other two is not).
+TEST(Voxelize, AThreeAxisVoteMatchesTheVoteOfTheThreeReferences) {
+  gl_context();
+  Mesh open_box = box_mesh({-1, -1, -1}, {1, 1, 1});
+  open_box.indices.resize(open_box.indices.size() - 6);  // one face gone
+  for (const Mesh& m : {torus_mesh({0, 0, 0}, 1.0f, 0.4f), open_box}) {
+    SCOPED_TRACE(m.name);
+    const Scene scene = scene_of({m});
+    VoxelizeSettings s;
+    s.grid = 20;
+    const Voxelization v = voxelize_voting(scene, s);
+    const VoxelCheck c = check_voxels_voting(scene, s, v.grid);
+    EXPECT_EQ(c.mismatches, 0u);
+    EXPECT_LT(c.band, 20u * 20u * 20u / 10);
+    EXPECT_GT(v.grid.count(), 20u * 20u * 20u / 10);
+  }
+}
+
 // The CPU path (GL rasterizes and captures, the CPU builds the lists): the
 // same crossings, so the same grid as the GPU's, voxel for voxel.
 TEST(Voxelize, TheCpuAndGlPathsGiveTheSameGrid) {
@@ -175,6 +201,81 @@ TEST(Voxelize, BadSettingsAreRefusedNamingTheField) {
   EXPECT_THROW((void)voxelize(scene_of({}), VoxelizeSettings{}), SceneError);
   EXPECT_THROW((void)box_mesh({0, 0, 0}, {1, 0, 1}), std::invalid_argument);
   EXPECT_THROW((void)torus_mesh({0, 0, 0}, 0.5f, 0.5f), std::invalid_argument);
+}
+
+// Files: the HAVOXEL1 grid round-trips bit for bit and refuses what is not
+// one; the NRRD copy's header places the grid in the mesh's space and its
+// bytes are the grid's voxels, x fastest.
+class VoxelFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("habuffer_voxels_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  [[nodiscard]] std::string path(const char* name) const { return (dir_ / name).string(); }
+  static VoxelGrid diagonal_grid() {
+    Bounds box;
+    box.add({-1.0f, 0.0f, 2.0f});
+    box.add({1.0f, 4.0f, 3.0f});
+    VoxelGrid g(5, box);
+    for (std::uint32_t i = 0; i < 5; ++i) g.set(i, (i * 2) % 5, 4 - i);
+    g.set(4, 0, 0);
+    return g;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(VoxelFiles, TheGridFileRoundTripsAndRefusesATruncatedOrForeignFile) {
+  const VoxelGrid g = diagonal_grid();
+  save_voxel_grid(path("g.vox"), g);
+  const VoxelGrid back = load_voxel_grid(path("g.vox"));
+  EXPECT_EQ(back.n, 5u);
+  EXPECT_EQ(back.words, g.words);
+  EXPECT_EQ(back.box.lo, g.box.lo);
+  EXPECT_EQ(back.box.hi, g.box.hi);
+  std::filesystem::resize_file(path("g.vox"), std::filesystem::file_size(path("g.vox")) - 1);
+  EXPECT_THROW((void)load_voxel_grid(path("g.vox")), std::runtime_error);  // DataError, naming the path
+  std::ofstream(path("x.vox")) << "NRRD0004\n";
+  EXPECT_THROW((void)load_voxel_grid(path("x.vox")), std::runtime_error);  // DataError, naming the path
+  EXPECT_THROW((void)load_voxel_grid(path("missing.vox")), std::runtime_error);  // DataError, naming the path
+}
+
+TEST_F(VoxelFiles, TheNrrdHeaderPlacesTheGridAndItsBytesAreTheVoxelsXFastest) {
+  const VoxelGrid g = diagonal_grid();
+  save_voxel_nrrd(path("g.nrrd"), g, "two\nlines");
+  std::ifstream in(path("g.nrrd"), std::ios::binary);
+  std::map<std::string, std::string> fields;
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "NRRD0004");
+  std::vector<std::string> comments;
+  while (std::getline(in, line) && !line.empty()) {
+    if (line[0] == '#') {
+      comments.push_back(line);
+      continue;
+    }
+    const auto colon = line.find(": ");
+    ASSERT_NE(colon, std::string::npos) << line;
+    fields[line.substr(0, colon)] = line.substr(colon + 2);
+  }
+  EXPECT_EQ(comments.front(), "# two lines");  // the newline cannot end the header early
+  EXPECT_EQ(fields["type"], "uint8");
+  EXPECT_EQ(fields["dimension"], "3");
+  EXPECT_EQ(fields["sizes"], "5 5 5");
+  EXPECT_EQ(fields["encoding"], "raw");
+  EXPECT_EQ(fields["space directions"], "(0.4,0,0) (0,0.8,0) (0,0,0.2)");  // the voxel's size per axis
+  double ox = 0, oy = 0, oz = 0;
+  ASSERT_EQ(std::sscanf(fields["space origin"].c_str(), "(%lf,%lf,%lf)", &ox, &oy, &oz), 3);
+  EXPECT_NEAR(ox, -0.8, 1e-6);  // voxel (0, 0, 0)'s centre
+  EXPECT_NEAR(oy, 0.4, 1e-6);
+  EXPECT_NEAR(oz, 2.1, 1e-6);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(data.size(), 125u);
+  for (std::uint32_t z = 0; z < 5; ++z)
+    for (std::uint32_t y = 0; y < 5; ++y)
+      for (std::uint32_t x = 0; x < 5; ++x)
+        EXPECT_EQ(data[x + 5 * (y + 5 * z)], g.solid(x, y, z) ? 1 : 0) << x << " " << y << " " << z;
 }
 
 }  // namespace

@@ -28,9 +28,12 @@ const CommandSpec& voxelize_spec() {
        {"grid", "N", "128", "voxels per side, the grid fitted to the mesh's bounding box"},
        {"axis", "x|y|z|all", "z", "the views' axis; all: three-axis voting (for meshes that are not watertight)"},
        {"out", "GRID", "", "the grid file (HAVOXEL1: header, then N^3 bits; habuffer/render/voxelizer.h)"},
+       {"nrrd", "FILE", "", "the grid as NRRD too (uint8 0/1, placed in the mesh's space): ParaView, VTK, teem's unu"},
        {"stats", "S.json", "", "voxels, crossings, merged crossings, odd columns, memory, load, times"},
        {"slices", "DIR", "", "one PNG per z layer of voxels (slice_0000.png, ...), solid white"},
-       {"reference", "", "", "compare with the ray-parity reference: mismatches outside the near-surface band"},
+       {"reference", "", "",
+        "compare with the ray-parity reference (with --axis all: its three axes' two-of-three vote): mismatches "
+        "outside the near-surface band"},
        {"path", "gl|cpu", "gl", "where the lists are built: on the GPU, or captured and built on the CPU (same grid)"},
        {"threads", "N", "0", "(--path cpu) worker threads; 0: the default count"},
        {"quiet", "", "", "no summary"}},
@@ -88,12 +91,12 @@ int run_voxelize(const std::vector<std::string>& argv) {
   s.threads = args.u32_in("threads", 0, 1024);
   args.refuse_unless(s.cpu, {"threads"}, "with --path gl (the GPU builds the lists)");
   const std::string mesh = args.required("mesh");
-  args.refuse_unless(axis != "all", {"reference"}, "with --axis all (the reference is one axis's parity)");
   if (args.has("slices") && !has_image_support())
     throw UsageError("option --slices: this habuffer was built without image files (" + image_support() + ")");
   FileRoles files;
   if (mesh != "sphere" && mesh != "torus" && mesh != "box" && !is_scene_name(mesh)) files.input("--mesh", mesh);
   files.output("--out", args.required("out"), true);
+  if (args.has("nrrd")) files.output("--nrrd", args.required("nrrd"));
   if (args.has("stats")) files.output("--stats", args.required("stats"));
   check_files(files);
   const Scene scene = harness::voxel_mesh(mesh);
@@ -105,9 +108,10 @@ int run_voxelize(const std::vector<std::string>& argv) {
   }
   const Voxelization v = axis == "all" ? voxelize_voting(scene, s) : voxelize(scene, s);
   save_voxel_grid(args.required("out"), v.grid);
+  if (args.has("nrrd")) save_voxel_nrrd(args.required("nrrd"), v.grid, "habuffer voxelize --mesh " + mesh);
   if (args.has("slices")) write_slices(args.required("slices"), v.grid);
   std::optional<VoxelCheck> ref;
-  if (args.has("reference")) ref = check_voxels(scene, s, v.grid);
+  if (args.has("reference")) ref = axis == "all" ? check_voxels_voting(scene, s, v.grid) : check_voxels(scene, s, v.grid);
   if (args.has("stats")) write_stats(args.required("stats"), mesh, axis, v, ref);
   if (v.stats.odd_columns > 0)
     std::fprintf(stderr, "habuffer voxelize: warning: %llu columns cross the surface an odd number of times: the mesh "

@@ -150,7 +150,11 @@ cmp -s v_torus.vox v_cpu.vox && pass=$((pass + 1)) || { echo "FAIL: voxelize gl 
 expect 2 "option --axis: 'w' is not x, y, z or all" -- voxelize --mesh sphere --axis w --out v.vox
 expect 2 "option --threads has no effect with --path gl" -- voxelize --mesh sphere --threads 2 --out v.vox
 expect 2 "option --grid" -- voxelize --mesh sphere --grid 0 --out v.vox
-expect 2 "option --reference has no effect with --axis all" -- voxelize --mesh sphere --axis all --reference --out v.vox
+expect 2 "is the same file as --nrrd (two outputs)" -- voxelize --mesh sphere --out v.vox --nrrd v.vox
+ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- voxelize --mesh torus --grid 16 --axis all --reference --out v.vox \
+  --nrrd v.nrrd --stats v_all.json --quiet
+grep -q '"mismatches":0' v_all.json && pass=$((pass + 1)) || { echo "FAIL: voxelize --axis all --reference"; fail=$((fail + 1)); }
+[[ $(head -c 8 v.nrrd) == NRRD0004 ]] && pass=$((pass + 1)) || { echo "FAIL: voxelize --nrrd magic"; fail=$((fail + 1)); }
 expect 1 "unknown scene 'teapotx'" -- voxelize --mesh teapotx --out v.vox
 # csg: an expression over named solids, its image and stats, the ray caster; bad solids and expressions refused.
 ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- csg --solids "cube=box:-1,-1,-1,1,1,1; hole=cylinder:0,0,-2,0,0,1,4,0.5" \

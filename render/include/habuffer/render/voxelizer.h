@@ -104,6 +104,15 @@ Voxelization voxelize_voting(const Scene& scene, const VoxelizeSettings& setting
 /// little-endian. Written whole or not at all (habuffer/atomic_file.h);
 /// throws DataError naming the path.
 void save_voxel_grid(const std::string& path, const VoxelGrid& grid);
+/// The grid as NRRD (teem's "nearly raw raster data", NRRD0004: a text
+/// header, then N^3 uint8 voxels, 1 solid, x fastest, raw), the field's
+/// volume format: read by teem's `unu` (Debian `teem-apps`), VTK's
+/// vtkNrrdReader and so ParaView, ITK, 3D Slicer and pynrrd. The header's
+/// `space origin` is voxel (0, 0, 0)'s centre and `space directions` the
+/// voxel's size along x, y and z, so readers place it in the mesh's space.
+/// `comment` goes on a `#` line (newlines replaced). Written whole or not
+/// at all; throws DataError naming the path.
+void save_voxel_nrrd(const std::string& path, const VoxelGrid& grid, const std::string& comment = "");
 /// Reads a grid file; throws DataError naming the path and what is wrong
 /// (magic, N outside 1..4096, a size that does not match, a bad box).
 VoxelGrid load_voxel_grid(const std::string& path);
@@ -113,8 +122,10 @@ VoxelGrid load_voxel_grid(const std::string& path);
 /// number of crossings lie before its centre. `band` (when given) receives,
 /// per voxel, whether it lies near the surface: a crossing within
 /// `band_depth` voxels of its centre along the column, or a parity that
-/// differs on a ray 1/256 voxel beside the column's (an edge passes within
-/// the rasterizer's snapping: its coverage there is the rasterizer's).
+/// differs on a ray 1/512 voxel beside the column's along either axis
+/// across it (the rasterizer snaps each coordinate to the nearest 1/256
+/// pixel: an edge or a steep face that moves across the centre within that
+/// snapping is the rasterizer's to decide).
 VoxelGrid voxel_reference(const Scene& scene, const VoxelizeSettings& settings, std::vector<bool>* band = nullptr,
                           double band_depth = 1e-3);
 
@@ -124,5 +135,9 @@ struct VoxelCheck {
 };
 /// Compares `grid` (voxelized with `settings`) with voxel_reference.
 VoxelCheck check_voxels(const Scene& scene, const VoxelizeSettings& settings, const VoxelGrid& grid);
+/// Compares a three-axis vote (voxelize_voting) with the same vote of the
+/// three axes' references, two of three; the band is every voxel in any
+/// axis's band (`settings.axis` is ignored).
+VoxelCheck check_voxels_voting(const Scene& scene, const VoxelizeSettings& settings, const VoxelGrid& grid);
 
 }  // namespace habuffer
