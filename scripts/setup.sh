@@ -12,6 +12,7 @@ packages=(
   libassimp-dev assimp-testmodels libopenimageio-dev
   glslang-tools
   python3-matplotlib
+  libabsl-dev libsparsehash-dev
 )
 
 missing=()

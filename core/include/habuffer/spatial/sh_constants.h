@@ -1,0 +1,33 @@
+/// @file
+/// Constants of the spatial hash (spatial_hash.h), shared verbatim by C++ and
+/// GLSL: preprocessor definitions only.
+#ifndef HABUFFER_SH_CONSTANTS_H
+#define HABUFFER_SH_CONSTANTS_H
+
+// Outcome of one insert call: exactly one per call (the spatial hash's
+// counters). A call places its key and moves the records it evicts on, so:
+// STORED: a key new to the table is in it, and every record moved is too.
+// REVIVED: the key replaced its own tombstone (an erased key's marker).
+// STORED_TOMBSTONE_DROPPED: the key is in; the record pushed out at the end
+// was a tombstone, which holds no key (nothing is lost).
+// DUPLICATE: the key was there or met another record of itself; the rule
+// kept one of the two (the table holds the key once).
+// FAILED_AGE, FAILED_ITER: the record carried at the end (the key's own or
+// one it evicted) is not in the table; the container grows and inserts it
+// again (lossless) or counts it lost.
+#define SH_STORED 0u
+#define SH_REVIVED 1u
+#define SH_STORED_TOMBSTONE_DROPPED 2u
+#define SH_DUPLICATE 3u
+#define SH_FAILED_AGE 4u
+#define SH_FAILED_ITER 5u
+#define SH_OUTCOME_COUNT 6u
+// Not an outcome: the call goes on.
+#define SH_PENDING 6u
+
+#define SH_DEFAULT_AGE_BITS 8u
+#define SH_MIN_AGE_BITS 4u
+#define SH_MAX_AGE_BITS 12u
+#define SH_DEFAULT_ITER_LIMIT 65536u
+
+#endif

@@ -1,0 +1,152 @@
+// The spatial hash of spatial_hash.h, written once for both paths: coherent
+// Robin Hood hashing of integer keys in a domain larger than the table.
+//
+// Record (64 bits, compared as an unsigned integer):
+//   | age (A bits) | quotient (31 - A bits) | live (1) | value (32) |
+// The key k = (u, v) of the (folded) 2D domain is split into its table
+// position p = (u mod Hx, v mod Hy) and its quotient
+// q = u / Hx + qx * (v / Hy), qx = ceil(Du / Hx). Age equivalence (SPEC 4)
+// gives p back from a record's slot and age; the quotient is the rest of the
+// key, so (slot, age, quotient) names one key (docs/spec-notes.md, "The
+// spatial hash", proves it). The record's key bits are age and quotient:
+// records of different keys are ordered by them alone, so the value and the
+// live bit decide only between two records of one key, which the insert
+// merges by the rule (the larger record wins: the container encodes its
+// rules as "larger is kept"). An erased key leaves its key bits with live 0
+// and value 0 (a tombstone): every other record compares with it as with the
+// key, so lookups and inserts see the same table, and the key inserted again
+// replaces it.
+//
+// Host environment provides: type sh_word (64-bit unsigned), sh_index (the
+// slot index type), uint sh_age_bits, uvec2 sh_table_size (H), uint
+// sh_quotient_x (qx), uvec2 sh_offset(uint i) (O[i]), uint sh_div_block(uint),
+// uint sh_cells_x (max-age cells per row), uint sh_iter_limit,
+// sh_word sh_atomic_max_slot(sh_index s, sh_word r) (returns the old value),
+// sh_word sh_load_slot(sh_index s), void sh_atomic_max_age(uint cell, uint a),
+// uint sh_load_max_age(uint cell), sh_word sh_word_of(uint high, uint low),
+// uint sh_high(sh_word r), uint sh_low(sh_word r), HABUFFER_INOUT(T).
+
+uint sh_max_age() { return (1u << sh_age_bits) - 1u; }
+uint sh_quotient_bits() { return 31u - sh_age_bits; }
+uint sh_max_quotient() { return (1u << sh_quotient_bits()) - 1u; }
+
+sh_word sh_pack(uint age, uint q, uint live, uint value) {
+  return sh_word_of((age << (32u - sh_age_bits)) | (q << 1u) | live, value);
+}
+uint sh_age(sh_word r) { return sh_high(r) >> (32u - sh_age_bits); }
+uint sh_quotient(sh_word r) { return (sh_high(r) >> 1u) & sh_max_quotient(); }
+uint sh_live(sh_word r) { return sh_high(r) & 1u; }
+uint sh_value(sh_word r) { return sh_low(r); }
+// The key bits: age and quotient (the high word without the live bit).
+uint sh_key_bits(sh_word r) { return sh_high(r) >> 1u; }
+sh_word sh_with_age(sh_word r, uint age) {
+  uint keep = (1u << (32u - sh_age_bits)) - 1u;
+  return sh_word_of((sh_high(r) & keep) | (age << (32u - sh_age_bits)), sh_low(r));
+}
+// The erased key's marker: its key bits, live 0, value 0.
+sh_word sh_tombstone(sh_word r) { return sh_word_of(sh_high(r) & 0xFFFFFFFEu, 0u); }
+
+// Table position and quotient of key k (in the folded 2D domain).
+uvec2 sh_position(uvec2 k) {
+  return uvec2(k.x - sh_div_hx(k.x) * sh_table_size.x, k.y - sh_div_hy(k.y) * sh_table_size.y);
+}
+uint sh_key_quotient(uvec2 k) { return sh_div_hx(k.x) + sh_quotient_x * sh_div_hy(k.y); }
+// The key back from its position and quotient.
+uvec2 sh_key(uvec2 p, uint q) {
+  return uvec2(p.x + (q % sh_quotient_x) * sh_table_size.x, p.y + (q / sh_quotient_x) * sh_table_size.y);
+}
+
+// Coherent probing (SPEC 3) and age equivalence (SPEC 4) over positions.
+uvec2 sh_probe(uvec2 p, uint age) {
+  uvec2 h = p + sh_offset(age - 1u);
+  if (h.x >= sh_table_size.x) h.x -= sh_table_size.x;
+  if (h.y >= sh_table_size.y) h.y -= sh_table_size.y;
+  return h;
+}
+uvec2 sh_owner(uvec2 h, uint age) {
+  uvec2 p = h + sh_table_size - sh_offset(age - 1u);
+  if (p.x >= sh_table_size.x) p.x -= sh_table_size.x;
+  if (p.y >= sh_table_size.y) p.y -= sh_table_size.y;
+  return p;
+}
+sh_index sh_slot(uvec2 h) { return sh_index(h.x) + sh_index(h.y) * sh_index(sh_table_size.x); }
+uint sh_cell(uvec2 p) { return sh_div_block(p.x) + sh_div_block(p.y) * sh_cells_x; }
+
+// One insert call between probes.
+struct ShCarry {
+  uvec2 p;    // position of the carried record's key
+  uint a;     // age about to be tried
+  uint iter;  // probes made
+  sh_word r;  // the carried record, with age a while a <= AMAX
+};
+
+ShCarry sh_carry_begin(uvec2 k, uint live, uint value) {
+  ShCarry c;
+  c.p = sh_position(k);
+  c.a = 1u;
+  c.iter = 0u;
+  c.r = sh_pack(1u, sh_key_quotient(k), live, value);
+  return c;
+}
+
+// One probe: SH_PENDING while a record must go on, else the call's outcome.
+uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
+  if (c.a > sh_max_age()) return sh_live(c.r) != 0u ? SH_FAILED_AGE : SH_STORED_TOMBSTONE_DROPPED;
+  if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? SH_FAILED_ITER : SH_STORED_TOMBSTONE_DROPPED;
+  uvec2 h = sh_probe(c.p, c.a);
+  sh_index s = sh_slot(h);
+  c.iter += 1u;
+  // A slot whose key bits are larger holds another key that keeps it
+  // (slots only grow): one plain load, no atomic.
+  if (sh_key_bits(sh_load_slot(s)) <= sh_key_bits(c.r)) {
+    sh_word old = sh_atomic_max_slot(s, c.r);
+    if (old == sh_word(0)) {
+      sh_atomic_max_age(sh_cell(c.p), c.a);
+      return SH_STORED;
+    }
+    if (sh_key_bits(old) == sh_key_bits(c.r)) {
+      // The same key: the larger record stays, the other is dropped. A live
+      // record replacing the key's tombstone stores the key again.
+      if (old < c.r && sh_live(old) == 0u) return SH_REVIVED;
+      return SH_DUPLICATE;
+    }
+    if (old < c.r) {
+      // Placed: carry the evicted record on from its own position and age.
+      sh_atomic_max_age(sh_cell(c.p), c.a);
+      uint old_age = sh_age(old);
+      c.r = old;
+      c.p = sh_owner(h, old_age);
+      c.a = old_age;
+    }
+  }
+  c.a += 1u;
+  c.r = sh_with_age(c.r, c.a);
+  return SH_PENDING;
+}
+
+uint sh_insert_run(HABUFFER_INOUT(ShCarry) c) {
+  uint outcome = SH_PENDING;
+  while (outcome == SH_PENDING) outcome = sh_insert_step(c);
+  return outcome;
+}
+
+// The slot holding key k's record (live or tombstone), or -1 as all ones.
+// Probes ages 1 .. M[cell] and stops at the first slot younger than the age
+// probed: a record of k at a later age was refused here by a record of at
+// least this age, and slots only grow (SPEC 7, the paper's Proposition A).
+// Returns the probes made in `probes`.
+sh_index sh_find_slot(uvec2 k, HABUFFER_INOUT(uint) probes) {
+  uvec2 p = sh_position(k);
+  uint want = (sh_key_quotient(k) << 1u);
+  uint amax = sh_load_max_age(sh_cell(p));
+  probes = 0u;
+  for (uint a = 1u; a <= amax; a += 1u) {
+    sh_index s = sh_slot(sh_probe(p, a));
+    uint high = sh_high(sh_load_slot(s));
+    probes += 1u;
+    uint age = high >> (32u - sh_age_bits);
+    if (age < a) break;
+    if (age == a && ((high << sh_age_bits) >> sh_age_bits & 0xFFFFFFFEu) == want) return s;
+  }
+  return ~sh_index(0);
+}

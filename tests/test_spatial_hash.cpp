@@ -1,0 +1,367 @@
+// The spatial hash (habuffer/spatial/spatial_hash.h): every key found with
+// its value and absent keys missed at every load, one key once by each rule,
+// the same table for every order and thread count, erase, growth and
+// shrink, 3D keys folded, and the adversarial key sets.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "habuffer/spatial/spatial_hash.h"
+
+namespace habuffer::spatial {
+namespace {
+
+using Key = glm::uvec3;
+
+struct KeyLess {
+  bool operator()(const Key& a, const Key& b) const {
+    return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x);
+  }
+};
+
+// `n` distinct random keys of the domain, and `absent` more not among them.
+std::pair<std::vector<Key>, std::vector<Key>> random_keys(Domain d, std::size_t n, std::size_t absent,
+                                                           std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::set<Key, KeyLess> seen;
+  std::vector<Key> in, out;
+  while (in.size() + out.size() < n + absent) {
+    const Key k(static_cast<std::uint32_t>(rng() % d.x), static_cast<std::uint32_t>(rng() % d.y),
+                static_cast<std::uint32_t>(rng() % d.z));
+    if (!seen.insert(k).second) continue;
+    (in.size() < n ? in : out).push_back(k);
+  }
+  return {in, out};
+}
+
+std::vector<std::uint32_t> values_of(const std::vector<Key>& keys) {
+  std::vector<std::uint32_t> v(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) v[i] = keys[i].x * 2654435761u ^ keys[i].y * 40503u ^ keys[i].z;
+  return v;
+}
+
+SpatialHashConfig fixed(Domain d, std::uint32_t threads = 2) {
+  SpatialHashConfig c;
+  c.domain = d;
+  c.adaptive = false;
+  c.threads = threads;
+  return c;
+}
+
+void expect_counts_add_up(const InsertReport& r) {
+  EXPECT_EQ(r.calls, r.stored + r.duplicates + r.failed_age + r.failed_iter);
+}
+
+TEST(SpatialHash, EveryKeyIsFoundWithItsValueAndAbsentKeysAreMissedAtEveryLoadUpTo099) {
+  const Domain d{2048, 1024};
+  const auto [keys, absent] = random_keys(d, 40000, 200000, 7);
+  const std::vector<std::uint32_t> values = values_of(keys);
+  for (const double load : {0.5, 0.8, 0.9, 0.95, 0.99}) {
+    SCOPED_TRACE(load);
+    SpatialHash h(fixed(d));
+    h.reserve(keys.size(), load);
+    const InsertReport r = h.insert(keys, values);
+    expect_counts_add_up(r);
+    EXPECT_EQ(r.lost, 0u);
+    EXPECT_EQ(h.size(), keys.size());
+    EXPECT_NEAR(h.load(), load, 0.02);
+    std::vector<std::uint32_t> got(keys.size());
+    std::vector<std::uint8_t> found(keys.size());
+    EXPECT_EQ(h.find(keys, got, found), keys.size());
+    EXPECT_EQ(got, values);
+    std::vector<std::uint32_t> miss_values(absent.size());
+    std::vector<std::uint8_t> miss_found(absent.size());
+    EXPECT_EQ(h.find(absent, miss_values, miss_found), 0u);
+    EXPECT_EQ(std::count(miss_found.begin(), miss_found.end(), 1), 0);
+    EXPECT_EQ(h.find(keys[123]), values[123]);
+    EXPECT_FALSE(h.contains(absent[5]));
+  }
+}
+
+TEST(SpatialHash, TheTableIsTheSameForEveryInsertionOrderAndThreadCountParallel) {
+  const Domain d{512, 512};
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    auto [keys, unused] = random_keys(d, 60000, 0, seed);
+    // Duplicates too: every 7th key again with another value.
+    std::vector<std::uint32_t> values = values_of(keys);
+    for (std::size_t i = 0; i < 8000; ++i) {
+      keys.push_back(keys[i * 7]);
+      values.push_back(static_cast<std::uint32_t>(i * 977));
+    }
+    for (const DuplicateRule rule : {DuplicateRule::Max, DuplicateRule::Min, DuplicateRule::First, DuplicateRule::Last}) {
+      SCOPED_TRACE(to_string(rule) + " seed " + std::to_string(seed));
+      std::vector<std::uint64_t> reference;
+      for (const std::uint32_t threads : {1u, 2u, 4u}) {
+        SpatialHashConfig c = fixed(d, threads);
+        c.rule = rule;
+        SpatialHash h(c);
+        h.reserve(60000, 0.95);
+        std::vector<Key> k = keys;
+        std::vector<std::uint32_t> v = values;
+        if (threads == 4 && rule != DuplicateRule::First && rule != DuplicateRule::Last) {
+          // Max and Min do not depend on the batch's order: shuffle it.
+          std::vector<std::size_t> order(k.size());
+          std::iota(order.begin(), order.end(), 0);
+          std::shuffle(order.begin(), order.end(), std::mt19937_64(seed));
+          for (std::size_t i = 0; i < order.size(); ++i) {
+            k[i] = keys[order[i]];
+            v[i] = values[order[i]];
+          }
+        }
+        const InsertReport r = h.insert(k, v);
+        EXPECT_EQ(r.duplicates, 8000u);
+        EXPECT_EQ(h.size(), 60000u);
+        const std::vector<std::uint64_t> table(h.table().begin(), h.table().end());
+        if (reference.empty()) reference = table;
+        else EXPECT_TRUE(table == reference) << threads << " threads";
+      }
+    }
+  }
+}
+
+TEST(SpatialHash, EachRuleKeepsItsValueWithinABatchAndAcrossBatches) {
+  const Domain d{64, 64};
+  const std::vector<Key> keys = {{1, 1, 0}, {2, 2, 0}, {1, 1, 0}, {1, 1, 0}, {3, 3, 0}};
+  const std::vector<std::uint32_t> values = {5, 7, 9, 2, 1};
+  const std::map<DuplicateRule, std::uint32_t> want = {
+      {DuplicateRule::Max, 9}, {DuplicateRule::Min, 2}, {DuplicateRule::First, 5}, {DuplicateRule::Last, 2}};
+  for (const auto& [rule, expected] : want) {
+    SCOPED_TRACE(to_string(rule));
+    SpatialHashConfig c = fixed(d);
+    c.rule = rule;
+    SpatialHash h(c, 16);
+    const InsertReport r = h.insert(keys, values);
+    EXPECT_EQ(r.duplicates, 2u);
+    EXPECT_EQ(r.stored, 3u);
+    EXPECT_EQ(h.find({1, 1, 0}), expected);
+    EXPECT_EQ(h.find({2, 2, 0}), 7u);
+    // Across batches: the table's value is "earlier" than the batch's.
+    const InsertReport again = h.insert({1, 1, 0}, 4u);
+    EXPECT_EQ(again.duplicates, 1u);
+    const std::uint32_t after = rule == DuplicateRule::Max   ? std::max(expected, 4u)
+                                : rule == DuplicateRule::Min ? std::min(expected, 4u)
+                                : rule == DuplicateRule::First ? expected
+                                                               : 4u;
+    EXPECT_EQ(h.find({1, 1, 0}), after);
+    EXPECT_EQ(h.size(), 3u);
+  }
+  EXPECT_EQ(parse_duplicate_rule("last"), DuplicateRule::Last);
+  EXPECT_FALSE(parse_duplicate_rule("newest").has_value());
+}
+
+TEST(SpatialHash, EraseLeavesEveryOtherKeyAndTheKeyInsertedAgainComesBack) {
+  const Domain d{300, 200};
+  const auto [keys, absent] = random_keys(d, 20000, 1000, 11);
+  const std::vector<std::uint32_t> values = values_of(keys);
+  SpatialHash h(fixed(d));
+  h.reserve(keys.size(), 0.9);
+  h.insert(keys, values);
+  std::vector<Key> gone(keys.begin(), keys.begin() + 5000);
+  EXPECT_EQ(h.erase(gone), 5000u);
+  EXPECT_FALSE(h.erase(gone[0]));
+  EXPECT_FALSE(h.erase(absent[0]));
+  EXPECT_EQ(h.size(), 15000u);
+  EXPECT_EQ(h.stats().tombstones, 5000u);
+  for (std::size_t i = 0; i < keys.size(); i += 7)
+    EXPECT_EQ(h.find(keys[i]), i < 5000 ? std::nullopt : std::optional<std::uint32_t>(values[i])) << i;
+  // Inserted again: over its tombstone (revived), not twice.
+  const InsertReport r = h.insert(gone[0], 42u);
+  EXPECT_EQ(r.stored, 1u);
+  EXPECT_EQ(r.tombstones_dropped, 1u);
+  EXPECT_EQ(h.find(gone[0]), 42u);
+  EXPECT_EQ(h.stats().tombstones, 4999u);
+  h.compact();
+  EXPECT_EQ(h.stats().tombstones, 0u);
+  EXPECT_EQ(h.size(), 15001u);
+  for (std::size_t i = 5000; i < keys.size(); i += 5) EXPECT_EQ(h.find(keys[i]), values[i]);
+  EXPECT_EQ(h.entries().size(), 15001u);
+}
+
+TEST(SpatialHash, AdaptiveSizingGrowsAndShrinksByThe80And30RuleKeepingEveryKey) {
+  const Domain d{1000, 1000};
+  const auto [keys, absent] = random_keys(d, 50000, 0, 5);
+  SpatialHashConfig c;
+  c.domain = d;
+  c.threads = 2;
+  SpatialHash h(c);
+  InsertReport all;
+  for (std::size_t at = 0; at < keys.size(); at += 1000) {
+    all += h.insert(std::span<const Key>(keys).subspan(at, 1000));
+    EXPECT_LE(h.load(), c.grow_at + 1e-9);
+  }
+  EXPECT_GT(all.rehashes, 3u);
+  EXPECT_EQ(h.size(), keys.size());
+  for (std::size_t i = 0; i < keys.size(); i += 3) EXPECT_TRUE(h.contains(keys[i]));
+  const std::uint64_t big = h.slots();
+  h.erase(std::span<const Key>(keys).subspan(0, 45000));
+  EXPECT_LT(h.slots(), big / 4);
+  EXPECT_GE(h.load(), c.shrink_at);
+  EXPECT_EQ(h.size(), 5000u);
+  for (std::size_t i = 45000; i < keys.size(); ++i) ASSERT_TRUE(h.contains(keys[i])) << i;
+}
+
+// Keys that collide at every offset: the same position, so the same probes;
+// AMAX of them fit (one per age), the next fails, and the lossless table grows.
+TEST(SpatialHash, KeysCollidingAtEveryOffsetGrowTheTableLosslesslyOrAreCountedLost) {
+  const Domain d{1u << 16, 4};
+  SpatialHashConfig c = fixed(d, 1);
+  c.age_bits = 4;  // AMAX 15
+  SpatialHash probe(c, 4);
+  const Extent t = probe.table_extent();
+  std::vector<Key> keys;
+  for (std::uint32_t j = 0; j < 40; ++j) keys.push_back({3 + j * t.x, 1, 0});
+  SpatialHash lossless(c, 4);
+  const InsertReport r = lossless.insert(keys);
+  EXPECT_GT(r.failed_age, 0u);
+  EXPECT_EQ(r.lost, 0u);
+  EXPECT_GT(r.rehashes, 0u);
+  EXPECT_EQ(lossless.size(), keys.size());
+  for (const Key& k : keys) EXPECT_TRUE(lossless.contains(k));
+  c.lossless = false;
+  SpatialHash lossy(c, 4);
+  const InsertReport l = lossy.insert(keys);
+  EXPECT_GT(l.lost, 0u);
+  EXPECT_EQ(lossy.size() + l.lost, keys.size());
+  expect_counts_add_up(l);
+}
+
+TEST(SpatialHash, AllKeysInOneRowTheDomainsCornersOneKeyAndAFullTable) {
+  const Domain d{4096, 4096};
+  std::vector<Key> row;
+  for (std::uint32_t x = 0; x < 4096; ++x) row.push_back({x, 17, 0});
+  SpatialHash h(fixed(d));
+  h.reserve(row.size(), 0.95);
+  h.insert(row);
+  for (const Key& k : row) ASSERT_TRUE(h.contains(k));
+  EXPECT_FALSE(h.contains({0, 18, 0}));
+
+  const std::vector<Key> corners = {{0, 0, 0}, {4095, 0, 0}, {0, 4095, 0}, {4095, 4095, 0}};
+  SpatialHash c(fixed(d), 4);
+  c.insert(corners, std::vector<std::uint32_t>{1, 2, 3, 0xFFFFFFFFu});
+  EXPECT_EQ(c.find({4095, 4095, 0}), 0xFFFFFFFFu);
+  EXPECT_EQ(c.find({0, 0, 0}), 1u);
+
+  SpatialHash one(fixed(d), 1);
+  one.insert({77, 88, 0}, 5u);
+  EXPECT_EQ(one.size(), 1u);
+  EXPECT_EQ(one.entries(), (std::vector<Entry>{{{77, 88, 0}, 5u}}));
+  EXPECT_FALSE(one.contains({88, 77, 0}));
+
+  // Every key of a small domain: the table is the domain, load 1.
+  const Domain small{40, 30};
+  std::vector<Key> every;
+  for (std::uint32_t y = 0; y < 30; ++y)
+    for (std::uint32_t x = 0; x < 40; ++x) every.push_back({x, y, 0});
+  SpatialHash full(fixed(small), 1200);
+  full.insert(every, values_of(every));
+  EXPECT_EQ(full.slots(), 1200u);
+  EXPECT_DOUBLE_EQ(full.load(), 1.0);
+  std::vector<std::uint32_t> got(every.size());
+  std::vector<std::uint8_t> found(every.size());
+  EXPECT_EQ(full.find(every, got, found), every.size());
+  EXPECT_EQ(got, values_of(every));
+}
+
+TEST(SpatialHash, ThreeDimensionalKeysFoldOntoTheTableAndNeighbourhoodsAreExact) {
+  const Domain d{64, 48, 40};
+  const FoldedDomain f(d);
+  for (const Key k : {Key{0, 0, 0}, Key{63, 47, 39}, Key{5, 9, 17}})
+    EXPECT_EQ(f.unfold(f.fold(k)), k);
+  EXPECT_LE(f.folded().x, 64u * 40u);
+  const auto [keys, absent] = random_keys(d, 30000, 0, 9);
+  std::set<Key, KeyLess> present(keys.begin(), keys.end());
+  SpatialHash h(fixed(d));
+  h.reserve(keys.size(), 0.9);
+  h.insert(keys, values_of(keys));
+  for (const Key centre : {Key{0, 0, 0}, Key{32, 20, 20}, Key{63, 47, 39}}) {
+    std::vector<Entry> got = h.neighbourhood(centre, 2);
+    std::vector<Key> want;
+    for (std::uint32_t z = centre.z >= 2 ? centre.z - 2 : 0; z <= std::min(39u, centre.z + 2); ++z)
+      for (std::uint32_t y = centre.y >= 2 ? centre.y - 2 : 0; y <= std::min(47u, centre.y + 2); ++y)
+        for (std::uint32_t x = centre.x >= 2 ? centre.x - 2 : 0; x <= std::min(63u, centre.x + 2); ++x)
+          if (present.count({x, y, z})) want.push_back({x, y, z});
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i].key, want[i]);
+  }
+  std::vector<Entry> all = h.entries();
+  EXPECT_EQ(all.size(), keys.size());
+  for (const Entry& e : all) EXPECT_TRUE(present.count(e.key));
+}
+
+TEST(SpatialHash, BadKeysAndSettingsAreRefusedNamingThem) {
+  SpatialHash h(fixed({100, 50}));
+  const auto message = [](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_EQ(message([&] { h.insert({100, 0, 0}); }), "spatial hash: key (100, 0, 0) is outside the domain 100x50");
+  const std::vector<Key> batch = {{1, 1, 0}, {2, 2, 0}, {3, 50, 0}};
+  EXPECT_EQ(message([&] { h.insert(batch); }), "spatial hash: key 2 (3, 50, 0) is outside the domain 100x50");
+  EXPECT_EQ(h.size(), 0u);  // nothing of the batch went in
+  EXPECT_EQ(message([&] { (void)h.find({0, 0, 1}); }), "spatial hash: key (0, 0, 1) is outside the domain 100x50");
+  EXPECT_NE(message([&] { h.insert(batch, std::vector<std::uint32_t>{1}); }).find("3 keys but 1 values"),
+            std::string::npos);
+  SpatialHashConfig c = fixed({0, 5});
+  EXPECT_NE(message([&] { SpatialHash x(c); }).find("domain 0x5 has a zero side"), std::string::npos);
+  c = fixed({8, 8});
+  c.age_bits = 13;
+  EXPECT_NE(message([&] { SpatialHash x(c); }).find("age bits 13 outside 4..12"), std::string::npos);
+  c = fixed({8, 8});
+  c.shrink_at = 0.9;
+  EXPECT_NE(message([&] { SpatialHash x(c); }).find("shrink_at"), std::string::npos);
+  EXPECT_NE(message([&] { SpatialHash x(fixed({1u << 31, 1u << 31, 16})); }).find("beyond 32-bit"), std::string::npos);
+  SpatialHash y(fixed({64, 64}));
+  EXPECT_NE(message([&] { y.rehash({65, 1}); }).find("not within the folded domain 64x64"), std::string::npos);
+}
+
+// A huge domain with few keys: the table is sized up until the quotients fit
+// the record's bits, and stays correct.
+TEST(SpatialHash, AHugeDomainWithFewKeysSizesTheTableForItsQuotients) {
+  const Domain d{1u << 20, 1u << 20};
+  const auto [keys, absent] = random_keys(d, 500, 500, 3);
+  SpatialHash h(fixed(d), keys.size());
+  EXPECT_GE(h.slots(), (std::uint64_t{1} << 40) >> (31u - h.config().age_bits));
+  h.insert(keys, values_of(keys));
+  EXPECT_LE(h.stats().quotient_bits, 31u - h.config().age_bits);
+  for (std::size_t i = 0; i < keys.size(); ++i) EXPECT_EQ(h.find(keys[i]), values_of(keys)[i]);
+  for (const Key& k : absent) EXPECT_FALSE(h.contains(k));
+  try {
+    SpatialHash x(fixed({4000000000u, 4000000000u}), 10);
+    ADD_FAILURE() << "a domain of 1.6e19 keys accepted with 23 quotient bits";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("for its quotients to fit 23 bits"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SpatialHash, StatsCountAgesAndMemoryAndMissesStopEarly) {
+  const Domain d{1024, 1024};
+  const auto [keys, absent] = random_keys(d, 100000, 10000, 21);
+  SpatialHash h(fixed(d));
+  h.reserve(keys.size(), 0.8);
+  h.insert(keys);
+  const SpatialHashStats s = h.stats();
+  EXPECT_EQ(std::accumulate(s.ages.begin(), s.ages.end(), std::uint64_t{0}), keys.size());
+  EXPECT_GE(s.mean_age, 1.0);
+  EXPECT_LT(s.mean_age, 4.0);
+  EXPECT_GE(s.max_age, 2u);
+  EXPECT_EQ(s.memory_bytes, h.memory_bytes());
+  EXPECT_NEAR(s.bytes_per_key, 8.0 / 0.8, 0.5);
+  double probes = 0;
+  for (const Key& k : absent) probes += h.probes(k);
+  EXPECT_LT(probes / static_cast<double>(absent.size()), static_cast<double>(s.max_age));
+}
+
+}  // namespace
+}  // namespace habuffer::spatial
