@@ -173,6 +173,16 @@ SpatialKernelParams params_of(const SpatialHashConfig& c, Extent table, std::uin
 }
 }  // namespace
 
+SpatialKernelParams SpatialHash::kernel_params() const { return params_of(config_, extent_, quotient_x_, cells_x_); }
+
+SpatialHashView::SpatialHashView(const SpatialHash& t)
+    : kernel_(t.kernel_params(), t.offsets().values().data(), const_cast<std::uint64_t*>(t.table().data()),
+              const_cast<std::uint32_t*>(t.max_age().data())),
+      fold_(t.domain()),
+      slots_(t.table().data()),
+      max_age_(t.max_age().data()),
+      complement_(t.config().rule == DuplicateRule::Min) {}
+
 void SpatialHash::check_key(glm::uvec3 key, std::size_t index, bool batch) const {
   if (fold_.contains(key)) return;
   std::string where = batch ? "key " + std::to_string(index) + " " : "key ";
@@ -363,9 +373,7 @@ std::uint64_t SpatialHash::find_slot(glm::uvec2 folded) const {
 
 std::optional<std::uint32_t> SpatialHash::find(glm::uvec3 key) const {
   check_key(key, 0, false);
-  const std::uint64_t s = find_slot(fold_.fold(key));
-  if (s == kNoSlot || (table_[s] >> 32 & 1u) == 0u) return std::nullopt;
-  return decode(static_cast<std::uint32_t>(table_[s]));
+  return view().find(key);
 }
 
 std::uint32_t SpatialHash::probes(glm::uvec3 key) const {
@@ -385,21 +393,22 @@ std::uint64_t SpatialHash::find(std::span<const glm::uvec3> keys, std::span<std:
                                 std::to_string(values.size()) + " values and " + std::to_string(found.size()) +
                                 " flags");
   for (std::size_t i = 0; i < keys.size(); ++i) check_key(keys[i], i, true);
-  const SpatialKernelParams p = params_of(config_, extent_, quotient_x_, cells_x_);
   const std::uint32_t n = keys.size() < kParallelMin ? 1u : std::min<std::uint32_t>(threads(), 256u);
   std::vector<std::uint64_t> hits(n, 0);
   const auto run = [&](std::uint32_t t) {
-    SpatialHashKernel<false> k(p, offsets_->values().data(), const_cast<std::uint64_t*>(table_.data()),
-                               const_cast<std::uint32_t*>(max_age_.data()));
+    const SpatialHashView v = view();
     const std::size_t lo = keys.size() * t / n, hi = keys.size() * (t + 1) / n;
+    std::uint64_t count = 0;
+    constexpr std::size_t kAhead = 12;  // keys whose first probe is in flight
+    for (std::size_t i = lo; i < std::min(hi, lo + kAhead); ++i) v.prefetch(keys[i]);
     for (std::size_t i = lo; i < hi; ++i) {
-      std::uint32_t probes = 0;
-      const std::uint64_t s = k.sh_find_slot(fold_.fold(keys[i]), probes);
-      const bool hit = s != kNoSlot && (table_[s] >> 32 & 1u) != 0u;
-      values[i] = hit ? decode(static_cast<std::uint32_t>(table_[s])) : 0u;
-      found[i] = hit ? 1u : 0u;
-      hits[t] += hit;
+      if (i + kAhead < hi) v.prefetch(keys[i + kAhead]);
+      const std::optional<std::uint32_t> got = v.find(keys[i]);
+      values[i] = got.value_or(0u);
+      found[i] = got ? 1u : 0u;
+      count += got.has_value();
     }
+    hits[t] = count;
   };
   if (n == 1) run(0);
   else run_with_threads(n, [&] { fork_join(n, run); });

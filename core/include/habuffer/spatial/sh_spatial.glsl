@@ -131,22 +131,25 @@ uint sh_insert_run(HABUFFER_INOUT(ShCarry) c) {
 }
 
 // The slot holding key k's record (live or tombstone), or -1 as all ones.
-// Probes ages 1 .. M[cell] and stops at the first slot younger than the age
-// probed: a record of k at a later age was refused here by a record of at
-// least this age, and slots only grow (SPEC 7, the paper's Proposition A).
-// Returns the probes made in `probes`.
+// Probes ages 1 .. M[cell] and stops at the first slot whose key bits are
+// below k's at the age probed: had k gone on to a later age, it was refused
+// here by a record of larger key bits, and a slot's key bits only grow
+// (values change, erase keeps them): the paper's Proposition A (SPEC 7) with
+// the quotient. An empty slot or a younger record is the common case; a
+// record of the same age and a smaller quotient stops it too. Returns the
+// probes made in `probes`.
 sh_index sh_find_slot(uvec2 k, HABUFFER_INOUT(uint) probes) {
   uvec2 p = sh_position(k);
-  uint want = (sh_key_quotient(k) << 1u);
+  uint want = sh_key_quotient(k);
   uint amax = sh_load_max_age(sh_cell(p));
   probes = 0u;
   for (uint a = 1u; a <= amax; a += 1u) {
     sh_index s = sh_slot(sh_probe(p, a));
-    uint high = sh_high(sh_load_slot(s));
+    uint key = sh_key_bits(sh_load_slot(s));
+    uint mine = (a << (31u - sh_age_bits)) | want;
     probes += 1u;
-    uint age = high >> (32u - sh_age_bits);
-    if (age < a) break;
-    if (age == a && ((high << sh_age_bits) >> sh_age_bits & 0xFFFFFFFEu) == want) return s;
+    if (key == mine) return s;
+    if (key < mine) break;
   }
   return ~sh_index(0);
 }

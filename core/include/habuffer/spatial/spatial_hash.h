@@ -62,6 +62,7 @@
 #include "habuffer/extent.h"
 #include "habuffer/offset_sequence.h"
 #include "habuffer/spatial/sh_constants.h"
+#include "habuffer/spatial/spatial_hash_kernel.h"
 
 namespace habuffer::spatial {
 
@@ -170,6 +171,44 @@ struct Entry {
   friend bool operator==(const Entry&, const Entry&) = default;
 };
 
+class SpatialHash;
+
+/// A non-owning, read-only view of a table for lookups in a hot loop (the
+/// owner's find() checks and throws; this one inlines the probe loop). Valid
+/// while the table is neither changed nor destroyed. A key outside the
+/// domain is absent here.
+class SpatialHashView {
+ public:
+  explicit SpatialHashView(const SpatialHash& table);
+  /// The key's value, or nothing.
+  [[nodiscard]] std::optional<std::uint32_t> find(glm::uvec3 key) const {
+    if (!fold_.contains(key)) return std::nullopt;
+    std::uint32_t probes = 0;
+    const std::uint64_t s = kernel_.sh_find_slot(fold_.fold(key), probes);
+    if (s == ~std::uint64_t{0}) return std::nullopt;
+    const std::uint64_t r = slots_[s];
+    if ((r >> 32 & 1u) == 0u) return std::nullopt;  // a tombstone
+    return complement_ ? ~static_cast<std::uint32_t>(r) : static_cast<std::uint32_t>(r);
+  }
+  [[nodiscard]] bool contains(glm::uvec3 key) const { return find(key).has_value(); }
+  /// Asks the cache for the key's first probe and max-age cell: a batch
+  /// of scattered lookups issues it some keys ahead, so their memory
+  /// latencies overlap.
+  void prefetch(glm::uvec3 key) const {
+    if (!fold_.contains(key)) return;
+    const glm::uvec2 p = kernel_.sh_position(fold_.fold(key));
+    __builtin_prefetch(max_age_ + kernel_.sh_cell(p));
+    __builtin_prefetch(slots_ + kernel_.sh_slot(kernel_.sh_probe(p, 1u)));
+  }
+
+ private:
+  mutable SpatialHashKernel<false> kernel_;  // its finds only read
+  FoldedDomain fold_;
+  const std::uint64_t* slots_;
+  const std::uint32_t* max_age_;
+  bool complement_;
+};
+
 /// The owning table (see the file comment).
 class SpatialHash {
  public:
@@ -242,6 +281,10 @@ class SpatialHash {
   [[nodiscard]] const OffsetSequence& offsets() const { return *offsets_; }
   /// qx = ceil(Du / Hx): quotients per row of table tiles.
   [[nodiscard]] std::uint32_t quotient_x() const { return quotient_x_; }
+  /// The kernel's parameters for this table (the GPU path's uniforms too).
+  [[nodiscard]] SpatialKernelParams kernel_params() const;
+  /// A lookup view (see SpatialHashView).
+  [[nodiscard]] SpatialHashView view() const { return SpatialHashView(*this); }
 
   /// The table for `keys` keys at `load` over a folded domain (the aspect of
   /// the domain, at most the domain, large enough for the quotients to fit
