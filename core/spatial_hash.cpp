@@ -145,6 +145,60 @@ SpatialHash::SpatialHash(SpatialHashConfig config, std::uint64_t capacity) : con
   reset(table_for(fold_, config_.age_bits, capacity, config_.target_load));
 }
 
+SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::vector<std::uint64_t> slots,
+                                 std::vector<std::uint32_t> max_age) {
+  SpatialHash h(config, 0);
+  const Extent d = h.fold_.folded();
+  const auto bad = [](const std::string& what) { throw std::invalid_argument("spatial hash: " + what); };
+  if (table.x == 0 || table.y == 0 || table.x > d.x || table.y > d.y)
+    bad("table " + table.str() + " is not within the folded domain " + d.str());
+  if (!quotients_fit(d, table, config.age_bits))
+    bad("table " + table.str() + " leaves quotients wider than the record's bits for domain " + config.domain.str());
+  h.reset(table);
+  if (slots.size() != h.table_.size())
+    bad(std::to_string(slots.size()) + " slots for a table of " + table.str());
+  if (max_age.size() != h.max_age_.size())
+    bad(std::to_string(max_age.size()) + " max-age cells for a table of " + table.str() + " (" +
+        std::to_string(h.max_age_.size()) + " expected)");
+  h.table_ = std::move(slots);
+  h.max_age_ = std::move(max_age);
+  const SpatialKernelParams p = h.kernel_params();
+  SpatialHashKernel<false> k(p, h.offsets_->values().data(), h.table_.data(), h.max_age_.data());
+  const std::uint64_t quotients = std::uint64_t{h.quotient_x_} * ceil_div(d.y, table.y);
+  const std::uint32_t amax = (1u << config.age_bits) - 1u;
+  for (std::uint64_t s = 0; s < h.table_.size(); ++s) {
+    const std::uint64_t r = h.table_[s];
+    if (r == 0) continue;
+    const std::uint32_t age = k.sh_age(r), q = k.sh_quotient(r);
+    const std::string where = "slot " + std::to_string(s) + ": ";
+    if (age == 0 || age > amax) bad(where + "age " + std::to_string(age) + " outside 1.." + std::to_string(amax));
+    if (q >= quotients) bad(where + "quotient " + std::to_string(q) + " of " + std::to_string(quotients));
+    if (k.sh_live(r) == 0u && k.sh_value(r) != 0u) bad(where + "a tombstone with a value");
+    const glm::uvec2 h2(static_cast<std::uint32_t>(s % table.x), static_cast<std::uint32_t>(s / table.x));
+    const glm::uvec2 pos = k.sh_owner(h2, age);
+    const glm::uvec2 key = k.sh_key(pos, q);
+    if (key.x >= d.x || key.y >= d.y || !h.fold_.contains(h.fold_.unfold(key)))
+      bad(where + "its key lies outside the domain " + config.domain.str());
+    if (h.max_age_[k.sh_cell(pos)] < age)
+      bad(where + "age " + std::to_string(age) + " beyond its max-age cell's " + std::to_string(h.max_age_[k.sh_cell(pos)]));
+    if (k.sh_live(r) != 0u) ++h.live_;
+    else ++h.tombstones_;
+  }
+  for (const std::uint32_t cell : h.max_age_)
+    if (cell > amax) bad("a max-age cell of " + std::to_string(cell) + " beyond AMAX " + std::to_string(amax));
+  // Every record where a lookup finds it: the Robin Hood order holds, and no key is there twice.
+  for (std::uint64_t s = 0; s < h.table_.size(); ++s) {
+    const std::uint64_t r = h.table_[s];
+    if (r == 0) continue;
+    const glm::uvec2 h2(static_cast<std::uint32_t>(s % table.x), static_cast<std::uint32_t>(s / table.x));
+    const glm::uvec2 key = k.sh_key(k.sh_owner(h2, k.sh_age(r)), k.sh_quotient(r));
+    if (h.find_slot(key) != s)
+      bad("slot " + std::to_string(s) + ": a lookup of its key does not find it there (the Robin Hood order is "
+          "broken, or the key is stored twice)");
+  }
+  return h;
+}
+
 void SpatialHash::reset(Extent table) {
   const std::uint32_t amax = (1u << config_.age_bits) - 1u;
   extent_ = table;

@@ -24,5 +24,6 @@ int run_plan(const std::vector<std::string>& args);  ///< `habuffer plan`
 int run_techniques(const std::vector<std::string>& args);  ///< `habuffer techniques`
 int run_voxelize(const std::vector<std::string>& args);  ///< `habuffer voxelize`
 int run_csg(const std::vector<std::string>& args);  ///< `habuffer csg`
+int run_hash(const std::vector<std::string>& args);  ///< `habuffer hash`
 
 }  // namespace habuffer::cli

@@ -31,6 +31,7 @@ constexpr const char* kUsage =
     "  techniques   the registered techniques and their properties (--markdown: the README table)\n"
     "  voxelize     a mesh's solid voxels from lossless sorted depth lists (grid file, stats, slices)\n"
     "  csg          a CSG expression over named solids rendered from lossless sorted depth lists\n"
+    "  hash         the coherent hash as a spatial hash table: build from keys, query, stats, image\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
 
 // One short printable line whatever a library put in its message: text with
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
       {"sweep", cli::run_sweep},             {"bench", cli::run_bench},
       {"figure", cli::run_figure},           {"plan", cli::run_plan},
       {"techniques", cli::run_techniques},   {"voxelize", cli::run_voxelize},
-      {"csg", cli::run_csg}};
+      {"csg", cli::run_csg},                 {"hash", cli::run_hash}};
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

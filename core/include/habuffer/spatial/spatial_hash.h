@@ -286,6 +286,14 @@ class SpatialHash {
   /// A lookup view (see SpatialHashView).
   [[nodiscard]] SpatialHashView view() const { return SpatialHashView(*this); }
 
+  /// A table from its parts (a saved table): `config` as made, the table's
+  /// extent, its slots and its max-age cells. Every record is checked (its
+  /// age, its quotient, its key in the domain, its max-age cell covering its
+  /// age); throws std::invalid_argument naming the first slot or size that
+  /// is wrong.
+  static SpatialHash restore(SpatialHashConfig config, Extent table, std::vector<std::uint64_t> slots,
+                             std::vector<std::uint32_t> max_age);
+
   /// The table for `keys` keys at `load` over a folded domain (the aspect of
   /// the domain, at most the domain, large enough for the quotients to fit
   /// 31 - age_bits bits). Throws std::invalid_argument when no table fits.

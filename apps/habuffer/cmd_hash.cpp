@@ -1,0 +1,341 @@
+// habuffer hash: the coherent hash as a spatial hash table
+// (habuffer/spatial/spatial_hash.h): build a table from keys (a CSV, a key
+// set, a voxel grid or an image's non-background pixels), query it, print its
+// statistics, reconstruct the image it stores.
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include "cli_args.h"
+#include "commands.h"
+#include "habuffer/csv.h"
+#include "habuffer/file_roles.h"
+#include "habuffer/json_writer.h"
+#include "habuffer/key_streams.h"
+#include "habuffer/render/image.h"
+#include "habuffer/render/voxelizer.h"
+#include "habuffer/spatial_hash_file.h"
+
+namespace habuffer::cli {
+namespace {
+
+using spatial::Domain;
+using spatial::SpatialHash;
+
+constexpr const char* kHashUsage =
+    "usage: habuffer hash build|query|stats|image [OPTIONS]\n"
+    "  build   a table from keys: --keys CSV, --key-set NAME, --voxels GRID or --image IMAGE\n"
+    "  query   look keys of a CSV up in a table\n"
+    "  stats   a table's size, load, ages and memory\n"
+    "  image   the image a table built from --image holds, reconstructed\n"
+    "Run 'habuffer hash SUBCOMMAND --help' for its options.\n";
+
+const CommandSpec& build_spec() {
+  static const CommandSpec spec{
+      "hash build (--keys CSV | --key-set NAME | --voxels GRID | --image IMAGE) --out TABLE [OPTIONS]",
+      {{"keys", "CSV", "", "keys with header x,y / x,y,z / x,y,value / x,y,z,value"},
+       {"key-set", "NAME", "", "sparse-image, voxel-shell or random (habuffer/key_streams.h), in --domain"},
+       {"voxels", "GRID", "", "the solid voxels of a voxel grid file (habuffer voxelize --out)"},
+       {"image", "IMAGE", "", "the pixels of an image that differ from --background, valued RGBA8"},
+       {"background", "R,G,B", "1,1,1", "(--image) the colour left out, in [0, 1]"},
+       {"domain", "XxY[xZ]", "", "the key space; default: the keys' bounds (the image's or grid's size)"},
+       {"coverage", "F", "0.25", "(--key-set sparse-image) the share of pixels covered"},
+       {"count", "N", "100000", "(--key-set random) keys"},
+       {"out", "TABLE", "", "the table file (HASPATL1; habuffer/spatial_hash_file.h)"},
+       {"load", "L", "0.8", "the load the table is sized for, in (0, 1]"},
+       {"fixed", "", "", "no adaptive resizing (the table stays sized for --load; lossless growth still)"},
+       {"rule", "max|min|first|last", "last", "which value a key given twice keeps"},
+       {"age-bits", "A", "8", "age bits of a record, 4..12 (quotients get 31 - A)"},
+       {"offsets", "random|farthest", "random", "the probe offsets"},
+       {"seed", "S", "1", "the offsets' seed (and the key set's)"},
+       {"threads", "N", "0", "inserting threads; 0: the default count"},
+       {"stats", "S.json", "", "the build's counters and the table's statistics"},
+       {"quiet", "", "", "no summary"}},
+      "  Exit codes: 0 ok, 1 bad data (a key file, a grid, an image), 2 bad usage.\n"};
+  return spec;
+}
+
+const CommandSpec& query_spec() {
+  static const CommandSpec spec{
+      "hash query --table TABLE --keys CSV [--out RESULTS.csv] [OPTIONS]",
+      {{"table", "TABLE", "", "a table file (habuffer hash build --out)"},
+       {"keys", "CSV", "", "keys with header x,y or x,y,z (a value column is ignored)"},
+       {"out", "RESULTS.csv", "", "x,y[,z],found,value per key, in the file's order"},
+       {"threads", "N", "0", "querying threads; 0: the default count"},
+       {"quiet", "", "", "no summary"}},
+      "  Exit codes: 0 ok, 1 bad data (a key outside the table's domain too), 2 bad usage.\n"};
+  return spec;
+}
+
+const CommandSpec& stats_spec() {
+  static const CommandSpec spec{"hash stats --table TABLE [--out S.json]",
+                                {{"table", "TABLE", "", "a table file"},
+                                 {"out", "S.json", "", "the statistics as JSON (ages per age included)"}},
+                                "  Exit codes: 0 ok, 1 bad data, 2 bad usage.\n"};
+  return spec;
+}
+
+const CommandSpec& image_spec() {
+  static const CommandSpec spec{
+      "hash image --table TABLE --out IMAGE [--background R,G,B]",
+      {{"table", "TABLE", "", "a table built with --image (values RGBA8)"},
+       {"out", "IMAGE", "", "the image: each key's pixel its value, the rest the background"},
+       {"background", "R,G,B", "1,1,1", "the colour of pixels not in the table, in [0, 1]"}},
+      "  Exit codes: 0 ok, 1 bad data (a 3D table), 2 bad usage.\n"};
+  return spec;
+}
+
+Domain parse_domain(const std::string& text) {
+  Domain d;
+  unsigned long long x = 0, y = 0, z = 1;
+  char tail = 0;
+  const int n = std::sscanf(text.c_str(), "%llux%llux%llu%c", &x, &y, &z, &tail);
+  if ((n != 2 && n != 3) || x == 0 || y == 0 || z == 0 || x > 0xFFFFFFFFull || y > 0xFFFFFFFFull ||
+      z > 0xFFFFFFFFull || text.find_first_not_of("0123456789x") != std::string::npos)
+    throw UsageError("option --domain: '" + text + "' is not XxY or XxYxZ with positive sides below 2^32");
+  d.x = static_cast<std::uint32_t>(x);
+  d.y = static_cast<std::uint32_t>(y);
+  d.z = static_cast<std::uint32_t>(z);
+  return d;
+}
+
+glm::vec3 parse_colour(const Args& args) {
+  const std::vector<std::string> parts = args.list("background");
+  if (parts.size() != 3) throw UsageError("option --background: '" + args.str("background") + "' is not R,G,B");
+  glm::vec3 c;
+  for (int i = 0; i < 3; ++i) {
+    char* end = nullptr;
+    c[i] = std::strtof(parts[static_cast<std::size_t>(i)].c_str(), &end);
+    if (end == parts[static_cast<std::size_t>(i)].c_str() || *end != '\0' || !(c[i] >= 0.0f && c[i] <= 1.0f))
+      throw UsageError("option --background: '" + args.str("background") + "' is not three numbers in [0, 1]");
+  }
+  return c;
+}
+
+std::uint32_t rgba8(glm::vec4 c) {
+  const auto b = [](float v) { return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+  return b(c.r) << 24 | b(c.g) << 16 | b(c.b) << 8 | b(c.a);
+}
+
+void write_table_stats(JsonWriter& json, const spatial::SpatialHashStats& s) {
+  json.field("table", s.table.str()).field("slots", s.slots).field("keys", s.keys).field("tombstones", s.tombstones);
+  json.field("load", s.load).field("max_age", s.max_age).field("mean_age", s.mean_age);
+  json.field("quotient_bits", s.quotient_bits).field("memory_bytes", s.memory_bytes);
+  json.field("bytes_per_key", s.bytes_per_key);
+  json.key("ages").begin_array();
+  for (std::size_t a = 1; a <= s.max_age && a < s.ages.size(); ++a) json.value(s.ages[a]);
+  json.end_array();
+}
+
+int run_build(const std::vector<std::string>& argv) {
+  if (print_help(argv, build_spec())) return 0;
+  const Args args(argv, build_spec());
+  const int sources = int{args.has("keys")} + int{args.has("key-set")} + int{args.has("voxels")} + int{args.has("image")};
+  if (sources != 1) throw UsageError("give exactly one of --keys, --key-set, --voxels and --image");
+  args.refuse_unless(args.has("key-set"), {"coverage", "count"}, "without --key-set");
+  args.refuse_unless(args.has("image"), {"background"}, "without --image");
+  FileRoles files;
+  for (const char* in : {"keys", "voxels", "image"})
+    if (args.has(in)) files.input(std::string("--") + in, args.required(in));
+  files.output("--out", args.required("out"), true);
+  if (args.has("stats")) files.output("--stats", args.required("stats"));
+  check_files(files);
+
+  spatial::SpatialHashConfig c;
+  const std::optional<spatial::DuplicateRule> rule = spatial::parse_duplicate_rule(args.str("rule"));
+  if (!rule) throw UsageError("option --rule: '" + args.str("rule") + "' is not max, min, first or last");
+  c.rule = *rule;
+  c.age_bits = args.u32_in("age-bits", SH_MIN_AGE_BITS, SH_MAX_AGE_BITS);
+  const std::string offsets = args.str("offsets");
+  if (offsets != "random" && offsets != "farthest")
+    throw UsageError("option --offsets: '" + offsets + "' is not random or farthest");
+  c.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+  c.seed = args.u64_in("seed");
+  c.threads = args.u32_in("threads", 0, 1024);
+  c.target_load = args.real("load");
+  if (!(c.target_load > 0.0 && c.target_load <= 1.0))
+    throw UsageError("option --load: " + args.str("load") + " is outside (0, 1]");
+  c.adaptive = !args.has("fixed");
+  if (c.adaptive && c.target_load > c.grow_at) c.grow_at = c.target_load;  // a table sized above 0.8 must not grow at once
+
+  std::vector<glm::uvec3> keys;
+  std::vector<std::uint32_t> values;
+  std::optional<Domain> natural;
+  if (args.has("keys")) {
+    spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
+    keys = std::move(f.keys);
+    values = std::move(f.values);
+  } else if (args.has("key-set")) {
+    spatial::KeySetOptions o;
+    const auto set = spatial::parse_key_set(args.str("key-set"));
+    if (!set) throw UsageError("option --key-set: '" + args.str("key-set") + "' is not sparse-image, voxel-shell or random");
+    o.set = *set;
+    if (!args.has("domain")) throw UsageError("option --key-set needs --domain");
+    o.domain = parse_domain(args.str("domain"));
+    o.coverage = args.real("coverage");
+    o.count = args.u64_in("count", 1);
+    o.seed = c.seed;
+    try {
+      keys = spatial::make_keys(o);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  } else if (args.has("voxels")) {
+    const VoxelGrid g = load_voxel_grid(args.required("voxels"));
+    natural = Domain{g.n, g.n, g.n};
+    for (std::uint32_t z = 0; z < g.n; ++z)
+      for (std::uint32_t y = 0; y < g.n; ++y)
+        for (std::uint32_t x = 0; x < g.n; ++x)
+          if (g.solid(x, y, z)) keys.emplace_back(x, y, z);
+  } else {
+    if (!has_image_support()) throw UsageError("option --image: this habuffer was built without image files");
+    const Image image = read_image(args.required("image"));
+    const glm::vec3 bg = parse_colour(args);
+    const std::uint32_t bg8 = rgba8(glm::vec4(bg, 1.0f));
+    natural = Domain{image.size.x, image.size.y, 1};
+    for (std::uint32_t y = 0; y < image.size.y; ++y)
+      for (std::uint32_t x = 0; x < image.size.x; ++x) {
+        const std::uint32_t v = rgba8(image.pixels[x + std::size_t{y} * image.size.x]);
+        if (v == bg8) continue;
+        keys.emplace_back(x, y, 0u);
+        values.push_back(v);
+      }
+  }
+  c.domain = args.has("domain") ? parse_domain(args.str("domain")) : natural ? *natural : spatial::domain_of(keys);
+  if (keys.empty()) throw DataError("hash build: no keys (nothing to store)");
+
+  const auto t0 = std::chrono::steady_clock::now();
+  SpatialHash table(c, keys.size());
+  spatial::InsertReport report;
+  try {
+    report = table.insert(keys, values);
+  } catch (const std::invalid_argument& e) {
+    throw DataError(std::string("hash build: ") + e.what());
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  spatial::save_spatial_hash(args.required("out"), table);
+  const spatial::SpatialHashStats s = table.stats();
+  if (args.has("stats")) {
+    JsonWriter json;
+    json.begin_object().field("domain", c.domain.str()).field("rule", to_string(c.rule));
+    json.field("calls", report.calls).field("stored", report.stored).field("duplicates", report.duplicates);
+    json.field("failed_age", report.failed_age).field("failed_iter", report.failed_iter).field("lost", report.lost);
+    json.field("rehashes", report.rehashes).field("build_ms", ms);
+    write_table_stats(json, s);
+    json.end_object();
+    json.save(args.required("stats"));
+  }
+  if (!args.has("quiet"))
+    std::printf("%llu keys (%llu duplicates) in a %s table of domain %s: load %.3f, mean age %.2f, max age %u, "
+                "%.2f bytes per key, %u rehashes, %.1f ms\n",
+                static_cast<unsigned long long>(s.keys), static_cast<unsigned long long>(report.duplicates),
+                s.table.str().c_str(), c.domain.str().c_str(), s.load, s.mean_age, s.max_age, s.bytes_per_key,
+                report.rehashes, ms);
+  return 0;
+}
+
+int run_query(const std::vector<std::string>& argv) {
+  if (print_help(argv, query_spec())) return 0;
+  const Args args(argv, query_spec());
+  FileRoles files;
+  files.input("--table", args.required("table"));
+  files.input("--keys", args.required("keys"));
+  if (args.has("out")) files.output("--out", args.required("out"));
+  check_files(files);
+  SpatialHash table = spatial::load_spatial_hash(args.required("table"));
+  const spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
+  std::vector<std::uint32_t> values(f.keys.size());
+  std::vector<std::uint8_t> found(f.keys.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  std::uint64_t hits = 0;
+  try {
+    hits = table.find(f.keys, values, found);
+  } catch (const std::invalid_argument& e) {
+    throw DataError(args.required("keys") + ": " + e.what());
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (args.has("out")) {
+    CsvWriter out(args.required("out"));
+    out.text(f.three_d ? "x,y,z,found,value" : "x,y,found,value").endl();
+    for (std::size_t i = 0; i < f.keys.size(); ++i) {
+      out.u64(f.keys[i].x).comma().u64(f.keys[i].y).comma();
+      if (f.three_d) out.u64(f.keys[i].z).comma();
+      out.u64(found[i]).comma().u64(values[i]).endl();
+    }
+    out.close();
+  }
+  if (!args.has("quiet"))
+    std::printf("%llu keys: %llu found, %llu absent, %.1f ms (%.1f M lookups/s)\n",
+                static_cast<unsigned long long>(f.keys.size()), static_cast<unsigned long long>(hits),
+                static_cast<unsigned long long>(f.keys.size() - hits), ms,
+                ms > 0.0 ? static_cast<double>(f.keys.size()) / ms / 1000.0 : 0.0);
+  return 0;
+}
+
+int run_hash_stats(const std::vector<std::string>& argv) {
+  if (print_help(argv, stats_spec())) return 0;
+  const Args args(argv, stats_spec());
+  FileRoles files;
+  files.input("--table", args.required("table"));
+  if (args.has("out")) files.output("--out", args.required("out"));
+  check_files(files);
+  const SpatialHash table = spatial::load_spatial_hash(args.required("table"));
+  const spatial::SpatialHashStats s = table.stats();
+  if (args.has("out")) {
+    JsonWriter json;
+    json.begin_object().field("domain", table.config().domain.str()).field("rule", to_string(table.config().rule));
+    json.field("age_bits", table.config().age_bits);
+    write_table_stats(json, s);
+    json.end_object();
+    json.save(args.required("out"));
+  }
+  std::printf("domain %s, table %s (%llu slots): %llu keys, %llu tombstones, load %.3f, mean age %.2f, max age %u, "
+              "quotient bits %u, %.2f bytes per key\n",
+              table.config().domain.str().c_str(), s.table.str().c_str(), static_cast<unsigned long long>(s.slots),
+              static_cast<unsigned long long>(s.keys), static_cast<unsigned long long>(s.tombstones), s.load,
+              s.mean_age, s.max_age, s.quotient_bits, s.bytes_per_key);
+  return 0;
+}
+
+int run_hash_image(const std::vector<std::string>& argv) {
+  if (print_help(argv, image_spec())) return 0;
+  const Args args(argv, image_spec());
+  if (!has_image_support()) throw UsageError("hash image: this habuffer was built without image files");
+  FileRoles files;
+  files.input("--table", args.required("table"));
+  files.output("--out", args.required("out"), true);
+  check_files(files);
+  const SpatialHash table = spatial::load_spatial_hash(args.required("table"));
+  const Domain d = table.config().domain;
+  if (d.z != 1) throw DataError("hash image: the table's domain " + d.str() + " is 3D, not an image");
+  const glm::vec3 bg = parse_colour(args);
+  Image image{{d.x, d.y}, std::vector<glm::vec4>(std::size_t{d.x} * d.y, glm::vec4(bg, 1.0f))};
+  table.for_each([&](const spatial::Entry& e) {
+    const std::uint32_t v = e.value;
+    image.pixels[e.key.x + std::size_t{e.key.y} * d.x] =
+        glm::vec4(static_cast<float>(v >> 24) / 255.0f, static_cast<float>(v >> 16 & 255u) / 255.0f,
+                  static_cast<float>(v >> 8 & 255u) / 255.0f, static_cast<float>(v & 255u) / 255.0f);
+  });
+  write_image(args.required("out"), image);
+  return 0;
+}
+
+}  // namespace
+
+int run_hash(const std::vector<std::string>& argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
+    std::fputs(kHashUsage, argv.empty() ? stderr : stdout);
+    return argv.empty() ? 2 : 0;
+  }
+  const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+  if (argv[0] == "build") return run_build(rest);
+  if (argv[0] == "query") return run_query(rest);
+  if (argv[0] == "stats") return run_hash_stats(rest);
+  if (argv[0] == "image") return run_hash_image(rest);
+  throw UsageError("unknown subcommand '" + argv[0] + "' (build, query, stats or image)");
+}
+
+}  // namespace habuffer::cli
