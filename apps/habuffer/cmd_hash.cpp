@@ -88,6 +88,15 @@ const CommandSpec& image_spec() {
   return spec;
 }
 
+// Every key of a key file in the domain, else DataError naming the file and the data row.
+void check_rows(const std::string& path, const std::vector<glm::uvec3>& keys, const spatial::FoldedDomain& domain) {
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (!domain.contains(keys[i]))
+      throw DataError(path + ": data row " + std::to_string(i + 1) + ": key (" + std::to_string(keys[i].x) + ", " +
+                      std::to_string(keys[i].y) + ", " + std::to_string(keys[i].z) + ") is outside the domain " +
+                      domain.domain().str());
+}
+
 Domain parse_domain(const std::string& text) {
   Domain d;
   unsigned long long x = 0, y = 0, z = 1;
@@ -206,6 +215,7 @@ int run_build(const std::vector<std::string>& argv) {
   }
   c.domain = args.has("domain") ? parse_domain(args.str("domain")) : natural ? *natural : spatial::domain_of(keys);
   if (keys.empty()) throw DataError("hash build: no keys (nothing to store)");
+  if (args.has("keys")) check_rows(args.required("keys"), keys, spatial::FoldedDomain(c.domain));
 
   const auto t0 = std::chrono::steady_clock::now();
   SpatialHash table(c, keys.size());
@@ -247,6 +257,7 @@ int run_query(const std::vector<std::string>& argv) {
   check_files(files);
   SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
+  check_rows(args.required("keys"), f.keys, table.domain());
   std::vector<std::uint32_t> values(f.keys.size());
   std::vector<std::uint8_t> found(f.keys.size());
   const auto t0 = std::chrono::steady_clock::now();

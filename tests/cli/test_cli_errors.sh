@@ -201,5 +201,27 @@ expect 2 "option --loads: 'x' is not a load in (0, 4]" -- stats --loads 0.5,x
 expect 2 "option --probing: unknown value 'linear'" -- stats --probing linear
 expect 2 "table 16x16 is smaller than screen 32x32" -- stats --screen 32x32 --table 16x16
 
+# hash: a spatial hash built from a CSV, a key set and a voxel grid, queried, its stats; bad input refused.
+printf 'x,y,value\n1,1,5\n1,1,9\n2,3,0x10\n7,0,4\n' >hk.csv
+expect 0 "" -- hash build --keys hk.csv --out hk.tab --rule max --stats hk.json --quiet
+for key in '"duplicates":1' '"keys":3' '"lost":0'; do
+  grep -q "$key" hk.json && pass=$((pass + 1)) || { echo "FAIL: hash build stats lack $key"; fail=$((fail + 1)); }
+done
+expect 0 "" -- hash query --table hk.tab --keys hk.csv --out hq.csv --quiet
+[[ "$(cat hq.csv | tr '\n' ' ')" == "x,y,found,value 1,1,1,9 1,1,1,9 2,3,1,16 7,0,1,4 " ]] && pass=$((pass + 1)) ||
+  { echo "FAIL: hash query results"; cat hq.csv; fail=$((fail + 1)); }
+expect 0 "" -- hash build --key-set voxel-shell --domain 24x24x24 --out hv.tab --load 0.95 --fixed --quiet
+expect 0 "keys, 0 tombstones" -- hash stats --table hv.tab --out hv.json
+printf 'x,y\n1,1\n1,zz\n' >hb.csv
+expect 1 "hb.csv:3: field y: 'zz' is not an unsigned integer" -- hash build --keys hb.csv --out hb.tab
+printf 'x,y\n9,9\n' >hq2.csv
+expect 1 "hq2.csv: data row 1: key (9, 9, 0) is outside the domain 8x4" -- hash query --table hk.tab --keys hq2.csv
+head -c 60 hk.tab >trunc.tab
+expect 1 "trunc.tab: " -- hash stats --table trunc.tab
+expect 2 "give exactly one of --keys, --key-set, --voxels and --image" -- hash build --out x.tab
+expect 2 "option --rule: 'newest' is not max, min, first or last" -- hash build --keys hk.csv --out x.tab --rule newest
+expect 2 "option --domain: '0x5' is not XxY" -- hash build --key-set random --domain 0x5 --out x.tab
+expect 2 "unknown subcommand 'drop'" -- hash drop
+
 echo "cli: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]
