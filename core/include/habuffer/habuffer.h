@@ -29,3 +29,4 @@
 #include "habuffer/technique.h"
 #include "habuffer/technique_params.h"
 #include "habuffer/transmittance.h"
+#include "habuffer/spatial/spatial_hash.h"

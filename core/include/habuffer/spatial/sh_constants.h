@@ -22,8 +22,12 @@
 #define SH_FAILED_AGE 4u
 #define SH_FAILED_ITER 5u
 #define SH_OUTCOME_COUNT 6u
-// Not an outcome: the call goes on.
+// Not outcomes: the call goes on (SH_PENDING), or was cut short by
+// something other than the table (SH_CUT, GPU path only: an emulated atomic
+// gave up on a busy lock, or the driver's loop budget ended the loop) and
+// its carry must be resumed.
 #define SH_PENDING 6u
+#define SH_CUT 7u
 
 #define SH_DEFAULT_AGE_BITS 8u
 #define SH_MIN_AGE_BITS 4u

@@ -22,6 +22,8 @@
 // sh_quotient_x (qx), uvec2 sh_offset(uint i) (O[i]), uint sh_div_block(uint),
 // uint sh_cells_x (max-age cells per row), uint sh_iter_limit,
 // sh_word sh_atomic_max_slot(sh_index s, sh_word r) (returns the old value),
+// uint sh_atomic_missed() (0 when the last slot atomic happened; else SH_PENDING
+// or SH_CUT, see sh_insert_step; always 0 where atomics are native),
 // sh_word sh_load_slot(sh_index s), void sh_atomic_max_age(uint cell, uint a),
 // uint sh_load_max_age(uint cell), sh_word sh_word_of(uint high, uint low),
 // uint sh_high(sh_word r), uint sh_low(sh_word r), HABUFFER_INOUT(T).
@@ -95,11 +97,16 @@ uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
   if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? SH_FAILED_ITER : SH_STORED_TOMBSTONE_DROPPED;
   uvec2 h = sh_probe(c.p, c.a);
   sh_index s = sh_slot(h);
-  c.iter += 1u;
   // A slot whose key bits are larger holds another key that keeps it
   // (slots only grow): one plain load, no atomic.
   if (sh_key_bits(sh_load_slot(s)) <= sh_key_bits(c.r)) {
     sh_word old = sh_atomic_max_slot(s, c.r);
+    // An emulated atomic that found its slot busy changed nothing: the same
+    // probe again (SH_PENDING), or the call is cut short (SH_CUT), the carry
+    // unchanged either way.
+    uint missed = sh_atomic_missed();
+    if (missed != 0u) return missed;
+    c.iter += 1u;
     if (old == sh_word(0)) {
       sh_atomic_max_age(sh_cell(c.p), c.a);
       return SH_STORED;
@@ -118,16 +125,20 @@ uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
       c.p = sh_owner(h, old_age);
       c.a = old_age;
     }
+  } else {
+    c.iter += 1u;
   }
   c.a += 1u;
   c.r = sh_with_age(c.r, c.a);
   return SH_PENDING;
 }
 
+// Runs the call's steps until it ends; SH_CUT when it was cut short (the
+// loop ended by the driver's budget counts as cut: `c` holds where to resume).
 uint sh_insert_run(HABUFFER_INOUT(ShCarry) c) {
   uint outcome = SH_PENDING;
   while (outcome == SH_PENDING) outcome = sh_insert_step(c);
-  return outcome;
+  return outcome == SH_PENDING ? SH_CUT : outcome;
 }
 
 // The slot holding key k's record (live or tombstone), or -1 as all ones.

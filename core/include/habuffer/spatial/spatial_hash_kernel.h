@@ -16,7 +16,8 @@ namespace habuffer::spatial {
 
 static_assert(SH_MIN_AGE_BITS >= 2u && SH_MAX_AGE_BITS <= 24u,
               "sh_spatial.glsl packs age, quotient (31 - A bits) and the live bit in 32: keep the age bits in 2..24");
-static_assert(SH_PENDING >= SH_OUTCOME_COUNT, "SH_PENDING must not collide with an outcome the counters index");
+static_assert(SH_PENDING >= SH_OUTCOME_COUNT && SH_CUT >= SH_OUTCOME_COUNT,
+              "SH_PENDING and SH_CUT must not collide with an outcome the counters index");
 
 /// The kernel's "uniforms".
 struct SpatialKernelParams {
@@ -64,6 +65,8 @@ class SpatialHashKernel {
   static uint sh_high(sh_word r) { return static_cast<uint>(r >> 32); }
   static uint sh_low(sh_word r) { return static_cast<uint>(r); }
   sh_word sh_atomic_max_slot(sh_index s, sh_word r) { return ha_fetch_max<Concurrent>(table_[s], r); }
+  /// CPU atomics always happen.
+  static uint sh_atomic_missed() { return 0u; }
   sh_word sh_load_slot(sh_index s) const { return ha_fetch<Concurrent>(table_[s]); }
   void sh_atomic_max_age(uint cell, uint age) {
     if (ha_fetch<Concurrent>(max_age_[cell]) < age) ha_fetch_max<Concurrent>(max_age_[cell], age);

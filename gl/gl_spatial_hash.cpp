@@ -1,0 +1,260 @@
+#include "habuffer/gl/gl_spatial_hash.h"
+
+#include <epoxy/gl.h>
+
+#include <array>
+#include <stdexcept>
+#include <string>
+
+#include "compute_grid.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_technique.h"
+#include "spatial_glsl.h"
+
+namespace habuffer::gl {
+namespace {
+
+constexpr unsigned kBase = 16;  // shader-storage points kBase .. kBase + 8
+constexpr unsigned kResumeLimitPasses = 4096;
+constexpr unsigned kLockSpinLimit = 1u << 12;
+
+// The host's program and the shader-storage bindings this class uses, put back on scope exit.
+class Restore {
+ public:
+  Restore() {
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &generic_);
+    for (unsigned i = 0; i < points_.size(); ++i) {
+      glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, kBase + i, &points_[i].buffer);
+      glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, kBase + i, &points_[i].start);
+      glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, kBase + i, &points_[i].size);
+    }
+  }
+  ~Restore() {
+    for (unsigned i = 0; i < points_.size(); ++i) {
+      const Point& p = points_[i];
+      if (p.buffer != 0 && p.size > 0)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kBase + i, static_cast<GLuint>(p.buffer), p.start, p.size);
+      else
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBase + i, static_cast<GLuint>(p.buffer));
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(generic_));
+    glUseProgram(static_cast<GLuint>(program_));
+  }
+  Restore(const Restore&) = delete;
+  Restore& operator=(const Restore&) = delete;
+
+ private:
+  struct Point {
+    GLint buffer = 0;
+    GLint64 start = 0, size = 0;
+  };
+  GLint program_ = 0, generic_ = 0;
+  std::array<Point, 9> points_{};
+};
+
+std::string source(bool native, const char* entry) {
+  std::string s = "#version 450\n#extension GL_ARB_gpu_shader_int64 : require\n";
+  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n#define SH_NATIVE64 1\n";
+  s += kShConstants;
+  s += "\n";
+  s += kShEnv;
+  s += "\n";
+  s += kShSpatial;
+  s += "\n";
+  s += entry;
+  // The shaders name points 0..8; they are moved to kBase.. so that a host's low points stay its own.
+  for (unsigned i = 9; i-- > 0;) {
+    const std::string from = "binding = " + std::to_string(i) + ")";
+    const std::string to = "binding = " + std::to_string(kBase + i) + ")";
+    for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+      s.replace(at, from.size(), to);
+  }
+  return s;
+}
+
+void set_params(const ShaderProgram& p, const spatial::SpatialKernelParams& k) {
+  p.set("sh_age_bits", k.age_bits);
+  p.set("sh_table_size", k.table.x, k.table.y);
+  p.set("sh_quotient_x", k.quotient_x);
+  p.set("sh_cells_x", k.cells_x);
+  p.set("sh_iter_limit", k.iter_limit);
+  p.set("sh_block", k.block);
+  p.set("sh_lock_spin_limit", kLockSpinLimit);
+}
+
+void check_size(std::uint64_t bytes, const char* what) {
+  if (bytes > max_storage_bytes())
+    throw GlError(std::string("spatial hash on the GPU: the ") + what + " takes " + std::to_string(bytes) +
+                  " bytes, beyond the driver's " + std::to_string(max_storage_bytes()) + " per shader-storage buffer");
+}
+
+AtomicMode mode_for_context() {
+  const std::optional<AtomicMode> mode = chosen_atomic_mode(query_gl_info(), Layout::L64);
+  if (!mode) throw GlError("spatial hash on the GPU: this context has no 64-bit integers in shaders");
+  return *mode;
+}
+
+}  // namespace
+
+GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table)
+    : params_(table.kernel_params()),
+      fold_(table.domain()),
+      mode_(mode_for_context()),
+      insert_(ShaderProgram::compute(source(mode_ == AtomicMode::Native64, kShInsertCompute),
+                                     "spatial hash insert compute shader")),
+      find_(ShaderProgram::compute(source(mode_ == AtomicMode::Native64, kShFindCompute),
+                                   "spatial hash find compute shader")) {
+  slot_count_ = table.table().size();
+  cell_count_ = table.max_age().size();
+  if (slot_count_ > 0xFFFFFFFFull) throw GlError("spatial hash on the GPU: more than 2^32 slots");
+  check_size(slot_count_ * 8, "table");
+  table_ = GlStorage(slot_count_ * 8, table.table().data());
+  max_age_ = GlStorage(cell_count_ * 4, table.max_age().data());
+  const std::span<const glm::uvec2> o = table.offsets().values();
+  offsets_ = GlStorage(o.size() * sizeof(glm::uvec2), o.data());
+  if (mode_ != AtomicMode::Native64) {
+    locks_ = GlStorage(((slot_count_ >> 3) + 1) * 4);
+    locks_.zero();
+  }
+}
+
+spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, std::span<const std::uint32_t> stored,
+                                            std::vector<Dropped>& dropped) {
+  spatial::InsertReport report;
+  report.calls = keys.size();
+  resume_passes_ = 0;
+  if (keys.empty()) return report;
+  const Restore restore;
+  std::vector<glm::uvec4> records(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const glm::uvec2 f = fold_.fold(keys[i]);
+    records[i] = {f.x, f.y, stored.empty() ? 0u : stored[i], 0u};
+  }
+  check_size(records.size() * sizeof(glm::uvec4), "records");
+  check_size(records.size() * 32, "carries of calls cut short");
+  const GlStorage input(records.size() * sizeof(glm::uvec4), records.data());
+  GlStorage carries[2] = {GlStorage(records.size() * 32), GlStorage(records.size() * 32)};
+  const GlStorage drops(records.size() * 16);
+  const GlStorage counters(16 * 4);
+  counters.zero();
+  table_.bind_storage(kBase + 0);
+  max_age_.bind_storage(kBase + 1);
+  offsets_.bind_storage(kBase + 2);
+  locks_.bind_storage(kBase + 3);
+  input.bind_storage(kBase + 4);
+  drops.bind_storage(kBase + 7);
+  counters.bind_storage(kBase + 8);
+  glUseProgram(insert_.id());
+  set_params(insert_, params_);
+  std::uint64_t pending = records.size();
+  for (unsigned pass = 0;; ++pass) {
+    carries[pass % 2].bind_storage(kBase + 5);        // this pass's input carries (resume passes)
+    carries[(pass + 1) % 2].bind_storage(kBase + 6);  // the calls it cuts short
+    insert_.set("sh_count", static_cast<unsigned>(pending));
+    insert_.set("sh_resume", pass == 0 ? 0u : 1u);
+    dispatch_grid(pending, 64);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::uint32_t> c = counters.read_words(16);
+    pending = c[8];
+    if (pending == 0) break;
+    if (pass + 1 >= kResumeLimitPasses)
+      throw GlError("spatial hash on the GPU: " + std::to_string(pending) + " calls still cut short after " +
+                    std::to_string(kResumeLimitPasses) + " passes");
+    ++resume_passes_;
+    const std::uint32_t zero = 0;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, counters.id());
+    glBufferSubData(GL_SHADER_STORAGE_BUFFER, 8 * 4, 4, &zero);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+  const std::vector<std::uint32_t> c = counters.read_words(16);
+  report.stored = std::uint64_t{c[SH_STORED]} + c[SH_REVIVED] + c[SH_STORED_TOMBSTONE_DROPPED];
+  report.tombstones_dropped = std::uint64_t{c[SH_REVIVED]} + c[SH_STORED_TOMBSTONE_DROPPED];
+  report.duplicates = c[SH_DUPLICATE];
+  report.failed_age = c[SH_FAILED_AGE];
+  report.failed_iter = c[SH_FAILED_ITER];
+  const std::vector<glm::uvec4> d = drops.read<glm::uvec4>(c[9]);
+  for (const glm::uvec4& r : d) dropped.push_back({fold_.unfold({r.x, r.y}), r.z});
+  return report;
+}
+
+std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<std::uint32_t> stored,
+                                  std::span<std::uint8_t> found) const {
+  if (keys.empty()) return 0;
+  const Restore restore;
+  std::vector<glm::uvec2> folded(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) folded[i] = fold_.fold(keys[i]);
+  check_size(folded.size() * 8, "queries");
+  const GlStorage queries(folded.size() * 8, folded.data());
+  const GlStorage answers(folded.size() * 8);
+  table_.bind_storage(kBase + 0);
+  max_age_.bind_storage(kBase + 1);
+  offsets_.bind_storage(kBase + 2);
+  queries.bind_storage(kBase + 4);
+  answers.bind_storage(kBase + 5);
+  glUseProgram(find_.id());
+  set_params(find_, params_);
+  find_.set("sh_count", static_cast<unsigned>(folded.size()));
+  dispatch_grid(folded.size(), 64);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  const std::vector<glm::uvec2> a = answers.read<glm::uvec2>(folded.size());
+  std::uint64_t hits = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    found[i] = a[i].x != 0u ? 1u : 0u;
+    stored[i] = a[i].y;
+    hits += a[i].x;
+  }
+  return hits;
+}
+
+std::vector<std::uint64_t> GlSpatialHash::slots() const { return table_.read<std::uint64_t>(slot_count_); }
+std::vector<std::uint32_t> GlSpatialHash::max_age() const { return max_age_.read<std::uint32_t>(cell_count_); }
+
+spatial::InsertReport gl_insert(spatial::SpatialHash& table, std::span<const glm::uvec3> keys,
+                                std::span<const std::uint32_t> values) {
+  const spatial::SpatialHashConfig c = table.config();
+  if (c.rule == spatial::DuplicateRule::First || c.rule == spatial::DuplicateRule::Last)
+    throw std::invalid_argument("spatial hash on the GPU: rule " + to_string(c.rule) +
+                                " orders a batch, which concurrent GPU calls do not: use max or min, or the CPU path");
+  if (!values.empty() && values.size() != keys.size())
+    throw std::invalid_argument("spatial hash: " + std::to_string(keys.size()) + " keys but " +
+                                std::to_string(values.size()) + " values");
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    if (!table.domain().contains(keys[i]))
+      throw std::invalid_argument("spatial hash: key " + std::to_string(i) + " (" + std::to_string(keys[i].x) + ", " +
+                                  std::to_string(keys[i].y) + ", " + std::to_string(keys[i].z) +
+                                  ") is outside the domain " + c.domain.str());
+  const std::uint64_t slots_before = table.slots();
+  if (c.adaptive &&
+      static_cast<double>(table.stats().keys + table.stats().tombstones + keys.size()) > c.grow_at * static_cast<double>(table.slots()))
+    table.reserve(table.size() + keys.size(), c.target_load);
+  std::vector<std::uint32_t> stored(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::uint32_t v = values.empty() ? 0u : values[i];
+    stored[i] = c.rule == spatial::DuplicateRule::Min ? ~v : v;
+  }
+  GlSpatialHash gpu(table);
+  std::vector<GlSpatialHash::Dropped> dropped;
+  spatial::InsertReport report = gpu.insert(keys, stored, dropped);
+  if (table.slots() != slots_before) ++report.rehashes;
+  table = spatial::SpatialHash::restore(c, table.table_extent(), gpu.slots(), gpu.max_age());
+  if (!dropped.empty()) {
+    // The failed calls' records, again on the CPU after growing (lossless).
+    std::vector<glm::uvec3> k;
+    std::vector<std::uint32_t> v;
+    for (const GlSpatialHash::Dropped& d : dropped) {
+      k.push_back(d.key);
+      v.push_back(c.rule == spatial::DuplicateRule::Min ? ~d.stored : d.stored);
+    }
+    if (!c.lossless) {
+      report.lost += dropped.size();
+    } else {
+      const spatial::InsertReport again = table.insert(k, v);
+      report.rehashes += again.rehashes;
+      report.lost += again.lost;
+    }
+  }
+  return report;
+}
+
+}  // namespace habuffer::gl

@@ -1,0 +1,77 @@
+/// @file
+/// The spatial hash (habuffer/spatial/spatial_hash.h) on the GPU: the same
+/// insert and lookup (core/include/habuffer/spatial/sh_spatial.glsl) run by
+/// compute shaders, one record or query per invocation, so the table the GPU
+/// builds is the CPU's bit for bit (the deferred-acceptance argument of
+/// docs/spec-notes.md, "The spatial hash"; tested).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/shader_program.h"
+#include "habuffer/spatial/spatial_hash.h"
+
+namespace habuffer::gl {
+
+/// One table on the GPU of the current context. Binds shader-storage points
+/// 16..24 and its program while it works and restores the host's bindings
+/// and program before returning.
+class GlSpatialHash {
+ public:
+  /// Uploads `table`: its parameters, offsets, slots and max-age cells.
+  /// Throws GlError when the context lacks 64-bit integers in shaders, or a
+  /// buffer beyond the driver's shader-storage limit.
+  explicit GlSpatialHash(const spatial::SpatialHash& table);
+
+  /// A key that failed (its record carried past AMAX ages or the iteration
+  /// limit): the caller grows the table and inserts it again.
+  struct Dropped {
+    glm::uvec3 key;
+    std::uint32_t stored;  ///< the value as stored (the rule's encoding)
+  };
+  /// Inserts each key with its stored value (the rule's encoding: Max and
+  /// Min only; keys in the domain). Calls cut short (a busy emulated lock,
+  /// the driver's loop budget) are resumed by further passes until none is
+  /// left. Returns the counters; failed calls' records go to `dropped`.
+  spatial::InsertReport insert(std::span<const glm::uvec3> keys, std::span<const std::uint32_t> stored,
+                               std::vector<Dropped>& dropped);
+  /// Batched lookup: found[i] and the stored value (0 where absent) of keys[i]
+  /// (keys in the domain). Returns the keys found.
+  std::uint64_t find(std::span<const glm::uvec3> keys, std::span<std::uint32_t> stored,
+                     std::span<std::uint8_t> found) const;
+
+  /// The slots and max-age cells read back.
+  [[nodiscard]] std::vector<std::uint64_t> slots() const;
+  [[nodiscard]] std::vector<std::uint32_t> max_age() const;
+  /// native64 or emulated64.
+  [[nodiscard]] AtomicMode mode() const { return mode_; }
+  /// Resume passes the last insert needed (0: none was cut short).
+  [[nodiscard]] std::uint32_t resume_passes() const { return resume_passes_; }
+
+ private:
+  spatial::SpatialKernelParams params_;
+  spatial::FoldedDomain fold_;
+  AtomicMode mode_;
+  ShaderProgram insert_, find_;
+  std::uint64_t slot_count_ = 0, cell_count_ = 0;
+  GlStorage table_, max_age_, offsets_, locks_;
+  std::uint32_t resume_passes_ = 0;
+};
+
+/// Inserts keys into `table` on the GPU of the current context (rules Max and
+/// Min: First and Last order a batch, which concurrent GPU calls do not),
+/// then takes the GPU's table back into `table` (checked as a loaded table
+/// is). Adaptive growth before the insert, and lossless growth for calls that
+/// failed, rebuild on the CPU (the same table: the build does not depend on
+/// order). Throws std::invalid_argument for First or Last, a key outside the
+/// domain or sizes that differ.
+spatial::InsertReport gl_insert(spatial::SpatialHash& table, std::span<const glm::uvec3> keys,
+                                std::span<const std::uint32_t> values = {});
+
+}  // namespace habuffer::gl
