@@ -58,10 +58,14 @@ std::string Domain::str() const {
 FoldedDomain::FoldedDomain(Domain d) : domain_(d) {
   if (d.x == 0 || d.y == 0 || d.z == 0)
     throw std::invalid_argument("spatial hash: domain " + d.str() + " has a zero side");
-  // F slices per row, so that Dx F and Dy ceil(Dz / F) are about equal.
-  const double f = std::sqrt(static_cast<double>(d.z) * d.y / d.x);
-  per_row_ = static_cast<std::uint32_t>(std::clamp(std::llround(f), 1LL, static_cast<long long>(d.z)));
-  const std::uint64_t u = std::uint64_t{d.x} * per_row_, v = std::uint64_t{d.y} * ceil_div(d.z, per_row_);
+  // G slices interleaved along x (x-neighbours G slots apart, z-neighbours of
+  // a group adjacent: a 3D neighbourhood within a few cache lines), then F
+  // groups per row, so that Dx G F and Dy ceil(groups / F) are about equal.
+  interleave_ = std::min<std::uint32_t>(d.z, kInterleave);
+  const std::uint64_t groups = ceil_div(d.z, interleave_), width = std::uint64_t{d.x} * interleave_;
+  const double f = std::sqrt(static_cast<double>(groups) * d.y / static_cast<double>(width));
+  per_row_ = static_cast<std::uint32_t>(std::clamp(std::llround(f), 1LL, static_cast<long long>(groups)));
+  const std::uint64_t u = width * per_row_, v = std::uint64_t{d.y} * ceil_div(groups, per_row_);
   if (u > std::numeric_limits<std::uint32_t>::max() || v > std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("spatial hash: domain " + d.str() + " folds to " + std::to_string(u) + "x" +
                                 std::to_string(v) + ", beyond 32-bit coordinates");

@@ -37,10 +37,13 @@ class SpatialModel:
 
     def __init__(self, domain, table, age_bits, block, offsets):
         self.dx, self.dy, self.dz = domain
-        f = math.sqrt(self.dz * self.dy / self.dx)
-        self.per_row = min(max(int(math.floor(f + 0.5)), 1), self.dz)
-        self.du = self.dx * self.per_row
-        self.dv = self.dy * -(-self.dz // self.per_row)
+        # G slices interleaved along x, then F groups per row (spec notes).
+        self.g = min(self.dz, 4)
+        groups = -(-self.dz // self.g)
+        f = math.sqrt(groups * self.dy / (self.dx * self.g))
+        self.per_row = min(max(int(math.floor(f + 0.5)), 1), groups)
+        self.du = self.dx * self.g * self.per_row
+        self.dv = self.dy * -(-groups // self.per_row)
         self.hx, self.hy = table
         self.qx = -(-self.du // self.hx)
         self.a_bits = age_bits
@@ -53,7 +56,8 @@ class SpatialModel:
 
     def fold(self, k):
         x, y, z = k
-        return (x + self.dx * (z % self.per_row), y + self.dy * (z // self.per_row))
+        group, piece = divmod(z, self.g)
+        return (x * self.g + piece + self.dx * self.g * (group % self.per_row), y + self.dy * (group // self.per_row))
 
     def split(self, u, v):
         return (u % self.hx, v % self.hy), u // self.hx + self.qx * (v // self.hy)

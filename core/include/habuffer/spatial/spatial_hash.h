@@ -75,10 +75,16 @@ struct Domain {
   [[nodiscard]] std::string str() const;
 };
 
-/// 3D keys on a 2D domain: slice z goes to column z mod F, row z / F of a
-/// grid of slices, F chosen so that the folded domain is about square.
+/// 3D keys on a 2D domain: each group of G = min(Dz, 4) consecutive z slices
+/// is interleaved along x (key (x, y, z) at column x G + z mod G of its
+/// group, so x-neighbours lie G columns apart and z-neighbours in a group
+/// side by side), and the groups are laid side by side, F per row, F chosen
+/// so that the folded domain is about square. 2D keys (Dz = 1) fold to
+/// themselves.
 class FoldedDomain {
  public:
+  /// Slices interleaved along x at most.
+  static constexpr std::uint32_t kInterleave = 4;
   /// Throws std::invalid_argument for a zero side, or a folded side of 2^32
   /// or more, naming the sizes.
   explicit FoldedDomain(Domain domain);
@@ -86,21 +92,26 @@ class FoldedDomain {
   [[nodiscard]] Domain domain() const { return domain_; }
   /// The folded 2D domain (Du, Dv).
   [[nodiscard]] Extent folded() const { return folded_; }
-  /// Slices per row of the fold (F).
+  /// Groups of slices per row of the fold (F).
   [[nodiscard]] std::uint32_t slices_per_row() const { return per_row_; }
+  /// Slices interleaved along x (G).
+  [[nodiscard]] std::uint32_t interleave() const { return interleave_; }
   [[nodiscard]] bool contains(glm::uvec3 k) const { return k.x < domain_.x && k.y < domain_.y && k.z < domain_.z; }
   [[nodiscard]] glm::uvec2 fold(glm::uvec3 k) const {
-    return {k.x + domain_.x * (k.z % per_row_), k.y + domain_.y * (k.z / per_row_)};
+    const std::uint32_t group = k.z / interleave_, slice = k.z - group * interleave_;
+    const std::uint32_t col = group % per_row_, row = group / per_row_;
+    return {k.x * interleave_ + slice + domain_.x * interleave_ * col, k.y + domain_.y * row};
   }
   [[nodiscard]] glm::uvec3 unfold(glm::uvec2 f) const {
-    const std::uint32_t col = f.x / domain_.x, row = f.y / domain_.y;
-    return {f.x - col * domain_.x, f.y - row * domain_.y, row * per_row_ + col};
+    const std::uint32_t width = domain_.x * interleave_;
+    const std::uint32_t col = f.x / width, rest = f.x - col * width, row = f.y / domain_.y;
+    return {rest / interleave_, f.y - row * domain_.y, (row * per_row_ + col) * interleave_ + rest % interleave_};
   }
 
  private:
   Domain domain_;
   Extent folded_;
-  std::uint32_t per_row_ = 1;
+  std::uint32_t per_row_ = 1, interleave_ = 1;
 };
 
 /// Which value a key inserted twice keeps.
