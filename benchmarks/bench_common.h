@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "habuffer/fragment_streams.h"
+#include "habuffer/gl/egl_context.h"
 #include "habuffer/techniques/ha/ha_buffer.h"
 
 namespace habuffer::bench {
@@ -34,6 +35,13 @@ inline HaBuffer buffer_for_load(Extent screen, std::uint64_t fragments, double l
   c.table = table_for_load(screen, fragments, load);
   c.layout = layout;
   return HaBuffer(c, OffsetSequence::random(c.table, c.record_layout().max_age(), 7));
+}
+
+// The one EGL context of the benchmarks (made once, made current for each caller).
+inline gl::EglContext& gl_bench_context() {
+  static gl::EglContext context;
+  context.make_current();
+  return context;
 }
 
 }  // namespace habuffer::bench

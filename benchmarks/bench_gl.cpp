@@ -43,12 +43,6 @@
 namespace habuffer::bench {
 namespace {
 
-gl::EglContext& gl_bench_context() {
-  static gl::EglContext context;
-  context.make_current();
-  return context;
-}
-
 bool runnable(gl::AtomicMode mode) {
   const auto modes = gl::runnable_atomic_modes(gl::query_gl_info());
   return std::find(modes.begin(), modes.end(), mode) != modes.end();

@@ -10,12 +10,15 @@
 // google::dense_hash_map (libsparsehash-dev), std::unordered_map.
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "bench_common.h"
+#include "habuffer/gl/gl_spatial_hash.h"
 #include "habuffer/key_streams.h"
 #include "habuffer/spatial/spatial_hash.h"
 
@@ -130,6 +133,56 @@ void ours_find_batch(benchmark::State& state, std::string name, double load, std
   std::vector<std::uint32_t> values(q.size());
   std::vector<std::uint8_t> found(q.size());
   for (auto _ : state) benchmark::DoNotOptimize(h.find(q, values, found));
+  set_counters(state, q.size(), h.stats().bytes_per_key, h.load());
+}
+
+// --- ours on the GPU (GL compute; GPU time of the passes, no transfers) -------
+
+// The passes' GPU time, or the call's wall time (uploads and read-backs
+// included) where the driver times nothing (llvmpipe's GL_TIME_ELAPSED is 0):
+// `gpu_timed` becomes 0 then.
+double seconds(double gpu_ms, std::chrono::steady_clock::time_point t0, double& gpu_timed) {
+  if (gpu_ms > 0.0) return gpu_ms * 1e-3;
+  gpu_timed = 0.0;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void gl_build(benchmark::State& state, std::string name, double load) {
+  bench::gl_bench_context();
+  const Dataset& s = dataset(name);
+  SpatialHash h = ours(s, load, 2);
+  gl::GlSpatialHash gpu(h);
+  std::vector<gl::GlSpatialHash::Dropped> dropped;
+  double gpu_timed = 1.0;
+  for (auto _ : state) {
+    gpu.clear();
+    dropped.clear();
+    const auto t0 = std::chrono::steady_clock::now();
+    gpu.insert(s.keys, s.values, dropped);
+    state.SetIterationTime(seconds(gpu.gpu_ms(), t0, gpu_timed));
+  }
+  state.counters["gpu_timed"] = gpu_timed;
+  state.counters["dropped"] = static_cast<double>(dropped.size());
+  state.counters["resume_passes"] = gpu.resume_passes();
+  set_counters(state, s.keys.size(), static_cast<double>(h.memory_bytes()) / static_cast<double>(s.keys.size()), load);
+}
+
+void gl_find(benchmark::State& state, std::string name, double load, Queries queries) {
+  bench::gl_bench_context();
+  const Dataset& s = dataset(name);
+  SpatialHash h = ours(s, load, 2);
+  h.insert(s.keys, s.values);
+  const gl::GlSpatialHash gpu(h);
+  const std::vector<glm::uvec3>& q = queries(s);
+  std::vector<std::uint32_t> values(q.size());
+  std::vector<std::uint8_t> found(q.size());
+  double gpu_timed = 1.0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(gpu.find(q, values, found));
+    state.SetIterationTime(seconds(gpu.gpu_ms(), t0, gpu_timed));
+  }
+  state.counters["gpu_timed"] = gpu_timed;
   set_counters(state, q.size(), h.stats().bytes_per_key, h.load());
 }
 
@@ -280,6 +333,20 @@ int register_all() {
               ->Unit(benchmark::kMillisecond)
               ->MinTime(0.2)
               ->UseRealTime();
+    }
+    // The GPU path at the loads of BGHT's and CPH's published rates.
+    for (const double load : {0.8, 0.99}) {
+      const std::string l = "gl-load-" + std::to_string(load).substr(0, 4);
+      benchmark::RegisterBenchmark(("BM_GlSpatial/" + set + "/build/" + l).c_str(), gl_build, set, load)
+          ->Unit(benchmark::kMillisecond)
+          ->UseManualTime()
+          ->MinTime(0.2);
+      for (const auto& [what, q] : finds)
+        if (what == "hits-row-major" || what == "hits-shuffled" || what == "misses")
+          benchmark::RegisterBenchmark(("BM_GlSpatial/" + set + "/" + what + "/" + l).c_str(), gl_find, set, load, q)
+              ->Unit(benchmark::kMillisecond)
+              ->UseManualTime()
+              ->MinTime(0.2);
     }
 #if HABUFFER_HAVE_ABSL
     register_peer<Absl>("absl-flat-hash-map", set, finds);

@@ -89,6 +89,34 @@ void check_size(std::uint64_t bytes, const char* what) {
                   " bytes, beyond the driver's " + std::to_string(max_storage_bytes()) + " per shader-storage buffer");
 }
 
+// GPU time of the commands issued between construction and stop().
+class GpuTimer {
+ public:
+  GpuTimer() {
+    glGenQueries(1, &query_);
+    glBeginQuery(GL_TIME_ELAPSED, query_);
+  }
+  ~GpuTimer() { glDeleteQueries(1, &query_); }
+  GpuTimer(const GpuTimer&) = delete;
+  GpuTimer& operator=(const GpuTimer&) = delete;
+  double stop_ms() {
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
+    return static_cast<double>(ns) * 1e-6;
+  }
+
+ private:
+  GLuint query_ = 0;
+};
+
+// Whether GL_TIME_ELAPSED times the shaders: Mesa's software rasterizers
+// return submission times (microseconds for a pass that runs for seconds).
+bool timer_times_shaders() {
+  const std::string r = query_gl_info().renderer;
+  return r.find("llvmpipe") == std::string::npos && r.find("softpipe") == std::string::npos;
+}
+
 AtomicMode mode_for_context() {
   const std::optional<AtomicMode> mode = chosen_atomic_mode(query_gl_info(), Layout::L64);
   if (!mode) throw GlError("spatial hash on the GPU: this context has no 64-bit integers in shaders");
@@ -101,6 +129,7 @@ GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table)
     : params_(table.kernel_params()),
       fold_(table.domain()),
       mode_(mode_for_context()),
+      timed_(timer_times_shaders()),
       insert_(ShaderProgram::compute(source(mode_ == AtomicMode::Native64, kShInsertCompute),
                                      "spatial hash insert compute shader")),
       find_(ShaderProgram::compute(source(mode_ == AtomicMode::Native64, kShFindCompute),
@@ -153,7 +182,10 @@ spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, st
     carries[(pass + 1) % 2].bind_storage(kBase + 6);  // the calls it cuts short
     insert_.set("sh_count", static_cast<unsigned>(pending));
     insert_.set("sh_resume", pass == 0 ? 0u : 1u);
+    GpuTimer timer;
     dispatch_grid(pending, 64);
+    const double ms = timer.stop_ms();
+    gpu_ms_ = timed_ ? (pass == 0 ? 0.0 : gpu_ms_) + ms : 0.0;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<std::uint32_t> c = counters.read_words(16);
     pending = c[8];
@@ -195,7 +227,10 @@ std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<st
   glUseProgram(find_.id());
   set_params(find_, params_);
   find_.set("sh_count", static_cast<unsigned>(folded.size()));
+  GpuTimer timer;
   dispatch_grid(folded.size(), 64);
+  const double ms = timer.stop_ms();
+  gpu_ms_ = timed_ ? ms : 0.0;
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   const std::vector<glm::uvec2> a = answers.read<glm::uvec2>(folded.size());
   std::uint64_t hits = 0;
@@ -205,6 +240,11 @@ std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<st
     hits += a[i].x;
   }
   return hits;
+}
+
+void GlSpatialHash::clear() {
+  table_.zero();
+  max_age_.zero();
 }
 
 std::vector<std::uint64_t> GlSpatialHash::slots() const { return table_.read<std::uint64_t>(slot_count_); }

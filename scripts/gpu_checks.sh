@@ -32,7 +32,7 @@ case "${1:-}" in
   --dry-run) mode=dry; shift ;;
 esac
 out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
-all_steps=info,gl-tests,shadows,gather,harness,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+all_steps=info,gl-tests,spatial,shadows,gather,harness,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
 steps=${2:-$all_steps}
 budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
@@ -84,10 +84,14 @@ if [[ $mode == smoke ]]; then
   sizes=64x64 repeats=1 sides='256' gtest_filter='GlBookkeeping.*:GlFrame.*:Render.Planes*'
   render_size=96x96 bench_time=0.05 bench_reps=1 log2n='18' l64=emulated64  # llvmpipe has no native64
   fig2_size=64x64 light_size=128x128
+  spatial_gpu_filter='BM_GlSpatial/image/(build|hits-row-major)/gl-load-0.80'
+  spatial_cpu_filter='BM_Spatial/image/build/ours-load-0.80/threads-2'
 else
   sizes=512x512,1024x1024 repeats=3 sides='512|1024' gtest_filter='*'
   render_size=2048x2048 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
   fig2_size=1024x1024 light_size=2048x2048
+  spatial_gpu_filter='BM_GlSpatial/'
+  spatial_cpu_filter='BM_Spatial/(image|shell)/(build|hits-row-major|hits-shuffled|misses)/(ours-load-0.(80|99)|absl)'
 fi
 bench_flags=(--benchmark_min_time="$bench_time" --benchmark_repetitions="$bench_reps"
              --benchmark_enable_random_interleaving=true --benchmark_out_format=json)
@@ -101,6 +105,14 @@ if want info; then
 fi
 # Every GL test in the default mode (native64 on NVIDIA).
 want gl-tests && sharded 4 120 gl-tests habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
+# Issue 22: the spatial hash on the GPU (build, hits and misses per second at
+# loads 0.8 and 0.99 on the sparse image and the voxel shell, GPU time of the
+# passes), beside the CPU's rates on the same keys.
+if want spatial; then
+  step 150 spatial-gpu habuffer_bench --benchmark_filter="$spatial_gpu_filter" --benchmark_repetitions=3 \
+    --benchmark_report_aggregates_only=true --benchmark_out=spatial-gpu.json
+  step 60 spatial-cpu habuffer_bench --benchmark_filter="$spatial_cpu_filter" --benchmark_out=spatial-cpu.json
+fi
 # Issue 20: seed 000's Fig. 2 with and without translucent shadows (hairball,
 # the four opacities, cull 0.99 in the culled rows: the paper's frame ratio
 # 0.63-0.71 on a GTX 680), a render with shadows' stats, and the shadow

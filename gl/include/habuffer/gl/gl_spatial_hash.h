@@ -46,6 +46,13 @@ class GlSpatialHash {
   std::uint64_t find(std::span<const glm::uvec3> keys, std::span<std::uint32_t> stored,
                      std::span<std::uint8_t> found) const;
 
+  /// Empties the table on the GPU (its size kept).
+  void clear();
+  /// GPU time of the last insert's or find's passes (GL_TIME_ELAPSED
+  /// queries around the dispatches: no transfers), in milliseconds; 0 on
+  /// Mesa's software rasterizers, whose queries time the submission only.
+  [[nodiscard]] double gpu_ms() const { return gpu_ms_; }
+
   /// The slots and max-age cells read back.
   [[nodiscard]] std::vector<std::uint64_t> slots() const;
   [[nodiscard]] std::vector<std::uint32_t> max_age() const;
@@ -58,10 +65,12 @@ class GlSpatialHash {
   spatial::SpatialKernelParams params_;
   spatial::FoldedDomain fold_;
   AtomicMode mode_;
+  bool timed_;  // GL_TIME_ELAPSED times the shaders (not on Mesa's software rasterizers)
   ShaderProgram insert_, find_;
   std::uint64_t slot_count_ = 0, cell_count_ = 0;
   GlStorage table_, max_age_, offsets_, locks_;
   std::uint32_t resume_passes_ = 0;
+  mutable double gpu_ms_ = 0.0;
 };
 
 /// Inserts keys into `table` on the GPU of the current context (rules Max and
