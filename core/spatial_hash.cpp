@@ -91,9 +91,9 @@ std::optional<DuplicateRule> parse_duplicate_rule(const std::string& text) {
 void SpatialHashConfig::validate() const {
   (void)FoldedDomain(domain);
   const auto bad = [](const std::string& what) { throw std::invalid_argument("spatial hash: " + what); };
-  if (age_bits < SH_MIN_AGE_BITS || age_bits > SH_MAX_AGE_BITS)
-    bad("age bits " + std::to_string(age_bits) + " outside " + std::to_string(SH_MIN_AGE_BITS) + ".." +
-        std::to_string(SH_MAX_AGE_BITS));
+  if (age_bits < HABUFFER_SH_MIN_AGE_BITS || age_bits > HABUFFER_SH_MAX_AGE_BITS)
+    bad("age bits " + std::to_string(age_bits) + " outside " + std::to_string(HABUFFER_SH_MIN_AGE_BITS) + ".." +
+        std::to_string(HABUFFER_SH_MAX_AGE_BITS));
   if (block == 0 || block > 4096) bad("max-age block " + std::to_string(block) + " outside 1..4096");
   if (offsets == OffsetGenerator::List) bad("offsets must be random or farthest (a list is made for one table size)");
   if (!(target_load > 0.0 && target_load <= 1.0)) bad("target load " + std::to_string(target_load) + " outside (0, 1]");
@@ -267,11 +267,11 @@ std::vector<SpatialHash::Pending> SpatialHash::insert_pass(std::span<const Pendi
     for (std::size_t i = lo; i < hi; ++i) {
       auto c = k.sh_carry_begin(records[i].key, 1u, records[i].word);
       switch (k.sh_insert_run(c)) {
-        case SH_STORED: ++r.stored; break;
-        case SH_REVIVED: ++r.stored; ++r.tombstones_dropped; break;
-        case SH_STORED_TOMBSTONE_DROPPED: ++r.stored; ++r.tombstones_dropped; break;
-        case SH_DUPLICATE: ++r.duplicates; break;
-        case SH_FAILED_AGE:
+        case HABUFFER_SH_STORED: ++r.stored; break;
+        case HABUFFER_SH_REVIVED: ++r.stored; ++r.tombstones_dropped; break;
+        case HABUFFER_SH_STORED_TOMBSTONE_DROPPED: ++r.stored; ++r.tombstones_dropped; break;
+        case HABUFFER_SH_DUPLICATE: ++r.duplicates; break;
+        case HABUFFER_SH_FAILED_AGE:
           ++r.failed_age;
           dropped[t].push_back({k.sh_key(c.p, k.sh_quotient(c.r)), k.sh_value(c.r)});
           break;

@@ -55,7 +55,7 @@ class Restore {
 
 std::string source(bool native, const char* entry) {
   std::string s = "#version 450\n#extension GL_ARB_gpu_shader_int64 : require\n";
-  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n#define SH_NATIVE64 1\n";
+  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n#define HABUFFER_SH_NATIVE64 1\n";
   s += kShConstants;
   s += "\n";
   s += kShEnv;
@@ -200,11 +200,11 @@ spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, st
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
   const std::vector<std::uint32_t> c = counters.read_words(16);
-  report.stored = std::uint64_t{c[SH_STORED]} + c[SH_REVIVED] + c[SH_STORED_TOMBSTONE_DROPPED];
-  report.tombstones_dropped = std::uint64_t{c[SH_REVIVED]} + c[SH_STORED_TOMBSTONE_DROPPED];
-  report.duplicates = c[SH_DUPLICATE];
-  report.failed_age = c[SH_FAILED_AGE];
-  report.failed_iter = c[SH_FAILED_ITER];
+  report.stored = std::uint64_t{c[HABUFFER_SH_STORED]} + c[HABUFFER_SH_REVIVED] + c[HABUFFER_SH_STORED_TOMBSTONE_DROPPED];
+  report.tombstones_dropped = std::uint64_t{c[HABUFFER_SH_REVIVED]} + c[HABUFFER_SH_STORED_TOMBSTONE_DROPPED];
+  report.duplicates = c[HABUFFER_SH_DUPLICATE];
+  report.failed_age = c[HABUFFER_SH_FAILED_AGE];
+  report.failed_iter = c[HABUFFER_SH_FAILED_ITER];
   const std::vector<glm::uvec4> d = drops.read<glm::uvec4>(c[9]);
   for (const glm::uvec4& r : d) dropped.push_back({fold_.unfold({r.x, r.y}), r.z});
   return report;

@@ -157,7 +157,7 @@ int run_build(const std::vector<std::string>& argv) {
   const std::optional<spatial::DuplicateRule> rule = spatial::parse_duplicate_rule(args.str("rule"));
   if (!rule) throw UsageError("option --rule: '" + args.str("rule") + "' is not max, min, first or last");
   c.rule = *rule;
-  c.age_bits = args.u32_in("age-bits", SH_MIN_AGE_BITS, SH_MAX_AGE_BITS);
+  c.age_bits = args.u32_in("age-bits", HABUFFER_SH_MIN_AGE_BITS, HABUFFER_SH_MAX_AGE_BITS);
   const std::string offsets = args.str("offsets");
   if (offsets != "random" && offsets != "farthest")
     throw UsageError("option --offsets: '" + offsets + "' is not random or farthest");

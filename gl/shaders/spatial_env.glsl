@@ -1,11 +1,11 @@
 // The spatial hash's environment on the GPU (what core/include/habuffer/
 // spatial/sh_spatial.glsl expects from its host; the C++ host is
 // SpatialHashKernel). Slots are uint64_t (GL_ARB_gpu_shader_int64); with
-// SH_NATIVE64 their atomicMax is native (GL_NV_shader_atomic_int64), else it
+// HABUFFER_SH_NATIVE64 their atomicMax is native (GL_NV_shader_atomic_int64), else it
 // is emulated with a 32-bit lock per 8 slots (Mesa llvmpipe), one attempt
-// per call: a busy lock makes the step return SH_PENDING with its carry
+// per call: a busy lock makes the step return HABUFFER_SH_PENDING with its carry
 // unchanged, so the step's own loop is the spin, and after sh_lock_spin_limit
-// busy attempts the call is cut short (SH_CUT) and resumed by the next pass.
+// busy attempts the call is cut short (HABUFFER_SH_CUT) and resumed by the next pass.
 #define sh_word uint64_t
 #define sh_index uint
 #define HABUFFER_INOUT(T) inout T
@@ -36,7 +36,7 @@ void sh_atomic_max_age(uint cell, uint a) {
 }
 uint sh_load_max_age(uint cell) { return sh_max_age_cells[cell]; }
 
-#ifdef SH_NATIVE64
+#ifdef HABUFFER_SH_NATIVE64
 sh_word sh_atomic_max_slot(sh_index s, sh_word r) { return atomicMax(sh_table[s], r); }
 uint sh_atomic_missed() { return 0u; }
 #else
@@ -56,8 +56,8 @@ sh_word sh_atomic_max_slot(sh_index s, sh_word r) {
     return old;
   }
   sh_busy_attempts += 1u;
-  sh_missed = sh_busy_attempts >= sh_lock_spin_limit ? SH_CUT : SH_PENDING;
-  if (sh_missed == SH_CUT) sh_busy_attempts = 0u;
+  sh_missed = sh_busy_attempts >= sh_lock_spin_limit ? HABUFFER_SH_CUT : HABUFFER_SH_PENDING;
+  if (sh_missed == HABUFFER_SH_CUT) sh_busy_attempts = 0u;
   return sh_word(0);
 }
 #endif

@@ -13,7 +13,7 @@ layout(std430, binding = 4) readonly buffer ShRecords { ShRecordIn sh_records[];
 layout(std430, binding = 5) readonly buffer ShResumeIn { ShCarryOut sh_resume_in[]; };
 layout(std430, binding = 6) buffer ShResumeOut { ShCarryOut sh_resume_out[]; };
 layout(std430, binding = 7) buffer ShDropped { uvec4 sh_dropped[]; };
-// counters[0 .. SH_OUTCOME_COUNT-1]: outcomes; [8]: cut calls written; [9]: dropped written.
+// counters[0 .. HABUFFER_SH_OUTCOME_COUNT-1]: outcomes; [8]: cut calls written; [9]: dropped written.
 layout(std430, binding = 8) buffer ShCounters { uint sh_counters[]; };
 
 uniform uint sh_count;
@@ -35,13 +35,13 @@ void main() {
     c.r = sh_word_of(o.high, o.low);
   }
   uint outcome = sh_insert_run(c);
-  if (outcome == SH_CUT) {
+  if (outcome == HABUFFER_SH_CUT) {
     uint at = atomicAdd(sh_counters[8], 1u);
     sh_resume_out[at] = ShCarryOut(c.p.x, c.p.y, c.a, c.iter, sh_low(c.r), sh_high(c.r), 0u, 0u);
     return;
   }
   atomicAdd(sh_counters[outcome], 1u);
-  if (outcome == SH_FAILED_AGE || outcome == SH_FAILED_ITER) {
+  if (outcome == HABUFFER_SH_FAILED_AGE || outcome == HABUFFER_SH_FAILED_ITER) {
     uint at = atomicAdd(sh_counters[9], 1u);
     uvec2 k = sh_key(c.p, sh_quotient(c.r));
     sh_dropped[at] = uvec4(k, sh_value(c.r), 0u);

@@ -15,23 +15,23 @@
 // FAILED_AGE, FAILED_ITER: the record carried at the end (the key's own or
 // one it evicted) is not in the table; the container grows and inserts it
 // again (lossless) or counts it lost.
-#define SH_STORED 0u
-#define SH_REVIVED 1u
-#define SH_STORED_TOMBSTONE_DROPPED 2u
-#define SH_DUPLICATE 3u
-#define SH_FAILED_AGE 4u
-#define SH_FAILED_ITER 5u
-#define SH_OUTCOME_COUNT 6u
-// Not outcomes: the call goes on (SH_PENDING), or was cut short by
-// something other than the table (SH_CUT, GPU path only: an emulated atomic
+#define HABUFFER_SH_STORED 0u
+#define HABUFFER_SH_REVIVED 1u
+#define HABUFFER_SH_STORED_TOMBSTONE_DROPPED 2u
+#define HABUFFER_SH_DUPLICATE 3u
+#define HABUFFER_SH_FAILED_AGE 4u
+#define HABUFFER_SH_FAILED_ITER 5u
+#define HABUFFER_SH_OUTCOME_COUNT 6u
+// Not outcomes: the call goes on (HABUFFER_SH_PENDING), or was cut short by
+// something other than the table (HABUFFER_SH_CUT, GPU path only: an emulated atomic
 // gave up on a busy lock, or the driver's loop budget ended the loop) and
 // its carry must be resumed.
-#define SH_PENDING 6u
-#define SH_CUT 7u
+#define HABUFFER_SH_PENDING 6u
+#define HABUFFER_SH_CUT 7u
 
-#define SH_DEFAULT_AGE_BITS 8u
-#define SH_MIN_AGE_BITS 4u
-#define SH_MAX_AGE_BITS 12u
-#define SH_DEFAULT_ITER_LIMIT 65536u
+#define HABUFFER_SH_DEFAULT_AGE_BITS 8u
+#define HABUFFER_SH_MIN_AGE_BITS 4u
+#define HABUFFER_SH_MAX_AGE_BITS 12u
+#define HABUFFER_SH_DEFAULT_ITER_LIMIT 65536u
 
 #endif

@@ -22,8 +22,8 @@
 // sh_quotient_x (qx), uvec2 sh_offset(uint i) (O[i]), uint sh_div_block(uint),
 // uint sh_cells_x (max-age cells per row), uint sh_iter_limit,
 // sh_word sh_atomic_max_slot(sh_index s, sh_word r) (returns the old value),
-// uint sh_atomic_missed() (0 when the last slot atomic happened; else SH_PENDING
-// or SH_CUT, see sh_insert_step; always 0 where atomics are native),
+// uint sh_atomic_missed() (0 when the last slot atomic happened; else HABUFFER_SH_PENDING
+// or HABUFFER_SH_CUT, see sh_insert_step; always 0 where atomics are native),
 // sh_word sh_load_slot(sh_index s), void sh_atomic_max_age(uint cell, uint a),
 // uint sh_load_max_age(uint cell), sh_word sh_word_of(uint high, uint low),
 // uint sh_high(sh_word r), uint sh_low(sh_word r), HABUFFER_INOUT(T).
@@ -91,10 +91,10 @@ ShCarry sh_carry_begin(uvec2 k, uint live, uint value) {
   return c;
 }
 
-// One probe: SH_PENDING while a record must go on, else the call's outcome.
+// One probe: HABUFFER_SH_PENDING while a record must go on, else the call's outcome.
 uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
-  if (c.a > sh_max_age()) return sh_live(c.r) != 0u ? SH_FAILED_AGE : SH_STORED_TOMBSTONE_DROPPED;
-  if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? SH_FAILED_ITER : SH_STORED_TOMBSTONE_DROPPED;
+  if (c.a > sh_max_age()) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_AGE : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
+  if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_ITER : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   uvec2 h = sh_probe(c.p, c.a);
   sh_index s = sh_slot(h);
   // A slot whose key bits are larger holds another key that keeps it
@@ -102,20 +102,20 @@ uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
   if (sh_key_bits(sh_load_slot(s)) <= sh_key_bits(c.r)) {
     sh_word old = sh_atomic_max_slot(s, c.r);
     // An emulated atomic that found its slot busy changed nothing: the same
-    // probe again (SH_PENDING), or the call is cut short (SH_CUT), the carry
+    // probe again (HABUFFER_SH_PENDING), or the call is cut short (HABUFFER_SH_CUT), the carry
     // unchanged either way.
     uint missed = sh_atomic_missed();
     if (missed != 0u) return missed;
     c.iter += 1u;
     if (old == sh_word(0)) {
       sh_atomic_max_age(sh_cell(c.p), c.a);
-      return SH_STORED;
+      return HABUFFER_SH_STORED;
     }
     if (sh_key_bits(old) == sh_key_bits(c.r)) {
       // The same key: the larger record stays, the other is dropped. A live
       // record replacing the key's tombstone stores the key again.
-      if (old < c.r && sh_live(old) == 0u) return SH_REVIVED;
-      return SH_DUPLICATE;
+      if (old < c.r && sh_live(old) == 0u) return HABUFFER_SH_REVIVED;
+      return HABUFFER_SH_DUPLICATE;
     }
     if (old < c.r) {
       // Placed: carry the evicted record on from its own position and age.
@@ -130,15 +130,15 @@ uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
   }
   c.a += 1u;
   c.r = sh_with_age(c.r, c.a);
-  return SH_PENDING;
+  return HABUFFER_SH_PENDING;
 }
 
-// Runs the call's steps until it ends; SH_CUT when it was cut short (the
+// Runs the call's steps until it ends; HABUFFER_SH_CUT when it was cut short (the
 // loop ended by the driver's budget counts as cut: `c` holds where to resume).
 uint sh_insert_run(HABUFFER_INOUT(ShCarry) c) {
-  uint outcome = SH_PENDING;
-  while (outcome == SH_PENDING) outcome = sh_insert_step(c);
-  return outcome == SH_PENDING ? SH_CUT : outcome;
+  uint outcome = HABUFFER_SH_PENDING;
+  while (outcome == HABUFFER_SH_PENDING) outcome = sh_insert_step(c);
+  return outcome == HABUFFER_SH_PENDING ? HABUFFER_SH_CUT : outcome;
 }
 
 // The slot holding key k's record (live or tombstone), or -1 as all ones.

@@ -130,7 +130,7 @@ std::optional<DuplicateRule> parse_duplicate_rule(const std::string& text);
 struct SpatialHashConfig {
   Domain domain;                                        ///< the key space
   DuplicateRule rule = DuplicateRule::Last;             ///< one key once: which value stays
-  std::uint32_t age_bits = SH_DEFAULT_AGE_BITS;         ///< A: AMAX = 2^A - 1 probes; quotients get 31 - A bits
+  std::uint32_t age_bits = HABUFFER_SH_DEFAULT_AGE_BITS;         ///< A: AMAX = 2^A - 1 probes; quotients get 31 - A bits
   std::uint32_t block = 8;                              ///< the max-age table's block side (SPEC 5)
   OffsetGenerator offsets = OffsetGenerator::Random;    ///< random or farthest (SPEC 3)
   std::uint64_t seed = 1;                               ///< the offsets' seed
@@ -140,7 +140,7 @@ struct SpatialHashConfig {
   double shrink_at = 0.3;                               ///< adaptive: shrink when an erase leaves the live load under this
   bool lossless = true;                                 ///< grow and insert again when a call fails
   std::uint32_t max_growths = 24;                       ///< lossless: growths of one insert before it throws
-  std::uint32_t iter_limit = SH_DEFAULT_ITER_LIMIT;     ///< probes of one insert call (SPEC 6's LIMIT)
+  std::uint32_t iter_limit = HABUFFER_SH_DEFAULT_ITER_LIMIT;     ///< probes of one insert call (SPEC 6's LIMIT)
   std::uint32_t threads = 0;                            ///< inserting and querying threads; 0: the default count
 
   /// Throws std::invalid_argument naming the field and its bounds.

@@ -14,19 +14,19 @@
 
 namespace habuffer::spatial {
 
-static_assert(SH_MIN_AGE_BITS >= 2u && SH_MAX_AGE_BITS <= 24u,
+static_assert(HABUFFER_SH_MIN_AGE_BITS >= 2u && HABUFFER_SH_MAX_AGE_BITS <= 24u,
               "sh_spatial.glsl packs age, quotient (31 - A bits) and the live bit in 32: keep the age bits in 2..24");
-static_assert(SH_PENDING >= SH_OUTCOME_COUNT && SH_CUT >= SH_OUTCOME_COUNT,
-              "SH_PENDING and SH_CUT must not collide with an outcome the counters index");
+static_assert(HABUFFER_SH_PENDING >= HABUFFER_SH_OUTCOME_COUNT && HABUFFER_SH_CUT >= HABUFFER_SH_OUTCOME_COUNT,
+              "HABUFFER_SH_PENDING and HABUFFER_SH_CUT must not collide with an outcome the counters index");
 
 /// The kernel's "uniforms".
 struct SpatialKernelParams {
-  std::uint32_t age_bits = SH_DEFAULT_AGE_BITS;
+  std::uint32_t age_bits = HABUFFER_SH_DEFAULT_AGE_BITS;
   Extent table;                    ///< H, in slots
   std::uint32_t quotient_x = 1;    ///< qx = ceil(Du / Hx)
   std::uint32_t block = 8;         ///< the max-age block side
   std::uint32_t cells_x = 1;       ///< max-age cells per row
-  std::uint32_t iter_limit = SH_DEFAULT_ITER_LIMIT;
+  std::uint32_t iter_limit = HABUFFER_SH_DEFAULT_ITER_LIMIT;
 };
 
 /// Concurrent: slots and cells updated with atomics (many inserters);
