@@ -18,6 +18,7 @@
 #include "habuffer/render/image.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/spatial_hash_file.h"
+#include "key_options.h"
 
 namespace habuffer::cli {
 namespace {
@@ -37,13 +38,13 @@ const CommandSpec& build_spec() {
   static const CommandSpec spec{
       "hash build (--keys CSV | --key-set NAME | --voxels GRID | --image IMAGE) --out TABLE [OPTIONS]",
       {{"keys", "CSV", "", "keys with header x,y / x,y,z / x,y,value / x,y,z,value"},
-       {"key-set", "NAME", "", "sparse-image, voxel-shell or random (habuffer/key_streams.h), in --domain"},
+       key_set_option("key-set"),
        {"voxels", "GRID", "", "the solid voxels of a voxel grid file (habuffer voxelize --out)"},
        {"image", "IMAGE", "", "the pixels of an image that differ from --background, valued RGBA8"},
        {"background", "R,G,B", "1,1,1", "(--image) the colour left out, in [0, 1]"},
        {"domain", "XxY[xZ]", "", "the key space; default: the keys' bounds (the image's or grid's size)"},
-       {"coverage", "F", "0.25", "(--key-set sparse-image) the share of pixels covered"},
-       {"count", "N", "100000", "(--key-set random) keys"},
+       coverage_option(),
+       count_option(),
        {"out", "TABLE", "", "the table file (HASPATL1; habuffer/spatial_hash_file.h)"},
        {"load", "L", "0.8", "the load the table is sized for, in (0, 1]"},
        {"fixed", "", "", "no adaptive resizing (the table stays sized for --load; lossless growth still)"},
@@ -95,20 +96,6 @@ void check_rows(const std::string& path, const std::vector<glm::uvec3>& keys, co
       throw DataError(path + ": data row " + std::to_string(i + 1) + ": key (" + std::to_string(keys[i].x) + ", " +
                       std::to_string(keys[i].y) + ", " + std::to_string(keys[i].z) + ") is outside the domain " +
                       domain.domain().str());
-}
-
-Domain parse_domain(const std::string& text) {
-  Domain d;
-  unsigned long long x = 0, y = 0, z = 1;
-  char tail = 0;
-  const int n = std::sscanf(text.c_str(), "%llux%llux%llu%c", &x, &y, &z, &tail);
-  if ((n != 2 && n != 3) || x == 0 || y == 0 || z == 0 || x > 0xFFFFFFFFull || y > 0xFFFFFFFFull ||
-      z > 0xFFFFFFFFull || text.find_first_not_of("0123456789x") != std::string::npos)
-    throw UsageError("option --domain: '" + text + "' is not XxY or XxYxZ with positive sides below 2^32");
-  d.x = static_cast<std::uint32_t>(x);
-  d.y = static_cast<std::uint32_t>(y);
-  d.z = static_cast<std::uint32_t>(z);
-  return d;
 }
 
 glm::vec3 parse_colour(const Args& args) {
@@ -178,20 +165,7 @@ int run_build(const std::vector<std::string>& argv) {
     keys = std::move(f.keys);
     values = std::move(f.values);
   } else if (args.has("key-set")) {
-    spatial::KeySetOptions o;
-    const auto set = spatial::parse_key_set(args.str("key-set"));
-    if (!set) throw UsageError("option --key-set: '" + args.str("key-set") + "' is not sparse-image, voxel-shell or random");
-    o.set = *set;
-    if (!args.has("domain")) throw UsageError("option --key-set needs --domain");
-    o.domain = parse_domain(args.str("domain"));
-    o.coverage = args.real("coverage");
-    o.count = args.u64_in("count", 1);
-    o.seed = c.seed;
-    try {
-      keys = spatial::make_keys(o);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
+    keys = spatial::make_keys(parse_key_set(args, "key-set", c.seed));
   } else if (args.has("voxels")) {
     const VoxelGrid g = load_voxel_grid(args.required("voxels"));
     natural = Domain{g.n, g.n, g.n};

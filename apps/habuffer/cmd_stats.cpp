@@ -10,6 +10,8 @@
 #include "commands.h"
 #include "technique_options.h"
 #include "habuffer/age_experiment.h"
+#include "habuffer/key_experiment.h"
+#include "key_options.h"
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/json_writer.h"
@@ -90,8 +92,15 @@ const CommandSpec& stats_spec() {
        technique_option_spec("age-bits"),
        technique_option_spec("block"),
        {"out", "FILE.json|FILE.csv", "", "the rows, JSON or CSV by extension"},
-       {"quiet", "", "", "no progress bar (shown on stderr on a terminal)"}},
-      "  Every variant sees the same streams.\n"};
+       {"quiet", "", "", "no progress bar (shown on stderr on a terminal)"},
+       key_set_option("keys"),
+       domain_option(),
+       coverage_option(),
+       count_option(),
+       {"misses", "N", "10000", "(--keys) absent keys looked up per trial"}},
+      "  Every variant sees the same streams.\n"
+      "  With --keys: the spatial hash's key streams (loads in (0, 1]; --screen, --table, --stream, --spread\n"
+      "  and --offsets do not apply): age, reads per hit and per miss, failures, per probing x policy.\n"};
   return spec;
 }
 
@@ -168,6 +177,67 @@ void print_rows(const std::vector<ExperimentRow>& rows) {
 
 }  // namespace
 
+// `habuffer stats --keys SET`: the key-stream experiment (habuffer/key_experiment.h).
+int run_key_stats(const Args& args) {
+  args.refuse_unless(false, {"screen", "table", "stream", "spread", "offsets"}, "with --keys");
+  spatial::KeyExperimentConfig c;
+  c.seed = args.u64_in("seed");
+  c.keys = parse_key_set(args, "keys", c.seed);
+  c.loads.clear();
+  for (const std::string& l : args.list("loads")) {
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(l.data(), l.data() + l.size(), v);
+    if (ec != std::errc() || end != l.data() + l.size() || !(v > 0.0 && v <= 1.0))
+      throw UsageError("option --loads: " + excerpt(l) + " is not a load in (0, 1] (with --keys)");
+    c.loads.push_back(v);
+  }
+  c.trials = args.u32_in("trials", 1, 1000);
+  c.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
+  c.block = args.u32_in("block", 1, 1u << 16);
+  c.misses = args.u32_in("misses", 0, 10000000);
+  c.probing = choices<spatial::KeyProbing>(
+      args, "probing", {{"coherent", spatial::KeyProbing::Coherent}, {"independent", spatial::KeyProbing::Independent}});
+  c.policy = choices<spatial::KeyPolicy>(
+      args, "policy", {{"robinhood", spatial::KeyPolicy::RobinHood}, {"fcfs", spatial::KeyPolicy::FirstCome}});
+  const std::vector<spatial::KeyExperimentRow> rows = spatial::run_key_experiment(c);
+  std::printf("%-24s %6s %7s %9s %16s %8s %6s %9s %14s %9s\n", "variant", "load", "stored", "keys", "mean age (95%)",
+              "max age", "hit", "miss", "(95%)", "failed");
+  for (const auto& r : rows)
+    std::printf("%-24s %6.2f %7.3f %9.0f %8.3f +- %5.3f %8.2f %6.3f %9.3f +- %9.3f %9.1f\n", r.variant.c_str(), r.load,
+                r.stored_load, r.keys, r.mean_age, r.mean_age_ci95, r.mean_max_age, r.hit_reads, r.miss_reads,
+                r.miss_reads_ci95, r.failures);
+  if (args.has("out")) {
+    const std::string out = args.required("out");
+    if (out.size() > 4 && out.substr(out.size() - 4) == ".csv") {
+      CsvWriter w(out);
+      w.text("variant,load,stored_load,trials,keys,mean_age,mean_age_ci95,mean_max_age,max_age,hit_reads,miss_reads,"
+             "miss_reads_ci95,failures\n");
+      char buf[512];
+      for (const auto& r : rows) {
+        std::snprintf(buf, sizeof buf, "%s,%g,%.6f,%u,%.1f,%.6f,%.6f,%.4f,%u,%.6f,%.6f,%.6f,%.4f\n", r.variant.c_str(),
+                      r.load, r.stored_load, r.trials, r.keys, r.mean_age, r.mean_age_ci95, r.mean_max_age, r.max_age,
+                      r.hit_reads, r.miss_reads, r.miss_reads_ci95, r.failures);
+        w.text(buf);
+      }
+      w.close();
+    } else {
+      JsonWriter j;
+      j.begin_object().field("keys", spatial::to_string(c.keys.set)).field("domain", c.keys.domain.str());
+      j.field("trials", c.trials).field("seed", c.seed).field("age_bits", c.age_bits).key("rows").begin_array();
+      for (const auto& r : rows) {
+        j.begin_object().field("variant", r.variant).field("load", r.load).field("stored_load", r.stored_load);
+        j.field("keys", r.keys).field("mean_age", r.mean_age).field("mean_age_ci95", r.mean_age_ci95);
+        j.field("mean_max_age", r.mean_max_age).field("max_age", r.max_age).field("hit_reads", r.hit_reads);
+        j.field("miss_reads", r.miss_reads).field("miss_reads_ci95", r.miss_reads_ci95).field("failures", r.failures);
+        j.end_object();
+      }
+      j.end_array().end_object();
+      j.save(out);
+    }
+  }
+  return 0;
+}
+
 int run_stats(const std::vector<std::string>& argv) {
   if (print_help(argv, stats_spec())) return 0;
   const Args args(argv, stats_spec());
@@ -176,6 +246,8 @@ int run_stats(const std::vector<std::string>& argv) {
     files.output("--out", args.required("out"));
     check_files(files);
   }
+  if (args.has("keys")) return run_key_stats(args);
+  args.refuse_unless(false, {"domain", "coverage", "count", "misses"}, "without --keys");
   ExperimentConfig c = parse_experiment(args);
   std::vector<ExperimentRow> rows;
   {
