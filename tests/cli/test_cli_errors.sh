@@ -228,6 +228,6 @@ expect 0 "" -- stats --keys sparse-image --domain 64x64 --loads 0.5,0.95 --trial
   pass=$((pass + 1)) || { echo "FAIL: stats --keys csv"; head -3 ks.csv; fail=$((fail + 1)); }
 expect 2 "option --screen has no effect with --keys" -- stats --keys random --domain 64x64 --screen 8x8
 expect 2 "option --domain has no effect without --keys" -- stats --domain 64x64
-expect 2 "option --loads: 1.5 is not a load in (0, 1] (with --keys)" -- stats --keys random --domain 64x64 --count 100 --loads 1.5
+expect 2 "option --loads: '1.5' is not a load in (0, 1] (with --keys)" -- stats --keys random --domain 64x64 --count 100 --loads 1.5
 echo "cli: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]
