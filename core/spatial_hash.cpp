@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "habuffer/memory_budget.h"
 #include "habuffer/parallel.h"
 #include "habuffer/spatial/spatial_hash_kernel.h"
 
@@ -151,14 +152,15 @@ SpatialHash::SpatialHash(SpatialHashConfig config, std::uint64_t capacity) : con
 
 SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::vector<std::uint64_t> slots,
                                  std::vector<std::uint32_t> max_age) {
-  SpatialHash h(config, 0);
-  const Extent d = h.fold_.folded();
+  config.validate();
+  const Extent d = FoldedDomain(config.domain).folded();
   const auto bad = [](const std::string& what) { throw std::invalid_argument("spatial hash: " + what); };
   if (table.x == 0 || table.y == 0 || table.x > d.x || table.y > d.y)
     bad("table " + table.str() + " is not within the folded domain " + d.str());
   if (!quotients_fit(d, table, config.age_bits))
     bad("table " + table.str() + " leaves quotients wider than the record's bits for domain " + config.domain.str());
-  h.reset(table);
+  if (slots.size() != table.area()) bad(std::to_string(slots.size()) + " slots for a table of " + table.str());
+  SpatialHash h(config, table, true);
   if (slots.size() != h.table_.size())
     bad(std::to_string(slots.size()) + " slots for a table of " + table.str());
   if (max_age.size() != h.max_age_.size())
@@ -203,7 +205,14 @@ SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::ve
   return h;
 }
 
+SpatialHash::SpatialHash(SpatialHashConfig config, Extent table, bool) : config_(config) {
+  config_.validate();
+  fold_ = FoldedDomain(config_.domain);
+  reset(table);
+}
+
 void SpatialHash::reset(Extent table) {
+  check_fits_in_memory("spatial hash: a table of " + table.str() + " slots", saturating_product(table.area(), 8));
   const std::uint32_t amax = (1u << config_.age_bits) - 1u;
   extent_ = table;
   quotient_x_ = ceil_div(fold_.folded().x, table.x);

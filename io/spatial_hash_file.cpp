@@ -106,6 +106,10 @@ SpatialHash load_spatial_hash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(path + ": cannot open the table");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_spatial_hash(bytes, path);
+}
+
+SpatialHash parse_spatial_hash(const std::string& bytes, const std::string& path) {
   if (bytes.size() < kHeader || bytes.compare(0, 8, kMagic, 8) != 0)
     throw DataError(path + ": not a spatial hash table (no HASPATL1 header)");
   SpatialHashConfig c;

@@ -34,5 +34,7 @@ void save_spatial_hash(const std::string& path, const SpatialHash& table);
 /// Reads and checks a table file (SpatialHash::restore's checks); throws
 /// DataError naming the path and what is wrong.
 SpatialHash load_spatial_hash(const std::string& path);
+/// The same over the file's bytes (`name` in messages): what the fuzzer drives.
+SpatialHash parse_spatial_hash(const std::string& bytes, const std::string& name);
 
 }  // namespace habuffer::spatial

@@ -311,6 +311,8 @@ class SpatialHash {
   static Extent table_for(const FoldedDomain& fold, std::uint32_t age_bits, std::uint64_t keys, double load);
 
  private:
+  // A table of `table` slots (restore: no sizing from a key count).
+  SpatialHash(SpatialHashConfig config, Extent table, bool);
   struct Pending {
     glm::uvec2 key;       // folded
     std::uint32_t word;   // stored value (encoded)
