@@ -59,13 +59,15 @@ std::string Domain::str() const {
 FoldedDomain::FoldedDomain(Domain d) : domain_(d) {
   if (d.x == 0 || d.y == 0 || d.z == 0)
     throw std::invalid_argument("spatial hash: domain " + d.str() + " has a zero side");
-  // G slices interleaved along x (x-neighbours G slots apart, z-neighbours of
+  // G slices interleaved along x, G a power of two (x-neighbours G slots apart, z-neighbours of
   // a group adjacent: a 3D neighbourhood within a few cache lines), then F
   // groups per row, so that Dx G F and Dy ceil(groups / F) are about equal.
-  interleave_ = std::min<std::uint32_t>(d.z, kInterleave);
-  const std::uint64_t groups = ceil_div(d.z, interleave_), width = std::uint64_t{d.x} * interleave_;
+  while (shift_ < 2 && (2u << shift_) <= std::min<std::uint32_t>(d.z, kInterleave)) ++shift_;
+  const std::uint32_t interleave = 1u << shift_;
+  const std::uint64_t groups = ceil_div(d.z, interleave), width = std::uint64_t{d.x} * interleave;
   const double f = std::sqrt(static_cast<double>(groups) * d.y / static_cast<double>(width));
   per_row_ = static_cast<std::uint32_t>(std::clamp(std::llround(f), 1LL, static_cast<long long>(groups)));
+  rows_ = FastDivisor(per_row_);
   const std::uint64_t u = width * per_row_, v = std::uint64_t{d.y} * ceil_div(groups, per_row_);
   if (u > std::numeric_limits<std::uint32_t>::max() || v > std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("spatial hash: domain " + d.str() + " folds to " + std::to_string(u) + "x" +

@@ -38,7 +38,7 @@ class SpatialModel:
     def __init__(self, domain, table, age_bits, block, offsets):
         self.dx, self.dy, self.dz = domain
         # G slices interleaved along x, then F groups per row (spec notes).
-        self.g = min(self.dz, 4)
+        self.g = 4 if self.dz >= 4 else 2 if self.dz >= 2 else 1  # a power of two up to min(Dz, 4)
         groups = -(-self.dz // self.g)
         f = math.sqrt(groups * self.dy / (self.dx * self.g))
         self.per_row = min(max(int(math.floor(f + 0.5)), 1), groups)

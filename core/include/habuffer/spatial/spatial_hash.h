@@ -75,12 +75,13 @@ struct Domain {
   [[nodiscard]] std::string str() const;
 };
 
-/// 3D keys on a 2D domain: each group of G = min(Dz, 4) consecutive z slices
-/// is interleaved along x (key (x, y, z) at column x G + z mod G of its
-/// group, so x-neighbours lie G columns apart and z-neighbours in a group
-/// side by side), and the groups are laid side by side, F per row, F chosen
-/// so that the folded domain is about square. 2D keys (Dz = 1) fold to
-/// themselves.
+/// 3D keys on a 2D domain: each group of G consecutive z slices (G the
+/// largest power of two up to min(Dz, 4)) is interleaved along x (key
+/// (x, y, z) at column x G + z mod G of its group, so x-neighbours lie G
+/// columns apart and z-neighbours in a group side by side), and the groups
+/// are laid side by side, F per row, F chosen so that the folded domain is
+/// about square. 2D keys (Dz = 1) fold to themselves. No hardware divide on
+/// the way: G is a shift, F a FastDivisor.
 class FoldedDomain {
  public:
   /// Slices interleaved along x at most.
@@ -95,23 +96,26 @@ class FoldedDomain {
   /// Groups of slices per row of the fold (F).
   [[nodiscard]] std::uint32_t slices_per_row() const { return per_row_; }
   /// Slices interleaved along x (G).
-  [[nodiscard]] std::uint32_t interleave() const { return interleave_; }
+  [[nodiscard]] std::uint32_t interleave() const { return 1u << shift_; }
   [[nodiscard]] bool contains(glm::uvec3 k) const { return k.x < domain_.x && k.y < domain_.y && k.z < domain_.z; }
   [[nodiscard]] glm::uvec2 fold(glm::uvec3 k) const {
-    const std::uint32_t group = k.z / interleave_, slice = k.z - group * interleave_;
-    const std::uint32_t col = group % per_row_, row = group / per_row_;
-    return {k.x * interleave_ + slice + domain_.x * interleave_ * col, k.y + domain_.y * row};
+    if (domain_.z == 1) return {k.x, k.y};
+    const std::uint32_t group = k.z >> shift_, slice = k.z & ((1u << shift_) - 1u);
+    const std::uint32_t row = rows_.div(group), col = group - row * per_row_;
+    return {(k.x << shift_) + slice + (domain_.x << shift_) * col, k.y + domain_.y * row};
   }
   [[nodiscard]] glm::uvec3 unfold(glm::uvec2 f) const {
-    const std::uint32_t width = domain_.x * interleave_;
+    if (domain_.z == 1) return {f.x, f.y, 0u};
+    const std::uint32_t width = domain_.x << shift_;
     const std::uint32_t col = f.x / width, rest = f.x - col * width, row = f.y / domain_.y;
-    return {rest / interleave_, f.y - row * domain_.y, (row * per_row_ + col) * interleave_ + rest % interleave_};
+    return {rest >> shift_, f.y - row * domain_.y, ((row * per_row_ + col) << shift_) + (rest & ((1u << shift_) - 1u))};
   }
 
  private:
   Domain domain_;
   Extent folded_;
-  std::uint32_t per_row_ = 1, interleave_ = 1;
+  std::uint32_t per_row_ = 1, shift_ = 0;
+  FastDivisor rows_;  // group / F
 };
 
 /// Which value a key inserted twice keeps.
