@@ -167,10 +167,7 @@ spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, st
   const GlStorage drops(records.size() * 16);
   const GlStorage counters(16 * 4);
   counters.zero();
-  table_.bind_storage(kBase + 0);
-  max_age_.bind_storage(kBase + 1);
-  offsets_.bind_storage(kBase + 2);
-  locks_.bind_storage(kBase + 3);
+  bind_table();
   input.bind_storage(kBase + 4);
   drops.bind_storage(kBase + 7);
   counters.bind_storage(kBase + 8);
@@ -219,9 +216,7 @@ std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<st
   check_size(folded.size() * 8, "queries");
   const GlStorage queries(folded.size() * 8, folded.data());
   const GlStorage answers(folded.size() * 8);
-  table_.bind_storage(kBase + 0);
-  max_age_.bind_storage(kBase + 1);
-  offsets_.bind_storage(kBase + 2);
+  bind_table();
   queries.bind_storage(kBase + 4);
   answers.bind_storage(kBase + 5);
   glUseProgram(find_.id());
@@ -240,6 +235,13 @@ std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<st
     hits += a[i].x;
   }
   return hits;
+}
+
+void GlSpatialHash::bind_table() const {
+  table_.bind_storage(kBase + 0);
+  max_age_.bind_storage(kBase + 1);
+  offsets_.bind_storage(kBase + 2);
+  locks_.bind_storage(kBase + 3);
 }
 
 void GlSpatialHash::clear() {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "habuffer/atomic_file.h"
+#include "habuffer/little_endian.h"
 #include "habuffer/csv.h"
 
 namespace habuffer::spatial {
@@ -14,21 +15,7 @@ namespace {
 
 constexpr char kMagic[8] = {'H', 'A', 'S', 'P', 'A', 'T', 'L', '1'};
 constexpr std::size_t kHeader = 8 + 10 * 4 + 8;
-static_assert(std::endian::native == std::endian::little, "the table file is little-endian: add byte swapping here");
 
-template <class T>
-void put(std::string& out, T v) {
-  char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  out.append(b, sizeof(T));
-}
-
-template <class T>
-T take(const std::string& in, std::size_t at) {
-  T v;
-  std::memcpy(&v, in.data() + at, sizeof(T));
-  return v;
-}
 
 std::string first_line(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -92,11 +79,11 @@ void save_spatial_hash(const std::string& path, const SpatialHash& t) {
   for (const std::uint32_t v :
        {c.domain.x, c.domain.y, c.domain.z, static_cast<std::uint32_t>(c.rule), c.age_bits, c.block,
         static_cast<std::uint32_t>(c.offsets), c.iter_limit, t.table_extent().x, t.table_extent().y})
-    put<std::uint32_t>(bytes, v);
-  put<std::uint64_t>(bytes, c.seed);
+    put_le<std::uint32_t>(bytes, v);
+  put_le<std::uint64_t>(bytes, c.seed);
   bytes.reserve(bytes.size() + t.table().size() * 8 + t.max_age().size() * 4);
-  for (const std::uint64_t w : t.table()) put<std::uint64_t>(bytes, w);
-  for (const std::uint32_t m : t.max_age()) put<std::uint32_t>(bytes, m);
+  for (const std::uint64_t w : t.table()) put_le<std::uint64_t>(bytes, w);
+  for (const std::uint32_t m : t.max_age()) put_le<std::uint32_t>(bytes, m);
   AtomicFile file(path);
   file.write(bytes);
   file.commit();
@@ -113,17 +100,17 @@ SpatialHash parse_spatial_hash(const std::string& bytes, const std::string& path
   if (bytes.size() < kHeader || bytes.compare(0, 8, kMagic, 8) != 0)
     throw DataError(path + ": not a spatial hash table (no HASPATL1 header)");
   SpatialHashConfig c;
-  c.domain = {take<std::uint32_t>(bytes, 8), take<std::uint32_t>(bytes, 12), take<std::uint32_t>(bytes, 16)};
-  const std::uint32_t rule = take<std::uint32_t>(bytes, 20), generator = take<std::uint32_t>(bytes, 32);
+  c.domain = {take_le<std::uint32_t>(bytes, 8), take_le<std::uint32_t>(bytes, 12), take_le<std::uint32_t>(bytes, 16)};
+  const std::uint32_t rule = take_le<std::uint32_t>(bytes, 20), generator = take_le<std::uint32_t>(bytes, 32);
   if (rule > 3) throw DataError(path + ": duplicate rule " + std::to_string(rule) + " is not 0..3");
   if (generator > 1) throw DataError(path + ": offsets generator " + std::to_string(generator) + " is not 0..1");
   c.rule = static_cast<DuplicateRule>(rule);
-  c.age_bits = take<std::uint32_t>(bytes, 24);
-  c.block = take<std::uint32_t>(bytes, 28);
+  c.age_bits = take_le<std::uint32_t>(bytes, 24);
+  c.block = take_le<std::uint32_t>(bytes, 28);
   c.offsets = static_cast<OffsetGenerator>(generator);
-  c.iter_limit = take<std::uint32_t>(bytes, 36);
-  const Extent table{take<std::uint32_t>(bytes, 40), take<std::uint32_t>(bytes, 44)};
-  c.seed = take<std::uint64_t>(bytes, 48);
+  c.iter_limit = take_le<std::uint32_t>(bytes, 36);
+  const Extent table{take_le<std::uint32_t>(bytes, 40), take_le<std::uint32_t>(bytes, 44)};
+  c.seed = take_le<std::uint64_t>(bytes, 48);
   try {
     c.validate();
     if (table.x == 0 || table.y == 0 || c.block == 0)

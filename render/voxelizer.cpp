@@ -13,6 +13,7 @@
 
 #include "gpu_triangles.h"
 #include "habuffer/atomic_file.h"
+#include "habuffer/little_endian.h"
 #include "habuffer/csv.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/gl/debug_output.h"
@@ -265,29 +266,16 @@ namespace {
 constexpr char kGridMagic[8] = {'H', 'A', 'V', 'O', 'X', 'E', 'L', '1'};
 constexpr std::size_t kGridHeader = 40;
 
-template <class T>
-void put(std::string& out, T v) {
-  char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));  // little-endian hosts only: checked below
-  out.append(b, sizeof(T));
-}
-template <class T>
-T take(const std::string& in, std::size_t at) {
-  T v;
-  std::memcpy(&v, in.data() + at, sizeof(T));
-  return v;
-}
-static_assert(std::endian::native == std::endian::little, "the grid file is little-endian: add byte swapping here");
 
 }  // namespace
 
 void save_voxel_grid(const std::string& path, const VoxelGrid& grid) {
   std::string bytes(kGridMagic, sizeof kGridMagic);
-  put<std::uint32_t>(bytes, grid.n);
-  put<std::uint32_t>(bytes, 0);
+  put_le<std::uint32_t>(bytes, grid.n);
+  put_le<std::uint32_t>(bytes, 0);
   for (const float f : {grid.box.lo.x, grid.box.lo.y, grid.box.lo.z, grid.box.hi.x, grid.box.hi.y, grid.box.hi.z})
-    put<float>(bytes, f);
-  for (const std::uint64_t w : grid.words) put<std::uint64_t>(bytes, w);
+    put_le<float>(bytes, f);
+  for (const std::uint64_t w : grid.words) put_le<std::uint64_t>(bytes, w);
   AtomicFile file(path);
   file.write(bytes);
   file.commit();
@@ -328,19 +316,19 @@ VoxelGrid load_voxel_grid(const std::string& path) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (bytes.size() < kGridHeader || bytes.compare(0, 8, kGridMagic, 8) != 0)
     throw DataError(path + ": not a voxel grid (no HAVOXEL1 header)");
-  const auto n = take<std::uint32_t>(bytes, 8);
+  const auto n = take_le<std::uint32_t>(bytes, 8);
   if (n == 0 || n > 4096) throw DataError(path + ": voxel grid side " + std::to_string(n) + " is outside 1..4096");
   const std::uint64_t words = (std::uint64_t{n} * n * n + 63) / 64;
   if (bytes.size() != kGridHeader + words * 8)
     throw DataError(path + ": " + std::to_string(bytes.size()) + " bytes, a grid of side " + std::to_string(n) +
                     " has " + std::to_string(kGridHeader + words * 8));
   Bounds box;
-  box.add({take<float>(bytes, 16), take<float>(bytes, 20), take<float>(bytes, 24)});
-  box.add({take<float>(bytes, 28), take<float>(bytes, 32), take<float>(bytes, 36)});
+  box.add({take_le<float>(bytes, 16), take_le<float>(bytes, 20), take_le<float>(bytes, 24)});
+  box.add({take_le<float>(bytes, 28), take_le<float>(bytes, 32), take_le<float>(bytes, 36)});
   if (!(box.hi.x > box.lo.x && box.hi.y > box.lo.y && box.hi.z > box.lo.z))
     throw DataError(path + ": the voxel grid's box is empty or not finite");
   VoxelGrid g(n, box);
-  for (std::uint64_t w = 0; w < words; ++w) g.words[w] = take<std::uint64_t>(bytes, kGridHeader + w * 8);
+  for (std::uint64_t w = 0; w < words; ++w) g.words[w] = take_le<std::uint64_t>(bytes, kGridHeader + w * 8);
   return g;
 }
 

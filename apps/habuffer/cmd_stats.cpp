@@ -108,20 +108,26 @@ const CommandSpec& stats_spec() {
 
 namespace {
 
+// --loads: loads in (0, most], UsageError naming the item otherwise (`note` appended).
+std::vector<double> parse_loads(const Args& args, double most, const std::string& note) {
+  std::vector<double> loads;
+  for (const std::string& l : args.list("loads")) {
+    double v = 0.0;
+    const auto [end, ec] = std::from_chars(l.data(), l.data() + l.size(), v);
+    if (ec != std::errc() || end != l.data() + l.size() || !(v > 0.0 && v <= most))
+      throw UsageError("option --loads: " + excerpt(l) + " is not a load in (0, " + shortest(most) + "]" + note);
+    loads.push_back(v);
+  }
+  return loads;
+}
+
 // --screen, --table and --loads: the sizes, checked to fit in memory.
 void parse_experiment_sizes(const Args& args, ExperimentConfig& c) {
   c.screen = args.size("screen");
   c.table = args.extent("table").value_or(c.screen);
   if (c.table.x < c.screen.x || c.table.y < c.screen.y)
     throw UsageError("table " + c.table.str() + " is smaller than screen " + c.screen.str());
-  c.loads.clear();
-  for (const std::string& l : args.list("loads")) {
-    double v = 0.0;
-    const auto [end, ec] = std::from_chars(l.data(), l.data() + l.size(), v);
-    if (ec != std::errc() || end != l.data() + l.size() || !(v > 0.0 && v <= 4.0))
-      throw UsageError("option --loads: " + excerpt(l) + " is not a load in (0, 4]");
-    c.loads.push_back(v);
-  }
+  c.loads = parse_loads(args, 4.0, "");
   for (const double l : c.loads)
     if (l * static_cast<double>(c.table.area()) < 1.0)
       throw UsageError("option --loads: " + shortest(l) + " of table " + c.table.str() + " gives no fragment");
@@ -183,14 +189,7 @@ int run_key_stats(const Args& args) {
   spatial::KeyExperimentConfig c;
   c.seed = args.u64_in("seed");
   c.keys = parse_key_set(args, "keys", c.seed);
-  c.loads.clear();
-  for (const std::string& l : args.list("loads")) {
-    double v = 0.0;
-    const auto [end, ec] = std::from_chars(l.data(), l.data() + l.size(), v);
-    if (ec != std::errc() || end != l.data() + l.size() || !(v > 0.0 && v <= 1.0))
-      throw UsageError("option --loads: " + excerpt(l) + " is not a load in (0, 1] (with --keys)");
-    c.loads.push_back(v);
-  }
+  c.loads = parse_loads(args, 1.0, " (with --keys)");
   c.trials = args.u32_in("trials", 1, 1000);
   c.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   c.block = args.u32_in("block", 1, 1u << 16);

@@ -62,6 +62,7 @@ class GlSpatialHash {
   [[nodiscard]] std::uint32_t resume_passes() const { return resume_passes_; }
 
  private:
+  void bind_table() const;  // the table's buffers at their points
   spatial::SpatialKernelParams params_;
   spatial::FoldedDomain fold_;
   AtomicMode mode_;
