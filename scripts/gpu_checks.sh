@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The GPU path's checks on a machine with a real GPU (NVIDIA, headless EGL),
 # from the bundle of scripts/device_bundle.sh, in one command of under 10
-# minutes: what the machine is, the GL tests, issue 20's translucent shadows
+# minutes: what the machine is, the GL tests, issue 22's spatial hash on the GPU
+# (BM_GlSpatial beside the CPU's rates), issue 20's translucent shadows
 # (Fig. 2 with and without them, the shadow frontier), issue 26's measurements (render's
 # gather with and without its per-fragment bookkeeping, the module's
 # read-first variants, the captured hairball stream through the compute entry
