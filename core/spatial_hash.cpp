@@ -170,8 +170,7 @@ SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::ve
         std::to_string(h.max_age_.size()) + " expected)");
   h.table_ = std::move(slots);
   h.max_age_ = std::move(max_age);
-  const SpatialKernelParams p = h.kernel_params();
-  SpatialHashKernel<false> k(p, h.offsets_->values().data(), h.table_.data(), h.max_age_.data());
+  SpatialHashKernel<false> k = h.reader();
   const std::uint64_t quotients = std::uint64_t{h.quotient_x_} * ceil_div(d.y, table.y);
   const std::uint32_t amax = (1u << config.age_bits) - 1u;
   for (std::uint64_t s = 0; s < h.table_.size(); ++s) {
@@ -182,13 +181,12 @@ SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::ve
     if (age == 0 || age > amax) bad(where + "age " + std::to_string(age) + " outside 1.." + std::to_string(amax));
     if (q >= quotients) bad(where + "quotient " + std::to_string(q) + " of " + std::to_string(quotients));
     if (k.sh_live(r) == 0u && k.sh_value(r) != 0u) bad(where + "a tombstone with a value");
-    const glm::uvec2 h2(static_cast<std::uint32_t>(s % table.x), static_cast<std::uint32_t>(s / table.x));
-    const glm::uvec2 pos = k.sh_owner(h2, age);
-    const glm::uvec2 key = k.sh_key(pos, q);
+    const glm::uvec2 key = k.sh_record_key(s, r);
+    const glm::uvec2 pos = k.sh_position(key);
     if (key.x >= d.x || key.y >= d.y || !h.fold_.contains(h.fold_.unfold(key)))
       bad(where + "its key lies outside the domain " + config.domain.str());
-    if (h.max_age_[k.sh_cell(pos)] < age)
-      bad(where + "age " + std::to_string(age) + " beyond its max-age cell's " + std::to_string(h.max_age_[k.sh_cell(pos)]));
+    if (h.max_age_[k.ha_cell(pos)] < age)
+      bad(where + "age " + std::to_string(age) + " beyond its max-age cell's " + std::to_string(h.max_age_[k.ha_cell(pos)]));
     if (k.sh_live(r) != 0u) ++h.live_;
     else ++h.tombstones_;
   }
@@ -198,9 +196,7 @@ SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::ve
   for (std::uint64_t s = 0; s < h.table_.size(); ++s) {
     const std::uint64_t r = h.table_[s];
     if (r == 0) continue;
-    const glm::uvec2 h2(static_cast<std::uint32_t>(s % table.x), static_cast<std::uint32_t>(s / table.x));
-    const glm::uvec2 key = k.sh_key(k.sh_owner(h2, k.sh_age(r)), k.sh_quotient(r));
-    if (h.find_slot(key) != s)
+    if (h.find_slot(k.sh_record_key(s, r)) != s)
       bad("slot " + std::to_string(s) + ": a lookup of its key does not find it there (the Robin Hood order is "
           "broken, or the key is stored twice)");
   }
@@ -221,6 +217,7 @@ void SpatialHash::reset(Extent table) {
   offsets_.emplace(OffsetSequence::make(config_.offsets, table, amax, config_.seed));
   table_.assign(table.area(), 0);
   cells_x_ = ceil_div(table.x, config_.block);
+  params_.emplace(config_.age_bits, table, quotient_x_, config_.block, config_.iter_limit);
   max_age_.assign(std::uint64_t{cells_x_} * ceil_div(table.y, config_.block), 0);
   live_ = tombstones_ = 0;
 }
@@ -229,20 +226,10 @@ std::uint32_t SpatialHash::threads() const {
   return config_.threads == 0 ? default_concurrency() : config_.threads;
 }
 
-namespace {
-SpatialKernelParams params_of(const SpatialHashConfig& c, Extent table, std::uint32_t qx, std::uint32_t cells_x) {
-  SpatialKernelParams p;
-  p.age_bits = c.age_bits;
-  p.table = table;
-  p.quotient_x = qx;
-  p.block = c.block;
-  p.cells_x = cells_x;
-  p.iter_limit = c.iter_limit;
-  return p;
+SpatialHashKernel<false> SpatialHash::reader() const {
+  return SpatialHashKernel<false>(*params_, offsets_->values().data(), const_cast<std::uint64_t*>(table_.data()),
+                                  const_cast<std::uint32_t*>(max_age_.data()));
 }
-}  // namespace
-
-SpatialKernelParams SpatialHash::kernel_params() const { return params_of(config_, extent_, quotient_x_, cells_x_); }
 
 SpatialHashView::SpatialHashView(const SpatialHash& t)
     : kernel_(t.kernel_params(), t.offsets().values().data(), const_cast<std::uint64_t*>(t.table().data()),
@@ -267,7 +254,7 @@ std::uint32_t SpatialHash::decode(std::uint32_t word) const {
 }
 
 std::vector<SpatialHash::Pending> SpatialHash::insert_pass(std::span<const Pending> records, InsertReport& report) {
-  const SpatialKernelParams p = params_of(config_, extent_, quotient_x_, cells_x_);
+  const SpatialKernelParams& p = *params_;
   const std::uint32_t n = records.size() < kParallelMin ? 1u : std::min<std::uint32_t>(threads(), 256u);
   std::vector<InsertReport> reports(n);
   std::vector<std::vector<Pending>> dropped(n);
@@ -284,11 +271,11 @@ std::vector<SpatialHash::Pending> SpatialHash::insert_pass(std::span<const Pendi
         case HABUFFER_SH_DUPLICATE: ++r.duplicates; break;
         case HABUFFER_SH_FAILED_AGE:
           ++r.failed_age;
-          dropped[t].push_back({k.sh_key(c.p, k.sh_quotient(c.r)), k.sh_value(c.r)});
+          dropped[t].push_back({k.sh_carry_key(c), k.sh_value(c.r)});
           break;
         default:
           ++r.failed_iter;
-          dropped[t].push_back({k.sh_key(c.p, k.sh_quotient(c.r)), k.sh_value(c.r)});
+          dropped[t].push_back({k.sh_carry_key(c), k.sh_value(c.r)});
           break;
       }
     }
@@ -312,14 +299,11 @@ std::vector<SpatialHash::Pending> SpatialHash::insert_pass(std::span<const Pendi
 std::vector<SpatialHash::Pending> SpatialHash::live_records() const {
   std::vector<Pending> out;
   out.reserve(live_);
-  const SpatialKernelParams p = params_of(config_, extent_, quotient_x_, cells_x_);
-  SpatialHashKernel<false> k(p, offsets_->values().data(), const_cast<std::uint64_t*>(table_.data()),
-                             const_cast<std::uint32_t*>(max_age_.data()));
+  SpatialHashKernel<false> k = reader();
   for (std::uint64_t s = 0; s < table_.size(); ++s) {
     const std::uint64_t r = table_[s];
     if (r == 0 || k.sh_live(r) == 0u) continue;
-    const glm::uvec2 h(static_cast<std::uint32_t>(s % extent_.x), static_cast<std::uint32_t>(s / extent_.x));
-    out.push_back({k.sh_key(k.sh_owner(h, k.sh_age(r)), k.sh_quotient(r)), k.sh_value(r)});
+    out.push_back({k.sh_record_key(s, r), k.sh_value(r)});
   }
   return out;
 }
@@ -433,9 +417,7 @@ InsertReport SpatialHash::insert(glm::uvec3 key, std::uint32_t value) {
 }
 
 std::uint64_t SpatialHash::find_slot(glm::uvec2 folded) const {
-  const SpatialKernelParams p = params_of(config_, extent_, quotient_x_, cells_x_);
-  SpatialHashKernel<false> k(p, offsets_->values().data(), const_cast<std::uint64_t*>(table_.data()),
-                             const_cast<std::uint32_t*>(max_age_.data()));
+  SpatialHashKernel<false> k = reader();
   std::uint32_t probes = 0;
   return k.sh_find_slot(folded, probes);
 }
@@ -447,9 +429,7 @@ std::optional<std::uint32_t> SpatialHash::find(glm::uvec3 key) const {
 
 std::uint32_t SpatialHash::probes(glm::uvec3 key) const {
   check_key(key, 0, false);
-  const SpatialKernelParams p = params_of(config_, extent_, quotient_x_, cells_x_);
-  SpatialHashKernel<false> k(p, offsets_->values().data(), const_cast<std::uint64_t*>(table_.data()),
-                             const_cast<std::uint32_t*>(max_age_.data()));
+  SpatialHashKernel<false> k = reader();
   std::uint32_t probes = 0;
   (void)k.sh_find_slot(fold_.fold(key), probes);
   return probes;
@@ -555,15 +535,10 @@ void SpatialHash::clear() {
   live_ = tombstones_ = 0;
 }
 
-std::optional<Entry> SpatialHash::entry_at(std::uint64_t s) const {
+std::optional<Entry> SpatialHash::entry_at(SpatialHashKernel<false>& k, std::uint64_t s) const {
   const std::uint64_t r = table_[s];
-  if (r == 0 || (r >> 32 & 1u) == 0u) return std::nullopt;
-  const SpatialKernelParams p = params_of(config_, extent_, quotient_x_, cells_x_);
-  SpatialHashKernel<false> k(p, offsets_->values().data(), const_cast<std::uint64_t*>(table_.data()),
-                             const_cast<std::uint32_t*>(max_age_.data()));
-  const glm::uvec2 h(static_cast<std::uint32_t>(s % extent_.x), static_cast<std::uint32_t>(s / extent_.x));
-  const glm::uvec2 folded = k.sh_key(k.sh_owner(h, k.sh_age(r)), k.sh_quotient(r));
-  return Entry{fold_.unfold(folded), decode(k.sh_value(r))};
+  if (r == 0 || k.sh_live(r) == 0u) return std::nullopt;
+  return Entry{fold_.unfold(k.sh_record_key(s, r)), decode(k.sh_value(r))};
 }
 
 std::vector<Entry> SpatialHash::entries() const {

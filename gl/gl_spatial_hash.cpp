@@ -7,77 +7,40 @@
 #include <string>
 
 #include "compute_grid.h"
+#include "gl_state_guard.h"
+#include "gpu_timer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_technique.h"
+#include "habuffer/gl/glsl_sources.h"
 #include "spatial_glsl.h"
 
 namespace habuffer::gl {
 namespace {
 
-constexpr unsigned kBase = 16;  // shader-storage points kBase .. kBase + 8
 constexpr unsigned kResumeLimitPasses = 4096;
 constexpr unsigned kLockSpinLimit = 1u << 12;
 
-// The host's program and the shader-storage bindings this class uses, put back on scope exit.
-class Restore {
- public:
-  Restore() {
-    glGetIntegerv(GL_CURRENT_PROGRAM, &program_);
-    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &generic_);
-    for (unsigned i = 0; i < points_.size(); ++i) {
-      glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, kBase + i, &points_[i].buffer);
-      glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_START, kBase + i, &points_[i].start);
-      glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, kBase + i, &points_[i].size);
-    }
-  }
-  ~Restore() {
-    for (unsigned i = 0; i < points_.size(); ++i) {
-      const Point& p = points_[i];
-      if (p.buffer != 0 && p.size > 0)
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, kBase + i, static_cast<GLuint>(p.buffer), p.start, p.size);
-      else
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBase + i, static_cast<GLuint>(p.buffer));
-    }
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(generic_));
-    glUseProgram(static_cast<GLuint>(program_));
-  }
-  Restore(const Restore&) = delete;
-  Restore& operator=(const Restore&) = delete;
-
- private:
-  struct Point {
-    GLint buffer = 0;
-    GLint64 start = 0, size = 0;
-  };
-  GLint program_ = 0, generic_ = 0;
-  std::array<Point, 9> points_{};
-};
-
-std::string source(bool native, const char* entry) {
+std::string source(const GlBindings& bindings, bool native, const char* entry) {
   std::string s = "#version 450\n#extension GL_ARB_gpu_shader_int64 : require\n";
-  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n#define HABUFFER_SH_NATIVE64 1\n";
+  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n#define SH_NATIVE64 1\n";
+  s += bindings.glsl_defines();
   s += kShConstants;
   s += "\n";
   s += kShEnv;
   s += "\n";
+  s += kHaProbe;
+  s += "\n";
   s += kShSpatial;
   s += "\n";
   s += entry;
-  // The shaders name points 0..8; they are moved to kBase.. so that a host's low points stay its own.
-  for (unsigned i = 9; i-- > 0;) {
-    const std::string from = "binding = " + std::to_string(i) + ")";
-    const std::string to = "binding = " + std::to_string(kBase + i) + ")";
-    for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
-      s.replace(at, from.size(), to);
-  }
   return s;
 }
 
 void set_params(const ShaderProgram& p, const spatial::SpatialKernelParams& k) {
   p.set("sh_age_bits", k.age_bits);
-  p.set("sh_table_size", k.table.x, k.table.y);
+  p.set("ha_table_size", k.table.x, k.table.y);
   p.set("sh_quotient_x", k.quotient_x);
-  p.set("sh_cells_x", k.cells_x);
+  p.set("ha_max_age_cells_x", k.cells_x);
   p.set("sh_iter_limit", k.iter_limit);
   p.set("sh_block", k.block);
   p.set("sh_lock_spin_limit", kLockSpinLimit);
@@ -89,28 +52,7 @@ void check_size(std::uint64_t bytes, const char* what) {
                   " bytes, beyond the driver's " + std::to_string(max_storage_bytes()) + " per shader-storage buffer");
 }
 
-// GPU time of the commands issued between construction and stop().
-class GpuTimer {
- public:
-  GpuTimer() {
-    glGenQueries(1, &query_);
-    glBeginQuery(GL_TIME_ELAPSED, query_);
-  }
-  ~GpuTimer() { glDeleteQueries(1, &query_); }
-  GpuTimer(const GpuTimer&) = delete;
-  GpuTimer& operator=(const GpuTimer&) = delete;
-  double stop_ms() {
-    glEndQuery(GL_TIME_ELAPSED);
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
-    return static_cast<double>(ns) * 1e-6;
-  }
-
- private:
-  GLuint query_ = 0;
-};
-
-// Whether GL_TIME_ELAPSED times the shaders: Mesa's software rasterizers
+// Whether GPU timestamps time the shaders: Mesa's software rasterizers
 // return submission times (microseconds for a pass that runs for seconds).
 bool timer_times_shaders() {
   const std::string r = query_gl_info().renderer;
@@ -125,14 +67,15 @@ AtomicMode mode_for_context() {
 
 }  // namespace
 
-GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table)
-    : params_(table.kernel_params()),
+GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings)
+    : bindings_(bindings),
+      params_(table.kernel_params()),
       fold_(table.domain()),
       mode_(mode_for_context()),
       timed_(timer_times_shaders()),
-      insert_(ShaderProgram::compute(source(mode_ == AtomicMode::Native64, kShInsertCompute),
+      insert_(ShaderProgram::compute(source(bindings_, mode_ == AtomicMode::Native64, kShInsertCompute),
                                      "spatial hash insert compute shader")),
-      find_(ShaderProgram::compute(source(mode_ == AtomicMode::Native64, kShFindCompute),
+      find_(ShaderProgram::compute(source(bindings_, mode_ == AtomicMode::Native64, kShFindCompute),
                                    "spatial hash find compute shader")) {
   slot_count_ = table.table().size();
   cell_count_ = table.max_age().size();
@@ -154,7 +97,7 @@ spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, st
   report.calls = keys.size();
   resume_passes_ = 0;
   if (keys.empty()) return report;
-  const Restore restore;
+  const GlStateGuard guard(bindings_);
   std::vector<glm::uvec4> records(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const glm::uvec2 f = fold_.fold(keys[i]);
@@ -168,21 +111,21 @@ spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, st
   const GlStorage counters(16 * 4);
   counters.zero();
   bind_table();
-  input.bind_storage(kBase + 4);
-  drops.bind_storage(kBase + 7);
-  counters.bind_storage(kBase + 8);
+  drops.bind_storage(bindings_.capture);
+  counters.bind_storage(bindings_.counters);
   glUseProgram(insert_.id());
   set_params(insert_, params_);
   std::uint64_t pending = records.size();
   for (unsigned pass = 0;; ++pass) {
-    carries[pass % 2].bind_storage(kBase + 5);        // this pass's input carries (resume passes)
-    carries[(pass + 1) % 2].bind_storage(kBase + 6);  // the calls it cuts short
+    (pass == 0 ? input : carries[pass % 2]).bind_storage(bindings_.stream);  // records, or the cut calls to resume
+    carries[(pass + 1) % 2].bind_storage(bindings_.deferred);              // the calls this pass cuts short
     insert_.set("sh_count", static_cast<unsigned>(pending));
     insert_.set("sh_resume", pass == 0 ? 0u : 1u);
-    GpuTimer timer;
+    const GpuTimer timer;
+    timer.begin();
     dispatch_grid(pending, 64);
-    const double ms = timer.stop_ms();
-    gpu_ms_ = timed_ ? (pass == 0 ? 0.0 : gpu_ms_) + ms : 0.0;
+    timer.end();
+    gpu_ms_ = timed_ ? (pass == 0 ? 0.0 : gpu_ms_) + timer.milliseconds() : 0.0;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<std::uint32_t> c = counters.read_words(16);
     pending = c[8];
@@ -210,22 +153,23 @@ spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, st
 std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<std::uint32_t> stored,
                                   std::span<std::uint8_t> found) const {
   if (keys.empty()) return 0;
-  const Restore restore;
+  const GlStateGuard guard(bindings_);
   std::vector<glm::uvec2> folded(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) folded[i] = fold_.fold(keys[i]);
   check_size(folded.size() * 8, "queries");
   const GlStorage queries(folded.size() * 8, folded.data());
   const GlStorage answers(folded.size() * 8);
   bind_table();
-  queries.bind_storage(kBase + 4);
-  answers.bind_storage(kBase + 5);
+  queries.bind_storage(bindings_.stream);
+  answers.bind_storage(bindings_.capture);
   glUseProgram(find_.id());
   set_params(find_, params_);
   find_.set("sh_count", static_cast<unsigned>(folded.size()));
-  GpuTimer timer;
+  const GpuTimer timer;
+  timer.begin();
   dispatch_grid(folded.size(), 64);
-  const double ms = timer.stop_ms();
-  gpu_ms_ = timed_ ? ms : 0.0;
+  timer.end();
+  gpu_ms_ = timed_ ? timer.milliseconds() : 0.0;
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   const std::vector<glm::uvec2> a = answers.read<glm::uvec2>(folded.size());
   std::uint64_t hits = 0;
@@ -238,10 +182,10 @@ std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<st
 }
 
 void GlSpatialHash::bind_table() const {
-  table_.bind_storage(kBase + 0);
-  max_age_.bind_storage(kBase + 1);
-  offsets_.bind_storage(kBase + 2);
-  locks_.bind_storage(kBase + 3);
+  table_.bind_storage(bindings_.table);
+  max_age_.bind_storage(bindings_.max_age);
+  offsets_.bind_storage(bindings_.offsets);
+  locks_.bind_storage(bindings_.locks);
 }
 
 void GlSpatialHash::clear() {
@@ -268,7 +212,7 @@ spatial::InsertReport gl_insert(spatial::SpatialHash& table, std::span<const glm
                                   ") is outside the domain " + c.domain.str());
   const std::uint64_t slots_before = table.slots();
   if (c.adaptive &&
-      static_cast<double>(table.stats().keys + table.stats().tombstones + keys.size()) > c.grow_at * static_cast<double>(table.slots()))
+      static_cast<double>(table.size() + table.tombstones() + keys.size()) > c.grow_at * static_cast<double>(table.slots()))
     table.reserve(table.size() + keys.size(), c.target_load);
   std::vector<std::uint32_t> stored(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {

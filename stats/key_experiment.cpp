@@ -86,6 +86,24 @@ struct Table {
   }
 };
 
+// An empty table of `h` slots over `fold`'s domain.
+Table empty_table(const FoldedDomain& fold, Extent h, std::uint32_t age_bits, std::uint32_t block,
+                  const OffsetSequence& offsets, KeyProbing probing, KeyPolicy policy, std::uint64_t seed) {
+  Table t;
+  t.h = h;
+  t.qx = (fold.folded().x + h.x - 1) / h.x;
+  t.amax = (1u << age_bits) - 1;
+  t.block = block;
+  t.cells_x = (h.x + block - 1) / block;
+  t.offsets = &offsets;
+  t.probing = probing;
+  t.policy = policy;
+  t.seed = seed;
+  t.slots.assign(h.area(), Slot{});
+  t.max_age.assign(std::uint64_t{t.cells_x} * ((h.y + block - 1) / block), 0);
+  return t;
+}
+
 struct Mean {
   double sum = 0, sq = 0;
   std::uint32_t n = 0;
@@ -119,14 +137,7 @@ std::vector<std::uint64_t> simulate_coherent_robin_hood(const std::vector<glm::u
                                                         Extent table, std::uint32_t age_bits,
                                                         const OffsetSequence& offsets) {
   const FoldedDomain fold(domain);
-  Table t;
-  t.h = table;
-  t.qx = (fold.folded().x + table.x - 1) / table.x;
-  t.amax = (1u << age_bits) - 1;
-  t.cells_x = (table.x + t.block - 1) / t.block;
-  t.offsets = &offsets;
-  t.slots.assign(table.area(), Slot{});
-  t.max_age.assign(std::uint64_t{t.cells_x} * ((table.y + t.block - 1) / t.block), 0);
+  Table t = empty_table(fold, table, age_bits, 8, offsets, KeyProbing::Coherent, KeyPolicy::RobinHood, 0);
   for (const glm::uvec3 k : keys) {
     const glm::uvec2 f = fold.fold(k);
     if (!t.insert({1, f.x, f.y})) throw std::runtime_error("simulator: a key went past AMAX");
@@ -148,7 +159,7 @@ std::vector<KeyExperimentRow> run_key_experiment(const KeyExperimentConfig& c) {
         row.variant = std::string(probing == KeyProbing::Coherent ? "coherent" : "independent") + "/" +
                       (policy == KeyPolicy::RobinHood ? "robinhood" : "firstcome");
         row.load = load;
-        Mean age, max_age, stored, hit, miss, fail, nkeys;
+        Mean age, max_age, stored, miss, fail, nkeys;
         for (std::uint32_t trial = 0; trial < c.trials; ++trial) {
           KeySetOptions o = c.keys;
           o.seed = c.keys.seed + trial;
@@ -157,18 +168,8 @@ std::vector<KeyExperimentRow> run_key_experiment(const KeyExperimentConfig& c) {
           const FoldedDomain fold(o.domain);
           const Extent h = SpatialHash::table_for(fold, c.age_bits, keys.size(), load);
           const OffsetSequence offsets = OffsetSequence::random(h, (1u << c.age_bits) - 1, c.seed + trial);
-          Table t;
-          t.h = h;
-          t.qx = (fold.folded().x + h.x - 1) / h.x;
-          t.amax = (1u << c.age_bits) - 1;
-          t.block = c.block;
-          t.cells_x = (h.x + c.block - 1) / c.block;
-          t.offsets = &offsets;
-          t.probing = probing;
-          t.policy = policy;
-          t.seed = c.seed * 0x9E3779B97F4A7C15ull + trial;
-          t.slots.assign(h.area(), Slot{});
-          t.max_age.assign(std::uint64_t{t.cells_x} * ((h.y + c.block - 1) / c.block), 0);
+          Table t = empty_table(fold, h, c.age_bits, c.block, offsets, probing, policy,
+                                c.seed * 0x9E3779B97F4A7C15ull + trial);
           std::uint64_t failed = 0;
           for (const glm::uvec3 k : order) {
             const glm::uvec2 f = fold.fold(k);
@@ -187,7 +188,6 @@ std::vector<KeyExperimentRow> run_key_experiment(const KeyExperimentConfig& c) {
           max_age.add(largest);
           row.max_age = std::max(row.max_age, largest);
           stored.add(static_cast<double>(n) / static_cast<double>(h.area()));
-          hit.add(n ? sum / static_cast<double>(n) : 0.0);  // a present key is read at its age
           fail.add(static_cast<double>(failed));
           nkeys.add(static_cast<double>(keys.size()));
           const std::uint64_t free_points = std::uint64_t{o.domain.x} * o.domain.y * o.domain.z - keys.size();
@@ -206,7 +206,7 @@ std::vector<KeyExperimentRow> run_key_experiment(const KeyExperimentConfig& c) {
         row.mean_age = age.mean();
         row.mean_age_ci95 = age.ci95();
         row.mean_max_age = max_age.mean();
-        row.hit_reads = hit.mean();
+        row.hit_reads = row.mean_age;  // a present key is read at its age
         row.miss_reads = miss.mean();
         row.miss_reads_ci95 = miss.ci95();
         row.failures = fail.mean();

@@ -3,8 +3,8 @@
 // value and whether it was found.
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 4) readonly buffer ShQueries { uvec2 sh_queries[]; };
-layout(std430, binding = 5) writeonly buffer ShAnswers { uvec2 sh_answers[]; };  // (found, stored value)
+layout(std430, binding = HABUFFER_BINDING_STREAM) readonly buffer ShQueries { uvec2 sh_queries[]; };
+layout(std430, binding = HABUFFER_BINDING_CAPTURE) writeonly buffer ShAnswers { uvec2 sh_answers[]; };  // (found, stored value)
 
 uniform uint sh_count;
 
@@ -13,9 +13,9 @@ void main() {
   uint i = group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   if (i >= sh_count) return;
   uint probes = 0u;
-  sh_index s = sh_find_slot(sh_queries[i], probes);
+  ha_index s = sh_find_slot(sh_queries[i], probes);
   uvec2 answer = uvec2(0u, 0u);
-  if (s != ~sh_index(0)) {
+  if (s != ~ha_index(0)) {
     sh_word r = sh_table[s];
     if (sh_live(r) != 0u) answer = uvec2(1u, sh_value(r));
   }

@@ -6,15 +6,16 @@
 // again, as the CPU path does); a cut call's carry to the next pass's input.
 layout(local_size_x = 64) in;
 
-struct ShRecordIn { uint x, y, value, pad; };
+// The input, as words: on the first pass record i is words 4i .. 4i+3
+// (x, y, value, 0); on a resume pass carry i is words 8i .. 8i+7, as
+// ShCarryOut. Points: GlBindings' stream, deferred, capture and counters.
 struct ShCarryOut { uint px, py, a, iter, low, high, pad0, pad1; };
 
-layout(std430, binding = 4) readonly buffer ShRecords { ShRecordIn sh_records[]; };
-layout(std430, binding = 5) readonly buffer ShResumeIn { ShCarryOut sh_resume_in[]; };
-layout(std430, binding = 6) buffer ShResumeOut { ShCarryOut sh_resume_out[]; };
-layout(std430, binding = 7) buffer ShDropped { uvec4 sh_dropped[]; };
+layout(std430, binding = HABUFFER_BINDING_STREAM) readonly buffer ShInput { uint sh_input[]; };
+layout(std430, binding = HABUFFER_BINDING_DEFERRED) buffer ShResumeOut { ShCarryOut sh_resume_out[]; };
+layout(std430, binding = HABUFFER_BINDING_CAPTURE) buffer ShDropped { uvec4 sh_dropped[]; };
 // counters[0 .. HABUFFER_SH_OUTCOME_COUNT-1]: outcomes; [8]: cut calls written; [9]: dropped written.
-layout(std430, binding = 8) buffer ShCounters { uint sh_counters[]; };
+layout(std430, binding = HABUFFER_BINDING_COUNTERS) buffer ShCounters { uint sh_counters[]; };
 
 uniform uint sh_count;
 uniform uint sh_resume;
@@ -25,14 +26,13 @@ void main() {
   if (i >= sh_count) return;
   ShCarry c;
   if (sh_resume == 0u) {
-    ShRecordIn r = sh_records[i];
-    c = sh_carry_begin(uvec2(r.x, r.y), 1u, r.value);
+    c = sh_carry_begin(uvec2(sh_input[4u * i], sh_input[4u * i + 1u]), 1u, sh_input[4u * i + 2u]);
   } else {
-    ShCarryOut o = sh_resume_in[i];
-    c.p = uvec2(o.px, o.py);
-    c.a = o.a;
-    c.iter = o.iter;
-    c.r = sh_word_of(o.high, o.low);
+    uint w = 8u * i;
+    c.p = uvec2(sh_input[w], sh_input[w + 1u]);
+    c.a = sh_input[w + 2u];
+    c.iter = sh_input[w + 3u];
+    c.r = sh_word_of(sh_input[w + 5u], sh_input[w + 4u]);
   }
   uint outcome = sh_insert_run(c);
   if (outcome == HABUFFER_SH_CUT) {
@@ -43,7 +43,6 @@ void main() {
   atomicAdd(sh_counters[outcome], 1u);
   if (outcome == HABUFFER_SH_FAILED_AGE || outcome == HABUFFER_SH_FAILED_ITER) {
     uint at = atomicAdd(sh_counters[9], 1u);
-    uvec2 k = sh_key(c.p, sh_quotient(c.r));
-    sh_dropped[at] = uvec4(k, sh_value(c.r), 0u);
+    sh_dropped[at] = uvec4(sh_carry_key(c), sh_value(c.r), 0u);
   }
 }

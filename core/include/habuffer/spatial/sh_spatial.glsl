@@ -17,14 +17,14 @@
 // key, so lookups and inserts see the same table, and the key inserted again
 // replaces it.
 //
-// Host environment provides: type sh_word (64-bit unsigned), sh_index (the
-// slot index type), uint sh_age_bits, uvec2 sh_table_size (H), uint
-// sh_quotient_x (qx), uvec2 sh_offset(uint i) (O[i]), uint sh_div_block(uint),
-// uint sh_cells_x (max-age cells per row), uint sh_iter_limit,
-// sh_word sh_atomic_max_slot(sh_index s, sh_word r) (returns the old value),
+// Host environment provides what shared/ha_probe.glsl needs (uvec2
+// ha_table_size (H), ha_offset(i) (O[i]), ha_div_block(v), ha_max_age_cells_x,
+// the slot index type ha_index), and: type sh_word (64-bit unsigned), uint
+// sh_age_bits, uint sh_quotient_x (qx), uint sh_iter_limit,
+// sh_word sh_atomic_max_slot(ha_index s, sh_word r) (returns the old value),
 // uint sh_atomic_missed() (0 when the last slot atomic happened; else HABUFFER_SH_PENDING
 // or HABUFFER_SH_CUT, see sh_insert_step; always 0 where atomics are native),
-// sh_word sh_load_slot(sh_index s), void sh_atomic_max_age(uint cell, uint a),
+// sh_word sh_load_slot(ha_index s), void sh_atomic_max_age(uint cell, uint a),
 // uint sh_load_max_age(uint cell), sh_word sh_word_of(uint high, uint low),
 // uint sh_high(sh_word r), uint sh_low(sh_word r), HABUFFER_INOUT(T).
 
@@ -50,29 +50,25 @@ sh_word sh_tombstone(sh_word r) { return sh_word_of(sh_high(r) & 0xFFFFFFFEu, 0u
 
 // Table position and quotient of key k (in the folded 2D domain).
 uvec2 sh_position(uvec2 k) {
-  return uvec2(k.x - sh_div_hx(k.x) * sh_table_size.x, k.y - sh_div_hy(k.y) * sh_table_size.y);
+  return uvec2(k.x - sh_div_hx(k.x) * ha_table_size.x, k.y - sh_div_hy(k.y) * ha_table_size.y);
 }
 uint sh_key_quotient(uvec2 k) { return sh_div_hx(k.x) + sh_quotient_x * sh_div_hy(k.y); }
 // The key back from its position and quotient.
 uvec2 sh_key(uvec2 p, uint q) {
-  return uvec2(p.x + (q % sh_quotient_x) * sh_table_size.x, p.y + (q / sh_quotient_x) * sh_table_size.y);
+  return uvec2(p.x + (q % sh_quotient_x) * ha_table_size.x, p.y + (q / sh_quotient_x) * ha_table_size.y);
 }
 
-// Coherent probing (SPEC 3) and age equivalence (SPEC 4) over positions.
-uvec2 sh_probe(uvec2 p, uint age) {
-  uvec2 h = p + sh_offset(age - 1u);
-  if (h.x >= sh_table_size.x) h.x -= sh_table_size.x;
-  if (h.y >= sh_table_size.y) h.y -= sh_table_size.y;
-  return h;
+// Coherent probing (SPEC 3), age equivalence (SPEC 4), the slot index and
+// the max-age cell are the HA-buffer's own, over positions in place of
+// pixels: ha_probe, ha_owner, ha_slot, ha_cell (shared/ha_probe.glsl, which
+// the host includes before this file).
+
+// The key of the record `r` found in slot `s` (age equivalence gives its
+// position, the quotient the rest): iteration, loading, rebuilding.
+uvec2 sh_record_key(ha_index s, sh_word r) {
+  uvec2 h = uvec2(uint(s % ha_index(ha_table_size.x)), uint(s / ha_index(ha_table_size.x)));
+  return sh_key(ha_owner(h, sh_age(r)), sh_quotient(r));
 }
-uvec2 sh_owner(uvec2 h, uint age) {
-  uvec2 p = h + sh_table_size - sh_offset(age - 1u);
-  if (p.x >= sh_table_size.x) p.x -= sh_table_size.x;
-  if (p.y >= sh_table_size.y) p.y -= sh_table_size.y;
-  return p;
-}
-sh_index sh_slot(uvec2 h) { return sh_index(h.x) + sh_index(h.y) * sh_index(sh_table_size.x); }
-uint sh_cell(uvec2 p) { return sh_div_block(p.x) + sh_div_block(p.y) * sh_cells_x; }
 
 // One insert call between probes.
 struct ShCarry {
@@ -91,12 +87,15 @@ ShCarry sh_carry_begin(uvec2 k, uint live, uint value) {
   return c;
 }
 
+// The key of the record a call carries (the failed one's, handed back).
+uvec2 sh_carry_key(ShCarry c) { return sh_key(c.p, sh_quotient(c.r)); }
+
 // One probe: HABUFFER_SH_PENDING while a record must go on, else the call's outcome.
 uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
   if (c.a > sh_max_age()) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_AGE : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_ITER : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
-  uvec2 h = sh_probe(c.p, c.a);
-  sh_index s = sh_slot(h);
+  uvec2 h = ha_probe(c.p, c.a);
+  ha_index s = ha_slot(h);
   // A slot whose key bits are larger holds another key that keeps it
   // (slots only grow): one plain load, no atomic.
   if (sh_key_bits(sh_load_slot(s)) <= sh_key_bits(c.r)) {
@@ -108,7 +107,7 @@ uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
     if (missed != 0u) return missed;
     c.iter += 1u;
     if (old == sh_word(0)) {
-      sh_atomic_max_age(sh_cell(c.p), c.a);
+      sh_atomic_max_age(ha_cell(c.p), c.a);
       return HABUFFER_SH_STORED;
     }
     if (sh_key_bits(old) == sh_key_bits(c.r)) {
@@ -119,10 +118,10 @@ uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
     }
     if (old < c.r) {
       // Placed: carry the evicted record on from its own position and age.
-      sh_atomic_max_age(sh_cell(c.p), c.a);
+      sh_atomic_max_age(ha_cell(c.p), c.a);
       uint old_age = sh_age(old);
       c.r = old;
-      c.p = sh_owner(h, old_age);
+      c.p = ha_owner(h, old_age);
       c.a = old_age;
     }
   } else {
@@ -149,18 +148,18 @@ uint sh_insert_run(HABUFFER_INOUT(ShCarry) c) {
 // the quotient. An empty slot or a younger record is the common case; a
 // record of the same age and a smaller quotient stops it too. Returns the
 // probes made in `probes`.
-sh_index sh_find_slot(uvec2 k, HABUFFER_INOUT(uint) probes) {
+ha_index sh_find_slot(uvec2 k, HABUFFER_INOUT(uint) probes) {
   uvec2 p = sh_position(k);
   uint want = sh_key_quotient(k);
-  uint amax = sh_load_max_age(sh_cell(p));
+  uint amax = sh_load_max_age(ha_cell(p));
   probes = 0u;
   for (uint a = 1u; a <= amax; a += 1u) {
-    sh_index s = sh_slot(sh_probe(p, a));
+    ha_index s = ha_slot(ha_probe(p, a));
     uint key = sh_key_bits(sh_load_slot(s));
     uint mine = (a << (31u - sh_age_bits)) | want;
     probes += 1u;
     if (key == mine) return s;
     if (key < mine) break;
   }
-  return ~sh_index(0);
+  return ~ha_index(0);
 }

@@ -212,8 +212,8 @@ class SpatialHashView {
   void prefetch(glm::uvec3 key) const {
     if (!fold_.contains(key)) return;
     const glm::uvec2 p = kernel_.sh_position(fold_.fold(key));
-    __builtin_prefetch(max_age_ + kernel_.sh_cell(p));
-    __builtin_prefetch(slots_ + kernel_.sh_slot(kernel_.sh_probe(p, 1u)));
+    __builtin_prefetch(max_age_ + kernel_.ha_cell(p));
+    __builtin_prefetch(slots_ + kernel_.ha_slot(kernel_.ha_probe(p, 1u)));
   }
 
  private:
@@ -266,8 +266,9 @@ class SpatialHash {
   /// Calls f(Entry) for every key, in slot order.
   template <class F>
   void for_each(F f) const {
+    SpatialHashKernel<false> k = reader();
     for (std::uint64_t s = 0; s < table_.size(); ++s)
-      if (const std::optional<Entry> e = entry_at(s)) f(*e);
+      if (const std::optional<Entry> e = entry_at(k, s)) f(*e);
   }
   /// Every key, in slot order.
   [[nodiscard]] std::vector<Entry> entries() const;
@@ -282,6 +283,8 @@ class SpatialHash {
   [[nodiscard]] std::uint64_t slots() const { return table_.size(); }
   [[nodiscard]] Extent table_extent() const { return extent_; }
   [[nodiscard]] double load() const;
+  /// Erased keys' markers in the table (they count in the load).
+  [[nodiscard]] std::uint64_t tombstones() const { return tombstones_; }
   [[nodiscard]] std::uint64_t memory_bytes() const;
   [[nodiscard]] SpatialHashStats stats() const;
   [[nodiscard]] const SpatialHashConfig& config() const { return config_; }
@@ -297,7 +300,7 @@ class SpatialHash {
   /// qx = ceil(Du / Hx): quotients per row of table tiles.
   [[nodiscard]] std::uint32_t quotient_x() const { return quotient_x_; }
   /// The kernel's parameters for this table (the GPU path's uniforms too).
-  [[nodiscard]] SpatialKernelParams kernel_params() const;
+  [[nodiscard]] const SpatialKernelParams& kernel_params() const { return *params_; }
   /// A lookup view (see SpatialHashView).
   [[nodiscard]] SpatialHashView view() const { return SpatialHashView(*this); }
 
@@ -323,7 +326,7 @@ class SpatialHash {
   };
   void reset(Extent table);
   void check_key(glm::uvec3 key, std::size_t index, bool batch) const;
-  [[nodiscard]] std::optional<Entry> entry_at(std::uint64_t slot) const;
+  [[nodiscard]] std::optional<Entry> entry_at(SpatialHashKernel<false>& kernel, std::uint64_t slot) const;
   [[nodiscard]] std::uint64_t find_slot(glm::uvec2 folded) const;
   [[nodiscard]] std::uint32_t decode(std::uint32_t word) const;
   [[nodiscard]] std::uint32_t encode(std::uint32_t value) const;
@@ -338,12 +341,15 @@ class SpatialHash {
   void grow_if_needed(std::uint64_t incoming, InsertReport& report);
   void shrink_if_needed();
   [[nodiscard]] std::uint32_t threads() const;
+  // A kernel over this table for reads (plain loads).
+  [[nodiscard]] SpatialHashKernel<false> reader() const;
 
   SpatialHashConfig config_;
   FoldedDomain fold_;
   Extent extent_;
   std::uint32_t quotient_x_ = 1;
   std::optional<OffsetSequence> offsets_;  // always set (reset() makes them per table)
+  std::optional<SpatialKernelParams> params_;  // always set, with the table (reset())
   std::vector<std::uint64_t> table_;
   std::vector<std::uint32_t> max_age_;
   std::uint32_t cells_x_ = 1;

@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shader_program.h"
@@ -19,15 +20,16 @@
 
 namespace habuffer::gl {
 
-/// One table on the GPU of the current context. Binds shader-storage points
-/// 16..24 and its program while it works and restores the host's bindings
-/// and program before returning.
+/// One table on the GPU of the current context. Its buffers go to the
+/// points of `GlBindings` (table, max_age, offsets, locks; the passes'
+/// stream, deferred, capture and counters), and a GlStateGuard puts the
+/// host's bindings and program back before each call returns.
 class GlSpatialHash {
  public:
   /// Uploads `table`: its parameters, offsets, slots and max-age cells.
   /// Throws GlError when the context lacks 64-bit integers in shaders, or a
   /// buffer beyond the driver's shader-storage limit.
-  explicit GlSpatialHash(const spatial::SpatialHash& table);
+  explicit GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings = {});
 
   /// A key that failed (its record carried past AMAX ages or the iteration
   /// limit): the caller grows the table and inserts it again.
@@ -48,9 +50,9 @@ class GlSpatialHash {
 
   /// Empties the table on the GPU (its size kept).
   void clear();
-  /// GPU time of the last insert's or find's passes (GL_TIME_ELAPSED
-  /// queries around the dispatches: no transfers), in milliseconds; 0 on
-  /// Mesa's software rasterizers, whose queries time the submission only.
+  /// GPU time of the last insert's or find's passes (GPU timestamps around
+  /// the dispatches: no transfers), in milliseconds; 0 on Mesa's software
+  /// rasterizers, whose timestamps time the submission only.
   [[nodiscard]] double gpu_ms() const { return gpu_ms_; }
 
   /// The slots and max-age cells read back.
@@ -63,6 +65,7 @@ class GlSpatialHash {
 
  private:
   void bind_table() const;  // the table's buffers at their points
+  GlBindings bindings_;
   spatial::SpatialKernelParams params_;
   spatial::FoldedDomain fold_;
   AtomicMode mode_;
