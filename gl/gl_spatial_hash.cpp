@@ -22,17 +22,15 @@ constexpr unsigned kLockSpinLimit = 1u << 12;
 
 std::string source(const GlBindings& bindings, bool native, const char* entry) {
   std::string s = "#version 450\n#extension GL_ARB_gpu_shader_int64 : require\n";
-  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n#define SH_NATIVE64 1\n";
+  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n";
   s += bindings.glsl_defines();
-  s += kShConstants;
-  s += "\n";
-  s += kShEnv;
-  s += "\n";
-  s += kHaProbe;
-  s += "\n";
-  s += kShSpatial;
-  s += "\n";
-  s += entry;
+  s += "#define ha_word uint64_t\n#define ha_index uint\n#define HABUFFER_RECORDS_BINDING HABUFFER_BINDING_TABLE\n";
+  s += "uniform uint habuffer_lock_spin_limit;\n";
+  for (const char* part : {kHaConstants, native ? kPreludeNative : kPreludeEmulated64, kShConstants, kShEnv, kHaProbe,
+                           kShSpatial, entry}) {
+    s += part;
+    s += "\n";
+  }
   return s;
 }
 
@@ -43,7 +41,7 @@ void set_params(const ShaderProgram& p, const spatial::SpatialKernelParams& k) {
   p.set("ha_max_age_cells_x", k.cells_x);
   p.set("sh_iter_limit", k.iter_limit);
   p.set("sh_block", k.block);
-  p.set("sh_lock_spin_limit", kLockSpinLimit);
+  p.set("habuffer_lock_spin_limit", kLockSpinLimit);
 }
 
 void check_size(std::uint64_t bytes, const char* what) {

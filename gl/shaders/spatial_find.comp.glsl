@@ -16,7 +16,7 @@ void main() {
   ha_index s = sh_find_slot(sh_queries[i], probes);
   uvec2 answer = uvec2(0u, 0u);
   if (s != ~ha_index(0)) {
-    sh_word r = sh_table[s];
+    sh_word r = sh_load_slot(s);
     if (sh_live(r) != 0u) answer = uvec2(1u, sh_value(r));
   }
   sh_answers[i] = answer;
