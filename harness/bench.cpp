@@ -67,8 +67,9 @@ void validate_bench(const BenchSettings& s) {
       throw std::invalid_argument("fragment stream '" + w.word + "' renders on the CPU path only (--path cpu)");
 }
 
-ResultTable run_bench(const BenchSettings& s) {
-  validate_bench(s);
+namespace {
+
+std::vector<Case> make_cases(const BenchSettings& s) {
   std::vector<Case> cases;
   for (const Extent size : s.sizes)
     for (const WorkloadSpec& w : s.scenes) {
@@ -79,50 +80,40 @@ ResultTable run_bench(const BenchSettings& s) {
     }
   if (s.floors)
     for (Case& c : cases) c.floors = std::make_unique<FloorMeter>(*c.workload, c.capture, s.path, s.threads);
-  std::vector<std::vector<Cell3>> cells(cases.size(), std::vector<Cell3>(s.techniques.size()));
-  const std::uint64_t total = std::uint64_t{s.repeats} * cases.size() * (s.techniques.size() + (s.floors ? 1 : 0));
-  std::uint64_t done = 0;
-  ResultTable table;
-  for (std::uint32_t round = 0; round < s.repeats; ++round)
-    for (std::size_t ci = 0; ci < cases.size(); ++ci) {
-      Case& c = cases[ci];
-      if (c.floors) {
-        const Floors f = c.floors->measure();
-        c.atomic_ms.push_back(f.atomic_ms);
-        c.blend_ms.push_back(f.blend_ms);
-        if (s.on_progress) s.on_progress(++done, total);
-      }
-      for (std::size_t ti = 0; ti < s.techniques.size(); ++ti) {
-        RenderSettings rs;
-        rs.path = s.path;
-        rs.threads = s.threads;
-        rs.config.screen = c.workload->size();
-        rs.offsets.seed = s.seed;
-        rs.background = glm::vec3(1.0f);
-        rs.insert_order = s.insert_order;
-        // Steady state: frame 0 pays the cold start (fresh buffers, first
-        // touch of their pages), frame 1 of the same view on the kept
-        // buffers is the one timed; frame 0 is reported beside it.
-        rs.frames = kWarmupFrames + 1;
-        rs.orbit = false;
-        s.techniques[ti].apply(rs, c.capture.fragments);
-        const RenderResult r = c.workload->render(rs);
-        const FrameStats& f = r.frames.back();
-        Cell3& cell = cells[ci][ti];
-        cell.first_frame_ms.push_back(r.frames.front().gather_ms + r.frames.front().resolve_ms);
-        cell.clear_ms.push_back(f.clear_ms);
-        cell.gather_ms.push_back(f.gather_ms);
-        cell.resolve_ms.push_back(f.resolve_ms);
-        cell.total_ms.push_back(f.gather_ms + f.resolve_ms);
-        cell.last = f;
-        cell.memory_bytes = r.memory_bytes;
-        cell.memory_model_bytes = r.memory_model_bytes;
-        cell.device = r.device;
-        if (round == 0) cell.error = compare_pixels(r.image, c.capture.reference);
-        table.provenance.renderer = r.device;
-        if (s.on_progress) s.on_progress(++done, total);
-      }
-    }
+  return cases;
+}
+
+// One round of technique `t` on case `c`, added to `cell`; returns the device.
+std::string measure_cell(const BenchSettings& s, const TechniqueSpec& t, const Case& c, bool first_round, Cell3& cell) {
+  RenderSettings rs;
+  rs.path = s.path;
+  rs.threads = s.threads;
+  rs.config.screen = c.workload->size();
+  rs.offsets.seed = s.seed;
+  rs.background = glm::vec3(1.0f);
+  rs.insert_order = s.insert_order;
+  // Steady state: frame 0 pays the cold start (fresh buffers, first touch of
+  // their pages), frame 1 of the same view on the kept buffers is the one
+  // timed; frame 0 is reported beside it.
+  rs.frames = kWarmupFrames + 1;
+  rs.orbit = false;
+  t.apply(rs, c.capture.fragments);
+  const RenderResult r = c.workload->render(rs);
+  const FrameStats& f = r.frames.back();
+  cell.first_frame_ms.push_back(r.frames.front().gather_ms + r.frames.front().resolve_ms);
+  cell.clear_ms.push_back(f.clear_ms);
+  cell.gather_ms.push_back(f.gather_ms);
+  cell.resolve_ms.push_back(f.resolve_ms);
+  cell.total_ms.push_back(f.gather_ms + f.resolve_ms);
+  cell.last = f;
+  cell.memory_bytes = r.memory_bytes;
+  cell.memory_model_bytes = r.memory_model_bytes;
+  cell.device = r.device;
+  if (first_round) cell.error = compare_pixels(r.image, c.capture.reference);
+  return r.device;
+}
+
+void add_bench_notes(ResultTable& table) {
   table.title = "bench";
   table.notes["times"] =
       "median over repeats of the steady frame: the second frame of one view on the buffers the first made "
@@ -133,6 +124,34 @@ ResultTable run_bench(const BenchSettings& s) {
   table.notes["insert_order"] = "the order the CPU path's HA-buffer inserted in (auto resolved); others: arrival";
   table.notes["psnr"] = "against the exact reference (SPEC 7 in double precision); identical images: inf (null in JSON)";
   table.notes["floors"] = "atomic: one atomic add per fragment; blend: unsorted blending; measured in every round";
+}
+
+}  // namespace
+
+ResultTable run_bench(const BenchSettings& s) {
+  validate_bench(s);
+  std::vector<Case> cases = make_cases(s);
+  std::vector<std::vector<Cell3>> cells(cases.size(), std::vector<Cell3>(s.techniques.size()));
+  const std::uint64_t total = std::uint64_t{s.repeats} * cases.size() * (s.techniques.size() + (s.floors ? 1 : 0));
+  std::uint64_t done = 0;
+  ResultTable table;
+  // Rounds outermost: every technique is measured once before any twice, so
+  // the machine's drift spreads over all of them alike.
+  for (std::uint32_t round = 0; round < s.repeats; ++round)
+    for (std::size_t ci = 0; ci < cases.size(); ++ci) {
+      Case& c = cases[ci];
+      if (c.floors) {
+        const Floors f = c.floors->measure();
+        c.atomic_ms.push_back(f.atomic_ms);
+        c.blend_ms.push_back(f.blend_ms);
+        if (s.on_progress) s.on_progress(++done, total);
+      }
+      for (std::size_t ti = 0; ti < s.techniques.size(); ++ti) {
+        table.provenance.renderer = measure_cell(s, s.techniques[ti], c, round == 0, cells[ci][ti]);
+        if (s.on_progress) s.on_progress(++done, total);
+      }
+    }
+  add_bench_notes(table);
   for (std::size_t ci = 0; ci < cases.size(); ++ci)
     for (std::size_t ti = 0; ti < s.techniques.size(); ++ti)
       table.rows.push_back(make_row(s, s.techniques[ti], cases[ci], cells[ci][ti]));

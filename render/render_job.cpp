@@ -68,9 +68,85 @@ std::optional<PixelDepth> pixel_beyond_amax(const RenderSettings& s, std::span<c
 
 }  // namespace
 
+namespace {
+
+// What one render_scene call holds across its frames.
+struct SceneRender {
+  const Scene& scene;
+  const RenderSettings& s;
+  FramePath& path;
+  SceneRenderer& renderer;
+  LightPass* light;  // nullptr without --shadows
+  RenderResult& result;
+
+  void bind_light() const {
+    if (light) light->bind();
+  }
+
+  // Frame 0 only: the counting pass sizes the first table or pool, so frame 0
+  // need not fail its way up.
+  void size_from_count(const Camera& camera) const {
+    gl::GlFrameDriver& driver = path.driver();
+    driver.bind();  // the gather shader's uniform block, even though counting inserts nothing
+    const std::uint64_t fragments = renderer.count_fragments(camera);
+    if (fragments > UINT32_MAX)
+      throw gl::GlError("a frame of " + std::to_string(fragments) +
+                        " fragments overflows the GPU path's 32-bit counters: render a smaller view or fewer layers");
+    path.size_for(fragments, result);
+    // Where frames may grow, no frame grows for such a pixel (16 growths to
+    // a 4 GB table otherwise); the read-back is only paid there.
+    if (age_limit_applies(s) && frame_attempts(s) > 1)
+      if ((result.too_deep = pixel_beyond_amax(s, renderer.read_pixel_fragments()))) driver.limit_attempts(1);
+  }
+
+  // Frame k at its orbit angle: opaque pass, (frame 0) sizing, the technique's frame.
+  Camera frame(std::uint32_t k) const {
+    const auto t0 = Clock::now();
+    FrameStats fs;
+    fs.index = k;
+    fs.yaw = s.camera.yaw + (s.orbit ? 360.0f * static_cast<float>(k) / static_cast<float>(s.frames) : 0.0f);
+    CameraParams params = s.camera;
+    params.yaw = fs.yaw;
+    const Camera camera = frame_scene(scene, params, s.config.screen);
+    bind_light();
+    renderer.draw_opaque(camera, s.background);
+    if (k == 0) size_from_count(camera);
+    const gl::FrameReport report = path.driver().frame(
+        [&] {
+          bind_light();
+          renderer.gather(camera);
+        },
+        [&] { return renderer.inserted(); });
+    fs.opaque_rejected = renderer.read_rejected();
+    path.complete_frame(report, renderer, fs, result);
+    finish_stats(fs);
+    fs.frame_ms = ms_since(t0);
+    result.frames.push_back(fs);
+    return camera;
+  }
+
+  // After the frames: the shadow map seen from the last camera, and what
+  // --shadows asked to read back.
+  void finish_light(const Camera& camera) const {
+    LightStats stats = light->stats();
+    bind_light();
+    stats.lookup_ms = renderer.shadow_map_pass(camera);
+    result.shadow_map = renderer.read_shadow_map();
+    stats.lookup_pixels = static_cast<std::uint64_t>(
+        std::count_if(result.shadow_map.begin(), result.shadow_map.end(), [](float t) { return t >= 0.0f; }));
+    result.light = stats;
+    if (s.shadows->read_back) {
+      result.light_buffer = light->read_back();
+      result.opaque_depth = renderer.read_opaque_depth();
+    }
+    if (s.shadows->capture) result.light_fragments = light->read_capture();
+  }
+};
+
+}  // namespace
+
 RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   validate(s);
-  const Extent screen = s.config.screen;
   const gl::GlInfo info = gl::query_gl_info();
   const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(info, s.config.layout);
   if (!mode) throw gl::GlError("--layout 64 needs 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
@@ -84,50 +160,15 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
   }
   // The gather counts only what this render reads: fragments per pixel where
   // the driver needs the call count, culled ones for a culled heat map.
-  SceneRenderer renderer(scene, screen, driver,
+  SceneRenderer renderer(scene, s.config.screen, driver,
                          SceneRenderer::GatherCounts{driver.needs_call_count(),
                                                      s.per_pixel_culled && s.config.early_cull_tau > 0.0f},
                          light ? std::optional(light->receiving()) : std::nullopt);
-  const auto bind_light = [&] {
-    if (light) light->bind();
-  };
   RenderResult result;
-  std::optional<Camera> last_camera;
+  const SceneRender run{scene, s, *path, renderer, light.get(), result};
+  Camera last_camera;
   for (std::uint32_t k = 0; k < s.frames; ++k) {
-    const auto t0 = Clock::now();
-    FrameStats fs;
-    fs.index = k;
-    fs.yaw = s.camera.yaw + (s.orbit ? 360.0f * static_cast<float>(k) / static_cast<float>(s.frames) : 0.0f);
-    CameraParams params = s.camera;
-    params.yaw = fs.yaw;
-    const Camera camera = frame_scene(scene, params, screen);
-    last_camera = camera;
-    bind_light();
-    renderer.draw_opaque(camera, s.background);
-    if (k == 0) {
-      driver.bind();  // the gather shader's uniform block, even though counting inserts nothing
-      const std::uint64_t fragments = renderer.count_fragments(camera);
-      if (fragments > UINT32_MAX)
-        throw gl::GlError("a frame of " + std::to_string(fragments) +
-                          " fragments overflows the GPU path's 32-bit counters: render a smaller view or fewer layers");
-      // Size the first table or pool from the count, so frame 0 need not fail its way up.
-      path->size_for(fragments, result);
-      // Where frames may grow, no frame grows for such a pixel (16 growths to
-      // a 4 GB table otherwise); the read-back is only paid there.
-      if (age_limit_applies(s) && frame_attempts(s) > 1)
-        if ((result.too_deep = pixel_beyond_amax(s, renderer.read_pixel_fragments()))) driver.limit_attempts(1);
-    }
-    const gl::FrameReport report = driver.frame(
-        [&] {
-          bind_light();
-          renderer.gather(camera);
-        },
-        [&] { return renderer.inserted(); });
-    fs.opaque_rejected = renderer.read_rejected();
-    path->complete_frame(report, renderer, fs, result);
-    finish_stats(fs);
-    fs.frame_ms = ms_since(t0);
-    result.frames.push_back(fs);
+    last_camera = run.frame(k);
     if (s.on_progress) s.on_progress(k + 1, s.frames);
   }
   result.pixel_fragments = renderer.read_pixel_fragments();
@@ -136,21 +177,8 @@ RenderResult render_scene(const Scene& scene, const RenderSettings& s) {
                                       [](const FrameStats& f) { return f.counters.failed_age > 0; });
   if (!result.too_deep && failed_age && age_limit_applies(s)) result.too_deep = pixel_beyond_amax(s, result.pixel_fragments);
   path->finish(renderer, result);
-  if (light) {
-    LightStats stats = light->stats();
-    bind_light();
-    stats.lookup_ms = renderer.shadow_map_pass(*last_camera);
-    result.shadow_map = renderer.read_shadow_map();
-    stats.lookup_pixels = static_cast<std::uint64_t>(
-        std::count_if(result.shadow_map.begin(), result.shadow_map.end(), [](float t) { return t >= 0.0f; }));
-    result.light = stats;
-    if (s.shadows->read_back) {
-      result.light_buffer = light->read_back();
-      result.opaque_depth = renderer.read_opaque_depth();
-    }
-    if (s.shadows->capture) result.light_fragments = light->read_capture();
-  }
-  if (last_camera) result.camera = *last_camera;
+  if (light) run.finish_light(last_camera);
+  result.camera = last_camera;  // validate() asks for at least one frame
   gl::check_gl_errors("rendering");
   return result;
 }

@@ -126,20 +126,8 @@ void write_table_stats(JsonWriter& json, const spatial::SpatialHashStats& s) {
   json.end_array();
 }
 
-int run_build(const std::vector<std::string>& argv) {
-  if (print_help(argv, build_spec())) return 0;
-  const Args args(argv, build_spec());
-  const int sources = int{args.has("keys")} + int{args.has("key-set")} + int{args.has("voxels")} + int{args.has("image")};
-  if (sources != 1) throw UsageError("give exactly one of --keys, --key-set, --voxels and --image");
-  args.refuse_unless(args.has("key-set"), {"coverage", "count"}, "without --key-set");
-  args.refuse_unless(args.has("image"), {"background"}, "without --image");
-  FileRoles files;
-  for (const char* in : {"keys", "voxels", "image"})
-    if (args.has(in)) files.input(std::string("--") + in, args.required(in));
-  files.output("--out", args.required("out"), true);
-  if (args.has("stats")) files.output("--stats", args.required("stats"));
-  check_files(files);
-
+// The table's configuration from build's options.
+spatial::SpatialHashConfig parse_build_config(const Args& args) {
   spatial::SpatialHashConfig c;
   const std::optional<spatial::DuplicateRule> rule = spatial::parse_duplicate_rule(args.str("rule"));
   if (!rule) throw UsageError("option --rule: '" + args.str("rule") + "' is not max, min, first or last");
@@ -156,62 +144,98 @@ int run_build(const std::vector<std::string>& argv) {
     throw UsageError("option --load: " + args.str("load") + " is outside (0, 1]");
   c.adaptive = !args.has("fixed");
   if (c.adaptive && c.target_load > c.grow_at) c.grow_at = c.target_load;  // a table sized above 0.8 must not grow at once
+  return c;
+}
 
+// The keys (and values, where the source has them) of build's one source,
+// with the domain the source implies (a grid's or image's), if any.
+struct BuildKeys {
   std::vector<glm::uvec3> keys;
   std::vector<std::uint32_t> values;
   std::optional<Domain> natural;
+};
+
+BuildKeys voxel_keys(const std::string& path) {
+  const VoxelGrid g = load_voxel_grid(path);
+  BuildKeys k;
+  k.natural = Domain{g.n, g.n, g.n};
+  for (std::uint32_t z = 0; z < g.n; ++z)
+    for (std::uint32_t y = 0; y < g.n; ++y)
+      for (std::uint32_t x = 0; x < g.n; ++x)
+        if (g.solid(x, y, z)) k.keys.emplace_back(x, y, z);
+  return k;
+}
+
+BuildKeys image_keys(const Args& args) {
+  if (!has_image_support()) throw UsageError("option --image: this habuffer was built without image files");
+  const Image image = read_image(args.required("image"));
+  const std::uint32_t bg8 = rgba8(glm::vec4(parse_colour(args), 1.0f));
+  BuildKeys k;
+  k.natural = Domain{image.size.x, image.size.y, 1};
+  for (std::uint32_t y = 0; y < image.size.y; ++y)
+    for (std::uint32_t x = 0; x < image.size.x; ++x) {
+      const std::uint32_t v = rgba8(image.pixels[x + std::size_t{y} * image.size.x]);
+      if (v == bg8) continue;
+      k.keys.emplace_back(x, y, 0u);
+      k.values.push_back(v);
+    }
+  return k;
+}
+
+BuildKeys read_build_keys(const Args& args, std::uint64_t seed) {
   if (args.has("keys")) {
     spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
-    keys = std::move(f.keys);
-    values = std::move(f.values);
-  } else if (args.has("key-set")) {
-    keys = spatial::make_keys(parse_key_set(args, "key-set", c.seed));
-  } else if (args.has("voxels")) {
-    const VoxelGrid g = load_voxel_grid(args.required("voxels"));
-    natural = Domain{g.n, g.n, g.n};
-    for (std::uint32_t z = 0; z < g.n; ++z)
-      for (std::uint32_t y = 0; y < g.n; ++y)
-        for (std::uint32_t x = 0; x < g.n; ++x)
-          if (g.solid(x, y, z)) keys.emplace_back(x, y, z);
-  } else {
-    if (!has_image_support()) throw UsageError("option --image: this habuffer was built without image files");
-    const Image image = read_image(args.required("image"));
-    const glm::vec3 bg = parse_colour(args);
-    const std::uint32_t bg8 = rgba8(glm::vec4(bg, 1.0f));
-    natural = Domain{image.size.x, image.size.y, 1};
-    for (std::uint32_t y = 0; y < image.size.y; ++y)
-      for (std::uint32_t x = 0; x < image.size.x; ++x) {
-        const std::uint32_t v = rgba8(image.pixels[x + std::size_t{y} * image.size.x]);
-        if (v == bg8) continue;
-        keys.emplace_back(x, y, 0u);
-        values.push_back(v);
-      }
+    return {std::move(f.keys), std::move(f.values), std::nullopt};
   }
-  c.domain = args.has("domain") ? parse_domain(args.str("domain")) : natural ? *natural : spatial::domain_of(keys);
-  if (keys.empty()) throw DataError("hash build: no keys (nothing to store)");
-  if (args.has("keys")) check_rows(args.required("keys"), keys, spatial::FoldedDomain(c.domain));
+  if (args.has("key-set")) return {spatial::make_keys(parse_key_set(args, "key-set", seed)), {}, std::nullopt};
+  if (args.has("voxels")) return voxel_keys(args.required("voxels"));
+  return image_keys(args);
+}
+
+void write_build_stats(const std::string& path, const spatial::SpatialHashConfig& c, const spatial::InsertReport& report,
+                       double ms, const spatial::SpatialHashStats& s) {
+  JsonWriter json;
+  json.begin_object().field("domain", c.domain.str()).field("rule", to_string(c.rule));
+  json.field("calls", report.calls).field("stored", report.stored).field("duplicates", report.duplicates);
+  json.field("failed_age", report.failed_age).field("failed_iter", report.failed_iter).field("lost", report.lost);
+  json.field("rehashes", report.rehashes).field("build_ms", ms);
+  write_table_stats(json, s);
+  json.end_object();
+  json.save(path);
+}
+
+int run_build(const std::vector<std::string>& argv) {
+  if (print_help(argv, build_spec())) return 0;
+  const Args args(argv, build_spec());
+  const int sources = int{args.has("keys")} + int{args.has("key-set")} + int{args.has("voxels")} + int{args.has("image")};
+  if (sources != 1) throw UsageError("give exactly one of --keys, --key-set, --voxels and --image");
+  args.refuse_unless(args.has("key-set"), {"coverage", "count"}, "without --key-set");
+  args.refuse_unless(args.has("image"), {"background"}, "without --image");
+  FileRoles files;
+  for (const char* in : {"keys", "voxels", "image"})
+    if (args.has(in)) files.input(std::string("--") + in, args.required(in));
+  files.output("--out", args.required("out"), true);
+  if (args.has("stats")) files.output("--stats", args.required("stats"));
+  check_files(files);
+
+  spatial::SpatialHashConfig c = parse_build_config(args);
+  const BuildKeys k = read_build_keys(args, c.seed);
+  c.domain = args.has("domain") ? parse_domain(args.str("domain")) : k.natural ? *k.natural : spatial::domain_of(k.keys);
+  if (k.keys.empty()) throw DataError("hash build: no keys (nothing to store)");
+  if (args.has("keys")) check_rows(args.required("keys"), k.keys, spatial::FoldedDomain(c.domain));
 
   const auto t0 = std::chrono::steady_clock::now();
-  SpatialHash table(c, keys.size());
+  SpatialHash table(c, k.keys.size());
   spatial::InsertReport report;
   try {
-    report = table.insert(keys, values);
+    report = table.insert(k.keys, k.values);
   } catch (const std::invalid_argument& e) {
     throw DataError(std::string("hash build: ") + e.what());
   }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   spatial::save_spatial_hash(args.required("out"), table);
   const spatial::SpatialHashStats s = table.stats();
-  if (args.has("stats")) {
-    JsonWriter json;
-    json.begin_object().field("domain", c.domain.str()).field("rule", to_string(c.rule));
-    json.field("calls", report.calls).field("stored", report.stored).field("duplicates", report.duplicates);
-    json.field("failed_age", report.failed_age).field("failed_iter", report.failed_iter).field("lost", report.lost);
-    json.field("rehashes", report.rehashes).field("build_ms", ms);
-    write_table_stats(json, s);
-    json.end_object();
-    json.save(args.required("stats"));
-  }
+  if (args.has("stats")) write_build_stats(args.required("stats"), c, report, ms, s);
   if (!args.has("quiet"))
     std::printf("%llu keys (%llu duplicates) in a %s table of domain %s: load %.3f, mean age %.2f, max age %u, "
                 "%.2f bytes per key, %u rehashes, %.1f ms\n",

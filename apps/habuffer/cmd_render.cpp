@@ -421,6 +421,45 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
 
 }  // namespace
 
+namespace {
+
+// A recorded stream, rendered on the CPU path (the scene options refused).
+RenderResult render_stream(const Args& args, RenderSettings& s, SceneDescription& described) {
+  if (s.path == RenderPath::Gl && args.has("path")) throw UsageError("--fragments renders on the CPU path: drop --path gl");
+  for (const char* scene_only : {"frames", "yaw", "pitch", "fov", "opacity", "count", "spread", "order", "scene-seed",
+                                 "opaque-meshes"})
+    if (args.has(scene_only))
+      throw UsageError(std::string("option --") + scene_only + " applies to --scene, not to --fragments");
+  s.path = RenderPath::Cpu;
+  const std::vector<Fragment> fragments = read_fragments(args.required("fragments"), s.config.screen);
+  described = {args.required("fragments"), 0, 0};
+  return render_fragments(fragments, s);
+}
+
+// The image, reference and heat maps the options ask for, each written whole.
+void write_render_outputs(const Args& args, const RenderSettings& s, const RenderResult& r,
+                          const std::vector<HeatmapRequest>& heatmaps, RenderOutputs& outputs) {
+  if (s.config.layout == Layout::L32 && args.has("out"))
+    std::fprintf(stderr, "habuffer render: note: L32 records carry no colour; the image shows the opaque parts only, "
+                         "the stats and heat maps show the lists\n");
+  if (args.has("out")) {
+    outputs.image = args.required("out");
+    write_image(outputs.image, r.image);
+  }
+  outputs.heatmaps = write_heatmaps(heatmaps, r, s.config.screen);
+  if (args.has("reference") || args.has("error")) {
+    const Image reference = reference_image(r.fragments, s.config.screen, r.backgrounds);
+    outputs.error = compare_pixels(r.image, reference);
+    if (args.has("reference")) {
+      outputs.reference = args.required("reference");
+      write_image(outputs.reference, reference);
+      if (!outputs.image.empty()) outputs.reference_difference = compare_images(outputs.image, outputs.reference);
+    }
+  }
+}
+
+}  // namespace
+
 int run_render(const std::vector<std::string>& argv) {
   if (print_help(argv, render_spec().help() + technique_help())) return 0;
   const Args args(argv, render_spec());
@@ -444,38 +483,14 @@ int run_render(const std::vector<std::string>& argv) {
   RenderResult r;
   RenderOutputs outputs;
   if (args.has("fragments")) {
-    if (s.path == RenderPath::Gl && args.has("path")) throw UsageError("--fragments renders on the CPU path: drop --path gl");
-    for (const char* scene_only : {"frames", "yaw", "pitch", "fov", "opacity", "count", "spread", "order", "scene-seed",
-                                   "opaque-meshes"})
-      if (args.has(scene_only))
-        throw UsageError(std::string("option --") + scene_only + " applies to --scene, not to --fragments");
-    s.path = RenderPath::Cpu;
-    const std::vector<Fragment> fragments = read_fragments(args.required("fragments"), s.config.screen);
-    described = {args.required("fragments"), 0, 0};
-    r = render_fragments(fragments, s);
+    r = render_stream(args, s, described);
   } else {
     ProgressBar progress = ProgressBar::for_terminal("habuffer render", "frames", args.has("quiet") || s.frames == 1);
     s.on_progress = progress.callback();
     r = render_with_gl(args, opaque_meshes, light, s, described, outputs.shadow_error);
     s.on_progress = nullptr;
   }
-  if (s.config.layout == Layout::L32 && args.has("out"))
-    std::fprintf(stderr, "habuffer render: note: L32 records carry no colour; the image shows the opaque parts only, "
-                         "the stats and heat maps show the lists\n");
-  if (args.has("out")) {
-    outputs.image = args.required("out");
-    write_image(outputs.image, r.image);
-  }
-  outputs.heatmaps = write_heatmaps(heatmaps, r, s.config.screen);
-  if (args.has("reference") || args.has("error")) {
-    const Image reference = reference_image(r.fragments, s.config.screen, r.backgrounds);
-    outputs.error = compare_pixels(r.image, reference);
-    if (args.has("reference")) {
-      outputs.reference = args.required("reference");
-      write_image(outputs.reference, reference);
-      if (!outputs.image.empty()) outputs.reference_difference = compare_images(outputs.image, outputs.reference);
-    }
-  }
+  write_render_outputs(args, s, r, heatmaps, outputs);
   const RenderSummary summary = summarize_render(described, s, r, outputs);
   if (args.has("stats")) {
     outputs.stats = args.required("stats");
