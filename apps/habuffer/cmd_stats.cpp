@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "technique_options.h"
 #include "habuffer/age_experiment.h"
+#include "habuffer/experiment_columns.h"
 #include "habuffer/key_experiment.h"
 #include "key_options.h"
 #include "habuffer/csv.h"
@@ -36,20 +37,43 @@ std::vector<T> choices(const Args& args, const std::string& name, const std::vec
   return out;
 }
 
-void write_csv(const std::string& path, const std::vector<ExperimentRow>& rows) {
+// The rows as CSV, the columns' own list and formats (experiment_columns.h).
+template <class Row>
+void write_rows_csv(const std::string& path, const std::vector<Row>& rows,
+                    std::span<const RowColumn<Row>> columns) {
   CsvWriter out(path);
-  out.text("variant,load,stored_load,trials,mean_age,mean_age_ci95,age_variance,p50,p90,p99,max_age,mean_max_age,rank_bound,"
-           "excess,excess_ci95,mean_probes,max_probes,traversal_probes,wasted_traversal_probes,failures\n");
-  char buf[512];
-  for (const auto& r : rows) {
-    std::snprintf(buf, sizeof buf, "%s,%g,%.6f,%u,%.6f,%.6f,%.6f,%u,%u,%u,%u,%.4f,%.6f,%.6f,%.6f,%.6f,%u,%.6f,%.6f,%llu\n",
-                  r.variant.name().c_str(), r.load, r.stored_load, r.trials, r.mean_age, r.mean_age_ci95,
-                  r.age_variance, r.p50, r.p90, r.p99, r.max_age, r.mean_max_age, r.rank_bound, r.excess, r.excess_ci95,
-                  r.mean_probes, r.max_probes, r.traversal_probes, r.wasted_traversal_probes,
-                  static_cast<unsigned long long>(r.failures));
-    out.text(buf);
+  std::string line;
+  for (const RowColumn<Row>& col : columns)
+    if (col.csv_format) {
+      if (!line.empty()) line += ',';
+      line.append(col.name);
+    }
+  out.text(line + "\n");
+  for (const Row& r : rows) {
+    line.clear();
+    bool first = true;
+    for (const RowColumn<Row>& col : columns) {
+      if (!col.csv_format) continue;
+      if (!first) line += ',';
+      first = false;
+      line += csv_cell(col.get(r), col.csv_format);
+    }
+    out.text(line + "\n");
   }
   out.close();
+}
+
+// The rows as a JSON array "rows" of objects, one key per column.
+template <class Row>
+void write_rows_json(JsonWriter& j, const std::vector<Row>& rows, std::span<const RowColumn<Row>> columns) {
+  j.key("rows").begin_array();
+  for (const Row& r : rows) {
+    j.begin_object();
+    for (const RowColumn<Row>& col : columns)
+      std::visit([&](const auto& v) { j.field(col.name, v); }, col.get(r));
+    j.end_object();
+  }
+  j.end_array();
 }
 
 void write_json(const std::string& path, const ExperimentConfig& c, const std::vector<ExperimentRow>& rows) {
@@ -58,18 +82,9 @@ void write_json(const std::string& path, const ExperimentConfig& c, const std::v
   const Extent table = c.table == Extent{} ? c.screen : c.table;
   j.key("table").begin_array().value(table.x).value(table.y).end_array();
   j.field("stream", to_string(c.stream.kind)).field("trials", c.trials).field("seed", c.seed);
-  j.field("age_bits", c.age_bits).field("block", c.block).key("rows").begin_array();
-  for (const auto& r : rows) {
-    j.begin_object().field("variant", r.variant.name()).field("load", r.load).field("stored_load", r.stored_load);
-    j.field("trials", r.trials).field("mean_age", r.mean_age).field("mean_age_ci95", r.mean_age_ci95);
-    j.field("age_variance", r.age_variance).field("p50", r.p50).field("p90", r.p90).field("p99", r.p99);
-    j.field("max_age", r.max_age).field("mean_max_age", r.mean_max_age).field("mean_max_age_ci95", r.mean_max_age_ci95);
-    j.field("rank_bound", r.rank_bound).field("excess", r.excess);
-    j.field("excess_ci95", r.excess_ci95).field("mean_probes", r.mean_probes).field("max_probes", r.max_probes);
-    j.field("traversal_probes", r.traversal_probes).field("wasted_traversal_probes", r.wasted_traversal_probes);
-    j.field("failures", r.failures).end_object();
-  }
-  j.end_array().end_object();
+  j.field("age_bits", c.age_bits).field("block", c.block);
+  write_rows_json(j, rows, experiment_columns());
+  j.end_object();
   j.save(path);
 }
 
@@ -208,29 +223,13 @@ int run_key_stats(const Args& args) {
   if (args.has("out")) {
     const std::string out = args.required("out");
     if (out.size() > 4 && out.substr(out.size() - 4) == ".csv") {
-      CsvWriter w(out);
-      w.text("variant,load,stored_load,trials,keys,mean_age,mean_age_ci95,mean_max_age,max_age,hit_reads,miss_reads,"
-             "miss_reads_ci95,failures\n");
-      char buf[512];
-      for (const auto& r : rows) {
-        std::snprintf(buf, sizeof buf, "%s,%g,%.6f,%u,%.1f,%.6f,%.6f,%.4f,%u,%.6f,%.6f,%.6f,%.4f\n", r.variant.c_str(),
-                      r.load, r.stored_load, r.trials, r.keys, r.mean_age, r.mean_age_ci95, r.mean_max_age, r.max_age,
-                      r.hit_reads, r.miss_reads, r.miss_reads_ci95, r.failures);
-        w.text(buf);
-      }
-      w.close();
+      write_rows_csv(out, rows, key_experiment_columns());
     } else {
       JsonWriter j;
       j.begin_object().field("keys", spatial::to_string(c.keys.set)).field("domain", c.keys.domain.str());
-      j.field("trials", c.trials).field("seed", c.seed).field("age_bits", c.age_bits).key("rows").begin_array();
-      for (const auto& r : rows) {
-        j.begin_object().field("variant", r.variant).field("load", r.load).field("stored_load", r.stored_load);
-        j.field("keys", r.keys).field("mean_age", r.mean_age).field("mean_age_ci95", r.mean_age_ci95);
-        j.field("mean_max_age", r.mean_max_age).field("max_age", r.max_age).field("hit_reads", r.hit_reads);
-        j.field("miss_reads", r.miss_reads).field("miss_reads_ci95", r.miss_reads_ci95).field("failures", r.failures);
-        j.end_object();
-      }
-      j.end_array().end_object();
+      j.field("trials", c.trials).field("seed", c.seed).field("age_bits", c.age_bits);
+      write_rows_json(j, rows, key_experiment_columns());
+      j.end_object();
       j.save(out);
     }
   }
@@ -258,7 +257,7 @@ int run_stats(const std::vector<std::string>& argv) {
   if (args.has("out")) {
     const std::string out = args.required("out");
     if (out.size() > 4 && out.substr(out.size() - 4) == ".csv")
-      write_csv(out, rows);
+      write_rows_csv(out, rows, experiment_columns());
     else
       write_json(out, c, rows);
   }
