@@ -1,0 +1,44 @@
+#include "habuffer/render/stream_build.h"
+
+#include <chrono>
+#include <optional>
+
+#include "habuffer/gl/compute_inserter.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_frame_driver.h"
+#include "habuffer/gl/gl_info.h"
+
+namespace habuffer {
+
+TechniqueBuild build_technique_on_gl(const TechniqueConfig& config, const OffsetSource& offsets,
+                                     std::span<const Fragment> fragments, const ResizePolicy& policy,
+                                     std::uint32_t max_attempts, GlBuildInfo* info) {
+  check_on_screen(fragments, config.buffer.screen);
+  const gl::GlInfo gl_info = gl::query_gl_info();
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl_info, config.buffer.layout);
+  if (!mode) throw gl::GlError("--layout 64 on the GPU path: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  gl::GlFrameOptions frame_options;
+  frame_options.policy = policy;
+  frame_options.max_attempts = max_attempts;
+  gl::GlFrameDriver gpu(gl::make_gl_technique(config, offsets, *mode), frame_options);
+  // A pool of 0: the library's automatic pool, sized as the CPU's (grown at once on a drop).
+  if (uses_pool(config.technique) && config.pool_capacity == 0) {
+    TechniqueConfig wanted = config;
+    wanted.pool_capacity = policy.automatic(fragments.size());
+    gpu.technique().fit_automatic_size(wanted);
+  }
+  gl::ComputeInserter inserter(gpu);
+  const auto t0 = std::chrono::steady_clock::now();
+  gl::FrameReport report = inserter.insert(fragments);
+  if (info) {
+    info->build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    info->atomic_mode = gl::to_string(*mode);
+    info->renderer = gl_info.renderer;
+    info->deferred = report.deferred;
+    info->resume_rounds = report.resume_rounds;
+    info->cut_short_retries = report.cut_short_retries;
+  }
+  return TechniqueBuild{gpu.technique().read_back(), report.counters, std::move(report.attempts), false, std::nullopt};
+}
+
+}  // namespace habuffer
