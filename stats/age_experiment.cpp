@@ -175,4 +175,22 @@ double mean_ci95(std::span<const double> samples) {
   return student_t95(static_cast<std::uint32_t>(samples.size() - 1)) * std::sqrt(var / n);
 }
 
+std::vector<Variant> variant_grid(const std::vector<Probing>& probings, const std::vector<Policy>& policies,
+                                  const std::vector<OffsetGenerator>& offsets) {
+  std::vector<Variant> out;
+  for (const Probing pr : probings)
+    for (const Policy po : policies)
+      for (const OffsetGenerator of : offsets)
+        if (pr == Probing::Coherent || of == offsets.front()) out.push_back({pr, po, of});
+  return out;
+}
+
+StreamOptions experiment_stream(StreamKind kind, double spread, std::uint32_t age_bits) {
+  StreamOptions s;
+  s.kind = kind;
+  s.spread = spread;
+  s.hot_depth = (1u << age_bits) - 1;
+  return s;
+}
+
 }  // namespace habuffer

@@ -161,28 +161,25 @@ ExperimentConfig parse_experiment(const Args& args) {
   parse_experiment_sizes(args, c);
   c.trials = args.u32_in("trials", 1, 100000);
   c.seed = args.u64_in("seed");
+  StreamKind kind = StreamKind::Random;
   try {
-    c.stream.kind = parse_stream_kind(args.str("stream"));
+    kind = parse_stream_kind(args.str("stream"));
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("option --stream: ") + e.what());
   }
-  args.refuse_unless(c.stream.kind == StreamKind::Stacked, {"spread"}, "on a --stream other than stacked");
-  c.stream.spread = args.real("spread");
-  if (!(c.stream.spread >= 0.0 && c.stream.spread <= 1.0)) throw UsageError("option --spread: must be in [0, 1]");
+  args.refuse_unless(kind == StreamKind::Stacked, {"spread"}, "on a --stream other than stacked");
+  const double spread = args.real("spread");
+  if (!(spread >= 0.0 && spread <= 1.0)) throw UsageError("option --spread: must be in [0, 1]");
   c.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   c.block = args.u32_in("block", 1, 1u << 16);
-  c.stream.hot_depth = (1u << c.age_bits) - 1;
+  c.stream = experiment_stream(kind, spread, c.age_bits);
   const auto probings = choices<Probing>(args, "probing",
                                          {{"coherent", Probing::Coherent}, {"independent", Probing::Independent}});
   const auto policies =
       choices<Policy>(args, "policy", {{"robinhood", Policy::RobinHood}, {"fcfs", Policy::Fcfs}});
   const auto offsets = choices<OffsetGenerator>(
       args, "offsets", {{"random", OffsetGenerator::Random}, {"farthest", OffsetGenerator::Farthest}});
-  c.variants.clear();
-  for (auto pr : probings)
-    for (auto po : policies)
-      for (auto of : offsets)
-        if (pr == Probing::Coherent || of == offsets.front()) c.variants.push_back({pr, po, of});  // offsets only matter when coherent
+  c.variants = variant_grid(probings, policies, offsets);
   return c;
 }
 

@@ -61,6 +61,16 @@ struct ExperimentRow {
   std::uint64_t failures = 0;            ///< failed_age + failed_iter over all trials
 };
 
+/// Every combination of the lists, in their order (probing, then policy,
+/// then offsets), the offsets varied under coherent probing only (the
+/// independent probe has none): habuffer stats' and the Python module's variants.
+std::vector<Variant> variant_grid(const std::vector<Probing>& probings, const std::vector<Policy>& policies,
+                                  const std::vector<OffsetGenerator>& offsets);
+/// The experiments' stream of `kind`: stacked quads pulled together by
+/// `spread`, hot pixels as deep as AMAX of `age_bits` (deep enough to fill a
+/// probe sequence, no deeper).
+StreamOptions experiment_stream(StreamKind kind, double spread, std::uint32_t age_bits);
+
 /// One row per load and variant, load by load, variants in their order. Throws std::invalid_argument for no trials, an
 /// empty screen, a table with a zero side or a load that is not positive (and as ProbeSimulator).
 std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& config);
