@@ -6,6 +6,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <variant>
 
 
@@ -192,6 +193,15 @@ void HaBuffer::measure(BuildReport& r) const {
   r.table = table();
 }
 const MaxAgeTable& HaBuffer::max_age() const { return impl_->max_age; }
+
+HaBuffer::TableWords HaBuffer::table_words() const {
+  return std::visit(
+      [](const auto& st) {
+        using Word = std::remove_cvref_t<decltype(*st.data())>;
+        return TableWords{st.data(), st.size(), static_cast<std::uint32_t>(sizeof(Word))};
+      },
+      impl_->storage);
+}
 
 InsertOrder HaBuffer::insert_order(std::size_t fragments, const InsertOptions& options) const {
   if (options.order == InsertOrder::Pixel && options.mode == InsertMode::OwnerComputes)

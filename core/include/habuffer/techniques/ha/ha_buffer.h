@@ -79,6 +79,17 @@ class HaBuffer final : public FragmentBuffer {
   [[nodiscard]] std::uint64_t slot(std::uint64_t s) const;
   /// The max-age table M.
   [[nodiscard]] const MaxAgeTable& max_age() const;
+  /// T's storage itself, read-only (zero-copy views: the Python module's
+  /// table()): slot_count() words, row-major, each word_bytes wide (8 for
+  /// L64, 4 for L32). Valid while the buffer lives (the storage never moves:
+  /// a larger table is a new buffer); insert and clear change the words.
+  struct TableWords {
+    const void* data = nullptr;  ///< the first slot
+    std::uint64_t slots = 0;     ///< Hx * Hy
+    std::uint32_t word_bytes = 8;  ///< 8 (L64) or 4 (L32)
+  };
+  /// See TableWords.
+  [[nodiscard]] TableWords table_words() const;
 
   /// Runs alone. Replaces T and M with state built elsewhere (the GPU path's read-back),
   /// so traversal, compositing and the dumps work on it. Throws
