@@ -13,6 +13,7 @@ packages=(
   glslang-tools
   python3-matplotlib
   libabsl-dev libsparsehash-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 missing=()

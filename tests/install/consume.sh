@@ -17,7 +17,8 @@
 #  - checks the license (MIT) is installed and named by both packages;
 #  - compiles every installed header on its own;
 #  - checks that the installed headers define no macro outside HABUFFER_*;
-#  - checks the installed GLSL files.
+#  - checks the installed GLSL files;
+#  - imports the installed Python package (where built) and builds a list.
 # Usage: consume.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -euo pipefail
 build=$(cd "$1" && pwd) source=$(cd "$2" && pwd) work=$3
@@ -182,4 +183,15 @@ for mode in native32 native64 emulated64; do
   done
   [ -f "$prefix/share/habuffer/glsl/$mode/extensions.glsl" ] || fail "missing $mode/extensions.glsl"
 done
+echo "== Python package (where the build made it)"
+if [ -f "$build/python/habuffer/__init__.py" ]; then
+  pkg=$prefix/lib/python3/dist-packages
+  for f in __init__.py __init__.pyi py.typed; do [ -f "$pkg/habuffer/$f" ] || fail "missing $pkg/habuffer/$f"; done
+  (cd "$work" && PYTHONPATH=$pkg /usr/bin/python3 -c '
+import numpy as np, habuffer as hb
+assert hb.__file__.startswith("'"$pkg"'"), hb.__file__
+b = hb.build(np.array([[0, 0], [0, 0]], np.uint32), np.array([0.5, 0.25], np.float32), screen=(2, 2))
+assert b.counters["stored"] == 2 and list(b.lists().offsets) == [0, 2, 2, 2, 2]
+') || fail "the installed Python package does not import or build"
+fi
 echo "consume: all passed"

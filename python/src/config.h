@@ -1,0 +1,38 @@
+// A technique's configuration from Python arguments: the technique's name,
+// the screen, the HA-buffer's table, the layout, and the technique options
+// as keyword arguments named after the option table's flags (--occupancy-words
+// is occupancy_words), read by the table's own parser, so Python takes the
+// same values, ranges and refusals as the command line.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "habuffer/lossless_build.h"
+#include "habuffer/technique.h"
+
+namespace habuffer::python {
+
+namespace py = pybind11;
+
+/// The Python-side arguments of every container and build.
+struct ConfigArgs {
+  std::string technique = "ha";
+  py::object screen, table = py::none(), layout = py::int_(64);
+  std::string offsets = "random";  ///< random or farthest (the HA-buffer's)
+  std::uint64_t seed = 1;
+  py::object offset_list = py::none();  ///< (n, 2) uint32 rows, instead of a generator
+};
+
+/// The validated configuration; ValueError naming the argument otherwise.
+TechniqueConfig technique_config_from(const ConfigArgs& a, const py::kwargs& options);
+/// The offsets the configuration's HA-buffer takes.
+OffsetSource offset_source_from(const ConfigArgs& a);
+/// The configuration as a dict: technique, screen, table, layout, and the
+/// options its technique takes (option-table names, underscores).
+py::dict config_dict(const TechniqueConfig& c);
+/// --occupancy-words as occupancy_words.
+std::string python_name(std::string_view flag);
+
+}  // namespace habuffer::python

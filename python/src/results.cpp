@@ -1,0 +1,411 @@
+// The statistics experiments and the harness from Python: each returns its
+// result table as a habuffer.Table (a dict of numpy arrays, one per column,
+// with the table's title, notes and provenance as attributes), ready for
+// pandas.DataFrame(table). Settings default to the library's own (the C++
+// settings structs' initializers); words (scenes, technique words) are read
+// by the harness' parsers, so they take what the CLI takes.
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "gl_context.h"
+#include "habuffer/age_experiment.h"
+#include "habuffer/experiment_columns.h"
+#include "habuffer/harness/bench.h"
+#include "habuffer/harness/figures.h"
+#include "habuffer/harness/frontier.h"
+#include "habuffer/harness/plan.h"
+#include "habuffer/harness/sweep.h"
+#include "habuffer/key_experiment.h"
+
+namespace habuffer::python {
+namespace {
+
+using namespace pybind11::literals;
+using harness::Cell;
+using harness::ResultTable;
+
+// One column of cells as the narrowest numpy array that holds them: int64
+// (no gaps), float64 (NaN for gaps), bool, or objects (text, histograms,
+// gaps among them as None).
+py::object column_array(const std::vector<const Cell*>& cells) {
+  bool ints = true, reals = true, bools = true, gaps = false;
+  for (const Cell* c : cells) {
+    if (!c || std::holds_alternative<std::monostate>(*c)) {
+      gaps = true;
+      continue;
+    }
+    const bool is_int = std::holds_alternative<std::int64_t>(*c), is_real = std::holds_alternative<double>(*c);
+    ints &= is_int;
+    reals &= is_int || is_real;
+    bools &= std::holds_alternative<bool>(*c);
+  }
+  const std::size_t n = cells.size();
+  const bool all_gaps = std::all_of(cells.begin(), cells.end(), [](const Cell* c) {
+    return !c || std::holds_alternative<std::monostate>(*c);
+  });
+  if (ints && !gaps && !all_gaps) {
+    std::vector<std::int64_t> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = std::get<std::int64_t>(*cells[i]);
+    return owned_array(std::move(v));
+  }
+  if (reals || all_gaps) {
+    std::vector<double> v(n, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < n; ++i)
+      if (cells[i]) {
+        if (const auto* d = std::get_if<double>(cells[i])) v[i] = *d;
+        if (const auto* k = std::get_if<std::int64_t>(cells[i])) v[i] = static_cast<double>(*k);
+      }
+    return owned_array(std::move(v));
+  }
+  if (bools && !gaps) {
+    py::array_t<bool> v(static_cast<py::ssize_t>(n));
+    for (std::size_t i = 0; i < n; ++i) v.mutable_at(static_cast<py::ssize_t>(i)) = std::get<bool>(*cells[i]);
+    return v;
+  }
+  py::list items;
+  for (const Cell* c : cells) {
+    if (!c) {
+      items.append(py::none());
+      continue;
+    }
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, std::monostate>)
+            items.append(py::none());
+          else if constexpr (std::is_same_v<V, std::vector<std::uint64_t>>)
+            items.append(owned_array(std::vector<std::uint64_t>(v)));
+          else
+            items.append(py::cast(v));
+        },
+        *c);
+  }
+  return py::module_::import("numpy").attr("array")(items, "dtype"_a = "object");
+}
+
+py::object table_object(const ResultTable& t) {
+  py::object table = py::module_::import("habuffer").attr("Table")();
+  for (const std::string& name : t.columns()) {
+    std::vector<const Cell*> cells;
+    cells.reserve(t.rows.size());
+    for (const harness::ResultRow& r : t.rows) cells.push_back(r.find(name));
+    table[py::str(name)] = column_array(cells);
+  }
+  table.attr("title") = t.title;
+  table.attr("notes") = py::cast(t.notes);
+  py::dict prov;
+  prov["command"] = t.provenance.command;
+  prov["machine"] = t.provenance.machine;
+  prov["renderer"] = t.provenance.renderer;
+  table.attr("provenance") = prov;
+  return table;
+}
+
+// Rows of a statistics experiment as a Table, by the rows' column list.
+template <class Row>
+py::object rows_table(const std::vector<Row>& rows, std::span<const RowColumn<Row>> columns, const char* title) {
+  py::object table = py::module_::import("habuffer").attr("Table")();
+  for (const RowColumn<Row>& col : columns) {
+    py::list values;
+    for (const Row& r : rows) std::visit([&](const auto& v) { values.append(py::cast(v)); }, col.get(r));
+    const char* dtype = "float64";  // (an empty table's columns too)
+    if (!rows.empty()) {
+      const ColumnValue first = col.get(rows.front());
+      dtype = std::holds_alternative<std::string>(first) ? "object"
+              : std::holds_alternative<double>(first)    ? "float64"
+                                                         : "uint64";
+    }
+    table[py::str(std::string(col.name))] = py::module_::import("numpy").attr("array")(values, "dtype"_a = dtype);
+  }
+  table.attr("title") = title;
+  return table;
+}
+
+template <class T>
+std::vector<T> named(const std::vector<std::string>& items, const char* what,
+                     const std::vector<std::pair<std::string, T>>& names) {
+  std::vector<T> out;
+  for (const std::string& item : items) {
+    bool found = false;
+    for (const auto& [key, value] : names)
+      if (item == key || item == "all") {
+        if (std::find(out.begin(), out.end(), value) == out.end()) out.push_back(value);
+        found = true;
+      }
+    if (!found) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
+      throw py::value_error(std::string(what) + ": unknown '" + item + "' (" + known + " or all)");
+    }
+  }
+  return out;
+}
+
+RenderPath path_arg(const std::string& p) {
+  if (p == "gl") return RenderPath::Gl;
+  if (p == "cpu") return RenderPath::Cpu;
+  throw py::value_error("path: '" + p + "' is not gl or cpu");
+}
+
+InsertOrder order_arg(const std::string& o) {
+  const std::optional<InsertOrder> parsed = parse_insert_order(o);
+  if (!parsed) throw py::value_error("order: '" + o + "' is not auto, arrival or pixel");
+  return *parsed;
+}
+
+std::vector<harness::WorkloadSpec> workloads(const std::vector<std::string>& words) {
+  std::vector<harness::WorkloadSpec> out;
+  for (const std::string& w : words) out.push_back(harness::parse_workload_spec(w));
+  return out;
+}
+
+bool needs_context(const std::vector<harness::WorkloadSpec>& w) {
+  return std::any_of(w.begin(), w.end(), [](const harness::WorkloadSpec& s) { return s.fragments.empty(); });
+}
+
+// Runs `run` with the module's GL context current when a scene needs it, the GIL released.
+template <class Run>
+ResultTable with_context(bool needed, Run run) {
+  std::optional<GlContextUse> use;
+  if (needed) use.emplace();
+  py::gil_scoped_release release;
+  return run();
+}
+
+harness::Provenance provenance(const std::string& call) {
+  return {"python: habuffer." + call, harness::machine_description(), ""};
+}
+
+py::object age_experiment(py::handle screen, py::handle table, const std::vector<double>& loads, std::uint32_t trials,
+                          std::uint64_t seed, const std::string& stream, double spread,
+                          const std::vector<std::string>& probing, const std::vector<std::string>& policy,
+                          const std::vector<std::string>& offsets, std::uint32_t age_bits, std::uint32_t block) {
+  ExperimentConfig c;
+  c.screen = extent_arg(screen, "screen");
+  c.table = table.is_none() ? c.screen : extent_arg(table, "table");
+  c.loads = loads;
+  c.trials = trials;
+  c.seed = seed;
+  c.age_bits = age_bits;
+  c.block = block;
+  c.stream = experiment_stream(parse_stream_kind(stream), spread, age_bits);
+  c.variants = variant_grid(
+      named<Probing>(probing, "probing", {{"coherent", Probing::Coherent}, {"independent", Probing::Independent}}),
+      named<Policy>(policy, "policy", {{"robinhood", Policy::RobinHood}, {"fcfs", Policy::Fcfs}}),
+      named<OffsetGenerator>(offsets, "offsets",
+                             {{"random", OffsetGenerator::Random}, {"farthest", OffsetGenerator::Farthest}}));
+  std::vector<ExperimentRow> rows;
+  {
+    py::gil_scoped_release release;
+    rows = run_age_experiment(c);
+  }
+  return rows_table(rows, experiment_columns(), "stats");
+}
+
+py::object key_experiment(const std::string& keys, py::handle domain, double coverage, std::uint64_t count,
+                          const std::vector<double>& loads, std::uint32_t trials, std::uint64_t seed,
+                          const std::vector<std::string>& probing, const std::vector<std::string>& policy,
+                          std::uint32_t age_bits, std::uint32_t block, std::uint32_t misses) {
+  spatial::KeyExperimentConfig c;
+  const std::optional<spatial::KeySet> set = spatial::parse_key_set(keys);
+  if (!set) throw py::value_error("keys: unknown key set '" + keys + "'");
+  c.keys.set = *set;
+  const auto d = domain.cast<std::vector<std::uint32_t>>();
+  if (d.size() != 2 && d.size() != 3) throw py::value_error("domain: expected (X, Y) or (X, Y, Z)");
+  c.keys.domain = spatial::Domain{d[0], d[1], d.size() == 3 ? d[2] : 1u};
+  c.keys.coverage = coverage;
+  c.keys.count = count;
+  c.keys.seed = seed;
+  c.loads = loads;
+  c.trials = trials;
+  c.seed = seed;
+  c.age_bits = age_bits;
+  c.block = block;
+  c.misses = misses;
+  c.probing = named<spatial::KeyProbing>(
+      probing, "probing", {{"coherent", spatial::KeyProbing::Coherent}, {"independent", spatial::KeyProbing::Independent}});
+  c.policy = named<spatial::KeyPolicy>(
+      policy, "policy", {{"robinhood", spatial::KeyPolicy::RobinHood}, {"fcfs", spatial::KeyPolicy::FirstCome}});
+  std::vector<spatial::KeyExperimentRow> rows;
+  {
+    py::gil_scoped_release release;
+    rows = spatial::run_key_experiment(c);
+  }
+  return rows_table(rows, key_experiment_columns(), "stats --keys");
+}
+
+}  // namespace
+
+void bind_results(py::module_& m) {
+  m.def("age_experiment", &age_experiment, py::kw_only(), py::arg("screen") = py::make_tuple(128, 128),
+        py::arg("table") = py::none(), py::arg("loads") = std::vector<double>{0.5, 0.8, 0.9}, py::arg("trials") = 5,
+        py::arg("seed") = 1, py::arg("stream") = "random", py::arg("spread") = 1.0,
+        py::arg("probing") = std::vector<std::string>{"coherent", "independent"},
+        py::arg("policy") = std::vector<std::string>{"robinhood"},
+        py::arg("offsets") = std::vector<std::string>{"random"}, py::arg("age_bits") = 8, py::arg("block") = 8,
+        "Age against load (habuffer stats): every variant (probing x policy x offsets) on the same seeded streams; "
+        "one row per load and variant with the mean age and its 95% confidence half-width over trials, quantiles, "
+        "the rank bound, probes and failures. The same seeds give habuffer stats' numbers.");
+  m.def("key_experiment", &key_experiment, py::kw_only(), py::arg("keys") = "sparse-image",
+        py::arg("domain") = py::make_tuple(2048, 2048), py::arg("coverage") = 0.25, py::arg("count") = 100000,
+        py::arg("loads") = std::vector<double>{0.5, 0.8, 0.9, 0.95, 0.99}, py::arg("trials") = 5,
+        py::arg("seed") = 1, py::arg("probing") = std::vector<std::string>{"coherent", "independent"},
+        py::arg("policy") = std::vector<std::string>{"robinhood", "fcfs"}, py::arg("age_bits") = 8,
+        py::arg("block") = 8, py::arg("misses") = 10000,
+        "The spatial hash's key streams (habuffer stats --keys): age, reads per hit and per miss, failures.");
+
+  m.def(
+      "sweep",
+      [](const std::string& scene, const std::string& technique, const std::vector<double>& loads, py::handle size,
+         std::uint32_t repeats, const std::string& path, std::uint64_t seed, const std::string& offsets,
+         std::uint32_t threads, const std::string& order) {
+        harness::SweepSettings s;
+        s.technique = harness::parse_technique_spec(technique);
+        s.loads = loads;
+        s.repeats = repeats;
+        s.path = path_arg(path);
+        s.seed = seed;
+        if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
+        s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+        s.threads = threads;
+        s.insert_order = order_arg(order);
+        harness::validate_sweep(s);
+        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+        const Extent e = extent_arg(size, "size");
+        ResultTable t = with_context(w.fragments.empty(), [&] {
+          const harness::Workload workload(w, e);
+          return harness::run_sweep(workload, s);
+        });
+        t.provenance = provenance("sweep");
+        return table_object(t);
+      },
+      py::arg("scene"), py::kw_only(), py::arg("technique") = "ha",
+      py::arg("loads") = std::vector<double>{0.5, 0.8, 0.9}, py::arg("size") = py::make_tuple(256, 256),
+      py::arg("repeats") = 3, py::arg("path") = "gl", py::arg("seed") = 1, py::arg("offsets") = "random",
+      py::arg("threads") = 0, py::arg("order") = "auto",
+      "habuffer sweep: one fixed view of `scene` (a scene word such as 'hairball:opacity=0.25', a mesh file, or a "
+      "fragment CSV on path='cpu') with the technique sized for each load; one row per load (throughput, probes, "
+      "ages, counters, memory).");
+  m.def(
+      "bench",
+      [](const std::vector<std::string>& scenes, const std::vector<std::string>& techniques,
+         const std::vector<py::object>& sizes, std::uint32_t repeats, const std::string& path, std::uint32_t threads,
+         std::uint64_t seed, bool floors, const std::string& order) {
+        harness::BenchSettings b;
+        b.scenes = workloads(scenes);
+        for (const std::string& t : techniques) b.techniques.push_back(harness::parse_technique_spec(t));
+        for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
+        b.repeats = repeats;
+        b.path = path_arg(path);
+        b.threads = threads;
+        b.seed = seed;
+        b.floors = floors;
+        b.insert_order = order_arg(order);
+        harness::validate_bench(b);
+        ResultTable t = with_context(needs_context(b.scenes), [&] { return harness::run_bench(b); });
+        t.provenance = provenance("bench");
+        return table_object(t);
+      },
+      py::arg("scenes"), py::kw_only(), py::arg("techniques") = std::vector<std::string>{"ha", "lists"},
+      py::arg("sizes") = std::vector<py::object>{py::make_tuple(256, 256)}, py::arg("repeats") = 3,
+      py::arg("path") = "gl", py::arg("threads") = 0, py::arg("seed") = 1, py::arg("floors") = true,
+      py::arg("order") = "auto",
+      "habuffer bench: techniques (words such as 'kbuffer:k=8:occ') on scenes and sizes, rounds interleaved; one "
+      "row per technique, scene and size (times, memory, counters, PSNR against the exact reference).");
+  m.def(
+      "frontier",
+      [](const std::vector<std::string>& scenes, const std::vector<py::object>& sizes, std::uint32_t repeats,
+         const std::string& path, std::uint32_t threads, const std::vector<double>& targets) {
+        harness::BenchSettings b;
+        b.scenes = workloads(scenes);
+        for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
+        b.path = path_arg(path);
+        b.repeats = repeats;
+        b.threads = threads;
+        b.techniques = harness::frontier_techniques(b.path);
+        harness::validate_bench(b);
+        ResultTable t = with_context(true, [&] { return harness::run_bench(b); });
+        t.title = "frontier";
+        t.provenance = provenance("frontier");
+        harness::mark_pareto(t);
+        ResultTable picks = harness::frontier_picks(t, targets);
+        picks.provenance = t.provenance;
+        return py::make_tuple(table_object(t), table_object(picks));
+      },
+      py::arg("scenes"), py::kw_only(), py::arg("sizes") = std::vector<py::object>{py::make_tuple(256, 256)},
+      py::arg("repeats") = 3, py::arg("path") = "gl", py::arg("threads") = 0,
+      py::arg("targets") = std::vector<double>{30.0, 40.0, 50.0},
+      "habuffer figure frontier: every technique and knob of the frontier set, Pareto rows marked; returns (table, "
+      "picks), picks being the cheapest row reaching each target PSNR (dB).");
+  m.def(
+      "plan",
+      [](const std::string& scene, py::handle size, std::optional<double> target_psnr,
+         const std::vector<double>& loads, std::uint32_t trials, std::uint64_t seed, std::uint32_t age_bits) {
+        harness::PlanSettings p;
+        p.target_psnr = target_psnr;
+        p.loads = loads;
+        p.trials = trials;
+        p.seed = seed;
+        p.age_bits = age_bits;
+        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+        const Extent e = extent_arg(size, "size");
+        ResultTable t = with_context(w.fragments.empty(), [&] {
+          const harness::Workload workload(w, e);
+          return harness::run_plan(workload, p);
+        });
+        t.provenance = provenance("plan");
+        return table_object(t);
+      },
+      py::arg("scene"), py::kw_only(), py::arg("size") = py::make_tuple(256, 256),
+      py::arg("target_psnr") = py::none(), py::arg("loads") = std::vector<double>{0.5, 0.6, 0.7, 0.8, 0.9, 0.95},
+      py::arg("trials") = 3, py::arg("seed") = 1, py::arg("age_bits") = HABUFFER_DEFAULT_AGE_BITS,
+      "habuffer plan: every technique's predicted memory and accuracy for the scene, the recommendation in "
+      "table.notes['recommendation'].");
+  m.def(
+      "figure_fig2",
+      [](const std::string& scene, const std::vector<float>& opacities, py::handle size, std::uint32_t repeats,
+         const std::string& path, std::uint32_t threads, float tau) {
+        harness::FigureSettings f;
+        f.path = path_arg(path);
+        f.size = extent_arg(size, "size");
+        f.repeats = repeats;
+        f.threads = threads;
+        f.tau = tau;
+        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+        harness::check_fig2_scene(w);
+        ResultTable t = with_context(true, [&] { return harness::run_fig2(w, opacities, f); });
+        t.provenance = provenance("figure_fig2");
+        return table_object(t);
+      },
+      py::arg("scene") = "hairball", py::kw_only(),
+      py::arg("opacities") = std::vector<float>{0.1f, 0.25f, 0.5f, 0.75f, 1.0f},
+      py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3, py::arg("path") = "gl",
+      py::arg("threads") = 0, py::arg("tau") = 0.99f,
+      "habuffer figure fig2: frame time and early cull's gain against the scene's opacity.");
+  m.def(
+      "memory_table",
+      [](py::handle screen, const std::vector<std::uint64_t>& fragments, const std::vector<double>& loads,
+         bool allocate) {
+        const Extent e = extent_arg(screen, "screen");
+        harness::validate_memory_table(e, fragments, loads);
+        ResultTable t;
+        {
+          py::gil_scoped_release release;
+          t = harness::run_memory_table(e, fragments, loads, allocate);
+        }
+        t.provenance = provenance("memory_table");
+        return table_object(t);
+      },
+      py::arg("screen"), py::kw_only(), py::arg("fragments"), py::arg("loads") = std::vector<double>{0.5, 0.8},
+      py::arg("allocate") = false,
+      "habuffer figure table1: every technique's memory by its model and by seed 000's Table 1 formula "
+      "(allocate=True also builds each container and reports its measured bytes).");
+}
+
+}  // namespace habuffer::python

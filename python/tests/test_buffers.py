@@ -1,0 +1,227 @@
+"""Containers from Python: lists equal habuffer build-lists byte for byte,
+zero-copy views, dtype and shape checks, errors, threads."""
+
+import json
+import os
+import sys
+import threading
+
+import numpy as np
+import pytest
+
+import habuffer as hb
+from conftest import SPEC_MODEL
+
+sys.path.insert(0, SPEC_MODEL)
+import crosscheck  # noqa: E402  (the model's seeded cross-check cases)
+
+CASES = range(1, 25)
+
+
+def lists_csv(lists, screen):
+    """The lists as habuffer build-lists writes them (x,y,rank,code,rgba)."""
+    w, _ = screen
+    out = ["x,y,rank,code,rgba\n"]
+    offsets = lists.offsets
+    for p in range(len(offsets) - 1):
+        x, y = p % w, p // w
+        for rank, i in enumerate(range(offsets[p], offsets[p + 1])):
+            out.append("%d,%d,%d,%d,%d\n" % (x, y, rank, lists.codes[i], lists.rgba[i]))
+    return "".join(out).encode()
+
+
+def case_files(case, workdir):
+    d = os.path.join(workdir, "case%d" % case["seed"])
+    os.makedirs(d, exist_ok=True)
+    crosscheck.write_case(case, d)
+    return d
+
+
+@pytest.mark.parametrize("seed", CASES)
+def test_lists_equal_build_lists_byte_for_byte_on_the_crosscheck_streams(seed, cli, workdir):
+    case = crosscheck.make_case(seed)
+    d = case_files(case, workdir)
+    screen = (case["Vx"], case["Vy"])
+    cli("build-lists", "--in", os.path.join(d, "frags.csv"), "--out", os.path.join(d, "cli.csv"),
+        "--screen", "%dx%d" % screen, "--table", "%dx%d" % (case["Hx"], case["Hy"]), "--layout", case["layout"],
+        "--age-bits", case["A"], "--offsets", os.path.join(d, "offsets.csv"), "--block", case["B"],
+        "--threads", 1, "--stats", os.path.join(d, "cli.json"))
+    xy, depth, rgba = hb.read_fragments(os.path.join(d, "frags.csv"), screen)
+    buf = hb.build(xy, depth, rgba, screen=screen, table=(case["Hx"], case["Hy"]), layout=case["layout"],
+                   age_bits=case["A"], block=case["B"], offset_list=np.array(case["offsets"], dtype=np.uint32))
+    with open(os.path.join(d, "cli.csv"), "rb") as f:
+        want = f.read()
+    assert lists_csv(buf.lists(), screen) == want
+    buf.write_lists(os.path.join(d, "py.csv"))
+    with open(os.path.join(d, "py.csv"), "rb") as f:
+        assert f.read() == want
+    with open(os.path.join(d, "cli.json")) as f:
+        stats = json.load(f)
+    for key in ("fragments", "stored", "duplicates", "invalid", "failed_age", "failed_iter"):
+        assert buf.counters[key] == stats[key], key
+    assert list(buf.age_histogram()[:stats["max_age"] + 1]) == stats["age_histogram"]
+
+
+@pytest.mark.parametrize("technique,options", [("lists", {"pool": "auto"}), ("arrays", {"layers": 2}),
+                                               ("sorted-lists", {"pool": "auto"}), ("paged-lists", {})])
+def test_every_exact_technique_gives_the_ha_buffers_lists_when_nothing_drops(technique, options):
+    case = crosscheck.make_case(7)
+    screen = (case["Vx"], case["Vy"])
+    frags = [f for f in case["frags"] if f[2] == f[2] and 0.0 <= f[2] <= 1.0]
+    xy = np.array([(f[0], f[1]) for f in frags], dtype=np.uint32)
+    depth = np.array([f[2] for f in frags], dtype=np.float32)
+    rgba = np.array([f[3] for f in frags], dtype=np.uint32)
+    ha = hb.build(xy, depth, rgba, screen=screen, lossless=True, max_attempts=40)
+    other = hb.build(xy, depth, rgba, technique=technique, screen=screen, lossless=True, max_attempts=40, **options)
+    assert ha.counters["failures"] == 0 and other.counters["failures"] == 0
+    a, b = ha.lists(), other.lists()
+    for name in ("offsets", "codes", "rgba"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    np.testing.assert_array_equal(ha.composite_image(), other.composite_image())
+
+
+def small_stream(n=4000, screen=(32, 24), seed=3):
+    rng = np.random.default_rng(seed)
+    xy = np.stack([rng.integers(0, screen[0], n), rng.integers(0, screen[1], n)], axis=1).astype(np.uint32)
+    depth = rng.random(n, dtype=np.float32)
+    rgba = rng.integers(0, 2**32, n, dtype=np.uint32)
+    return xy, depth, rgba
+
+
+def test_the_table_view_is_the_containers_storage_read_only_and_keeps_the_buffer_alive():
+    buf = hb.HaBuffer((32, 24), table=(40, 30))
+    view = buf.table()
+    assert view.shape == (30, 40) and view.dtype == np.uint64
+    assert view.ctypes.data == buf._table_address()  # the container's own words, not a copy
+    assert buf.table().ctypes.data == view.ctypes.data
+    assert not view.flags.writeable
+    with pytest.raises(ValueError):
+        view[0, 0] = 1
+    assert not view.any()
+    xy, depth, rgba = small_stream(500)
+    buf.insert(xy, depth, rgba)
+    assert np.count_nonzero(view) == buf.count_stored()  # the earlier view sees the insert
+    ages = buf.max_age()
+    assert ages.ctypes.data == buf._max_age_address() and ages.max() >= 1
+    del buf
+    assert np.count_nonzero(view) > 0  # the view holds the buffer
+    l32 = hb.HaBuffer((8, 8), layout=32)
+    assert l32.table().dtype == np.uint32
+
+
+def test_wrong_dtypes_are_refused_with_the_expected_one_named():
+    buf = hb.HaBuffer((32, 24))
+    xy, depth, rgba = small_stream(100)
+    with pytest.raises(TypeError, match="depth: expected a float32 array"):
+        buf.insert(xy, depth.astype(np.float64), rgba)
+    with pytest.raises(TypeError, match="xy: expected a uint32 array.*got int64"):
+        buf.insert(xy.astype(np.int64), depth, rgba)
+    with pytest.raises(ValueError, match=r"xy: expected shape \(N, 2\), got \(100, 3\)"):
+        buf.insert(np.zeros((100, 3), np.uint32), depth, rgba)
+    with pytest.raises(ValueError, match="one row per fragment"):
+        buf.insert(xy, depth[:50], rgba)
+    with pytest.raises(TypeError, match="FRAGMENT_DTYPE"):
+        buf.insert_fragments(np.zeros(4, np.uint32))
+    assert buf.counters["fragments"] == 0  # nothing refused was inserted
+
+
+def test_non_contiguous_arrays_insert_as_their_contiguous_copies():
+    xy, depth, rgba = small_stream(2000)
+    wide = np.zeros((2000, 4), np.uint32)
+    wide[:, 1] = xy[:, 0]
+    wide[:, 3] = xy[:, 1]
+    strided_xy = wide[:, 1::2]
+    assert not strided_xy.flags.c_contiguous
+    a, b = hb.HaBuffer((32, 24)), hb.HaBuffer((32, 24))
+    a.insert(xy, depth, rgba)
+    b.insert(strided_xy, np.repeat(depth, 2)[::2], rgba)
+    np.testing.assert_array_equal(a.table(), b.table())
+    frags = np.zeros(4000, hb.FRAGMENT_DTYPE)[::2]
+    with pytest.raises(ValueError, match="C-contiguous"):
+        a.insert_fragments(frags)
+
+
+def test_structured_fragments_insert_in_place_as_the_three_arrays_do():
+    xy, depth, rgba = small_stream(3000)
+    frags = np.zeros(len(depth), hb.FRAGMENT_DTYPE)
+    frags["x"], frags["y"], frags["depth"], frags["rgba"] = xy[:, 0], xy[:, 1], depth, rgba
+    a, b = hb.HaBuffer((32, 24)), hb.HaBuffer((32, 24))
+    assert a.insert(xy, depth, rgba) == b.insert_fragments(frags)
+    np.testing.assert_array_equal(a.table(), b.table())
+
+
+def test_errors_carry_the_librarys_messages():
+    with pytest.raises(IndexError, match="outside"):
+        hb.HaBuffer((4, 4)).insert(np.array([[4, 0]], np.uint32), np.array([0.5], np.float32))
+    with pytest.raises(ValueError, match="unknown 'nope'"):
+        hb.Buffer("nope", screen=(4, 4))
+    with pytest.raises(ValueError, match="layers does not apply to technique ha"):
+        hb.Buffer("ha", screen=(4, 4), layers=3)
+    with pytest.raises(ValueError, match="option layers: "):
+        hb.Buffer("arrays", screen=(4, 4), layers=0)
+    with pytest.raises(TypeError, match="unknown option 'colour'"):
+        hb.Buffer("ha", screen=(4, 4), colour=1)
+    with pytest.raises(ValueError, match="pool"):
+        hb.Buffer("lists", screen=(4, 4))
+    with pytest.raises(ValueError, match="occupancy"):
+        hb.Buffer("kbuffer", screen=(4, 4), occupancy_words=2)
+    with pytest.raises(ValueError, match="screen"):
+        hb.HaBuffer("4y4")
+    with pytest.raises(TypeError, match="no hash table"):
+        hb.Buffer("arrays", screen=(4, 4)).table()
+    with pytest.raises(hb.DataError):
+        hb.read_fragments("/nonexistent/frags.csv", (4, 4))
+
+
+def test_counters_account_for_every_fragment_and_clear_empties():
+    xy, depth, rgba = small_stream(5000)
+    depth[:10] = np.nan
+    buf = hb.HaBuffer((32, 24), table=(36, 27))
+    c = buf.insert(xy, depth, rgba, threads=2)
+    assert c["fragments"] == 5000 and c["invalid"] == 10
+    assert c["stored"] == buf.count_stored() == np.count_nonzero(buf.table())
+    assert sum(v for k, v in c.items() if k not in ("fragments", "stored", "failures")) + c["stored"] == 5000
+    assert buf.counters == c
+    assert buf.clear() == c["stored"] and buf.count_stored() == 0 and buf.counters["fragments"] == 0
+
+
+def test_calls_from_several_python_threads_overlap_and_add_up_to_one_call():
+    xy, depth, rgba = small_stream(40000, screen=(64, 64))
+    whole = hb.HaBuffer((64, 64), table=(256, 256))  # load 0.6: no failure, so any schedule gives one table
+    whole.insert(xy, depth, rgba)
+    shared = hb.HaBuffer((64, 64), table=(256, 256))
+    parts = np.array_split(np.arange(len(depth)), 4)
+    threads = [threading.Thread(target=shared.insert, args=(xy[p], depth[p], rgba[p]), kwargs={"mode": "atomic"})
+               for p in parts]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert whole.counters["failures"] == 0
+    assert shared.counters == whole.counters
+    np.testing.assert_array_equal(shared.table(), whole.table())
+
+
+def test_config_round_trips_the_option_table():
+    buf = hb.Buffer("kbuffer", screen=(16, 8), layers=6, occupancy=True, occupancy_words=2)
+    cfg = buf.config
+    assert cfg["technique"] == "kbuffer" and cfg["screen"] == (16, 8)
+    assert cfg["layers"] == 6 and cfg["occupancy"] is True and cfg["occupancy_words"] == 2
+    names = [t["name"] for t in hb.techniques()]
+    assert "ha" in names and "paged-lists" in names
+    offs = hb.offsets((40, 30), 15, "farthest", 2)
+    assert offs.shape == (15, 2) and offs.dtype == np.uint32 and (offs[:, 0] < 40).all()
+
+
+def test_the_gpu_path_builds_the_cpu_paths_lists(gl_available):
+    case = crosscheck.make_case(11)
+    screen = (case["Vx"], case["Vy"])
+    frags = [f for f in case["frags"] if f[2] == f[2] and 0.0 <= f[2] <= 1.0]
+    xy = np.array([(f[0], f[1]) for f in frags], dtype=np.uint32)
+    depth = np.array([f[2] for f in frags], dtype=np.float32)
+    rgba = np.array([f[3] for f in frags], dtype=np.uint32)
+    cpu = hb.build(xy, depth, rgba, screen=screen, lossless=True)
+    gpu = hb.build(xy, depth, rgba, screen=screen, lossless=True, path="gl")
+    assert gpu.build_report["path"] == "gl" and gpu.build_report["gl_renderer"]
+    for name in ("offsets", "codes", "rgba"):
+        np.testing.assert_array_equal(getattr(cpu.lists(), name), getattr(gpu.lists(), name))

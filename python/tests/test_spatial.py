@@ -1,0 +1,53 @@
+"""The spatial hash from arrays: find, contains and erase against a dict."""
+
+import numpy as np
+import pytest
+
+import habuffer as hb
+
+
+def random_keys(n, domain, seed=4):
+    rng = np.random.default_rng(seed)
+    keys = np.stack([rng.integers(0, d, n) for d in domain], axis=1).astype(np.uint32)
+    return np.unique(keys, axis=0)
+
+
+@pytest.mark.parametrize("domain", [(300, 200), (40, 30, 20)])
+def test_find_and_contains_agree_with_a_dict(domain):
+    keys = random_keys(20000, domain)
+    values = np.arange(len(keys), dtype=np.uint32) * 7
+    h = hb.SpatialHash(domain, capacity=len(keys))
+    report = h.insert(keys, values)
+    assert report["stored"] == len(keys) and report["lost"] == 0 and len(h) == len(keys)
+    probe = random_keys(5000, domain, seed=9)
+    truth = {tuple(k): v for k, v in zip(keys.tolist(), values.tolist())}
+    got, found = h.find(probe)
+    for k, v, f in zip(probe.tolist(), got.tolist(), found.tolist()):
+        assert f == (tuple(k) in truth)
+        assert v == truth.get(tuple(k), 0)
+    np.testing.assert_array_equal(h.contains(probe), found)
+    assert h.erase(keys[:100]) == 100 and not h.contains(keys[:100]).any()
+
+
+def test_the_table_view_is_zero_copy_and_read_only():
+    h = hb.SpatialHash((64, 64))
+    h.insert(random_keys(1000, (64, 64)))
+    t = h.table()
+    assert t.shape == (h.table_extent[1], h.table_extent[0]) and not t.flags.writeable
+    assert np.count_nonzero(t) == len(h)
+    assert h.table().ctypes.data == t.ctypes.data
+    assert h.stats()["keys"] == len(h)
+
+
+def test_bad_keys_are_refused_naming_the_problem():
+    h = hb.SpatialHash((16, 16))
+    with pytest.raises(TypeError, match="keys: expected a uint32 array"):
+        h.insert(np.zeros((3, 2), np.int32))
+    with pytest.raises(ValueError, match=r"\(N, 2\) or \(N, 3\)"):
+        h.insert(np.zeros((3, 4), np.uint32))
+    with pytest.raises(ValueError, match="outside"):
+        h.insert(np.array([[16, 0]], np.uint32))
+    with pytest.raises(ValueError, match="values"):
+        h.insert(np.zeros((3, 2), np.uint32), np.zeros(2, np.uint32))
+    with pytest.raises(ValueError, match="rule"):
+        hb.SpatialHash((4, 4), rule="median")
