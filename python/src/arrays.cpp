@@ -2,7 +2,11 @@
 
 #include <pybind11/stl.h>
 
+#include <optional>
 #include <stdexcept>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/parallel.h"
 
 namespace habuffer::python {
 
@@ -38,7 +42,8 @@ template py::array_t<std::uint32_t, py::array::forcecast> checked_array<std::uin
 template py::array_t<float, py::array::forcecast> checked_array<float>(py::handle, const char*, int, py::ssize_t);
 template py::array_t<double, py::array::forcecast> checked_array<double>(py::handle, const char*, int, py::ssize_t);
 
-std::vector<Fragment> fragments_from(py::handle xy_obj, py::handle depth_obj, py::handle rgba_obj) {
+std::vector<Fragment> fragments_from(py::handle xy_obj, py::handle depth_obj, py::handle rgba_obj,
+                                     std::uint32_t threads) {
   const auto xy = checked_array<std::uint32_t>(xy_obj, "xy", 2, 2);
   const auto depth = checked_array<float>(depth_obj, "depth", 1);
   const bool has_rgba = !rgba_obj.is_none();
@@ -52,15 +57,19 @@ std::vector<Fragment> fragments_from(py::handle xy_obj, py::handle depth_obj, py
   std::vector<Fragment> out(static_cast<std::size_t>(n));
   const auto p = xy.unchecked<2>();
   const auto d = depth.unchecked<1>();
-  {
-    py::gil_scoped_release release;  // the copy reads the arrays only; their owners are held by the caller
-    for (py::ssize_t i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = Fragment{p(i, 0), p(i, 1), d(i), 0};
-  }
-  if (has_rgba) {
-    const auto c = rgba.unchecked<1>();
-    py::gil_scoped_release release;
-    for (py::ssize_t i = 0; i < n; ++i) out[static_cast<std::size_t>(i)].rgba = c(i);
-  }
+  std::optional<py::detail::unchecked_reference<std::uint32_t, 1>> c;
+  if (has_rgba) c.emplace(rgba.unchecked<1>());
+  // The copy reads the arrays only (their owners are held by the caller), in
+  // as many chunks as the insert's threads, so it stays a small part of it.
+  const std::uint32_t tasks = resolve_threads(threads, static_cast<std::uint64_t>(n));
+  py::gil_scoped_release release;
+  run_with_threads(tasks, [&] {
+    fork_join(tasks, [&](std::uint32_t t) {
+      const py::ssize_t begin = n * t / tasks, end = n * (t + 1) / tasks;
+      for (py::ssize_t i = begin; i < end; ++i)
+        out[static_cast<std::size_t>(i)] = Fragment{p(i, 0), p(i, 1), d(i), c ? (*c)(i) : 0u};
+    });
+  });
   return out;
 }
 

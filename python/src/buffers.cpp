@@ -186,8 +186,8 @@ std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, 
                               const py::kwargs& options) {
   const TechniqueConfig config = technique_config_from(a, options);
   const OffsetSource offsets = offset_source_from(a);
-  const std::vector<Fragment> fragments = fragments_from(xy, depth, rgba);
   const InsertOptions insert = insert_options(threads, mode, order);
+  const std::vector<Fragment> fragments = fragments_from(xy, depth, rgba, threads);
   if (max_attempts == 0) throw py::value_error("max_attempts must be at least 1");
   const std::uint32_t attempts = lossless ? max_attempts : 1;
   TechniqueBuild built;
@@ -254,8 +254,9 @@ void bind_buffers(py::module_& m) {
           "insert",
           [](Buffer& self, py::handle xy, py::handle depth, py::handle rgba, std::uint32_t threads,
              const std::string& mode, const std::string& order) {
-            const std::vector<Fragment> f = fragments_from(xy, depth, rgba);
-            return self.insert(f, insert_options(threads, mode, order));
+            const InsertOptions options = insert_options(threads, mode, order);
+            const std::vector<Fragment> f = fragments_from(xy, depth, rgba, threads);
+            return self.insert(f, options);
           },
           py::arg("xy"), py::arg("depth"), py::arg("rgba") = py::none(), py::kw_only(), py::arg("threads") = 1,
           py::arg("mode") = "auto", py::arg("order") = "auto", kInsertDoc)
