@@ -25,6 +25,8 @@ from ._habuffer import (  # noqa: F401
     bench,
     build,
     figure_fig2,
+    figure_fig8,
+    figure_fig10,
     frontier,
     gl_info,
     key_experiment,
@@ -67,6 +69,6 @@ def HaBuffer(screen, **kwargs):
 
 __all__ = [
     "FRAGMENT_DTYPE", "Buffer", "DataError", "GlError", "HaBuffer", "Lists", "SceneError", "SpatialHash",
-    "Table", "age_experiment", "bench", "build", "figure_fig2", "frontier", "gl_info", "key_experiment",
+    "Table", "age_experiment", "bench", "build", "figure_fig2", "figure_fig8", "figure_fig10", "frontier", "gl_info", "key_experiment",
     "memory_table", "offsets", "plan", "read_fragments", "sweep", "techniques",
 ]

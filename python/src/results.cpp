@@ -22,6 +22,7 @@
 #include "habuffer/harness/plan.h"
 #include "habuffer/harness/sweep.h"
 #include "habuffer/key_experiment.h"
+#include "habuffer/scene_catalog.h"
 
 namespace habuffer::python {
 namespace {
@@ -379,15 +380,63 @@ void bind_results(py::module_& m) {
         f.tau = tau;
         const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
         harness::check_fig2_scene(w);
-        ResultTable t = with_context(true, [&] { return harness::run_fig2(w, opacities, f); });
+        std::vector<float> checked;
+        SceneOptions probe;  // each opacity by the scene option's rule, as habuffer figure fig2
+        for (const float o : opacities) {
+          set_scene_option(probe, "opacity", py::repr(py::float_(o)).cast<std::string>());
+          checked.push_back(probe.opacity);
+        }
+        ResultTable t = with_context(true, [&] { return harness::run_fig2(w, checked, f); });
         t.provenance = provenance("figure_fig2");
         return table_object(t);
       },
       py::arg("scene") = "hairball", py::kw_only(),
-      py::arg("opacities") = std::vector<float>{0.1f, 0.25f, 0.5f, 0.75f, 1.0f},
+      py::arg("opacities") = std::vector<float>{0.125f, 0.25f, 0.5f, 1.0f},
       py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3, py::arg("path") = "gl",
       py::arg("threads") = 0, py::arg("tau") = 0.99f,
       "habuffer figure fig2: frame time and early cull's gain against the scene's opacity.");
+  m.def(
+      "figure_fig8",
+      [](const std::string& scene, std::uint32_t frames, double load, py::handle size, std::uint32_t repeats,
+         const std::string& path, std::uint32_t threads, float tau) {
+        harness::FigureSettings f;
+        f.path = path_arg(path);
+        f.size = extent_arg(size, "size");
+        f.repeats = repeats;
+        f.threads = threads;
+        f.tau = tau;
+        if (frames < 2) throw py::value_error("frames must be at least 2");
+        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+        harness::check_fig8_scene(w);
+        ResultTable t = with_context(true, [&] { return harness::run_fig8(w, frames, load, f); });
+        t.provenance = provenance("figure_fig8");
+        return table_object(t);
+      },
+      py::arg("scene") = "quads:count=64", py::kw_only(), py::arg("frames") = 16, py::arg("load") = 0.64,
+      py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3, py::arg("path") = "gl",
+      py::arg("threads") = 0, py::arg("tau") = 0.99f,
+      "habuffer figure fig8 (seed 000 Fig. 8): quads pulled together over `frames` frames into a table fixed at "
+      "`load`; time and max age per frame, with and without cull.");
+  m.def(
+      "figure_fig10",
+      [](std::uint32_t planes, py::handle size, std::uint32_t repeats, const std::string& path,
+         std::uint32_t threads) {
+        if (planes == 0 || planes > 4096) throw py::value_error("planes must be in [1, 4096]");
+        harness::FigureSettings f;
+        f.path = path_arg(path);
+        f.size = extent_arg(size, "size");
+        f.repeats = repeats;
+        f.threads = threads;
+        harness::BenchSettings b = harness::fig10_bench_settings(planes, f);
+        harness::validate_bench(b);
+        ResultTable t = with_context(true, [&] { return harness::run_bench(b); });
+        t.title = "fig10";
+        t.provenance = provenance("figure_fig10");
+        return table_object(t);
+      },
+      py::arg("planes") = 32, py::kw_only(), py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3,
+      py::arg("path") = "gl", py::arg("threads") = 0,
+      "habuffer figure fig10 (seed 001 Fig. 10): N planes front to back and back to front, ha and sorted-lists.");
   m.def(
       "memory_table",
       [](py::handle screen, const std::vector<std::uint64_t>& fragments, const std::vector<double>& loads,
