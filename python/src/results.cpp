@@ -179,6 +179,17 @@ ResultTable with_context(bool needed, Run run) {
   return run();
 }
 
+harness::FigureSettings figure_settings(const std::string& path, py::handle size, std::uint32_t repeats,
+                                        std::uint32_t threads, float tau) {
+  harness::FigureSettings f;
+  f.path = path_arg(path);
+  f.size = extent_arg(size, "size");
+  f.repeats = repeats;
+  f.threads = threads;
+  f.tau = tau;
+  return f;
+}
+
 harness::Provenance provenance(const std::string& call) {
   return {"python: habuffer." + call, harness::machine_description(), ""};
 }
@@ -372,12 +383,7 @@ void bind_results(py::module_& m) {
       "figure_fig2",
       [](const std::string& scene, const std::vector<float>& opacities, py::handle size, std::uint32_t repeats,
          const std::string& path, std::uint32_t threads, float tau) {
-        harness::FigureSettings f;
-        f.path = path_arg(path);
-        f.size = extent_arg(size, "size");
-        f.repeats = repeats;
-        f.threads = threads;
-        f.tau = tau;
+        const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
         const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
         harness::check_fig2_scene(w);
         std::vector<float> checked;
@@ -399,12 +405,7 @@ void bind_results(py::module_& m) {
       "figure_fig8",
       [](const std::string& scene, std::uint32_t frames, double load, py::handle size, std::uint32_t repeats,
          const std::string& path, std::uint32_t threads, float tau) {
-        harness::FigureSettings f;
-        f.path = path_arg(path);
-        f.size = extent_arg(size, "size");
-        f.repeats = repeats;
-        f.threads = threads;
-        f.tau = tau;
+        const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
         if (frames < 2) throw py::value_error("frames must be at least 2");
         const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
         harness::check_fig8_scene(w);
@@ -422,11 +423,7 @@ void bind_results(py::module_& m) {
       [](std::uint32_t planes, py::handle size, std::uint32_t repeats, const std::string& path,
          std::uint32_t threads) {
         if (planes == 0 || planes > 4096) throw py::value_error("planes must be in [1, 4096]");
-        harness::FigureSettings f;
-        f.path = path_arg(path);
-        f.size = extent_arg(size, "size");
-        f.repeats = repeats;
-        f.threads = threads;
+        const harness::FigureSettings f = figure_settings(path, size, repeats, threads, harness::FigureSettings{}.tau);
         harness::BenchSettings b = harness::fig10_bench_settings(planes, f);
         harness::validate_bench(b);
         ResultTable t = with_context(true, [&] { return harness::run_bench(b); });

@@ -48,6 +48,25 @@ py::dict report_dict(const spatial::InsertReport& r) {
   return d;
 }
 
+// The batched find of keys (N, 2|3), with the GIL released.
+struct Lookup {
+  py::array_t<std::uint32_t> values;  // 0 where absent
+  py::array_t<bool> found;
+};
+
+Lookup look_up(const SpatialHash& table, py::handle keys_obj) {
+  const std::vector<glm::uvec3> keys = keys_from(keys_obj);
+  std::vector<std::uint32_t> values(keys.size());
+  std::vector<std::uint8_t> found(keys.size());
+  {
+    py::gil_scoped_release release;
+    table.find(keys, values, found);
+  }
+  py::array_t<bool> mask(static_cast<py::ssize_t>(found.size()));
+  for (std::size_t i = 0; i < found.size(); ++i) mask.mutable_at(static_cast<py::ssize_t>(i)) = found[i] != 0;
+  return {owned_array(std::move(values)), mask};
+}
+
 spatial::Domain domain_arg(py::handle obj) {
   const auto d = obj.cast<std::vector<std::uint32_t>>();
   if (d.size() != 2 && d.size() != 3) throw py::value_error("domain: expected (X, Y) or (X, Y, Z)");
@@ -99,33 +118,13 @@ void bind_spatial(py::module_& m) {
           "call's report (dict).")
       .def(
           "find",
-          [](const SpatialHash& self, py::handle keys_obj) {
-            const std::vector<glm::uvec3> keys = keys_from(keys_obj);
-            std::vector<std::uint32_t> values(keys.size());
-            std::vector<std::uint8_t> found(keys.size());
-            {
-              py::gil_scoped_release release;
-              self.find(keys, values, found);
-            }
-            py::array_t<bool> mask(static_cast<py::ssize_t>(found.size()));
-            for (std::size_t i = 0; i < found.size(); ++i) mask.mutable_at(static_cast<py::ssize_t>(i)) = found[i] != 0;
-            return py::make_tuple(owned_array(std::move(values)), mask);
+          [](const SpatialHash& self, py::handle keys) {
+            const Lookup r = look_up(self, keys);
+            return py::make_tuple(r.values, r.found);
           },
           py::arg("keys"), "(values, found): each key's value (0 where absent) and a bool mask of the keys present.")
       .def(
-          "contains",
-          [](const SpatialHash& self, py::handle keys_obj) {
-            const std::vector<glm::uvec3> keys = keys_from(keys_obj);
-            std::vector<std::uint32_t> values(keys.size());
-            std::vector<std::uint8_t> found(keys.size());
-            {
-              py::gil_scoped_release release;
-              self.find(keys, values, found);
-            }
-            py::array_t<bool> mask(static_cast<py::ssize_t>(found.size()));
-            for (std::size_t i = 0; i < found.size(); ++i) mask.mutable_at(static_cast<py::ssize_t>(i)) = found[i] != 0;
-            return mask;
-          },
+          "contains", [](const SpatialHash& self, py::handle keys) { return look_up(self, keys).found; },
           py::arg("keys"), "A bool mask of the keys present.")
       .def(
           "erase",

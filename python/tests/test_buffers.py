@@ -62,15 +62,21 @@ def test_lists_equal_build_lists_byte_for_byte_on_the_crosscheck_streams(seed, c
     assert list(buf.age_histogram()[:stats["max_age"] + 1]) == stats["age_histogram"]
 
 
+def valid_arrays(case):
+    """A cross-check case's fragments of valid depth, as (xy, depth, rgba) arrays."""
+    frags = [f for f in case["frags"] if f[2] == f[2] and 0.0 <= f[2] <= 1.0]
+    xy = np.array([(f[0], f[1]) for f in frags], dtype=np.uint32)
+    depth = np.array([f[2] for f in frags], dtype=np.float32)
+    rgba = np.array([f[3] for f in frags], dtype=np.uint32)
+    return xy, depth, rgba
+
+
 @pytest.mark.parametrize("technique,options", [("lists", {"pool": "auto"}), ("arrays", {"layers": 2}),
                                                ("sorted-lists", {"pool": "auto"}), ("paged-lists", {})])
 def test_every_exact_technique_gives_the_ha_buffers_lists_when_nothing_drops(technique, options):
     case = crosscheck.make_case(7)
     screen = (case["Vx"], case["Vy"])
-    frags = [f for f in case["frags"] if f[2] == f[2] and 0.0 <= f[2] <= 1.0]
-    xy = np.array([(f[0], f[1]) for f in frags], dtype=np.uint32)
-    depth = np.array([f[2] for f in frags], dtype=np.float32)
-    rgba = np.array([f[3] for f in frags], dtype=np.uint32)
+    xy, depth, rgba = valid_arrays(case)
     ha = hb.build(xy, depth, rgba, screen=screen, lossless=True, max_attempts=40)
     other = hb.build(xy, depth, rgba, technique=technique, screen=screen, lossless=True, max_attempts=40, **options)
     assert ha.counters["failures"] == 0 and other.counters["failures"] == 0
@@ -216,10 +222,7 @@ def test_config_round_trips_the_option_table():
 def test_the_gpu_path_builds_the_cpu_paths_lists(gl_available):
     case = crosscheck.make_case(11)
     screen = (case["Vx"], case["Vy"])
-    frags = [f for f in case["frags"] if f[2] == f[2] and 0.0 <= f[2] <= 1.0]
-    xy = np.array([(f[0], f[1]) for f in frags], dtype=np.uint32)
-    depth = np.array([f[2] for f in frags], dtype=np.float32)
-    rgba = np.array([f[3] for f in frags], dtype=np.uint32)
+    xy, depth, rgba = valid_arrays(case)
     cpu = hb.build(xy, depth, rgba, screen=screen, lossless=True)
     gpu = hb.build(xy, depth, rgba, screen=screen, lossless=True, path="gl")
     assert gpu.build_report["path"] == "gl" and gpu.build_report["gl_renderer"]
