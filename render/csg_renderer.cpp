@@ -9,16 +9,14 @@
 #include <cmath>
 
 #include "gpu_triangles.h"
+#include "record_gather.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shader_program.h"
-#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/light_view.h"
-#include "habuffer/lossless_build.h"
-#include "habuffer/memory_model.h"
 #include "habuffer/transmittance_reference.h"
 
 namespace habuffer {
@@ -85,6 +83,67 @@ void shade(CsgRender& r, const RecordLayout& layout, Extent screen) {
 
 }  // namespace
 
+namespace {
+
+// The primitives' triangles drawn into a framebuffer without attachments
+// (the records are the output).
+class PrimitiveDraw {
+ public:
+  PrimitiveDraw(const Scene& primitives, Extent screen, const Camera& camera) : framebuffer_(screen), camera_(camera) {
+    meshes_.reserve(primitives.meshes.size());
+    for (const Mesh& m : primitives.meshes) meshes_.emplace_back(m.positions, m.indices);
+  }
+
+  // The camera's view and projection into `program`.
+  void set_view(const gl::ShaderProgram& program) const {
+    glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "view"), 1, GL_FALSE,
+                              glm::value_ptr(camera_.view));
+    glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "projection"), 1, GL_FALSE,
+                              glm::value_ptr(camera_.projection));
+  }
+
+  // Every primitive through `program`; with `ids`, each tells its index (uniform "primitive").
+  void draw(const gl::ShaderProgram& program, bool ids) const {
+    framebuffer_.draw_with(program, [&] {
+      for (std::size_t id = 0; id < meshes_.size(); ++id) {
+        if (ids) program.set("primitive", static_cast<unsigned>(id));
+        meshes_[id].draw();
+      }
+    });
+  }
+
+ private:
+  EmptyFramebuffer framebuffer_;
+  Camera camera_;
+  std::vector<GpuTriangles> meshes_;
+};
+
+// The counting pass: every primitive's fragments, so the table is sized once, not grown by regathers.
+std::uint64_t count_fragments(const PrimitiveDraw& draw) {
+  const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountingFragment, "csg counting pass");
+  draw.set_view(counting);
+  return count_samples([&] { draw.draw(counting, false); });
+}
+
+// Every pixel's visible primitive and depth code by the expression.
+void resolve_pixels(const FragmentBuffer& buffer, const CsgExpression& expression, Extent screen, CsgRender& r) {
+  r.primitive.assign(screen.area(), -1);
+  r.codes.assign(screen.area(), 0);
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x) {
+      buffer.list(x, y, list);
+      std::sort(list.begin(), list.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
+      const CsgSurface surface = csg_resolve(list, expression, kCsgCoincidentCodes);
+      if (!surface.visible) continue;
+      const std::size_t i = x + std::size_t{y} * screen.x;
+      r.primitive[i] = static_cast<std::int32_t>(surface.primitive);
+      r.codes[i] = surface.code;
+    }
+}
+
+}  // namespace
+
 CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, const CsgRenderSettings& s) {
   if (expression.primitives() != primitives.meshes.size())
     throw CsgError("csg: the expression names " + std::to_string(expression.primitives()) + " primitives, the scene has " +
@@ -93,90 +152,36 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
   if (!mode) throw gl::GlError("csg: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   CsgRender r;
   r.camera = frame_scene(primitives, s.camera, s.screen);
-  std::vector<GpuTriangles> meshes;
-  meshes.reserve(primitives.meshes.size());
-  for (const Mesh& m : primitives.meshes) meshes.emplace_back(m.positions, m.indices);
-  GLuint framebuffer = 0;
-  glCreateFramebuffers(1, &framebuffer);
-  glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(s.screen.x));
-  glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(s.screen.y));
-  const auto draw_all = [&](const gl::ShaderProgram& program, bool ids) {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
-    glViewport(0, 0, static_cast<GLsizei>(s.screen.x), static_cast<GLsizei>(s.screen.y));
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    glUseProgram(program.id());
-    for (std::size_t id = 0; id < meshes.size(); ++id) {
-      if (ids) program.set("primitive", static_cast<unsigned>(id));
-      meshes[id].draw();
-    }
-    glUseProgram(0);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  };
-  const auto set_view = [&](const gl::ShaderProgram& program) {
-    glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "view"), 1, GL_FALSE,
-                              glm::value_ptr(r.camera.view));
-    glProgramUniformMatrix4fv(program.id(), glGetUniformLocation(program.id(), "projection"), 1, GL_FALSE,
-                              glm::value_ptr(r.camera.projection));
-  };
-  const auto t0 = Clock::now();
-  // The counting pass: every primitive's fragments, so the table is sized once, not grown by regathers.
-  std::uint64_t fragments = 0;
-  {
-    const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountingFragment, "csg counting pass");
-    set_view(counting);
-    fragments = count_samples([&] { draw_all(counting, false); });
-  }
+  std::unique_ptr<FragmentBuffer> buffer;
   BufferConfig config;
   config.screen = s.screen;
   config.layout = Layout::L64;
-  // Sized from the counting pass at load 0.5 (lossless growth covers the rest).
-  config.table = table_for_load(s.screen, std::max<std::uint64_t>(fragments, s.screen.area()), 0.5);
-  gl::GlFrameOptions options;
-  options.max_attempts = s.cpu ? 1 : 16;
-  options.capture = options.capture_only = s.cpu;
-  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
-  const gl::ShaderProgram program =
-      gl::ShaderProgram::graphics(kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "csg gather");
-  set_view(program);
-  program.set("near_plane", r.camera.near_plane);
-  program.set("far_plane", r.camera.far_plane);
-  const gl::FrameReport report = lists.frame([&] { draw_all(program, true); });
-  glDeleteFramebuffers(1, &framebuffer);
-  std::unique_ptr<FragmentBuffer> buffer;
-  r.counters = report.counters;
-  r.attempts = static_cast<std::uint32_t>(report.attempts.size());
-  r.list_bytes = lists.technique().memory_bytes();
-  if (s.cpu) {
-    InsertOptions insert;
-    insert.threads = s.threads;
-    TechniqueBuild b =
-        build_technique(ha_technique_config(config), OffsetSource{}, lists.read_capture(), insert, ResizePolicy{}, 16);
-    r.counters = b.counters;
-    r.attempts = static_cast<std::uint32_t>(b.attempts.size());
-    r.list_bytes = memory_model_bytes(*b.buffer);
-    buffer = std::move(b.buffer);
+  const auto t0 = Clock::now();
+  {
+    const PrimitiveDraw draw(primitives, s.screen, r.camera);
+    const std::uint64_t fragments = count_fragments(draw);
+    // Sized from the counting pass at load 0.5 (lossless growth covers the rest).
+    config.table = table_for_load(s.screen, std::max<std::uint64_t>(fragments, s.screen.area()), 0.5);
+    RecordGather g = gather_records(config, *mode, s.cpu, s.threads,
+                                    {kVertex, kCrossing, "csg gather",
+                                     [&](const gl::ShaderProgram& p) {
+                                       draw.set_view(p);
+                                       p.set("near_plane", r.camera.near_plane);
+                                       p.set("far_plane", r.camera.far_plane);
+                                     },
+                                     [&](const gl::ShaderProgram& p) { draw.draw(p, true); }});
+    r.counters = g.counters;
+    r.attempts = g.attempts;
+    r.list_bytes = g.list_bytes;
+    if (r.counters.failures() > 0)
+      throw gl::GlError("csg: " + std::to_string(r.counters.failures()) + " of " +
+                        std::to_string(r.counters.fragments) + " records lost after " + std::to_string(r.attempts) +
+                        " gathers: a lost record is a wrong pixel");
+    buffer = std::move(g.buffer);
   }
   r.gather_ms = ms_since(t0);
-  if (r.counters.failures() > 0)
-    throw gl::GlError("csg: " + std::to_string(r.counters.failures()) + " of " + std::to_string(r.counters.fragments) +
-                      " records lost after " + std::to_string(r.attempts) + " gathers: a lost record is a wrong pixel");
-  if (!buffer) buffer = lists.technique().read_back();
   const auto p0 = Clock::now();
-  r.primitive.assign(s.screen.area(), -1);
-  r.codes.assign(s.screen.area(), 0);
-  std::vector<ListEntry> list;
-  for (std::uint32_t y = 0; y < s.screen.y; ++y)
-    for (std::uint32_t x = 0; x < s.screen.x; ++x) {
-      buffer->list(x, y, list);
-      std::sort(list.begin(), list.end(), [](const ListEntry& a, const ListEntry& b) { return a.code > b.code; });
-      const CsgSurface surface = csg_resolve(list, expression, kCsgCoincidentCodes);
-      if (!surface.visible) continue;
-      const std::size_t i = x + std::size_t{y} * s.screen.x;
-      r.primitive[i] = static_cast<std::int32_t>(surface.primitive);
-      r.codes[i] = surface.code;
-    }
+  resolve_pixels(*buffer, expression, s.screen, r);
   shade(r, config.record_layout(), s.screen);
   r.resolve_ms = ms_since(p0);
   gl::check_gl_errors("csg");

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "gpu_triangles.h"
+#include "record_gather.h"
 #include "habuffer/atomic_file.h"
 #include "habuffer/little_endian.h"
 #include "habuffer/csv.h"
@@ -21,10 +22,7 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shader_program.h"
-#include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/light_view.h"
-#include "habuffer/lossless_build.h"
-#include "habuffer/memory_model.h"
 #include "habuffer/transmittance_reference.h"
 
 namespace habuffer {
@@ -144,89 +142,70 @@ void VoxelizeSettings::validate() const {
     throw std::invalid_argument("voxelize: the grid's box has a side that is not positive");
 }
 
-Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
-  s.validate();
-  const Bounds box = grid_box(scene, s);
-  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
-  if (!mode) throw gl::GlError("voxelize: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
+namespace {
+
+// The records' statistics of a gather into `out`; throws GlError when a crossing was lost.
+void gather_stats(const RecordGather& g, Voxelization& out) {
+  const Counters& counters = g.counters;
+  out.stats.attempts = g.attempts;
+  out.stats.list_bytes = g.list_bytes;
+  out.stats.counters = counters;
+  out.stats.merged = counters.duplicates;
+  out.stats.table_slots = g.table.area();
+  out.stats.load_factor =
+      static_cast<double>(counters.stored()) / static_cast<double>(std::max<std::uint64_t>(1, out.stats.table_slots));
+  if (counters.failures() > 0)
+    throw gl::GlError("voxelize: " + std::to_string(counters.failures()) + " of " +
+                      std::to_string(counters.fragments) + " crossings lost after " +
+                      std::to_string(out.stats.attempts) + " gathers (table " + g.table.str() +
+                      "): a lost crossing is a wrong column; a smaller --grid needs a smaller table");
+}
+
+// The crossings of the scene's triangles along s.axis through the grid's
+// columns, in an HA-buffer sized from a counting pass.
+RecordGather gather_crossings(const Scene& scene, const VoxelizeSettings& s, const Bounds& box, gl::AtomicMode mode) {
   const Extent screen{s.grid, s.grid};
   const GpuTriangles meshes = scene_triangles(scene, s.axis);
   const glm::vec3 lo = permute(box.lo, s.axis), extent = permute(box.hi - box.lo, s.axis);
-  GLuint framebuffer = 0;  // no attachment: the passes write no colour
-  glCreateFramebuffers(1, &framebuffer);
-  glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(s.grid));
-  glNamedFramebufferParameteri(framebuffer, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(s.grid));
-  const auto draw = [&](const gl::ShaderProgram& program) {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
-    glViewport(0, 0, static_cast<GLsizei>(s.grid), static_cast<GLsizei>(s.grid));
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);  // both facings: entries and exits
-    glDisable(GL_BLEND);
-    glUseProgram(program.id());
-    meshes.draw();
-    glUseProgram(0);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  const EmptyFramebuffer framebuffer(screen);
+  const auto set_box = [&](const gl::ShaderProgram& p) {
+    p.set("lo", lo.x, lo.y, lo.z);
+    p.set("extent", extent.x, extent.y, extent.z);
   };
-  const auto t0 = Clock::now();
+  const auto draw = [&](const gl::ShaderProgram& p) { framebuffer.draw_with(p, [&] { meshes.draw(); }); };
   // The counting pass: the crossings, so the table is sized once, not grown by regathers.
   std::uint64_t counted = 0;
   {
     const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountingFragment, "voxelization counting pass");
-    counting.set("lo", lo.x, lo.y, lo.z);
-    counting.set("extent", extent.x, extent.y, extent.z);
+    set_box(counting);
     counted = count_samples([&] { draw(counting); });
   }
   BufferConfig config;
   config.screen = screen;
   config.layout = Layout::L64;
   config.table = table_for_load(screen, std::max<std::uint64_t>(counted, screen.area()), 0.5);
-  gl::GlFrameOptions options;
-  options.max_attempts = s.cpu ? 1 : 16;  // lossless: a gather that drops a crossing is redone larger
-  options.capture = options.capture_only = s.cpu;  // the CPU path: rasterize and capture only
-  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
-  const gl::ShaderProgram program = gl::ShaderProgram::graphics(
-      kVertex, lists.module_source(gl::ShaderStage::Fragment) + kCrossing, "voxelization gather");
-  program.set("lo", lo.x, lo.y, lo.z);
-  program.set("extent", extent.x, extent.y, extent.z);
+  return gather_records(config, mode, s.cpu, s.threads, {kVertex, kCrossing, "voxelization gather", set_box, draw});
+}
+
+}  // namespace
+
+Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
+  s.validate();
+  const Bounds box = grid_box(scene, s);
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
+  if (!mode) throw gl::GlError("voxelize: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   Voxelization out;
-  const gl::FrameReport report = lists.frame([&] { draw(program); });
-  glDeleteFramebuffers(1, &framebuffer);
-  std::unique_ptr<FragmentBuffer> buffer;
-  Counters counters = report.counters;
-  Extent table = lists.table();
-  out.stats.attempts = static_cast<std::uint32_t>(report.attempts.size());
-  out.stats.list_bytes = lists.technique().memory_bytes();
-  if (s.cpu) {
-    // The captured crossings into the CPU path's HA-buffer, the table grown until nothing is dropped.
-    InsertOptions insert;
-    insert.threads = s.threads;
-    TechniqueBuild b =
-        build_technique(ha_technique_config(config), OffsetSource{}, lists.read_capture(), insert, ResizePolicy{}, 16);
-    counters = b.counters;
-    out.stats.attempts = static_cast<std::uint32_t>(b.attempts.size());
-    buffer = std::move(b.buffer);
-    table = buffer->technique_config().buffer.table;
-    out.stats.list_bytes = memory_model_bytes(*buffer);
-  }
+  const auto t0 = Clock::now();
+  const RecordGather g = gather_crossings(scene, s, box, *mode);
   out.stats.gather_ms = ms_since(t0);
-  out.stats.counters = counters;
-  out.stats.merged = counters.duplicates;
-  out.stats.table_slots = table.area();
-  out.stats.load_factor =
-      static_cast<double>(counters.stored()) / static_cast<double>(std::max<std::uint64_t>(1, out.stats.table_slots));
-  if (counters.failures() > 0)
-    throw gl::GlError("voxelize: " + std::to_string(counters.failures()) + " of " +
-                      std::to_string(counters.fragments) + " crossings lost after " +
-                      std::to_string(out.stats.attempts) + " gathers (table " + table.str() +
-                      "): a lost crossing is a wrong column; a smaller --grid needs a smaller table");
+  gather_stats(g, out);
   const auto p0 = Clock::now();
-  if (!buffer) buffer = lists.technique().read_back();
-  const RecordLayout layout = config.record_layout();
+  const RecordLayout layout = g.buffer->technique_config().buffer.record_layout();
   out.grid = VoxelGrid(s.grid, box);
   std::vector<ListEntry> crossings;
   for (std::uint32_t j = 0; j < s.grid; ++j)
     for (std::uint32_t i = 0; i < s.grid; ++i) {
-      buffer->list(i, j, crossings);
+      g.buffer->list(i, j, crossings);
       out.stats.odd_columns += column_parity(crossings, layout, i, j, s.axis, out.grid);
     }
   out.stats.parity_ms = ms_since(p0);

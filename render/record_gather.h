@@ -1,0 +1,67 @@
+/// @file
+/// One gather of L64 records into an HA-buffer sized from a counting pass,
+/// for the render library's passes whose output is records (the voxelizer's
+/// crossings, CSG's primitives): on the GPU path lossless (up to 16
+/// gathers), on the CPU path the GPU only rasterizes and captures and the
+/// CPU path's HA-buffer grows until nothing drops. Also the framebuffer
+/// without attachments those passes draw into. Private to the render library.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "habuffer/buffer_config.h"
+#include "habuffer/counters.h"
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/shader_program.h"
+
+namespace habuffer {
+
+/// A framebuffer with no attachment, of one size: the passes drawn into it
+/// write no colour and no depth, only records or sample counts. Needs a
+/// current OpenGL 4.5 context; deletes the framebuffer when destroyed.
+class EmptyFramebuffer {
+ public:
+  explicit EmptyFramebuffer(Extent size);
+  ~EmptyFramebuffer();
+  EmptyFramebuffer(const EmptyFramebuffer&) = delete;
+  EmptyFramebuffer& operator=(const EmptyFramebuffer&) = delete;
+
+  /// Binds it with its viewport, depth test, culling (both facings drawn)
+  /// and blending off, runs `draw` with `program` in use, and unbinds both.
+  void draw_with(const gl::ShaderProgram& program, const std::function<void()>& draw) const;
+
+ private:
+  Extent size_;
+  unsigned framebuffer_ = 0;
+};
+
+/// What one gather gave.
+struct RecordGather {
+  std::unique_ptr<FragmentBuffer> buffer;  ///< the records: read back from the GPU, or the CPU path's build
+  Counters counters;                       ///< of the final gather (or the CPU build's final attempt)
+  std::uint32_t attempts = 0;              ///< gathers (GPU) or build attempts (CPU)
+  std::uint64_t list_bytes = 0;            ///< GPU: the container's bytes; CPU: the memory model's
+  Extent table;                            ///< the final table
+};
+
+/// How to draw one gather: the vertex shader, the GLSL appended to the
+/// HA-buffer module's fragment source, the program's uniforms, and the draw calls.
+struct GatherPass {
+  std::string vertex_source;    ///< a whole vertex shader
+  std::string fragment_source;  ///< after the module's fragment source (calls habuffer_insert)
+  std::string name;             ///< for compile errors ("csg gather")
+  std::function<void(const gl::ShaderProgram&)> prepare;  ///< sets the program's uniforms
+  std::function<void(const gl::ShaderProgram&)> draw;     ///< draws with the program
+};
+
+/// The records of `pass` in an L64 HA-buffer of `config` (see the file
+/// comment). `cpu` chooses the CPU path, on `threads`. Counts failures
+/// without throwing: each caller names what a lost record means.
+RecordGather gather_records(const BufferConfig& config, gl::AtomicMode mode, bool cpu, std::uint32_t threads,
+                            const GatherPass& pass);
+
+}  // namespace habuffer
