@@ -252,6 +252,138 @@ py::object key_experiment(const std::string& keys, py::handle domain, double cov
   return rows_table(rows, key_experiment_columns(), "stats --keys");
 }
 
+py::object sweep(const std::string& scene, const std::string& technique, const std::vector<double>& loads,
+                 py::handle size, std::uint32_t repeats, const std::string& path, std::uint64_t seed,
+                 const std::string& offsets, std::uint32_t threads, const std::string& order) {
+  harness::SweepSettings s;
+  s.technique = harness::parse_technique_spec(technique);
+  s.loads = loads;
+  s.repeats = repeats;
+  s.path = path_arg(path);
+  s.seed = seed;
+  if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
+  s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+  s.threads = threads;
+  s.insert_order = order_arg(order);
+  harness::validate_sweep(s);
+  const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+  const Extent e = extent_arg(size, "size");
+  ResultTable t = with_context(w.fragments.empty(), [&] {
+    const harness::Workload workload(w, e);
+    return harness::run_sweep(workload, s);
+  });
+  t.provenance = provenance("sweep");
+  return table_object(t);
+}
+
+py::object bench(const std::vector<std::string>& scenes, const std::vector<std::string>& techniques,
+                 const std::vector<py::object>& sizes, std::uint32_t repeats, const std::string& path,
+                 std::uint32_t threads, std::uint64_t seed, bool floors, const std::string& order) {
+  harness::BenchSettings b;
+  b.scenes = workloads(scenes);
+  for (const std::string& t : techniques) b.techniques.push_back(harness::parse_technique_spec(t));
+  for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
+  b.repeats = repeats;
+  b.path = path_arg(path);
+  b.threads = threads;
+  b.seed = seed;
+  b.floors = floors;
+  b.insert_order = order_arg(order);
+  harness::validate_bench(b);
+  ResultTable t = with_context(needs_context(b.scenes), [&] { return harness::run_bench(b); });
+  t.provenance = provenance("bench");
+  return table_object(t);
+}
+
+py::object frontier(const std::vector<std::string>& scenes, const std::vector<py::object>& sizes, std::uint32_t repeats,
+                    const std::string& path, std::uint32_t threads, const std::vector<double>& targets) {
+  harness::BenchSettings b;
+  b.scenes = workloads(scenes);
+  for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
+  b.path = path_arg(path);
+  b.repeats = repeats;
+  b.threads = threads;
+  b.techniques = harness::frontier_techniques(b.path);
+  harness::validate_bench(b);
+  ResultTable t = with_context(true, [&] { return harness::run_bench(b); });
+  t.title = "frontier";
+  t.provenance = provenance("frontier");
+  harness::mark_pareto(t);
+  ResultTable picks = harness::frontier_picks(t, targets);
+  picks.provenance = t.provenance;
+  return py::make_tuple(table_object(t), table_object(picks));
+}
+
+py::object plan(const std::string& scene, py::handle size, std::optional<double> target_psnr,
+                const std::vector<double>& loads, std::uint32_t trials, std::uint64_t seed, std::uint32_t age_bits) {
+  harness::PlanSettings p;
+  p.target_psnr = target_psnr;
+  p.loads = loads;
+  p.trials = trials;
+  p.seed = seed;
+  p.age_bits = age_bits;
+  const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+  const Extent e = extent_arg(size, "size");
+  ResultTable t = with_context(w.fragments.empty(), [&] {
+    const harness::Workload workload(w, e);
+    return harness::run_plan(workload, p);
+  });
+  t.provenance = provenance("plan");
+  return table_object(t);
+}
+
+py::object figure_fig2(const std::string& scene, const std::vector<float>& opacities, py::handle size,
+                       std::uint32_t repeats, const std::string& path, std::uint32_t threads, float tau) {
+  const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
+  const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+  harness::check_fig2_scene(w);
+  std::vector<float> checked;
+  SceneOptions probe;  // each opacity by the scene option's rule, as habuffer figure fig2
+  for (const float o : opacities) {
+    set_scene_option(probe, "opacity", py::repr(py::float_(o)).cast<std::string>());
+    checked.push_back(probe.opacity);
+  }
+  ResultTable t = with_context(true, [&] { return harness::run_fig2(w, checked, f); });
+  t.provenance = provenance("figure_fig2");
+  return table_object(t);
+}
+
+py::object figure_fig8(const std::string& scene, std::uint32_t frames, double load, py::handle size,
+                       std::uint32_t repeats, const std::string& path, std::uint32_t threads, float tau) {
+  const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
+  if (frames < 2) throw py::value_error("frames must be at least 2");
+  const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
+  harness::check_fig8_scene(w);
+  ResultTable t = with_context(true, [&] { return harness::run_fig8(w, frames, load, f); });
+  t.provenance = provenance("figure_fig8");
+  return table_object(t);
+}
+
+py::object figure_fig10(std::uint32_t planes, py::handle size, std::uint32_t repeats, const std::string& path,
+                        std::uint32_t threads) {
+  if (planes == 0 || planes > 4096) throw py::value_error("planes must be in [1, 4096]");
+  const harness::FigureSettings f = figure_settings(path, size, repeats, threads, harness::FigureSettings{}.tau);
+  harness::BenchSettings b = harness::fig10_bench_settings(planes, f);
+  harness::validate_bench(b);
+  ResultTable t = with_context(true, [&] { return harness::run_bench(b); });
+  t.title = "fig10";
+  t.provenance = provenance("figure_fig10");
+  return table_object(t);
+}
+
+py::object memory_table(py::handle screen, const std::vector<std::uint64_t>& fragments,
+                        const std::vector<double>& loads, bool allocate) {
+  const Extent e = extent_arg(screen, "screen");
+  harness::validate_memory_table(e, fragments, loads);
+  ResultTable t;
+  {
+    py::gil_scoped_release release;
+    t = harness::run_memory_table(e, fragments, loads, allocate);
+  }
+  t.provenance = provenance("memory_table");
+  return table_object(t);
+}
+
 }  // namespace
 
 void bind_results(py::module_& m) {
@@ -266,192 +398,54 @@ void bind_results(py::module_& m) {
         "the rank bound, probes and failures. The same seeds give habuffer stats' numbers.");
   m.def("key_experiment", &key_experiment, py::kw_only(), py::arg("keys") = "sparse-image",
         py::arg("domain") = py::make_tuple(2048, 2048), py::arg("coverage") = 0.25, py::arg("count") = 100000,
-        py::arg("loads") = std::vector<double>{0.5, 0.8, 0.9, 0.95, 0.99}, py::arg("trials") = 5,
-        py::arg("seed") = 1, py::arg("probing") = std::vector<std::string>{"coherent", "independent"},
+        py::arg("loads") = std::vector<double>{0.5, 0.8, 0.9, 0.95, 0.99}, py::arg("trials") = 5, py::arg("seed") = 1,
+        py::arg("probing") = std::vector<std::string>{"coherent", "independent"},
         py::arg("policy") = std::vector<std::string>{"robinhood", "fcfs"}, py::arg("age_bits") = 8,
         py::arg("block") = 8, py::arg("misses") = 10000,
         "The spatial hash's key streams (habuffer stats --keys): age, reads per hit and per miss, failures.");
 
-  m.def(
-      "sweep",
-      [](const std::string& scene, const std::string& technique, const std::vector<double>& loads, py::handle size,
-         std::uint32_t repeats, const std::string& path, std::uint64_t seed, const std::string& offsets,
-         std::uint32_t threads, const std::string& order) {
-        harness::SweepSettings s;
-        s.technique = harness::parse_technique_spec(technique);
-        s.loads = loads;
-        s.repeats = repeats;
-        s.path = path_arg(path);
-        s.seed = seed;
-        if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
-        s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
-        s.threads = threads;
-        s.insert_order = order_arg(order);
-        harness::validate_sweep(s);
-        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
-        const Extent e = extent_arg(size, "size");
-        ResultTable t = with_context(w.fragments.empty(), [&] {
-          const harness::Workload workload(w, e);
-          return harness::run_sweep(workload, s);
-        });
-        t.provenance = provenance("sweep");
-        return table_object(t);
-      },
-      py::arg("scene"), py::kw_only(), py::arg("technique") = "ha",
-      py::arg("loads") = std::vector<double>{0.5, 0.8, 0.9}, py::arg("size") = py::make_tuple(256, 256),
-      py::arg("repeats") = 3, py::arg("path") = "gl", py::arg("seed") = 1, py::arg("offsets") = "random",
-      py::arg("threads") = 0, py::arg("order") = "auto",
-      "habuffer sweep: one fixed view of `scene` (a scene word such as 'hairball:opacity=0.25', a mesh file, or a "
-      "fragment CSV on path='cpu') with the technique sized for each load; one row per load (throughput, probes, "
-      "ages, counters, memory).");
-  m.def(
-      "bench",
-      [](const std::vector<std::string>& scenes, const std::vector<std::string>& techniques,
-         const std::vector<py::object>& sizes, std::uint32_t repeats, const std::string& path, std::uint32_t threads,
-         std::uint64_t seed, bool floors, const std::string& order) {
-        harness::BenchSettings b;
-        b.scenes = workloads(scenes);
-        for (const std::string& t : techniques) b.techniques.push_back(harness::parse_technique_spec(t));
-        for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
-        b.repeats = repeats;
-        b.path = path_arg(path);
-        b.threads = threads;
-        b.seed = seed;
-        b.floors = floors;
-        b.insert_order = order_arg(order);
-        harness::validate_bench(b);
-        ResultTable t = with_context(needs_context(b.scenes), [&] { return harness::run_bench(b); });
-        t.provenance = provenance("bench");
-        return table_object(t);
-      },
-      py::arg("scenes"), py::kw_only(), py::arg("techniques") = std::vector<std::string>{"ha", "lists"},
-      py::arg("sizes") = std::vector<py::object>{py::make_tuple(256, 256)}, py::arg("repeats") = 3,
-      py::arg("path") = "gl", py::arg("threads") = 0, py::arg("seed") = 1, py::arg("floors") = true,
-      py::arg("order") = "auto",
-      "habuffer bench: techniques (words such as 'kbuffer:k=8:occ') on scenes and sizes, rounds interleaved; one "
-      "row per technique, scene and size (times, memory, counters, PSNR against the exact reference).");
-  m.def(
-      "frontier",
-      [](const std::vector<std::string>& scenes, const std::vector<py::object>& sizes, std::uint32_t repeats,
-         const std::string& path, std::uint32_t threads, const std::vector<double>& targets) {
-        harness::BenchSettings b;
-        b.scenes = workloads(scenes);
-        for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
-        b.path = path_arg(path);
-        b.repeats = repeats;
-        b.threads = threads;
-        b.techniques = harness::frontier_techniques(b.path);
-        harness::validate_bench(b);
-        ResultTable t = with_context(true, [&] { return harness::run_bench(b); });
-        t.title = "frontier";
-        t.provenance = provenance("frontier");
-        harness::mark_pareto(t);
-        ResultTable picks = harness::frontier_picks(t, targets);
-        picks.provenance = t.provenance;
-        return py::make_tuple(table_object(t), table_object(picks));
-      },
-      py::arg("scenes"), py::kw_only(), py::arg("sizes") = std::vector<py::object>{py::make_tuple(256, 256)},
-      py::arg("repeats") = 3, py::arg("path") = "gl", py::arg("threads") = 0,
-      py::arg("targets") = std::vector<double>{30.0, 40.0, 50.0},
-      "habuffer figure frontier: every technique and knob of the frontier set, Pareto rows marked; returns (table, "
-      "picks), picks being the cheapest row reaching each target PSNR (dB).");
-  m.def(
-      "plan",
-      [](const std::string& scene, py::handle size, std::optional<double> target_psnr,
-         const std::vector<double>& loads, std::uint32_t trials, std::uint64_t seed, std::uint32_t age_bits) {
-        harness::PlanSettings p;
-        p.target_psnr = target_psnr;
-        p.loads = loads;
-        p.trials = trials;
-        p.seed = seed;
-        p.age_bits = age_bits;
-        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
-        const Extent e = extent_arg(size, "size");
-        ResultTable t = with_context(w.fragments.empty(), [&] {
-          const harness::Workload workload(w, e);
-          return harness::run_plan(workload, p);
-        });
-        t.provenance = provenance("plan");
-        return table_object(t);
-      },
-      py::arg("scene"), py::kw_only(), py::arg("size") = py::make_tuple(256, 256),
-      py::arg("target_psnr") = py::none(), py::arg("loads") = std::vector<double>{0.5, 0.6, 0.7, 0.8, 0.9, 0.95},
-      py::arg("trials") = 3, py::arg("seed") = 1, py::arg("age_bits") = HABUFFER_DEFAULT_AGE_BITS,
-      "habuffer plan: every technique's predicted memory and accuracy for the scene, the recommendation in "
-      "table.notes['recommendation'].");
-  m.def(
-      "figure_fig2",
-      [](const std::string& scene, const std::vector<float>& opacities, py::handle size, std::uint32_t repeats,
-         const std::string& path, std::uint32_t threads, float tau) {
-        const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
-        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
-        harness::check_fig2_scene(w);
-        std::vector<float> checked;
-        SceneOptions probe;  // each opacity by the scene option's rule, as habuffer figure fig2
-        for (const float o : opacities) {
-          set_scene_option(probe, "opacity", py::repr(py::float_(o)).cast<std::string>());
-          checked.push_back(probe.opacity);
-        }
-        ResultTable t = with_context(true, [&] { return harness::run_fig2(w, checked, f); });
-        t.provenance = provenance("figure_fig2");
-        return table_object(t);
-      },
-      py::arg("scene") = "hairball", py::kw_only(),
-      py::arg("opacities") = std::vector<float>{0.125f, 0.25f, 0.5f, 1.0f},
-      py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3, py::arg("path") = "gl",
-      py::arg("threads") = 0, py::arg("tau") = 0.99f,
-      "habuffer figure fig2: frame time and early cull's gain against the scene's opacity.");
-  m.def(
-      "figure_fig8",
-      [](const std::string& scene, std::uint32_t frames, double load, py::handle size, std::uint32_t repeats,
-         const std::string& path, std::uint32_t threads, float tau) {
-        const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
-        if (frames < 2) throw py::value_error("frames must be at least 2");
-        const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
-        harness::check_fig8_scene(w);
-        ResultTable t = with_context(true, [&] { return harness::run_fig8(w, frames, load, f); });
-        t.provenance = provenance("figure_fig8");
-        return table_object(t);
-      },
-      py::arg("scene") = "quads:count=64", py::kw_only(), py::arg("frames") = 16, py::arg("load") = 0.64,
-      py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3, py::arg("path") = "gl",
-      py::arg("threads") = 0, py::arg("tau") = 0.99f,
-      "habuffer figure fig8 (seed 000 Fig. 8): quads pulled together over `frames` frames into a table fixed at "
-      "`load`; time and max age per frame, with and without cull.");
-  m.def(
-      "figure_fig10",
-      [](std::uint32_t planes, py::handle size, std::uint32_t repeats, const std::string& path,
-         std::uint32_t threads) {
-        if (planes == 0 || planes > 4096) throw py::value_error("planes must be in [1, 4096]");
-        const harness::FigureSettings f = figure_settings(path, size, repeats, threads, harness::FigureSettings{}.tau);
-        harness::BenchSettings b = harness::fig10_bench_settings(planes, f);
-        harness::validate_bench(b);
-        ResultTable t = with_context(true, [&] { return harness::run_bench(b); });
-        t.title = "fig10";
-        t.provenance = provenance("figure_fig10");
-        return table_object(t);
-      },
-      py::arg("planes") = 32, py::kw_only(), py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3,
-      py::arg("path") = "gl", py::arg("threads") = 0,
-      "habuffer figure fig10 (seed 001 Fig. 10): N planes front to back and back to front, ha and sorted-lists.");
-  m.def(
-      "memory_table",
-      [](py::handle screen, const std::vector<std::uint64_t>& fragments, const std::vector<double>& loads,
-         bool allocate) {
-        const Extent e = extent_arg(screen, "screen");
-        harness::validate_memory_table(e, fragments, loads);
-        ResultTable t;
-        {
-          py::gil_scoped_release release;
-          t = harness::run_memory_table(e, fragments, loads, allocate);
-        }
-        t.provenance = provenance("memory_table");
-        return table_object(t);
-      },
-      py::arg("screen"), py::kw_only(), py::arg("fragments"), py::arg("loads") = std::vector<double>{0.5, 0.8},
-      py::arg("allocate") = false,
-      "habuffer figure table1: every technique's memory by its model and by seed 000's Table 1 formula "
-      "(allocate=True also builds each container and reports its measured bytes).");
+  m.def("sweep", &sweep, py::arg("scene"), py::kw_only(), py::arg("technique") = "ha",
+        py::arg("loads") = std::vector<double>{0.5, 0.8, 0.9}, py::arg("size") = py::make_tuple(256, 256),
+        py::arg("repeats") = 3, py::arg("path") = "gl", py::arg("seed") = 1, py::arg("offsets") = "random",
+        py::arg("threads") = 0, py::arg("order") = "auto",
+        "habuffer sweep: one fixed view of `scene` (a scene word such as 'hairball:opacity=0.25', a mesh file, or a "
+        "fragment CSV on path='cpu') with the technique sized for each load; one row per load (throughput, probes, "
+        "ages, counters, memory).");
+  m.def("bench", &bench, py::arg("scenes"), py::kw_only(),
+        py::arg("techniques") = std::vector<std::string>{"ha", "lists"},
+        py::arg("sizes") = std::vector<py::object>{py::make_tuple(256, 256)}, py::arg("repeats") = 3,
+        py::arg("path") = "gl", py::arg("threads") = 0, py::arg("seed") = 1, py::arg("floors") = true,
+        py::arg("order") = "auto",
+        "habuffer bench: techniques (words such as 'kbuffer:k=8:occ') on scenes and sizes, rounds interleaved; one "
+        "row per technique, scene and size (times, memory, counters, PSNR against the exact reference).");
+  m.def("frontier", &frontier, py::arg("scenes"), py::kw_only(),
+        py::arg("sizes") = std::vector<py::object>{py::make_tuple(256, 256)}, py::arg("repeats") = 3,
+        py::arg("path") = "gl", py::arg("threads") = 0, py::arg("targets") = std::vector<double>{30.0, 40.0, 50.0},
+        "habuffer figure frontier: every technique and knob of the frontier set, Pareto rows marked; returns (table, "
+        "picks), picks being the cheapest row reaching each target PSNR (dB).");
+  m.def("plan", &plan, py::arg("scene"), py::kw_only(), py::arg("size") = py::make_tuple(256, 256),
+        py::arg("target_psnr") = py::none(), py::arg("loads") = std::vector<double>{0.5, 0.6, 0.7, 0.8, 0.9, 0.95},
+        py::arg("trials") = 3, py::arg("seed") = 1, py::arg("age_bits") = HABUFFER_DEFAULT_AGE_BITS,
+        "habuffer plan: every technique's predicted memory and accuracy for the scene, the recommendation in "
+        "table.notes['recommendation'].");
+  m.def("figure_fig2", &figure_fig2, py::arg("scene") = "hairball", py::kw_only(),
+        py::arg("opacities") = std::vector<float>{0.125f, 0.25f, 0.5f, 1.0f},
+        py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3, py::arg("path") = "gl",
+        py::arg("threads") = 0, py::arg("tau") = 0.99f,
+        "habuffer figure fig2: frame time and early cull's gain against the scene's opacity.");
+  m.def("figure_fig8", &figure_fig8, py::arg("scene") = "quads:count=64", py::kw_only(), py::arg("frames") = 16,
+        py::arg("load") = 0.64, py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3,
+        py::arg("path") = "gl", py::arg("threads") = 0, py::arg("tau") = 0.99f,
+        "habuffer figure fig8 (seed 000 Fig. 8): quads pulled together over `frames` frames into a table fixed at "
+        "`load`; time and max age per frame, with and without cull.");
+  m.def("figure_fig10", &figure_fig10, py::arg("planes") = 32, py::kw_only(),
+        py::arg("size") = py::make_tuple(256, 256), py::arg("repeats") = 3, py::arg("path") = "gl",
+        py::arg("threads") = 0,
+        "habuffer figure fig10 (seed 001 Fig. 10): N planes front to back and back to front, ha and sorted-lists.");
+  m.def("memory_table", &memory_table, py::arg("screen"), py::kw_only(), py::arg("fragments"),
+        py::arg("loads") = std::vector<double>{0.5, 0.8}, py::arg("allocate") = false,
+        "habuffer figure table1: every technique's memory by its model and by seed 000's Table 1 formula "
+        "(allocate=True also builds each container and reports its measured bytes).");
 }
 
 }  // namespace habuffer::python
