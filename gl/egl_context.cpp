@@ -74,6 +74,11 @@ void EglContext::make_current() {
   if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) throw GlError(egl_error("eglMakeCurrent"));
 }
 
+void EglContext::release_current() {
+  if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT))
+    throw GlError(egl_error("eglMakeCurrent (release)"));
+}
+
 EglContext::~EglContext() {
   if (display_ == nullptr) return;
   eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);

@@ -4,6 +4,7 @@
 
 #include "bindings.h"
 #include "habuffer/gl/egl_context.h"
+#include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_info.h"
 
 namespace habuffer::python {
@@ -23,15 +24,38 @@ gl::EglContext*& context_slot() {
 
 }  // namespace
 
-GlContextUse::GlContextUse() : lock_(context_mutex()) {
-  gl::EglContext*& c = context_slot();
-  if (!c)
-    c = new gl::EglContext();  // GlError when none can be made: nothing is kept, a later call tries again
-  else
-    c->make_current();
+namespace {
+
+// Uses on this thread inside one another (guarded by the mutex).
+int& nesting() {
+  static int n = 0;
+  return n;
 }
 
-GlContextUse::~GlContextUse() = default;
+}  // namespace
+
+GlContextUse::GlContextUse() : lock_(context_mutex()) {
+  gl::EglContext*& c = context_slot();
+  if (nesting() == 0) {
+    if (!c)
+      c = new gl::EglContext();  // current on this thread; GlError when none can be made (a later call tries again)
+    else
+      c->make_current();
+  }
+  ++nesting();
+}
+
+// The outermost use releases the context from its thread, so that a call
+// from another Python thread can make it current (EGL refuses a context
+// current on another thread).
+GlContextUse::~GlContextUse() {
+  if (--nesting() > 0) return;
+  try {
+    context_slot()->release_current();
+  } catch (const gl::GlError&) {
+    // The next use makes it current again, or raises EGL's reason then.
+  }
+}
 
 void bind_gl_context(py::module_& m) {
   m.def(

@@ -228,3 +228,18 @@ def test_the_gpu_path_builds_the_cpu_paths_lists(gl_available):
     assert gpu.build_report["path"] == "gl" and gpu.build_report["gl_renderer"]
     for name in ("offsets", "codes", "rgba"):
         np.testing.assert_array_equal(getattr(cpu.lists(), name), getattr(gpu.lists(), name))
+
+
+def test_gpu_calls_from_two_python_threads_share_the_modules_context(gl_available):
+    xy, depth, rgba = small_stream(500)
+    results = []
+
+    def build_on_gl():
+        results.append(hb.build(xy, depth, rgba, screen=(32, 24), path="gl").counters["stored"])
+
+    for _ in range(2):  # one after the other, each on a thread of its own
+        t = threading.Thread(target=build_on_gl)
+        t.start()
+        t.join()
+    build_on_gl()  # and on this thread
+    assert len(results) == 3 and len(set(results)) == 1 and results[0] > 0

@@ -24,6 +24,10 @@ class EglContext {
 
   /// Makes the context current on this thread; throws GlError when EGL refuses.
   void make_current();
+  /// Releases the context from this thread (no context current here), so
+  /// that another thread may make it current: EGL refuses a context current
+  /// on a thread to every other one.
+  void release_current();
   /// e.g. "EGL device 0 (EGL_EXT_platform_device)" or "Mesa surfaceless".
   [[nodiscard]] const std::string& description() const { return description_; }
 
