@@ -194,6 +194,20 @@ harness::Provenance provenance(const std::string& call) {
   return {"python: habuffer." + call, harness::machine_description(), ""};
 }
 
+// `run` on the workload of `word` at `size` (the module's context current
+// for a scene), its table with the call's provenance.
+template <class Run>
+py::object on_workload(const std::string& word, py::handle size, const char* call, Run run) {
+  const harness::WorkloadSpec spec = harness::parse_workload_spec(word);
+  const Extent e = extent_arg(size, "size");
+  ResultTable t = with_context(spec.fragments.empty(), [&] {
+    const harness::Workload workload(spec, e);
+    return run(workload);
+  });
+  t.provenance = provenance(call);
+  return table_object(t);
+}
+
 py::object age_experiment(py::handle screen, py::handle table, const std::vector<double>& loads, std::uint32_t trials,
                           std::uint64_t seed, const std::string& stream, double spread,
                           const std::vector<std::string>& probing, const std::vector<std::string>& policy,
@@ -266,14 +280,7 @@ py::object sweep(const std::string& scene, const std::string& technique, const s
   s.threads = threads;
   s.insert_order = order_arg(order);
   harness::validate_sweep(s);
-  const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
-  const Extent e = extent_arg(size, "size");
-  ResultTable t = with_context(w.fragments.empty(), [&] {
-    const harness::Workload workload(w, e);
-    return harness::run_sweep(workload, s);
-  });
-  t.provenance = provenance("sweep");
-  return table_object(t);
+  return on_workload(scene, size, "sweep", [&](const harness::Workload& w) { return harness::run_sweep(w, s); });
 }
 
 py::object bench(const std::vector<std::string>& scenes, const std::vector<std::string>& techniques,
@@ -322,14 +329,7 @@ py::object plan(const std::string& scene, py::handle size, std::optional<double>
   p.trials = trials;
   p.seed = seed;
   p.age_bits = age_bits;
-  const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
-  const Extent e = extent_arg(size, "size");
-  ResultTable t = with_context(w.fragments.empty(), [&] {
-    const harness::Workload workload(w, e);
-    return harness::run_plan(workload, p);
-  });
-  t.provenance = provenance("plan");
-  return table_object(t);
+  return on_workload(scene, size, "plan", [&](const harness::Workload& w) { return harness::run_plan(w, p); });
 }
 
 py::object figure_fig2(const std::string& scene, const std::vector<float>& opacities, py::handle size,

@@ -11,6 +11,7 @@
 namespace habuffer::python {
 namespace {
 
+using namespace pybind11::literals;
 using spatial::SpatialHash;
 using spatial::SpatialHashConfig;
 
@@ -37,15 +38,9 @@ std::vector<std::uint32_t> values_from(py::handle obj, std::size_t n) {
 }
 
 py::dict report_dict(const spatial::InsertReport& r) {
-  py::dict d;
-  d["calls"] = r.calls;
-  d["stored"] = r.stored;
-  d["duplicates"] = r.duplicates;
-  d["failed_age"] = r.failed_age;
-  d["failed_iter"] = r.failed_iter;
-  d["lost"] = r.lost;
-  d["rehashes"] = r.rehashes;
-  return d;
+  return py::dict("calls"_a = r.calls, "stored"_a = r.stored, "duplicates"_a = r.duplicates,
+                  "failed_age"_a = r.failed_age, "failed_iter"_a = r.failed_iter, "lost"_a = r.lost,
+                  "rehashes"_a = r.rehashes);
 }
 
 // The batched find of keys (N, 2|3), with the GIL released.
@@ -145,18 +140,11 @@ void bind_spatial(py::module_& m) {
           "stats",
           [](const SpatialHash& self) {
             const spatial::SpatialHashStats s = self.stats();
-            py::dict d;
-            d["slots"] = s.slots;
-            d["keys"] = s.keys;
-            d["tombstones"] = s.tombstones;
-            d["load"] = s.load;
-            d["max_age"] = s.max_age;
-            d["mean_age"] = s.mean_age;
-            d["ages"] = owned_array(std::vector<std::uint64_t>(s.ages));
-            d["quotient_bits"] = s.quotient_bits;
-            d["memory_bytes"] = s.memory_bytes;
-            d["bytes_per_key"] = s.bytes_per_key;
-            return d;
+            return py::dict("slots"_a = s.slots, "keys"_a = s.keys, "tombstones"_a = s.tombstones, "load"_a = s.load,
+                            "max_age"_a = s.max_age, "mean_age"_a = s.mean_age,
+                            "ages"_a = owned_array(std::vector<std::uint64_t>(s.ages)),
+                            "quotient_bits"_a = s.quotient_bits, "memory_bytes"_a = s.memory_bytes,
+                            "bytes_per_key"_a = s.bytes_per_key);
           },
           "The table's statistics (habuffer hash stats).")
       .def(
