@@ -36,6 +36,7 @@ from ._habuffer import (  # noqa: F401
     read_fragments,
     sweep,
     techniques,
+    voxelize,
 )
 
 
@@ -70,5 +71,5 @@ def HaBuffer(screen, **kwargs):
 __all__ = [
     "FRAGMENT_DTYPE", "Buffer", "DataError", "GlError", "HaBuffer", "Lists", "SceneError", "SpatialHash",
     "Table", "age_experiment", "bench", "build", "figure_fig2", "figure_fig8", "figure_fig10", "frontier", "gl_info", "key_experiment",
-    "memory_table", "offsets", "plan", "read_fragments", "sweep", "techniques",
+    "memory_table", "offsets", "plan", "read_fragments", "sweep", "techniques", "voxelize",
 ]

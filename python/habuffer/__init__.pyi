@@ -108,6 +108,9 @@ def figure_fig10(planes: int = 32, *, size: Size = (256, 256), repeats: int = 3,
 def memory_table(screen: Size, *, fragments: Sequence[int], loads: Sequence[float] = (0.5, 0.8),
                  allocate: bool = False) -> Table: ...
 
+def voxelize(mesh: str, *, grid: int = 128, axis: str = "z", path: str = "gl", threads: int = 0,
+             reference: bool = False) -> Tuple[npt.NDArray[np.bool_], dict[str, Any]]: ...
+
 class SpatialHash:
     def __init__(self, domain: Sequence[int], *, capacity: int = 0, rule: str = "last", age_bits: int = ...,
                  load: float = 0.8, adaptive: bool = True, seed: int = 1, offsets: str = "random",

@@ -13,6 +13,7 @@ void bind_config(py::module_& m);      // config.cpp: techniques, offsets, fragm
 void bind_buffers(py::module_& m);     // buffers.cpp: every technique's container
 void bind_results(py::module_& m);     // results.cpp: statistics and harness tables
 void bind_spatial(py::module_& m);     // spatial.cpp: the spatial hash
+void bind_applications(py::module_& m);  // applications.cpp: solid voxelization
 void bind_gl_context(py::module_& m);  // gl_context.cpp: the headless context the GL calls share
 
 }  // namespace habuffer::python

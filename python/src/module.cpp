@@ -27,5 +27,6 @@ PYBIND11_MODULE(_habuffer, m) {
   bind_buffers(m);
   bind_results(m);
   bind_spatial(m);
+  bind_applications(m);
   bind_gl_context(m);
 }

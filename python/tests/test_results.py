@@ -110,3 +110,20 @@ def test_bench_plan_and_the_memory_table_return_tables_of_arrays(workdir):
 def test_a_scene_runs_on_the_gpu_path_through_the_modules_context(gl_available):
     t = hb.sweep("planes:count=4", size=(32, 32), loads=[0.8], repeats=1, path="gl")
     assert t.rows == 1 and t["fragments"][0] > 0
+
+
+def test_voxelize_gives_the_clis_grid_as_a_dense_array(cli, workdir, gl_available):
+    stats_path = os.path.join(workdir, "vox.json")
+    cli("voxelize", "--mesh", "torus", "--grid", 32, "--out", os.path.join(workdir, "vox.grid"), "--stats",
+        stats_path, "--quiet")
+    with open(stats_path) as f:
+        want = json.load(f)
+    solid, stats = hb.voxelize("torus", grid=32, reference=True)
+    assert solid.shape == (32, 32, 32) and solid.dtype == np.bool_
+    assert int(solid.sum()) == stats["voxels"] == want["voxels"] > 0
+    assert stats["reference"]["mismatches"] == 0
+    assert not solid[:, 16, 16].any()  # the torus' hole is empty along z at the centre column
+    cpu, _ = hb.voxelize("torus", grid=32, path="cpu")
+    np.testing.assert_array_equal(cpu, solid)
+    with pytest.raises(ValueError, match="axis"):
+        hb.voxelize("torus", axis="w")
