@@ -68,26 +68,102 @@ double student_t95(std::uint32_t df) {
   return 1.960 + 2.4 / static_cast<double>(df);  // within 0.002 of the exact quantile beyond 30
 }
 
-std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
+namespace {
+
+// One variant's measurements at one load, summed over its trials.
+struct VariantAccumulator {
+  Moments age, excess, stored_load, max_age;
+  std::vector<std::uint64_t> hist;
+  std::uint64_t calls = 0, probes = 0, traversal = 0, wasted = 0, pixels = 0, failures = 0;
+  std::uint32_t max_probes = 0;
+  double bound = 0.0;
+
+  // One trial's totals; `bound` is its stream's rank bound.
+  void add_trial(const SimulatorTotals& tot, double trial_bound, std::uint32_t trials, Extent table) {
+    std::uint64_t stored = 0, weighted = 0;
+    std::uint32_t trial_max = 0;
+    for (std::uint32_t g = 1; g < tot.age_histogram.size(); ++g) {
+      stored += tot.age_histogram[g];
+      weighted += std::uint64_t{g} * tot.age_histogram[g];
+      if (tot.age_histogram[g] != 0) trial_max = g;
+    }
+    const double mean = stored ? static_cast<double>(weighted) / static_cast<double>(stored) : 0.0;
+    age.add(mean);
+    max_age.add(trial_max);
+    excess.add(mean - trial_bound);
+    bound += trial_bound / trials;
+    stored_load.add(static_cast<double>(stored) / static_cast<double>(table.area()));
+    if (hist.size() < tot.age_histogram.size()) hist.resize(tot.age_histogram.size(), 0);
+    for (std::size_t g = 0; g < tot.age_histogram.size(); ++g) hist[g] += tot.age_histogram[g];
+    calls += tot.counters.fragments - tot.counters.invalid;
+    probes += tot.probes;
+    max_probes = std::max(max_probes, tot.max_probes);
+    traversal += tot.traversal_probes;
+    wasted += tot.wasted_traversal_probes;
+    pixels += tot.pixels;
+    failures += tot.counters.failures();
+  }
+
+  // The pooled ages' variance (of every stored record over the trials).
+  [[nodiscard]] double pooled_variance() const {
+    double n = 0, s1 = 0, s2 = 0;
+    for (std::size_t g = 1; g < hist.size(); ++g) {
+      const double k = static_cast<double>(hist[g]);
+      n += k;
+      s1 += k * static_cast<double>(g);
+      s2 += k * static_cast<double>(g) * static_cast<double>(g);
+    }
+    return n > 1 ? (s2 - s1 * s1 / n) / (n - 1) : 0.0;
+  }
+
+  [[nodiscard]] ExperimentRow row(const Variant& variant, double load, std::uint32_t trials) const {
+    ExperimentRow r;
+    r.variant = variant;
+    r.load = load;
+    r.stored_load = stored_load.mean();
+    r.trials = trials;
+    r.mean_age = age.mean();
+    r.mean_age_ci95 = age.ci95();
+    r.age_variance = pooled_variance();
+    r.p50 = percentile(hist, 0.50);
+    r.p90 = percentile(hist, 0.90);
+    r.p99 = percentile(hist, 0.99);
+    for (std::size_t g = 0; g < hist.size(); ++g)
+      if (hist[g] != 0) r.max_age = static_cast<std::uint32_t>(g);
+    r.mean_max_age = max_age.mean();
+    r.mean_max_age_ci95 = max_age.ci95();
+    r.rank_bound = bound;
+    r.excess = excess.mean();
+    r.excess_ci95 = excess.ci95();
+    r.mean_probes = calls ? static_cast<double>(probes) / static_cast<double>(calls) : 0.0;
+    r.max_probes = max_probes;
+    r.traversal_probes = static_cast<double>(traversal) / static_cast<double>(pixels);
+    r.wasted_traversal_probes = static_cast<double>(wasted) / static_cast<double>(pixels);
+    r.failures = failures;
+    return r;
+  }
+};
+
+void validate_experiment(const ExperimentConfig& c) {
   if (c.trials == 0) throw std::invalid_argument("at least one trial is needed");
   if (c.screen.area() == 0) throw std::invalid_argument("screen size " + c.screen.str() + " is empty");
   if (c.table != Extent{} && c.table.area() == 0)
     throw std::invalid_argument("table " + c.table.str() + " has a zero side (0x0 means the screen's size)");
+  for (const double load : c.loads)
+    if (!(load > 0.0)) throw std::invalid_argument("loads must be positive");
+}
+
+}  // namespace
+
+std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
+  validate_experiment(c);
   const Extent table = c.table == Extent{} ? c.screen : c.table;
   const RecordLayout layout(Layout::L32, c.age_bits);
   std::vector<ExperimentRow> rows;
   const std::uint64_t total_trials = std::uint64_t{c.trials} * c.loads.size();
   std::uint64_t trials_done = 0;
-  for (double load : c.loads) {
-    if (!(load > 0.0)) throw std::invalid_argument("loads must be positive");
-    struct Acc {
-      Moments age, excess, stored_load, max_age;
-      std::vector<std::uint64_t> hist;
-      std::uint64_t calls = 0, probes = 0, traversal = 0, wasted = 0, pixels = 0, failures = 0;
-      std::uint32_t max_probes = 0;
-      double bound = 0.0;
-    };
-    std::vector<Acc> acc(c.variants.size());
+  for (const double load : c.loads) {
+    std::vector<VariantAccumulator> acc(c.variants.size());
     for (std::uint32_t t = 0; t < c.trials; ++t) {
       StreamOptions so = c.stream;
       so.count = static_cast<std::uint64_t>(std::llround(load * static_cast<double>(table.area())));
@@ -99,69 +175,11 @@ std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
                            so.seed * 31 + 7, c.variants[v].offsets};
         ProbeSimulator sim(sc);
         sim.insert(frags);
-        const SimulatorTotals tot = sim.totals();
-        Acc& a = acc[v];
-        std::uint64_t stored = 0, weighted = 0;
-        for (std::uint32_t g = 1; g < tot.age_histogram.size(); ++g) {
-          stored += tot.age_histogram[g];
-          weighted += std::uint64_t{g} * tot.age_histogram[g];
-        }
-        const double mean = stored ? static_cast<double>(weighted) / static_cast<double>(stored) : 0.0;
-        a.age.add(mean);
-        std::uint32_t trial_max = 0;
-        for (std::uint32_t g = 1; g < tot.age_histogram.size(); ++g)
-          if (tot.age_histogram[g] != 0) trial_max = g;
-        a.max_age.add(trial_max);
-        a.excess.add(mean - bound);
-        a.bound += bound / c.trials;
-        a.stored_load.add(static_cast<double>(stored) / static_cast<double>(table.area()));
-        if (a.hist.size() < tot.age_histogram.size()) a.hist.resize(tot.age_histogram.size(), 0);
-        for (std::size_t g = 0; g < tot.age_histogram.size(); ++g) a.hist[g] += tot.age_histogram[g];
-        a.calls += tot.counters.fragments - tot.counters.invalid;
-        a.probes += tot.probes;
-        a.max_probes = std::max(a.max_probes, tot.max_probes);
-        a.traversal += tot.traversal_probes;
-        a.wasted += tot.wasted_traversal_probes;
-        a.pixels += tot.pixels;
-        a.failures += tot.counters.failures();
+        acc[v].add_trial(sim.totals(), bound, c.trials, table);
       }
       if (c.on_progress) c.on_progress(++trials_done, total_trials);
     }
-    for (std::size_t v = 0; v < c.variants.size(); ++v) {
-      const Acc& a = acc[v];
-      ExperimentRow r;
-      r.variant = c.variants[v];
-      r.load = load;
-      r.stored_load = a.stored_load.mean();
-      r.trials = c.trials;
-      r.mean_age = a.age.mean();
-      r.mean_age_ci95 = a.age.ci95();
-     
-      double n = 0, s1 = 0, s2 = 0;
-      for (std::size_t g = 1; g < a.hist.size(); ++g) {
-        const double k = static_cast<double>(a.hist[g]);
-        n += k;
-        s1 += k * static_cast<double>(g);
-        s2 += k * static_cast<double>(g) * static_cast<double>(g);
-      }
-      r.age_variance = n > 1 ? (s2 - s1 * s1 / n) / (n - 1) : 0.0;
-      r.p50 = percentile(a.hist, 0.50);
-      r.p90 = percentile(a.hist, 0.90);
-      r.p99 = percentile(a.hist, 0.99);
-      for (std::size_t g = 0; g < a.hist.size(); ++g)
-        if (a.hist[g] != 0) r.max_age = static_cast<std::uint32_t>(g);
-      r.mean_max_age = a.max_age.mean();
-      r.mean_max_age_ci95 = a.max_age.ci95();
-      r.rank_bound = a.bound;
-      r.excess = a.excess.mean();
-      r.excess_ci95 = a.excess.ci95();
-      r.mean_probes = a.calls ? static_cast<double>(a.probes) / static_cast<double>(a.calls) : 0.0;
-      r.max_probes = a.max_probes;
-      r.traversal_probes = static_cast<double>(a.traversal) / static_cast<double>(a.pixels);
-      r.wasted_traversal_probes = static_cast<double>(a.wasted) / static_cast<double>(a.pixels);
-      r.failures = a.failures;
-      rows.push_back(r);
-    }
+    for (std::size_t v = 0; v < c.variants.size(); ++v) rows.push_back(acc[v].row(c.variants[v], load, c.trials));
   }
   return rows;
 }
