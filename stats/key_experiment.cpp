@@ -149,69 +149,103 @@ std::vector<std::uint64_t> simulate_coherent_robin_hood(const std::vector<glm::u
   return out;
 }
 
+namespace {
+
+// One trial of one variant at one load: its key set, the table built from
+// it in shuffled order, and lookups of absent keys.
+struct KeyTrial {
+  double mean_age = 0.0;
+  std::uint32_t max_age = 0;
+  double stored_load = 0.0;
+  double failed = 0.0;
+  double keys = 0.0;
+  double miss_reads = 0.0;
+};
+
+// The mean and largest age of the table's records, and how many there are.
+void measure_ages(const Table& t, KeyTrial& out, std::uint64_t& records) {
+  double sum = 0;
+  records = 0;
+  for (const Slot& s : t.slots)
+    if (s.age != 0) {
+      sum += s.age;
+      out.max_age = std::max(out.max_age, s.age);
+      ++records;
+    }
+  out.mean_age = records ? sum / static_cast<double>(records) : 0.0;
+}
+
+KeyTrial run_key_trial(const KeyExperimentConfig& c, KeyProbing probing, KeyPolicy policy, double load,
+                       std::uint32_t trial) {
+  KeySetOptions o = c.keys;
+  o.seed = c.keys.seed + trial;
+  const std::vector<glm::uvec3> keys = make_keys(o);
+  const std::vector<glm::uvec3> order = ordered(keys, KeyOrder::Shuffled, c.seed + trial);
+  const FoldedDomain fold(o.domain);
+  const Extent h = SpatialHash::table_for(fold, c.age_bits, keys.size(), load);
+  const OffsetSequence offsets = OffsetSequence::random(h, (1u << c.age_bits) - 1, c.seed + trial);
+  Table t = empty_table(fold, h, c.age_bits, c.block, offsets, probing, policy, c.seed * 0x9E3779B97F4A7C15ull + trial);
+  std::uint64_t failed = 0;
+  for (const glm::uvec3 k : order) {
+    const glm::uvec2 f = fold.fold(k);
+    failed += t.insert({1, f.x, f.y}) ? 0 : 1;
+  }
+  KeyTrial r;
+  std::uint64_t records = 0;
+  measure_ages(t, r, records);
+  r.stored_load = static_cast<double>(records) / static_cast<double>(h.area());
+  r.failed = static_cast<double>(failed);
+  r.keys = static_cast<double>(keys.size());
+  const std::uint64_t free_points = std::uint64_t{o.domain.x} * o.domain.y * o.domain.z - keys.size();
+  const std::uint64_t want = std::min<std::uint64_t>(c.misses, free_points / 2);
+  const std::vector<glm::uvec3> absent =
+      want ? absent_keys(keys, o.domain, want, c.seed + 7 * trial) : std::vector<glm::uvec3>{};
+  double reads = 0;
+  for (const glm::uvec3 k : absent) {
+    const glm::uvec2 f = fold.fold(k);
+    reads += t.reads({1, f.x, f.y});
+  }
+  r.miss_reads = absent.empty() ? 0.0 : reads / static_cast<double>(absent.size());
+  return r;
+}
+
+KeyExperimentRow key_row(const KeyExperimentConfig& c, KeyProbing probing, KeyPolicy policy, double load) {
+  KeyExperimentRow row;
+  row.variant = std::string(probing == KeyProbing::Coherent ? "coherent" : "independent") + "/" +
+                (policy == KeyPolicy::RobinHood ? "robinhood" : "firstcome");
+  row.load = load;
+  Mean age, max_age, stored, miss, fail, nkeys;
+  for (std::uint32_t trial = 0; trial < c.trials; ++trial) {
+    const KeyTrial t = run_key_trial(c, probing, policy, load, trial);
+    age.add(t.mean_age);
+    max_age.add(t.max_age);
+    row.max_age = std::max(row.max_age, t.max_age);
+    stored.add(t.stored_load);
+    fail.add(t.failed);
+    nkeys.add(t.keys);
+    miss.add(t.miss_reads);
+  }
+  row.trials = c.trials;
+  row.keys = nkeys.mean();
+  row.stored_load = stored.mean();
+  row.mean_age = age.mean();
+  row.mean_age_ci95 = age.ci95();
+  row.mean_max_age = max_age.mean();
+  row.hit_reads = row.mean_age;  // a present key is read at its age
+  row.miss_reads = miss.mean();
+  row.miss_reads_ci95 = miss.ci95();
+  row.failures = fail.mean();
+  return row;
+}
+
+}  // namespace
+
 std::vector<KeyExperimentRow> run_key_experiment(const KeyExperimentConfig& c) {
   c.validate();
   std::vector<KeyExperimentRow> rows;
   for (const KeyProbing probing : c.probing)
     for (const KeyPolicy policy : c.policy)
-      for (const double load : c.loads) {
-        KeyExperimentRow row;
-        row.variant = std::string(probing == KeyProbing::Coherent ? "coherent" : "independent") + "/" +
-                      (policy == KeyPolicy::RobinHood ? "robinhood" : "firstcome");
-        row.load = load;
-        Mean age, max_age, stored, miss, fail, nkeys;
-        for (std::uint32_t trial = 0; trial < c.trials; ++trial) {
-          KeySetOptions o = c.keys;
-          o.seed = c.keys.seed + trial;
-          const std::vector<glm::uvec3> keys = make_keys(o);
-          const std::vector<glm::uvec3> order = ordered(keys, KeyOrder::Shuffled, c.seed + trial);
-          const FoldedDomain fold(o.domain);
-          const Extent h = SpatialHash::table_for(fold, c.age_bits, keys.size(), load);
-          const OffsetSequence offsets = OffsetSequence::random(h, (1u << c.age_bits) - 1, c.seed + trial);
-          Table t = empty_table(fold, h, c.age_bits, c.block, offsets, probing, policy,
-                                c.seed * 0x9E3779B97F4A7C15ull + trial);
-          std::uint64_t failed = 0;
-          for (const glm::uvec3 k : order) {
-            const glm::uvec2 f = fold.fold(k);
-            failed += t.insert({1, f.x, f.y}) ? 0 : 1;
-          }
-          double sum = 0;
-          std::uint32_t largest = 0;
-          std::uint64_t n = 0;
-          for (const Slot& s : t.slots)
-            if (s.age != 0) {
-              sum += s.age;
-              largest = std::max(largest, s.age);
-              ++n;
-            }
-          age.add(n ? sum / static_cast<double>(n) : 0.0);
-          max_age.add(largest);
-          row.max_age = std::max(row.max_age, largest);
-          stored.add(static_cast<double>(n) / static_cast<double>(h.area()));
-          fail.add(static_cast<double>(failed));
-          nkeys.add(static_cast<double>(keys.size()));
-          const std::uint64_t free_points = std::uint64_t{o.domain.x} * o.domain.y * o.domain.z - keys.size();
-          const std::uint64_t want = std::min<std::uint64_t>(c.misses, free_points / 2);
-          double reads = 0;
-          const std::vector<glm::uvec3> absent = want ? absent_keys(keys, o.domain, want, c.seed + 7 * trial) : std::vector<glm::uvec3>{};
-          for (const glm::uvec3 k : absent) {
-            const glm::uvec2 f = fold.fold(k);
-            reads += t.reads({1, f.x, f.y});
-          }
-          miss.add(absent.empty() ? 0.0 : reads / static_cast<double>(absent.size()));
-        }
-        row.trials = c.trials;
-        row.keys = nkeys.mean();
-        row.stored_load = stored.mean();
-        row.mean_age = age.mean();
-        row.mean_age_ci95 = age.ci95();
-        row.mean_max_age = max_age.mean();
-        row.hit_reads = row.mean_age;  // a present key is read at its age
-        row.miss_reads = miss.mean();
-        row.miss_reads_ci95 = miss.ci95();
-        row.failures = fail.mean();
-        rows.push_back(row);
-      }
+      for (const double load : c.loads) rows.push_back(key_row(c, probing, policy, load));
   return rows;
 }
 
