@@ -88,6 +88,34 @@ void check_fig8_scene(const WorkloadSpec& scene) {
     throw std::invalid_argument("fig8 sets the spread per frame: drop spread= from '" + scene.word + "'");
 }
 
+namespace {
+
+// Fig. 2's frame-time columns without and with translucent shadows, and the light's.
+void set_shadow_columns(ResultRow& row, const ShadowColumns& sc, const FrameStats& last) {
+  const Spread plain = spread_of(sc.plain_ms), shadowed = spread_of(sc.shadowed_ms);
+  row.set("frame_ms", plain.median).set("frame_ms_shadows", shadowed.median)
+      .set("fps", plain.median > 0 ? 1e3 / plain.median : 0.0)
+      .set("fps_shadows", shadowed.median > 0 ? 1e3 / shadowed.median : 0.0)
+      .set("shadow_frame_ratio", shadowed.median > 0 ? plain.median / shadowed.median : 0.0)
+      .set("light_fragments", sc.light.counters.fragments).set("light_stored", sc.light.counters.stored())
+      .set("fragments_with_shadows", last.counters.fragments + sc.light.counters.fragments)
+      .set("light_build_ms", sc.light.build_ms).set("light_builds", sc.light.builds);
+}
+
+void add_fig2_notes(ResultTable& table, const WorkloadSpec& scene, const FigureSettings& s) {
+  table.notes["workload"] = scene.word + " at " + s.size.str() + ", opacity-1 meshes inserted (not the opaque pass)";
+  table.notes["frame_ms"] = "the second of two frames of one view, without and with translucent shadows "
+                            "(frame_ms_shadows), interleaved; fps = 1000 / frame_ms";
+  table.notes["shadow_frame_ratio"] = "fps_shadows / fps (seed 000's Fig. 2 on a GTX 680: 0.63 to 0.71)";
+  table.notes["light"] = "directional (-0.4, -1, -0.3), map " + s.size.str() +
+                         ", its buffer culled like the view's, table automatic; built once before the first frame "
+                         "(light_build_ms), so frame_ms_shadows holds only the lookups";
+  table.notes["table"] = "fixed, sized for load 0.5 of the fragments without cull (the screen when they are fewer)";
+  table.notes["fill_rate_mfrag_per_s"] = "fragments reaching insertion per second of gather (seed 000: stays constant)";
+}
+
+}  // namespace
+
 ResultTable run_fig2(const WorkloadSpec& scene, const std::vector<float>& opacities, const FigureSettings& s) {
   check_fig2_scene(scene);
   if (opacities.empty()) throw std::invalid_argument("no opacity given");
@@ -126,28 +154,12 @@ ResultTable run_fig2(const WorkloadSpec& scene, const std::vector<float>& opacit
           .set("fill_rate_mfrag_per_s", g.median > 0 ? frags / (g.median * 1e3) : 0.0)
           .set("stored_mfrag_per_s", g.median > 0 ? static_cast<double>(last.counters.stored()) / (g.median * 1e3) : 0.0)
           .set("max_age", last.max_age);
-      const ShadowColumns sc = shadow_columns(workload, r, s, done, total);
-      const Spread plain = spread_of(sc.plain_ms), shadowed = spread_of(sc.shadowed_ms);
-      row.set("frame_ms", plain.median).set("frame_ms_shadows", shadowed.median)
-          .set("fps", plain.median > 0 ? 1e3 / plain.median : 0.0)
-          .set("fps_shadows", shadowed.median > 0 ? 1e3 / shadowed.median : 0.0)
-          .set("shadow_frame_ratio", shadowed.median > 0 ? plain.median / shadowed.median : 0.0)
-          .set("light_fragments", sc.light.counters.fragments).set("light_stored", sc.light.counters.stored())
-          .set("fragments_with_shadows", last.counters.fragments + sc.light.counters.fragments)
-          .set("light_build_ms", sc.light.build_ms).set("light_builds", sc.light.builds);
+      set_shadow_columns(row, shadow_columns(workload, r, s, done, total), last);
       table.rows.push_back(row);
       table.provenance.renderer = device;
     }
   }
-  table.notes["workload"] = scene.word + " at " + s.size.str() + ", opacity-1 meshes inserted (not the opaque pass)";
-  table.notes["frame_ms"] = "the second of two frames of one view, without and with translucent shadows "
-                            "(frame_ms_shadows), interleaved; fps = 1000 / frame_ms";
-  table.notes["shadow_frame_ratio"] = "fps_shadows / fps (seed 000's Fig. 2 on a GTX 680: 0.63 to 0.71)";
-  table.notes["light"] = "directional (-0.4, -1, -0.3), map " + s.size.str() +
-                         ", its buffer culled like the view's, table automatic; built once before the first frame "
-                         "(light_build_ms), so frame_ms_shadows holds only the lookups";
-  table.notes["table"] = "fixed, sized for load 0.5 of the fragments without cull (the screen when they are fewer)";
-  table.notes["fill_rate_mfrag_per_s"] = "fragments reaching insertion per second of gather (seed 000: stays constant)";
+  add_fig2_notes(table, scene, s);
   return table;
 }
 

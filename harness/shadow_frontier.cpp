@@ -96,13 +96,10 @@ void set_scores(ResultRow& row, const ShadowAccuracy& a) {
       .set("receivers", a.receivers).set("band", a.band).set("self_shadow", a.self_shadow);
 }
 
-}  // namespace
-
-ResultTable run_shadow_frontier(const WorkloadSpec& scene, const ShadowFrontierSettings& s) {
-  if (!scene.fragments.empty())
-    throw std::invalid_argument("the shadow frontier lights a scene: '" + scene.word + "' is a fragment file");
-  if (s.repeats == 0) throw std::invalid_argument("--repeats must be at least 1");
-  const Workload workload(scene, s.size);
+// The view rendered once with the directional light, keeping what the
+// variants are scored on: the view's fragments, the light's buffer and its
+// captured stream.
+RenderSettings lit_view_settings(const ShadowFrontierSettings& s) {
   RenderSettings r;
   r.config.screen = s.size;
   r.keep_fragments = true;
@@ -113,8 +110,20 @@ ResultTable run_shadow_frontier(const WorkloadSpec& scene, const ShadowFrontierS
   light.read_back = true;
   light.capture = true;
   r.shadows = light;
+  return r;
+}
+
+}  // namespace
+
+ResultTable run_shadow_frontier(const WorkloadSpec& scene, const ShadowFrontierSettings& s) {
+  if (!scene.fragments.empty())
+    throw std::invalid_argument("the shadow frontier lights a scene: '" + scene.word + "' is a fragment file");
+  if (s.repeats == 0) throw std::invalid_argument("--repeats must be at least 1");
+  const Workload workload(scene, s.size);
+  const RenderSettings r = lit_view_settings(s);
   const RenderResult res = workload.render(r);
   const LightStats& ls = *res.light;
+  const ShadowSettings& light = *r.shadows;
   const RecordLayout layout(Layout::L64, light.age_bits);
   const TransmittanceReference reference(*workload.scene());
   const ShadowReceivers receivers{&res.camera, s.size, res.fragments, res.opaque_depth};

@@ -123,6 +123,20 @@ std::pair<Scene, std::vector<std::string>> parse_solids(const std::string& text)
   return {std::move(scene), std::move(names)};
 }
 
+void write_csg_stats(const std::string& file, const CsgExpression& expression, Extent screen, const std::string& path,
+                     std::uint64_t covered, const CsgRender& r, const std::optional<CsgCheck>& check) {
+  JsonWriter json;
+  json.begin_object().field("expression", expression.text()).field("primitives", expression.primitives());
+  write_extent(json, "size", screen);
+  json.field("path", path).field("covered_pixels", covered);
+  write_counters(json, r.counters);
+  json.field("attempts", r.attempts).field("memory_bytes", r.list_bytes);
+  json.field("gather_ms", r.gather_ms).field("resolve_ms", r.resolve_ms);
+  if (check) json.key("reference").begin_object().field("mismatches", check->mismatches).field("band", check->band).end_object();
+  json.end_object();
+  json.save(file);
+}
+
 }  // namespace
 
 int run_csg(const std::vector<std::string>& argv) {
@@ -162,18 +176,7 @@ int run_csg(const std::vector<std::string>& argv) {
   if (args.has("out")) write_image(args.required("out"), r.image);
   std::uint64_t covered = 0;
   for (const std::int32_t id : r.primitive) covered += id >= 0;
-  if (args.has("stats")) {
-    JsonWriter json;
-    json.begin_object().field("expression", expression->text()).field("primitives", expression->primitives());
-    write_extent(json, "size", s.screen);
-    json.field("path", path).field("covered_pixels", covered);
-    write_counters(json, r.counters);
-    json.field("attempts", r.attempts).field("memory_bytes", r.list_bytes);
-    json.field("gather_ms", r.gather_ms).field("resolve_ms", r.resolve_ms);
-    if (check) json.key("reference").begin_object().field("mismatches", check->mismatches).field("band", check->band).end_object();
-    json.end_object();
-    json.save(args.required("stats"));
-  }
+  if (args.has("stats")) write_csg_stats(args.required("stats"), *expression, s.screen, path, covered, r, check);
   if (!args.has("quiet")) {
     std::printf("csg %s over %u primitives, %s: %llu pixels covered, %llu records, %.1f MiB, gather %.1f ms, resolve "
                 "%.1f ms\n",
