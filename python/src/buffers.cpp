@@ -221,6 +221,50 @@ std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, 
   return out;
 }
 
+std::unique_ptr<Buffer> make_buffer(const std::string& technique, py::object screen, py::object table,
+                                    py::object layout, const std::string& offsets, std::uint64_t seed,
+                                    py::object offset_list, const py::kwargs& options) {
+  const ConfigArgs a{technique, std::move(screen), std::move(table), std::move(layout), offsets, seed,
+                     std::move(offset_list)};
+  const TechniqueConfig c = technique_config_from(a, options);
+  if (uses_pool(c.technique) && c.pool_capacity == 0)
+    throw py::value_error("pool: an empty Buffer has no stream to size an automatic pool from: give "
+                          "pool=N, or build from the stream with habuffer.build(..., pool='auto')");
+  return std::make_unique<Buffer>(make_fragment_buffer(c, offset_source_from(a)));
+}
+
+py::dict insert_arrays(Buffer& self, py::handle xy, py::handle depth, py::handle rgba, std::uint32_t threads,
+                       const std::string& mode, const std::string& order) {
+  const InsertOptions options = insert_options(threads, mode, order);
+  const std::vector<Fragment> f = fragments_from(xy, depth, rgba, threads);
+  return self.insert(f, options);
+}
+
+py::dict insert_in_place(Buffer& self, const py::array& frags, std::uint32_t threads, const std::string& mode,
+                         const std::string& order) {
+  if (!frags.dtype().equal(fragment_dtype()))
+    throw py::type_error("fragments: expected habuffer.FRAGMENT_DTYPE, got " + py::str(frags.dtype()).cast<std::string>());
+  if (frags.ndim() != 1 || !(frags.flags() & py::array::c_style))
+    throw py::value_error("fragments: expected a C-contiguous 1-D array (numpy.ascontiguousarray), got shape " +
+                          shape_text(frags));
+  const std::span<const Fragment> f(static_cast<const Fragment*>(frags.data()), static_cast<std::size_t>(frags.shape(0)));
+  return self.insert(f, insert_options(threads, mode, order));
+}
+
+py::object lists_csr(const Buffer& self) {
+  if (!descriptor(self.get().technique()).stores_lists)
+    throw py::type_error("lists(): technique " + to_string(self.get().technique()) +
+                         " stores no lists (it blends every fragment into the image)");
+  Csr csr;
+  {
+    py::gil_scoped_release release;
+    csr = read_lists(self.get());
+  }
+  const py::object Lists = py::module_::import("habuffer._habuffer").attr("Lists");
+  return Lists(owned_array(std::move(csr.offsets)), owned_array(std::move(csr.codes)), owned_array(std::move(csr.data)),
+               owned_array(std::move(csr.ages)));
+}
+
 constexpr const char* kInsertDoc =
     "Inserts fragments: xy (N, 2) uint32 pixels, depth (N,) float32 in [0, 1], rgba (N,) uint32 "
     "(R<<24|G<<16|B<<8|A; None: 0). Any strides. The GIL is released: calls from several Python threads overlap "
@@ -236,62 +280,18 @@ void bind_buffers(py::module_& m) {
                      "A technique's CPU container (habuffer.techniques() lists them). Options are the technique "
                      "option table's, named as the CLI's flags with underscores (layers=8, occupancy=True, "
                      "early_cull=0.99, pool='auto', age_bits=5, ...).")
-      .def(py::init([](const std::string& technique, py::object screen, py::object table, py::object layout,
-                       const std::string& offsets, std::uint64_t seed, py::object offset_list,
-                       const py::kwargs& options) {
-             const ConfigArgs a{technique, std::move(screen), std::move(table), std::move(layout), offsets, seed,
-                                std::move(offset_list)};
-             const TechniqueConfig c = technique_config_from(a, options);
-             if (uses_pool(c.technique) && c.pool_capacity == 0)
-               throw py::value_error("pool: an empty Buffer has no stream to size an automatic pool from: give "
-                                     "pool=N, or build from the stream with habuffer.build(..., pool='auto')");
-             return std::make_unique<Buffer>(make_fragment_buffer(c, offset_source_from(a)));
-           }),
+      .def(py::init(&make_buffer),
            py::arg("technique") = "ha", py::kw_only(), py::arg("screen"), py::arg("table") = py::none(),
            py::arg("layout") = 64, py::arg("offsets") = "random", py::arg("seed") = 1,
            py::arg("offset_list") = py::none())
-      .def(
-          "insert",
-          [](Buffer& self, py::handle xy, py::handle depth, py::handle rgba, std::uint32_t threads,
-             const std::string& mode, const std::string& order) {
-            const InsertOptions options = insert_options(threads, mode, order);
-            const std::vector<Fragment> f = fragments_from(xy, depth, rgba, threads);
-            return self.insert(f, options);
-          },
+      .def("insert", &insert_arrays,
           py::arg("xy"), py::arg("depth"), py::arg("rgba") = py::none(), py::kw_only(), py::arg("threads") = 1,
           py::arg("mode") = "auto", py::arg("order") = "auto", kInsertDoc)
-      .def(
-          "insert_fragments",
-          [](Buffer& self, const py::array& frags, std::uint32_t threads, const std::string& mode,
-             const std::string& order) {
-            if (!frags.dtype().equal(fragment_dtype()))
-              throw py::type_error("fragments: expected habuffer.FRAGMENT_DTYPE, got " +
-                                   py::str(frags.dtype()).cast<std::string>());
-            if (frags.ndim() != 1 || !(frags.flags() & py::array::c_style))
-              throw py::value_error("fragments: expected a C-contiguous 1-D array (numpy.ascontiguousarray), got shape " +
-                                    shape_text(frags));
-            const std::span<const Fragment> f(static_cast<const Fragment*>(frags.data()),
-                                              static_cast<std::size_t>(frags.shape(0)));
-            return self.insert(f, insert_options(threads, mode, order));
-          },
+      .def("insert_fragments", &insert_in_place,
           py::arg("fragments"), py::kw_only(), py::arg("threads") = 1, py::arg("mode") = "auto",
           py::arg("order") = "auto",
           "insert() from one array of habuffer.FRAGMENT_DTYPE, read in place (no copy).")
-      .def(
-          "lists",
-          [](const Buffer& self) {
-            if (!descriptor(self.get().technique()).stores_lists)
-              throw py::type_error("lists(): technique " + to_string(self.get().technique()) +
-                                   " stores no lists (it blends every fragment into the image)");
-            Csr csr;
-            {
-              py::gil_scoped_release release;
-              csr = read_lists(self.get());
-            }
-            const py::object Lists = py::module_::import("habuffer._habuffer").attr("Lists");
-            return Lists(owned_array(std::move(csr.offsets)), owned_array(std::move(csr.codes)),
-                         owned_array(std::move(csr.data)), owned_array(std::move(csr.ages)));
-          },
+      .def("lists", &lists_csr,
           "Every pixel's list, nearest first, pixels row-major (y, then x) as CSR: Lists(offsets (W*H + 1,) uint64, "
           "codes, rgba, ages (uint32; ages 0 for techniques other than ha)). Pixel (x, y)'s entries are "
           "[offsets[y*W + x], offsets[y*W + x + 1]).")
