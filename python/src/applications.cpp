@@ -39,8 +39,8 @@ py::tuple voxelize_mesh(const std::string& mesh, std::uint32_t grid, const std::
   std::optional<Voxelization> v;
   std::optional<VoxelCheck> ref;
   {
+    py::gil_scoped_release release;  // before the context's lock: never wait for it holding the GIL
     const GlContextUse use;
-    py::gil_scoped_release release;
     v = axis == "all" ? voxelize_voting(scene, s) : voxelize(scene, s);
     if (reference) ref = axis == "all" ? check_voxels_voting(scene, s, v->grid) : check_voxels(scene, s, v->grid);
   }

@@ -2,7 +2,9 @@
 
 #include <pybind11/stl.h>
 
+#include <limits>
 #include <optional>
+#include <type_traits>
 #include <stdexcept>
 
 #include "habuffer/fragment_buffer.h"
@@ -19,22 +21,52 @@ std::string shape_text(const py::array& a) {
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
+namespace {
+
+// A list or tuple of Python numbers as an array of T: integers for an
+// integer T, checked to fit; integers or reals for a real T. Other shapes
+// and types are left to the caller's checks.
+template <class T>
+py::array from_sequence(py::handle obj, const char* name) {
+  const py::array raw = py::module_::import("numpy").attr("asarray")(obj);
+  if (raw.size() == 0) return py::array_t<T>(std::vector<py::ssize_t>(raw.shape(), raw.shape() + raw.ndim()));
+  const char kind = raw.dtype().kind();
+  if constexpr (std::is_integral_v<T>) {
+    if (kind != 'i' && kind != 'u')
+      throw py::type_error(std::string(name) + ": expected integers, got " + py::str(raw.dtype()).cast<std::string>());
+    const auto lo = raw.attr("min")().cast<long double>(), hi = raw.attr("max")().cast<long double>();
+    if (lo < 0 || hi > static_cast<long double>(std::numeric_limits<T>::max()))
+      throw py::value_error(std::string(name) + ": values must lie in [0, " +
+                            std::to_string(std::numeric_limits<T>::max()) + "]");
+  } else if (kind != 'i' && kind != 'u' && kind != 'f') {
+    throw py::type_error(std::string(name) + ": expected numbers, got " + py::str(raw.dtype()).cast<std::string>());
+  }
+  return raw.attr("astype")(py::dtype::of<T>());
+}
+
+}  // namespace
+
 template <class T>
 py::array_t<T, py::array::forcecast> checked_array(py::handle obj, const char* name, int ndim, py::ssize_t cols) {
   const std::string wanted = py::str(py::dtype::of<T>()).cast<std::string>();
   const std::string shape_wanted = ndim == 1 ? "(N,)" : "(N, " + (cols > 0 ? std::to_string(cols) : "M") + ")";
-  if (py::isinstance<py::array>(obj)) {
-    const auto a = py::reinterpret_borrow<py::array>(obj);
-    if (!a.dtype().equal(py::dtype::of<T>()))
-      throw py::type_error(std::string(name) + ": expected a " + wanted + " array of shape " + shape_wanted +
-                           ", got " + py::str(a.dtype()).cast<std::string>() +
-                           " (convert with .astype(numpy." + wanted + ") if the values fit)");
-  }
-  auto a = py::array_t<T, py::array::forcecast>::ensure(obj);
-  if (!a) throw py::type_error(std::string(name) + ": expected a " + wanted + " array of shape " + shape_wanted);
+  // numpy arrays and whatever numpy reads as one (pandas, buffers, __array__)
+  // must have the dtype: nothing is wrapped, truncated or rounded silently.
+  // Python lists and tuples are converted, their values checked to fit.
+  py::array a;
+  if (py::isinstance<py::array>(obj))
+    a = py::reinterpret_borrow<py::array>(obj);
+  else if (py::isinstance<py::list>(obj) || py::isinstance<py::tuple>(obj))
+    a = from_sequence<T>(obj, name);
+  else
+    a = py::module_::import("numpy").attr("asarray")(obj);
+  if (!a.dtype().equal(py::dtype::of<T>()))
+    throw py::type_error(std::string(name) + ": expected a " + wanted + " array of shape " + shape_wanted + ", got " +
+                         py::str(a.dtype()).cast<std::string>() + " (convert with .astype(numpy." + wanted +
+                         ") if the values fit)");
   if (a.ndim() != ndim || (ndim == 2 && cols > 0 && a.shape(1) != cols))
     throw py::value_error(std::string(name) + ": expected shape " + shape_wanted + ", got " + shape_text(a));
-  return a;
+  return py::array_t<T, py::array::forcecast>::ensure(a);  // the same dtype: no copy, no conversion
 }
 
 template py::array_t<std::uint32_t, py::array::forcecast> checked_array<std::uint32_t>(py::handle, const char*, int,
@@ -91,11 +123,12 @@ Extent extent_arg(py::handle obj, const char* name) {
   }
   try {
     const auto seq = obj.cast<std::vector<std::int64_t>>();
-    if (seq.size() == 2 && seq[0] >= 0 && seq[1] >= 0 && seq[0] <= UINT32_MAX && seq[1] <= UINT32_MAX)
+    if (seq.size() == 2 && seq[0] >= 1 && seq[1] >= 1 && seq[0] <= UINT32_MAX && seq[1] <= UINT32_MAX)
       return Extent{static_cast<std::uint32_t>(seq[0]), static_cast<std::uint32_t>(seq[1])};
   } catch (const py::cast_error&) {
   }
-  throw py::value_error(std::string(name) + ": expected (W, H) or 'WxH', got " + py::repr(obj).cast<std::string>());
+  throw py::value_error(std::string(name) + ": expected (W, H) or 'WxH' of positive sides, got " +
+                        py::repr(obj).cast<std::string>());
 }
 
 }  // namespace habuffer::python

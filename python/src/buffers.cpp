@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstring>
 #include <mutex>
+#include <shared_mutex>
 
 #include "arrays.h"
 #include "bindings.h"
@@ -62,10 +63,22 @@ class Buffer {
     return *ha;
   }
 
+  // `f(container)` with the GIL released and no insert or clear running:
+  // the library lets reading calls overlap each other, not a call that
+  // changes the container (fragment_buffer.h). Returns what f returns (no
+  // Python object: the GIL is not held).
+  template <class F>
+  auto read(F f) const {
+    py::gil_scoped_release release;
+    const std::unique_lock lock(access_);
+    return f(static_cast<const FragmentBuffer&>(*buffer_));
+  }
+
   py::dict insert(std::span<const Fragment> fragments, const InsertOptions& options) {
     Counters c;
     {
       py::gil_scoped_release release;
+      const std::shared_lock changing(access_);  // inserts overlap as the library allows (its InsertGate)
       const auto t0 = std::chrono::steady_clock::now();
       c = buffer_->insert(fragments, options);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -87,6 +100,7 @@ class Buffer {
     std::uint64_t held = 0;
     {
       py::gil_scoped_release release;
+      const std::shared_lock changing(access_);
       held = buffer_->clear();
     }
     const std::lock_guard lock(mutex_);
@@ -98,6 +112,9 @@ class Buffer {
 
  private:
   std::unique_ptr<FragmentBuffer> buffer_;
+  // Shared by the calls that change the container (the library orders them
+  // itself), exclusive for the calls that read it.
+  mutable std::shared_mutex access_;
   std::mutex mutex_;
   Counters totals_;
   double last_insert_ms_ = 0.0;
@@ -146,11 +163,8 @@ py::array_t<float> composite(const Buffer& self, py::handle background, std::uin
     throw py::value_error("background: expected (3,) or (" + std::to_string(v.y) + ", " + std::to_string(v.x) +
                           ", 3) float32, got " + shape_text(bg));
   }
-  std::vector<glm::vec4> image;
-  {
-    py::gil_scoped_release release;
-    image = b.composite_image(backgrounds, threads);
-  }
+  const std::vector<glm::vec4> image =
+      self.read([&](const FragmentBuffer& c) { return c.composite_image(backgrounds, threads); });
   std::vector<float> flat(image.size() * 4);
   std::memcpy(flat.data(), image.data(), flat.size() * sizeof(float));
   return owned_array(std::move(flat)).reshape({static_cast<py::ssize_t>(v.y), static_cast<py::ssize_t>(v.x), py::ssize_t{4}});
@@ -200,7 +214,8 @@ std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, 
       throw py::value_error("threads, mode and order are the CPU path's: the GPU inserts (path='gl')");
     GlBuildInfo info;
     {
-      const GlContextUse use;  // made current on this thread; the GIL stays held (one context)
+      py::gil_scoped_release release;  // before the context's lock: never wait for it holding the GIL
+      const GlContextUse use;
       built = build_technique_on_gl(config, offsets, fragments, ResizePolicy{}, attempts, &info);
     }
     report["gl_renderer"] = info.renderer;
@@ -244,9 +259,9 @@ py::dict insert_in_place(Buffer& self, const py::array& frags, std::uint32_t thr
                          const std::string& order) {
   if (!frags.dtype().equal(fragment_dtype()))
     throw py::type_error("fragments: expected habuffer.FRAGMENT_DTYPE, got " + py::str(frags.dtype()).cast<std::string>());
-  if (frags.ndim() != 1 || !(frags.flags() & py::array::c_style))
-    throw py::value_error("fragments: expected a C-contiguous 1-D array (numpy.ascontiguousarray), got shape " +
-                          shape_text(frags));
+  if (frags.ndim() != 1 || !(frags.flags() & py::array::c_style) || !frags.attr("flags").attr("aligned").cast<bool>())
+    throw py::value_error("fragments: expected an aligned, C-contiguous 1-D array (numpy.ascontiguousarray), got "
+                          "shape " + shape_text(frags));
   const std::span<const Fragment> f(static_cast<const Fragment*>(frags.data()), static_cast<std::size_t>(frags.shape(0)));
   return self.insert(f, insert_options(threads, mode, order));
 }
@@ -255,11 +270,7 @@ py::object lists_csr(const Buffer& self) {
   if (!descriptor(self.get().technique()).stores_lists)
     throw py::type_error("lists(): technique " + to_string(self.get().technique()) +
                          " stores no lists (it blends every fragment into the image)");
-  Csr csr;
-  {
-    py::gil_scoped_release release;
-    csr = read_lists(self.get());
-  }
+  Csr csr = self.read([](const FragmentBuffer& b) { return read_lists(b); });
   const py::object Lists = py::module_::import("habuffer._habuffer").attr("Lists");
   return Lists(owned_array(std::move(csr.offsets)), owned_array(std::move(csr.codes)), owned_array(std::move(csr.data)),
                owned_array(std::move(csr.ages)));
@@ -290,7 +301,8 @@ void bind_buffers(py::module_& m) {
       .def("insert_fragments", &insert_in_place,
           py::arg("fragments"), py::kw_only(), py::arg("threads") = 1, py::arg("mode") = "auto",
           py::arg("order") = "auto",
-          "insert() from one array of habuffer.FRAGMENT_DTYPE, read in place (no copy).")
+          "insert() from one aligned, C-contiguous array of habuffer.FRAGMENT_DTYPE, read in place (no copy): no "
+          "thread may write to it during the call.")
       .def("lists", &lists_csr,
           "Every pixel's list, nearest first, pixels row-major (y, then x) as CSR: Lists(offsets (W*H + 1,) uint64, "
           "codes, rgba, ages (uint32; ages 0 for techniques other than ha)). Pixel (x, y)'s entries are "
@@ -298,10 +310,17 @@ void bind_buffers(py::module_& m) {
       .def("composite_image", &composite, py::arg("background") = py::make_tuple(1.0f, 1.0f, 1.0f),
            py::arg("threads") = 0,
            "Front-to-back compositing over `background` ((3,) or (H, W, 3) float32): (H, W, 4) float32, row y = 0 first.")
-      .def("write_lists", [](const Buffer& self, const std::string& path) { write_lists(path, self.get()); },
+      .def("write_lists",
+           [](const Buffer& self, const std::string& path) {
+             self.read([&](const FragmentBuffer& b) {
+               write_lists(path, b);
+               return 0;
+             });
+           },
            py::arg("path"), "The lists CSV habuffer build-lists writes (x,y,rank,code,rgba), whole or not at all.")
       .def("clear", &Buffer::clear, "Empties the container and its counters; returns the records it held.")
-      .def("count_stored", [](const Buffer& self) { return self.get().count_stored(); })
+      .def("count_stored",
+           [](const Buffer& self) { return self.read([](const FragmentBuffer& b) { return b.count_stored(); }); })
       .def_property_readonly("counters", &Buffer::totals,
                              "Counters of every insert since the last clear (habuffer.build(): the final attempt's).")
       .def_property_readonly("technique", [](const Buffer& self) { return to_string(self.get().technique()); })
@@ -333,7 +352,10 @@ void bind_buffers(py::module_& m) {
           },
           "The address of M's first cell in the container (the zero-copy check of max_age()).")
       .def("age_histogram",
-           [](const Buffer& self) { return owned_array(self.hash_table("age_histogram()").age_histogram()); },
+           [](const Buffer& self) {
+             const HaBuffer& ha = self.hash_table("age_histogram()");
+             return owned_array(self.read([&](const FragmentBuffer&) { return ha.age_histogram(); }));
+           },
            "Stored records per age, index a = 0..AMAX (ha only).");
 
   m.def(

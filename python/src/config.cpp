@@ -40,11 +40,17 @@ std::string option_text(const TechniqueOption& o, py::handle v) {
       if (v.is_none()) return "off";
       [[fallthrough]];
     case OptionKind::Load:
-      if (!py::isinstance<py::float_>(v) && !py::isinstance<py::int_>(v))
+      // numpy's scalars too; a bool is no number here (True would read as 1.0)
+      if (py::isinstance<py::bool_>(v) || !PyNumber_Check(v.ptr()) || PyComplex_Check(v.ptr()))
         throw py::type_error(name + ": expected a number, got " + py::repr(v).cast<std::string>());
       return py::repr(py::float_(py::reinterpret_borrow<py::object>(v))).cast<std::string>();
     case OptionKind::Interval: {
-      const auto pair = v.cast<std::vector<double>>();
+      std::vector<double> pair;
+      try {
+        pair = v.cast<std::vector<double>>();
+      } catch (const py::cast_error&) {
+        throw py::type_error(name + ": expected (near, far), got " + py::repr(v).cast<std::string>());
+      }
       if (pair.size() != 2) throw py::value_error(name + ": expected (near, far)");
       std::ostringstream s;
       s.precision(9);
@@ -55,9 +61,10 @@ std::string option_text(const TechniqueOption& o, py::handle v) {
       if (py::isinstance<py::str>(v)) return v.cast<std::string>();
       [[fallthrough]];
     case OptionKind::Count:
-      if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
+      // Python's and numpy's integers (operator.index), not bools
+      if (py::isinstance<py::bool_>(v) || !PyIndex_Check(v.ptr()))
         throw py::type_error(name + ": expected an integer, got " + py::repr(v).cast<std::string>());
-      return py::str(v).cast<std::string>();
+      return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(v.ptr()))).cast<std::string>();
   }
   return {};
 }
@@ -90,7 +97,7 @@ void apply_options(TechniqueConfig& c, const TechniqueDescriptor& d, const py::k
   for (const TechniqueOption* o : given) {
     if (o->needs.empty()) continue;
     const TechniqueOption* needed = find_option_flag(o->needs);
-    if (needed && !option_on(*needed, c))
+    if (needed && option_on(*o, c) && !option_on(*needed, c))  // as the CLI: an option left off needs nothing
       throw py::value_error("option " + python_name(o->flag) + " " + std::string(o->without_needed));
   }
 }

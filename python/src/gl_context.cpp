@@ -61,8 +61,12 @@ void bind_gl_context(py::module_& m) {
   m.def(
       "gl_info",
       [] {
-        const GlContextUse use;
-        const gl::GlInfo info = gl::query_gl_info();
+        gl::GlInfo info;
+        {
+          py::gil_scoped_release release;  // before the context's lock: never wait for it holding the GIL
+          const GlContextUse use;
+          info = gl::query_gl_info();
+        }
         py::dict d;
         d["renderer"] = info.renderer;
         d["version"] = info.version;

@@ -8,8 +8,11 @@
 namespace habuffer::python {
 
 /// Holds the module's context current on this thread for one call; made on
-/// first use. Raises habuffer.GlError (the library's message) when no
-/// context can be made. Uses are serialized: one GL call at a time.
+/// first use. Throws GlError (habuffer.GlError, the library's message) when
+/// no context can be made. Uses are serialized: one GL call at a time.
+/// Make it with the GIL released (and so destroy it before the GIL is taken
+/// back): a thread waiting for the context's lock while holding the GIL
+/// deadlocks with one that holds the lock and waits for the GIL.
 class GlContextUse {
  public:
   GlContextUse();

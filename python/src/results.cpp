@@ -22,6 +22,8 @@
 #include "habuffer/harness/plan.h"
 #include "habuffer/harness/sweep.h"
 #include "habuffer/key_experiment.h"
+#include "habuffer/memory_budget.h"
+#include "habuffer/option_rules.h"
 #include "habuffer/scene_catalog.h"
 
 namespace habuffer::python {
@@ -173,20 +175,30 @@ bool needs_context(const std::vector<harness::WorkloadSpec>& w) {
 // Runs `run` with the module's GL context current when a scene needs it, the GIL released.
 template <class Run>
 ResultTable with_context(bool needed, Run run) {
+  // The GIL first, then the context's lock (and the lock released before the
+  // GIL is taken back): a thread never waits for one holding the other.
+  py::gil_scoped_release release;
   std::optional<GlContextUse> use;
   if (needed) use.emplace();
-  py::gil_scoped_release release;
   return run();
+}
+
+// The harness calls' shared rules, as the CLI's: repeats in 1..1000, threads on the CPU path only.
+void check_runs(std::uint32_t repeats, RenderPath path, std::uint32_t threads) {
+  if (repeats < 1 || repeats > 1000) throw py::value_error("repeats: " + std::to_string(repeats) + " outside 1..1000");
+  if (path == RenderPath::Gl && threads != 0)
+    throw py::value_error("threads: the CPU path's (path='cpu'); with path='gl' the GPU inserts");
 }
 
 harness::FigureSettings figure_settings(const std::string& path, py::handle size, std::uint32_t repeats,
                                         std::uint32_t threads, float tau) {
   harness::FigureSettings f;
   f.path = path_arg(path);
+  check_runs(repeats, f.path, threads);
+  f.tau = parse_cull_threshold(py::repr(py::float_(tau)).cast<std::string>());  // in (0, 1], as --tau
   f.size = extent_arg(size, "size");
   f.repeats = repeats;
   f.threads = threads;
-  f.tau = tau;
   return f;
 }
 
@@ -215,6 +227,18 @@ py::object age_experiment(py::handle screen, py::handle table, const std::vector
   ExperimentConfig c;
   c.screen = extent_arg(screen, "screen");
   c.table = table.is_none() ? c.screen : extent_arg(table, "table");
+  if (c.table.x < c.screen.x || c.table.y < c.screen.y)
+    throw py::value_error("table " + c.table.str() + " is smaller than screen " + c.screen.str());
+  double max_load = 0.0;
+  for (const double l : loads) {  // as habuffer stats: loads in (0, 4], each giving a fragment
+    if (!(l > 0.0 && l <= 4.0)) throw py::value_error("loads: " + std::to_string(l) + " is not a load in (0, 4]");
+    if (l * static_cast<double>(c.table.area()) < 1.0)
+      throw py::value_error("loads: " + std::to_string(l) + " of table " + c.table.str() + " gives no fragment");
+    max_load = std::max(max_load, l);
+  }
+  // The largest load's stream (16 bytes a fragment) and the table (8 bytes a slot).
+  check_fits_in_memory("screen " + c.screen.str() + " (table " + c.table.str() + ")",
+                       saturating_product(c.table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
   c.loads = loads;
   c.trials = trials;
   c.seed = seed;
@@ -242,7 +266,13 @@ py::object key_experiment(const std::string& keys, py::handle domain, double cov
   const std::optional<spatial::KeySet> set = spatial::parse_key_set(keys);
   if (!set) throw py::value_error("keys: unknown key set '" + keys + "'");
   c.keys.set = *set;
-  const auto d = domain.cast<std::vector<std::uint32_t>>();
+  std::vector<std::uint32_t> d;
+  try {
+    d = domain.cast<std::vector<std::uint32_t>>();
+  } catch (const py::cast_error&) {
+    throw py::type_error("domain: expected (X, Y) or (X, Y, Z) positive integers, got " +
+                         py::repr(domain).cast<std::string>());
+  }
   if (d.size() != 2 && d.size() != 3) throw py::value_error("domain: expected (X, Y) or (X, Y, Z)");
   c.keys.domain = spatial::Domain{d[0], d[1], d.size() == 3 ? d[2] : 1u};
   c.keys.coverage = coverage;
@@ -274,6 +304,7 @@ py::object sweep(const std::string& scene, const std::string& technique, const s
   s.loads = loads;
   s.repeats = repeats;
   s.path = path_arg(path);
+  check_runs(repeats, s.path, threads);
   s.seed = seed;
   if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
   s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
@@ -292,6 +323,7 @@ py::object bench(const std::vector<std::string>& scenes, const std::vector<std::
   for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
   b.repeats = repeats;
   b.path = path_arg(path);
+  check_runs(repeats, b.path, threads);
   b.threads = threads;
   b.seed = seed;
   b.floors = floors;
@@ -308,6 +340,7 @@ py::object frontier(const std::vector<std::string>& scenes, const std::vector<py
   b.scenes = workloads(scenes);
   for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
   b.path = path_arg(path);
+  check_runs(repeats, b.path, threads);
   b.repeats = repeats;
   b.threads = threads;
   b.techniques = harness::frontier_techniques(b.path);

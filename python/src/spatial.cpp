@@ -1,8 +1,13 @@
 // The spatial hash (habuffer.SpatialHash): build from a (N, 2|3) uint32 key
 // array and optional uint32 values; find and contains on arrays of keys,
-// concurrently with the GIL released; the table and max-age cells as
-// zero-copy read-only views.
+// concurrently with the GIL released. SpatialHash orders nothing between
+// calls (its threads are a call's own), so the binding does: finds and
+// reads share a lock, insert and erase (which may rehash, moving the
+// storage) hold it alone. table() and max_age() are therefore copies.
 #include <pybind11/stl.h>
+
+#include <mutex>
+#include <shared_mutex>
 
 #include "arrays.h"
 #include "bindings.h"
@@ -14,6 +19,32 @@ namespace {
 using namespace pybind11::literals;
 using spatial::SpatialHash;
 using spatial::SpatialHashConfig;
+
+// The table and the lock that orders Python's calls on it.
+class LockedHash {
+ public:
+  LockedHash(const SpatialHashConfig& c, std::uint64_t capacity) : table_(c, capacity) {}
+
+  // f(table) with the GIL released, beside other readers (the lock taken
+  // after the GIL is released and dropped before it is taken back).
+  template <class F>
+  auto read(F f) const {
+    py::gil_scoped_release release;
+    const std::shared_lock lock(mutex_);
+    return f(static_cast<const SpatialHash&>(table_));
+  }
+  // f(table) with the GIL released, alone.
+  template <class F>
+  auto change(F f) {
+    py::gil_scoped_release release;
+    const std::unique_lock lock(mutex_);
+    return f(table_);
+  }
+
+ private:
+  SpatialHash table_;
+  mutable std::shared_mutex mutex_;
+};
 
 std::vector<glm::uvec3> keys_from(py::handle obj) {
   auto a = checked_array<std::uint32_t>(obj, "keys", 2);
@@ -43,126 +74,133 @@ py::dict report_dict(const spatial::InsertReport& r) {
                   "rehashes"_a = r.rehashes);
 }
 
-// The batched find of keys (N, 2|3), with the GIL released.
+// The batched find of keys (N, 2|3): each key's value (0 where absent) and whether it is there.
 struct Lookup {
-  py::array_t<std::uint32_t> values;  // 0 where absent
-  py::array_t<bool> found;
+  std::vector<std::uint32_t> values;
+  std::vector<std::uint8_t> found;
 };
 
-Lookup look_up(const SpatialHash& table, py::handle keys_obj) {
+Lookup look_up(const LockedHash& h, py::handle keys_obj) {
   const std::vector<glm::uvec3> keys = keys_from(keys_obj);
-  std::vector<std::uint32_t> values(keys.size());
-  std::vector<std::uint8_t> found(keys.size());
-  {
-    py::gil_scoped_release release;
-    table.find(keys, values, found);
-  }
+  Lookup r{std::vector<std::uint32_t>(keys.size()), std::vector<std::uint8_t>(keys.size())};
+  h.read([&](const SpatialHash& t) { return t.find(keys, r.values, r.found); });
+  return r;
+}
+
+py::array_t<bool> mask_of(const std::vector<std::uint8_t>& found) {
   py::array_t<bool> mask(static_cast<py::ssize_t>(found.size()));
   for (std::size_t i = 0; i < found.size(); ++i) mask.mutable_at(static_cast<py::ssize_t>(i)) = found[i] != 0;
-  return {owned_array(std::move(values)), mask};
+  return mask;
 }
 
 spatial::Domain domain_arg(py::handle obj) {
-  const auto d = obj.cast<std::vector<std::uint32_t>>();
+  std::vector<std::int64_t> d;
+  try {
+    d = obj.cast<std::vector<std::int64_t>>();
+  } catch (const py::cast_error&) {
+    throw py::type_error("domain: expected (X, Y) or (X, Y, Z) integers, got " + py::repr(obj).cast<std::string>());
+  }
   if (d.size() != 2 && d.size() != 3) throw py::value_error("domain: expected (X, Y) or (X, Y, Z)");
-  return spatial::Domain{d[0], d[1], d.size() == 3 ? d[2] : 1u};
+  for (const std::int64_t side : d)
+    if (side < 1 || side > UINT32_MAX)
+      throw py::value_error("domain: sides must be in [1, 2^32 - 1], got " + py::repr(obj).cast<std::string>());
+  return spatial::Domain{static_cast<std::uint32_t>(d[0]), static_cast<std::uint32_t>(d[1]),
+                         d.size() == 3 ? static_cast<std::uint32_t>(d[2]) : 1u};
+}
+
+std::unique_ptr<LockedHash> make_hash(py::handle domain, std::uint64_t capacity, const std::string& rule,
+                                      std::uint32_t age_bits, double load, bool adaptive, std::uint64_t seed,
+                                      const std::string& offsets, std::uint32_t threads) {
+  SpatialHashConfig c;
+  c.domain = domain_arg(domain);
+  const std::optional<spatial::DuplicateRule> r = spatial::parse_duplicate_rule(rule);
+  if (!r) throw py::value_error("rule: '" + rule + "' is not max, min, first or last");
+  c.rule = *r;
+  c.age_bits = age_bits;
+  c.target_load = load;
+  c.adaptive = adaptive;
+  if (adaptive && c.target_load > c.grow_at) c.grow_at = c.target_load;  // as habuffer hash build
+  c.seed = seed;
+  if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
+  c.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+  c.threads = threads;
+  return std::make_unique<LockedHash>(c, capacity);
+}
+
+py::dict insert_keys(LockedHash& h, py::handle keys_obj, py::handle values_obj) {
+  const std::vector<glm::uvec3> keys = keys_from(keys_obj);
+  const std::vector<std::uint32_t> values = values_from(values_obj, keys.size());
+  return report_dict(h.change([&](SpatialHash& t) { return t.insert(keys, values); }));
+}
+
+py::dict table_stats(const LockedHash& h) {
+  const spatial::SpatialHashStats s = h.read([](const SpatialHash& t) { return t.stats(); });
+  return py::dict("slots"_a = s.slots, "keys"_a = s.keys, "tombstones"_a = s.tombstones, "load"_a = s.load,
+                  "max_age"_a = s.max_age, "mean_age"_a = s.mean_age,
+                  "ages"_a = owned_array(std::vector<std::uint64_t>(s.ages)), "quotient_bits"_a = s.quotient_bits,
+                  "memory_bytes"_a = s.memory_bytes, "bytes_per_key"_a = s.bytes_per_key);
+}
+
+py::array table_copy(const LockedHash& h) {
+  Extent e;
+  std::vector<std::uint64_t> slots = h.read([&](const SpatialHash& t) {
+    e = t.table_extent();
+    return std::vector<std::uint64_t>(t.table().begin(), t.table().end());
+  });
+  return owned_array(std::move(slots)).reshape({static_cast<py::ssize_t>(e.y), static_cast<py::ssize_t>(e.x)});
+}
+
+py::array max_age_copy(const LockedHash& h) {
+  return owned_array(h.read([](const SpatialHash& t) {
+    return std::vector<std::uint32_t>(t.max_age().begin(), t.max_age().end());
+  }));
 }
 
 }  // namespace
 
 void bind_spatial(py::module_& m) {
-  py::class_<SpatialHash>(m, "SpatialHash",
-                          "The coherent hash as a spatial hash table of 2D or 3D integer keys with 32-bit values "
-                          "(habuffer hash): Robin Hood placement along the HA-buffer's coherent probe sequence.")
-      .def(py::init([](py::handle domain, std::uint64_t capacity, const std::string& rule, std::uint32_t age_bits,
-                       double load, bool adaptive, std::uint64_t seed, const std::string& offsets,
-                       std::uint32_t threads) {
-             SpatialHashConfig c;
-             c.domain = domain_arg(domain);
-             const std::optional<spatial::DuplicateRule> r = spatial::parse_duplicate_rule(rule);
-             if (!r) throw py::value_error("rule: '" + rule + "' is not max, min, first or last");
-             c.rule = *r;
-             c.age_bits = age_bits;
-             c.target_load = load;
-             c.adaptive = adaptive;
-             if (adaptive && c.target_load > c.grow_at) c.grow_at = c.target_load;  // as habuffer hash build
-             c.seed = seed;
-             if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
-             c.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
-             c.threads = threads;
-             return std::make_unique<SpatialHash>(c, capacity);
-           }),
-           py::arg("domain"), py::kw_only(), py::arg("capacity") = 0, py::arg("rule") = "last",
+  py::class_<LockedHash>(m, "SpatialHash",
+                         "The coherent hash as a spatial hash table of 2D or 3D integer keys with 32-bit values "
+                         "(habuffer hash): Robin Hood placement along the HA-buffer's coherent probe sequence. Calls "
+                         "from several Python threads are safe: finds overlap, inserts and erases run alone.")
+      .def(py::init(&make_hash), py::arg("domain"), py::kw_only(), py::arg("capacity") = 0, py::arg("rule") = "last",
            py::arg("age_bits") = HABUFFER_SH_DEFAULT_AGE_BITS, py::arg("load") = 0.8, py::arg("adaptive") = true,
            py::arg("seed") = 1, py::arg("offsets") = "random", py::arg("threads") = 0,
            "An empty table for keys of `domain` ((X, Y) or (X, Y, Z)), sized for `capacity` keys at `load`.")
-      .def(
-          "insert",
-          [](SpatialHash& self, py::handle keys_obj, py::handle values_obj) {
-            const std::vector<glm::uvec3> keys = keys_from(keys_obj);
-            const std::vector<std::uint32_t> values = values_from(values_obj, keys.size());
-            spatial::InsertReport r;
-            {
-              py::gil_scoped_release release;
-              r = self.insert(keys, values);
-            }
-            return report_dict(r);
-          },
-          py::arg("keys"), py::arg("values") = py::none(),
-          "Inserts keys (N, 2|3) uint32 with values (N,) uint32 (None: a set); duplicates by the rule. Returns the "
-          "call's report (dict).")
+      .def("insert", &insert_keys, py::arg("keys"), py::arg("values") = py::none(),
+           "Inserts keys (N, 2|3) uint32 with values (N,) uint32 (None: a set); duplicates by the rule. Returns the "
+           "call's report (dict).")
       .def(
           "find",
-          [](const SpatialHash& self, py::handle keys) {
-            const Lookup r = look_up(self, keys);
-            return py::make_tuple(r.values, r.found);
+          [](const LockedHash& h, py::handle keys) {
+            Lookup r = look_up(h, keys);
+            return py::make_tuple(owned_array(std::move(r.values)), mask_of(r.found));
           },
           py::arg("keys"), "(values, found): each key's value (0 where absent) and a bool mask of the keys present.")
       .def(
-          "contains", [](const SpatialHash& self, py::handle keys) { return look_up(self, keys).found; },
+          "contains", [](const LockedHash& h, py::handle keys) { return mask_of(look_up(h, keys).found); },
           py::arg("keys"), "A bool mask of the keys present.")
       .def(
           "erase",
-          [](SpatialHash& self, py::handle keys_obj) {
+          [](LockedHash& h, py::handle keys_obj) {
             const std::vector<glm::uvec3> keys = keys_from(keys_obj);
-            py::gil_scoped_release release;
-            return self.erase(keys);
+            return h.change([&](SpatialHash& t) { return t.erase(keys); });
           },
           py::arg("keys"), "Erases keys; returns how many were present.")
-      .def("__len__", &SpatialHash::size)
-      .def_property_readonly("load", &SpatialHash::load)
-      .def_property_readonly("memory_bytes", &SpatialHash::memory_bytes)
+      .def("__len__", [](const LockedHash& h) { return h.read([](const SpatialHash& t) { return t.size(); }); })
+      .def_property_readonly("load",
+                             [](const LockedHash& h) { return h.read([](const SpatialHash& t) { return t.load(); }); })
+      .def_property_readonly(
+          "memory_bytes", [](const LockedHash& h) { return h.read([](const SpatialHash& t) { return t.memory_bytes(); }); })
       .def_property_readonly("table_extent",
-                             [](const SpatialHash& self) {
-                               return py::make_tuple(self.table_extent().x, self.table_extent().y);
+                             [](const LockedHash& h) {
+                               const Extent e = h.read([](const SpatialHash& t) { return t.table_extent(); });
+                               return py::make_tuple(e.x, e.y);
                              })
-      .def(
-          "stats",
-          [](const SpatialHash& self) {
-            const spatial::SpatialHashStats s = self.stats();
-            return py::dict("slots"_a = s.slots, "keys"_a = s.keys, "tombstones"_a = s.tombstones, "load"_a = s.load,
-                            "max_age"_a = s.max_age, "mean_age"_a = s.mean_age,
-                            "ages"_a = owned_array(std::vector<std::uint64_t>(s.ages)),
-                            "quotient_bits"_a = s.quotient_bits, "memory_bytes"_a = s.memory_bytes,
-                            "bytes_per_key"_a = s.bytes_per_key);
-          },
-          "The table's statistics (habuffer hash stats).")
-      .def(
-          "table",
-          [](py::object self_obj) {
-            const SpatialHash& self = self_obj.cast<const SpatialHash&>();
-            return readonly_view(self.table().data(), self.table_extent().y, self.table_extent().x, self_obj);
-          },
-          "The slots as a read-only (Hy, Hx) uint64 view of the table's storage (no copy); a rehash replaces the "
-          "storage, so take a new view after inserting.")
-      .def(
-          "max_age",
-          [](py::object self_obj) {
-            const SpatialHash& self = self_obj.cast<const SpatialHash&>();
-            const std::span<const std::uint32_t> cells = self.max_age();
-            return readonly_view(cells.data(), 1, static_cast<py::ssize_t>(cells.size()), self_obj);
-          },
-          "The max-age cells as a read-only (1, cells) uint32 view.");
+      .def("stats", &table_stats, "The table's statistics (habuffer hash stats).")
+      .def("table", &table_copy,
+           "The slots as a (Hy, Hx) uint64 array: a copy, since an insert may rehash into new storage.")
+      .def("max_age", &max_age_copy, "The max-age cells, row-major, as a uint32 array (a copy).");
 }
 
 }  // namespace habuffer::python

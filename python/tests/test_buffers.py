@@ -243,3 +243,90 @@ def test_gpu_calls_from_two_python_threads_share_the_modules_context(gl_availabl
         t.join()
     build_on_gl()  # and on this thread
     assert len(results) == 3 and len(set(results)) == 1 and results[0] > 0
+
+
+class ArrayLike:
+    """Something numpy reads as an array (as pandas and tensors are)."""
+
+    def __init__(self, a):
+        self.a = a
+
+    def __array__(self, dtype=None):
+        return self.a if dtype is None else self.a.astype(dtype)
+
+
+def test_array_likes_obey_the_dtype_rule_and_lists_are_checked_to_fit():
+    buf = hb.HaBuffer((32, 24))
+    xy, depth, rgba = small_stream(10)
+    with pytest.raises(TypeError, match="xy: expected a uint32 array.*got int64"):
+        buf.insert(ArrayLike(xy.astype(np.int64) + 2**32), depth, rgba)  # would wrap to the same pixels
+    with pytest.raises(TypeError, match="depth: expected a float32 array.*got float64"):
+        buf.insert(xy, ArrayLike(depth.astype(np.float64)), rgba)
+    with pytest.raises(ValueError, match=r"xy: values must lie in \[0, 4294967295\]"):
+        buf.insert([[0, -1]], [0.5])
+    with pytest.raises(TypeError, match="xy: expected integers"):
+        buf.insert([[0.5, 1.7]], [0.5])
+    c = buf.insert([[1, 2], [3, 4]], [0.5, 0.25], [7, 9])  # Python lists of numbers are converted
+    assert c["stored"] == 2 and buf.counters["fragments"] == 2
+    assert buf.insert(ArrayLike(xy), ArrayLike(depth), ArrayLike(rgba))["fragments"] == 10
+    frags = np.zeros(8, hb.FRAGMENT_DTYPE)
+    unaligned = np.frombuffer(b"\0" * (16 * 4 + 4), hb.FRAGMENT_DTYPE, count=4, offset=4)
+    assert buf.insert_fragments(frags)["fragments"] == 8
+    if not unaligned.flags.aligned:
+        with pytest.raises(ValueError, match="aligned"):
+            buf.insert_fragments(unaligned)
+
+
+def test_options_take_numpy_scalars_and_refuse_what_the_cli_refuses():
+    k = hb.Buffer("kbuffer", screen=(8, 8), layers=np.int64(6))
+    assert k.config["layers"] == 6
+    assert hb.Buffer("ha", screen=(8, 8), saturation=False).config["saturation"] is False  # off needs nothing
+    with pytest.raises(ValueError, match="saturation"):
+        hb.Buffer("ha", screen=(8, 8), saturation=True)
+    with pytest.raises(TypeError, match="early_cull: expected a number"):
+        hb.Buffer("ha", screen=(8, 8), early_cull=True)
+    assert hb.Buffer("ha", screen=(8, 8), early_cull=np.float32(0.5)).config["early_cull"] == 0.5
+    with pytest.raises(TypeError, match="depth_range"):
+        hb.Buffer("kbuffer", screen=(8, 8), depth_range=0.5)
+    with pytest.raises(ValueError, match="positive sides"):
+        hb.HaBuffer((0, 4))
+
+
+def test_reading_calls_wait_for_inserts_from_other_python_threads():
+    xy, depth, rgba = small_stream(200000, screen=(64, 64))
+    buf = hb.Buffer("lists", screen=(64, 64), pool=250000)
+    parts = np.array_split(np.arange(len(depth)), 8)
+    seen = []
+
+    def read():
+        for _ in range(20):
+            lists = buf.lists()
+            seen.append(int(lists.offsets[-1]))
+
+    threads = [threading.Thread(target=buf.insert, args=(xy[p], depth[p], rgba[p])) for p in parts]
+    threads.append(threading.Thread(target=read))
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert seen == sorted(seen)  # every read saw whole inserts, never a list half written
+    assert buf.lists().offsets[-1] == buf.counters["stored"]
+
+
+def test_gpu_calls_overlapping_from_two_threads_do_not_deadlock(gl_available):
+    done = []
+
+    def sweep():
+        done.append(hb.sweep("planes:count=8", size=(32, 32), loads=[0.8], repeats=1, path="gl").rows)
+
+    def info():
+        for _ in range(20):
+            done.append(hb.gl_info()["renderer"])
+
+    threads = [threading.Thread(target=sweep), threading.Thread(target=info), threading.Thread(target=sweep)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=120)
+    assert not any(t.is_alive() for t in threads), "a GL call deadlocked"
+    assert len(done) == 22

@@ -127,3 +127,18 @@ def test_voxelize_gives_the_clis_grid_as_a_dense_array(cli, workdir, gl_availabl
     np.testing.assert_array_equal(cpu, solid)
     with pytest.raises(ValueError, match="axis"):
         hb.voxelize("torus", axis="w")
+
+
+def test_harness_arguments_are_refused_as_the_cli_refuses_them():
+    with pytest.raises(ValueError, match="repeats"):
+        hb.figure_fig2("hairball", size=(16, 16), repeats=0)
+    with pytest.raises(ValueError):
+        hb.figure_fig2("hairball", size=(16, 16), tau=0.0)
+    with pytest.raises(ValueError, match="threads"):
+        hb.sweep("hairball", path="gl", threads=2)
+    with pytest.raises(ValueError, match=r"not a load in \(0, 4\]"):
+        hb.age_experiment(loads=[5.0])
+    with pytest.raises(ValueError, match="gives no fragment"):
+        hb.age_experiment(screen=(4, 4), loads=[0.01])
+    with pytest.raises(TypeError, match="domain"):
+        hb.key_experiment(domain="64x64")

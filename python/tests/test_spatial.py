@@ -1,5 +1,7 @@
 """The spatial hash from arrays: find, contains and erase against a dict."""
 
+import threading
+
 import numpy as np
 import pytest
 
@@ -29,14 +31,42 @@ def test_find_and_contains_agree_with_a_dict(domain):
     assert h.erase(keys[:100]) == 100 and not h.contains(keys[:100]).any()
 
 
-def test_the_table_view_is_zero_copy_and_read_only():
-    h = hb.SpatialHash((64, 64))
-    h.insert(random_keys(1000, (64, 64)))
+def test_the_table_is_a_copy_that_a_rehash_leaves_valid():
+    h = hb.SpatialHash((64, 64), capacity=10)
+    h.insert(random_keys(100, (64, 64)))
     t = h.table()
-    assert t.shape == (h.table_extent[1], h.table_extent[0]) and not t.flags.writeable
-    assert np.count_nonzero(t) == len(h)
-    assert h.table().ctypes.data == t.ctypes.data
-    assert h.stats()["keys"] == len(h)
+    assert t.shape == (h.table_extent[1], h.table_extent[0])
+    assert np.count_nonzero(t) == len(h) == h.stats()["keys"]
+    before = t.copy()
+    h.insert(random_keys(3000, (64, 64), seed=5))  # grows: new storage
+    np.testing.assert_array_equal(t, before)
+    assert h.table().size > t.size
+
+
+def test_inserts_and_finds_from_several_python_threads_are_ordered():
+    domain = (256, 256)
+    keys = random_keys(40000, domain)
+    h = hb.SpatialHash(domain, capacity=16)  # every insert below rehashes often
+    parts = np.array_split(keys, 8)
+    errors = []
+
+    def insert(part):
+        h.insert(part)
+
+    def find():
+        try:
+            for _ in range(20):
+                _, found = h.find(keys)
+                assert found.sum() <= len(keys)
+        except Exception as e:  # noqa: BLE001 - reported below
+            errors.append(e)
+
+    threads = [threading.Thread(target=insert, args=(p,)) for p in parts] + [threading.Thread(target=find)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors and len(h) == len(keys) and h.contains(keys).all()
 
 
 def test_bad_keys_are_refused_naming_the_problem():
