@@ -33,6 +33,14 @@ std::optional<InsertOrder> parse_insert_order(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<InsertMode> parse_insert_mode(std::string_view name) {
+  if (name == "auto") return InsertMode::Auto;
+  if (name == "serial") return InsertMode::Serial;
+  if (name == "atomic") return InsertMode::Atomic;
+  if (name == "owner") return InsertMode::OwnerComputes;
+  return std::nullopt;
+}
+
 void check_pixel(std::uint32_t x, std::uint32_t y, Extent screen) {
   if (x >= screen.x || y >= screen.y)
     throw std::out_of_range("pixel (" + std::to_string(x) + "," + std::to_string(y) + ") lies outside screen " +

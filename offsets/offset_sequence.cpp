@@ -107,6 +107,12 @@ std::vector<double> min_pairwise_distances(std::span<const glm::uvec2> offsets, 
   return result;
 }
 
+std::optional<OffsetGenerator> parse_offset_generator(std::string_view name) {
+  if (name == "random") return OffsetGenerator::Random;
+  if (name == "farthest") return OffsetGenerator::Farthest;
+  return std::nullopt;
+}
+
 std::string to_string(OffsetGenerator gen) {
   switch (gen) {
     case OffsetGenerator::Random: return "random";

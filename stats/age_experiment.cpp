@@ -1,5 +1,9 @@
 #include "habuffer/age_experiment.h"
 
+#include "named_list.h"
+#include "habuffer/memory_budget.h"
+#include "habuffer/number_text.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -144,16 +148,29 @@ struct VariantAccumulator {
   }
 };
 
-void validate_experiment(const ExperimentConfig& c) {
-  if (c.trials == 0) throw std::invalid_argument("at least one trial is needed");
-  if (c.screen.area() == 0) throw std::invalid_argument("screen size " + c.screen.str() + " is empty");
-  if (c.table != Extent{} && c.table.area() == 0)
-    throw std::invalid_argument("table " + c.table.str() + " has a zero side (0x0 means the screen's size)");
-  for (const double load : c.loads)
-    if (!(load > 0.0)) throw std::invalid_argument("loads must be positive");
-}
 
 }  // namespace
+
+void validate_experiment(const ExperimentConfig& c) {
+  if (c.trials == 0) throw std::invalid_argument("trials: at least one trial is needed");
+  if (c.screen.area() == 0) throw std::invalid_argument("screen " + c.screen.str() + " is empty");
+  if (c.table != Extent{} && c.table.area() == 0)
+    throw std::invalid_argument("table " + c.table.str() + " has a zero side (0x0 means the screen's size)");
+  const Extent table = c.table == Extent{} ? c.screen : c.table;
+  if (table.x < c.screen.x || table.y < c.screen.y)
+    throw std::invalid_argument("table " + table.str() + " is smaller than screen " + c.screen.str());
+  double max_load = 0.0;
+  for (const double load : c.loads) {
+    if (!(load > 0.0 && load <= kMaxExperimentLoad))
+      throw std::invalid_argument("loads: " + shortest_text(load) + " is not a load in (0, 4]");
+    if (load * static_cast<double>(table.area()) < 1.0)
+      throw std::invalid_argument("loads: " + shortest_text(load) + " of table " + table.str() + " gives no fragment");
+    max_load = std::max(max_load, load);
+  }
+  // The largest load's stream (16 bytes a fragment) and the table (8 bytes a slot).
+  check_fits_in_memory("screen " + c.screen.str() + " (table " + table.str() + ")",
+                       saturating_product(table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
+}
 
 std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& c) {
   validate_experiment(c);
@@ -191,6 +208,24 @@ double mean_ci95(std::span<const double> samples) {
   for (const double a : samples) mean += a / n;
   for (const double a : samples) var += (a - mean) * (a - mean) / (n - 1.0);
   return student_t95(static_cast<std::uint32_t>(samples.size() - 1)) * std::sqrt(var / n);
+}
+
+std::vector<Probing> parse_probings(const std::vector<std::string>& names) {
+  static constexpr std::pair<std::string_view, Probing> kNames[] = {{"coherent", Probing::Coherent},
+                                                                    {"independent", Probing::Independent}};
+  return detail::named_list<Probing>(names, kNames);
+}
+
+std::vector<Policy> parse_policies(const std::vector<std::string>& names) {
+  static constexpr std::pair<std::string_view, Policy> kNames[] = {{"robinhood", Policy::RobinHood},
+                                                                   {"fcfs", Policy::Fcfs}};
+  return detail::named_list<Policy>(names, kNames);
+}
+
+std::vector<OffsetGenerator> parse_offset_generators(const std::vector<std::string>& names) {
+  static constexpr std::pair<std::string_view, OffsetGenerator> kNames[] = {{"random", OffsetGenerator::Random},
+                                                                            {"farthest", OffsetGenerator::Farthest}};
+  return detail::named_list<OffsetGenerator>(names, kNames);
 }
 
 std::vector<Variant> variant_grid(const std::vector<Probing>& probings, const std::vector<Policy>& policies,

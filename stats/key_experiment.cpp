@@ -1,5 +1,7 @@
 #include "habuffer/key_experiment.h"
 
+#include "named_list.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -239,6 +241,18 @@ KeyExperimentRow key_row(const KeyExperimentConfig& c, KeyProbing probing, KeyPo
 }
 
 }  // namespace
+
+std::vector<KeyProbing> parse_key_probings(const std::vector<std::string>& names) {
+  static constexpr std::pair<std::string_view, KeyProbing> kNames[] = {{"coherent", KeyProbing::Coherent},
+                                                                       {"independent", KeyProbing::Independent}};
+  return habuffer::detail::named_list<KeyProbing>(names, kNames);
+}
+
+std::vector<KeyPolicy> parse_key_policies(const std::vector<std::string>& names) {
+  static constexpr std::pair<std::string_view, KeyPolicy> kNames[] = {{"robinhood", KeyPolicy::RobinHood},
+                                                                      {"fcfs", KeyPolicy::FirstCome}};
+  return habuffer::detail::named_list<KeyPolicy>(names, kNames);
+}
 
 std::vector<KeyExperimentRow> run_key_experiment(const KeyExperimentConfig& c) {
   c.validate();

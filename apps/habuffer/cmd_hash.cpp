@@ -133,10 +133,9 @@ spatial::SpatialHashConfig parse_build_config(const Args& args) {
   if (!rule) throw UsageError("option --rule: '" + args.str("rule") + "' is not max, min, first or last");
   c.rule = *rule;
   c.age_bits = args.u32_in("age-bits", HABUFFER_SH_MIN_AGE_BITS, HABUFFER_SH_MAX_AGE_BITS);
-  const std::string offsets = args.str("offsets");
-  if (offsets != "random" && offsets != "farthest")
-    throw UsageError("option --offsets: '" + offsets + "' is not random or farthest");
-  c.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+  const std::optional<OffsetGenerator> offsets = parse_offset_generator(args.str("offsets"));
+  if (!offsets) throw UsageError("option --offsets: '" + args.str("offsets") + "' is not random or farthest");
+  c.offsets = *offsets;
   c.seed = args.u64_in("seed");
   c.threads = args.u32_in("threads", 0, 1024);
   c.target_load = args.real("load");

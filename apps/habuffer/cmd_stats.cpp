@@ -22,21 +22,6 @@
 namespace habuffer::cli {
 namespace {
 
-template <class T>
-std::vector<T> choices(const Args& args, const std::string& name, const std::vector<std::pair<std::string, T>>& named) {
-  std::vector<T> out;
-  for (const std::string& item : args.list(name)) {
-    bool found = false;
-    for (const auto& [key, value] : named)
-      if (item == key || item == "all") {
-        if (std::find(out.begin(), out.end(), value) == out.end()) out.push_back(value);
-        found = true;
-      }
-    if (!found) throw UsageError("option --" + name + ": unknown value " + excerpt(item));
-  }
-  return out;
-}
-
 // The rows as CSV, the columns' own list and formats (experiment_columns.h).
 template <class Row>
 void write_rows_csv(const std::string& path, const std::vector<Row>& rows,
@@ -136,23 +121,11 @@ std::vector<double> parse_loads(const Args& args, double most, const std::string
   return loads;
 }
 
-// --screen, --table and --loads: the sizes, checked to fit in memory.
+// --screen, --table and --loads: the sizes (the library's rules, validate_experiment).
 void parse_experiment_sizes(const Args& args, ExperimentConfig& c) {
   c.screen = args.size("screen");
   c.table = args.extent("table").value_or(c.screen);
-  if (c.table.x < c.screen.x || c.table.y < c.screen.y)
-    throw UsageError("table " + c.table.str() + " is smaller than screen " + c.screen.str());
-  c.loads = parse_loads(args, 4.0, "");
-  for (const double l : c.loads)
-    if (l * static_cast<double>(c.table.area()) < 1.0)
-      throw UsageError("option --loads: " + shortest(l) + " of table " + c.table.str() + " gives no fragment");
-  // The largest load's stream (16 bytes a fragment) and the table (8 bytes a slot).
-  double max_load = 0.0;
-  for (const double l : c.loads) max_load = std::max(max_load, l);
-  usage_errors("", [&] {
-    check_fits_in_memory("option --screen " + c.screen.str() + " (table " + c.table.str() + ")",
-                         saturating_product(c.table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
-  });
+  c.loads = parse_loads(args, kMaxExperimentLoad, "");
 }
 
 // The experiment of the command line (see stats_spec).
@@ -173,13 +146,14 @@ ExperimentConfig parse_experiment(const Args& args) {
   c.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   c.block = args.u32_in("block", 1, 1u << 16);
   c.stream = experiment_stream(kind, spread, c.age_bits);
-  const auto probings = choices<Probing>(args, "probing",
-                                         {{"coherent", Probing::Coherent}, {"independent", Probing::Independent}});
-  const auto policies =
-      choices<Policy>(args, "policy", {{"robinhood", Policy::RobinHood}, {"fcfs", Policy::Fcfs}});
-  const auto offsets = choices<OffsetGenerator>(
-      args, "offsets", {{"random", OffsetGenerator::Random}, {"farthest", OffsetGenerator::Farthest}});
-  c.variants = variant_grid(probings, policies, offsets);
+  try {
+    validate_experiment(c);  // the message starts with the option's name
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("option --") + e.what());
+  }
+  c.variants = variant_grid(usage_errors("probing", [&] { return parse_probings(args.list("probing")); }),
+                            usage_errors("policy", [&] { return parse_policies(args.list("policy")); }),
+                            usage_errors("offsets", [&] { return parse_offset_generators(args.list("offsets")); }));
   return c;
 }
 
@@ -206,10 +180,8 @@ int run_key_stats(const Args& args) {
   c.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   c.block = args.u32_in("block", 1, 1u << 16);
   c.misses = args.u32_in("misses", 0, 10000000);
-  c.probing = choices<spatial::KeyProbing>(
-      args, "probing", {{"coherent", spatial::KeyProbing::Coherent}, {"independent", spatial::KeyProbing::Independent}});
-  c.policy = choices<spatial::KeyPolicy>(
-      args, "policy", {{"robinhood", spatial::KeyPolicy::RobinHood}, {"fcfs", spatial::KeyPolicy::FirstCome}});
+  c.probing = usage_errors("probing", [&] { return spatial::parse_key_probings(args.list("probing")); });
+  c.policy = usage_errors("policy", [&] { return spatial::parse_key_policies(args.list("policy")); });
   const std::vector<spatial::KeyExperimentRow> rows = spatial::run_key_experiment(c);
   std::printf("%-24s %6s %7s %9s %16s %8s %6s %9s %14s %9s\n", "variant", "load", "stored", "keys", "mean age (95%)",
               "max age", "hit", "miss", "(95%)", "failed");

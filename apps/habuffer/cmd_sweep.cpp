@@ -49,9 +49,9 @@ int run_sweep(const std::vector<std::string>& argv) {
   args.refuse_unless(descriptor(s.technique.technique).takes("offsets"), {"offsets", "seed"},
                      "with --technique " + to_string(s.technique.technique) + " (offsets apply to " +
                          techniques_taking("offsets") + ")");
-  const std::string offsets = args.str("offsets");
-  if (offsets != "random" && offsets != "farthest") throw UsageError("--offsets must be random or farthest");
-  s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+  const std::optional<OffsetGenerator> offsets = parse_offset_generator(args.str("offsets"));
+  if (!offsets) throw UsageError("--offsets must be random or farthest");
+  s.offsets = *offsets;
   s.threads = args.u32_in("threads", 0, kMaxThreads);
   s.insert_order = insert_order_option(args);
   args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"}, "with --path gl (the GPU inserts)");

@@ -86,21 +86,14 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   // the batch (resolve_threads); serial insertion is one thread.
   const std::string mode = args.str("insert-mode");
   o.insert.threads = mode == "serial" ? args.u32("threads", 1, 0, kMaxThreads) : args.u32_in("threads", 0, kMaxThreads);
-  if (mode == "auto") {
-    o.insert.mode = InsertMode::Auto;
-  } else if (mode == "serial") {
-    o.insert.mode = InsertMode::Serial;
-    if (o.insert.threads != 1) throw UsageError("--insert-mode serial runs on one thread: give --threads 1");
-  } else if (mode == "atomic") {
-    o.insert.mode = InsertMode::Atomic;
-  } else if (mode == "owner") {
-    o.insert.mode = InsertMode::OwnerComputes;
-    if (!uses_table(o.technique.technique))
-      throw UsageError("option --insert-mode owner has no effect with --technique " + to_string(o.technique.technique) +
-                       " (owners of table rows: a hash table's own)");
-  } else {
-    throw UsageError("option --insert-mode: '" + mode + "' is not auto, serial, atomic or owner");
-  }
+  const std::optional<InsertMode> parsed = parse_insert_mode(mode);
+  if (!parsed) throw UsageError("option --insert-mode: '" + mode + "' is not auto, serial, atomic or owner");
+  o.insert.mode = *parsed;
+  if (o.insert.mode == InsertMode::Serial && o.insert.threads != 1)
+    throw UsageError("--insert-mode serial runs on one thread: give --threads 1");
+  if (o.insert.mode == InsertMode::OwnerComputes && !uses_table(o.technique.technique))
+    throw UsageError("option --insert-mode owner has no effect with --technique " + to_string(o.technique.technique) +
+                     " (owners of table rows: a hash table's own)");
   o.insert.order = insert_order_option(args);
   if (o.insert.order == InsertOrder::Pixel && o.insert.mode == InsertMode::OwnerComputes)
     throw UsageError("option --insert-order pixel cannot go with --insert-mode owner (its owners follow the probes)");

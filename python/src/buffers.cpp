@@ -36,11 +36,9 @@ py::dict counters_dict(const Counters& c) {
 InsertOptions insert_options(std::uint32_t threads, const std::string& mode, const std::string& order) {
   InsertOptions o;
   o.threads = threads;
-  if (mode == "auto") o.mode = InsertMode::Auto;
-  else if (mode == "serial") o.mode = InsertMode::Serial;
-  else if (mode == "atomic") o.mode = InsertMode::Atomic;
-  else if (mode == "owner") o.mode = InsertMode::OwnerComputes;
-  else throw py::value_error("mode: '" + mode + "' is not auto, serial, atomic or owner");
+  const std::optional<InsertMode> parsed_mode = parse_insert_mode(mode);
+  if (!parsed_mode) throw py::value_error("mode: '" + mode + "' is not auto, serial, atomic or owner");
+  o.mode = *parsed_mode;
   if (o.mode == InsertMode::Serial && threads != 1)
     throw py::value_error("mode 'serial' runs on one thread: give threads=1");
   const std::optional<InsertOrder> parsed = parse_insert_order(order);

@@ -134,6 +134,12 @@ TechniqueConfig technique_config_from(const ConfigArgs& a, const py::kwargs& opt
   return c;
 }
 
+OffsetGenerator offsets_arg(const std::string& name) {
+  const std::optional<OffsetGenerator> g = parse_offset_generator(name);
+  if (!g) throw py::value_error("offsets: expected 'random' or 'farthest', got '" + name + "'");
+  return *g;
+}
+
 OffsetSource offset_source_from(const ConfigArgs& a) {
   OffsetSource s;
   s.seed = a.seed;
@@ -142,12 +148,8 @@ OffsetSource offset_source_from(const ConfigArgs& a) {
     const auto r = rows.unchecked<2>();
     for (py::ssize_t i = 0; i < rows.shape(0); ++i) s.list.emplace_back(r(i, 0), r(i, 1));
     s.generator = OffsetGenerator::List;
-  } else if (a.offsets == "random") {
-    s.generator = OffsetGenerator::Random;
-  } else if (a.offsets == "farthest") {
-    s.generator = OffsetGenerator::Farthest;
   } else {
-    throw py::value_error("offsets: expected 'random' or 'farthest' (or offset_list=rows), got '" + a.offsets + "'");
+    s.generator = offsets_arg(a.offsets);
   }
   return s;
 }

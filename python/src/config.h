@@ -27,6 +27,8 @@ struct ConfigArgs {
 
 /// The validated configuration; ValueError naming the argument otherwise.
 TechniqueConfig technique_config_from(const ConfigArgs& a, const py::kwargs& options);
+/// The generator named `name` ("random", "farthest"); ValueError otherwise.
+OffsetGenerator offsets_arg(const std::string& name);
 /// The offsets the configuration's HA-buffer takes.
 OffsetSource offset_source_from(const ConfigArgs& a);
 /// The configuration as a dict: technique, screen, table, layout, and the

@@ -13,6 +13,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "config.h"
 #include "gl_context.h"
 #include "habuffer/age_experiment.h"
 #include "habuffer/experiment_columns.h"
@@ -22,7 +23,6 @@
 #include "habuffer/harness/plan.h"
 #include "habuffer/harness/sweep.h"
 #include "habuffer/key_experiment.h"
-#include "habuffer/memory_budget.h"
 #include "habuffer/option_rules.h"
 #include "habuffer/scene_catalog.h"
 
@@ -130,26 +130,6 @@ py::object rows_table(const std::vector<Row>& rows, std::span<const RowColumn<Ro
   return table;
 }
 
-template <class T>
-std::vector<T> named(const std::vector<std::string>& items, const char* what,
-                     const std::vector<std::pair<std::string, T>>& names) {
-  std::vector<T> out;
-  for (const std::string& item : items) {
-    bool found = false;
-    for (const auto& [key, value] : names)
-      if (item == key || item == "all") {
-        if (std::find(out.begin(), out.end(), value) == out.end()) out.push_back(value);
-        found = true;
-      }
-    if (!found) {
-      std::string known;
-      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n.first;
-      throw py::value_error(std::string(what) + ": unknown '" + item + "' (" + known + " or all)");
-    }
-  }
-  return out;
-}
-
 RenderPath path_arg(const std::string& p) {
   if (p == "gl") return RenderPath::Gl;
   if (p == "cpu") return RenderPath::Cpu;
@@ -227,29 +207,14 @@ py::object age_experiment(py::handle screen, py::handle table, const std::vector
   ExperimentConfig c;
   c.screen = extent_arg(screen, "screen");
   c.table = table.is_none() ? c.screen : extent_arg(table, "table");
-  if (c.table.x < c.screen.x || c.table.y < c.screen.y)
-    throw py::value_error("table " + c.table.str() + " is smaller than screen " + c.screen.str());
-  double max_load = 0.0;
-  for (const double l : loads) {  // as habuffer stats: loads in (0, 4], each giving a fragment
-    if (!(l > 0.0 && l <= 4.0)) throw py::value_error("loads: " + std::to_string(l) + " is not a load in (0, 4]");
-    if (l * static_cast<double>(c.table.area()) < 1.0)
-      throw py::value_error("loads: " + std::to_string(l) + " of table " + c.table.str() + " gives no fragment");
-    max_load = std::max(max_load, l);
-  }
-  // The largest load's stream (16 bytes a fragment) and the table (8 bytes a slot).
-  check_fits_in_memory("screen " + c.screen.str() + " (table " + c.table.str() + ")",
-                       saturating_product(c.table.area(), 8 + static_cast<std::uint64_t>(std::ceil(16.0 * max_load))));
   c.loads = loads;
   c.trials = trials;
   c.seed = seed;
   c.age_bits = age_bits;
   c.block = block;
   c.stream = experiment_stream(parse_stream_kind(stream), spread, age_bits);
-  c.variants = variant_grid(
-      named<Probing>(probing, "probing", {{"coherent", Probing::Coherent}, {"independent", Probing::Independent}}),
-      named<Policy>(policy, "policy", {{"robinhood", Policy::RobinHood}, {"fcfs", Policy::Fcfs}}),
-      named<OffsetGenerator>(offsets, "offsets",
-                             {{"random", OffsetGenerator::Random}, {"farthest", OffsetGenerator::Farthest}}));
+  c.variants = variant_grid(parse_probings(probing), parse_policies(policy), parse_offset_generators(offsets));
+  validate_experiment(c);  // the CLI's rules (ValueError naming the field)
   std::vector<ExperimentRow> rows;
   {
     py::gil_scoped_release release;
@@ -284,10 +249,8 @@ py::object key_experiment(const std::string& keys, py::handle domain, double cov
   c.age_bits = age_bits;
   c.block = block;
   c.misses = misses;
-  c.probing = named<spatial::KeyProbing>(
-      probing, "probing", {{"coherent", spatial::KeyProbing::Coherent}, {"independent", spatial::KeyProbing::Independent}});
-  c.policy = named<spatial::KeyPolicy>(
-      policy, "policy", {{"robinhood", spatial::KeyPolicy::RobinHood}, {"fcfs", spatial::KeyPolicy::FirstCome}});
+  c.probing = spatial::parse_key_probings(probing);
+  c.policy = spatial::parse_key_policies(policy);
   std::vector<spatial::KeyExperimentRow> rows;
   {
     py::gil_scoped_release release;
@@ -306,8 +269,7 @@ py::object sweep(const std::string& scene, const std::string& technique, const s
   s.path = path_arg(path);
   check_runs(repeats, s.path, threads);
   s.seed = seed;
-  if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
-  s.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+  s.offsets = offsets_arg(offsets);
   s.threads = threads;
   s.insert_order = order_arg(order);
   harness::validate_sweep(s);

@@ -11,6 +11,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "config.h"
 #include "habuffer/spatial/spatial_hash.h"
 
 namespace habuffer::python {
@@ -121,8 +122,7 @@ std::unique_ptr<LockedHash> make_hash(py::handle domain, std::uint64_t capacity,
   c.adaptive = adaptive;
   if (adaptive && c.target_load > c.grow_at) c.grow_at = c.target_load;  // as habuffer hash build
   c.seed = seed;
-  if (offsets != "random" && offsets != "farthest") throw py::value_error("offsets: random or farthest");
-  c.offsets = offsets == "random" ? OffsetGenerator::Random : OffsetGenerator::Farthest;
+  c.offsets = offsets_arg(offsets);
   c.threads = threads;
   return std::make_unique<LockedHash>(c, capacity);
 }

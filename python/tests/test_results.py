@@ -53,7 +53,7 @@ def test_the_key_experiment_equals_habuffer_stats_keys(cli, workdir):
 
 
 def test_statistics_arguments_are_checked():
-    with pytest.raises(ValueError, match="probing: unknown 'sideways'"):
+    with pytest.raises(ValueError, match="unknown value .sideways. \(coherent, independent or all\)"):
         hb.age_experiment(probing=["sideways"])
     with pytest.raises(ValueError):
         hb.age_experiment(trials=0)

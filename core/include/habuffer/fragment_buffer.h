@@ -61,6 +61,10 @@ enum class InsertOrder {
   Pixel,
 };
 
+/// The mode named "auto", "serial", "atomic" or "owner" (OwnerComputes);
+/// nullopt for anything else.
+std::optional<InsertMode> parse_insert_mode(std::string_view name);
+
 /// "auto", "arrival", "pixel".
 std::string to_string(InsertOrder order);
 /// The order named `name`; nullopt for anything else.

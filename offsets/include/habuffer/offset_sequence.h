@@ -3,8 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -66,6 +68,9 @@ std::uint64_t toroidal_distance2(glm::uvec2 a, glm::uvec2 b, Extent table);
 /// k = 2..n (result[k-2]); O(n^2).
 std::vector<double> min_pairwise_distances(std::span<const glm::uvec2> offsets, Extent table);
 
+/// The generator named "random" or "farthest" (what a command or a call
+/// names; a list is given as rows, not by name); nullopt for anything else.
+std::optional<OffsetGenerator> parse_offset_generator(std::string_view name);
 /// "random", "farthest" or "list".
 std::string to_string(OffsetGenerator gen);
 

@@ -39,6 +39,16 @@ struct ExperimentConfig {
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;
 };
 
+/// The largest load an experiment takes: 4 records per slot (beyond, every
+/// variant only fails).
+inline constexpr double kMaxExperimentLoad = 4.0;
+
+/// Throws std::invalid_argument, the message starting with the field's name
+/// (a caller prefixes its option syntax): no trials, an empty screen, a
+/// table with a zero side or smaller than the screen, a load outside (0, 4]
+/// or giving no fragment, or a table and stream beyond the machine's memory.
+void validate_experiment(const ExperimentConfig& config);
+
 /// One (variant, load)'s statistics over the trials.
 struct ExperimentRow {
   Variant variant;               ///< the variant measured
@@ -60,6 +70,14 @@ struct ExperimentRow {
   double wasted_traversal_probes = 0.0;  ///< per screen pixel, read after its last record
   std::uint64_t failures = 0;            ///< failed_age + failed_iter over all trials
 };
+
+/// The experiments' variant lists by name, "all" for every one, in the
+/// given order without repeats: "coherent", "independent"; "robinhood",
+/// "fcfs"; "random", "farthest". Throw std::invalid_argument "unknown value
+/// 'X' (names or all)".
+std::vector<Probing> parse_probings(const std::vector<std::string>& names);
+std::vector<Policy> parse_policies(const std::vector<std::string>& names);  ///< see parse_probings
+std::vector<OffsetGenerator> parse_offset_generators(const std::vector<std::string>& names);  ///< see parse_probings
 
 /// Every combination of the lists, in their order (probing, then policy,
 /// then offsets), the offsets varied under coherent probing only (the

@@ -22,6 +22,11 @@ namespace habuffer::spatial {
 enum class KeyProbing { Coherent, Independent };
 enum class KeyPolicy { RobinHood, FirstCome };
 
+/// The key experiment's variant lists by name, as parse_probings
+/// (age_experiment.h): "coherent", "independent"; "robinhood", "fcfs".
+std::vector<KeyProbing> parse_key_probings(const std::vector<std::string>& names);
+std::vector<KeyPolicy> parse_key_policies(const std::vector<std::string>& names);  ///< see parse_key_probings
+
 struct KeyExperimentConfig {
   KeySetOptions keys;                       ///< the key set (its seed + trial for each trial)
   std::vector<double> loads{0.5, 0.8, 0.9, 0.95, 0.99};  ///< in (0, 1]
