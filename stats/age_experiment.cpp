@@ -15,19 +15,6 @@
 namespace habuffer {
 namespace {
 
-struct Moments {
-  double n = 0, sum = 0, sum2 = 0;
-  void add(double v) {
-    n += 1;
-    sum += v;
-    sum2 += v * v;
-  }
-  [[nodiscard]] double mean() const { return n > 0 ? sum / n : 0.0; }
-  [[nodiscard]] double variance() const { return n > 1 ? (sum2 - sum * sum / n) / (n - 1) : 0.0; }
-  [[nodiscard]] double ci95() const {
-    return n > 1 ? student_t95(static_cast<std::uint32_t>(n) - 1) * std::sqrt(variance() / n) : 0.0;
-  }
-};
 
 // The rank bound of one stream: mean over distinct records of their rank in
 // their pixel's list (records are distinct by pixel and depth code).
@@ -61,6 +48,10 @@ std::uint32_t percentile(const std::vector<std::uint64_t>& hist, double q) {
 std::string Variant::name() const {
   return std::string(probing == Probing::Coherent ? "coherent" : "independent") + "/" +
          (policy == Policy::RobinHood ? "robinhood" : "fcfs") + "/" + to_string(offsets);
+}
+
+double Moments::ci95() const {
+  return n > 1 ? student_t95(static_cast<std::uint32_t>(n) - 1) * std::sqrt(variance() / n) : 0.0;
 }
 
 double student_t95(std::uint32_t df) {

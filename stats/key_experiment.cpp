@@ -106,21 +106,6 @@ Table empty_table(const FoldedDomain& fold, Extent h, std::uint32_t age_bits, st
   return t;
 }
 
-struct Mean {
-  double sum = 0, sq = 0;
-  std::uint32_t n = 0;
-  void add(double x) {
-    sum += x;
-    sq += x * x;
-    ++n;
-  }
-  [[nodiscard]] double mean() const { return n ? sum / n : 0.0; }
-  [[nodiscard]] double ci95() const {
-    if (n < 2) return 0.0;
-    const double var = std::max(0.0, (sq - sum * sum / n) / (n - 1));
-    return student_t95(n - 1) * std::sqrt(var / n);
-  }
-};
 
 }  // namespace
 
@@ -153,90 +138,80 @@ std::vector<std::uint64_t> simulate_coherent_robin_hood(const std::vector<glm::u
 
 namespace {
 
-// One trial of one variant at one load: its key set, the table built from
-// it in shuffled order, and lookups of absent keys.
-struct KeyTrial {
-  double mean_age = 0.0;
-  std::uint32_t max_age = 0;
-  double stored_load = 0.0;
-  double failed = 0.0;
-  double keys = 0.0;
-  double miss_reads = 0.0;
+// One variant at one load, over the trials.
+struct KeyAccumulator {
+  Moments age, max_age, stored, miss, fail, nkeys;
+  std::uint32_t largest = 0;
 };
 
-// The mean and largest age of the table's records, and how many there are.
-void measure_ages(const Table& t, KeyTrial& out, std::uint64_t& records) {
-  double sum = 0;
-  records = 0;
-  for (const Slot& s : t.slots)
-    if (s.age != 0) {
-      sum += s.age;
-      out.max_age = std::max(out.max_age, s.age);
-      ++records;
-    }
-  out.mean_age = records ? sum / static_cast<double>(records) : 0.0;
-}
+// One trial's inputs, the same for every variant and load: its key set, the
+// order they are inserted in, and the absent keys looked up.
+struct KeyTrialInputs {
+  std::vector<glm::uvec3> keys, order, absent;
+};
 
-KeyTrial run_key_trial(const KeyExperimentConfig& c, KeyProbing probing, KeyPolicy policy, double load,
-                       std::uint32_t trial) {
+KeyTrialInputs trial_inputs(const KeyExperimentConfig& c, std::uint32_t trial) {
   KeySetOptions o = c.keys;
   o.seed = c.keys.seed + trial;
-  const std::vector<glm::uvec3> keys = make_keys(o);
-  const std::vector<glm::uvec3> order = ordered(keys, KeyOrder::Shuffled, c.seed + trial);
-  const FoldedDomain fold(o.domain);
-  const Extent h = SpatialHash::table_for(fold, c.age_bits, keys.size(), load);
-  const OffsetSequence offsets = OffsetSequence::random(h, (1u << c.age_bits) - 1, c.seed + trial);
+  KeyTrialInputs in;
+  in.keys = make_keys(o);
+  in.order = ordered(in.keys, KeyOrder::Shuffled, c.seed + trial);
+  const std::uint64_t free_points = std::uint64_t{o.domain.x} * o.domain.y * o.domain.z - in.keys.size();
+  const std::uint64_t want = std::min<std::uint64_t>(c.misses, free_points / 2);
+  if (want) in.absent = absent_keys(in.keys, o.domain, want, c.seed + 7 * trial);
+  return in;
+}
+
+// One variant's table for the trial's keys (on table h with its offsets), measured into `a`.
+void run_variant(const KeyExperimentConfig& c, const KeyTrialInputs& in, const FoldedDomain& fold, Extent h,
+                 const OffsetSequence& offsets, KeyProbing probing, KeyPolicy policy, std::uint32_t trial,
+                 KeyAccumulator& a) {
   Table t = empty_table(fold, h, c.age_bits, c.block, offsets, probing, policy, c.seed * 0x9E3779B97F4A7C15ull + trial);
   std::uint64_t failed = 0;
-  for (const glm::uvec3 k : order) {
+  for (const glm::uvec3 k : in.order) {
     const glm::uvec2 f = fold.fold(k);
     failed += t.insert({1, f.x, f.y}) ? 0 : 1;
   }
-  KeyTrial r;
+  double sum = 0;
+  std::uint32_t largest = 0;
   std::uint64_t records = 0;
-  measure_ages(t, r, records);
-  r.stored_load = static_cast<double>(records) / static_cast<double>(h.area());
-  r.failed = static_cast<double>(failed);
-  r.keys = static_cast<double>(keys.size());
-  const std::uint64_t free_points = std::uint64_t{o.domain.x} * o.domain.y * o.domain.z - keys.size();
-  const std::uint64_t want = std::min<std::uint64_t>(c.misses, free_points / 2);
-  const std::vector<glm::uvec3> absent =
-      want ? absent_keys(keys, o.domain, want, c.seed + 7 * trial) : std::vector<glm::uvec3>{};
+  for (const Slot& s : t.slots)
+    if (s.age != 0) {
+      sum += s.age;
+      largest = std::max(largest, s.age);
+      ++records;
+    }
   double reads = 0;
-  for (const glm::uvec3 k : absent) {
+  for (const glm::uvec3 k : in.absent) {
     const glm::uvec2 f = fold.fold(k);
     reads += t.reads({1, f.x, f.y});
   }
-  r.miss_reads = absent.empty() ? 0.0 : reads / static_cast<double>(absent.size());
-  return r;
+  a.age.add(records ? sum / static_cast<double>(records) : 0.0);
+  a.max_age.add(largest);
+  a.largest = std::max(a.largest, largest);
+  a.stored.add(static_cast<double>(records) / static_cast<double>(h.area()));
+  a.fail.add(static_cast<double>(failed));
+  a.nkeys.add(static_cast<double>(in.keys.size()));
+  a.miss.add(in.absent.empty() ? 0.0 : reads / static_cast<double>(in.absent.size()));
 }
 
-KeyExperimentRow key_row(const KeyExperimentConfig& c, KeyProbing probing, KeyPolicy policy, double load) {
+KeyExperimentRow key_row(const KeyExperimentConfig& c, KeyProbing probing, KeyPolicy policy, double load,
+                         const KeyAccumulator& a) {
   KeyExperimentRow row;
   row.variant = std::string(probing == KeyProbing::Coherent ? "coherent" : "independent") + "/" +
                 (policy == KeyPolicy::RobinHood ? "robinhood" : "firstcome");
   row.load = load;
-  Mean age, max_age, stored, miss, fail, nkeys;
-  for (std::uint32_t trial = 0; trial < c.trials; ++trial) {
-    const KeyTrial t = run_key_trial(c, probing, policy, load, trial);
-    age.add(t.mean_age);
-    max_age.add(t.max_age);
-    row.max_age = std::max(row.max_age, t.max_age);
-    stored.add(t.stored_load);
-    fail.add(t.failed);
-    nkeys.add(t.keys);
-    miss.add(t.miss_reads);
-  }
+  row.max_age = a.largest;
   row.trials = c.trials;
-  row.keys = nkeys.mean();
-  row.stored_load = stored.mean();
-  row.mean_age = age.mean();
-  row.mean_age_ci95 = age.ci95();
-  row.mean_max_age = max_age.mean();
+  row.keys = a.nkeys.mean();
+  row.stored_load = a.stored.mean();
+  row.mean_age = a.age.mean();
+  row.mean_age_ci95 = a.age.ci95();
+  row.mean_max_age = a.max_age.mean();
   row.hit_reads = row.mean_age;  // a present key is read at its age
-  row.miss_reads = miss.mean();
-  row.miss_reads_ci95 = miss.ci95();
-  row.failures = fail.mean();
+  row.miss_reads = a.miss.mean();
+  row.miss_reads_ci95 = a.miss.ci95();
+  row.failures = a.fail.mean();
   return row;
 }
 
@@ -256,10 +231,27 @@ std::vector<KeyPolicy> parse_key_policies(const std::vector<std::string>& names)
 
 std::vector<KeyExperimentRow> run_key_experiment(const KeyExperimentConfig& c) {
   c.validate();
+  // Trials outermost: a trial's key set, order and absent keys are made once
+  // for every variant and load (each accumulator still sees trials in order).
+  const std::size_t variants = c.probing.size() * c.policy.size();
+  std::vector<KeyAccumulator> acc(variants * c.loads.size());
+  const FoldedDomain fold(c.keys.domain);
+  for (std::uint32_t trial = 0; trial < c.trials; ++trial) {
+    const KeyTrialInputs in = trial_inputs(c, trial);
+    for (std::size_t l = 0; l < c.loads.size(); ++l) {
+      const Extent h = SpatialHash::table_for(fold, c.age_bits, in.keys.size(), c.loads[l]);
+      const OffsetSequence offsets = OffsetSequence::random(h, (1u << c.age_bits) - 1, c.seed + trial);
+      for (std::size_t p = 0; p < c.probing.size(); ++p)
+        for (std::size_t q = 0; q < c.policy.size(); ++q)
+          run_variant(c, in, fold, h, offsets, c.probing[p], c.policy[q], trial,
+                      acc[(p * c.policy.size() + q) * c.loads.size() + l]);
+    }
+  }
   std::vector<KeyExperimentRow> rows;
-  for (const KeyProbing probing : c.probing)
-    for (const KeyPolicy policy : c.policy)
-      for (const double load : c.loads) rows.push_back(key_row(c, probing, policy, load));
+  for (std::size_t p = 0; p < c.probing.size(); ++p)
+    for (std::size_t q = 0; q < c.policy.size(); ++q)
+      for (std::size_t l = 0; l < c.loads.size(); ++l)
+        rows.push_back(key_row(c, c.probing[p], c.policy[q], c.loads[l], acc[(p * c.policy.size() + q) * c.loads.size() + l]));
   return rows;
 }
 

@@ -5,6 +5,8 @@
 /// between variants are measured on equal inputs and reported with their noise.
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -92,6 +94,22 @@ StreamOptions experiment_stream(StreamKind kind, double spread, std::uint32_t ag
 /// One row per load and variant, load by load, variants in their order. Throws std::invalid_argument for no trials, an
 /// empty screen, a table with a zero side or a load that is not positive (and as ProbeSimulator).
 std::vector<ExperimentRow> run_age_experiment(const ExperimentConfig& config);
+
+/// Running mean, variance and the 95% confidence half-width of samples
+/// added one at a time (the experiments' per-trial statistics).
+struct Moments {
+  double n = 0, sum = 0, sum2 = 0;
+  void add(double v) {  ///< one sample
+    n += 1;
+    sum += v;
+    sum2 += v * v;
+  }
+  [[nodiscard]] double mean() const { return n > 0 ? sum / n : 0.0; }  ///< 0 without samples
+  /// The sample variance (0 below two samples; never negative from rounding).
+  [[nodiscard]] double variance() const { return n > 1 ? std::max(0.0, (sum2 - sum * sum / n) / (n - 1)) : 0.0; }
+  /// Student t95(n - 1) * s / sqrt(n); 0 below two samples.
+  [[nodiscard]] double ci95() const;
+};
 
 /// Two-sided 95% Student t quantile for `df` degrees of freedom: tabulated to 30, then within 0.002 of it;
 /// infinite for 0.
