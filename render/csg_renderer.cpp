@@ -118,13 +118,6 @@ class PrimitiveDraw {
   std::vector<GpuTriangles> meshes_;
 };
 
-// The counting pass: every primitive's fragments, so the table is sized once, not grown by regathers.
-std::uint64_t count_fragments(const PrimitiveDraw& draw) {
-  const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountingFragment, "csg counting pass");
-  draw.set_view(counting);
-  return count_samples([&] { draw.draw(counting, false); });
-}
-
 // Every pixel's visible primitive and depth code by the expression.
 void resolve_pixels(const FragmentBuffer& buffer, const CsgExpression& expression, Extent screen, CsgRender& r) {
   r.primitive.assign(screen.area(), -1);
@@ -148,22 +141,15 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
   if (expression.primitives() != primitives.meshes.size())
     throw CsgError("csg: the expression names " + std::to_string(expression.primitives()) + " primitives, the scene has " +
                    std::to_string(primitives.meshes.size()) + " meshes");
-  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
-  if (!mode) throw gl::GlError("csg: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   CsgRender r;
   r.camera = frame_scene(primitives, s.camera, s.screen);
   std::unique_ptr<FragmentBuffer> buffer;
-  BufferConfig config;
-  config.screen = s.screen;
-  config.layout = Layout::L64;
+  std::optional<RecordLayout> layout;
   const auto t0 = Clock::now();
   {
     const PrimitiveDraw draw(primitives, s.screen, r.camera);
-    const std::uint64_t fragments = count_fragments(draw);
-    // Sized from the counting pass at load 0.5 (lossless growth covers the rest).
-    config.table = table_for_load(s.screen, std::max<std::uint64_t>(fragments, s.screen.area()), 0.5);
-    RecordGather g = gather_records(config, *mode, s.cpu, s.threads,
-                                    {kVertex, kCrossing, "csg gather",
+    RecordGather g = gather_records(s.screen, s.cpu, s.threads,
+                                    {kVertex, kCrossing, "csg",
                                      [&](const gl::ShaderProgram& p) {
                                        draw.set_view(p);
                                        p.set("near_plane", r.camera.near_plane);
@@ -178,11 +164,12 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
                         std::to_string(r.counters.fragments) + " records lost after " + std::to_string(r.attempts) +
                         " gathers: a lost record is a wrong pixel");
     buffer = std::move(g.buffer);
+    layout = g.layout;
   }
   r.gather_ms = ms_since(t0);
   const auto p0 = Clock::now();
   resolve_pixels(*buffer, expression, s.screen, r);
-  shade(r, config.record_layout(), s.screen);
+  shade(r, *layout, s.screen);
   r.resolve_ms = ms_since(p0);
   gl::check_gl_errors("csg");
   return r;

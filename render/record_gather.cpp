@@ -2,9 +2,15 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <optional>
+
 #include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/fragment_streams.h"
+#include "habuffer/gl/gl_error.h"
 #include "habuffer/memory_model.h"
+#include "gpu_triangles.h"
 
 namespace habuffer {
 
@@ -33,14 +39,30 @@ void EmptyFramebuffer::draw_with(const gl::ShaderProgram& program, const std::fu
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
 }
 
-RecordGather gather_records(const BufferConfig& config, gl::AtomicMode mode, bool cpu, std::uint32_t threads,
-                            const GatherPass& pass) {
+RecordGather gather_records(Extent screen, bool cpu, std::uint32_t threads, const GatherPass& pass) {
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
+  if (!mode)
+    throw gl::GlError(pass.name + ": L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this "
+                      "OpenGL lacks");
+  // The counting pass: the table is sized once from the records drawn, not
+  // grown by regathers (at load 0.5; lossless growth covers the rest).
+  std::uint64_t counted = 0;
+  {
+    const gl::ShaderProgram counting =
+        gl::ShaderProgram::graphics(pass.vertex_source, kCountingFragment, pass.name + " counting pass");
+    pass.prepare(counting);  // uniforms the counting shader lacks are ignored
+    counted = count_samples([&] { pass.draw(counting); });
+  }
+  BufferConfig config;
+  config.screen = screen;
+  config.layout = Layout::L64;
+  config.table = table_for_load(screen, std::max<std::uint64_t>(counted, screen.area()), 0.5);
   gl::GlFrameOptions options;
   options.max_attempts = cpu ? 1 : 16;  // lossless: a gather that drops a record is redone larger
   options.capture = options.capture_only = cpu;  // the CPU path: rasterize and capture only
-  gl::GlHaBuffer lists(config, OffsetSource{}, mode, options);
+  gl::GlHaBuffer lists(config, OffsetSource{}, *mode, options);
   const gl::ShaderProgram program = gl::ShaderProgram::graphics(
-      pass.vertex_source, lists.module_source(gl::ShaderStage::Fragment) + pass.fragment_source, pass.name.c_str());
+      pass.vertex_source, lists.module_source(gl::ShaderStage::Fragment) + pass.fragment_source, pass.name + " gather");
   pass.prepare(program);
   const gl::FrameReport report = lists.frame([&] { pass.draw(program); });
   RecordGather g;
@@ -48,6 +70,7 @@ RecordGather gather_records(const BufferConfig& config, gl::AtomicMode mode, boo
   g.attempts = static_cast<std::uint32_t>(report.attempts.size());
   g.list_bytes = lists.technique().memory_bytes();
   g.table = lists.table();
+  g.layout = config.record_layout();
   if (cpu) {
     InsertOptions insert;
     insert.threads = threads;

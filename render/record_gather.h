@@ -15,6 +15,7 @@
 #include "habuffer/buffer_config.h"
 #include "habuffer/counters.h"
 #include "habuffer/fragment_buffer.h"
+#include "habuffer/record_layout.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/shader_program.h"
 
@@ -41,6 +42,7 @@ class EmptyFramebuffer {
 
 /// What one gather gave.
 struct RecordGather {
+  RecordLayout layout{Layout::L64, HABUFFER_DEFAULT_AGE_BITS};  ///< the records' layout (their depth codes)
   std::unique_ptr<FragmentBuffer> buffer;  ///< the records: read back from the GPU, or the CPU path's build
   Counters counters;                       ///< of the final gather (or the CPU build's final attempt)
   std::uint32_t attempts = 0;              ///< gathers (GPU) or build attempts (CPU)
@@ -53,15 +55,16 @@ struct RecordGather {
 struct GatherPass {
   std::string vertex_source;    ///< a whole vertex shader
   std::string fragment_source;  ///< after the module's fragment source (calls habuffer_insert)
-  std::string name;             ///< for compile errors ("csg gather")
+  std::string name;             ///< names its programs and errors ("csg": "csg counting pass", "csg gather")
   std::function<void(const gl::ShaderProgram&)> prepare;  ///< sets the program's uniforms
   std::function<void(const gl::ShaderProgram&)> draw;     ///< draws with the program
 };
 
-/// The records of `pass` in an L64 HA-buffer of `config` (see the file
-/// comment). `cpu` chooses the CPU path, on `threads`. Counts failures
-/// without throwing: each caller names what a lost record means.
-RecordGather gather_records(const BufferConfig& config, gl::AtomicMode mode, bool cpu, std::uint32_t threads,
-                            const GatherPass& pass);
+/// The records of `pass` on a `screen` of pixels in an L64 HA-buffer sized
+/// from a counting pass of the same draw (see the file comment). `cpu`
+/// chooses the CPU path, on `threads`. Throws GlError when the context has
+/// no 64-bit shader types; counts failures without throwing: each caller
+/// names what a lost record means.
+RecordGather gather_records(Extent screen, bool cpu, std::uint32_t threads, const GatherPass& pass);
 
 }  // namespace habuffer

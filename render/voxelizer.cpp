@@ -162,8 +162,8 @@ void gather_stats(const RecordGather& g, Voxelization& out) {
 }
 
 // The crossings of the scene's triangles along s.axis through the grid's
-// columns, in an HA-buffer sized from a counting pass.
-RecordGather gather_crossings(const Scene& scene, const VoxelizeSettings& s, const Bounds& box, gl::AtomicMode mode) {
+// columns (gather_records sizes the table from a counting pass).
+RecordGather gather_crossings(const Scene& scene, const VoxelizeSettings& s, const Bounds& box) {
   const Extent screen{s.grid, s.grid};
   const GpuTriangles meshes = scene_triangles(scene, s.axis);
   const glm::vec3 lo = permute(box.lo, s.axis), extent = permute(box.hi - box.lo, s.axis);
@@ -173,18 +173,7 @@ RecordGather gather_crossings(const Scene& scene, const VoxelizeSettings& s, con
     p.set("extent", extent.x, extent.y, extent.z);
   };
   const auto draw = [&](const gl::ShaderProgram& p) { framebuffer.draw_with(p, [&] { meshes.draw(); }); };
-  // The counting pass: the crossings, so the table is sized once, not grown by regathers.
-  std::uint64_t counted = 0;
-  {
-    const gl::ShaderProgram counting = gl::ShaderProgram::graphics(kVertex, kCountingFragment, "voxelization counting pass");
-    set_box(counting);
-    counted = count_samples([&] { draw(counting); });
-  }
-  BufferConfig config;
-  config.screen = screen;
-  config.layout = Layout::L64;
-  config.table = table_for_load(screen, std::max<std::uint64_t>(counted, screen.area()), 0.5);
-  return gather_records(config, mode, s.cpu, s.threads, {kVertex, kCrossing, "voxelization gather", set_box, draw});
+  return gather_records(screen, s.cpu, s.threads, {kVertex, kCrossing, "voxelize", set_box, draw});
 }
 
 }  // namespace
@@ -192,15 +181,13 @@ RecordGather gather_crossings(const Scene& scene, const VoxelizeSettings& s, con
 Voxelization voxelize(const Scene& scene, const VoxelizeSettings& s) {
   s.validate();
   const Bounds box = grid_box(scene, s);
-  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), Layout::L64);
-  if (!mode) throw gl::GlError("voxelize: L64 records need 64-bit shader types (GL_ARB_gpu_shader_int64), which this OpenGL lacks");
   Voxelization out;
   const auto t0 = Clock::now();
-  const RecordGather g = gather_crossings(scene, s, box, *mode);
+  const RecordGather g = gather_crossings(scene, s, box);
   out.stats.gather_ms = ms_since(t0);
   gather_stats(g, out);
   const auto p0 = Clock::now();
-  const RecordLayout layout = g.buffer->technique_config().buffer.record_layout();
+  const RecordLayout layout = g.layout;
   out.grid = VoxelGrid(s.grid, box);
   std::vector<ListEntry> crossings;
   for (std::uint32_t j = 0; j < s.grid; ++j)
