@@ -2,7 +2,6 @@
 
 #include <epoxy/gl.h>
 
-#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -12,6 +11,7 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_technique.h"
 #include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/technique_registry.h"
 #include "spatial_glsl.h"
 
 namespace habuffer::gl {
@@ -20,18 +20,14 @@ namespace {
 constexpr unsigned kResumeLimitPasses = 4096;
 constexpr unsigned kLockSpinLimit = 1u << 12;
 
-std::string source(const GlBindings& bindings, bool native, const char* entry) {
-  std::string s = "#version 450\n#extension GL_ARB_gpu_shader_int64 : require\n";
-  if (native) s += "#extension GL_NV_shader_atomic_int64 : require\n";
-  s += bindings.glsl_defines();
-  s += "#define ha_word uint64_t\n#define ha_index uint\n#define HABUFFER_RECORDS_BINDING HABUFFER_BINDING_TABLE\n";
-  s += "uniform uint habuffer_lock_spin_limit;\n";
-  for (const char* part : {kHaConstants, native ? kPreludeNative : kPreludeEmulated64, kShConstants, kShEnv, kHaProbe,
-                           kShSpatial, entry}) {
-    s += part;
-    s += "\n";
-  }
-  return s;
+// The shader of `entry` on the HA-buffer's shared parts: the mode's
+// extensions and 64-bit atomics prelude (the modules' own, module_extensions
+// and mode_prelude), the shared probe and the spatial hash's GLSL.
+std::string source(const GlBindings& bindings, AtomicMode mode, const char* entry) {
+  return "#version 450\n" + module_extensions(mode) + bindings.glsl_defines() +
+         "#define ha_word uint64_t\n#define ha_index uint\n#define HABUFFER_RECORDS_BINDING HABUFFER_BINDING_TABLE\n"
+         "uniform uint habuffer_lock_spin_limit;\n" +
+         join_parts({kHaConstants, mode_prelude(mode), kShConstants, kShEnv, kHaProbe, kShSpatial, entry});
 }
 
 void set_params(const ShaderProgram& p, const spatial::SpatialKernelParams& k) {
@@ -50,15 +46,8 @@ void check_size(std::uint64_t bytes, const char* what) {
                   " bytes, beyond the driver's " + std::to_string(max_storage_bytes()) + " per shader-storage buffer");
 }
 
-// Whether GPU timestamps time the shaders: Mesa's software rasterizers
-// return submission times (microseconds for a pass that runs for seconds).
-bool timer_times_shaders() {
-  const std::string r = query_gl_info().renderer;
-  return r.find("llvmpipe") == std::string::npos && r.find("softpipe") == std::string::npos;
-}
-
-AtomicMode mode_for_context() {
-  const std::optional<AtomicMode> mode = chosen_atomic_mode(query_gl_info(), Layout::L64);
+AtomicMode mode_for_context(const GlInfo& info) {
+  const std::optional<AtomicMode> mode = chosen_atomic_mode(info, Layout::L64);
   if (!mode) throw GlError("spatial hash on the GPU: this context has no 64-bit integers in shaders");
   return *mode;
 }
@@ -66,15 +55,18 @@ AtomicMode mode_for_context() {
 }  // namespace
 
 GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings)
+    : GlSpatialHash(table, bindings, query_gl_info()) {}
+
+GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings, const GlInfo& info)
     : bindings_(bindings),
       params_(table.kernel_params()),
       fold_(table.domain()),
-      mode_(mode_for_context()),
-      timed_(timer_times_shaders()),
-      insert_(ShaderProgram::compute(source(bindings_, mode_ == AtomicMode::Native64, kShInsertCompute),
-                                     "spatial hash insert compute shader")),
-      find_(ShaderProgram::compute(source(bindings_, mode_ == AtomicMode::Native64, kShFindCompute),
-                                   "spatial hash find compute shader")) {
+      mode_(mode_for_context(info)),
+      // GPU timestamps time the shaders, but not on Mesa's software
+      // rasterizers (submission times: microseconds for a pass of seconds).
+      timed_(!info.software_rasterizer),
+      insert_(ShaderProgram::compute(source(bindings_, mode_, kShInsertCompute), "spatial hash insert compute shader")),
+      find_(ShaderProgram::compute(source(bindings_, mode_, kShFindCompute), "spatial hash find compute shader")) {
   slot_count_ = table.table().size();
   cell_count_ = table.max_age().size();
   if (slot_count_ > 0xFFFFFFFFull) throw GlError("spatial hash on the GPU: more than 2^32 slots");

@@ -64,6 +64,8 @@ class GlSpatialHash {
   [[nodiscard]] std::uint32_t resume_passes() const { return resume_passes_; }
 
  private:
+  // The constructor's work on the context's info, queried once.
+  GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings, const GlInfo& info);
   void bind_table() const;  // the table's buffers at their points
   GlBindings bindings_;
   spatial::SpatialKernelParams params_;
