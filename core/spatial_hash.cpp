@@ -163,8 +163,6 @@ SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::ve
     bad("table " + table.str() + " leaves quotients wider than the record's bits for domain " + config.domain.str());
   if (slots.size() != table.area()) bad(std::to_string(slots.size()) + " slots for a table of " + table.str());
   SpatialHash h(config, table, true);
-  if (slots.size() != h.table_.size())
-    bad(std::to_string(slots.size()) + " slots for a table of " + table.str());
   if (max_age.size() != h.max_age_.size())
     bad(std::to_string(max_age.size()) + " max-age cells for a table of " + table.str() + " (" +
         std::to_string(h.max_age_.size()) + " expected)");
