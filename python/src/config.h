@@ -10,6 +10,7 @@
 #include <string>
 
 #include "habuffer/lossless_build.h"
+#include "habuffer/spatial/spatial_hash.h"
 #include "habuffer/technique.h"
 
 namespace habuffer::python {
@@ -27,6 +28,9 @@ struct ConfigArgs {
 
 /// The validated configuration; ValueError naming the argument otherwise.
 TechniqueConfig technique_config_from(const ConfigArgs& a, const py::kwargs& options);
+/// (X, Y) or (X, Y, Z) sides in [1, 2^32 - 1] as a spatial hash's domain;
+/// TypeError or ValueError naming `domain` otherwise.
+spatial::Domain domain_arg(py::handle obj);
 /// The generator named `name` ("random", "farthest"); ValueError otherwise.
 OffsetGenerator offsets_arg(const std::string& name);
 /// The offsets the configuration's HA-buffer takes.

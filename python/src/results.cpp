@@ -37,10 +37,11 @@ using harness::ResultTable;
 // (no gaps), float64 (NaN for gaps), bool, or objects (text, histograms,
 // gaps among them as None).
 py::object column_array(const std::vector<const Cell*>& cells) {
-  bool ints = true, reals = true, bools = true, gaps = false;
+  bool ints = true, reals = true, bools = true;
+  std::size_t gap_count = 0;
   for (const Cell* c : cells) {
     if (!c || std::holds_alternative<std::monostate>(*c)) {
-      gaps = true;
+      ++gap_count;
       continue;
     }
     const bool is_int = std::holds_alternative<std::int64_t>(*c), is_real = std::holds_alternative<double>(*c);
@@ -49,9 +50,7 @@ py::object column_array(const std::vector<const Cell*>& cells) {
     bools &= std::holds_alternative<bool>(*c);
   }
   const std::size_t n = cells.size();
-  const bool all_gaps = std::all_of(cells.begin(), cells.end(), [](const Cell* c) {
-    return !c || std::holds_alternative<std::monostate>(*c);
-  });
+  const bool gaps = gap_count > 0, all_gaps = gap_count == n;
   if (ints && !gaps && !all_gaps) {
     std::vector<std::int64_t> v(n);
     for (std::size_t i = 0; i < n; ++i) v[i] = std::get<std::int64_t>(*cells[i]);
@@ -231,15 +230,7 @@ py::object key_experiment(const std::string& keys, py::handle domain, double cov
   const std::optional<spatial::KeySet> set = spatial::parse_key_set(keys);
   if (!set) throw py::value_error("keys: unknown key set '" + keys + "'");
   c.keys.set = *set;
-  std::vector<std::uint32_t> d;
-  try {
-    d = domain.cast<std::vector<std::uint32_t>>();
-  } catch (const py::cast_error&) {
-    throw py::type_error("domain: expected (X, Y) or (X, Y, Z) positive integers, got " +
-                         py::repr(domain).cast<std::string>());
-  }
-  if (d.size() != 2 && d.size() != 3) throw py::value_error("domain: expected (X, Y) or (X, Y, Z)");
-  c.keys.domain = spatial::Domain{d[0], d[1], d.size() == 3 ? d[2] : 1u};
+  c.keys.domain = domain_arg(domain);
   c.keys.coverage = coverage;
   c.keys.count = count;
   c.keys.seed = seed;

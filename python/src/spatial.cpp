@@ -94,20 +94,6 @@ py::array_t<bool> mask_of(const std::vector<std::uint8_t>& found) {
   return mask;
 }
 
-spatial::Domain domain_arg(py::handle obj) {
-  std::vector<std::int64_t> d;
-  try {
-    d = obj.cast<std::vector<std::int64_t>>();
-  } catch (const py::cast_error&) {
-    throw py::type_error("domain: expected (X, Y) or (X, Y, Z) integers, got " + py::repr(obj).cast<std::string>());
-  }
-  if (d.size() != 2 && d.size() != 3) throw py::value_error("domain: expected (X, Y) or (X, Y, Z)");
-  for (const std::int64_t side : d)
-    if (side < 1 || side > UINT32_MAX)
-      throw py::value_error("domain: sides must be in [1, 2^32 - 1], got " + py::repr(obj).cast<std::string>());
-  return spatial::Domain{static_cast<std::uint32_t>(d[0]), static_cast<std::uint32_t>(d[1]),
-                         d.size() == 3 ? static_cast<std::uint32_t>(d[2]) : 1u};
-}
 
 std::unique_ptr<LockedHash> make_hash(py::handle domain, std::uint64_t capacity, const std::string& rule,
                                       std::uint32_t age_bits, double load, bool adaptive, std::uint64_t seed,
