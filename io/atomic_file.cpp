@@ -1,7 +1,9 @@
 #include "habuffer/atomic_file.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <array>
@@ -14,16 +16,17 @@
 
 #include "habuffer/csv.h"
 #include "habuffer/printable.h"
+#include "temporary_registry.h"
 
 namespace habuffer {
 namespace {
 
 namespace fs = std::filesystem;
 
-// The temporary files a signal handler removes. A handler may only use
-// lock-free atomics and async-signal-safe calls (unlink, _exit), so the
-// registry is a fixed array of paths, each published by its state:
-// 0 free, 1 being filled, 2 live.
+// The temporary files and folders a signal handler removes. A handler may
+// only use lock-free atomics and async-signal-safe calls (unlink, rmdir,
+// _exit, raw system calls), so the registry is a fixed array of paths, each
+// published by its state: 0 free, 1 being filled, 2 live file, 3 live folder.
 struct Slot {
   std::atomic<int> state;
   std::array<char, 4096> path;
@@ -32,29 +35,65 @@ constexpr int kSlots = 256;
 Slot g_slots[kSlots];
 static_assert(std::atomic<int>::is_always_lock_free, "signal handlers need a lock-free slot state");
 
-// A slot for `path`, or -1 when the registry is full or the path too long:
-// the file is then still written atomically, only not removed on a signal.
-int register_temporary(const std::string& path) {
+int register_path(const std::string& path, int live) {
   if (path.size() >= std::tuple_size_v<decltype(Slot::path)>) return -1;
   for (int i = 0; i < kSlots; ++i) {
     int expected = 0;
     if (!g_slots[i].state.compare_exchange_strong(expected, 1, std::memory_order_acquire)) continue;
     std::memcpy(g_slots[i].path.data(), path.c_str(), path.size() + 1);
-    g_slots[i].state.store(2, std::memory_order_release);
+    g_slots[i].state.store(live, std::memory_order_release);
     return i;
   }
   return -1;
 }
 
-void unregister_temporary(int slot) {
-  if (slot >= 0) g_slots[slot].state.store(0, std::memory_order_release);
+// A flat folder's files, then the folder, with raw system calls only
+// (opendir and readdir may allocate; getdents64 does not).
+void remove_flat_folder(const char* path) {
+  const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    alignas(8) char buffer[4096];
+    for (;;) {
+      const long n = ::syscall(SYS_getdents64, fd, buffer, sizeof buffer);
+      if (n <= 0) break;
+      for (long at = 0; at < n;) {
+        struct Entry {
+          std::uint64_t inode;
+          std::int64_t offset;
+          unsigned short length;
+          unsigned char type;
+          char name[1];
+        };
+        const auto* e = reinterpret_cast<const Entry*>(buffer + at);
+        const bool dots = e->name[0] == '.' && (e->name[1] == '\0' || (e->name[1] == '.' && e->name[2] == '\0'));
+        if (!dots) ::unlinkat(fd, e->name, 0);
+        at += e->length;
+      }
+    }
+    ::close(fd);
+  }
+  ::rmdir(path);
 }
 
 extern "C" void remove_temporaries_and_exit(int signal_number) {
-  for (Slot& s : g_slots)
-    if (s.state.load(std::memory_order_acquire) == 2) ::unlink(s.path.data());
+  for (Slot& s : g_slots) {
+    const int state = s.state.load(std::memory_order_acquire);
+    if (state == 2) ::unlink(s.path.data());
+    if (state == 3) remove_flat_folder(s.path.data());
+  }
   ::_exit(128 + signal_number);
 }
+
+}  // namespace
+
+int register_temporary(const std::string& path) { return register_path(path, 2); }
+int register_temporary_folder(const std::string& path) { return register_path(path, 3); }
+void unregister_temporary(int slot) {
+  if (slot >= 0) g_slots[slot].state.store(0, std::memory_order_release);
+}
+void remove_flat_folder_now(const std::string& path) { remove_flat_folder(path.c_str()); }
+
+namespace {
 
 std::string random_tag() {
   static thread_local std::mt19937_64 rng{std::random_device{}() ^ static_cast<std::uint64_t>(::getpid())};
@@ -89,6 +128,22 @@ void sync_directory(const fs::path& dir) {
 
 }  // namespace
 
+std::string link_target(const std::string& path) {
+  // Followed link by link (at most 40, as the kernel does): a dangling
+  // link's target does not exist, so canonical() cannot resolve it, and
+  // writing the link's own name would replace the link with a file.
+  fs::path p = path;
+  std::error_code ec;
+  for (int hop = 0; hop < 40 && fs::is_symlink(p, ec); ++hop) {
+    const fs::path next = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = next.is_absolute() ? next : p.parent_path() / next;
+  }
+  if (fs::is_symlink(p, ec)) throw DataError(printable(path) + ": too many levels of symbolic links");
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  return ec ? p.lexically_normal().string() : resolved.string();
+}
+
 AtomicFile::AtomicFile(const std::string& path, Access access) : path_(path), target_(path), access_(access) {
   if (path.empty()) throw DataError("empty output file name");
   struct stat st {};
@@ -99,10 +154,7 @@ AtomicFile::AtomicFile(const std::string& path, Access access) : path_(path), ta
   // resolved, so the file it points to is replaced and the link kept.
   in_place_ = exists && !S_ISREG(st.st_mode);
   std::error_code ec;
-  if (!in_place_ && fs::is_symlink(path, ec)) {
-    const fs::path resolved = exists ? fs::canonical(path, ec) : fs::weakly_canonical(fs::absolute(path, ec), ec);
-    if (!ec) target_ = resolved.string();
-  }
+  if (!in_place_ && fs::is_symlink(path, ec)) target_ = link_target(path);
   if (in_place_ && access_ == Access::Stream) {
     fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd_ < 0) fail("cannot open for writing", errno);

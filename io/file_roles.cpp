@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <optional>
 
+#include "habuffer/atomic_file.h"
+#include "habuffer/atomic_folder.h"
 #include "habuffer/csv.h"
 #include "habuffer/printable.h"
 
@@ -22,10 +24,20 @@ struct Identity {
   bool regular = false;
 };
 
+// The file a path writes or reads through its links (a dangling link's
+// target included); the path itself for a loop of links.
+std::string followed(const std::string& path) {
+  try {
+    return link_target(path);
+  } catch (const DataError&) {
+    return path;
+  }
+}
+
 Identity identify(const std::string& path) {
   Identity id;
   std::error_code ec;
-  const fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  const fs::path resolved = fs::weakly_canonical(fs::absolute(followed(path), ec), ec);
   id.resolved = ec ? path : resolved.string();
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0) {
@@ -70,24 +82,72 @@ bool same_file(const Identity& a, const Identity& b) {
 }  // namespace
 
 FileRoles& FileRoles::input(std::string_view role, const std::string& path) {
-  entries_.push_back({std::string(role), path, false});
+  entries_.push_back({std::string(role), path, false, false, {}});
   return *this;
 }
 
 FileRoles& FileRoles::output(std::string_view role, const std::string& path, bool creates_parents) {
-  entries_.push_back({std::string(role), path, true, creates_parents});
+  entries_.push_back({std::string(role), path, true, creates_parents, {}});
   return *this;
 }
 
+FileRoles& FileRoles::output_set(std::string_view role, const std::string& folder, std::string_view members) {
+  entries_.push_back({std::string(role), folder, true, false, std::string(members)});
+  return *this;
+}
+
+namespace {
+
+// Whether `inner` lies inside folder `outer` (both resolved; a link to a file
+// inside counts, as the swap would take the file away from it).
+bool inside(const std::string& inner, const std::string& outer) {
+  const fs::path a(inner), b(outer);
+  auto ai = a.begin();
+  for (auto bi = b.begin(); bi != b.end(); ++bi, ++ai)
+    if (ai == a.end() || *ai != *bi) return false;
+  return true;
+}
+
+std::string resolved_fully(const std::string& path) {
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(fs::absolute(followed(path), ec), ec);
+  return ec ? path : p.string();
+}
+
+}  // namespace
+
+void FileRoles::check_sets() const {
+  for (const Entry& set : entries_) {
+    if (set.members.empty()) continue;
+    if (const std::string why = output_set_conflict(set.path, set.members); !why.empty())
+      throw FileConflict(set.role + ": " + why);
+    const std::string folder = resolved_fully(set.path);
+    for (const Entry& e : entries_) {
+      if (&e == &set) continue;
+      const std::string other = resolved_fully(e.path);
+      if (inside(other, folder))
+        throw FileConflict(e.role + " " + printable(e.path) + " is inside " + set.role + " " + printable(set.path) +
+                           (e.output ? " (the set replaces the folder whole)" : " (an input: the set would remove it)"));
+      if (inside(folder, other))
+        throw FileConflict(set.role + " " + printable(set.path) + " is inside " + e.role + " " + printable(e.path));
+    }
+  }
+}
+
 void FileRoles::check() const {
+  check_sets();
   std::vector<Identity> ids;
   ids.reserve(entries_.size());
   for (const Entry& e : entries_) {
+    if (!e.members.empty()) {  // an output set: checked above
+      ids.push_back(identify(e.path));
+      continue;
+    }
     if (e.output && e.path.empty()) throw FileConflict(e.role + ": empty file name");
     if (e.output && fs::is_directory(e.path))
       throw FileConflict(e.role + ": " + printable(e.path) + " is a directory, not a file to write");
     if (e.output)
-      if (const std::string why = unwritable(e.path, e.creates_parents); !why.empty())
+      if (const std::string why = unwritable(followed(e.path), e.creates_parents); !why.empty())
         throw FileConflict(e.role + ": " + printable(e.path) + " " + why);
     ids.push_back(identify(e.path));
   }

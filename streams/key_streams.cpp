@@ -90,14 +90,17 @@ std::vector<glm::uvec3> make_keys(const KeySetOptions& o) {
     while (static_cast<double>(covered) < target) {
       const double cx = unit(rng) * d.x, cy = unit(rng) * d.y, r = 1.0 + unit(rng) * r_max;
       const auto z = static_cast<std::uint32_t>(rng() % d.z);
-      const auto y0 = static_cast<std::uint32_t>(std::max(0.0, cy - r));
-      const auto y1 = static_cast<std::uint32_t>(std::min<double>(d.y - 1, cy + r));
-      for (std::uint32_t y = y0; y <= y1; ++y) {
-        const double dy = y + 0.5 - cy, half = std::sqrt(std::max(0.0, r * r - dy * dy));
-        const auto x0 = static_cast<std::uint32_t>(std::max(0.0, std::ceil(cx - half - 0.5)));
-        const auto x1 = static_cast<std::uint32_t>(std::min<double>(d.x - 1, std::floor(cx + half - 0.5)));
-        for (std::uint32_t x = x0; x <= x1 && x0 <= x1; ++x) {
-          const std::uint64_t i = x + std::uint64_t{d.x} * y + layer * z;
+      // Pixel centres (x + 0.5, y + 0.5) inside the disc, clipped to the
+      // domain in signed arithmetic: a disc near the border has spans that
+      // start or end off the domain (a negative column is no column).
+      const auto y0 = static_cast<std::int64_t>(std::max(0.0, cy - r));
+      const auto y1 = static_cast<std::int64_t>(std::min<double>(d.y - 1, cy + r));
+      for (std::int64_t y = y0; y <= y1; ++y) {
+        const double dy = static_cast<double>(y) + 0.5 - cy, half = std::sqrt(std::max(0.0, r * r - dy * dy));
+        const auto x0 = static_cast<std::int64_t>(std::max(0.0, std::ceil(cx - half - 0.5)));
+        const auto x1 = std::min<std::int64_t>(d.x - 1, static_cast<std::int64_t>(std::floor(cx + half - 0.5)));
+        for (std::int64_t x = x0; x <= x1; ++x) {
+          const auto i = static_cast<std::uint64_t>(x) + std::uint64_t{d.x} * static_cast<std::uint64_t>(y) + layer * z;
           if (!on[i]) {
             on[i] = true;
             ++covered;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <exception>
 
 #include "habuffer/number_text.h"
 #include "habuffer/printable.h"
@@ -91,8 +93,91 @@ bool print_help(const std::vector<std::string>& argv, const CommandSpec& spec) {
   return print_help(argv, spec.help());
 }
 
+FileUse reads() { return {FileRole::Input}; }
+FileUse reads_in(std::vector<std::string> (*paths)(const std::string&), const char* example) {
+  return {FileRole::Input, false, paths, example};
+}
+FileUse writes() { return {FileRole::Output}; }
+FileUse writes_creating_parents() { return {FileRole::Output, true}; }
+FileUse writes_in(std::vector<std::string> (*paths)(const std::string&), const char* example, bool creates_parents) {
+  return {FileRole::Output, creates_parents, paths, example};
+}
+FileUse writes_set(const char* members) { return {FileRole::OutputSet, false, nullptr, "{}", members}; }
+
+FileRoles declared_files(const Args& args, const CommandSpec& spec) {
+  FileRoles files;
+  for (const OptionSpec& o : spec.options) {
+    const FileUse& use = o.files;
+    if (use.role == FileRole::None || o.value.empty() || !args.has(o.name)) continue;
+    const std::string value = args.str(o.name, "");
+    const std::vector<std::string> paths = use.paths != nullptr ? use.paths(value) : std::vector<std::string>{value};
+    const std::string role = "--" + o.name;
+    for (const std::string& path : paths) {
+      if (use.role == FileRole::Input) files.input(role, path);
+      if (use.role == FileRole::Output) files.output(role, path, use.creates_parents);
+      if (use.role == FileRole::OutputSet) files.output_set(role, path, use.members);
+    }
+  }
+  return files;
+}
+
 Args::Args(const std::vector<std::string>& argv, const CommandSpec& spec) : Args(argv, spec.valued(), spec.flags()) {
   spec_ = &spec;
+  check_files(declared_files(*this, spec));
+  read_.clear();  // the file check reads values; the command must still read them itself
+  const char* check = std::getenv("HABUFFER_CHECK_OPTIONS");
+  check_unread_ = check != nullptr && std::string(check) == "1";
+}
+
+Args Args::probe(const std::vector<std::string>& argv, const CommandSpec& spec) {
+  Args args(argv, spec.valued(), spec.flags());
+  args.spec_ = &spec;
+  return args;
+}
+
+Args::Args(Args&& other) noexcept
+    : values_(std::move(other.values_)),
+      flags_(std::move(other.flags_)),
+      spec_(other.spec_),
+      read_(std::move(other.read_)),
+      check_unread_(other.check_unread_) {
+  other.check_unread_ = false;
+}
+
+Args::~Args() {
+  // Only a command that ran to its end: an error may stop it before it reads everything.
+  if (!check_unread_ || std::uncaught_exceptions() > 0) return;
+  const std::vector<std::string> names = unread();
+  if (names.empty()) return;
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "--" : ", --") + n;
+  std::fprintf(stderr, "habuffer: internal error: option %s given but never read by the command\n", list.c_str());
+  std::fflush(stderr);
+  std::_Exit(70);
+}
+
+void Args::used_by_probe(std::initializer_list<const char*> names) const {
+  for (const char* n : names) read_.insert(n);
+}
+
+std::vector<std::string> Args::unread() const {
+  std::vector<std::string> out;
+  for (const auto& [name, value] : values_)
+    if (read_.count(name) == 0) out.push_back(name);
+  for (const std::string& name : flags_)
+    if (read_.count(name) == 0) out.push_back(name);
+  return out;
+}
+
+const std::string* Args::given(const std::string& name) const {
+  read_.insert(name);
+  const auto it = values_.find(name);
+  return it == values_.end() ? nullptr : &it->second;
+}
+
+bool Args::has(const std::string& name) const {
+  read_.insert(name);
+  return values_.count(name) != 0 || flags_.count(name) != 0;
 }
 
 const std::string& Args::declared_default(const std::string& name) const {
@@ -147,20 +232,20 @@ Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& va
 }
 
 std::string Args::str(const std::string& name, const std::string& fallback) const {
-  auto it = values_.find(name);
-  return it == values_.end() ? fallback : it->second;
+  const std::string* v = given(name);
+  return v == nullptr ? fallback : *v;
 }
 
 std::string Args::required(const std::string& name) const {
-  auto it = values_.find(name);
-  if (it == values_.end()) throw UsageError("option --" + name + " is required");
-  return it->second;
+  const std::string* v = given(name);
+  if (v == nullptr) throw UsageError("option --" + name + " is required");
+  return *v;
 }
 
 std::uint64_t Args::u64(const std::string& name, std::uint64_t fallback, std::uint64_t min, std::uint64_t max) const {
-  auto it = values_.find(name);
-  if (it == values_.end()) return fallback;
-  return usage_errors(name, [&] { return parse_unsigned(it->second, min, max); });
+  const std::string* v = given(name);
+  if (v == nullptr) return fallback;
+  return usage_errors(name, [&] { return parse_unsigned(*v, min, max); });
 }
 
 std::uint32_t Args::u32(const std::string& name, std::uint32_t fallback, std::uint32_t min, std::uint32_t max) const {
@@ -168,13 +253,13 @@ std::uint32_t Args::u32(const std::string& name, std::uint32_t fallback, std::ui
 }
 
 double Args::real(const std::string& name, double fallback) const {
-  auto it = values_.find(name);
-  return it == values_.end() ? fallback : usage_errors(name, [&] { return parse_float64(it->second); });
+  const std::string* v = given(name);
+  return v == nullptr ? fallback : usage_errors(name, [&] { return parse_float64(*v); });
 }
 
 float Args::f32(const std::string& name, float fallback) const {
-  auto it = values_.find(name);
-  return it == values_.end() ? fallback : usage_errors(name, [&] { return parse_float32(it->second); });
+  const std::string* v = given(name);
+  return v == nullptr ? fallback : usage_errors(name, [&] { return parse_float32(*v); });
 }
 
 std::vector<std::string> Args::list(const std::string& name, const std::string& fallback) const {
@@ -198,10 +283,10 @@ void Args::refuse_unless(bool applies, std::initializer_list<const char*> names,
 }
 
 std::optional<Extent> Args::extent(const std::string& name) const {
-  auto it = values_.find(name);
-  if (it == values_.end()) return std::nullopt;
-  auto e = parse_extent(it->second);
-  if (!e) throw UsageError("option --" + name + ": " + excerpt(it->second) + " is not a size WxH with positive sides");
+  const std::string* v = given(name);
+  if (v == nullptr) return std::nullopt;
+  auto e = parse_extent(*v);
+  if (!e) throw UsageError("option --" + name + ": " + excerpt(*v) + " is not a size WxH with positive sides");
   return e;
 }
 

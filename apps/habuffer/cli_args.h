@@ -49,14 +49,52 @@ bool print_help(const std::vector<std::string>& argv, const char* usage);
 /// The same for a help text assembled at run time (e.g. from the technique registry).
 bool print_help(const std::vector<std::string>& argv, const std::string& usage);
 
+/// What an option's value names on disk. Declared once with the option, so
+/// that Args checks every command's files before its work (FileRoles: no
+/// output over an input or another output, through links and hard links; no
+/// input inside an output set) and a command cannot forget a file.
+enum class FileRole {
+  None,      ///< the value names no file
+  Input,     ///< files the command reads
+  Output,    ///< files the command writes (atomically, habuffer/atomic_file.h)
+  OutputSet  ///< a folder the command fills with a set of files, swapped in whole (habuffer/atomic_folder.h)
+};
+
+/// How an option's value names files (see FileRole).
+struct FileUse {
+  FileRole role = FileRole::None;
+  bool creates_parents = false;  ///< Output: the writer makes missing parent directories
+  /// The files named by a value that is not simply one path (csg's solids,
+  /// lists of scenes or meshes, "KIND:FILE"), none where it names only built-in
+  /// things; null: the value is one path. Never throws: a value it cannot read
+  /// is the command's own parser's to refuse.
+  std::vector<std::string> (*paths)(const std::string& value) = nullptr;
+  /// A value that names the one file "{}" (the role tests build values from it).
+  const char* example = "{}";
+  /// OutputSet: the members' names as a glob ("slice_*.png"); a folder that
+  /// holds anything else is refused rather than replaced.
+  const char* members = "";
+};
+
+FileUse reads();  ///< the value is one input file
+/// Inputs named inside the value by `paths` (see FileUse).
+FileUse reads_in(std::vector<std::string> (*paths)(const std::string&), const char* example);
+FileUse writes();                  ///< the value is one output file in an existing directory
+FileUse writes_creating_parents();  ///< the value is one output file; missing parent directories are made
+/// Outputs named inside the value by `paths` (a list of tables, "KIND:FILE").
+FileUse writes_in(std::vector<std::string> (*paths)(const std::string&), const char* example,
+                  bool creates_parents = false);
+FileUse writes_set(const char* members);  ///< the value is a folder of files named like `members`
+
 /// One option of a command, declared once in the command's CommandSpec: the
-/// accepted names, the help line and the default that parsing reads all come
-/// from it.
+/// accepted names, the help line, the default that parsing reads and the
+/// files its value names all come from it.
 struct OptionSpec {
   std::string name;      ///< --NAME
   std::string value;     ///< the value's shape in help ("WxH", "N"); empty for a switch (no value)
   std::string fallback;  ///< the default parsing reads (Args::str(name)) and help shows; empty: none
   std::string help;      ///< one phrase; where the default is not a constant, it says so in words
+  FileUse files{};       ///< the files the value names, if any
 };
 
 /// A command's declaration: its usage line, its options, and the notes the
@@ -85,13 +123,40 @@ std::vector<OptionSpec> operator+(std::vector<OptionSpec> a, const std::vector<O
 /// Prints `spec`'s help and returns true when the only argument is --help.
 bool print_help(const std::vector<std::string>& argv, const CommandSpec& spec);
 
+/// The files of `spec`'s options given in `args`, by their declared roles.
+class Args;
+FileRoles declared_files(const Args& args, const CommandSpec& spec);
+
 /// One subcommand's parsed options (see the file comment).
+///
+/// Two rules hold for every command because they live here:
+/// - the files its options name (OptionSpec::files) are checked together
+///   before the command does anything (declared_files, FileRoles::check);
+/// - an option given on the command line that the command never reads is a
+///   bug (an option that silently does nothing): with HABUFFER_CHECK_OPTIONS=1
+///   in the environment (the CLI tests set it), a command that returns
+///   without reading one of its given options exits 70 naming it.
 class Args {
  public:
   /// The options of `argv` by the names and defaults of `spec` (which must
   /// outlive the Args): its valued options and its switches. Throws
-  /// UsageError on an unknown option, a missing value or a repeated option.
+  /// UsageError on an unknown option, a missing value, a repeated option, or
+  /// files in conflict (declared_files).
   Args(const std::vector<std::string>& argv, const CommandSpec& spec);
+  /// Parses only, for a first look at options another Args reads (figure's
+  /// options of every figure): no file check, no check of unread options.
+  static Args probe(const std::vector<std::string>& argv, const CommandSpec& spec);
+  ~Args();
+  Args(const Args&) = delete;
+  Args& operator=(const Args&) = delete;
+  Args(Args&&) noexcept;
+  Args& operator=(Args&&) = delete;
+
+  /// Counts `names` as read: options whose values a probe of the same command
+  /// line used already (demo's --load chose the table it adds to the line).
+  void used_by_probe(std::initializer_list<const char*> names) const;
+  /// Options given on the command line that nothing has read yet.
+  [[nodiscard]] std::vector<std::string> unread() const;
 
   /// The value of `name`, or its declared default (CommandSpec; "" when it
   /// has none). std::logic_error for a name the command did not declare.
@@ -110,7 +175,7 @@ class Args {
   [[nodiscard]] Extent size(const std::string& name) const;
 
   /// Whether option or flag `name` was given.
-  [[nodiscard]] bool has(const std::string& name) const { return values_.count(name) != 0 || flags_.count(name) != 0; }
+  [[nodiscard]] bool has(const std::string& name) const;
   /// The value of `name`, or `fallback` when absent.
   [[nodiscard]] std::string str(const std::string& name, const std::string& fallback) const;
   /// The value of `name`; UsageError when absent.
@@ -139,10 +204,14 @@ class Args {
   // valued: options that take a value; flags: switches (see above).
   Args(const std::vector<std::string>& argv, const std::set<std::string>& valued, const std::set<std::string>& flags);
   [[nodiscard]] const std::string& declared_default(const std::string& name) const;
+  // The value given for `name`, or nullptr; either way `name` counts as read.
+  [[nodiscard]] const std::string* given(const std::string& name) const;
 
   std::map<std::string, std::string> values_;
   std::set<std::string> flags_;
   const CommandSpec* spec_ = nullptr;  ///< the declaration, when made from one
+  mutable std::set<std::string> read_;  ///< names asked about (given or not)
+  bool check_unread_ = false;  ///< check at destruction (see the class comment)
 };
 
 /// --insert-order auto|arrival|pixel (the HA-buffer's order on the CPU path;

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "file_values.h"
 #include "harness_cli.h"
 #include "habuffer/harness/bench.h"
 #include "habuffer/progress.h"
@@ -14,7 +15,7 @@ const CommandSpec& bench_spec() {
   static const CommandSpec spec{
       "bench --scenes S1,S2,... --techniques T1,T2,... --out F.json[,F.csv] [OPTIONS]",
       std::vector<OptionSpec>{
-          {"scenes", "S1,S2,...", "", "the scenes (required; S below)"},
+          {"scenes", "S1,S2,...", "", "the scenes (required; S below)", reads_in(scene_word_files, "{}")},
           {"techniques", "T1,T2,...", "", "the techniques and their knobs (required; T below)"},
           {"no-floors", "", "", "skip the floors"}} +
           harness_options({"out", "size", "path", "repeats", "seed", "threads", "insert-order", "quiet"}),
@@ -52,7 +53,7 @@ int run_bench(const std::vector<std::string>& argv) {
   }
   bool needs_gl = false;
   for (const harness::WorkloadSpec& w : s.scenes) needs_gl |= w.fragments.empty();
-  const std::vector<std::string> outputs = parse_outputs(args, s.scenes).out;
+  const std::vector<std::string> outputs = parse_outputs(args).out;
   const auto context = context_for(needs_gl, "bench");
   ProgressBar progress = ProgressBar::for_terminal("habuffer bench", "runs", args.has("quiet"));
   s.on_progress = progress.callback();

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "file_values.h"
 #include "gl_build.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/interchange.h"
@@ -18,12 +19,12 @@ const CommandSpec& build_lists_spec() {
   static const CommandSpec spec{
       "build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [OPTIONS]",
       std::vector<OptionSpec>{
-          {"in", "FRAGS.csv", "", "the fragments (required)"},
-          {"out", "LISTS.csv", "", "the per-pixel sorted lists (required)"},
+          {"in", "FRAGS.csv", "", "the fragments (required)", reads()},
+          {"out", "LISTS.csv", "", "the per-pixel sorted lists (required)", writes()},
           {"screen", "WxH", "", "the screen (required)"},
-          {"stats", "STATS.json", "", "the build's counters, sizes and times"},
-          {"dump-table", "TABLE.csv", "", "the HA-buffer's table, slot by slot"},
-          {"dump-max-age", "MAXAGE.csv", "", "the HA-buffer's max-age table"},
+          {"stats", "STATS.json", "", "the build's counters, sizes and times", writes()},
+          {"dump-table", "TABLE.csv", "", "the HA-buffer's table, slot by slot", writes()},
+          {"dump-max-age", "MAXAGE.csv", "", "the HA-buffer's max-age table", writes()},
           {"path", "cpu|gl", "cpu", "where the lists are built: cpu here (a fragment file's reference build), gl in "
                                     "render (which rasterizes)"},
           {"table", "WxH", "",
@@ -37,17 +38,11 @@ const CommandSpec& build_lists_spec() {
   return spec;
 }
 
-// Refuses a technique without lists and any file given two roles, before any work.
-void check_build_request(const Args& args, const HashOptions& options, const std::string& in, const std::string& out) {
+// Refuses a technique without lists, before any work.
+void check_build_request(const HashOptions& options) {
   if (!stores_lists(options.technique.technique))
     throw UsageError("--technique " + to_string(options.technique.technique) +
                      " stores no lists (it blends every fragment into the image): use habuffer render");
-  FileRoles files;
-  files.input("--in", in).output("--out", out);
-  add_offsets_input(files, options);
-  for (const char* o : {"stats", "dump-table", "dump-max-age"})
-    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
-  check_files(files);
 }
 
 // The build on the chosen path, timed.
@@ -118,7 +113,7 @@ int run_build_lists(const std::vector<std::string>& argv) {
   const std::string in = args.required("in");
   const std::string out = args.required("out");
   HashOptions options = parse_hash_options(args, true);
-  check_build_request(args, options, in, out);
+  check_build_request(options);
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
   // A pixel deeper than AMAX fails at any table size. The CPU's lossless

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "file_values.h"
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/gl/egl_context.h"
@@ -27,10 +28,10 @@ const CommandSpec& csg_spec() {
       "csg --solids 'NAME=SPEC; ...' --expr EXPR (--out IMAGE | --stats S.json) [OPTIONS]",
       {{"solids", "NAME=SPEC;...", "",
         "the primitives, ';'-separated: box:x0,y0,z0,x1,y1,z1  sphere:cx,cy,cz,r  "
-        "cylinder:bx,by,bz,ax,ay,az,length,radius  torus:cx,cy,cz,R,r  or a closed mesh file"},
+        "cylinder:bx,by,bz,ax,ay,az,length,radius  torus:cx,cy,cz,R,r  or a closed mesh file", reads_in(solid_files, "A={}")},
        {"expr", "EXPR", "", "names with | (union) & (intersection) - (difference) and parentheses"},
-       {"out", "IMAGE", "", "the shaded image"},
-       {"stats", "S.json", "", "records, memory, times, and with --reference the mismatches"},
+       {"out", "IMAGE", "", "the shaded image", writes_creating_parents()},
+       {"stats", "S.json", "", "records, memory, times, and with --reference the mismatches", writes()},
        {"size", "WxH", "256x256", "the image"},
        {"yaw", "DEG", "30", "camera yaw"},
        {"pitch", "DEG", "25", "camera pitch in [-90, 90]"},
@@ -153,10 +154,6 @@ int run_csg(const std::vector<std::string>& argv) {
   s.cpu = path == "cpu";
   if (args.has("out") && !has_image_support())
     throw UsageError("option --out: this habuffer was built without image files (" + image_support() + ")");
-  FileRoles files;
-  if (args.has("out")) files.output("--out", args.required("out"), true);
-  if (args.has("stats")) files.output("--stats", args.required("stats"));
-  check_files(files);
   auto [scene, names] = parse_solids(args.required("solids"));
   std::optional<CsgExpression> expression;
   try {

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "commands.h"
+#include "file_values.h"
 #include "gl_build.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/interchange.h"
@@ -40,8 +41,8 @@ const CommandSpec& demo_spec() {
           {"table", "WxH", "", "the table (default: from --load)"},
           {"path", "cpu|gl", "cpu",
            "the second build: parallel on the CPU (the default: demo checks SPEC 9 on the CPU path), or on the GPU"},
-          {"stats", "STATS.json", "", "the builds' counters, sizes and times"},
-          {"lists", "LISTS.csv", "", "the per-pixel sorted lists"}} +
+          {"stats", "STATS.json", "", "the builds' counters, sizes and times", writes()},
+          {"lists", "LISTS.csv", "", "the per-pixel sorted lists", writes()}} +
           shared_options({"layout", "age-bits", "offsets", "seed", "block", "early-cull", "iter-limit", "lossless",
                           "max-attempts", "threads", "insert-mode", "insert-order"}),
       "  --seed seeds the stream and the offsets. Builds the table serially on the CPU, then in parallel\n"
@@ -53,7 +54,7 @@ const CommandSpec& demo_spec() {
 // --load for --fragments; the stream's size in `count`.
 std::vector<std::string> with_demo_defaults(const std::vector<std::string>& argv, std::uint64_t& count) {
   std::vector<std::string> with_defaults = argv;
-  const Args probe(argv, demo_spec());
+  const Args probe = Args::probe(argv, demo_spec());
   const Extent screen = probe.size("screen");
   count = probe.u64("fragments", screen.area(), 1, std::uint64_t{1} << 32);
   const double load = probe.real("load");
@@ -122,12 +123,8 @@ int run_demo(const std::vector<std::string>& argv) {
   if (print_help(argv, demo_spec())) return 0;
   std::uint64_t count = 0;
   const Args args(with_demo_defaults(argv, count), demo_spec());
+  args.used_by_probe({"fragments", "load"});
   HashOptions options = parse_hash_options(args);
-  FileRoles files;
-  add_offsets_input(files, options);
-  for (const char* o : {"stats", "lists"})
-    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
-  check_files(files);
 
   StreamOptions so;
   so.kind = parse_stream_kind(args.str("stream"));

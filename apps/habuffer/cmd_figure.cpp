@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "file_values.h"
 #include "harness_cli.h"
 #include "habuffer/harness/figures.h"
 #include "habuffer/harness/frontier.h"
@@ -73,7 +74,7 @@ harness::ResultTable run_fig2(FigureRun& r) {
     usage_errors("opacities", [&] { set_scene_option(probe, "opacity", o); });
     opacities.push_back(probe.opacity);
   }
-  r.outputs = parse_outputs(r.args, {scene});
+  r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
   return harness::run_fig2(scene, opacities, r.s);
 }
@@ -83,7 +84,7 @@ harness::ResultTable run_fig8(FigureRun& r) {
   const harness::WorkloadSpec scene = one_scene(r.args, "fig8", harness::check_fig8_scene);
   const std::uint32_t frames = r.args.u32_in("frames", 2, 100000);
   const double load = usage_errors("load", [&] { return parse_load_factor(r.args.str("load")); });
-  r.outputs = parse_outputs(r.args, {scene});
+  r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
   return harness::run_fig8(scene, frames, load, r.s);
 }
@@ -94,7 +95,7 @@ harness::ResultTable run_bench_figure(FigureRun& r, const std::string& name, har
   usage_errors("", [&] { harness::validate_bench(b); });
   const std::vector<double> targets =
       r.args.has("picks") ? parse_reals(r.args, "targets", 0.0, 1000.0) : std::vector<double>{};
-  r.outputs = parse_outputs(r.args, b.scenes);
+  r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
   harness::ResultTable table = harness::run_bench(b);
   table.title = name;
@@ -139,7 +140,7 @@ harness::ResultTable run_shadows(FigureRun& r) {
   f.threads = r.s.threads;
   f.max_receivers = r.args.u64_in("receivers");
   f.on_progress = r.s.on_progress;
-  r.outputs = parse_outputs(r.args, {scene[0]});
+  r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
   return harness::run_shadow_frontier(scene[0], f);
 }
@@ -174,7 +175,7 @@ harness::ResultTable run_voxels(FigureRun& r) {
   f.cpu = r.s.path == RenderPath::Cpu;
   f.repeats = r.s.repeats;
   f.on_progress = r.s.on_progress;
-  r.outputs = parse_outputs(r.args, {});
+  r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
   return harness::run_voxel_figure(f);
 }
@@ -188,7 +189,7 @@ harness::ResultTable run_csg(FigureRun& r) {
   f.repeats = r.s.repeats;
   f.on_progress = r.s.on_progress;
   f.cylinders = counts(r.args, "cylinders", kMaxCsgPrimitives - 1);
-  r.outputs = parse_outputs(r.args, {});
+  r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
   return harness::run_csg_figure(f);
 }
@@ -204,7 +205,7 @@ harness::ResultTable run_table1(FigureRun& r) {
   for (const std::string& l : r.args.list("loads"))
     loads.push_back(usage_errors("loads", [&] { return parse_load_factor(l); }));
   usage_errors("", [&] { harness::validate_memory_table(size[0], counts, loads); });
-  r.outputs = parse_outputs(r.args, {});
+  r.outputs = parse_outputs(r.args);
   return harness::run_memory_table(size[0], counts, loads, !r.args.has("no-allocate"));
 }
 
@@ -212,11 +213,11 @@ const std::vector<Figure>& figures() {
   static const std::vector<Figure> list{
       {"fig2", "  seed 000 Fig. 2: early cull vs opacity; stored fragments, gather time and fill rate with and\n"
                "  without cull (opacity 1 inserted); frame time and fragments with and without translucent shadows\n",
-       {{"scene", "S", "hairball", "the scene"}, {"opacities", "A,..", "0.125,0.25,0.5,1", "the opacities"}},
+       {{"scene", "S", "hairball", "the scene", reads_in(scene_word_files, "{}")}, {"opacities", "A,..", "0.125,0.25,0.5,1", "the opacities"}},
        run_fig2},
       {"fig8", "  seed 000 Fig. 8: quads pulled together over N frames into a table fixed at load L; time and max\n"
                "  age per frame, with and without cull\n",
-       {{"scene", "S", "quads:count=64", "the scene"},
+       {{"scene", "S", "quads:count=64", "the scene", reads_in(scene_word_files, "{}")},
         {"frames", "N", "16", "frames"},
         {"load", "L", "0.64", "the fixed table's load of the first frame"}},
        run_fig8},
@@ -229,19 +230,19 @@ const std::vector<Figure>& figures() {
         {"no-allocate", "", "", "skip the allocation"}},
        run_table1},
       {"frontier", "  techniques and knobs: time, memory and psnr, Pareto rows marked\n",
-       {{"scenes", "S,..", "engine,hairball", "the scenes"},
-        {"picks", "F.json[,F.csv]", "", "the fastest configuration at each target"},
+       {{"scenes", "S,..", "engine,hairball", "the scenes", reads_in(scene_word_files, "{}")},
+        {"picks", "F.json[,F.csv]", "", "the fastest configuration at each target", writes_in(listed_files, "{}")},
         {"targets", "DB,..", "30,40,50", "the picks' psnr targets (with --picks)"}},
        run_frontier},
       {"shadows", "  the shadow frontier: light buffers (ha exact and culled, k-buffer, opacity shadow maps) from one\n"
                   "  light pass, RMSE of T against the ray-traced reference vs memory vs build time\n",
-       {{"scene", "S", "hairball", "the scene"},
+       {{"scene", "S", "hairball", "the scene", reads_in(scene_word_files, "{}")},
         {"light-size", "WxH", "512x512", "the light map"},
         {"receivers", "N", "0", "receivers checked, every k-th (0: all)"}},
        run_shadows},
       {"voxels", "  issue 21's voxelization table: meshes x grid sizes, time, lists vs dense bytes, mismatches\n"
                  "  against the ray-parity reference outside its band\n",
-       {{"meshes", "M,..", "sphere,torus,wuson,spider", "solids (sphere, torus, box) or scenes"},
+       {{"meshes", "M,..", "sphere,torus,wuson,spider", "solids (sphere, torus, box) or scenes", reads_in(mesh_files, "{}")},
         {"grids", "N,..", "128,256,512", "voxels per side"},
         {"axis", "x|y|z", "z", "the views' axis"}},
        run_voxels},
@@ -287,7 +288,7 @@ int run_figure(const std::vector<std::string>& argv) {
     for (const Figure& f : figures()) c.options = c.options + f.own;
     return c;
   }();
-  const Args all(rest, every);
+  const Args all = Args::probe(rest, every);
   const auto figure = std::find_if(figures().begin(), figures().end(), [&](const Figure& f) { return f.name == name; });
   if (figure == figures().end())
     throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier, shadows, voxels, csg)");

@@ -4,6 +4,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "file_values.h"
 #include "habuffer/fragment_streams.h"
 #include "habuffer/interchange.h"
 #include "habuffer/memory_budget.h"
@@ -16,7 +17,7 @@ const CommandSpec& generate_spec() {
   static const CommandSpec spec{
       "generate --screen WxH --out FRAGS.csv (--fragments N | --load L [--table WxH]) [OPTIONS]",
       {{"screen", "WxH", "", "the screen the fragments fall on (required)"},
-       {"out", "FRAGS.csv", "", "the fragment stream (required)"},
+       {"out", "FRAGS.csv", "", "the fragment stream (required)", writes()},
        {"stream", "coherent|random", "coherent", "the stream's shape"},
        {"fragments", "N", "", "this many fragments"},
        {"load", "L", "", "as many fragments as fill L of the table's slots, L in (0, 4]"},
@@ -45,9 +46,6 @@ int run_generate(const std::vector<std::string>& argv) {
   o.seed = args.u64_in("seed");
   args.refuse_unless(o.kind == StreamKind::Coherent, {"min-side", "max-side"}, "on a --stream other than coherent");
   args.refuse_unless(args.has("load"), {"table"}, "without --load");
-  FileRoles files;
-  files.output("--out", out);
-  check_files(files);
   o.min_side = args.u32_in("min-side", 1);
   if (!args.has("max-side") && o.max_side < o.min_side)
     throw UsageError("option --min-side: " + std::to_string(o.min_side) + " is above the default --max-side " +

@@ -11,6 +11,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "file_values.h"
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/json_writer.h"
@@ -37,15 +38,15 @@ constexpr const char* kHashUsage =
 const CommandSpec& build_spec() {
   static const CommandSpec spec{
       "hash build (--keys CSV | --key-set NAME | --voxels GRID | --image IMAGE) --out TABLE [OPTIONS]",
-      {{"keys", "CSV", "", "keys with header x,y / x,y,z / x,y,value / x,y,z,value"},
+      {{"keys", "CSV", "", "keys with header x,y / x,y,z / x,y,value / x,y,z,value", reads()},
        key_set_option("key-set"),
-       {"voxels", "GRID", "", "the solid voxels of a voxel grid file (habuffer voxelize --out)"},
-       {"image", "IMAGE", "", "the pixels of an image that differ from --background, valued RGBA8"},
+       {"voxels", "GRID", "", "the solid voxels of a voxel grid file (habuffer voxelize --out)", reads()},
+       {"image", "IMAGE", "", "the pixels of an image that differ from --background, valued RGBA8", reads()},
        {"background", "R,G,B", "1,1,1", "(--image) the colour left out, in [0, 1]"},
        {"domain", "XxY[xZ]", "", "the key space; default: the keys' bounds (the image's or grid's size)"},
        coverage_option(),
        count_option(),
-       {"out", "TABLE", "", "the table file (HASPATL1; habuffer/spatial_hash_file.h)"},
+       {"out", "TABLE", "", "the table file (HASPATL1; habuffer/spatial_hash_file.h)", writes_creating_parents()},
        {"load", "L", "0.8", "the load the table is sized for, in (0, 1]"},
        {"fixed", "", "", "no adaptive resizing (the table stays sized for --load; lossless growth still)"},
        {"rule", "max|min|first|last", "last", "which value a key given twice keeps"},
@@ -53,7 +54,7 @@ const CommandSpec& build_spec() {
        {"offsets", "random|farthest", "random", "the probe offsets"},
        {"seed", "S", "1", "the offsets' seed (and the key set's)"},
        {"threads", "N", "0", "inserting threads; 0: the default count"},
-       {"stats", "S.json", "", "the build's counters and the table's statistics"},
+       {"stats", "S.json", "", "the build's counters and the table's statistics", writes()},
        {"quiet", "", "", "no summary"}},
       "  Exit codes: 0 ok, 1 bad data (a key file, a grid, an image), 2 bad usage.\n"};
   return spec;
@@ -62,9 +63,9 @@ const CommandSpec& build_spec() {
 const CommandSpec& query_spec() {
   static const CommandSpec spec{
       "hash query --table TABLE --keys CSV [--out RESULTS.csv] [OPTIONS]",
-      {{"table", "TABLE", "", "a table file (habuffer hash build --out)"},
-       {"keys", "CSV", "", "keys with header x,y or x,y,z (a value column is ignored)"},
-       {"out", "RESULTS.csv", "", "x,y[,z],found,value per key, in the file's order"},
+      {{"table", "TABLE", "", "a table file (habuffer hash build --out)", reads()},
+       {"keys", "CSV", "", "keys with header x,y or x,y,z (a value column is ignored)", reads()},
+       {"out", "RESULTS.csv", "", "x,y[,z],found,value per key, in the file's order", writes()},
        {"threads", "N", "0", "querying threads; 0: the default count"},
        {"quiet", "", "", "no summary"}},
       "  Exit codes: 0 ok, 1 bad data (a key outside the table's domain too), 2 bad usage.\n"};
@@ -73,8 +74,8 @@ const CommandSpec& query_spec() {
 
 const CommandSpec& stats_spec() {
   static const CommandSpec spec{"hash stats --table TABLE [--out S.json]",
-                                {{"table", "TABLE", "", "a table file"},
-                                 {"out", "S.json", "", "the statistics as JSON (ages per age included)"}},
+                                {{"table", "TABLE", "", "a table file", reads()},
+                                 {"out", "S.json", "", "the statistics as JSON (ages per age included)", writes()}},
                                 "  Exit codes: 0 ok, 1 bad data, 2 bad usage.\n"};
   return spec;
 }
@@ -82,8 +83,8 @@ const CommandSpec& stats_spec() {
 const CommandSpec& image_spec() {
   static const CommandSpec spec{
       "hash image --table TABLE --out IMAGE [--background R,G,B]",
-      {{"table", "TABLE", "", "a table built with --image (values RGBA8)"},
-       {"out", "IMAGE", "", "the image: each key's pixel its value, the rest the background"},
+      {{"table", "TABLE", "", "a table built with --image (values RGBA8)", reads()},
+       {"out", "IMAGE", "", "the image: each key's pixel its value, the rest the background", writes_creating_parents()},
        {"background", "R,G,B", "1,1,1", "the colour of pixels not in the table, in [0, 1]"}},
       "  Exit codes: 0 ok, 1 bad data (a 3D table), 2 bad usage.\n"};
   return spec;
@@ -210,12 +211,6 @@ int run_build(const std::vector<std::string>& argv) {
   if (sources != 1) throw UsageError("give exactly one of --keys, --key-set, --voxels and --image");
   args.refuse_unless(args.has("key-set"), {"coverage", "count"}, "without --key-set");
   args.refuse_unless(args.has("image"), {"background"}, "without --image");
-  FileRoles files;
-  for (const char* in : {"keys", "voxels", "image"})
-    if (args.has(in)) files.input(std::string("--") + in, args.required(in));
-  files.output("--out", args.required("out"), true);
-  if (args.has("stats")) files.output("--stats", args.required("stats"));
-  check_files(files);
 
   spatial::SpatialHashConfig c = parse_build_config(args);
   const BuildKeys k = read_build_keys(args, c.seed);
@@ -247,11 +242,6 @@ int run_build(const std::vector<std::string>& argv) {
 int run_query(const std::vector<std::string>& argv) {
   if (print_help(argv, query_spec())) return 0;
   const Args args(argv, query_spec());
-  FileRoles files;
-  files.input("--table", args.required("table"));
-  files.input("--keys", args.required("keys"));
-  if (args.has("out")) files.output("--out", args.required("out"));
-  check_files(files);
   SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
   check_rows(args.required("keys"), f.keys, table.domain());
@@ -286,10 +276,6 @@ int run_query(const std::vector<std::string>& argv) {
 int run_hash_stats(const std::vector<std::string>& argv) {
   if (print_help(argv, stats_spec())) return 0;
   const Args args(argv, stats_spec());
-  FileRoles files;
-  files.input("--table", args.required("table"));
-  if (args.has("out")) files.output("--out", args.required("out"));
-  check_files(files);
   const SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const spatial::SpatialHashStats s = table.stats();
   if (args.has("out")) {
@@ -312,10 +298,6 @@ int run_hash_image(const std::vector<std::string>& argv) {
   if (print_help(argv, image_spec())) return 0;
   const Args args(argv, image_spec());
   if (!has_image_support()) throw UsageError("hash image: this habuffer was built without image files");
-  FileRoles files;
-  files.input("--table", args.required("table"));
-  files.output("--out", args.required("out"), true);
-  check_files(files);
   const SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const Domain d = table.config().domain;
   if (d.z != 1) throw DataError("hash image: the table's domain " + d.str() + " is 3D, not an image");

@@ -4,6 +4,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "file_values.h"
 #include "habuffer/interchange.h"
 #include "habuffer/buffer_config.h"
 #include "technique_options.h"
@@ -20,8 +21,8 @@ const CommandSpec& offsets_spec() {
        {"seed", "N", "1", "the random generator's seed"},
        technique_option_spec("age-bits"),
        {"count", "N", "", "this many offsets instead of 2^A - 1, one per age (not with --age-bits)"},
-       {"out", "OFFSETS.csv", "", "the offsets"},
-       {"quality", "QUALITY.csv", "", "k,min_distance for the first k offsets, k = 2..count"}},
+       {"out", "OFFSETS.csv", "", "the offsets", writes()},
+       {"quality", "QUALITY.csv", "", "k,min_distance for the first k offsets, k = 2..count", writes()}},
       "  Prints the generation time.\n"};
   return spec;
 }
@@ -36,10 +37,6 @@ int run_offsets(const std::vector<std::string>& argv) {
   if (args.has("age-bits") && args.has("count")) throw UsageError("give at most one of --age-bits and --count");
   const std::uint32_t age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   const std::uint32_t count = args.u32("count", (1u << age_bits) - 1, 1, 1u << 20);
-  FileRoles files;
-  for (const char* o : {"out", "quality"})
-    if (args.has(o)) files.output(std::string("--") + o, args.required(o));
-  check_files(files);
   const std::string gen = args.str("generator");
   if (gen != "random" && gen != "farthest") throw UsageError("option --generator: '" + gen + "' is not random or farthest");
   if (gen == "farthest" && table->area() > kFarthestMaxSlots)

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "file_values.h"
 #include "habuffer/option_rules.h"
 #include "habuffer/progress.h"
 #include "harness_cli.h"
@@ -16,8 +17,8 @@ const CommandSpec& plan_spec() {
   static const CommandSpec spec{
       "plan (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [OPTIONS]",
       std::vector<OptionSpec>{
-          {"scene", "NAME|FILE", "", "the scene, with options"},
-          {"fragments", "F.csv", "", "a fragment file instead"},
+          {"scene", "NAME|FILE", "", "the scene, with options", reads_in(scene_word_files, "{}")},
+          {"fragments", "F.csv", "", "a fragment file instead", reads()},
           {"target-psnr", "DB", "", "recommend the cheapest configuration that meets it (default: lossless)"},
           {"loads", "L1,L2,...", "0.5,0.6,0.7,0.8,0.9,0.95", "the loads in (0, 1] predicted (as sweep's)"},
           {"trials", "N", "3",
@@ -51,7 +52,7 @@ int run_plan(const std::vector<std::string>& argv) {
   if (sizes.size() != 1) throw UsageError("--size takes one WxH");
   const harness::WorkloadSpec w =
       harness::parse_workload_spec(args.has("fragments") ? args.required("fragments") : args.required("scene"));
-  const std::vector<std::string> outputs = parse_outputs(args, {w}).out;
+  const std::vector<std::string> outputs = parse_outputs(args).out;
   const auto context = context_for(w.fragments.empty(), "plan");
   const harness::Workload workload(w, sizes[0]);
   ProgressBar progress = ProgressBar::for_terminal("habuffer plan", "loads", args.has("quiet"));

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "file_values.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/interchange.h"
@@ -48,10 +49,10 @@ const CommandSpec& render_spec() {
       "render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json] [OPTIONS]",
       std::vector<OptionSpec>{
           {"scene", "NAME|FILE", "",
-           "engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file"},
-          {"fragments", "FRAGS.csv", "", "a recorded fragment stream instead of a scene (CPU path)"},
-          {"out", "IMAGE", "", "the image: PNG, or EXR/HDR/TIFF (float) by extension"},
-          {"stats", "STATS.json", "", "counters, sizes, times per frame"},
+           "engine, wuson, spider (assimp-testmodels), hairball, quads, planes, or a mesh file", reads_in(scene_file, "{}")},
+          {"fragments", "FRAGS.csv", "", "a recorded fragment stream instead of a scene (CPU path)", reads()},
+          {"out", "IMAGE", "", "the image: PNG, or EXR/HDR/TIFF (float) by extension", writes_creating_parents()},
+          {"stats", "STATS.json", "", "counters, sizes, times per frame", writes()},
           {"size", "WxH", "1024x1024", "the image (harness commands default to 256x256: many runs)"},
           {"path", "gl|cpu", "gl", "gl here (render rasterizes), cpu in build-lists (a fragment file's build)"},
           {"table", "WxH|auto", "auto",
@@ -63,8 +64,8 @@ const CommandSpec& render_spec() {
           {"fov", "DEG", "45", "vertical field of view in (1, 179)"},
           {"background", "R,G,B", "1,1,1", "each in [0, 1]"},
           {"heatmap", "depth|age|culled|shadow:IMAGE[,...]", "",
-           "heat maps: fragments, max age, culled per pixel, the light's T at the nearest surface (--shadows)"},
-          {"reference", "IMAGE", "", "the exact reference; the stats then give psnr, rmse and max_error"},
+           "heat maps: fragments, max age, culled per pixel, the light's T at the nearest surface (--shadows)", writes_in(heatmap_files, "depth:{}", true)},
+          {"reference", "IMAGE", "", "the exact reference; the stats then give psnr, rmse and max_error", writes_creating_parents()},
           {"error", "", "", "psnr, rmse and max_error against the reference without writing it"},
           {"opaque-meshes", "I,J,...", "",
            "meshes (indices in file order) drawn opaque with the depth test; transparent fragments behind them are "
@@ -212,22 +213,13 @@ void refuse_scene_options_that_do_not_apply(const Args& args) {
                          "on scene " + excerpt(scene) + " (" + scenes_taking_text(r.key) + ")");
 }
 
-// Every file the command reads or writes, checked before any work.
-void check_render_files(const Args& args, const RenderSettings& s, const std::vector<HeatmapRequest>& heatmaps) {
+// Images need OpenImageIO (the files themselves are checked by their declared roles).
+void check_image_support(const Args& args) {
   if (!has_image_support())
     for (const char* image : {"out", "reference", "heatmap"})
       if (args.has(image))
         throw UsageError(std::string("option --") + image + ": this habuffer was built without image files (" +
                          image_support() + "); give --stats only");
-  FileRoles files;
-  if (args.has("fragments")) files.input("--fragments", args.required("fragments"));
-  if (args.has("scene") && !is_scene_name(args.required("scene"))) files.input("--scene", args.required("scene"));
-  if (s.offsets.generator == OffsetGenerator::List) files.input("--offsets", args.required("offsets"));
-  for (const char* image : {"out", "reference"})  // images: their directories are created
-    if (args.has(image)) files.output(std::string("--") + image, args.required(image), true);
-  if (args.has("stats")) files.output("--stats", args.required("stats"));
-  for (const HeatmapRequest& h : heatmaps) files.output("--heatmap " + h.kind, h.path, true);
-  check_files(files);
 }
 
 // The catalog's rules (habuffer/scene_catalog.h), as the harness's scene
@@ -474,7 +466,7 @@ int run_render(const std::vector<std::string>& argv) {
   if (light && s.config.layout == Layout::L32)
     throw UsageError("option --shadows needs --layout 64 (the view's shaders read the light's 64-bit records)");
   const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args, s.technique);
-  check_render_files(args, s, heatmaps);
+  check_image_support(args);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
   s.keep_fragments = args.has("reference") || args.has("error");
   s.count_slot_writes = args.has("slot-writes");

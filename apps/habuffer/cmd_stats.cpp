@@ -8,6 +8,7 @@
 #include "cli_args.h"
 #include "habuffer/memory_budget.h"
 #include "commands.h"
+#include "file_values.h"
 #include "technique_options.h"
 #include "habuffer/age_experiment.h"
 #include "habuffer/experiment_columns.h"
@@ -91,7 +92,7 @@ const CommandSpec& stats_spec() {
         "offset generators (a list, unlike the build commands' one --offsets: each is a variant)"},
        technique_option_spec("age-bits"),
        technique_option_spec("block"),
-       {"out", "FILE.json|FILE.csv", "", "the rows, JSON or CSV by extension"},
+       {"out", "FILE.json|FILE.csv", "", "the rows, JSON or CSV by extension", writes()},
        {"quiet", "", "", "no progress bar (shown on stderr on a terminal)"},
        key_set_option("keys"),
        domain_option(),
@@ -208,11 +209,6 @@ int run_key_stats(const Args& args) {
 int run_stats(const std::vector<std::string>& argv) {
   if (print_help(argv, stats_spec())) return 0;
   const Args args(argv, stats_spec());
-  if (args.has("out")) {
-    FileRoles files;
-    files.output("--out", args.required("out"));
-    check_files(files);
-  }
   if (args.has("keys")) return run_key_stats(args);
   args.refuse_unless(false, {"domain", "coverage", "count", "misses"}, "without --keys");
   ExperimentConfig c = parse_experiment(args);

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "file_values.h"
 #include "harness_cli.h"
 #include "habuffer/harness/sweep.h"
 #include "habuffer/progress.h"
@@ -15,8 +16,8 @@ const CommandSpec& sweep_spec() {
   static const CommandSpec spec{
       "sweep (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [OPTIONS]",
       std::vector<OptionSpec>{
-          {"scene", "NAME|FILE", "", "the scene, with options (planes:order=front:count=32, hairball:opacity=0.25)"},
-          {"fragments", "F.csv", "", "a fragment file instead (CPU path)"},
+          {"scene", "NAME|FILE", "", "the scene, with options (planes:order=front:count=32, hairball:opacity=0.25)", reads_in(scene_word_files, "{}")},
+          {"fragments", "F.csv", "", "a fragment file instead (CPU path)", reads()},
           {"technique", "T", "ha", "one technique word, NAME[:cull=TAU][:sat][:age=A][:occ][:words=D] (habuffer "
                                    "bench --help): the load sets its size"},
           {"loads", "L1,L2,...", "0.5,0.6,0.7,0.8,0.9,0.95", "the loads the technique is sized for"},
@@ -64,7 +65,7 @@ int run_sweep(const std::vector<std::string>& argv) {
   }
   const harness::WorkloadSpec w =
       harness::parse_workload_spec(args.has("fragments") ? args.required("fragments") : args.required("scene"));
-  const std::vector<std::string> outputs = parse_outputs(args, {w}).out;
+  const std::vector<std::string> outputs = parse_outputs(args).out;
   const auto context = context_for(w.fragments.empty(), "sweep");
   const harness::Workload workload(w, sizes[0]);
   ProgressBar progress = ProgressBar::for_terminal("habuffer sweep", "runs", args.has("quiet"));

@@ -2,10 +2,11 @@
 // (habuffer/render/voxelizer.h), with their stats, PNG slices and the
 // ray-parity reference.
 #include <cstdio>
-#include <filesystem>
 #include <optional>
 
 #include "commands.h"
+#include "file_values.h"
+#include "habuffer/atomic_folder.h"
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/gl/egl_context.h"
@@ -20,17 +21,19 @@
 namespace habuffer::cli {
 namespace {
 
+constexpr const char* kSliceMembers = "slice_*.png";
+
 const CommandSpec& voxelize_spec() {
   static const CommandSpec spec{
       "voxelize --mesh FILE|NAME --out GRID [--grid N] [--axis x|y|z|all] [--stats S.json] [OPTIONS]",
       {{"mesh", "FILE|NAME", "",
-        "a closed mesh file, a catalog scene (engine, wuson, spider, ...) or a solid: sphere, torus, box"},
+        "a closed mesh file, a catalog scene (engine, wuson, spider, ...) or a solid: sphere, torus, box", reads_in(mesh_files, "{}")},
        {"grid", "N", "128", "voxels per side, the grid fitted to the mesh's bounding box"},
        {"axis", "x|y|z|all", "z", "the views' axis; all: three-axis voting (for meshes that are not watertight)"},
-       {"out", "GRID", "", "the grid file (HAVOXEL1: header, then N^3 bits; habuffer/render/voxelizer.h)"},
-       {"nrrd", "FILE", "", "the grid as NRRD too (uint8 0/1, placed in the mesh's space): ParaView, VTK, teem's unu"},
-       {"stats", "S.json", "", "voxels, crossings, merged crossings, odd columns, memory, load, times"},
-       {"slices", "DIR", "", "one PNG per z layer of voxels (slice_0000.png, ...), solid white"},
+       {"out", "GRID", "", "the grid file (HAVOXEL1: header, then N^3 bits; habuffer/render/voxelizer.h)", writes_creating_parents()},
+       {"nrrd", "FILE", "", "the grid as NRRD too (uint8 0/1, placed in the mesh's space): ParaView, VTK, teem's unu", writes()},
+       {"stats", "S.json", "", "voxels, crossings, merged crossings, odd columns, memory, load, times", writes()},
+       {"slices", "DIR", "", "one PNG per z layer of voxels (slice_0000.png, ...), solid white", writes_set(kSliceMembers)},
        {"reference", "", "",
         "compare with the ray-parity reference (with --axis all: its three axes' two-of-three vote): mismatches "
         "outside the near-surface band"},
@@ -41,17 +44,20 @@ const CommandSpec& voxelize_spec() {
   return spec;
 }
 
+// The slices as one output set: swapped in whole over an earlier set (none
+// of its members left behind), never mixed with it.
 void write_slices(const std::string& dir, const VoxelGrid& g) {
-  std::filesystem::create_directories(dir);
+  AtomicFolder set(dir, kSliceMembers);
   for (std::uint32_t z = 0; z < g.n; ++z) {
     Image image{{g.n, g.n}, std::vector<glm::vec4>(std::size_t{g.n} * g.n, glm::vec4(0, 0, 0, 1))};
     for (std::uint32_t y = 0; y < g.n; ++y)
       for (std::uint32_t x = 0; x < g.n; ++x)
         if (g.solid(x, y, z)) image.pixels[x + std::size_t{y} * g.n] = glm::vec4(1.0f);
     char name[32];
-    std::snprintf(name, sizeof name, "/slice_%04u.png", z);
-    write_image(dir + name, image);
+    std::snprintf(name, sizeof name, "slice_%04u.png", z);
+    write_image(set.member(name), image);
   }
+  set.commit();
 }
 
 void write_stats(const std::string& path, const std::string& mesh, const std::string& axis, const Voxelization& v,
@@ -93,12 +99,6 @@ int run_voxelize(const std::vector<std::string>& argv) {
   const std::string mesh = args.required("mesh");
   if (args.has("slices") && !has_image_support())
     throw UsageError("option --slices: this habuffer was built without image files (" + image_support() + ")");
-  FileRoles files;
-  if (mesh != "sphere" && mesh != "torus" && mesh != "box" && !is_scene_name(mesh)) files.input("--mesh", mesh);
-  files.output("--out", args.required("out"), true);
-  if (args.has("nrrd")) files.output("--nrrd", args.required("nrrd"));
-  if (args.has("stats")) files.output("--stats", args.required("stats"));
-  check_files(files);
   const Scene scene = harness::voxel_mesh(mesh);
   std::optional<gl::EglContext> context;
   try {

@@ -8,6 +8,7 @@
 #include "habuffer/memory_budget.h"
 #include "habuffer/printable.h"
 #include "habuffer/technique_options.h"
+#include "file_values.h"
 #include "hash_options.h"
 #include "loss_report.h"
 
@@ -15,7 +16,7 @@ namespace habuffer::cli {
 
 std::vector<OptionSpec> harness_options(std::initializer_list<std::string_view> names) {
   static const std::vector<OptionSpec> own{
-      {"out", "F.json[,F.csv]", "", "the table, JSON and/or CSV by extension (required)"},
+      {"out", "F.json[,F.csv]", "", "the table, JSON and/or CSV by extension (required)", writes_in(listed_files, "{}")},
       {"size", "WxH", "256x256", "the image (a harness command renders many times; render's default is 1024x1024)"},
       {"path", "gl|cpu", "gl", "rasterize and insert on the GPU, or insert on the CPU"},
       {"repeats", "N", "3", "runs of each combination (medians, min and max)"},
@@ -111,14 +112,8 @@ std::vector<std::string> table_paths(const Args& args, const std::string& name) 
 
 }  // namespace
 
-HarnessOutputs parse_outputs(const Args& args, const std::vector<harness::WorkloadSpec>& workloads) {
+HarnessOutputs parse_outputs(const Args& args) {
   HarnessOutputs o{table_paths(args, "out"), table_paths(args, "picks")};
-  FileRoles files;
-  for (const harness::WorkloadSpec& w : workloads)
-    if (const std::string in = w.input_file(); !in.empty()) files.input("scene " + excerpt(w.word), in);
-  for (const std::string& out : o.out) files.output("--out", out);
-  for (const std::string& picks : o.picks) files.output("--picks", picks);
-  check_files(files);
   return o;
 }
 

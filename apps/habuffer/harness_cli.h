@@ -51,8 +51,8 @@ std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::str
 struct HarnessOutputs {
   std::vector<std::string> out, picks;  ///< --out's and --picks' paths (picks empty when not given)
 };
-/// Reads and checks --out and --picks (see HarnessOutputs); UsageError on any conflict.
-HarnessOutputs parse_outputs(const Args& args, const std::vector<harness::WorkloadSpec>& workloads);
+/// Reads and checks --out and --picks (see HarnessOutputs; their files are checked by their declared roles).
+HarnessOutputs parse_outputs(const Args& args);
 
 /// A context when any scene needs one (streams do not); DataError when none can be made.
 std::unique_ptr<gl::EglContext> context_for(bool needed, const char* command);

@@ -7,6 +7,7 @@
 #include "habuffer/memory_budget.h"
 #include "habuffer/option_rules.h"
 #include "habuffer/technique_descriptor.h"
+#include "file_values.h"
 
 namespace habuffer::cli {
 
@@ -17,7 +18,7 @@ const std::vector<OptionSpec>& shared_declarations() {
   static const std::vector<OptionSpec> specs{
       {"technique", "NAME", "ha", "the technique (listed below)"},
       {"layout", "64|32", "64", "record layout: 64 bits (depth and colour) or 32 (depth only)"},
-      {"offsets", "random|farthest|OFFSETS.csv", "random", "the HA-buffer's probe offsets"},
+      {"offsets", "random|farthest|OFFSETS.csv", "random", "the HA-buffer's probe offsets", reads_in(offsets_file, "{}")},
       {"seed", "N", "1", "the offsets' seed"},
       {"threads", "N", "0",
        "CPU insertion threads: 0 uses every hardware thread, at most one per 32768 fragments"},
@@ -111,9 +112,6 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   return o;
 }
 
-void add_offsets_input(FileRoles& files, const HashOptions& options) {
-  if (options.offsets.generator == OffsetGenerator::List) files.input("--offsets", options.offsets_name);
-}
 
 OffsetSource parse_offset_source(const Args& args, const BufferConfig& c) {
   OffsetSource s;

@@ -57,6 +57,6 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table);
 OffsetSource parse_offset_source(const Args& args, const BufferConfig& config);
 
 /// Adds --offsets as an input when it names a file.
-void add_offsets_input(FileRoles& files, const HashOptions& options);
+
 
 }  // namespace habuffer::cli

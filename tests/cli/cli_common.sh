@@ -2,6 +2,7 @@
 # fresh working directory, counters per class of harm, and `expect`, which
 # checks one run's exit code and stderr.
 rm -rf "$dir" && mkdir -p "$dir" && cd "$dir" || exit 1
+export HABUFFER_CHECK_OPTIONS=1  # a given option the command never reads exits 70 (cli_args.h)
 export ASAN_OPTIONS=${ASAN_OPTIONS:-}:detect_leaks=0  # GL runs: Mesa's allocations
 pass=0
 fail=0

@@ -85,15 +85,15 @@ chmod 755 locked
 sum_scene=$(md5sum <scene.csv)
 ln -sf scene.csv scene_link.csv
 F=(figure frontier --path cpu --size 16x16 --repeats 1 --scenes scene.csv)
-expect files 2 "the same file as scene 'scene.csv'" -- "${F[@]}" --out scene.csv
-expect files 2 "the same file as scene 'scene.csv'" -- "${F[@]}" --out scene_link.csv
+expect files 2 "the same file as --scenes" -- "${F[@]}" --out scene.csv
+expect files 2 "the same file as --scenes" -- "${F[@]}" --out scene_link.csv
 expect files 2 "(two outputs)" -- "${F[@]}" --out f.json --picks f.json
-expect files 2 "the same file as scene" -- "${F[@]}" --out f.json --picks scene.csv
+expect files 2 "the same file as --scenes" -- "${F[@]}" --out f.json --picks scene.csv
 expect files 2 "--picks" -- "${F[@]}" --out f.json --picks missing_dir/p.json
 expect values 2 "--targets has no effect without --picks" -- "${F[@]}" --out f.json --targets 30
-expect files 2 "the same file as scene" -- bench --path cpu --size 16x16 --scenes scene.csv --techniques ha --out scene.csv
-expect files 2 "the same file as scene" -- sweep --size 16x16 --fragments scene.csv --out scene.csv
-expect files 2 "the same file as scene" -- plan --size 16x16 --fragments scene.csv --out scene.csv
+expect files 2 "the same file as --scenes" -- bench --path cpu --size 16x16 --scenes scene.csv --techniques ha --out scene.csv
+expect files 2 "the same file as --fragments" -- sweep --size 16x16 --fragments scene.csv --out scene.csv
+expect files 2 "the same file as --fragments" -- plan --size 16x16 --fragments scene.csv --out scene.csv
 unchanged files scene.csv "$sum_scene"
 
 # --- 6. Harness words and options obey render's rules -----------------------

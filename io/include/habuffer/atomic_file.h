@@ -15,7 +15,7 @@
 /// (/dev/full: "No space left on device") are reported like any other.
 ///
 /// A symbolic link as target keeps the link: the file it points to is
-/// replaced. A replaced file keeps its permission bits; a new one gets
+/// replaced, or created when the link dangles. A replaced file keeps its permission bits; a new one gets
 /// 0666 less the umask, as a plain open would.
 ///
 /// Signals: a process that can be interrupted while writing calls
@@ -74,6 +74,11 @@ class AtomicFile {
   bool in_place_ = false;
   bool done_ = false;
 };
+
+/// The file a path names after every symbolic link is followed, a dangling
+/// link's target included (what writing through the link creates); the path
+/// itself when it is no link. DataError for a loop of links.
+std::string link_target(const std::string& path);
 
 /// Installs the signal handlers described above (idempotent). Handlers the
 /// process had for these signals are replaced.

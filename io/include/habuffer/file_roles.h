@@ -30,9 +30,15 @@ class FileRoles {
   /// Declares an output (returns *this); creates_parents: the writer makes missing parent directories (images);
   /// otherwise the parent directory must exist.
   FileRoles& output(std::string_view role, const std::string& path, bool creates_parents = false);
+  /// Declares an output set: a folder the command fills with files named like
+  /// `members` (a glob), swapped in whole (habuffer/atomic_folder.h). Returns *this.
+  FileRoles& output_set(std::string_view role, const std::string& folder, std::string_view members);
   /// Throws FileConflict for an output equal to an input or to another
   /// output, an empty output name, an output that is a directory, or one that
-  /// cannot be written (a missing or read-only directory, a read-only file).
+  /// cannot be written (a missing or read-only directory, a read-only file);
+  /// for an input or output inside an output set's folder (the swap would
+  /// remove it), a set's folder that is an input or output itself, or a
+  /// folder the set cannot replace (output_set_conflict).
   void check() const;
 
  private:
@@ -40,7 +46,9 @@ class FileRoles {
     std::string role, path;
     bool output;
     bool creates_parents = false;
+    std::string members;  ///< an output set's glob; empty for a file
   };
+  void check_sets() const;
   std::vector<Entry> entries_;
 };
 

@@ -1,0 +1,130 @@
+#include "habuffer/atomic_folder.h"
+
+#include <fcntl.h>
+#include <fnmatch.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include "habuffer/atomic_file.h"
+#include "habuffer/csv.h"
+#include "habuffer/printable.h"
+#include "temporary_registry.h"
+
+namespace habuffer {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool is_member(const std::string& name, std::string_view members) {
+  return ::fnmatch(std::string(members).c_str(), name.c_str(), FNM_PERIOD) == 0;
+}
+
+std::string tag() {
+  static thread_local std::mt19937_64 rng{std::random_device{}() ^ static_cast<std::uint64_t>(::getpid())};
+  char text[20];
+  std::snprintf(text, sizeof text, "%08llx", static_cast<unsigned long long>(rng() & 0xffffffffULL));
+  return text;
+}
+
+}  // namespace
+
+std::string output_set_conflict(const std::string& folder, std::string_view members) {
+  if (folder.empty()) return "an empty folder name";
+  std::error_code ec;
+  const fs::path target = link_target(folder);
+  if (fs::exists(target, ec) && !fs::is_directory(target, ec))
+    return printable(folder) + " is a file, not a folder for the set";
+  if (fs::is_directory(target, ec)) {
+    for (const fs::directory_entry& e : fs::directory_iterator(target, ec)) {
+      const std::string name = e.path().filename().string();
+      if (!is_member(name, members) || !e.is_regular_file(ec))
+        return printable(folder) + " holds " + printable(name, 60) + ", which is not one of its " +
+               std::string(members) + " files (give a new or empty folder: the set replaces the folder whole)";
+    }
+    if (ec) return printable(folder) + " cannot be listed: " + ec.message();
+  }
+  const fs::path parent = fs::absolute(target, ec).parent_path();
+  if (!fs::is_directory(parent, ec)) return "cannot be created: directory " + printable(parent.string()) + " does not exist";
+  if (::access(parent.c_str(), W_OK | X_OK) != 0)
+    return "cannot be created: directory " + printable(parent.string()) + " is not writable";
+  return {};
+}
+
+AtomicFolder::AtomicFolder(const std::string& folder, std::string_view members)
+    : path_(folder), members_(members) {
+  if (const std::string why = output_set_conflict(folder, members); !why.empty())
+    throw DataError(printable(folder) + ": " + why);
+  std::error_code ec;
+  target_ = fs::absolute(link_target(folder), ec).lexically_normal().string();
+  if (!target_.empty() && target_.back() == '/') target_.pop_back();
+  const fs::path t(target_);
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.
+    std::string name(1, '.');
+    name.append(t.filename().string()).append(1, '.').append(tag()).append(".tmp");
+    const std::string candidate = (t.parent_path() / name).string();
+    slot_ = register_temporary_folder(candidate);  // before it exists: a signal between the two removes nothing
+    if (::mkdir(candidate.c_str(), 0777) == 0) {
+      staging_ = candidate;
+      return;
+    }
+    const int error = errno;
+    unregister_temporary(slot_);
+    slot_ = -1;
+    if (error != EEXIST)
+      throw DataError(printable(folder) + ": cannot create a temporary folder beside it: " + std::strerror(error));
+  }
+  throw DataError(printable(folder) + ": cannot create a temporary folder beside it: 100 names taken");
+}
+
+AtomicFolder::~AtomicFolder() {
+  if (!done_) discard();
+}
+
+void AtomicFolder::discard() noexcept {
+  if (!staging_.empty()) remove_flat_folder_now(staging_);
+  unregister_temporary(slot_);
+  slot_ = -1;
+  done_ = true;
+}
+
+std::string AtomicFolder::member(const std::string& name) const {
+  if (done_ || !is_member(name, members_) || name.find('/') != std::string::npos)
+    throw std::logic_error("AtomicFolder::member: '" + name + "' is not one of " + members_ + " or the set is done");
+  return staging_ + "/" + name;
+}
+
+void AtomicFolder::commit() {
+  if (done_) throw std::logic_error("AtomicFolder::commit on " + path_ + ": already done");
+  struct stat st {};
+  if (::stat(target_.c_str(), &st) != 0) {
+    if (::rename(staging_.c_str(), target_.c_str()) != 0) {
+      const int error = errno;
+      discard();
+      throw DataError(printable(path_) + ": cannot move the set into place: " + std::strerror(error));
+    }
+    staging_.clear();
+    discard();
+    return;
+  }
+  // Checked again now: the folder may have changed since the command began.
+  if (const std::string why = output_set_conflict(path_, members_); !why.empty()) {
+    discard();
+    throw DataError(printable(path_) + ": " + why);
+  }
+  (void)::chmod(staging_.c_str(), st.st_mode & 07777);
+  if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
+    const int error = errno;
+    discard();
+    throw DataError(printable(path_) + ": cannot swap the new set in: " + std::strerror(error));
+  }
+  discard();  // the earlier set, now under the temporary name
+}
+
+}  // namespace habuffer
