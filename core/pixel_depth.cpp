@@ -54,12 +54,12 @@ std::optional<std::uint32_t> age_bits_for(std::uint64_t records) {
   return std::nullopt;
 }
 
-std::string too_deep_message(const PixelDepth& d, std::uint32_t age_bits) {
+std::string too_deep_message(const PixelDepth& d, std::uint32_t age_bits, OptionSpelling spelling) {
   std::string m = "pixel (" + std::to_string(d.pixel.x) + ", " + std::to_string(d.pixel.y) + ") has " +
                   std::to_string(d.records) + (d.distinct ? " distinct fragments" : " fragments (duplicates included)") + ", more than AMAX = 2^" + std::to_string(age_bits) +
                   " - 1 = " + std::to_string((1u << age_bits) - 1) + ", at any table size: ";
   if (const std::optional<std::uint32_t> a = age_bits_for(d.records))
-    return m + "use --age-bits " + std::to_string(*a) + " (or accept the loss)";
+    return m + "use " + option_value("age-bits", std::to_string(*a), spelling) + " (or accept the loss)";
   return m + "no age bits hold it (at most " + std::to_string(HABUFFER_MAX_AGE_BITS) +
          "): use another technique, such as lists (or accept the loss)";
 }

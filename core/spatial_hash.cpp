@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "habuffer/fragment_buffer.h"
 #include "habuffer/memory_budget.h"
 #include "habuffer/parallel.h"
 #include "habuffer/spatial/spatial_hash_kernel.h"
@@ -105,6 +106,7 @@ void SpatialHashConfig::validate() const {
     bad("shrink_at " + std::to_string(shrink_at) + " outside [0, grow_at = " + std::to_string(grow_at) + ")");
   if (iter_limit == 0) bad("iteration limit 0");
   if (max_growths > 64) bad("max_growths " + std::to_string(max_growths) + " above 64");
+  if (threads > kMaxThreads) bad("threads " + std::to_string(threads) + " outside 0.." + std::to_string(kMaxThreads));
 }
 
 InsertReport& InsertReport::operator+=(const InsertReport& o) {
@@ -144,6 +146,18 @@ Extent SpatialHash::table_for(const FoldedDomain& fold, std::uint32_t age_bits, 
                                 std::to_string(kMaxSlots) + "-slot limit: use fewer age bits or a smaller domain");
   }
   return t;
+}
+
+std::uint64_t SpatialHash::memory_for(const SpatialHashConfig& config, Extent table) {
+  const std::uint32_t block = std::max(config.block, 1u);  // (unchecked configs too: no division by 0)
+  const std::uint64_t cells = saturating_product(ceil_div(table.x, block), ceil_div(table.y, block));
+  const std::uint64_t amax = (std::uint64_t{1} << std::min(config.age_bits, 32u)) - 1u;
+  const std::uint64_t parts[] = {saturating_product(table.area(), sizeof(std::uint64_t)),
+                                 saturating_product(cells, sizeof(std::uint32_t)), amax * sizeof(glm::uvec2)};
+  constexpr std::uint64_t kAll = std::numeric_limits<std::uint64_t>::max();
+  std::uint64_t sum = 0;
+  for (const std::uint64_t p : parts) sum = p > kAll - sum ? kAll : sum + p;
+  return sum;
 }
 
 SpatialHash::SpatialHash(SpatialHashConfig config, std::uint64_t capacity) : config_(config) {
@@ -208,7 +222,7 @@ SpatialHash::SpatialHash(SpatialHashConfig config, Extent table, bool) : config_
 }
 
 void SpatialHash::reset(Extent table) {
-  check_fits_in_memory("spatial hash: a table of " + table.str() + " slots", saturating_product(table.area(), 8));
+  check_fits_in_memory("spatial hash: a table of " + table.str() + " slots", memory_for(config_, table));
   const std::uint32_t amax = (1u << config_.age_bits) - 1u;
   extent_ = table;
   quotient_x_ = ceil_div(fold_.folded().x, table.x);
@@ -218,6 +232,13 @@ void SpatialHash::reset(Extent table) {
   params_.emplace(config_.age_bits, table, quotient_x_, config_.block, config_.iter_limit);
   max_age_.assign(std::uint64_t{cells_x_} * ceil_div(table.y, config_.block), 0);
   live_ = tombstones_ = 0;
+}
+
+void SpatialHash::set_threads(std::uint32_t threads) {
+  if (threads > kMaxThreads)
+    throw std::invalid_argument("spatial hash: threads " + std::to_string(threads) + " outside 0.." +
+                                std::to_string(kMaxThreads));
+  config_.threads = threads;
 }
 
 std::uint32_t SpatialHash::threads() const {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 
 namespace habuffer {
@@ -48,7 +49,8 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
   // fragments (paged lists take whole pages).
   const bool automatic_pool = uses_pool(c.technique) && c.pool_capacity == 0;
   if (automatic_pool) c.pool_capacity = policy_.automatic(fragments.size());
-  const std::uint32_t attempts = automatic_pool ? std::max<std::uint32_t>(max_attempts_, 2) : max_attempts_;
+  std::uint32_t attempts = automatic_pool ? std::max<std::uint32_t>(max_attempts_, 2) : max_attempts_;
+  bool rule_asked = false;  // lossless_attempts, asked once: after the first failed attempt
   auto b = std::make_unique<TechniqueBuild>();
   for (;;) {
     std::unique_ptr<FragmentBuffer> buffer = container_for(c);
@@ -58,8 +60,15 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
     b->counters = counters;
     b->buffer = std::move(buffer);
     if (counters.failures() == 0 || b->attempts.size() >= attempts) break;
-    if (counters.failed_age > 0)
-      if ((b->too_deep = pixel_beyond_every_table(c, fragments))) break;
+    // Lossless mode's rule of every path (the GPU's asks it before its first
+    // gather): no growth where growing cannot help.
+    if (!rule_asked) {
+      rule_asked = true;
+      AttemptLimit limit = lossless_attempts(c, fragments, attempts);
+      attempts = limit.attempts;
+      b->too_deep = std::move(limit.too_deep);
+      if (b->attempts.size() >= attempts) break;
+    }
     const TechniqueConfig next = next_attempt(c, *b->buffer, policy_);
     if (!next.limit().empty()) {  // no larger buffer can be built: the last attempt's result, marked
       b->growth_limited = true;

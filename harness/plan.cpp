@@ -166,10 +166,17 @@ ResultRow plan_row(const Prediction& p, const PlanSettings& s, bool best) {
   return row;
 }
 
+// The settings' own rules, checked before any capture.
+void check_settings(const PlanSettings& s) {
+  if (s.trials == 0) throw std::invalid_argument("plan needs at least one trial");
+  if (s.target_psnr && !(std::isfinite(*s.target_psnr) && *s.target_psnr > 0.0))
+    throw std::invalid_argument("target PSNR " + std::to_string(*s.target_psnr) + " is not a finite PSNR above 0 dB");
+}
+
 }  // namespace
 
 ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSettings& s) {
-  if (s.trials == 0) throw std::invalid_argument("plan needs at least one trial");
+  check_settings(s);
   if (c.fragments == 0) throw std::invalid_argument("the scene puts no fragment on the screen: nothing to plan");
   std::vector<Prediction> preds;
   const std::uint32_t deepest = *std::max_element(c.pixel_fragments.begin(), c.pixel_fragments.end());
@@ -224,6 +231,7 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
 }
 
 ResultTable run_plan(const Workload& workload, const PlanSettings& s) {
+  check_settings(s);
   ResultTable t = plan_from_capture(workload.capture(), workload.size(), s);
   t.notes["scene"] = workload.label();
   t.notes["size"] = workload.size().str();

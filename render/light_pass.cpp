@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "habuffer/fragment_streams.h"
@@ -57,6 +58,19 @@ void ShadowSettings::validate() const {
   if (light.size.area() == 0) throw std::invalid_argument("--light-size " + light.size.str() + " has no pixels");
   if (!(std::isfinite(max_slope) && max_slope >= 0.0f))
     throw std::invalid_argument("--shadow-slope must be a finite slope at least 0");
+  // The bias rule's bound (shadow_slope_limit): from the map's short side in
+  // pixels on, the bias exceeds the whole scene's depth and nothing shadows.
+  const bool pcf = filter == ShadowFilter::Pcf;  // doubles the bias
+  const double limit = shadow_slope_limit(light.size) / (pcf ? 2.0 : 1.0);
+  if (double{max_slope} >= limit) {
+    char head[160];
+    std::snprintf(head, sizeof head, "--shadow-slope %g must be below %g", static_cast<double>(max_slope), limit);
+    throw std::invalid_argument(std::string(head) + " (the short side of --light-size " + light.size.str() +
+                                (pcf ? " in pixels, halved by --shadow-filter pcf, which doubles the bias)"
+                                     : " in pixels)") +
+                                ": a larger bias exceeds the whole scene's depth seen from the light, so nothing "
+                                "would cast a shadow");
+  }
   if (!(early_cull_tau >= 0.0f && early_cull_tau <= 1.0f))
     throw std::invalid_argument("--light-cull must be in [0, 1] (0: off)");
   try {

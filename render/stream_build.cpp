@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <optional>
+#include <utility>
 
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/gl_error.h"
@@ -17,9 +18,13 @@ TechniqueBuild build_technique_on_gl(const TechniqueConfig& config, const Offset
   const gl::GlInfo gl_info = gl::query_gl_info();
   const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl_info, config.buffer.layout);
   if (!mode) throw gl::GlError("--layout 64 on the GPU path: this OpenGL has no 64-bit shader types (GL_ARB_gpu_shader_int64)");
+  // Lossless mode's rule, build_technique's (lossless_attempts): asked before
+  // the first gather, since the GPU does not stop between its gathers to
+  // look; a stream it stops fails every attempt, so both paths decide alike.
+  AttemptLimit limit = lossless_attempts(config, fragments, max_attempts);
   gl::GlFrameOptions frame_options;
   frame_options.policy = policy;
-  frame_options.max_attempts = max_attempts;
+  frame_options.max_attempts = limit.attempts;
   gl::GlFrameDriver gpu(gl::make_gl_technique(config, offsets, *mode), frame_options);
   // A pool of 0: the library's automatic pool, sized as the CPU's (grown at once on a drop).
   if (uses_pool(config.technique) && config.pool_capacity == 0) {
@@ -38,7 +43,10 @@ TechniqueBuild build_technique_on_gl(const TechniqueConfig& config, const Offset
     info->resume_rounds = report.resume_rounds;
     info->cut_short_retries = report.cut_short_retries;
   }
-  return TechniqueBuild{gpu.technique().read_back(), report.counters, std::move(report.attempts), false, std::nullopt};
+  // The too-deep pixel only where the first gather failed, as on the CPU (which asks after it).
+  if (report.counters.failures() == 0) limit.too_deep.reset();
+  return TechniqueBuild{gpu.technique().read_back(), report.counters, std::move(report.attempts),
+                        report.growth_limited, std::move(limit.too_deep)};
 }
 
 }  // namespace habuffer

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -28,10 +29,25 @@ glm::vec3 up_for(glm::vec3 dir) {
   return std::abs(dir.y) > 0.99f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
 }
 
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+// `d` over its largest component's magnitude, then normalised: any finite
+// vector but zero has a direction, however large or small (1e38 or 1e-40
+// would overflow or underflow the squared length of glm::normalize).
+glm::vec3 unit_direction(glm::vec3 d) {
+  const float largest = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  return glm::normalize(d / largest);
+}
+
 void check_params(const LightParams& p) {
-  const float length = glm::length(p.direction);
-  if (p.orthographic && (!std::isfinite(length) || length == 0.0f))
-    throw SceneError("light direction " + text(p.direction) + " is not a finite non-zero vector");
+  const glm::vec3 d = p.direction;
+  if (p.orthographic && !(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z)))
+    throw SceneError("light direction " + text(d) + " is not finite");
+  if (p.orthographic && d == glm::vec3(0.0f)) throw SceneError("light direction " + text(d) + " is the zero vector");
   if (p.size.area() == 0) throw SceneError("light map size " + p.size.str() + " has no pixels");
   if (!p.orthographic) {
     if (!(p.fov > 1.0f && p.fov < 179.0f))
@@ -39,6 +55,10 @@ void check_params(const LightParams& p) {
     if (!std::isfinite(p.position.x) || !std::isfinite(p.position.y) || !std::isfinite(p.position.z))
       throw SceneError("light position " + text(p.position) + " is not finite");
   }
+}
+
+std::string light_name(const LightParams& p) {
+  return std::string("light ") + (p.orthographic ? "direction " + text(p.direction) : "position " + text(p.position));
 }
 
 // The frustum must leave float32 a depth range to work in (as the view's
@@ -50,9 +70,28 @@ void check_light_range(const LightParams& p, const LightView& v) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(v.camera.view[c][r]) && std::isfinite(v.camera.projection[c][r]);
   if (finite && far - near > far * 0x1.0p-20f && (p.orthographic || near > 0.0f)) return;
-  throw SceneError(std::string("light ") + (p.orthographic ? "direction " + text(p.direction) : "position " + text(p.position)) +
-                   " leaves no usable depth range over the scene in float32 (near " + std::to_string(near) +
-                   ", far " + std::to_string(far) + "): bring the light closer to the scene");
+  throw SceneError(light_name(p) + " leaves no usable depth range over the scene in float32 (near " +
+                   std::to_string(near) + ", far " + std::to_string(far) + "): bring the light closer to the scene");
+}
+
+// The precision rule (light_view.h, kLightDepthRounding): float32 rounds the
+// light's depth by up to 4 ulps of the largest coordinate its view
+// transform handles; beyond one light pixel's side at the far plane the
+// bias no longer keeps surfaces from shadowing themselves. `reach`: the
+// scene's farthest point from the origin.
+void check_light_precision(const LightParams& p, const LightView& v, double reach) {
+  const glm::vec4 origin = v.camera.view[3];  // the world origin in the light's eye space: as far as the eye from it
+  const double eye = glm::length(glm::dvec3(origin.x, origin.y, origin.z));
+  const double largest = std::max({eye, reach, double{v.camera.far_plane}});
+  const double side = v.pixel_world_size(1.0f);
+  if (largest * kLightDepthRounding <= side) return;
+  throw SceneError(light_name(p) + " leaves float32 too coarse a depth for this scene: the light's view handles "
+                   "coordinates up to " + number(largest) + " (its eye " + number(eye) + " and the scene's farthest "
+                   "point " + number(reach) + " from the origin), which float32 rounds by up to " +
+                   number(largest * kLightDepthRounding) + " (4 ulps), more than one light pixel's side at the far "
+                   "plane (" + number(side) + "), so surfaces would shadow themselves at random: keep the light and "
+                   "the scene within " + number(side / kLightDepthRounding) + " of the origin (2^21 light pixels) "
+                   "or use a smaller light map than " + p.size.str());
 }
 
 }  // namespace
@@ -70,7 +109,7 @@ LightParams spot_along(const Scene& scene, glm::vec3 direction, float fov, Exten
   const glm::vec3 centre = b.centre();
   const float r = std::max(scene.radius_around(centre), 1e-6f);
   const float touching = r * kMargin / std::sin(glm::radians(fov) / 2.0f);
-  p.position = centre - glm::normalize(direction) * (1.5f * touching);
+  p.position = centre - unit_direction(direction) * (1.5f * touching);
   return p;
 }
 
@@ -80,8 +119,10 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
   if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices to light");
   const glm::vec3 centre = b.centre();
   // A spot looks at the scene's centre: its direction is that, whatever `direction` says.
-  const glm::vec3 dir = params.orthographic ? glm::normalize(params.direction) : glm::normalize(centre - params.position);
+  const glm::vec3 dir =
+      params.orthographic ? unit_direction(params.direction) : glm::normalize(centre - params.position);
   const float r = std::max(scene.radius_around(centre), 1e-6f);
+  const double reach = glm::length(glm::dvec3(centre)) + double{r};  // at least the scene's farthest point's distance
   const float aspect = static_cast<float>(params.size.x) / static_cast<float>(params.size.y);
   LightView v;
   v.size = params.size;
@@ -94,6 +135,7 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
     const float half = r * kMargin, hx = aspect >= 1.0f ? half * aspect : half, hy = aspect >= 1.0f ? half : half / aspect;
     v.camera.projection = glm::ortho(-hx, hx, -hy, hy, v.camera.near_plane, v.camera.far_plane);
     check_light_range(params, v);
+    check_light_precision(params, v, reach);
     return v;
   }
   const float distance = glm::length(centre - params.position);
@@ -111,6 +153,7 @@ LightView frame_light(const Scene& scene, const LightParams& params) {
   check_light_range(params, v);  // before the projection divides by far - near
   v.camera.projection = glm::perspective(fovy, aspect, v.camera.near_plane, v.camera.far_plane);
   check_light_range(params, v);
+  check_light_precision(params, v, reach);
   return v;
 }
 
@@ -144,9 +187,15 @@ float LightView::pixel_world_size(float t) const {
   return (orthographic ? width : width * d) / static_cast<float>(size.x);
 }
 
+double shadow_slope_limit(Extent size) { return static_cast<double>(std::min(size.x, size.y)); }
+
 std::uint32_t shadow_bias_codes(const LightView& light, float max_slope, std::uint32_t depth_bits) {
   if (!(std::isfinite(max_slope) && max_slope >= 0.0f))
     throw std::invalid_argument("shadow bias: max slope " + std::to_string(max_slope) + " is not a finite number >= 0");
+  if (double{max_slope} >= shadow_slope_limit(light.size))
+    throw std::invalid_argument("shadow bias: max slope " + number(max_slope) + " is not below " +
+                                number(shadow_slope_limit(light.size)) + ", the light map " + light.size.str() +
+                                "'s short side in pixels: the bias would exceed the whole scene's depth");
   if (depth_bits == 0 || depth_bits > 32)
     throw std::invalid_argument("shadow bias: " + std::to_string(depth_bits) + " depth bits outside 1..32");
   // The deepest point has the widest pixels under a spot: bias for t = 1.

@@ -8,6 +8,7 @@
 
 #include "gl_test_support.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/render/stream_build.h"
 
 #include <stdexcept>
 
@@ -148,6 +149,35 @@ TEST(GlFrame, LosslessModeRegathersIntoTheCpuPathsTablesAndLosesNothing) {
     EXPECT_EQ(gpu.read_table(), test::table_words(cpu.buffer));
     EXPECT_EQ(gpu.read_max_age(), cpu.buffer.max_age().ages());
     EXPECT_EQ(r.counters, cpu.counters);
+  }
+}
+
+// Lossless mode's one rule (lossless_attempts) on both paths: a pixel deeper
+// than AMAX, which no table holds, stops the GPU's builder after its first
+// attempt as it stops the CPU's, naming the same pixel and the same failure.
+TEST(GlFrame, TheGpuBuilderStopsGrowingForAPixelDeeperThanAmaxAsTheCpuBuilderDoes) {
+  gl_context();
+  std::vector<Fragment> f;
+  for (int i = 0; i < 20; ++i) f.push_back({1, 0, (static_cast<float>(i) + 0.5f) / 20.0f, 0xff});  // AMAX 15
+  for (std::uint32_t y = 0; y < 4; ++y)
+    for (std::uint32_t x = 0; x < 4; ++x) f.push_back({x, y, 0.125f, 0x80});
+  for (const Layout layout : {Layout::L32, Layout::L64}) {
+    if (!gl::chosen_atomic_mode(gl::query_gl_info(), layout)) continue;
+    SCOPED_TRACE(layout == Layout::L32 ? "L32" : "L64");
+    const TechniqueConfig c = ha_technique_config(test::config({4, 4}, {4, 4}, layout, 4));
+    const TechniqueBuild cpu = build_technique(c, test::random_offsets(2), f, {}, ResizePolicy{}, 8);
+    const TechniqueBuild gpu = build_technique_on_gl(c, test::random_offsets(2), f, ResizePolicy{}, 8);
+    EXPECT_EQ(cpu.attempts.size(), 1u);
+    EXPECT_EQ(gpu.attempts.size(), 1u) << "no growth for a pixel no table holds";
+    ASSERT_TRUE(cpu.too_deep.has_value());
+    ASSERT_TRUE(gpu.too_deep.has_value());
+    EXPECT_EQ(gpu.too_deep->pixel, glm::uvec2(1, 0));
+    EXPECT_EQ(gpu.too_deep->pixel, cpu.too_deep->pixel);
+    EXPECT_EQ(gpu.too_deep->records, cpu.too_deep->records);
+    EXPECT_FALSE(gpu.lossless());
+    const std::string reason = lossless_failure_reason(gpu, f, 8);
+    EXPECT_EQ(reason, lossless_failure_reason(cpu, f, 8));
+    EXPECT_NE(reason.find("more attempts cannot help (--max-attempts 8)"), std::string::npos) << reason;
   }
 }
 

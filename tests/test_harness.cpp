@@ -7,6 +7,8 @@
 #include <functional>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "gl_test_support.h"
 #include "habuffer/harness/bench.h"
@@ -410,6 +412,30 @@ TEST(Harness, FiguresRefuseScenesWhoseKnobTheyVaryAndTable1BoundsItsSizes) {
   EXPECT_THROW(validate_memory_table({64, 64}, {kMaxTableFragments + 1}, {0.5}), std::invalid_argument);
   EXPECT_THROW(validate_memory_table({64, 64}, {kMaxTableFragments}, {0.4}), std::invalid_argument);
   EXPECT_NO_THROW(validate_memory_table({64, 64}, {kMaxTableFragments}, {1.0}));
+}
+
+// A target PSNR is a finite number of dB above 0, refused before any work
+// (habuffer plan --target-psnr, habuffer.plan(target_psnr=...)).
+TEST(Harness, ThePlanRefusesATargetPsnrThatIsNotAFinitePositiveNumberOfDecibels) {
+  const ExactCapture none{};  // no fragment: a target that passes reaches the capture's own refusal
+  for (const double t : {-1.0, 0.0, -0.0, std::numeric_limits<double>::infinity(), std::nan("")}) {
+    PlanSettings ps;
+    ps.target_psnr = t;
+    try {
+      (void)plan_from_capture(none, {4, 4}, ps);
+      ADD_FAILURE() << "target PSNR " << t << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a finite PSNR above 0 dB"), std::string::npos) << e.what();
+    }
+  }
+  PlanSettings ps;
+  ps.target_psnr = 30.0;
+  try {
+    (void)plan_from_capture(none, {4, 4}, ps);
+    ADD_FAILURE() << "a plan of no fragment accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no fragment"), std::string::npos) << e.what();
+  }
 }
 
 // The plan's predictions for engine at 256x256 against measured renders:

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "habuffer/light_view.h"
 #include "habuffer/lossless_build.h"
@@ -202,6 +204,89 @@ TEST(LightView, TheSlopeBiasGrowsWithTheSlopeAndThePixelSize) {
   EXPECT_THROW((void)shadow_bias_codes(coarse, -1.0f, 24), std::invalid_argument);
   EXPECT_THROW((void)shadow_bias_codes(coarse, std::nanf(""), 24), std::invalid_argument);
   EXPECT_THROW((void)shadow_bias_codes(coarse, 1.0f, 0), std::invalid_argument);
+}
+
+// The bias is max_slope light pixels' sides; from the map's short side in
+// pixels on it exceeds the frustum's short side, which holds the scene:
+// nothing could shadow anything (1e30 once saturated the bias silently).
+TEST(LightView, ASlopeWhoseBiasExceedsTheMapsShortSideIsRefused) {
+  EXPECT_EQ(shadow_slope_limit({64, 48}), 48.0);
+  const Scene scene = stacked_quads({0.5f, -0.5f});
+  LightParams p;
+  p.direction = {0.0f, 0.0f, -1.0f};
+  p.size = {64, 48};
+  const LightView light = frame_light(scene, p);
+  EXPECT_GT(shadow_bias_codes(light, 47.0f, 24), 1u);
+  for (const float slope : {48.0f, 1000.0f, 1e30f}) {
+    try {
+      (void)shadow_bias_codes(light, slope, 24);
+      ADD_FAILURE() << "slope " << slope << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("is not below 48"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Any finite direction but zero is a direction: scaled by its largest
+// component before it is normalised, 1e38 or 1e-40 neither overflows nor
+// underflows (glm::length of them once said "not finite" or zero).
+TEST(LightView, AnyFiniteNonZeroDirectionIsNormalisedHoweverLongOrShort) {
+  const Scene scene = stacked_quads({0.5f, -0.5f});
+  for (const glm::vec3 d : {glm::vec3(1e38f, -1e38f, 0.0f), glm::vec3(3e38f, -3e38f, 3e38f),
+                            glm::vec3(0.0f, 0.0f, -1e-40f), glm::vec3(2e-30f, -3e-30f, -1e-30f)}) {
+    SCOPED_TRACE(std::to_string(d.x) + ", " + std::to_string(d.y) + ", " + std::to_string(d.z));
+    LightParams p;
+    p.direction = d;
+    p.size = {64, 64};
+    EXPECT_EQ(refusal(scene, p), "accepted");
+    const glm::dvec3 expected = glm::normalize(glm::dvec3(d));
+    const LightView light = frame_light(scene, p);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(light.direction[i], expected[i], 1e-6);
+    const LightParams spot = spot_along(scene, d, 60.0f, {64, 64});
+    EXPECT_EQ(refusal(scene, spot), "accepted");
+    EXPECT_LT(glm::length(glm::dvec3(spot.position) - glm::dvec3(scene.bounds().centre())), 10.0);
+  }
+  LightParams bad;
+  bad.direction = {std::numeric_limits<float>::infinity(), 0.0f, 0.0f};
+  EXPECT_NE(refusal(scene, bad).find("is not finite"), std::string::npos) << refusal(scene, bad);
+  bad.direction = glm::vec3(0.0f);
+  EXPECT_NE(refusal(scene, bad).find("is the zero vector"), std::string::npos) << refusal(scene, bad);
+}
+
+// The precision rule (kLightDepthRounding): float32 rounds the light's depth
+// by up to 4 ulps of the largest coordinate its view handles; past one light
+// pixel's side at the far plane (2^21 sides from the origin) the light is
+// refused. Quads of radius 1.5: one pixel is about 3.06 / map side, so the
+// limit is about 6300 at 1024 pixels and 1600 at 4096.
+TEST(LightView, ALightWhoseFloat32DepthRoundsBeyondALightPixelIsRefused) {
+  const Scene scene = stacked_quads({0.5f, -0.5f});
+  const auto spot = [](float distance, std::uint32_t side) {
+    LightParams p;
+    p.orthographic = false;
+    p.position = {0.0f, 0.0f, distance};
+    p.size = {side, side};
+    return p;
+  };
+  EXPECT_EQ(refusal(scene, spot(1e3f, 1024)), "accepted");
+  EXPECT_EQ(refusal(scene, spot(3e3f, 1024)), "accepted");
+  EXPECT_NE(refusal(scene, spot(3e3f, 4096)).find("too coarse a depth"), std::string::npos);  // finer pixels
+  const std::string far = refusal(scene, spot(1e5f, 1024));  // a usable depth range, but 16 times the rule's rounding
+  EXPECT_NE(far.find("light position"), std::string::npos) << far;
+  EXPECT_NE(far.find("leaves float32 too coarse a depth"), std::string::npos) << far;
+  EXPECT_NE(far.find("of the origin (2^21 light pixels)"), std::string::npos) << far;
+  // A directional light over a scene far from the origin: the view's terms are that large too.
+  const auto shifted = [&](float by) {
+    Scene s = scene;
+    for (Mesh& m : s.meshes)
+      for (glm::vec3& v : m.positions) v.x += by;
+    return s;
+  };
+  LightParams directional;
+  directional.direction = {0.3f, -0.2f, -1.0f};
+  EXPECT_EQ(refusal(shifted(1e3f), directional), "accepted");
+  const std::string shifted_far = refusal(shifted(1e5f), directional);
+  EXPECT_NE(shifted_far.find("light direction"), std::string::npos) << shifted_far;
+  EXPECT_NE(shifted_far.find("too coarse a depth"), std::string::npos) << shifted_far;
 }
 
 }  // namespace

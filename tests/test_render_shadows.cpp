@@ -242,6 +242,35 @@ TEST(ShadowRender, BadLightsAreRefusedNamingTheParameter) {
   EXPECT_THROW((void)render_fragments({}, shadowed({32, 32}, {0.0f, -1.0f, 0.0f}, {64, 64})), std::invalid_argument);
 }
 
+// The bias rule's bound, before any GL: a slope of the light map's short
+// side in pixels or more (half that under pcf, which doubles the bias) makes
+// a bias beyond the whole scene's depth, where no shadow is left (1e30 once
+// saturated the bias: every shadow gone, RMSE 0 against the reference).
+TEST(ShadowSettings, ASlopeWhoseBiasExceedsTheScenesDepthIsRefusedNamingTheBound) {
+  ShadowSettings s;
+  s.light.size = {512, 256};
+  const auto refusal = [&] {
+    try {
+      s.validate();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  s.max_slope = 255.0f;
+  EXPECT_EQ(refusal(), "accepted");
+  s.max_slope = 1e30f;
+  EXPECT_NE(refusal().find("--shadow-slope 1e+30 must be below 256"), std::string::npos) << refusal();
+  s.max_slope = 256.0f;
+  EXPECT_NE(refusal().find("--shadow-slope 256 must be below 256"), std::string::npos) << refusal();
+  s.filter = ShadowFilter::Pcf;
+  s.max_slope = 127.0f;
+  EXPECT_EQ(refusal(), "accepted");
+  s.max_slope = 128.0f;
+  EXPECT_NE(refusal().find("--shadow-slope 128 must be below 128"), std::string::npos) << refusal();
+  EXPECT_NE(refusal().find("--shadow-filter pcf"), std::string::npos) << refusal();
+}
+
 // The goal's measurement on a real scene, small enough for CI: outside the
 // counted bands, at least 99.9 % of receivers within 1/255 of the reference.
 TEST(ShadowRender, EngineReceiversMatchTheRayTracedReferenceOutsideTheBands) {

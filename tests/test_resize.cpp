@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
+#include "habuffer/data_error.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/pixel_depth.h"
 #include "test_support.h"
@@ -116,6 +119,112 @@ TEST(Lossless, StillGrowsWhenADeepPixelsFragmentsAreDuplicatesWithinAmax) {
   EXPECT_FALSE(r.too_deep.has_value());
   EXPECT_TRUE(r.lossless());
   EXPECT_GT(r.attempts.size(), 1u);
+}
+
+// `n` distinct depths at pixel (x, y), one colour.
+std::vector<Fragment> one_deep_pixel(std::uint32_t x, std::uint32_t y, int n) {
+  std::vector<Fragment> f;
+  for (int i = 0; i < n; ++i) f.push_back({x, y, (static_cast<float>(i) + 0.5f) / static_cast<float>(n), 7});
+  return f;
+}
+
+// The message of require_lossless, or "" when it did not throw.
+std::string lossless_error(const TechniqueBuild& b, std::span<const Fragment> f, std::uint32_t max_attempts,
+                           OptionSpelling spelling = OptionSpelling::Flag) {
+  try {
+    require_lossless(b, f, max_attempts, spelling);
+  } catch (const DataError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Lossless, TheRuleOfEveryPathGrowsUnlessAPixelIsDeeperThanAnyTableHolds) {
+  const std::vector<Fragment> f = one_deep_pixel(1, 0, 20);
+  const TechniqueConfig a4 = ha_technique_config(test::config({2, 2}, {2, 2}, Layout::L64, 4));
+  const AttemptLimit deep = lossless_attempts(a4, f, 5);
+  EXPECT_EQ(deep.attempts, 1u) << "20 records at one pixel, AMAX 15: no table holds them";
+  ASSERT_TRUE(deep.too_deep.has_value());
+  EXPECT_EQ(deep.too_deep->pixel, glm::uvec2(1, 0));
+  EXPECT_EQ(deep.too_deep->records, 20u);
+  const AttemptLimit one = lossless_attempts(a4, f, 1);
+  EXPECT_EQ(one.attempts, 1u);
+  EXPECT_FALSE(one.too_deep.has_value()) << "one attempt asks nothing of the stream";
+  const AttemptLimit a5 = lossless_attempts(ha_technique_config(test::config({2, 2}, {2, 2}, Layout::L64, 5)), f, 5);
+  EXPECT_EQ(a5.attempts, 5u) << "AMAX 31 holds them: growth may help";
+  EXPECT_FALSE(a5.too_deep.has_value());
+  TechniqueConfig culled = a4;
+  culled.buffer.early_cull_tau = 0.5f;
+  EXPECT_EQ(lossless_attempts(culled, f, 5).attempts, 5u) << "early cull may cull them";
+  TechniqueConfig lists = a4;
+  lists.technique = Technique::Lists;
+  EXPECT_EQ(lossless_attempts(lists, f, 5).attempts, 5u) << "no AMAX limits the lists";
+}
+
+TEST(Lossless, ALossyEndWhereGrowingCannotHelpThrowsADataErrorNamingThePixelAgeBitsAndMaxAttempts) {
+  const std::vector<Fragment> f = one_deep_pixel(1, 0, 20);
+  const TechniqueBuild b =
+      build_technique(ha_technique_config(test::config({2, 2}, {2, 2}, Layout::L64, 4)), OffsetSource{}, f, {},
+                      ResizePolicy{}, 5);
+  ASSERT_EQ(b.attempts.size(), 1u);
+  const std::string flag = lossless_error(b, f, 5);
+  EXPECT_EQ(flag.rfind("lossless mode: 16 of 20 fragments not stored: ", 0), 0u) << flag;  // the 2x2 table's 4 slots
+  EXPECT_NE(flag.find(" after 1 attempt: pixel (1, 0) has 20 distinct fragments, more than AMAX = 2^4 - 1 = 15"),
+            std::string::npos)
+      << flag;
+  EXPECT_NE(flag.find("use --age-bits 5"), std::string::npos) << flag;
+  EXPECT_NE(flag.find("more attempts cannot help (--max-attempts 5)"), std::string::npos) << flag;
+  EXPECT_EQ(flag.find('\n'), std::string::npos) << "one line";
+  const std::string keyword = lossless_error(b, f, 5, OptionSpelling::Keyword);
+  EXPECT_NE(keyword.find("use age_bits=5"), std::string::npos) << keyword;
+  EXPECT_NE(keyword.find("(max_attempts=5)"), std::string::npos) << keyword;
+}
+
+TEST(Lossless, ALossyEndAfterEveryAttemptThrowsADataErrorNamingThePixelAmaxTheAttemptsAndMaxAttempts) {
+  // 4000 records at one pixel fit AMAX 4095, so the build grows, but two
+  // attempts from a 4x4 table cannot hold them.
+  const std::vector<Fragment> f = one_deep_pixel(1, 2, 4000);
+  const TechniqueBuild b =
+      build_technique(ha_technique_config(test::config({4, 4}, {4, 4}, Layout::L64, 12)), OffsetSource{}, f, {},
+                      ResizePolicy{}, 2);
+  ASSERT_FALSE(b.lossless());
+  EXPECT_EQ(b.attempts.size(), 2u);
+  EXPECT_FALSE(b.too_deep.has_value());
+  const std::string m = lossless_error(b, f, 2);
+  EXPECT_NE(m.find(" after 2 attempts (last table "), std::string::npos) << m;
+  EXPECT_NE(m.find("; AMAX = 2^12 - 1 = 4095): pixel (1, 2) lost the most, "), std::string::npos) << m;
+  EXPECT_NE(m.find(" of its 4000 distinct records: raise --max-attempts above 2"), std::string::npos) << m;
+  EXPECT_EQ(m.find("age-bits"), std::string::npos) << "growing may help: " << m;
+  EXPECT_EQ(m.find('\n'), std::string::npos) << "one line";
+  EXPECT_NE(lossless_error(b, f, 2, OptionSpelling::Keyword).find("raise max_attempts above 2"), std::string::npos);
+  const TechniqueBuild whole =
+      build_technique(ha_technique_config(test::config({4, 4}, {4, 4}, Layout::L64, 12)), OffsetSource{},
+                      one_deep_pixel(1, 2, 10), {}, ResizePolicy{}, 2);
+  ASSERT_TRUE(whole.lossless());
+  EXPECT_NO_THROW(require_lossless(whole, one_deep_pixel(1, 2, 10), 2));
+  EXPECT_EQ(lossless_failure_reason(whole, one_deep_pixel(1, 2, 10), 2), "");
+}
+
+TEST(Lossless, NamesThePixelThatLostTheMostWithoutAmaxForTechniquesWithoutATable) {
+  std::vector<Fragment> f = one_deep_pixel(2, 1, 5);
+  f.push_back({0, 0, 0.5f, 1});
+  f.push_back({0, 0, 0.25f, 1});  // K = 2 holds this pixel's
+  TechniqueConfig c;
+  c.technique = Technique::Arrays;
+  c.layers = 2;
+  c.buffer = test::config({4, 4}, {}, Layout::L64, 8);
+  const TechniqueBuild b = build_technique(c, OffsetSource{}, f, {});
+  ASSERT_EQ(b.counters.failures(), 3u);
+  const std::optional<PixelLoss> p = pixel_most_lost(*b.buffer, f);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->pixel, glm::uvec2(2, 1));
+  EXPECT_EQ(p->records, 5u);
+  EXPECT_EQ(p->lost, 3u);
+  const std::string m = lossless_failure_reason(b, f, 1);
+  EXPECT_NE(m.find("pixel (2, 1) lost the most, 3 of its 5 distinct records: raise --max-attempts above 1"),
+            std::string::npos)
+      << m;
+  EXPECT_EQ(m.find("AMAX"), std::string::npos) << m;
 }
 
 TEST(PixelDepth, CountsDistinctRecordsSkippingInvalidAndOffScreenFragments) {

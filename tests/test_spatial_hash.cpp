@@ -346,6 +346,48 @@ TEST(SpatialHash, AHugeDomainWithFewKeysSizesTheTableForItsQuotients) {
   }
 }
 
+// The thread count has the CLI's bound (--threads 0..1024) in the config
+// and in set_threads, and a table's finds run on the threads set after it
+// was made (a loaded table's, habuffer hash query --threads).
+TEST(SpatialHash, ThreadsAboveTheLimitAreRefusedAndFindsRunOnTheThreadsSetLaterParallel) {
+  SpatialHashConfig c = fixed({64, 64});
+  c.threads = 5000;
+  try {
+    SpatialHash x(c);
+    ADD_FAILURE() << "5000 threads accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("threads 5000 outside 0..1024"), std::string::npos) << e.what();
+  }
+  c.threads = 1024;
+  EXPECT_NO_THROW(SpatialHash{c});
+  const Domain d{512, 512};
+  const std::vector<Key> keys = random_keys(d, 20000, 0, 8).first;
+  SpatialHash h(fixed(d, 1), keys.size());
+  h.insert(keys, values_of(keys));
+  EXPECT_THROW(h.set_threads(1025), std::invalid_argument);
+  EXPECT_EQ(h.config().threads, 1u);
+  const std::vector<std::uint64_t> before(h.table().begin(), h.table().end());
+  h.set_threads(4);
+  EXPECT_EQ(h.config().threads, 4u);
+  EXPECT_EQ(std::vector<std::uint64_t>(h.table().begin(), h.table().end()), before);  // the table unchanged
+  std::vector<std::uint32_t> got(keys.size());
+  std::vector<std::uint8_t> found(keys.size());
+  EXPECT_EQ(h.find(keys, got, found), keys.size());
+  EXPECT_EQ(got, values_of(keys));
+}
+
+// memory_for is what a table of that extent holds, so a caller can check
+// it against the machine before the table is made.
+TEST(SpatialHash, MemoryForIsTheMemoryOfTheTableItSizes) {
+  for (const Extent t : {Extent{1, 1}, Extent{7, 9}, Extent{100, 37}}) {
+    SpatialHash h(fixed({100, 100}));
+    h.rehash(t);
+    EXPECT_EQ(SpatialHash::memory_for(h.config(), t), h.memory_bytes()) << t.str();
+  }
+  // 2^62 slots of 8 bytes: saturated, not wrapped to a small number
+  EXPECT_EQ(SpatialHash::memory_for(fixed({1u << 31, 1u << 31}), {1u << 31, 1u << 31}), UINT64_MAX);
+}
+
 TEST(SpatialHash, StatsCountAgesAndMemoryAndMissesStopEarly) {
   const Domain d{1024, 1024};
   const auto [keys, absent] = random_keys(d, 100000, 10000, 21);

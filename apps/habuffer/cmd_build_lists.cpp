@@ -82,21 +82,18 @@ BuildReport write_build_outputs(const Args& args, const std::string& in, const s
   return report;
 }
 
-// The loss warning or the lossless failure (exit 1) of a finished build.
+// The loss warning or the lossless failure (exit 1) of a finished build: the
+// library's reason (lossless_failure_reason, the Python module's DataError's).
 int report_build_losses(const HashOptions& options, const TechniqueConfig& config, std::span<const Fragment> fragments,
-                        const TechniqueBuild& result, std::optional<PixelDepth> too_deep) {
-  if (!too_deep) too_deep = result.too_deep;
-  // One attempt and age failures: no loop looked, look now for the warning.
-  if (!too_deep && options.max_attempts == 1 && result.counters.failed_age > 0)
-    too_deep = pixel_beyond_every_table(config, fragments);
+                        const TechniqueBuild& result) {
   if (options.lossless && !result.lossless()) {
     report_lossless_failure("build-lists", result.counters,
-                            " after " + std::to_string(result.attempts.size()) + " attempt" +
-                                (result.attempts.size() == 1 ? "" : "s") +
-                                (too_deep ? ": " + too_deep_message(*too_deep, options.config.age_bits)
-                                          : " (last " + result.buffer->capacity_text() + ")"));
+                            lossless_failure_reason(result, fragments, options.max_attempts));
     return 1;
   }
+  std::optional<PixelDepth> too_deep = result.too_deep;
+  // One attempt and age failures: no loop looked, look now for the warning.
+  if (!too_deep && result.counters.failed_age > 0) too_deep = pixel_beyond_every_table(config, fragments);
   if (too_deep) {
     warn_losses("build-lists", result.counters, "", too_deep_message(*too_deep, options.config.age_bits));
     return 0;
@@ -116,18 +113,13 @@ int run_build_lists(const std::vector<std::string>& argv) {
   check_build_request(options);
 
   const std::vector<Fragment> fragments = read_fragments(in, options.config.screen);
-  // A pixel deeper than AMAX fails at any table size. The CPU's lossless
-  // loop finds it after its first attempt (TechniqueBuild::too_deep); the
-  // GPU's cannot see records, so it is looked for first there, and no
-  // attempt grows for it.
+  // Both paths grow by the library's one rule (lossless_attempts): no attempt
+  // grows for a pixel deeper than AMAX, which no table holds.
   const TechniqueConfig config = technique_config(options);
-  std::optional<PixelDepth> too_deep;
-  if (options.gl && options.max_attempts > 1 && (too_deep = pixel_beyond_every_table(config, fragments)))
-    options.max_attempts = 1;
   BuildTiming timing;
   const TechniqueBuild result = build_lists(options, config, fragments, timing);
   write_build_outputs(args, in, out, options, result, timing);
-  return report_build_losses(options, config, fragments, result, too_deep);
+  return report_build_losses(options, config, fragments, result);
 }
 
 }  // namespace habuffer::cli

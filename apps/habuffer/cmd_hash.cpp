@@ -15,7 +15,9 @@
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/json_writer.h"
+#include "habuffer/fragment_buffer.h"  // kMaxThreads
 #include "habuffer/key_streams.h"
+#include "habuffer/memory_budget.h"
 #include "habuffer/render/image.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/spatial_hash_file.h"
@@ -138,13 +140,74 @@ spatial::SpatialHashConfig parse_build_config(const Args& args) {
   if (!offsets) throw UsageError("option --offsets: '" + args.str("offsets") + "' is not random or farthest");
   c.offsets = *offsets;
   c.seed = args.u64_in("seed");
-  c.threads = args.u32_in("threads", 0, 1024);
+  c.threads = args.u32_in("threads", 0, kMaxThreads);
   c.target_load = args.real("load");
   if (!(c.target_load > 0.0 && c.target_load <= 1.0))
     throw UsageError("option --load: " + args.str("load") + " is outside (0, 1]");
   c.adaptive = !args.has("fixed");
   if (c.adaptive && c.target_load > c.grow_at) c.grow_at = c.target_load;  // a table sized above 0.8 must not grow at once
   return c;
+}
+
+std::string gib_text(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g GiB", static_cast<double>(bytes) / static_cast<double>(1u << 30));
+  return text;
+}
+
+// A table the domain's quotients make past this many slots (1 GiB) and
+// kSparseFactor times the slots the keys fill is refused: a record keeps
+// 31 - A bits of its key's quotient, so the table has at least about
+// Du Dv / 2^(31 - A) slots whatever the keys, and a few keys far from the
+// origin (the domain their bounds) would ask for a huge, nearly empty table.
+constexpr std::uint64_t kSparseSlots = std::uint64_t{1} << 27;
+constexpr double kSparseFactor = 64.0;
+
+// The table build makes for `keys` keys, checked before anything is
+// allocated: one that cannot be made, one the domain's quotients make huge
+// and nearly empty, or one whose build (two tables at once: the batch's
+// deduplication or the saved file's copy beside the table) does not fit the
+// machine is refused, naming the sizes and the options that set them.
+void check_build_size(const Args& args, const spatial::SpatialHashConfig& c, std::uint64_t keys) {
+  const bool given = args.has("domain");
+  const std::string domain = "the domain " + c.domain.str() + (given ? " (--domain)" : " (the keys' bounds)");
+  spatial::FoldedDomain fold;
+  Extent table;
+  try {
+    fold = spatial::FoldedDomain(c.domain);
+    table = SpatialHash::table_for(fold, c.age_bits, keys, c.target_load);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("hash build: " + std::string(e.what()) + " (" + domain + ", --age-bits " + args.str("age-bits") +
+                     ", --load " + args.str("load") + ")");
+  }
+  const std::uint64_t bytes = SpatialHash::memory_for(c, table);
+  const std::string what = "a table of " + table.str() + " slots for " + std::to_string(keys) +
+                           (keys == 1 ? " key" : " keys") + " in " + domain;
+  const double filled = std::max(1.0, std::ceil(static_cast<double>(keys) / c.target_load));
+  if (table.area() > kSparseSlots && static_cast<double>(table.area()) > kSparseFactor * filled) {
+    std::string fewer;
+    if (c.age_bits > HABUFFER_SH_MIN_AGE_BITS) {
+      spatial::SpatialHashConfig least = c;
+      least.age_bits = HABUFFER_SH_MIN_AGE_BITS;
+      try {
+        const Extent t = SpatialHash::table_for(fold, least.age_bits, keys, c.target_load);
+        fewer = " (--age-bits " + std::to_string(least.age_bits) + ": " + t.str() + " slots, " +
+                gib_text(SpatialHash::memory_for(least, t)) + ")";
+      } catch (const std::invalid_argument&) {
+        // no table at the fewest age bits either: the domain alone is the remedy
+      }
+    }
+    char slots[32];
+    std::snprintf(slots, sizeof slots, "%.0f", filled);
+    throw UsageError("hash build: " + what + " would take " + gib_text(bytes) + " for its quotients to fit " +
+                     std::to_string(31u - c.age_bits) + " bits (--age-bits " + std::to_string(c.age_bits) +
+                     "), though the keys fill " + slots + " slots at --load " + args.str("load") +
+                     ": give a smaller --domain" + (given ? "" : " (keys nearer 0)") + " or fewer --age-bits" + fewer);
+  }
+  usage_errors("", [&] {
+    check_fits_in_memory("hash build: " + what + " (twice: the file's copy; --domain, --age-bits and --load set it)",
+                         saturating_product(bytes, 2));
+  });
 }
 
 // The keys (and values, where the source has them) of build's one source,
@@ -217,6 +280,7 @@ int run_build(const std::vector<std::string>& argv) {
   c.domain = args.has("domain") ? parse_domain(args.str("domain")) : k.natural ? *k.natural : spatial::domain_of(k.keys);
   if (k.keys.empty()) throw DataError("hash build: no keys (nothing to store)");
   if (args.has("keys")) check_rows(args.required("keys"), k.keys, spatial::FoldedDomain(c.domain));
+  check_build_size(args, c, k.keys.size());
 
   const auto t0 = std::chrono::steady_clock::now();
   SpatialHash table(c, k.keys.size());
@@ -245,6 +309,7 @@ int run_query(const std::vector<std::string>& argv) {
   SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
   check_rows(args.required("keys"), f.keys, table.domain());
+  table.set_threads(args.u32_in("threads", 0, kMaxThreads));  // the batched find's (a table file keeps none)
   std::vector<std::uint32_t> values(f.keys.size());
   std::vector<std::uint8_t> found(f.keys.size());
   const auto t0 = std::chrono::steady_clock::now();

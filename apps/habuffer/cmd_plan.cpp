@@ -41,7 +41,11 @@ int run_plan(const std::vector<std::string>& argv) {
   const Args args(argv, plan_spec());
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   harness::PlanSettings s;
-  if (args.has("target-psnr")) s.target_psnr = args.real("target-psnr", 0.0);
+  if (args.has("target-psnr")) {
+    s.target_psnr = args.real("target-psnr", 0.0);  // finite (parse_float64)
+    if (!(*s.target_psnr > 0.0))
+      throw UsageError("option --target-psnr: " + args.str("target-psnr") + " is not a PSNR above 0 dB");
+  }
   s.trials = args.u32_in("trials", 1, 1000);
   s.seed = args.u64_in("seed");
   s.age_bits = args.u32_in("age-bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);

@@ -96,7 +96,8 @@ const CommandSpec& render_spec() {
            "(--shadows) T of the nearest light pixel, or pcf: of the four nearest, bilinearly weighted (the bias "
            "doubles)"},
           {"shadow-slope", "S", "2",
-           "(--shadows) the bias rule: surfaces up to atan(S) from facing the light never shadow themselves"}} +
+           "(--shadows) the bias rule: surfaces up to atan(S) from facing the light never shadow themselves; S "
+           "below the light map's short side in pixels (half that with pcf)"}} +
           scene_option_specs() +
           shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
           shared_options({"layout", "offsets", "seed", "lossless", "max-attempts", "threads", "insert-order"}),
@@ -143,7 +144,8 @@ std::optional<LightArgs> parse_light(const Args& args) {
     s.light.position = parse_point("light-pos", args.str("light-pos"));
   } else {
     s.light.direction = parse_point("light-dir", args.str("light-dir"));
-    if (glm::length(s.light.direction) == 0.0f) throw UsageError("option --light-dir: the zero vector has no direction");
+    // Any other finite vector has a direction, however long or short (frame_light normalises it safely).
+    if (s.light.direction == glm::vec3(0.0f)) throw UsageError("option --light-dir: the zero vector has no direction");
     s.light.orthographic = args.has("light-ortho");
     l.spot_along = !s.light.orthographic;
   }
@@ -382,6 +384,14 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
                  r.frames.size(), r.frames.size() == 1 ? "" : "s");
   if (r.light && r.light->counters.fragments == 0)
     std::fprintf(stderr, "habuffer render: warning: the light's view holds no fragment: nothing casts a shadow\n");
+  // A record shadows a receiver only when nearer by more than the bias: a bias
+  // of the whole depth range (a scene flat across the light, or a slope large
+  // for its depth) leaves no shadow to cast.
+  if (r.light && s.shadows && r.light->bias_codes >= RecordLayout(Layout::L64, s.shadows->age_bits).max_code())
+    std::fprintf(stderr,
+                 "habuffer render: warning: the shadow bias (%u depth codes, --shadow-slope %g) covers the light's "
+                 "whole depth range over the scene: nothing can cast a shadow\n",
+                 r.light->bias_codes, static_cast<double>(s.shadows->max_slope));
   if (r.light && r.light->counters.failures() > 0)
     std::fprintf(stderr,
                  "habuffer render: warning: the light buffer lost %llu of %llu fragments (table %s): shadows are "

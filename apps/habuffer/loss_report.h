@@ -12,13 +12,7 @@
 
 namespace habuffer::cli {
 
-/// Fragments that are not in the table and not a duplicate of one that is:
-/// failed (age or iteration limit), culled by early cull, or invalid.
-std::uint64_t lost_fragments(const Counters& c);
-
-/// "19745 of 20000 fragments not stored: failed_age 19745, culled 3" (only
-/// the non-zero reasons).
-std::string loss_summary(const Counters& c);
+// lost_fragments and loss_summary are the library's (habuffer/counters.h).
 
 /// What keeps a technique's dropped fragments (its descriptor's hint).
 inline std::string lossless_hint(Technique t) { return std::string(descriptor(t).lossless_hint); }

@@ -24,16 +24,16 @@ py::array_t<bool> dense_grid(const VoxelGrid& g) {
   return out;
 }
 
-py::tuple voxelize_mesh(const std::string& mesh, std::uint32_t grid, const std::string& axis, const std::string& path,
-                        std::uint32_t threads, bool reference) {
+py::tuple voxelize_mesh(const std::string& mesh, const IntArg& grid, const std::string& axis, const std::string& path,
+                        const IntArg& threads, bool reference) {
   VoxelizeSettings s;
-  s.grid = grid;
+  s.grid = u32_arg(grid, "grid", 1, 4096);  // as habuffer voxelize --grid
   if (axis != "x" && axis != "y" && axis != "z" && axis != "all")
     throw py::value_error("axis: '" + axis + "' is not x, y, z or all");
   s.axis = axis == "x" ? VoxelAxis::X : axis == "y" ? VoxelAxis::Y : VoxelAxis::Z;
   if (path != "gl" && path != "cpu") throw py::value_error("path: '" + path + "' is not gl or cpu");
   s.cpu = path == "cpu";
-  s.threads = threads;
+  s.threads = threads_arg(threads);
   s.validate();
   const Scene scene = harness::voxel_mesh(mesh);
   std::optional<Voxelization> v;

@@ -131,4 +131,41 @@ Extent extent_arg(py::handle obj, const char* name) {
                         py::repr(obj).cast<std::string>());
 }
 
+std::uint64_t uint_arg(py::handle arg, const std::string& name, std::uint64_t lo, std::uint64_t hi) {
+  // Python's and numpy's integers (operator.index), not bools (True would read as 1)
+  if (!arg || py::isinstance<py::bool_>(arg) || !PyIndex_Check(arg.ptr())) {
+    std::string got = arg ? py::repr(arg).cast<std::string>() : std::string("nothing");
+    if (got.size() > 60) got = got.substr(0, 57) + "...";
+    throw py::type_error(name + ": expected an integer, got " + got);
+  }
+  const auto integer = py::reinterpret_steal<py::object>(PyNumber_Index(arg.ptr()));
+  if (!integer) throw py::error_already_set();
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(integer.ptr(), &overflow);
+  if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
+  bool fits = false;  // in 0..2^64 - 1
+  std::uint64_t u = 0;
+  if (overflow == 0 && v >= 0) {
+    u = static_cast<std::uint64_t>(v);
+    fits = true;
+  } else if (overflow > 0) {
+    u = PyLong_AsUnsignedLongLong(integer.ptr());
+    if (PyErr_Occurred()) PyErr_Clear();
+    else fits = true;
+  }
+  if (fits && u >= lo && u <= hi) return u;
+  std::string text;
+  try {
+    text = py::str(integer).cast<std::string>();
+  } catch (const py::error_already_set&) {  // past Python's digit limit for str()
+    text = "an integer of " + py::str(integer.attr("bit_length")()).cast<std::string>() + " bits";
+  }
+  if (text.size() > 40) text = text.substr(0, 20) + "..." + text.substr(text.size() - 8);
+  throw py::value_error(name + ": " + text + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+}
+
+std::uint32_t threads_arg(const IntArg& arg, const std::string& name) {
+  return static_cast<std::uint32_t>(uint_arg(arg.value, name, 0, kMaxThreads));
+}
+
 }  // namespace habuffer::python

@@ -61,4 +61,50 @@ py::dtype fragment_dtype();
 /// (W, H), [W, H] or "WxH" as an Extent; ValueError naming `name` otherwise.
 Extent extent_arg(py::handle obj, const char* name);
 
+/// An integer parameter as Python passed it: the signature shows `int`, and
+/// any object reaches the function, which reads it with uint_arg, so a value
+/// out of range or of another type raises an error naming the parameter and
+/// its range (pybind11's own unsigned conversion refuses such a call with a
+/// dump of the signatures, naming neither).
+struct IntArg {
+  py::object value;
+};
+
+/// `arg` as an integer in [lo, hi]: Python's and numpy's integers
+/// (operator.index), not bools. TypeError "NAME: expected an integer, got
+/// X" for another type; ValueError "NAME: V is outside LO..HI" otherwise.
+std::uint64_t uint_arg(py::handle arg, const std::string& name, std::uint64_t lo, std::uint64_t hi);
+inline std::uint64_t uint_arg(const IntArg& arg, const std::string& name, std::uint64_t lo, std::uint64_t hi) {
+  return uint_arg(arg.value, name, lo, hi);
+}
+/// As uint_arg, 32 bits.
+inline std::uint32_t u32_arg(const IntArg& arg, const std::string& name, std::uint32_t lo = 0,
+                             std::uint32_t hi = UINT32_MAX) {
+  return static_cast<std::uint32_t>(uint_arg(arg.value, name, lo, hi));
+}
+/// A thread count in 0..kMaxThreads (every --threads of the CLI).
+std::uint32_t threads_arg(const IntArg& arg, const std::string& name = "threads");
+/// A seed in 0..2^64 - 1 (--seed).
+inline std::uint64_t seed_arg(const IntArg& arg, const std::string& name = "seed") {
+  return uint_arg(arg.value, name, 0, UINT64_MAX);
+}
+
 }  // namespace habuffer::python
+
+namespace pybind11::detail {
+
+// Any object loads as an IntArg (uint_arg checks it); the signature says int.
+template <>
+struct type_caster<habuffer::python::IntArg> {
+  PYBIND11_TYPE_CASTER(habuffer::python::IntArg, const_name("int"));
+  bool load(handle src, bool) {
+    if (!src) return false;
+    value.value = reinterpret_borrow<object>(src);
+    return true;
+  }
+  static handle cast(const habuffer::python::IntArg& arg, return_value_policy, handle) {
+    return arg.value.inc_ref();
+  }
+};
+
+}  // namespace pybind11::detail

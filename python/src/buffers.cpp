@@ -3,7 +3,8 @@
 // the library allows), the lists as CSR arrays, the composite, counters as
 // a dict, and for the HA-buffer its table and max-age table as zero-copy
 // read-only views. habuffer.build() is build_technique (lossless mode
-// included) on the CPU path or, where a context can be made, the GPU path.
+// included) on the CPU path or, where a context can be made, the GPU path;
+// a lossless build that ends lossy raises DataError (require_lossless).
 #include <pybind11/stl.h>
 
 #include <chrono>
@@ -144,7 +145,8 @@ Csr read_lists(const FragmentBuffer& b) {
   return csr;
 }
 
-py::array_t<float> composite(const Buffer& self, py::handle background, std::uint32_t threads) {
+py::array_t<float> composite(const Buffer& self, py::handle background, const IntArg& threads_obj) {
+  const std::uint32_t threads = threads_arg(threads_obj);
   const FragmentBuffer& b = self.get();
   const Extent v = b.screen();
   std::vector<glm::vec3> backgrounds;
@@ -193,14 +195,15 @@ py::dict attempt_dict(const BuildAttempt& a) {
 }
 
 std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, const ConfigArgs& a,
-                              const std::string& path, bool lossless, std::uint32_t max_attempts,
-                              std::uint32_t threads, const std::string& mode, const std::string& order,
+                              const std::string& path, bool lossless, const IntArg& max_attempts_obj,
+                              const IntArg& threads_obj, const std::string& mode, const std::string& order,
                               const py::kwargs& options) {
+  const std::uint32_t max_attempts = u32_arg(max_attempts_obj, "max_attempts", 1, 1000);  // as --max-attempts
+  const std::uint32_t threads = threads_arg(threads_obj);
   const TechniqueConfig config = technique_config_from(a, options);
   const OffsetSource offsets = offset_source_from(a);
   const InsertOptions insert = insert_options(threads, mode, order);
   const std::vector<Fragment> fragments = fragments_from(xy, depth, rgba, threads);
-  if (max_attempts == 0) throw py::value_error("max_attempts must be at least 1");
   const std::uint32_t attempts = lossless ? max_attempts : 1;
   TechniqueBuild built;
   py::dict report;
@@ -222,6 +225,10 @@ std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, 
   } else {
     throw py::value_error("path: '" + path + "' is not cpu or gl");
   }
+  if (lossless) {  // a lossless request that ended lossy: DataError, as the CLI's exit 1
+    py::gil_scoped_release release;
+    require_lossless(built, fragments, max_attempts, OptionSpelling::Keyword);
+  }
   py::list tries;
   for (const BuildAttempt& t : built.attempts) tries.append(attempt_dict(t));
   report["attempts"] = tries;
@@ -235,9 +242,9 @@ std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, 
 }
 
 std::unique_ptr<Buffer> make_buffer(const std::string& technique, py::object screen, py::object table,
-                                    py::object layout, const std::string& offsets, std::uint64_t seed,
+                                    py::object layout, const std::string& offsets, const IntArg& seed,
                                     py::object offset_list, const py::kwargs& options) {
-  const ConfigArgs a{technique, std::move(screen), std::move(table), std::move(layout), offsets, seed,
+  const ConfigArgs a{technique, std::move(screen), std::move(table), std::move(layout), offsets, seed_arg(seed),
                      std::move(offset_list)};
   const TechniqueConfig c = technique_config_from(a, options);
   if (uses_pool(c.technique) && c.pool_capacity == 0)
@@ -246,15 +253,17 @@ std::unique_ptr<Buffer> make_buffer(const std::string& technique, py::object scr
   return std::make_unique<Buffer>(make_fragment_buffer(c, offset_source_from(a)));
 }
 
-py::dict insert_arrays(Buffer& self, py::handle xy, py::handle depth, py::handle rgba, std::uint32_t threads,
+py::dict insert_arrays(Buffer& self, py::handle xy, py::handle depth, py::handle rgba, const IntArg& threads_obj,
                        const std::string& mode, const std::string& order) {
+  const std::uint32_t threads = threads_arg(threads_obj);
   const InsertOptions options = insert_options(threads, mode, order);
   const std::vector<Fragment> f = fragments_from(xy, depth, rgba, threads);
   return self.insert(f, options);
 }
 
-py::dict insert_in_place(Buffer& self, const py::array& frags, std::uint32_t threads, const std::string& mode,
+py::dict insert_in_place(Buffer& self, const py::array& frags, const IntArg& threads_obj, const std::string& mode,
                          const std::string& order) {
+  const std::uint32_t threads = threads_arg(threads_obj);
   if (!frags.dtype().equal(fragment_dtype()))
     throw py::type_error("fragments: expected habuffer.FRAGMENT_DTYPE, got " + py::str(frags.dtype()).cast<std::string>());
   if (frags.ndim() != 1 || !(frags.flags() & py::array::c_style) || !frags.attr("flags").attr("aligned").cast<bool>())
@@ -359,10 +368,10 @@ void bind_buffers(py::module_& m) {
   m.def(
       "build",
       [](py::handle xy, py::handle depth, py::handle rgba, const std::string& technique, py::object screen,
-         py::object table, py::object layout, const std::string& offsets, std::uint64_t seed, py::object offset_list,
-         const std::string& path, bool lossless, std::uint32_t max_attempts, std::uint32_t threads,
+         py::object table, py::object layout, const std::string& offsets, const IntArg& seed, py::object offset_list,
+         const std::string& path, bool lossless, const IntArg& max_attempts, const IntArg& threads,
          const std::string& mode, const std::string& order, const py::kwargs& options) {
-        const ConfigArgs a{technique, std::move(screen), std::move(table), std::move(layout), offsets, seed,
+        const ConfigArgs a{technique, std::move(screen), std::move(table), std::move(layout), offsets, seed_arg(seed),
                            std::move(offset_list)};
         return build(xy, depth, rgba, a, path, lossless, max_attempts, threads, mode, order, options);
       },
@@ -372,8 +381,10 @@ void bind_buffers(py::module_& m) {
       py::arg("max_attempts") = 16, py::arg("threads") = 1, py::arg("mode") = "auto", py::arg("order") = "auto",
       "A stream built into a new Buffer as habuffer build-lists builds it: on the CPU path or the GPU path "
       "(path='gl', a headless EGL context; GlError where none can be made), lossless mode growing the container "
-      "until nothing drops (at most max_attempts). An automatic pool (pool='auto' or none) is sized from the "
-      "stream. The result's build_report holds every attempt.");
+      "until nothing drops (at most max_attempts; both paths by one rule, which never grows for a pixel deeper "
+      "than AMAX, since no table holds it). A lossless build that still drops raises DataError naming the pixel, "
+      "AMAX, the attempts and max_attempts (or age_bits where growing cannot help). An automatic pool "
+      "(pool='auto' or none) is sized from the stream. The result's build_report holds every attempt.");
 }
 
 }  // namespace habuffer::python

@@ -225,12 +225,13 @@ void bind_config(py::module_& m) {
       "Every registered technique with its properties (the README's table, as data) and the options it takes.");
   m.def(
       "offsets",
-      [](py::handle table, std::uint32_t count, const std::string& generator, std::uint64_t seed) {
+      [](py::handle table, const IntArg& count, const std::string& generator, const IntArg& seed) {
         ConfigArgs a;
         a.offsets = generator;
-        a.seed = seed;
+        a.seed = seed_arg(seed);
+        const std::uint32_t n = u32_arg(count, "count", 1, 1u << 20);  // as habuffer offsets --count
         const OffsetSource source = offset_source_from(a);
-        const OffsetSequence o = source.make(extent_arg(table, "table"), count);
+        const OffsetSequence o = source.make(extent_arg(table, "table"), n);
         std::vector<std::uint32_t> flat;
         for (const glm::uvec2 v : o.values()) flat.insert(flat.end(), {v.x, v.y});
         return owned_array(std::move(flat)).reshape({static_cast<py::ssize_t>(o.size()), py::ssize_t{2}});

@@ -162,6 +162,9 @@ ResultTable with_context(bool needed, Run run) {
   return run();
 }
 
+// repeats in 1..1000, as every --repeats.
+std::uint32_t repeats_arg(const IntArg& repeats) { return u32_arg(repeats, "repeats", 1, 1000); }
+
 // The harness calls' shared rules, as the CLI's: repeats in 1..1000, threads on the CPU path only.
 void check_runs(std::uint32_t repeats, RenderPath path, std::uint32_t threads) {
   if (repeats < 1 || repeats > 1000) throw py::value_error("repeats: " + std::to_string(repeats) + " outside 1..1000");
@@ -169,15 +172,15 @@ void check_runs(std::uint32_t repeats, RenderPath path, std::uint32_t threads) {
     throw py::value_error("threads: the CPU path's (path='cpu'); with path='gl' the GPU inserts");
 }
 
-harness::FigureSettings figure_settings(const std::string& path, py::handle size, std::uint32_t repeats,
-                                        std::uint32_t threads, float tau) {
+harness::FigureSettings figure_settings(const std::string& path, py::handle size, const IntArg& repeats,
+                                        const IntArg& threads, float tau) {
   harness::FigureSettings f;
   f.path = path_arg(path);
-  check_runs(repeats, f.path, threads);
+  f.repeats = repeats_arg(repeats);
+  f.threads = threads_arg(threads);
+  check_runs(f.repeats, f.path, f.threads);
   f.tau = parse_cull_threshold(py::repr(py::float_(tau)).cast<std::string>());  // in (0, 1], as --tau
   f.size = extent_arg(size, "size");
-  f.repeats = repeats;
-  f.threads = threads;
   return f;
 }
 
@@ -199,19 +202,19 @@ py::object on_workload(const std::string& word, py::handle size, const char* cal
   return table_object(t);
 }
 
-py::object age_experiment(py::handle screen, py::handle table, const std::vector<double>& loads, std::uint32_t trials,
-                          std::uint64_t seed, const std::string& stream, double spread,
+py::object age_experiment(py::handle screen, py::handle table, const std::vector<double>& loads, const IntArg& trials,
+                          const IntArg& seed, const std::string& stream, double spread,
                           const std::vector<std::string>& probing, const std::vector<std::string>& policy,
-                          const std::vector<std::string>& offsets, std::uint32_t age_bits, std::uint32_t block) {
+                          const std::vector<std::string>& offsets, const IntArg& age_bits, const IntArg& block) {
   ExperimentConfig c;
   c.screen = extent_arg(screen, "screen");
   c.table = table.is_none() ? c.screen : extent_arg(table, "table");
   c.loads = loads;
-  c.trials = trials;
-  c.seed = seed;
-  c.age_bits = age_bits;
-  c.block = block;
-  c.stream = experiment_stream(parse_stream_kind(stream), spread, age_bits);
+  c.trials = u32_arg(trials, "trials", 1, 100000);  // habuffer stats' ranges
+  c.seed = seed_arg(seed);
+  c.age_bits = u32_arg(age_bits, "age_bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
+  c.block = u32_arg(block, "block", 1, 1u << 16);
+  c.stream = experiment_stream(parse_stream_kind(stream), spread, c.age_bits);
   c.variants = variant_grid(parse_probings(probing), parse_policies(policy), parse_offset_generators(offsets));
   validate_experiment(c);  // the CLI's rules (ValueError naming the field)
   std::vector<ExperimentRow> rows;
@@ -222,24 +225,25 @@ py::object age_experiment(py::handle screen, py::handle table, const std::vector
   return rows_table(rows, experiment_columns(), "stats");
 }
 
-py::object key_experiment(const std::string& keys, py::handle domain, double coverage, std::uint64_t count,
-                          const std::vector<double>& loads, std::uint32_t trials, std::uint64_t seed,
+py::object key_experiment(const std::string& keys, py::handle domain, double coverage, const IntArg& count,
+                          const std::vector<double>& loads, const IntArg& trials, const IntArg& seed_obj,
                           const std::vector<std::string>& probing, const std::vector<std::string>& policy,
-                          std::uint32_t age_bits, std::uint32_t block, std::uint32_t misses) {
+                          const IntArg& age_bits, const IntArg& block, const IntArg& misses) {
+  const std::uint64_t seed = seed_arg(seed_obj);
   spatial::KeyExperimentConfig c;
   const std::optional<spatial::KeySet> set = spatial::parse_key_set(keys);
   if (!set) throw py::value_error("keys: unknown key set '" + keys + "'");
   c.keys.set = *set;
   c.keys.domain = domain_arg(domain);
   c.keys.coverage = coverage;
-  c.keys.count = count;
+  c.keys.count = uint_arg(count, "count", 1, UINT64_MAX);  // habuffer stats --keys' ranges
   c.keys.seed = seed;
   c.loads = loads;
-  c.trials = trials;
+  c.trials = u32_arg(trials, "trials", 1, 1000);
   c.seed = seed;
-  c.age_bits = age_bits;
-  c.block = block;
-  c.misses = misses;
+  c.age_bits = u32_arg(age_bits, "age_bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
+  c.block = u32_arg(block, "block", 1, 1u << 16);
+  c.misses = u32_arg(misses, "misses", 0, 10000000);
   c.probing = spatial::parse_key_probings(probing);
   c.policy = spatial::parse_key_policies(policy);
   std::vector<spatial::KeyExperimentRow> rows;
@@ -251,34 +255,34 @@ py::object key_experiment(const std::string& keys, py::handle domain, double cov
 }
 
 py::object sweep(const std::string& scene, const std::string& technique, const std::vector<double>& loads,
-                 py::handle size, std::uint32_t repeats, const std::string& path, std::uint64_t seed,
-                 const std::string& offsets, std::uint32_t threads, const std::string& order) {
+                 py::handle size, const IntArg& repeats, const std::string& path, const IntArg& seed,
+                 const std::string& offsets, const IntArg& threads, const std::string& order) {
   harness::SweepSettings s;
   s.technique = harness::parse_technique_spec(technique);
   s.loads = loads;
-  s.repeats = repeats;
+  s.repeats = repeats_arg(repeats);
   s.path = path_arg(path);
-  check_runs(repeats, s.path, threads);
-  s.seed = seed;
+  s.threads = threads_arg(threads);
+  check_runs(s.repeats, s.path, s.threads);
+  s.seed = seed_arg(seed);
   s.offsets = offsets_arg(offsets);
-  s.threads = threads;
   s.insert_order = order_arg(order);
   harness::validate_sweep(s);
   return on_workload(scene, size, "sweep", [&](const harness::Workload& w) { return harness::run_sweep(w, s); });
 }
 
 py::object bench(const std::vector<std::string>& scenes, const std::vector<std::string>& techniques,
-                 const std::vector<py::object>& sizes, std::uint32_t repeats, const std::string& path,
-                 std::uint32_t threads, std::uint64_t seed, bool floors, const std::string& order) {
+                 const std::vector<py::object>& sizes, const IntArg& repeats, const std::string& path,
+                 const IntArg& threads, const IntArg& seed, bool floors, const std::string& order) {
   harness::BenchSettings b;
   b.scenes = workloads(scenes);
   for (const std::string& t : techniques) b.techniques.push_back(harness::parse_technique_spec(t));
   for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
-  b.repeats = repeats;
+  b.repeats = repeats_arg(repeats);
   b.path = path_arg(path);
-  check_runs(repeats, b.path, threads);
-  b.threads = threads;
-  b.seed = seed;
+  b.threads = threads_arg(threads);
+  check_runs(b.repeats, b.path, b.threads);
+  b.seed = seed_arg(seed);
   b.floors = floors;
   b.insert_order = order_arg(order);
   harness::validate_bench(b);
@@ -287,15 +291,15 @@ py::object bench(const std::vector<std::string>& scenes, const std::vector<std::
   return table_object(t);
 }
 
-py::object frontier(const std::vector<std::string>& scenes, const std::vector<py::object>& sizes, std::uint32_t repeats,
-                    const std::string& path, std::uint32_t threads, const std::vector<double>& targets) {
+py::object frontier(const std::vector<std::string>& scenes, const std::vector<py::object>& sizes, const IntArg& repeats,
+                    const std::string& path, const IntArg& threads, const std::vector<double>& targets) {
   harness::BenchSettings b;
   b.scenes = workloads(scenes);
   for (const py::object& s : sizes) b.sizes.push_back(extent_arg(s, "sizes"));
   b.path = path_arg(path);
-  check_runs(repeats, b.path, threads);
-  b.repeats = repeats;
-  b.threads = threads;
+  b.repeats = repeats_arg(repeats);
+  b.threads = threads_arg(threads);
+  check_runs(b.repeats, b.path, b.threads);
   b.techniques = harness::frontier_techniques(b.path);
   harness::validate_bench(b);
   ResultTable t = with_context(true, [&] { return harness::run_bench(b); });
@@ -308,18 +312,21 @@ py::object frontier(const std::vector<std::string>& scenes, const std::vector<py
 }
 
 py::object plan(const std::string& scene, py::handle size, std::optional<double> target_psnr,
-                const std::vector<double>& loads, std::uint32_t trials, std::uint64_t seed, std::uint32_t age_bits) {
+                const std::vector<double>& loads, const IntArg& trials, const IntArg& seed, const IntArg& age_bits) {
   harness::PlanSettings p;
+  if (target_psnr && !(std::isfinite(*target_psnr) && *target_psnr > 0.0))
+    throw py::value_error("target_psnr: " + py::repr(py::float_(*target_psnr)).cast<std::string>() +
+                          " is not a finite PSNR above 0 dB");
   p.target_psnr = target_psnr;
   p.loads = loads;
-  p.trials = trials;
-  p.seed = seed;
-  p.age_bits = age_bits;
+  p.trials = u32_arg(trials, "trials", 1, 1000);  // habuffer plan's ranges
+  p.seed = seed_arg(seed);
+  p.age_bits = u32_arg(age_bits, "age_bits", HABUFFER_MIN_AGE_BITS, HABUFFER_MAX_AGE_BITS);
   return on_workload(scene, size, "plan", [&](const harness::Workload& w) { return harness::run_plan(w, p); });
 }
 
 py::object figure_fig2(const std::string& scene, const std::vector<float>& opacities, py::handle size,
-                       std::uint32_t repeats, const std::string& path, std::uint32_t threads, float tau) {
+                       const IntArg& repeats, const std::string& path, const IntArg& threads, float tau) {
   const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
   const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
   harness::check_fig2_scene(w);
@@ -334,10 +341,10 @@ py::object figure_fig2(const std::string& scene, const std::vector<float>& opaci
   return table_object(t);
 }
 
-py::object figure_fig8(const std::string& scene, std::uint32_t frames, double load, py::handle size,
-                       std::uint32_t repeats, const std::string& path, std::uint32_t threads, float tau) {
+py::object figure_fig8(const std::string& scene, const IntArg& frames_obj, double load, py::handle size,
+                       const IntArg& repeats, const std::string& path, const IntArg& threads, float tau) {
+  const std::uint32_t frames = u32_arg(frames_obj, "frames", 2, 100000);  // as habuffer figure fig8 --frames
   const harness::FigureSettings f = figure_settings(path, size, repeats, threads, tau);
-  if (frames < 2) throw py::value_error("frames must be at least 2");
   const harness::WorkloadSpec w = harness::parse_workload_spec(scene);
   harness::check_fig8_scene(w);
   ResultTable t = with_context(true, [&] { return harness::run_fig8(w, frames, load, f); });
@@ -345,9 +352,9 @@ py::object figure_fig8(const std::string& scene, std::uint32_t frames, double lo
   return table_object(t);
 }
 
-py::object figure_fig10(std::uint32_t planes, py::handle size, std::uint32_t repeats, const std::string& path,
-                        std::uint32_t threads) {
-  if (planes == 0 || planes > 4096) throw py::value_error("planes must be in [1, 4096]");
+py::object figure_fig10(const IntArg& planes_obj, py::handle size, const IntArg& repeats, const std::string& path,
+                        const IntArg& threads) {
+  const std::uint32_t planes = u32_arg(planes_obj, "planes", 1, 4096);
   const harness::FigureSettings f = figure_settings(path, size, repeats, threads, harness::FigureSettings{}.tau);
   harness::BenchSettings b = harness::fig10_bench_settings(planes, f);
   harness::validate_bench(b);
@@ -357,9 +364,12 @@ py::object figure_fig10(std::uint32_t planes, py::handle size, std::uint32_t rep
   return table_object(t);
 }
 
-py::object memory_table(py::handle screen, const std::vector<std::uint64_t>& fragments,
+py::object memory_table(py::handle screen, const std::vector<IntArg>& fragment_counts,
                         const std::vector<double>& loads, bool allocate) {
   const Extent e = extent_arg(screen, "screen");
+  std::vector<std::uint64_t> fragments;
+  for (std::size_t i = 0; i < fragment_counts.size(); ++i)
+    fragments.push_back(uint_arg(fragment_counts[i], "fragments[" + std::to_string(i) + "]", 0, UINT64_MAX));
   harness::validate_memory_table(e, fragments, loads);
   ResultTable t;
   {

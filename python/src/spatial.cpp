@@ -95,21 +95,27 @@ py::array_t<bool> mask_of(const std::vector<std::uint8_t>& found) {
 }
 
 
-std::unique_ptr<LockedHash> make_hash(py::handle domain, std::uint64_t capacity, const std::string& rule,
-                                      std::uint32_t age_bits, double load, bool adaptive, std::uint64_t seed,
-                                      const std::string& offsets, std::uint32_t threads) {
+std::unique_ptr<LockedHash> make_hash(py::handle domain, const IntArg& capacity_arg, const std::string& rule,
+                                      const IntArg& age_bits, double load, bool adaptive, const IntArg& seed,
+                                      const std::string& offsets, const IntArg& threads) {
   SpatialHashConfig c;
   c.domain = domain_arg(domain);
+  const std::uint64_t capacity = uint_arg(capacity_arg, "capacity", 0, UINT64_MAX);
+  // A table that never resizes, sized for no key, would hold one slot and
+  // grow only through lossless growth's 25 % steps, failing after it.
+  if (!adaptive && capacity == 0)
+    throw py::value_error("capacity: a table with adaptive=False keeps the size it is made with: give capacity=N "
+                          "(the keys it will hold), or leave adaptive=True");
   const std::optional<spatial::DuplicateRule> r = spatial::parse_duplicate_rule(rule);
   if (!r) throw py::value_error("rule: '" + rule + "' is not max, min, first or last");
   c.rule = *r;
-  c.age_bits = age_bits;
+  c.age_bits = u32_arg(age_bits, "age_bits", HABUFFER_SH_MIN_AGE_BITS, HABUFFER_SH_MAX_AGE_BITS);
   c.target_load = load;
   c.adaptive = adaptive;
   if (adaptive && c.target_load > c.grow_at) c.grow_at = c.target_load;  // as habuffer hash build
-  c.seed = seed;
+  c.seed = seed_arg(seed);
   c.offsets = offsets_arg(offsets);
-  c.threads = threads;
+  c.threads = threads_arg(threads);
   return std::make_unique<LockedHash>(c, capacity);
 }
 

@@ -230,6 +230,47 @@ def test_the_gpu_path_builds_the_cpu_paths_lists(gl_available):
         np.testing.assert_array_equal(getattr(cpu.lists(), name), getattr(gpu.lists(), name))
 
 
+def deep_pixel_stream(screen=(8, 8), others=200, seed=5):
+    """300 distinct depths at pixel (3, 5), more than AMAX = 255 at the default 8 age bits, and `others`
+    fragments in rows 0..2."""
+    rng = np.random.default_rng(seed)
+    deep = np.tile(np.array([[3, 5]], np.uint32), (300, 1))
+    rest = np.stack([rng.integers(0, screen[0], others), rng.integers(0, 3, others)], axis=1).astype(np.uint32)
+    depth = np.concatenate([(np.arange(300, dtype=np.float32) + 0.5) / 300, rng.random(others, dtype=np.float32)])
+    return np.concatenate([deep, rest]), depth, np.full(len(depth), 0x336699FF, np.uint32)
+
+
+def test_a_lossless_build_stopped_where_growing_cannot_help_raises_naming_the_pixel_age_bits_and_max_attempts():
+    xy, depth, rgba = deep_pixel_stream()
+    with pytest.raises(hb.DataError, match=r"after 1 attempt: pixel \(3, 5\) has 300 distinct fragments, more than "
+                                           r"AMAX = 2\^8 - 1 = 255, .*use age_bits=9 .*\(max_attempts=16\)"):
+        hb.build(xy, depth, rgba, screen=(8, 8), lossless=True)
+    lossy = hb.build(xy, depth, rgba, screen=(8, 8))  # no lossless request: the loss is the result's, no error
+    assert lossy.counters["failures"] > 0 and len(lossy.build_report["attempts"]) == 1
+
+
+def test_a_lossless_build_still_lossy_after_max_attempts_raises_naming_the_pixel_amax_and_max_attempts():
+    # 4000 depths at one pixel fit AMAX 4095 (age bits 12): the table grows, but two attempts cannot hold them.
+    xy = np.tile(np.array([[1, 2]], np.uint32), (4000, 1))
+    depth = (np.arange(4000, dtype=np.float32) + 0.5) / 4000
+    with pytest.raises(hb.DataError, match=r"after 2 attempts \(last table \d+x\d+; AMAX = 2\^12 - 1 = 4095\): "
+                                           r"pixel \(1, 2\) lost the most, \d+ of its 4000 distinct records: "
+                                           r"raise max_attempts above 2$"):
+        hb.build(xy, depth, screen=(4, 4), age_bits=12, lossless=True, max_attempts=2)
+
+
+def test_both_paths_stop_a_lossless_build_alike_on_a_pixel_deeper_than_amax(gl_available):
+    xy, depth, rgba = deep_pixel_stream()
+    for path in ("cpu", "gl"):
+        with pytest.raises(hb.DataError) as e:
+            hb.build(xy, depth, rgba, screen=(8, 8), lossless=True, path=path)
+        message = str(e.value)
+        assert "after 1 attempt: pixel (3, 5) has 300 distinct fragments" in message, (path, message)
+        assert "use age_bits=9" in message and "(max_attempts=16)" in message, (path, message)
+    for path in ("cpu", "gl"):  # without lossless mode: one attempt each, no error
+        assert len(hb.build(xy, depth, rgba, screen=(8, 8), path=path).build_report["attempts"]) == 1
+
+
 def test_gpu_calls_from_two_python_threads_share_the_modules_context(gl_available):
     xy, depth, rgba = small_stream(500)
     results = []

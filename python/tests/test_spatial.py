@@ -1,5 +1,6 @@
 """The spatial hash from arrays: find, contains and erase against a dict."""
 
+import re
 import threading
 
 import numpy as np
@@ -81,3 +82,35 @@ def test_bad_keys_are_refused_naming_the_problem():
         h.insert(np.zeros((3, 2), np.uint32), np.zeros(2, np.uint32))
     with pytest.raises(ValueError, match="rule"):
         hb.SpatialHash((4, 4), rule="median")
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"threads": 5000}, "threads: 5000 is outside 0..1024"),  # the CLI's --threads range
+    ({"threads": -1}, "threads: -1 is outside 0..1024"),
+    ({"seed": -1}, "seed: -1 is outside 0..18446744073709551615"),
+    ({"seed": 2**64}, "seed: 18446744073709551616 is outside 0..18446744073709551615"),
+    ({"age_bits": 2**32}, "age_bits: 4294967296 is outside 4..12"),
+    ({"age_bits": 13}, "age_bits: 13 is outside 4..12"),
+    ({"capacity": -5}, "capacity: -5 is outside 0..18446744073709551615"),
+])
+def test_integer_arguments_out_of_range_are_refused_naming_the_argument_and_its_range(kwargs, message):
+    with pytest.raises(ValueError, match="^" + re.escape(message) + "$"):
+        hb.SpatialHash((16, 16), **kwargs)
+
+
+def test_integer_arguments_of_another_type_are_refused_naming_the_argument():
+    with pytest.raises(TypeError, match=r"^threads: expected an integer, got 1\.5$"):
+        hb.SpatialHash((16, 16), threads=1.5)
+    with pytest.raises(TypeError, match="^seed: expected an integer, got True$"):
+        hb.SpatialHash((16, 16), seed=True)
+    h = hb.SpatialHash((16, 16), threads=np.uint16(1024), seed=np.uint64(2**64 - 1), age_bits=np.int8(12))
+    assert len(h) == 0
+    assert "threads: int = 0" in hb.SpatialHash.__init__.__doc__  # the signature still says int
+
+
+def test_a_table_that_never_resizes_needs_a_capacity_at_once():
+    with pytest.raises(ValueError, match="capacity: a table with adaptive=False"):
+        hb.SpatialHash((64, 64), adaptive=False)
+    keys = random_keys(100, (64, 64))
+    h = hb.SpatialHash((64, 64), adaptive=False, capacity=len(keys))
+    assert h.insert(keys)["stored"] == len(keys) and h.contains(keys).all()

@@ -187,6 +187,26 @@ expect 2 "option --light-fov has no effect with --light-ortho" -- render --scene
 expect 2 "option --shadows needs --layout 64" -- render --scene quads --shadows --layout 32 --out x.png
 ASAN_OPTIONS=detect_leaks=0 expect 1 "leaves no usable depth range" -- render --scene quads --shadows \
   --light-pos 1e30,0,0 --out x.png
+# The precision rule: at 1e6 float32 rounds the light's depth by ~0.5, over a hundred light pixels' sides.
+ASAN_OPTIONS=detect_leaks=0 expect 1 "leaves float32 too coarse a depth for this scene" -- render --scene quads \
+  --shadows --light-pos 1e6,0,0 --out x.png
+# A slope whose bias exceeds the map's short side (the whole scene's depth) once saturated the bias silently.
+expect 2 "--shadow-slope 1e+30 must be below 1024" -- render --scene quads --shadows --shadow-slope 1e30 --out x.png
+expect 2 "--shadow-slope 600 must be below 512" -- render --scene quads --shadows --shadow-filter pcf \
+  --shadow-slope 600 --out x.png
+# Any finite direction but zero is normalisable, however long (1e38 was once "not finite").
+for ortho in "" --light-ortho; do
+  ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene quads --size 16x16 --shadows --light-size 32x32 \
+    --light-dir 1e38,-1e38,0 $ortho --stats r_dir.json
+done
+# A bias covering the light's whole depth range (one quad facing the light) is warned about.
+ASAN_OPTIONS=detect_leaks=0 "$bin" render --scene quads --count 1 --size 16x16 --shadows --light-size 32x32 \
+  --light-ortho --light-dir 0,0,-1 --stats r_flat.json >out.txt 2>err.txt
+if [[ $? -eq 0 ]] && grep -qF "covers the light's whole depth range over the scene" err.txt; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: no warning for a shadow bias over the whole depth range:"; cat err.txt; fail=$((fail + 1))
+fi
 expect 2 "option --shadow-filter: 'box' is not nearest or pcf" -- render --scene quads --shadows --shadow-filter box \
   --out x.png
 expect 2 "option --heatmap shadow: the light's transmittance needs --shadows" -- render --scene quads \

@@ -84,6 +84,13 @@ expect losses 0 "warning: 19984 of 20000 fragments not stored" -- build-lists --
 # A pixel deeper than AMAX fails at any table size: no growth, the pixel named.
 expect losses 1 "lossless mode: 19984 of 20000 fragments not stored: failed_age 19984 after 1 attempt: pixel (0, 0) has 20000 distinct fragments" -- build-lists --in deep.csv --out l.csv --screen 4x4 --lossless
 expect losses 1 "lossless mode: 19984 of 20000 fragments not stored: failed_age 19984 after 1 attempt: pixel (0, 0) has 20000 distinct" -- build-lists --in deep.csv --out l.csv --screen 4x4 --lossless --path gl
+grep -qF "no age bits hold it (at most 12): use another technique, such as lists (or accept the loss); more attempts cannot help (--max-attempts 16)" err.txt &&
+  ok losses || bad losses "the lossless failure does not say growing cannot help: $(cat err.txt)"
+# A pixel within AMAX that the attempts allowed cannot hold: the attempts, AMAX, the pixel and --max-attempts.
+head -n 4001 deep.csv >deep4000.csv
+expect losses 1 "after 2 attempts (last table" -- build-lists --in deep4000.csv --out l.csv --screen 4x4 --lossless --age-bits 12 --max-attempts 2
+grep -qF "; AMAX = 2^12 - 1 = 4095): pixel (0, 0) lost the most, " err.txt && grep -qF "raise --max-attempts above 2" err.txt &&
+  ok losses || bad losses "the lossless failure does not name AMAX, the pixel and --max-attempts: $(cat err.txt)"
 expect losses 1 "lossless mode:" -- render --scene planes --count 40 --size 16x16 --age-bits 4 --out p.png --lossless --quiet
 expect losses 1 "lossless mode:" -- render --scene planes --count 40 --size 16x16 --age-bits 4 --out p.png --lossless --quiet --path cpu
 expect losses 1 "lossless mode:" -- render --fragments deep.csv --size 4x4 --out p.png --lossless --quiet
@@ -132,6 +139,26 @@ expect values 0 "" -- demo --screen 32x32 --path gl --stats d.json
 grep -q '"path":"gl"' d.json && grep -q '"gl_atomic_mode"' d.json && grep -q "gl emulated64 on" out.txt && ok values ||
   bad values "demo --path gl did not run on GL: $(cat out.txt)"
 expect values 2 "option --threads has no effect with --path gl" -- demo --screen 32x32 --path gl --threads 2
+# hash query reads --threads as every command does (the batched find's threads).
+printf 'x,y,value\n1,1,5\n2,3,7\n' >hk.csv
+expect values 0 "" -- hash build --keys hk.csv --out hk.tab --quiet
+expect values 2 "option --threads: '-1' is not a non-negative integer" -- hash query --table hk.tab --keys hk.csv --threads -1
+expect values 2 "option --threads: 'abc' is not a non-negative integer" -- hash query --table hk.tab --keys hk.csv --threads abc
+expect values 2 "option --threads: 100000 outside 0..1024" -- hash query --table hk.tab --keys hk.csv --threads 100000
+expect values 0 "" -- hash query --table hk.tab --keys hk.csv --out hq.csv --threads 2 --quiet
+[[ "$(tr '\n' ' ' <hq.csv)" == "x,y,found,value 1,1,1,5 2,3,1,7 " ]] && ok values || bad values "hash query --threads 2: $(cat hq.csv)"
+# One key far from the origin: the domain of its bounds would need a table of
+# 2 GiB for its quotients; refused at once naming the sizes and the options.
+printf 'x,y\n50000000,50000000\n' >far.csv
+expect values 2 "for 1 key in the domain 50000001x50000001 (the keys' bounds)" -- hash build --keys far.csv --out far.tab
+for needle in "for its quotients to fit 23 bits (--age-bits 8)" "give a smaller --domain (keys nearer 0) or fewer --age-bits (--age-bits 4: "; do
+  grep -qF -- "$needle" err.txt && ok values || bad values "hash build of a far key: stderr lacks '$needle': $(cat err.txt)"
+done
+expect values 2 "in the domain 60000000x60000000 (--domain)" -- hash build --keys far.csv --out far.tab --domain 60000000x60000000
+[[ ! -e far.tab ]] && ok values || bad values "a refused hash build wrote its table"
+for psnr in -1 0 -0 -1e-300; do
+  expect values 2 "option --target-psnr: $psnr is not a PSNR above 0 dB" -- plan --scene quads --size 8x8 --out p.json --target-psnr "$psnr"
+done
 
 # --- 4. Bounded input: devices, binary data, endless lines --------------------
 head -c 3000000 /dev/urandom >binary.csv

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <string>
 #include <string_view>
 
 #include "habuffer/shared/ha_constants.h"
@@ -98,5 +99,15 @@ static_assert(sizeof(Counters) == (std::size(kCounterFields) + 1) * sizeof(std::
               "every field of Counters but `fragments` needs its row in kCounterFields");
 static_assert(std::size(kCounterFields) + 1 == HABUFFER_OUTCOME_COUNT,
               "every HABUFFER_* outcome but HABUFFER_STORED needs its counter and row in kCounterFields");
+
+/// Fragments that are not stored and not a duplicate of a record that is:
+/// failed (every CounterKind::Failure field), hidden (early cull) or invalid.
+std::uint64_t lost_fragments(const Counters& c);
+
+/// "19745 of 20000 fragments not stored: failed_age 19745, culled (early
+/// cull) 3": the lost fragments and only the non-zero reasons, losses first,
+/// then what was hidden, then what was refused (the loss messages of the
+/// CLI and of lossless mode's DataError).
+std::string loss_summary(const Counters& c);
 
 }  // namespace habuffer

@@ -18,6 +18,7 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/fragment.h"
+#include "habuffer/option_spelling.h"
 #include "habuffer/record_layout.h"
 
 namespace habuffer {
@@ -49,7 +50,9 @@ std::optional<PixelDepth> pixel_counted_beyond(std::span<const std::uint32_t> co
 std::optional<std::uint32_t> age_bits_for(std::uint64_t records);
 
 /// "pixel (3, 7) has 20 distinct fragments, more than AMAX = 2^4 - 1 = 15:
-/// use --age-bits 5 (or accept the loss)" for messages.
-std::string too_deep_message(const PixelDepth& deepest, std::uint32_t age_bits);
+/// use --age-bits 5 (or accept the loss)" for messages; `spelling` Keyword
+/// names the Python module's age_bits=5 instead.
+std::string too_deep_message(const PixelDepth& deepest, std::uint32_t age_bits,
+                             OptionSpelling spelling = OptionSpelling::Flag);
 
 }  // namespace habuffer

@@ -12,15 +12,11 @@
 #include <string_view>
 #include <vector>
 
+#include "habuffer/data_error.h"  // DataError, which every reading error is
+
 namespace habuffer {
 
 class AtomicFile;
-
-/// Bad data in an input file (the CLI exits 1 on it).
-class DataError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;  ///< takes the message
-};
 
 /// Reads line by line (files of any length, pipes included), with lines of at
 /// most kMaxLineBytes; a UTF-8 byte-order mark before the header is skipped.

@@ -145,7 +145,7 @@ struct SpatialHashConfig {
   bool lossless = true;                                 ///< grow and insert again when a call fails
   std::uint32_t max_growths = 24;                       ///< lossless: growths of one insert before it throws
   std::uint32_t iter_limit = HABUFFER_SH_DEFAULT_ITER_LIMIT;     ///< probes of one insert call (SPEC 6's LIMIT)
-  std::uint32_t threads = 0;                            ///< inserting and querying threads; 0: the default count
+  std::uint32_t threads = 0;                            ///< inserting and querying threads, 0..kMaxThreads; 0: the default count
 
   /// Throws std::invalid_argument naming the field and its bounds.
   void validate() const;
@@ -288,6 +288,10 @@ class SpatialHash {
   [[nodiscard]] std::uint64_t memory_bytes() const;
   [[nodiscard]] SpatialHashStats stats() const;
   [[nodiscard]] const SpatialHashConfig& config() const { return config_; }
+  /// The threads of later inserts and batched finds (0: the default count),
+  /// the table unchanged (a loaded table's own, say). Throws
+  /// std::invalid_argument above kMaxThreads.
+  void set_threads(std::uint32_t threads);
   [[nodiscard]] const FoldedDomain& domain() const { return fold_; }
   /// Counters summed over every insert since construction.
   [[nodiscard]] const InsertReport& totals() const { return totals_; }
@@ -316,6 +320,10 @@ class SpatialHash {
   /// the domain, at most the domain, large enough for the quotients to fit
   /// 31 - age_bits bits). Throws std::invalid_argument when no table fits.
   static Extent table_for(const FoldedDomain& fold, std::uint32_t age_bits, std::uint64_t keys, double load);
+  /// The bytes a table of `table` slots made with `config` holds (its
+  /// memory_bytes(): slots, max-age cells and offsets), saturating: what a
+  /// caller checks against the machine before making it.
+  static std::uint64_t memory_for(const SpatialHashConfig& config, Extent table);
 
  private:
   // A table of `table` slots (restore: no sizing from a key count).

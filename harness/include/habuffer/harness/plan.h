@@ -22,7 +22,7 @@ namespace habuffer::harness {
 
 /// What `habuffer plan` predicts over and aims for.
 struct PlanSettings {
-  std::optional<double> target_psnr;  ///< dB; none: the cheapest lossless configuration
+  std::optional<double> target_psnr;  ///< dB, finite and above 0; none: the cheapest lossless configuration
   /// The HA-buffer's table loads predicted (those the screen cannot give are skipped).
   std::vector<double> loads{0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
   std::uint32_t trials = 3;           ///< synthetic streams per HA-buffer load

@@ -59,7 +59,8 @@ struct ShadowSettings {
   /// light buffers built from the same stream, the shadow frontier).
   bool capture = false;
   /// Throws std::invalid_argument naming the field (an empty map, a bad
-  /// slope, tau outside [0, 1], BufferConfig's rules).
+  /// slope: negative, not finite, or not below shadow_slope_limit of the
+  /// map, halved under Pcf; tau outside [0, 1], BufferConfig's rules).
   void validate() const;
 };
 

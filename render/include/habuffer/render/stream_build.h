@@ -27,8 +27,11 @@ struct GlBuildInfo {
 };
 
 /// `fragments` into `config`'s technique on the GPU of the current GL
-/// context, lossless mode by `policy` and `max_attempts` as build_technique
-/// (a pool of 0 is the library's automatic pool). Throws GlError when the
+/// context, lossless mode by `policy` and `max_attempts` as build_technique,
+/// by its rule (lossless_attempts: no growth where growing cannot help, then
+/// TechniqueBuild::too_deep), so both paths make the same attempts; a lossy
+/// result is returned as it is (require_lossless). A pool of 0 is the
+/// library's automatic pool. Throws GlError when the
 /// context has no mode for the layout, std::invalid_argument for a bad
 /// configuration, std::out_of_range for a fragment off the screen.
 TechniqueBuild build_technique_on_gl(const TechniqueConfig& config, const OffsetSource& offsets,
