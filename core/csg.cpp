@@ -4,6 +4,18 @@
 #include <cctype>
 
 namespace habuffer {
+namespace {
+
+// One character of the expression for a message: printable ASCII quoted, any
+// other byte as \xHH (a message stays one printable line).
+std::string quoted(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  if (u >= 0x20 && u < 0x7f) return std::string("'") + c + "'";
+  const char* hex = "0123456789abcdef";
+  return std::string("byte \\x") + hex[u >> 4] + hex[u & 15];
+}
+
+}  // namespace
 
 // Recursive descent over the grammar in CsgExpression::parse's comment,
 // writing postfix steps.
@@ -17,7 +29,7 @@ class CsgParser {
     if (at_ >= text_.size()) throw CsgError("csg expression: empty");
     out_.canonical_ = expression(0);
     skip();
-    if (at_ < text_.size()) fail("unexpected '" + std::string(1, text_[at_]) + "'");
+    if (at_ < text_.size()) fail("unexpected " + quoted(text_[at_]));
   }
 
  private:
@@ -62,14 +74,14 @@ class CsgParser {
     if (c == '(') {
       ++at_;
       std::string inner = expression(depth + 1);
-      if (peek() != ')') fail(at_ < text_.size() ? "expected ')' before '" + std::string(1, text_[at_]) + "'"
+      if (peek() != ')') fail(at_ < text_.size() ? "expected ')' before " + quoted(text_[at_])
                                                  : "expected ')' at the end");
       ++at_;
       return inner;
     }
     if (c == '\0') fail("expected a primitive at the end");
     if (!(std::isalpha(static_cast<unsigned char>(c)) || c == '_'))
-      fail("expected a primitive or '(', not '" + std::string(1, c) + "'");
+      fail("expected a primitive or '(', not " + quoted(c));
     const std::size_t start = at_;
     while (at_ < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[at_])) || text_[at_] == '_')) ++at_;
     const std::string name(text_.substr(start, at_ - start));

@@ -1,4 +1,5 @@
 #include "habuffer/camera.h"
+#include "habuffer/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,9 @@ Camera orthographic(const Scene& scene, float half, const CameraParams& params, 
 
 Camera perspective(const Bounds& b, float radius, const CameraParams& params, Extent screen) {
   const float aspect = static_cast<float>(screen.x) / static_cast<float>(screen.y);
-  const float r = std::max(radius, 1e-6f);
+  // Any positive size: scenes below float32's depth precision are refused
+  // by check_depth_range rather than drawn as a dot of a floor size.
+  const float r = std::max(radius, std::numeric_limits<float>::min());
   // The fov is the narrower side's: the bounding sphere fits both sides.
   const float half_narrow = glm::radians(params.fov) * 0.5f;
   const float distance = r / std::sin(half_narrow) * kMargin;
@@ -65,7 +68,9 @@ bool finite(const glm::mat4& m) {
 void check_depth_range(const Scene& scene, const Bounds& b, const Camera& c) {
   const bool usable = finite(c.view) && finite(c.projection) && std::isfinite(c.near_plane) &&
                       std::isfinite(c.far_plane) && c.near_plane > 0.0f &&
-                      c.far_plane - c.near_plane > c.far_plane * 0x1.0p-20f;
+                      c.far_plane - c.near_plane > c.far_plane * 0x1.0p-20f &&
+                      // a perspective's depth term 2 far near / (far - near) must not underflow
+                      (c.projection[2][3] == 0.0f || std::abs(c.projection[3][2]) >= std::numeric_limits<float>::min());
   if (usable) return;
   const auto text = [](glm::vec3 v) {
     char buf[96];
@@ -73,8 +78,9 @@ void check_depth_range(const Scene& scene, const Bounds& b, const Camera& c) {
     return std::string(buf);
   };
   throw SceneError("scene '" + scene.name + "': its extent, " + text(b.lo) + " to " + text(b.hi) +
-                   ", leaves no usable depth range in float32 (near " + std::to_string(c.near_plane) + ", far " +
-                   std::to_string(c.far_plane) + "); coordinates must be finite and below about 1e18");
+                   ", leaves no usable depth range in float32 (near " + shortest_text(c.near_plane) + ", far " +
+                   shortest_text(c.far_plane) + "); coordinates must be finite and below about 1e18, the scene above "
+                   "about 1e-18 across");
 }
 
 }  // namespace

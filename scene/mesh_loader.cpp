@@ -1,15 +1,21 @@
 #include "habuffer/mesh_loader.h"
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <map>
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "habuffer/file_roles.h"
+#include "habuffer/polygon_triangulation.h"
 #include "ply_check.h"
 
 namespace habuffer {
@@ -35,6 +41,43 @@ glm::vec3 diffuse_colour(const aiScene& s, const aiMesh& m, std::size_t index) {
   return palette(index);
 }
 
+// Vertices at exactly the same position become one (bit patterns compared,
+// -0 as +0): the importer gives each face corner its own vertex.
+void weld_identical(Mesh& m) {
+  std::map<std::array<std::uint32_t, 3>, std::uint32_t> first;
+  std::vector<glm::vec3> kept;
+  std::vector<std::uint32_t> to(m.positions.size());
+  for (std::size_t i = 0; i < m.positions.size(); ++i) {
+    const glm::vec3 p = m.positions[i] + glm::vec3(0.0f);
+    std::array<std::uint32_t, 3> key{};
+    std::memcpy(key.data(), &p.x, 4);
+    std::memcpy(key.data() + 1, &p.y, 4);
+    std::memcpy(key.data() + 2, &p.z, 4);
+    const auto [it, added] = first.emplace(key, static_cast<std::uint32_t>(kept.size()));
+    if (added) kept.push_back(m.positions[i]);
+    to[i] = it->second;
+  }
+  for (std::uint32_t& index : m.indices) index = to[index];
+  m.positions = std::move(kept);
+}
+
+// The welded triangles must enclose the volume of the file's polygons over
+// the file's own vertices (up to rounding, and to the bend of polygons that
+// are not planar): a check of the triangulation and the weld that shares
+// neither's code.
+void check_triangulation(const Mesh& m, const std::vector<glm::vec3>& file_positions,
+                         const std::vector<std::vector<std::uint32_t>>& polygons) {
+  double scale = 0.0;  // the sum of the volume's terms' magnitudes
+  for (const std::vector<std::uint32_t>& f : polygons)
+    for (std::size_t i = 1; i + 1 < f.size(); ++i)
+      scale += std::abs(glm::dot(glm::dvec3(file_positions[f[0]]),
+                                 glm::cross(glm::dvec3(file_positions[f[i]]), glm::dvec3(file_positions[f[i + 1]])))) / 6.0;
+  const double triangles = triangles_volume(m.positions, m.indices);
+  if (std::abs(triangles - m.file_volume) > 1e-6 * scale + 1e-300)
+    throw SceneError("mesh '" + m.name + "': its triangles enclose a volume of " + std::to_string(triangles) +
+                     ", its polygons " + std::to_string(m.file_volume) + " (polygons that are not planar?)");
+}
+
 Mesh convert(const aiScene& s, const aiMesh& m, std::size_t index, float opacity) {
   Mesh out;
   out.name = m.mName.length > 0 ? m.mName.C_Str() : "mesh " + std::to_string(index);
@@ -42,27 +85,46 @@ Mesh convert(const aiScene& s, const aiMesh& m, std::size_t index, float opacity
   out.opacity = opacity;
   out.positions.reserve(m.mNumVertices);
   for (unsigned v = 0; v < m.mNumVertices; ++v) out.positions.emplace_back(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
+  // Polygons are triangulated here, not by assimp: its triangulation
+  // compares areas with fixed epsilons and breaks closed meshes at small
+  // scales (a cube of quads at 1e-6). The file's own polygons give the
+  // volume the triangles must enclose: a check that shares nothing with the
+  // triangulation (polygon_triangulation.h).
+  std::vector<std::vector<std::uint32_t>> polygons;
   for (unsigned f = 0; f < m.mNumFaces; ++f) {
     const aiFace& face = m.mFaces[f];
-    if (face.mNumIndices != 3) continue;  // points and lines left by triangulation
-    for (unsigned k = 0; k < 3; ++k)
+    if (face.mNumIndices < 3) continue;  // points and lines
+    for (unsigned k = 0; k < face.mNumIndices; ++k)
       if (face.mIndices[k] >= m.mNumVertices)
         throw SceneError("mesh '" + out.name + "': face " + std::to_string(f) + " uses vertex " +
                          std::to_string(face.mIndices[k]) + " of " + std::to_string(m.mNumVertices));
-    out.indices.insert(out.indices.end(), face.mIndices, face.mIndices + 3);
+    polygons.emplace_back(face.mIndices, face.mIndices + face.mNumIndices);
+    triangulate_polygon(out.positions, polygons.back(), out.indices);
   }
+  out.file_volume = polygons_volume(out.positions, polygons);
+  const std::vector<glm::vec3> file_positions = out.positions;
+  weld_identical(out);
+  check_triangulation(out, file_positions, polygons);
   return out;
 }
 
 }  // namespace
 
 Scene load_mesh_file(const std::string& path, float opacity) {
+  try {
+    check_input_file(path, "mesh file");
+  } catch (const std::exception& e) {
+    throw SceneError(std::string("mesh file: ") + e.what());
+  }
   if (!std::ifstream(path).good()) throw SceneError("mesh file '" + path + "' cannot be opened");
   if (is_ply_file(path)) check_ply_file(path);  // assimp trusts a PLY header: it may abort or allocate gigabytes
   Assimp::Importer importer;
-  const aiScene* s = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                 aiProcess_PreTransformVertices | aiProcess_SortByPType |
-                                                 aiProcess_ValidateDataStructure);
+  // No aiProcess_Triangulate (see convert) and so no aiProcess_SortByPType:
+  // a mesh of triangles and quads stays one mesh. No
+  // aiProcess_JoinIdenticalVertices either: it merges vertices closer than
+  // an epsilon, which at small scales (a cube of side 1e-6) joins distinct
+  // corners; weld_identical joins exactly equal positions instead.
+  const aiScene* s = importer.ReadFile(path, aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure);
   if (s == nullptr || s->mRootNode == nullptr || (s->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0)
     throw SceneError("mesh file '" + path + "': " + importer.GetErrorString());
   Scene scene;

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "habuffer/atomic_file.h"
+#include "habuffer/atomic_folder.h"
 #include "habuffer/csv.h"
 
 namespace habuffer {
@@ -193,6 +194,81 @@ TEST_F(AtomicOutput, ADirectoryOrAnEmptyNameIsRefusedNamingIt) {
   EXPECT_THROW(AtomicFile(dir_.string()), DataError);
   EXPECT_THROW(AtomicFile(""), DataError);
   EXPECT_THROW(AtomicFile((dir_ / "missing" / "x.csv").string()), DataError);
+}
+
+TEST_F(AtomicOutput, AWriteThroughADanglingLinkCreatesItsTargetAndKeepsTheLink) {
+  const std::string link = (dir_ / "dangling.csv").string();
+  fs::create_symlink("made.csv", link);
+  AtomicFile f(link);
+  f.write("new\n");
+  f.commit();
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(read((dir_ / "made.csv").string()), "new\n");
+}
+
+// An earlier set of slices in `folder`: `count` members.
+void make_set(const fs::path& folder, int count, const std::string& text) {
+  fs::create_directories(folder);
+  for (int i = 0; i < count; ++i) std::ofstream(folder / ("slice_" + std::to_string(1000 + i) + ".png")) << text;
+}
+
+TEST_F(AtomicOutput, ACommittedSetReplacesALargerEarlierSetWholeAndLeavesNoStaleMember) {
+  const fs::path folder = dir_ / "slices";
+  make_set(folder, 8, "old");
+  AtomicFolder set(folder.string(), "slice_*.png");
+  for (int i = 0; i < 3; ++i) std::ofstream(set.member("slice_" + std::to_string(1000 + i) + ".png")) << "new";
+  EXPECT_EQ(read((folder / "slice_1000.png").string()), "old");  // nothing visible before the commit
+  set.commit();
+  int members = 0;
+  for (const auto& e : fs::directory_iterator(folder)) {
+    ++members;
+    EXPECT_EQ(read(e.path().string()), "new");
+  }
+  EXPECT_EQ(members, 3);
+  EXPECT_EQ(others(), std::vector<std::string>{"slices"});  // no temporary folder beside it
+}
+
+TEST_F(AtomicOutput, ASetDroppedBeforeItsCommitLeavesTheEarlierSetAndNoTemporary) {
+  const fs::path folder = dir_ / "slices";
+  make_set(folder, 4, "old");
+  {
+    AtomicFolder set(folder.string(), "slice_*.png");
+    std::ofstream(set.member("slice_1000.png")) << "new";
+  }
+  EXPECT_EQ(read((folder / "slice_1000.png").string()), "old");
+  EXPECT_EQ(others(), std::vector<std::string>{"slices"});
+}
+
+TEST_F(AtomicOutput, ASetRefusesAFolderHoldingOtherFilesAndAFile) {
+  const fs::path folder = dir_ / "mine";
+  make_set(folder, 2, "old");
+  std::ofstream(folder / "notes.txt") << "mine";
+  EXPECT_NE(output_set_conflict(folder.string(), "slice_*.png").find("notes.txt"), std::string::npos);
+  EXPECT_THROW(AtomicFolder(folder.string(), "slice_*.png"), DataError);
+  EXPECT_EQ(read((folder / "notes.txt").string()), "mine");
+  EXPECT_NE(output_set_conflict(old_, "slice_*.png").find("is a file"), std::string::npos);
+}
+
+TEST_F(AtomicOutput, ASignalWhileASetIsWrittenLeavesTheEarlierSetWholeAndNoTemporary) {
+  const fs::path folder = dir_ / "slices";
+  make_set(folder, 5, "old");
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const int status = in_child([&] {
+      remove_partial_outputs_on_signals();
+      AtomicFolder set(folder.string(), "slice_*.png");
+      for (int i = 0; i < 3; ++i) std::ofstream(set.member("slice_" + std::to_string(1000 + i) + ".png")) << "new";
+      ::raise(sig);
+      ::_exit(1);
+    });
+    EXPECT_EQ(status, 128 + sig);
+    int members = 0;
+    for (const auto& e : fs::directory_iterator(folder)) {
+      ++members;
+      EXPECT_EQ(read(e.path().string()), "old");
+    }
+    EXPECT_EQ(members, 5);
+    EXPECT_EQ(others(), std::vector<std::string>{"slices"});
+  }
 }
 
 }  // namespace

@@ -114,5 +114,28 @@ TEST_F(SpatialHashFiles, ATableIsSavedAndLoadedBitForBitAndCorruptionIsRefused) 
   EXPECT_NE(error_of([&] { (void)load_spatial_hash(path("y.tab")); }).find("bytes"), std::string::npos);
 }
 
+TEST(KeySets, SparseImageKeysOnSmallDomainsStayInsideTheDomainAndReachTheCoverage) {
+  // Discs near the border of a small domain start or end off it (the
+  // generator once cast a negative column to uint32 and wrote past its bitmap).
+  for (const std::uint32_t side : {1u, 2u, 3u, 5u, 10u, 64u})
+    for (const double coverage : {0.1, 0.5, 0.9})
+      for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+        KeySetOptions o;
+        o.set = KeySet::SparseImage;
+        o.domain = {side, side + 1, 1};
+        o.coverage = coverage;
+        o.seed = seed;
+        const std::vector<glm::uvec3> keys = make_keys(o);
+        const double cells = static_cast<double>(side) * (side + 1);
+        EXPECT_GE(static_cast<double>(keys.size()), coverage * cells) << side << " " << coverage << " " << seed;
+        EXPECT_LE(static_cast<double>(keys.size()), cells);
+        for (const glm::uvec3& k : keys) {
+          ASSERT_LT(k.x, side);
+          ASSERT_LT(k.y, side + 1);
+          ASSERT_EQ(k.z, 0u);
+        }
+      }
+}
+
 }  // namespace
 }  // namespace habuffer::spatial

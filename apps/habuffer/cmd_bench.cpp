@@ -9,8 +9,6 @@
 #include "habuffer/progress.h"
 
 namespace habuffer::cli {
-namespace {
-
 const CommandSpec& bench_spec() {
   static const CommandSpec spec{
       "bench --scenes S1,S2,... --techniques T1,T2,... --out F.json[,F.csv] [OPTIONS]",
@@ -29,8 +27,6 @@ const CommandSpec& bench_spec() {
       technique_knob_help() + "     e.g. kbuffer:k=8:occ.\n"};
   return spec;
 }
-
-}  // namespace
 
 int run_bench(const std::vector<std::string>& argv) {
   if (print_help(argv, bench_spec())) return 0;

@@ -13,8 +13,6 @@
 #include "report_json.h"
 
 namespace habuffer::cli {
-namespace {
-
 const CommandSpec& build_lists_spec() {
   static const CommandSpec spec{
       "build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [OPTIONS]",
@@ -37,6 +35,8 @@ const CommandSpec& build_lists_spec() {
       "  so an exact technique's lists equal the HA-buffer's byte for byte.\n"};
   return spec;
 }
+
+namespace {
 
 // Refuses a technique without lists, before any work.
 void check_build_request(const HashOptions& options) {

@@ -8,16 +8,12 @@
 
 namespace habuffer::cli {
 
-namespace {
-
 // Two positional image files and no option.
 const CommandSpec& compare_spec() {
   static const CommandSpec spec{
       "compare A B", {}, "  Prints RMSE, PSNR and the largest channel error over RGB (values in [0, 1]).\n"};
   return spec;
 }
-
-}  // namespace
 
 int run_compare(const std::vector<std::string>& argv) {
   if (print_help(argv, compare_spec())) return 0;

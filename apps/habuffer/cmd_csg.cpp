@@ -2,6 +2,8 @@
 // sorted lists (habuffer/render/csg_renderer.h), with its stats and the ray
 // caster's comparison. (A command of its own rather than `render --csg`:
 // render's options choose and size OIT techniques, none of which apply.)
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -9,20 +11,23 @@
 
 #include "commands.h"
 #include "file_values.h"
+#include <glm/geometric.hpp>
+
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/json_writer.h"
 #include "habuffer/mesh_loader.h"
+#include "habuffer/number_text.h"
+#include "habuffer/printable.h"
+#include "habuffer/solid_check.h"
 #include "habuffer/render/csg_renderer.h"
 #include "habuffer/render/image.h"
 #include "habuffer/solids.h"
 #include "report_json.h"
 
 namespace habuffer::cli {
-namespace {
-
 const CommandSpec& csg_spec() {
   static const CommandSpec spec{
       "csg --solids 'NAME=SPEC; ...' --expr EXPR (--out IMAGE | --stats S.json) [OPTIONS]",
@@ -43,21 +48,18 @@ const CommandSpec& csg_spec() {
   return spec;
 }
 
+namespace {
+
 std::vector<float> numbers(const std::string& solid, const std::string& text, std::size_t count) {
   std::vector<float> v;
   std::istringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    float f = 0.0f;
     try {
-      f = std::stof(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
+      v.push_back(parse_float32(item));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError("option --solids: " + solid + ": " + e.what());
     }
-    if (used == 0 || used != item.size() || !std::isfinite(f))
-      throw UsageError("option --solids: " + solid + ": '" + item + "' is not a number");
-    v.push_back(f);
   }
   if (v.size() != count)
     throw UsageError("option --solids: " + solid + " takes " + std::to_string(count) + " numbers, not " +
@@ -101,6 +103,42 @@ Mesh solid(const std::string& name, const std::string& spec) {
   return m;
 }
 
+// A name --expr can refer to: operators and spaces separate names there.
+void check_solid_name(const std::string& name) {
+  const auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; };
+  if (std::isdigit(static_cast<unsigned char>(name[0])) != 0 || !std::all_of(name.begin(), name.end(), word))
+    throw UsageError("option --solids: solid name " + excerpt(name) +
+                     " must be letters, digits and '_', not starting with a digit (--expr reads - | & ( ) and spaces "
+                     "as operators)");
+}
+
+// Each solid must bound a volume the renderer can resolve: closed,
+// manifold, non-zero volume (solid_check.h), and at least 2^-20 of the
+// scene's size: float32 positions and depths keep about 2^-20 of the
+// scene's extent (camera.h's depth-range rule), so a smaller solid has no
+// depth of its own. Solids smaller than a pixel are warned about.
+void check_solids(const Scene& scene, Extent screen) {
+  Bounds all;
+  for (const Mesh& m : scene.meshes)
+    for (const glm::vec3& p : m.positions) all.add(p);
+  const float scene_size = glm::length(all.hi - all.lo);
+  for (const Mesh& m : scene.meshes) {
+    if (const std::string why = solid_problem(check_solid(m)); !why.empty())
+      throw DataError("option --solids: solid " + excerpt(m.name) + " " + why + " (csg needs closed solids)");
+    Bounds b;
+    for (const glm::vec3& p : m.positions) b.add(p);
+    const float size = glm::length(b.hi - b.lo);
+    if (!(size >= scene_size * 0x1.0p-20f))
+      throw UsageError("option --solids: solid " + excerpt(m.name) + " is " + shortest(size) + " across in a scene " +
+                       shortest(scene_size) + " across: below 2^-20 of it, float32 depths cannot resolve it");
+    if (size * static_cast<float>(std::min(screen.x, screen.y)) < scene_size)
+      std::fprintf(stderr, "habuffer csg: warning: solid %s (%g across in a scene %g across) covers less than a pixel "
+                           "at --size %s\n",
+                   excerpt(m.name).c_str(), static_cast<double>(size), static_cast<double>(scene_size),
+                   screen.str().c_str());
+  }
+}
+
 std::pair<Scene, std::vector<std::string>> parse_solids(const std::string& text) {
   Scene scene;
   scene.name = "csg";
@@ -115,6 +153,7 @@ std::pair<Scene, std::vector<std::string>> parse_solids(const std::string& text)
     if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
       throw UsageError("option --solids: '" + item + "' is not NAME=SPEC");
     const std::string name = item.substr(0, eq);
+    check_solid_name(name);
     for (const std::string& n : names)
       if (n == name) throw UsageError("option --solids: '" + name + "' is named twice");
     scene.meshes.push_back(solid(name, item.substr(eq + 1)));
@@ -155,6 +194,7 @@ int run_csg(const std::vector<std::string>& argv) {
   if (args.has("out") && !has_image_support())
     throw UsageError("option --out: this habuffer was built without image files (" + image_support() + ")");
   auto [scene, names] = parse_solids(args.required("solids"));
+  check_solids(scene, s.screen);
   std::optional<CsgExpression> expression;
   try {
     expression = CsgExpression::parse(args.required("expr"), names);

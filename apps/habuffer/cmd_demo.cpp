@@ -30,6 +30,8 @@ bool same_tables(const HaBuffer& a, const HaBuffer& b) {
   return true;
 }
 
+}  // namespace
+
 const CommandSpec& demo_spec() {
   static const CommandSpec spec{
       "demo [OPTIONS]",
@@ -49,6 +51,8 @@ const CommandSpec& demo_spec() {
       "  (--path cpu) or on the GPU (--path gl), and checks that both tables are bit-identical (SPEC 9).\n"};
   return spec;
 }
+
+namespace {
 
 // The command line with demo's defaults added: the screen, and the table of
 // --load for --fragments; the stream's size in `count`.

@@ -274,7 +274,19 @@ void refuse_other_figures_options(const Args& all, const Figure& figure) {
         throw UsageError("option --" + o.name + " does not apply to figure " + figure.name);
 }
 
+CommandSpec figure_spec(const Figure& f) { return CommandSpec{"figure " + f.name, figure_common(f.name == "table1") + f.own, ""}; }
+
 }  // namespace
+
+const std::vector<std::pair<std::string, CommandSpec>>& figure_specs() {
+  static const std::vector<std::pair<std::string, CommandSpec>> specs = [] {
+    std::vector<std::pair<std::string, CommandSpec>> out;
+    for (const Figure& f : figures()) out.emplace_back("figure " + f.name, figure_spec(f));
+    return out;
+  }();
+  return specs;
+}
+
 
 int run_figure(const std::vector<std::string>& argv) {
   if (print_help(argv, figure_help()) || argv.empty()) {
@@ -293,7 +305,9 @@ int run_figure(const std::vector<std::string>& argv) {
   if (figure == figures().end())
     throw UsageError("unknown figure '" + name + "' (fig2, fig8, fig10, table1, frontier, shadows, voxels, csg)");
   refuse_other_figures_options(all, *figure);
-  const CommandSpec spec{"", figure_common(name == "table1") + figure->own, ""};
+  const CommandSpec& spec =
+      std::find_if(figure_specs().begin(), figure_specs().end(), [&](const auto& f) { return f.first == "figure " + name; })
+          ->second;
   const Args args(rest, spec);
   harness::FigureSettings s;
   s.path = parse_path(args);

@@ -11,8 +11,6 @@
 
 namespace habuffer::cli {
 
-namespace {
-
 const CommandSpec& generate_spec() {
   static const CommandSpec spec{
       "generate --screen WxH --out FRAGS.csv (--fragments N | --load L [--table WxH]) [OPTIONS]",
@@ -28,8 +26,6 @@ const CommandSpec& generate_spec() {
       ""};
   return spec;
 }
-
-}  // namespace
 
 int run_generate(const std::vector<std::string>& argv) {
   if (print_help(argv, generate_spec())) return 0;

@@ -37,7 +37,9 @@ constexpr const char* kHashUsage =
     "  image   the image a table built from --image holds, reconstructed\n"
     "Run 'habuffer hash SUBCOMMAND --help' for its options.\n";
 
-const CommandSpec& build_spec() {
+}  // namespace
+
+const CommandSpec& hash_build_spec() {
   static const CommandSpec spec{
       "hash build (--keys CSV | --key-set NAME | --voxels GRID | --image IMAGE) --out TABLE [OPTIONS]",
       {{"keys", "CSV", "", "keys with header x,y / x,y,z / x,y,value / x,y,z,value", reads()},
@@ -62,7 +64,7 @@ const CommandSpec& build_spec() {
   return spec;
 }
 
-const CommandSpec& query_spec() {
+const CommandSpec& hash_query_spec() {
   static const CommandSpec spec{
       "hash query --table TABLE --keys CSV [--out RESULTS.csv] [OPTIONS]",
       {{"table", "TABLE", "", "a table file (habuffer hash build --out)", reads()},
@@ -74,7 +76,7 @@ const CommandSpec& query_spec() {
   return spec;
 }
 
-const CommandSpec& stats_spec() {
+const CommandSpec& hash_stats_spec() {
   static const CommandSpec spec{"hash stats --table TABLE [--out S.json]",
                                 {{"table", "TABLE", "", "a table file", reads()},
                                  {"out", "S.json", "", "the statistics as JSON (ages per age included)", writes()}},
@@ -82,7 +84,7 @@ const CommandSpec& stats_spec() {
   return spec;
 }
 
-const CommandSpec& image_spec() {
+const CommandSpec& hash_image_spec() {
   static const CommandSpec spec{
       "hash image --table TABLE --out IMAGE [--background R,G,B]",
       {{"table", "TABLE", "", "a table built with --image (values RGBA8)", reads()},
@@ -91,6 +93,8 @@ const CommandSpec& image_spec() {
       "  Exit codes: 0 ok, 1 bad data (a 3D table), 2 bad usage.\n"};
   return spec;
 }
+
+namespace {
 
 // Every key of a key file in the domain, else DataError naming the file and the data row.
 void check_rows(const std::string& path, const std::vector<glm::uvec3>& keys, const spatial::FoldedDomain& domain) {
@@ -268,8 +272,8 @@ void write_build_stats(const std::string& path, const spatial::SpatialHashConfig
 }
 
 int run_build(const std::vector<std::string>& argv) {
-  if (print_help(argv, build_spec())) return 0;
-  const Args args(argv, build_spec());
+  if (print_help(argv, hash_build_spec())) return 0;
+  const Args args(argv, hash_build_spec());
   const int sources = int{args.has("keys")} + int{args.has("key-set")} + int{args.has("voxels")} + int{args.has("image")};
   if (sources != 1) throw UsageError("give exactly one of --keys, --key-set, --voxels and --image");
   args.refuse_unless(args.has("key-set"), {"coverage", "count"}, "without --key-set");
@@ -304,8 +308,8 @@ int run_build(const std::vector<std::string>& argv) {
 }
 
 int run_query(const std::vector<std::string>& argv) {
-  if (print_help(argv, query_spec())) return 0;
-  const Args args(argv, query_spec());
+  if (print_help(argv, hash_query_spec())) return 0;
+  const Args args(argv, hash_query_spec());
   SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
   check_rows(args.required("keys"), f.keys, table.domain());
@@ -339,8 +343,8 @@ int run_query(const std::vector<std::string>& argv) {
 }
 
 int run_hash_stats(const std::vector<std::string>& argv) {
-  if (print_help(argv, stats_spec())) return 0;
-  const Args args(argv, stats_spec());
+  if (print_help(argv, hash_stats_spec())) return 0;
+  const Args args(argv, hash_stats_spec());
   const SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const spatial::SpatialHashStats s = table.stats();
   if (args.has("out")) {
@@ -360,8 +364,8 @@ int run_hash_stats(const std::vector<std::string>& argv) {
 }
 
 int run_hash_image(const std::vector<std::string>& argv) {
-  if (print_help(argv, image_spec())) return 0;
-  const Args args(argv, image_spec());
+  if (print_help(argv, hash_image_spec())) return 0;
+  const Args args(argv, hash_image_spec());
   if (!has_image_support()) throw UsageError("hash image: this habuffer was built without image files");
   const SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const Domain d = table.config().domain;

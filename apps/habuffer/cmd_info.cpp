@@ -14,14 +14,10 @@
 
 namespace habuffer::cli {
 
-namespace {
-
 const CommandSpec& info_spec() {
   static const CommandSpec spec{"info", {}, "  Version, build type, techniques and the paths this machine offers.\n"};
   return spec;
 }
-
-}  // namespace
 
 int run_info(const std::vector<std::string>& argv) {
   if (print_help(argv, info_spec())) return 0;

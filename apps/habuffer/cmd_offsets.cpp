@@ -11,8 +11,6 @@
 
 namespace habuffer::cli {
 
-namespace {
-
 const CommandSpec& offsets_spec() {
   static const CommandSpec spec{
       "offsets --table WxH [OPTIONS]",
@@ -26,8 +24,6 @@ const CommandSpec& offsets_spec() {
       "  Prints the generation time.\n"};
   return spec;
 }
-
-}  // namespace
 
 int run_offsets(const std::vector<std::string>& argv) {
   if (print_help(argv, offsets_spec())) return 0;

@@ -11,8 +11,6 @@
 #include "habuffer/harness/plan.h"
 
 namespace habuffer::cli {
-namespace {
-
 const CommandSpec& plan_spec() {
   static const CommandSpec spec{
       "plan (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [OPTIONS]",
@@ -33,8 +31,6 @@ const CommandSpec& plan_spec() {
       "  meets --target-psnr. A progress bar (loads simulated) shows on a terminal unless --quiet.\n"};
   return spec;
 }
-
-}  // namespace
 
 int run_plan(const std::vector<std::string>& argv) {
   if (print_help(argv, plan_spec())) return 0;

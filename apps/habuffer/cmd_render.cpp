@@ -44,6 +44,8 @@ std::vector<OptionSpec> scene_option_specs() {
   return specs;
 }
 
+}  // namespace
+
 const CommandSpec& render_spec() {
   static const CommandSpec spec{
       "render (--scene NAME|FILE | --fragments FRAGS.csv) --out IMAGE [--stats STATS.json] [OPTIONS]",
@@ -105,6 +107,8 @@ const CommandSpec& render_spec() {
       "  --lossless render that still lost fragments, 2 bad usage.\n"};
   return spec;
 }
+
+namespace {
 
 glm::vec3 parse_point(const char* option, const std::string& text) {
   glm::vec3 v(0.0f);

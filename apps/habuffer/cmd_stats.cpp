@@ -74,6 +74,8 @@ void write_json(const std::string& path, const ExperimentConfig& c, const std::v
   j.save(path);
 }
 
+}  // namespace
+
 const CommandSpec& stats_spec() {
   static const CommandSpec spec{
       "stats [OPTIONS]",
@@ -104,8 +106,6 @@ const CommandSpec& stats_spec() {
       "  and --offsets do not apply): age, reads per hit and per miss, failures, per probing x policy.\n"};
   return spec;
 }
-
-}  // namespace
 
 namespace {
 

@@ -10,8 +10,6 @@
 #include "habuffer/technique_descriptor.h"
 
 namespace habuffer::cli {
-namespace {
-
 const CommandSpec& sweep_spec() {
   static const CommandSpec spec{
       "sweep (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [OPTIONS]",
@@ -30,8 +28,6 @@ const CommandSpec& sweep_spec() {
       "  (95% CI), p99_age, max_age, the age histogram, every counter, memory_bytes.\n"};
   return spec;
 }
-
-}  // namespace
 
 int run_sweep(const std::vector<std::string>& argv) {
   if (print_help(argv, sweep_spec())) return 0;

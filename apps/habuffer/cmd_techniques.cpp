@@ -8,8 +8,6 @@
 
 namespace habuffer::cli {
 
-namespace {
-
 const CommandSpec& techniques_spec() {
   static const CommandSpec spec{
       "techniques [--markdown]",
@@ -18,8 +16,6 @@ const CommandSpec& techniques_spec() {
       "  and some others take.\n"};
   return spec;
 }
-
-}  // namespace
 
 int run_techniques(const std::vector<std::string>& argv) {
   if (print_help(argv, techniques_spec())) return 0;

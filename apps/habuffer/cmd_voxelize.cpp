@@ -12,6 +12,8 @@
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/json_writer.h"
+#include "habuffer/printable.h"
+#include "habuffer/solid_check.h"
 #include "habuffer/render/image.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/scene_catalog.h"
@@ -22,6 +24,8 @@ namespace habuffer::cli {
 namespace {
 
 constexpr const char* kSliceMembers = "slice_*.png";
+
+}  // namespace
 
 const CommandSpec& voxelize_spec() {
   static const CommandSpec spec{
@@ -43,6 +47,8 @@ const CommandSpec& voxelize_spec() {
       "  Exit codes: 0 ok (odd columns and merged crossings are warned about), 1 bad data, 2 bad usage.\n"};
   return spec;
 }
+
+namespace {
 
 // The slices as one output set: swapped in whole over an earlier set (none
 // of its members left behind), never mixed with it.
@@ -80,6 +86,16 @@ void write_stats(const std::string& path, const std::string& mesh, const std::st
   json.save(path);
 }
 
+// A mesh with holes is warned about even when no column happens to cross
+// one an odd number of times: its inside is then a guess of the views.
+void warn_open_meshes(const Scene& scene, std::uint64_t odd_columns) {
+  if (odd_columns > 0) return;  // the odd columns' warning says it
+  for (const Mesh& m : scene.meshes)
+    if (const std::string why = solid_problem(check_solid(m)); !why.empty())
+      std::fprintf(stderr, "habuffer voxelize: warning: mesh %s %s: it is not watertight, its inside is a guess\n",
+                   excerpt(m.name).c_str(), why.c_str());
+}
+
 }  // namespace
 
 int run_voxelize(const std::vector<std::string>& argv) {
@@ -113,6 +129,7 @@ int run_voxelize(const std::vector<std::string>& argv) {
   std::optional<VoxelCheck> ref;
   if (args.has("reference")) ref = axis == "all" ? check_voxels_voting(scene, s, v.grid) : check_voxels(scene, s, v.grid);
   if (args.has("stats")) write_stats(args.required("stats"), mesh, axis, v, ref);
+  warn_open_meshes(scene, v.stats.odd_columns);
   if (v.stats.odd_columns > 0)
     std::fprintf(stderr, "habuffer voxelize: warning: %llu columns cross the surface an odd number of times: the mesh "
                          "is not watertight%s\n",

@@ -51,14 +51,7 @@ void report(const std::string& name, const char* what) {
 
 int main(int argc, char** argv) {
   using namespace habuffer;
-  const std::map<std::string, int (*)(const std::vector<std::string>&)> commands{
-      {"build-lists", cli::run_build_lists}, {"generate", cli::run_generate}, {"offsets", cli::run_offsets},
-      {"demo", cli::run_demo},               {"info", cli::run_info},         {"stats", cli::run_stats},
-      {"render", cli::run_render},           {"compare", cli::run_compare},
-      {"sweep", cli::run_sweep},             {"bench", cli::run_bench},
-      {"figure", cli::run_figure},           {"plan", cli::run_plan},
-      {"techniques", cli::run_techniques},   {"voxelize", cli::run_voxelize},
-      {"csg", cli::run_csg},                 {"hash", cli::run_hash}};
+  const auto& commands = cli::command_runners();
   if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
     return argc < 2 ? 2 : 0;

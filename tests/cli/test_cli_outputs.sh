@@ -155,6 +155,54 @@ if command -v script >/dev/null; then
   grep -q 'habuffer plan \[' tty_plan.txt && ok progress || bad progress "plan shows no progress on a terminal"
 fi
 
+# --- Issue 34: files named inside values, output sets, links, solids -------
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n' >cube.obj
+printf 'f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n' >>cube.obj
+sum_cube=$(md5sum <cube.obj)
+ln -sf cube.obj cube_link.obj
+expect files 2 "the same file as --solids" -- csg --solids "A=cube.obj" --expr A --stats cube.obj
+expect files 2 "the same file as --solids" -- csg --solids "B=sphere:0,0,0,1; A=cube.obj" --expr A --out cube_link.obj
+expect files 2 "the same file as --meshes" -- figure voxels --meshes sphere,cube.obj --grids 8 --out cube.obj
+expect files 2 "the same file as --mesh" -- voxelize --mesh cube.obj --grid 4 --out g.bin --stats cube_link.obj
+unchanged files cube.obj "$sum_cube"
+# A set of slices replaces an earlier, larger set whole; other folders and files inside are refused.
+expect files 0 "" -- voxelize --mesh cube.obj --grid 6 --out g.bin --slices sl --quiet
+expect files 0 "" -- voxelize --mesh cube.obj --grid 3 --out g.bin --slices sl --quiet
+[[ $(find sl -type f | wc -l) -eq 3 && -f sl/slice_0002.png && ! -e sl/slice_0003.png ]] && ok files ||
+  bad files "--slices left $(find sl -type f | wc -l) files after a smaller set (want 3)"
+no_temporaries files
+expect files 2 "inside --slices" -- voxelize --mesh cube.obj --grid 3 --out sl/g.bin --slices sl
+cp cube.obj sl/slice_0000.png 2>/dev/null
+expect files 2 "inside --slices" -- voxelize --mesh sl/slice_0000.png --grid 3 --out g.bin --slices sl
+mkdir -p mine && echo keep >mine/notes.txt
+expect files 2 "notes.txt" -- voxelize --mesh cube.obj --grid 3 --out g.bin --slices mine
+[[ $(cat mine/notes.txt) == keep ]] && ok files || bad files "--slices over a folder of other files changed it"
+# SIGTERM while a set is written: the earlier set whole, no temporary folder.
+expect files 0 "" -- voxelize --mesh cube.obj --grid 5 --out g.bin --slices big --quiet
+sum_set=$(cat big/*.png | md5sum)
+"$bin" voxelize --mesh cube.obj --grid 400 --out g2.bin --slices big --quiet >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1200); do
+  [[ -n $(find . -maxdepth 1 -name '.big.*.tmp' | head -1) ]] && break
+  kill -0 $pid 2>/dev/null || break
+  sleep 0.05
+done
+kill -s TERM $pid 2>/dev/null
+wait $pid
+[[ $(cat big/*.png | md5sum) == "$sum_set" && $(find big -type f | wc -l) -eq 5 ]] && ok signal ||
+  bad signal "SIGTERM during --slices changed the earlier set"
+[[ -z $(find . -maxdepth 1 -name '.big.*' | head -1) ]] && ok signal || bad signal "SIGTERM left a temporary set"
+# An output through a dangling link writes the link's target and keeps the link.
+ln -sf made.json dangling.json
+expect files 0 "" -- voxelize --mesh cube.obj --grid 3 --out g.bin --stats dangling.json --quiet
+[[ -L dangling.json && -s made.json ]] && ok files || bad files "--stats through a dangling link replaced the link"
+# Solids csg cannot draw, names --expr cannot read, an open mesh.
+expect values 2 "solid name 'A-B'" -- csg --solids "A-B=sphere:0,0,0,1" --expr A --stats s.json
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >tri.obj
+expect values 1 "is not closed" -- csg --solids "A=tri.obj" --expr A --stats s.json
+expect values 1 "float32 cannot hold" -- csg --solids "A=sphere:1e17,0,0,1" --expr A --stats s.json
+expect values 0 "not watertight" -- voxelize --mesh tri.obj --grid 4 --out g.bin --quiet
+
 for cls in signal write race replace files values losses progress; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli outputs: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

@@ -30,6 +30,10 @@ struct Mesh {
   /// With opacity 1: inserted like a translucent mesh instead of drawn in the
   /// opaque pass (seed 000's Fig. 2 measures opacity 1 through the A-buffer).
   bool insert_opaque = false;
+  /// A mesh read from a file: the signed volume its own polygons enclose
+  /// (before triangulation; polygon_triangulation.h), which references
+  /// compare with instead of the triangles; NaN for generated meshes.
+  double file_volume = std::numeric_limits<double>::quiet_NaN();
 
   /// Whether the opaque pass draws it (opacity 1 and not insert_opaque).
   [[nodiscard]] bool opaque() const { return opacity >= 1.0f && !insert_opaque; }

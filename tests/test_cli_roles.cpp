@@ -1,0 +1,137 @@
+// Every command's file roles, walked from the CLI's command table: an output
+// over each of its inputs (directly, through a symbolic link and through a
+// hard link) and over each other output is refused before any work, and an
+// option whose value names a file cannot go without a role. A new command,
+// or a new file option, that forgets its role fails here.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+
+#include "cli_args.h"
+#include "commands.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using habuffer::cli::Args;
+using habuffer::cli::CommandSpec;
+using habuffer::cli::FileRole;
+using habuffer::cli::OptionSpec;
+using habuffer::cli::UsageError;
+
+std::string fill(const char* example, const std::string& path) {
+  std::string s = example;
+  return s.replace(s.find("{}"), 2, path);
+}
+
+// The message of the UsageError that Args(argv, spec) throws; "" when none.
+std::string refusal(const std::vector<std::string>& argv, const CommandSpec& spec) {
+  try {
+    const Args checked(argv, spec);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+class CliFileRoles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("habuffer_roles_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    victim_ = (dir_ / "victim.obj").string();
+    std::ofstream(victim_) << "v 0 0 0\n";
+    fs::create_symlink(victim_, dir_ / "link.obj");
+    fs::create_hard_link(victim_, dir_ / "hard.obj");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string contents() const {
+    std::ifstream in(victim_);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+  fs::path dir_;
+  std::string victim_;
+};
+
+TEST_F(CliFileRoles, EveryCommandRefusesAnOutputOverEachOfItsInputsThroughLinksAndHardLinks) {
+  int pairs = 0;
+  for (const auto& [name, spec] : habuffer::cli::all_command_specs())
+    for (const OptionSpec& in : spec->options)
+      for (const OptionSpec& out : spec->options) {
+        if (in.files.role != FileRole::Input || out.files.role != FileRole::Output) continue;
+        for (const std::string& alias : {victim_, (dir_ / "link.obj").string(), (dir_ / "hard.obj").string()}) {
+          const std::string why = refusal({"--" + in.name, fill(in.files.example, victim_), "--" + out.name,
+                                           fill(out.files.example, alias)},
+                                          *spec);
+          EXPECT_NE(why.find("is the same file as --" + in.name), std::string::npos)
+              << "habuffer " << name << " --" << in.name << " --" << out.name << " " << alias << ": '" << why << "'";
+          ++pairs;
+        }
+      }
+  EXPECT_GE(pairs, 3 * 40);  // every command that reads and writes files has at least one pair
+  EXPECT_EQ(contents(), "v 0 0 0\n");
+}
+
+TEST_F(CliFileRoles, EveryCommandRefusesTwoOutputsOfOneFile) {
+  int pairs = 0;
+  for (const auto& [name, spec] : habuffer::cli::all_command_specs())
+    for (std::size_t i = 0; i < spec->options.size(); ++i)
+      for (std::size_t j = i + 1; j < spec->options.size(); ++j) {
+        const OptionSpec &a = spec->options[i], &b = spec->options[j];
+        if (a.files.role != FileRole::Output || b.files.role != FileRole::Output) continue;
+        const std::string why = refusal(
+            {"--" + a.name, fill(a.files.example, victim_), "--" + b.name, fill(b.files.example, victim_)}, *spec);
+        EXPECT_NE(why.find("(two outputs)"), std::string::npos)
+            << "habuffer " << name << " --" << a.name << " --" << b.name << ": '" << why << "'";
+        ++pairs;
+      }
+  EXPECT_GE(pairs, 15);
+}
+
+TEST_F(CliFileRoles, AnOutputSetRefusesAnInputOrOutputInsideItsFolderAndAFolderOfOtherFiles) {
+  int sets = 0;
+  const std::string folder = (dir_ / "set").string();
+  fs::create_directories(folder);
+  const std::string inside = folder + "/victim.obj";
+  std::ofstream(inside) << "v 0 0 0\n";
+  for (const auto& [name, spec] : habuffer::cli::all_command_specs())
+    for (const OptionSpec& set : spec->options) {
+      if (set.files.role != FileRole::OutputSet) continue;
+      ++sets;
+      EXPECT_NE(refusal({"--" + set.name, folder}, *spec).find("which is not one of its"), std::string::npos) << name;
+      for (const OptionSpec& other : spec->options) {
+        if (other.files.role != FileRole::Input && other.files.role != FileRole::Output) continue;
+        const std::string why =
+            refusal({"--" + set.name, folder, "--" + other.name, fill(other.files.example, inside)}, *spec);
+        EXPECT_FALSE(why.empty()) << "habuffer " << name << " --" << set.name << " --" << other.name;
+      }
+    }
+  EXPECT_GE(sets, 1);
+  EXPECT_TRUE(fs::exists(inside));
+}
+
+TEST(CliOptionRoles, EveryOptionWhoseValueNamesAFileDeclaresARole) {
+  // Value shapes that name files (FILE, IMAGE, DIR, GRID, TABLE, CSV, a .csv or .json name, NAME=SPEC solids).
+  const std::regex names_a_file("FILE|IMAGE|DIR|GRID|TABLE|CSV|MESH|\\.csv|\\.json|NAME=SPEC");
+  int declared = 0;
+  for (const auto& [name, spec] : habuffer::cli::all_command_specs())
+    for (const OptionSpec& o : spec->options) {
+      if (o.files.role != FileRole::None) ++declared;
+      if (!o.value.empty() && std::regex_search(o.value, names_a_file))
+        EXPECT_NE(o.files.role, FileRole::None) << "habuffer " << name << " --" << o.name << " " << o.value;
+    }
+  EXPECT_GE(declared, 50);
+}
+
+TEST(CliOptionRoles, EveryRunnableCommandHasItsDeclarationsInTheTable) {
+  std::set<std::string> declared;
+  for (const auto& [name, spec] : habuffer::cli::all_command_specs()) declared.insert(name.substr(0, name.find(' ')));
+  for (const auto& [name, run] : habuffer::cli::command_runners()) EXPECT_EQ(declared.count(name), 1u) << name;
+}
+
+}  // namespace
