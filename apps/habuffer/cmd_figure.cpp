@@ -165,7 +165,8 @@ std::vector<std::uint32_t> counts(const Args& args, const char* option, std::uin
 }
 
 harness::ResultTable run_voxels(FigureRun& r) {
-  r.args.refuse_unless(false, {"size", "tau"}, "on figure voxels (--grids sets the sizes)");
+  r.args.refuse_unless(false, {"size"}, "on figure voxels (--grids sets the sizes)");
+  r.args.refuse_unless(false, {"tau"}, "on figure voxels (nothing is culled: a solid needs every crossing)");
   harness::VoxelFigureSettings f;
   f.meshes = r.args.list("meshes");
   f.grids = counts(r.args, "grids", 4096);
