@@ -32,10 +32,17 @@ std::string tag() {
   return text;
 }
 
+// "out/slices/" names the folder "out/slices".
+std::string without_trailing_slashes(std::string folder) {
+  while (folder.size() > 1 && folder.back() == '/') folder.pop_back();
+  return folder;
+}
+
 }  // namespace
 
-std::string output_set_conflict(const std::string& folder, std::string_view members) {
-  if (folder.empty()) return "an empty folder name";
+std::string output_set_conflict(const std::string& given, std::string_view members) {
+  if (given.empty()) return "an empty folder name";
+  const std::string folder = without_trailing_slashes(given);
   std::error_code ec;
   const fs::path target = link_target(folder);
   if (fs::exists(target, ec) && !fs::is_directory(target, ec))
@@ -61,8 +68,7 @@ AtomicFolder::AtomicFolder(const std::string& folder, std::string_view members)
   if (const std::string why = output_set_conflict(folder, members); !why.empty())
     throw DataError(printable(folder) + ": " + why);
   std::error_code ec;
-  target_ = fs::absolute(link_target(folder), ec).lexically_normal().string();
-  if (!target_.empty() && target_.back() == '/') target_.pop_back();
+  target_ = without_trailing_slashes(fs::absolute(link_target(without_trailing_slashes(folder)), ec).lexically_normal().string());
   const fs::path t(target_);
   for (int attempt = 0; attempt < 100; ++attempt) {
     // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.

@@ -121,7 +121,7 @@ void FileRoles::check_sets() const {
     if (set.members.empty()) continue;
     if (const std::string why = output_set_conflict(set.path, set.members); !why.empty())
       throw FileConflict(set.role + ": " + why);
-    const std::string folder = resolved_fully(set.path);
+    const std::string folder = resolved_fully(set.path.size() > 1 && set.path.back() == '/' ? set.path.substr(0, set.path.find_last_not_of('/') + 1) : set.path);
     for (const Entry& e : entries_) {
       if (&e == &set) continue;
       const std::string other = resolved_fully(e.path);

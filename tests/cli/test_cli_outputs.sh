@@ -167,7 +167,7 @@ expect files 2 "the same file as --mesh" -- voxelize --mesh cube.obj --grid 4 --
 unchanged files cube.obj "$sum_cube"
 # A set of slices replaces an earlier, larger set whole; other folders and files inside are refused.
 expect files 0 "" -- voxelize --mesh cube.obj --grid 6 --out g.bin --slices sl --quiet
-expect files 0 "" -- voxelize --mesh cube.obj --grid 3 --out g.bin --slices sl --quiet
+expect files 0 "" -- voxelize --mesh cube.obj --grid 3 --out g.bin --slices sl/ --quiet
 [[ $(find sl -type f | wc -l) -eq 3 && -f sl/slice_0002.png && ! -e sl/slice_0003.png ]] && ok files ||
   bad files "--slices left $(find sl -type f | wc -l) files after a smaller set (want 3)"
 no_temporaries files
