@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <barrier>
+#include <chrono>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -119,6 +121,199 @@ TEST(ConcurrentCalls, ParallelDefaultInsertCallsOnEveryTechniqueStoreEveryRecord
       ASSERT_EQ(b->count_stored(), got.stored()) << "round " << round;
       ASSERT_EQ(test::traversed_lists(*b), test::traversed_lists(*serial)) << "round " << round;
     }
+  }
+}
+
+// InsertGate itself: a shared hold waits while the gate is held alone, and
+// an alone hold waits for the shared holders. The waits are watched for a
+// while (a thread that ran when it must not have is caught; one that was
+// merely slow to start cannot fail the test).
+TEST(InsertGate, ASharedHoldWaitsWhileTheGateIsHeldAloneAndAnAloneHoldForSharedHoldsParallel) {
+  InsertGate gate;
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    std::atomic<bool> shared_taken{false}, alone_taken{false};
+    std::thread sharer;
+    {
+      const auto alone = gate.alone();
+      EXPECT_FALSE(gate.alone_if_free());
+      sharer = std::thread([&] {
+        const auto shared = gate.shared();
+        shared_taken.store(true);
+      });
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      EXPECT_FALSE(shared_taken.load()) << "a shared hold was taken while the gate was held alone";
+    }
+    sharer.join();
+    EXPECT_TRUE(shared_taken.load());
+    std::thread loner;
+    {
+      const auto shared = gate.shared();
+      const auto another = gate.shared();  // shared holds go together
+      EXPECT_FALSE(gate.alone_if_free());
+      loner = std::thread([&] {
+        const auto alone = gate.alone();
+        alone_taken.store(true);
+      });
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      EXPECT_FALSE(alone_taken.load()) << "an alone hold was taken while shared holds were held";
+    }
+    loner.join();
+    EXPECT_TRUE(alone_taken.load());
+    EXPECT_TRUE(gate.alone_if_free()) << "every hold released";
+  }
+}
+
+// The records a call that runs alone adds to an HA-buffer (an insert) or
+// takes from it (clear, reset, import_state): one fragment on every 16th
+// pixel, row by row, on a table the size of the screen (a load of 1/16,
+// no failure, so any order of insertion gives one table: SPEC 9).
+constexpr std::size_t kSample = 16;
+const Extent kGateScreen{2048, 1024};  // 16 MiB of slots: clear's pass takes a while
+
+BufferConfig gate_config() { return test::config(kGateScreen, kGateScreen); }
+
+std::vector<Fragment> gate_pool() {
+  SplitMix64 rng(77);
+  std::vector<Fragment> pool;
+  for (std::uint32_t y = 0; y < kGateScreen.y; ++y)
+    for (std::uint32_t x = y % 16; x < kGateScreen.x; x += 16)
+      pool.push_back({x, y, static_cast<float>(rng.below(1u << 20)) * 0x1.0p-20f,
+                      static_cast<std::uint32_t>(rng.next()) | 1u});
+  return pool;
+}
+
+// Sample j of the pool: kSample fragments spread over the whole screen
+// (pool[j], pool[j + n], ... for n samples), no two samples sharing one.
+std::vector<Fragment> gate_sample(const std::vector<Fragment>& pool, std::size_t j) {
+  const std::size_t samples = pool.size() / kSample;
+  std::vector<Fragment> s;
+  for (std::size_t i = 0; i < kSample; ++i) s.push_back(pool[j + i * samples]);
+  return s;
+}
+
+// Another thread makes default insert calls of the pool's samples, one after
+// the other, pausing between them, from before `alone` (a call that runs
+// alone, run here) starts until after it ends; returns each call's counters,
+// by sample. A call made while `alone` runs must wait for it (insert_gate.h):
+// it then finds its whole sample in the table or none of it, counting all
+// duplicates or all stored. One that ran beside `alone` would find the
+// table half changed, its sample spread over the screen: part of each.
+// Calls alternate between one thread (Auto then finds the gate taken and
+// asks for a shared hold) and two (Auto's shared hold at once).
+template <class Alone>
+std::vector<Counters> default_inserts_around(HaBuffer& b, const std::vector<Fragment>& pool, Alone&& alone) {
+  const std::size_t samples = pool.size() / kSample;
+  std::vector<Counters> counts(samples);
+  std::atomic<std::size_t> made{0};
+  std::atomic<bool> done{false};
+  std::thread caller([&] {
+    for (std::size_t j = 0; j < samples && !done.load(); ++j) {
+      InsertOptions o;  // the default mode
+      o.threads = j % 2 == 0 ? 1 : 2;
+      counts[j] = b.insert(gate_sample(pool, j), o);
+      made.store(j + 1);
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
+  });
+  while (made.load() < 2) std::this_thread::yield();
+  alone();
+  done.store(true);
+  caller.join();
+  counts.resize(made.load());
+  return counts;
+}
+
+// Each call found all its sample or none of it (see default_inserts_around);
+// the samples of the calls that stored theirs.
+std::vector<Fragment> expect_whole_samples(const std::vector<Counters>& calls, const std::vector<Fragment>& pool) {
+  std::vector<Fragment> stored;
+  for (std::size_t j = 0; j < calls.size(); ++j) {
+    const Counters& c = calls[j];
+    EXPECT_EQ(c.fragments, kSample);
+    EXPECT_TRUE(c.stored() == kSample || c.duplicates == kSample)
+        << "default insert call " << j << " ran beside the call that runs alone: " << c.stored()
+        << " of its records stored, " << c.duplicates << " found already there";
+    if (c.stored() == kSample) {
+      const std::vector<Fragment> s = gate_sample(pool, j);
+      stored.insert(stored.end(), s.begin(), s.end());
+    }
+  }
+  return stored;
+}
+
+// `b` holds the table and max-age table of `fragments` inserted alone.
+void expect_table_of(const HaBuffer& b, const std::vector<Fragment>& fragments) {
+  HaBuffer reference = test::make_buffer(b.config());
+  const Counters n = reference.insert(fragments);
+  ASSERT_EQ(n.failures(), 0u);
+  EXPECT_EQ(test::table_words(b), test::table_words(reference));
+  EXPECT_EQ(b.max_age().ages(), reference.max_age().ages());
+}
+
+TEST(ConcurrentCalls, DefaultInsertsWaitForASerialInsertToFinishParallel) {
+  const std::vector<Fragment> pool = gate_pool();
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    HaBuffer b = test::make_buffer(gate_config());
+    InsertOptions serial;
+    serial.mode = InsertMode::Serial;
+    Counters n;
+    const auto calls = default_inserts_around(b, pool, [&] { n = b.insert(pool, serial); });
+    expect_whole_samples(calls, pool);
+    EXPECT_EQ(n.fragments, pool.size());
+    expect_table_of(b, pool);
+  }
+}
+
+TEST(ConcurrentCalls, DefaultInsertsWaitForAnOwnerComputesInsertToFinishParallel) {
+  const std::vector<Fragment> pool = gate_pool();
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    HaBuffer b = test::make_buffer(gate_config());
+    InsertOptions owners;
+    owners.mode = InsertMode::OwnerComputes;
+    owners.threads = 2;
+    const auto calls = default_inserts_around(b, pool, [&] { b.insert(pool, owners); });
+    expect_whole_samples(calls, pool);
+    expect_table_of(b, pool);
+  }
+}
+
+TEST(ConcurrentCalls, DefaultInsertsWaitForClearAndResetToFinishParallel) {
+  const std::vector<Fragment> pool = gate_pool();
+  for (bool counting : {true, false})
+    for (int round = 0; round < 3; ++round) {
+      SCOPED_TRACE((counting ? "clear, round " : "reset, round ") + std::to_string(round));
+      HaBuffer b = test::make_buffer(gate_config());
+      b.insert(pool);
+      std::uint64_t cleared = 0;
+      const auto calls = default_inserts_around(b, pool, [&] {
+        if (counting)
+          cleared = b.clear();
+        else
+          b.reset();
+      });
+      const std::vector<Fragment> after = expect_whole_samples(calls, pool);
+      if (counting) {
+        EXPECT_EQ(cleared, pool.size()) << "the calls before clear found their samples there";
+      }
+      expect_table_of(b, after);
+    }
+}
+
+TEST(ConcurrentCalls, DefaultInsertsWaitForImportStateToFinishParallel) {
+  const std::vector<Fragment> pool = gate_pool();
+  HaBuffer source = test::make_buffer(gate_config());
+  source.insert(pool);
+  const std::vector<std::uint64_t> words = test::table_words(source);
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    HaBuffer b = test::make_buffer(gate_config());
+    const auto calls = default_inserts_around(b, pool, [&] { b.import_state(words, source.max_age().ages()); });
+    expect_whole_samples(calls, pool);
+    EXPECT_EQ(test::table_words(b), words);
+    EXPECT_EQ(b.max_age().ages(), source.max_age().ages());
   }
 }
 

@@ -8,7 +8,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 
 #include "cli_args.h"
@@ -117,13 +116,18 @@ TEST_F(CliFileRoles, AnOutputSetRefusesAnInputOrOutputInsideItsFolderAndAFolderO
 
 TEST(CliOptionRoles, EveryOptionWhoseValueNamesAFileDeclaresARole) {
   // Value shapes that name files (FILE, IMAGE, DIR, GRID, TABLE, CSV, a .csv or .json name, NAME=SPEC solids).
-  const std::regex names_a_file("FILE|IMAGE|DIR|GRID|TABLE|CSV|MESH|\\.csv|\\.json|NAME=SPEC");
+  const auto names_a_file = [](const std::string& shape) {
+    for (const char* word : {"FILE", "IMAGE", "DIR", "GRID", "TABLE", "CSV", "MESH", ".csv", ".json", "NAME=SPEC"})
+      if (shape.find(word) != std::string::npos) return true;
+    return false;
+  };
   int declared = 0;
   for (const auto& [name, spec] : habuffer::cli::all_command_specs())
     for (const OptionSpec& o : spec->options) {
       if (o.files.role != FileRole::None) ++declared;
-      if (!o.value.empty() && std::regex_search(o.value, names_a_file))
+      if (names_a_file(o.value)) {
         EXPECT_NE(o.files.role, FileRole::None) << "habuffer " << name << " --" << o.name << " " << o.value;
+      }
     }
   EXPECT_GE(declared, 50);
 }

@@ -164,6 +164,51 @@ TEST(InsertOrder, JumpStartWritesWhatTheSameOrderFromAgeOneWritesEvenWhenInserts
     }
 }
 
+// Neighbouring pixels hold identical records (one code and data per plane)
+// at every age up to AMAX and one past it, each fragment twice: on this full
+// table many inserts write their record and then fail (the record they
+// evicted finds no room, or the iteration limit ends the call). The twin that
+// follows such an insert starts at the age where its record was written and
+// meets it there, a duplicate, as the same records inserted from age one do;
+// one starting a probe later would pass it and store the record twice.
+TEST(InsertOrder, ATwinAfterAFailedInsertStartsWhereItsRecordWasWrittenAsFromAgeOne) {
+  const Extent screen{13, 11};
+  std::uint64_t failures = 0, duplicates = 0;
+  for (Layout layout : {Layout::L32, Layout::L64})
+    for (std::uint32_t iter_limit : {HABUFFER_DEFAULT_ITER_LIMIT, 5u, 9u})
+      for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        SCOPED_TRACE(to_string(layout) + " iteration limit " + std::to_string(iter_limit) + " seed " +
+                     std::to_string(seed));
+        BufferConfig cfg = test::config(screen, {16, 12}, layout, 4);  // AMAX 15
+        cfg.iter_limit = iter_limit;
+        const std::uint32_t amax = cfg.record_layout().max_age();
+        std::vector<Fragment> f;
+        for (std::uint32_t plane = 0; plane <= amax; ++plane)
+          for (std::uint32_t y = 0; y < screen.y; ++y)
+            for (std::uint32_t x = 0; x < screen.x; ++x)
+              if ((x * 5 + y * 3 + plane + static_cast<std::uint32_t>(seed)) % (seed + 1) != 0) {
+                const Fragment one{x, y, 0.02f + 0.05f * static_cast<float>(plane), 0x4080c0ffu};
+                f.push_back(one);
+                f.push_back(one);  // its twin
+              }
+        HaBuffer from_age_one = test::make_buffer(cfg, seed);
+        const Counters n1 = from_age_one.insert(sorted_by_pixel(f, cfg.record_layout()), ordered(InsertOrder::Arrival));
+        failures += n1.failures();
+        duplicates += n1.duplicates;
+        // One pixel at a time: interleaved pixels are another order, which
+        // failures can tell apart (pixel_order.h).
+        HaBuffer jumped = test::make_buffer(cfg, seed);
+        InsertOptions o = ordered(InsertOrder::Pixel);
+        o.interleave = false;
+        const Counters n2 = jumped.insert(test::shuffled(f, seed), o);
+        EXPECT_EQ(n2, n1);
+        EXPECT_EQ(test::table_words(jumped), test::table_words(from_age_one));
+        EXPECT_EQ(jumped.max_age().ages(), from_age_one.max_age().ages());
+      }
+  EXPECT_GT(failures, 0u) << "the cases must fail somewhere";
+  EXPECT_GT(duplicates, 0u);
+}
+
 // Where inserts fail SPEC 9 no longer promises one table; every fragment
 // must still be counted once and every record counted stored be found.
 TEST(InsertOrder, PixelOrderCountsEveryFragmentWhenAPixelIsDeeperThanAmaxAtManyThreads) {
