@@ -16,8 +16,7 @@ namespace {
 constexpr std::uint64_t kNoSlot = ~std::uint64_t{0};
 // Below this many records a pass runs on the calling thread: forking costs more.
 constexpr std::size_t kParallelMin = 1u << 13;
-// The largest table this container allocates (8 bytes a slot): 2^33 slots, 64 GiB.
-constexpr std::uint64_t kMaxSlots = std::uint64_t{1} << 33;
+constexpr std::uint64_t kMaxSlots = SpatialHash::kMaxSlots;
 
 std::uint32_t ceil_div(std::uint64_t a, std::uint64_t b) { return static_cast<std::uint32_t>((a + b - 1) / b); }
 

@@ -51,6 +51,13 @@ void set_log_sink(LogSink sink) {
   state().sink = std::move(sink);
 }
 
+void log_once(const std::string& message) {
+  DebugState& s = state();
+  const std::lock_guard lock(s.mutex);
+  if (!s.noted.insert(message).second) return;
+  if (s.sink) s.sink(message);
+}
+
 void set_throw_on_gl_error(bool enabled) {
   const std::lock_guard lock(state().mutex);
   state().raise = enabled;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
 
 #include <epoxy/gl.h>
@@ -63,7 +64,18 @@ std::optional<AtomicMode> atomic_mode_override() {
 }
 
 std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout) {
-  if (const auto forced = atomic_mode_override(); forced && (*forced == AtomicMode::Native32) == (layout == Layout::L32)) {
+  const auto forced = atomic_mode_override();
+  if (forced && (*forced == AtomicMode::Native32) != (layout == Layout::L32)) {
+    // A mode the layout cannot run is never replaced quietly: 32-bit atomics
+    // cannot hold a 64-bit record (refused); a 64-bit mode forced beside a
+    // 32-bit layout leaves it its one mode (said once).
+    if (layout == Layout::L64)
+      throw GlError("HABUFFER_ATOMIC_MODE=" + to_string(*forced) + " does not fit layout " + to_string(layout) +
+                    ": 64-bit records run native64 or emulated64 (unset the variable, force one of those, or use "
+                    "32-bit records)");
+    log_once("warning: HABUFFER_ATOMIC_MODE=" + to_string(*forced) + " does not apply to layout " + to_string(layout) +
+             ": 32-bit records run native32, their only mode");
+  } else if (forced) {
     const auto runnable = runnable_atomic_modes(info);
     if (std::find(runnable.begin(), runnable.end(), *forced) == runnable.end())
       throw GlError("HABUFFER_ATOMIC_MODE=" + to_string(*forced) + " cannot run on this OpenGL (" + info.renderer +

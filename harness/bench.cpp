@@ -1,9 +1,13 @@
 #include "habuffer/harness/bench.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "habuffer/harness/floors.h"
 
@@ -83,6 +87,30 @@ std::vector<Case> make_cases(const BenchSettings& s) {
   return cases;
 }
 
+// A scene that puts no transparent fragment on the screen (out of view, fully
+// opaque, degenerate) gives rows of 0 fragments timing an empty pass: said
+// once per scene, naming it and the sizes, before any work, and kept in the
+// table's notes.
+void warn_empty_scenes(const BenchSettings& s, const std::vector<Case>& cases, ResultTable& table) {
+  std::vector<std::pair<std::string, std::string>> empty;  // the scene's label, its sizes
+  for (const Case& c : cases) {
+    if (c.capture.fragments != 0) continue;
+    const std::string label = c.workload->label(), size = c.workload->size().str();
+    const auto it = std::find_if(empty.begin(), empty.end(), [&](const auto& e) { return e.first == label; });
+    if (it == empty.end()) empty.emplace_back(label, size);
+    else it->second += ", " + size;
+  }
+  std::string all;
+  for (const auto& [scene, sizes] : empty) {
+    const std::string line = "scene '" + scene + "' puts no transparent fragment on the screen at " + sizes +
+                             " (out of view, fully opaque or degenerate): its rows time an empty pass (0 fragments)";
+    if (s.on_warning) s.on_warning(line);
+    else std::fprintf(stderr, "habuffer bench: warning: %s\n", line.c_str());
+    all += (all.empty() ? "" : "; ") + line;
+  }
+  if (!all.empty()) table.notes["warnings"] = all;
+}
+
 // One round of technique `t` on case `c`, added to `cell`; returns the device.
 std::string measure_cell(const BenchSettings& s, const TechniqueSpec& t, const Case& c, bool first_round, Cell3& cell) {
   RenderSettings rs;
@@ -135,6 +163,7 @@ ResultTable run_bench(const BenchSettings& s) {
   const std::uint64_t total = std::uint64_t{s.repeats} * cases.size() * (s.techniques.size() + (s.floors ? 1 : 0));
   std::uint64_t done = 0;
   ResultTable table;
+  warn_empty_scenes(s, cases, table);
   // Rounds outermost: every technique is measured once before any twice, so
   // the machine's drift spreads over all of them alike.
   for (std::uint32_t round = 0; round < s.repeats; ++round)

@@ -165,7 +165,9 @@ void validate_sweep(const SweepSettings& s) {
 ResultTable run_sweep(const Workload& workload, const SweepSettings& s) {
   validate_sweep(s);
   const ExactCapture capture = workload.capture();
-  if (capture.fragments == 0) throw std::invalid_argument("scene '" + workload.label() + "' puts no fragment on the screen");
+  if (capture.fragments == 0)
+    throw std::invalid_argument("scene '" + workload.label() + "' puts no transparent fragment on the screen at " +
+                                workload.size().str() + " (out of view, fully opaque or degenerate): nothing to sweep");
   for (const double load : s.loads) (void)run_settings(s, workload.size(), capture.fragments, load, 0);  // throws early
   std::vector<LoadRuns> runs(s.loads.size());
   const std::uint64_t total = std::uint64_t{s.repeats} * s.loads.size();
@@ -198,7 +200,12 @@ ResultTable run_sweep(const Workload& workload, const SweepSettings& s) {
     }
   table.title = "sweep";
   table.notes["workload"] = workload.label() + " at " + workload.size().str();
-  table.notes["fragments"] = std::to_string(capture.fragments);
+  table.notes["fragments"] = std::to_string(capture.fragments);  // one run's
+  table.notes["repeats"] = "runs per load: the counter columns and age_histogram sum them (see counters)";
+  table.notes["counters"] =
+      "fragments, stored, failures, every counter column and age_histogram are sums over the row's repeats runs "
+      "(one run's: divide by repeats; the note fragments is one run's); rates and ages (mfrag_per_s, "
+      "slot_writes_per_fragment, mean_age, p99_age, max_age) are per run or over the runs' records";
   table.notes["mfrag_per_s"] = "fragments reaching insertion / gather time, median over repeats (min, max beside)";
   table.notes["probes_per_fragment"] =
       "slots probed per insert call by the instrumented model of SPEC 3 (stats library) on the same fragments, "

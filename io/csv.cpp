@@ -141,6 +141,30 @@ void CsvReader::expect_header(const std::vector<std::string_view>& header) {
   columns_ = header.size();
 }
 
+std::size_t CsvReader::expect_header_among(const std::vector<std::vector<std::string_view>>& headers) {
+  if (headers.size() == 1) {
+    expect_header(headers.front());
+    return 0;
+  }
+  std::string want;
+  for (std::size_t i = 0; i < headers.size(); ++i) {
+    want += i == 0 ? "'" : i + 1 == headers.size() ? " or '" : ", '";
+    for (std::size_t j = 0; j < headers[i].size(); ++j) want.append(j ? "," : "").append(headers[i][j]);
+    want += "'";
+  }
+  std::string_view line;
+  if (!next_line(line)) throw DataError(printable(path_) + ": empty file, expected header " + want);
+  std::vector<std::string_view> fields;
+  split(line, fields);
+  for (std::size_t i = 0; i < headers.size(); ++i)
+    if (fields == headers[i]) {
+      columns_ = headers[i].size();
+      return i;
+    }
+  throw DataError(printable(path_) + ":" + std::to_string(line_) + ": header is " + excerpt(line, 80) + ", expected " +
+                  want);
+}
+
 bool CsvReader::next(std::vector<std::string_view>& fields) {
   std::string_view line;
   if (!next_line(line)) return false;

@@ -2,13 +2,13 @@
 
 #include <bit>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 
 #include "habuffer/atomic_file.h"
+#include "habuffer/bounded_read.h"
 #include "habuffer/little_endian.h"
 #include "habuffer/csv.h"
+#include "habuffer/printable.h"
 
 namespace habuffer::spatial {
 namespace {
@@ -16,40 +16,19 @@ namespace {
 constexpr char kMagic[8] = {'H', 'A', 'S', 'P', 'A', 'T', 'L', '1'};
 constexpr std::size_t kHeader = 8 + 10 * 4 + 8;
 
-
-std::string first_line(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  std::getline(in, line);
-  if (line.size() >= 3 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  std::string out;
-  for (const char c : line)
-    if (c != ' ' && c != '\t') out += c;
-  return out;
-}
+// The largest table file: SpatialHash::kMaxSlots slots and as many max-age
+// cells (block 1). Anything longer is not a table, whatever its header says.
+constexpr std::uint64_t kMaxTableBytes = kHeader + SpatialHash::kMaxSlots * (8 + 4);
 
 }  // namespace
 
 KeyFile read_keys_csv(const std::string& path) {
   CsvReader csv(path);
-  const std::string header = first_line(path);
   KeyFile f;
-  bool values = false;
-  if (header == "x,y") {
-    csv.expect_header({"x", "y"});
-  } else if (header == "x,y,z") {
-    csv.expect_header({"x", "y", "z"});
-    f.three_d = true;
-  } else if (header == "x,y,value") {
-    csv.expect_header({"x", "y", "value"});
-    values = true;
-  } else if (header == "x,y,z,value") {
-    csv.expect_header({"x", "y", "z", "value"});
-    f.three_d = values = true;
-  } else {
-    csv.expect_header({"x", "y", "z", "value"});  // throws, naming the header found and this one
-  }
+  // Read once, from the reader itself: a pipe gives its header only once.
+  const std::size_t header = csv.expect_header_among({{"x", "y"}, {"x", "y", "z"}, {"x", "y", "value"}, {"x", "y", "z", "value"}});
+  f.three_d = header == 1 || header == 3;
+  const bool values = header >= 2;
   std::vector<std::string_view> fields;
   while (csv.next(fields)) {
     glm::uvec3 k(csv.u32(fields[0], "x"), csv.u32(fields[1], "y"), 0u);
@@ -90,10 +69,7 @@ void save_spatial_hash(const std::string& path, const SpatialHash& t) {
 }
 
 SpatialHash load_spatial_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DataError(path + ": cannot open the table");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return parse_spatial_hash(bytes, path);
+  return parse_spatial_hash(read_file_bounded(path, "spatial hash table", kMaxTableBytes), printable(path));
 }
 
 SpatialHash parse_spatial_hash(const std::string& bytes, const std::string& path) {

@@ -141,6 +141,7 @@ CsgRender render_csg(const Scene& primitives, const CsgExpression& expression, c
   if (expression.primitives() != primitives.meshes.size())
     throw CsgError("csg: the expression names " + std::to_string(expression.primitives()) + " primitives, the scene has " +
                    std::to_string(primitives.meshes.size()) + " meshes");
+  check_screen_fits(s.screen, "csg: --size");  // before any GL object of that size is made
   CsgRender r;
   r.camera = frame_scene(primitives, s.camera, s.screen);
   std::unique_ptr<FragmentBuffer> buffer;

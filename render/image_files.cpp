@@ -4,13 +4,19 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <stdexcept>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
 #include "habuffer/atomic_file.h"
 #include "habuffer/csv.h"
+#include "habuffer/memory_budget.h"
+#include "habuffer/printable.h"
 #include "image_files.h"
 
 namespace habuffer {
@@ -20,20 +26,58 @@ bool has_image_support() { return true; }
 
 namespace {
 
-bool float_format(const std::string& path) {
+std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool float_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
   return ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff";
 }
 
+// Whether OpenImageIO has a writer for files named like `name` (by extension);
+// a failed lookup's message is taken so it is not left pending.
+bool has_writer(const std::string& name) {
+  const bool found = OIIO::ImageOutput::create(name) != nullptr;
+  if (!found) (void)OIIO::geterror();
+  return found;
+}
+
+// The format an image named `path` is written in: its extension's, PNG
+// without one (a device such as /dev/stdout or /dev/full, or a bare name).
+std::string write_format(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext.empty() ? std::string("png") : ext.substr(1);
+}
+
 // Images are read whole by OpenImageIO, which may seek: only regular files
-// (a device such as /dev/zero would be read forever).
-OIIO::ImageBuf read_buffer(const std::string& path) {
+// (a device such as /dev/zero would be read forever). The header's size is
+// checked against the machine before the pixels are allocated.
+OIIO::ImageBuf read_buffer(const std::string& path, std::uint64_t copies) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw ImageError("image '" + path + "' does not exist");
+  if (std::filesystem::is_directory(path, ec)) throw ImageError("image '" + path + "' is a directory, not an image");
   if (!std::filesystem::is_regular_file(path, ec))
-    throw ImageError("image '" + path + "' is not a regular file");
-  OIIO::ImageBuf buf(path);
+    throw ImageError("image '" + path + "' is not a regular file (a device or pipe; images are read from files)");
+  OIIO::ImageBuf buf;
+  if (!buf.init_spec(path, 0, 0)) throw ImageError("image '" + path + "' cannot be read: " + buf.geterror());
+  const OIIO::ImageSpec& spec = buf.spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1)
+    throw ImageError("image '" + path + "' is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                     "x" + std::to_string(spec.depth) + " with " + std::to_string(spec.nchannels) +
+                     " channels: not a 2D image");
+  // Floats per channel, and the copies the caller makes of them (read_image's RGBA).
+  const std::uint64_t pixels = saturating_product(static_cast<std::uint64_t>(spec.width), static_cast<std::uint64_t>(spec.height));
+  const std::uint64_t bytes = saturating_product(pixels, saturating_product(static_cast<std::uint64_t>(spec.nchannels) * 4, copies));
+  try {
+    check_fits_in_memory("image '" + path + "' (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                             " pixels, " + std::to_string(spec.nchannels) + " channels)",
+                         bytes);
+  } catch (const std::invalid_argument& e) {
+    throw ImageError(e.what());
+  }
   if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
     throw ImageError("image '" + path + "' cannot be read: " + buf.geterror());
   return buf;
@@ -41,14 +85,33 @@ OIIO::ImageBuf read_buffer(const std::string& path) {
 
 }  // namespace
 
+void check_image_extension(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext.empty() || has_writer("x" + ext)) return;
+  std::string formats;
+  for (const char* f : {"png", "exr", "tif", "hdr", "jpg", "bmp", "tga", "webp"})
+    if (has_writer(std::string("x.") + f)) formats += (formats.empty() ? "" : ", ") + std::string(f);
+  throw std::invalid_argument(excerpt(path) + ": " + excerpt(ext) + " is not an image format OpenImageIO can write (" +
+                              formats + ", ...)");
+}
+
 void write_atomically(const std::string& path, const OIIO::ImageBuf& buf) {
+  try {
+    check_image_extension(path);
+  } catch (const std::invalid_argument& e) {
+    throw ImageError(std::string("image ") + e.what());
+  }
   std::error_code ec;
   if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) std::filesystem::create_directories(dir, ec);
   try {
     AtomicFile out(path, AtomicFile::Access::ByName);
-    if (!buf.write(out.staging_path())) {
+    errno = 0;
+    if (!buf.write(out.staging_path(), OIIO::TypeUnknown, write_format(path))) {
+      const int error = errno;
       std::string why = buf.geterror();
-      if (why.empty()) why = "OpenImageIO gave no reason";
+      if (why.empty()) why = OIIO::geterror();
+      if (why.empty() && error != 0) why = std::strerror(error);
+      if (why.empty()) why = "OpenImageIO could not write " + write_format(path) + " to " + printable(out.staging_path());
       throw ImageError("image '" + path + "' cannot be written: " + why);
     }
     out.commit();
@@ -60,6 +123,8 @@ void write_atomically(const std::string& path, const OIIO::ImageBuf& buf) {
 void write_image(const std::string& path, const Image& image) {
   const Extent s = image.size;
   if (image.pixels.size() != s.area()) throw ImageError("image for '" + path + "' has the wrong number of pixels");
+  if (s.x > static_cast<std::uint32_t>(INT32_MAX) || s.y > static_cast<std::uint32_t>(INT32_MAX))
+    throw ImageError("image '" + path + "' of " + s.str() + " pixels: a side above 2^31 - 1, more than image files hold");
   OIIO::ImageBuf buf(OIIO::ImageSpec(static_cast<int>(s.x), static_cast<int>(s.y), 3, OIIO::TypeDesc::FLOAT));
   std::vector<float> rgb(s.area() * 3);
   for (std::uint32_t y = 0; y < s.y; ++y)
@@ -73,7 +138,7 @@ void write_image(const std::string& path, const Image& image) {
 }
 
 Image read_image(const std::string& path) {
-  const OIIO::ImageBuf buf = read_buffer(path);
+  const OIIO::ImageBuf buf = read_buffer(path, 3);  // the buffer, its copy, the RGBA image
   const OIIO::ImageSpec& spec = buf.spec();
   Image image;
   image.size = {static_cast<std::uint32_t>(spec.width), static_cast<std::uint32_t>(spec.height)};
@@ -91,7 +156,7 @@ Image read_image(const std::string& path) {
 }
 
 ImageDifference compare_images(const std::string& a, const std::string& b) {
-  const OIIO::ImageBuf A = read_buffer(a), B = read_buffer(b);
+  const OIIO::ImageBuf A = read_buffer(a, 1), B = read_buffer(b, 1);
   if (A.spec().width != B.spec().width || A.spec().height != B.spec().height)
     throw ImageError("images differ in size: '" + a + "' is " + std::to_string(A.spec().width) + "x" +
                      std::to_string(A.spec().height) + ", '" + b + "' is " + std::to_string(B.spec().width) + "x" +

@@ -14,7 +14,29 @@
 
 namespace habuffer {
 
+void check_screen_fits(Extent screen, const std::string& what) {
+  GLint viewport[2] = {}, width = 0, height = 0, texture = 0, renderbuffer = 0;
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &width);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &height);
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  struct Limit {
+    const char *kind, *names;
+    GLint x, y;
+  };
+  for (const Limit& l : {Limit{"viewport", "GL_MAX_VIEWPORT_DIMS", viewport[0], viewport[1]},
+                         Limit{"framebuffer", "GL_MAX_FRAMEBUFFER_WIDTH, _HEIGHT", width, height},
+                         Limit{"texture", "GL_MAX_TEXTURE_SIZE", texture, texture},
+                         Limit{"renderbuffer", "GL_MAX_RENDERBUFFER_SIZE", renderbuffer, renderbuffer}})
+    if (l.x > 0 && l.y > 0 &&  // 0: not reported (no context), the driver's own errors then
+        (screen.x > static_cast<std::uint32_t>(l.x) || screen.y > static_cast<std::uint32_t>(l.y)))
+      throw gl::GlError(what + " " + screen.str() + " exceeds this OpenGL's largest " + l.kind + " " +
+                        std::to_string(l.x) + "x" + std::to_string(l.y) + " (" + l.names + ")");
+}
+
 EmptyFramebuffer::EmptyFramebuffer(Extent size) : size_(size) {
+  check_screen_fits(size, "a framebuffer of");
   GLuint fb = 0;
   glCreateFramebuffers(1, &fb);
   framebuffer_ = fb;

@@ -21,9 +21,18 @@
 
 namespace habuffer {
 
+/// Throws GlError "WHAT WxH exceeds this OpenGL's largest viewport AxB
+/// (GL_MAX_VIEWPORT_DIMS)" (or framebuffer, texture, renderbuffer: the first
+/// limit `screen` passes) unless every attachment and viewport of a pass of
+/// that size can be made: checked before any GL object is, so a size too
+/// large is one error naming the size, not the driver's GL_INVALID_VALUE
+/// lines. `what` names the size ("csg: --size"). Needs a current context.
+void check_screen_fits(Extent screen, const std::string& what);
+
 /// A framebuffer with no attachment, of one size: the passes drawn into it
 /// write no colour and no depth, only records or sample counts. Needs a
-/// current OpenGL 4.5 context; deletes the framebuffer when destroyed.
+/// current OpenGL 4.5 context (check_screen_fits: GlError for a size it
+/// cannot have); deletes the framebuffer when destroyed.
 class EmptyFramebuffer {
  public:
   explicit EmptyFramebuffer(Extent size);

@@ -10,6 +10,7 @@
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
+#include "record_gather.h"
 #include "render_shaders.h"
 
 namespace habuffer {
@@ -99,6 +100,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
               render::kAtomicFloorFragment,
           "atomic floor")),
       technique_framebuffer_(buffer.technique().gather_framebuffer()) {
+  check_screen_fits(screen, "screen");  // the textures and renderbuffer below; before any GL object is made
   for (const Mesh& m : scene.meshes) {
     GpuMesh g;
     g.count = static_cast<std::int32_t>(m.indices.size());

@@ -7,13 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 
 #include "gpu_triangles.h"
 #include "record_gather.h"
 #include "habuffer/atomic_file.h"
+#include "habuffer/bounded_read.h"
 #include "habuffer/little_endian.h"
 #include "habuffer/csv.h"
 #include "habuffer/fragment_streams.h"
@@ -165,6 +164,7 @@ void gather_stats(const RecordGather& g, Voxelization& out) {
 // columns (gather_records sizes the table from a counting pass).
 RecordGather gather_crossings(const Scene& scene, const VoxelizeSettings& s, const Bounds& box) {
   const Extent screen{s.grid, s.grid};
+  check_screen_fits(screen, "voxelize: --grid " + std::to_string(s.grid) + ": a view of");
   const GpuTriangles meshes = scene_triangles(scene, s.axis);
   const glm::vec3 lo = permute(box.lo, s.axis), extent = permute(box.hi - box.lo, s.axis);
   const EmptyFramebuffer framebuffer(screen);
@@ -277,9 +277,9 @@ void save_voxel_nrrd(const std::string& path, const VoxelGrid& grid, const std::
 }
 
 VoxelGrid load_voxel_grid(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DataError(path + ": cannot open the voxel grid");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The largest grid file: side 4096, 4096^3 bits.
+  constexpr std::uint64_t kMaxGridBytes = kGridHeader + (std::uint64_t{4096} * 4096 * 4096 / 64) * 8;
+  const std::string bytes = read_file_bounded(path, "voxel grid", kMaxGridBytes);
   if (bytes.size() < kGridHeader || bytes.compare(0, 8, kGridMagic, 8) != 0)
     throw DataError(path + ": not a voxel grid (no HAVOXEL1 header)");
   const auto n = take_le<std::uint32_t>(bytes, 8);

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -116,6 +117,8 @@ Scene load_mesh_file(const std::string& path, float opacity) {
   } catch (const std::exception& e) {
     throw SceneError(std::string("mesh file: ") + e.what());
   }
+  if (std::error_code ec; !std::filesystem::is_regular_file(path, ec))
+    throw SceneError("mesh file '" + path + "' is a pipe: meshes are read by assimp, which needs a regular file");
   if (!std::ifstream(path).good()) throw SceneError("mesh file '" + path + "' cannot be opened");
   if (is_ply_file(path)) check_ply_file(path);  // assimp trusts a PLY header: it may abort or allocate gigabytes
   Assimp::Importer importer;

@@ -1,8 +1,11 @@
 #include "ply_check.h"
 
+#include <sys/stat.h>
+
 #include <cstdint>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "habuffer/scene.h"
@@ -34,6 +37,32 @@ constexpr std::uint64_t kMaxRows = std::uint64_t{1} << 32;
   throw SceneError("mesh file '" + path + "': " + why);
 }
 
+// A header line is a keyword and a few words: a longer one is not a PLY header
+// (binary data after a "ply" line), refused before it fills memory.
+constexpr std::size_t kMaxHeaderLine = std::size_t{1} << 16;
+
+// The next line (without its newline) into `line`; false at the end of the stream.
+bool header_line(std::istream& in, std::string& line, const std::string& path) {
+  line.clear();
+  std::streambuf& b = *in.rdbuf();
+  for (;;) {
+    const int c = b.sbumpc();
+    if (c == std::char_traits<char>::eof()) {
+      in.setstate(std::ios::eofbit);
+      return !line.empty();
+    }
+    if (c == '\n') return true;
+    if (line.size() == kMaxHeaderLine)
+      refuse(path, "PLY header line longer than " + std::to_string(kMaxHeaderLine) + " bytes (binary data?)");
+    line.push_back(static_cast<char>(c));
+  }
+}
+
+bool regular_file(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
 struct Header {
   bool ascii = false;
   std::vector<Element> elements;
@@ -44,7 +73,7 @@ Header read_header(std::istream& in, const std::string& path) {
   Header h;
   std::string line;
   bool format = false;
-  for (int n = 0; std::getline(in, line); ++n) {
+  for (int n = 0; header_line(in, line, path); ++n) {
     if (n > 10000) refuse(path, "PLY header has no end_header in its first 10000 lines");
     if (!line.empty() && line.back() == '\r') line.pop_back();
     std::istringstream words(line);
@@ -101,6 +130,7 @@ Header read_header(std::istream& in, const std::string& path) {
 }  // namespace
 
 bool is_ply_file(const std::string& path) {
+  if (!regular_file(path)) return false;  // a pipe is read once, by the loader; a device never
   std::ifstream in(path, std::ios::binary);
   char magic[4] = {};
   in.read(magic, 4);
@@ -108,6 +138,7 @@ bool is_ply_file(const std::string& path) {
 }
 
 void check_ply_file(const std::string& path) {
+  if (!regular_file(path)) refuse(path, "is not a regular file (a PLY file is checked, then read again)");
   std::ifstream in(path, std::ios::binary);
   if (!in) refuse(path, "cannot be opened");
   check_ply_stream(in, path);
@@ -119,10 +150,23 @@ void check_ply_stream(std::istream& in, const std::string& path) {
     // One row a line; blank lines hold none. Read only as far as needed.
     std::uint64_t rows = 0;
     for (const Element& e : h.elements) rows += e.count;
+    // Counted byte by byte: a line is never held, however long.
     std::uint64_t lines = 0;
-    std::string line;
-    while (lines < rows && std::getline(in, line))
-      if (line.find_first_not_of(" \t\r") != std::string::npos) ++lines;
+    bool content = false;
+    std::streambuf& b = *in.rdbuf();
+    while (lines < rows) {
+      const int c = b.sbumpc();
+      if (c == std::char_traits<char>::eof()) {
+        lines += content ? 1 : 0;
+        break;
+      }
+      if (c == '\n') {
+        lines += content ? 1 : 0;
+        content = false;
+      } else if (c != ' ' && c != '\t' && c != '\r') {
+        content = true;
+      }
+    }
     if (lines < rows)
       refuse(path, "PLY header declares " + std::to_string(rows) + " rows but the file has " + std::to_string(lines) +
                        " lines of data (truncated?)");

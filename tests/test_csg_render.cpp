@@ -5,10 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "gl_test_support.h"
+#include "habuffer/gl/debug_output.h"
+#include "habuffer/gl/gl_error.h"
 #include "habuffer/harness/csg_figure.h"
 #include "habuffer/render/csg_renderer.h"
 #include "habuffer/solids.h"
@@ -145,6 +148,32 @@ TEST(CsgRender, TheCpuAndGlPathsGiveTheSamePixels) {
   EXPECT_EQ(gl.primitive, cpu.primitive);
   EXPECT_EQ(gl.codes, cpu.codes);
   EXPECT_EQ(gl.counters, cpu.counters);
+}
+
+// Issue 34: a size beyond this OpenGL's framebuffer (65535x1) printed the
+// driver's raw GL_INVALID_VALUE lines before an error about a "screen"; it is
+// refused before any GL object is made, naming --size and the limit, on both paths.
+TEST(CsgRender, ASizeBeyondTheOpenGlLimitsIsRefusedNamingTheSizeAndTheLimit) {
+  gl_context();
+  const Solids s = cube_minus_cylinders(1);
+  const CsgExpression e = CsgExpression::parse(minus_all(s), s.names);
+  std::vector<std::string> logged;
+  gl::set_log_sink([&](const std::string& m) { logged.push_back(m); });
+  for (const bool cpu : {false, true}) {
+    CsgRenderSettings settings = view({65535, 1});
+    settings.cpu = cpu;
+    try {
+      (void)render_csg(s.scene, e, settings);
+      ADD_FAILURE() << "a 65535x1 image was accepted";
+    } catch (const gl::GlError& error) {
+      const std::string what = error.what();
+      EXPECT_NE(what.find("csg: --size 65535x1 exceeds this OpenGL's largest "), std::string::npos) << what;
+      EXPECT_NE(what.find("(GL_MAX_"), std::string::npos) << what;
+    }
+  }
+  gl::discard_gl_errors();
+  gl::set_log_sink([](const std::string& m) { std::fprintf(stderr, "habuffer gl: %s\n", m.c_str()); });  // the default
+  for (const std::string& m : logged) ADD_FAILURE() << "GL said: " << m;
 }
 
 TEST(CsgRender, FiveHundredTwelveSubtractedCylindersRenderLosslessly) {

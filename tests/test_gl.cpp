@@ -5,8 +5,11 @@
 
 #include <epoxy/gl.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "gl_test_support.h"
 #include "habuffer/gl/debug_output.h"
@@ -132,8 +135,13 @@ TEST(Gl, TheAtomicModeOverrideIsObeyedOrRefused) {
   gl_context();
   const gl::GlInfo info = gl::query_gl_info();
   const auto runnable = gl::runnable_atomic_modes(info);
-  struct Restore {
-    ~Restore() { ::unsetenv("HABUFFER_ATOMIC_MODE"); }
+  struct Restore {  // the variable as the run had it (a run may force a mode for every test)
+    const char* was = std::getenv("HABUFFER_ATOMIC_MODE");
+    std::string value = was ? was : "";
+    ~Restore() {
+      if (was) ::setenv("HABUFFER_ATOMIC_MODE", value.c_str(), 1);
+      else ::unsetenv("HABUFFER_ATOMIC_MODE");
+    }
   } restore;
   ::setenv("HABUFFER_ATOMIC_MODE", "emulated64", 1);
   if (info.int64_types) {
@@ -157,6 +165,45 @@ TEST(Gl, TheAtomicModeOverrideIsObeyedOrRefused) {
   EXPECT_THROW((void)gl::atomic_mode_override(), gl::GlError);
   ::unsetenv("HABUFFER_ATOMIC_MODE");
   EXPECT_EQ(gl::atomic_mode_override(), std::nullopt);
+}
+
+// A forced mode the layout cannot hold is never replaced quietly: native32
+// for 64-bit records is refused naming the variable, the mode and the
+// layout; a 64-bit mode beside 32-bit records (one mode: native32) is said
+// once.
+TEST(Gl, AForcedAtomicModeThatDoesNotFitTheLayoutIsRefusedOrSaid) {
+  gl_context();
+  const gl::GlInfo info = gl::query_gl_info();
+  struct Restore {
+    const char* was = std::getenv("HABUFFER_ATOMIC_MODE");
+    std::string value = was ? was : "";
+    ~Restore() {
+      if (was) ::setenv("HABUFFER_ATOMIC_MODE", value.c_str(), 1);
+      else ::unsetenv("HABUFFER_ATOMIC_MODE");
+      gl::set_log_sink([](const std::string& m) { std::fprintf(stderr, "habuffer gl: %s\n", m.c_str()); });
+    }
+  } restore;
+  ::setenv("HABUFFER_ATOMIC_MODE", "native32", 1);
+  try {
+    (void)gl::chosen_atomic_mode(info, Layout::L64);
+    ADD_FAILURE() << "native32 forced for L64 records was replaced quietly";
+  } catch (const gl::GlError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("HABUFFER_ATOMIC_MODE=native32 does not fit layout L64"), std::string::npos) << what;
+  }
+  EXPECT_EQ(gl::chosen_atomic_mode(info, Layout::L32), gl::AtomicMode::Native32);
+  std::vector<std::string> logged;
+  gl::set_log_sink([&](const std::string& m) { logged.push_back(m); });
+  ::setenv("HABUFFER_ATOMIC_MODE", "native64", 1);
+  EXPECT_EQ(gl::chosen_atomic_mode(info, Layout::L32), gl::AtomicMode::Native32);
+  EXPECT_EQ(gl::chosen_atomic_mode(info, Layout::L32), gl::AtomicMode::Native32);
+  static bool first = true;  // once per process: a repeated run sees it said already
+  EXPECT_EQ(logged.size(), first ? 1u : 0u);
+  first = false;
+  if (!logged.empty()) {
+    EXPECT_NE(logged[0].find("HABUFFER_ATOMIC_MODE=native64 does not apply to layout L32"), std::string::npos)
+        << logged[0];
+  }
 }
 
 TEST(Gl, ModesRefuseLayoutsTheyCannotHold) {

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "gl_test_support.h"
 #include "habuffer/harness/bench.h"
@@ -143,6 +144,54 @@ TEST(Harness, BenchGivesEveryCombinationWithFloorsAndTheErrorOfEachTechnique) {
   }
   s.path = RenderPath::Gl;
   EXPECT_NO_THROW(validate_bench(s));  // every technique has its GL form
+}
+
+// Issue 34: a scene with no transparent fragment (opaque planes) gave a row
+// of 0 fragments timing an empty pass without a word: bench warns, one line
+// per scene naming it and its sizes, kept in the notes; sweep refuses it.
+TEST(Harness, AScenePuttingNoTransparentFragmentIsWarnedAboutByBenchAndRefusedBySweep) {
+  gl_context();
+  BenchSettings s;
+  s.path = RenderPath::Cpu;
+  s.scenes = {parse_workload_spec("planes:opacity=1:count=2"), parse_workload_spec("quads:count=2")};
+  s.techniques = {parse_technique_spec("ha")};
+  s.sizes = {{16, 16}, {24, 16}};
+  s.repeats = 1;
+  s.floors = false;
+  std::vector<std::string> warnings;
+  s.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  const ResultTable t = run_bench(s);
+  ASSERT_EQ(warnings.size(), 1u) << "one line per scene, whatever its sizes";
+  EXPECT_NE(warnings[0].find("scene 'planes:opacity=1:count=2' puts no transparent fragment on the screen at 16x16, 24x16"),
+            std::string::npos)
+      << warnings[0];
+  EXPECT_EQ(warnings[0].find('\n'), std::string::npos);
+  ASSERT_EQ(t.notes.count("warnings"), 1u);
+  EXPECT_NE(t.notes.at("warnings").find("planes:opacity=1"), std::string::npos);
+  const Workload opaque(parse_workload_spec("planes:opacity=1:count=2"), {16, 16});
+  try {
+    (void)run_sweep(opaque, small_sweep(RenderPath::Cpu));
+    ADD_FAILURE() << "sweep ran a scene without transparent fragments";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("puts no transparent fragment on the screen at 16x16"), std::string::npos)
+        << e.what();
+  }
+}
+
+// Issue 34: sweep's counter columns sum the repeats' runs; the table says so.
+TEST(Harness, SweepSaysItsCounterColumnsSumTheRepeats) {
+  gl_context();
+  const Workload w(parse_workload_spec("quads:count=24"), {48, 40});
+  SweepSettings s = small_sweep(RenderPath::Cpu);
+  s.loads = {0.9};
+  s.repeats = 3;
+  const ResultTable t = run_sweep(w, s);
+  ASSERT_EQ(t.rows.size(), 1u);
+  EXPECT_EQ(num(t.rows[0], "repeats"), 3.0);
+  EXPECT_EQ(num(t.rows[0], "fragments"), 3.0 * std::stod(t.notes.at("fragments")));
+  ASSERT_EQ(t.notes.count("counters"), 1u);
+  EXPECT_NE(t.notes.at("counters").find("sums over the row's repeats runs"), std::string::npos) << t.notes.at("counters");
+  ASSERT_EQ(t.notes.count("repeats"), 1u);
 }
 
 TEST(Harness, Fig10SaturationRejectsFrontToBackPlanesOnBothPaths) {

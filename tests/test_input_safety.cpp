@@ -6,15 +6,18 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <thread>
 
+#include "habuffer/bounded_read.h"
 #include "habuffer/csv.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/interchange.h"
 #include "habuffer/printable.h"
 #include "habuffer/progress.h"
+#include "habuffer/spatial_hash_file.h"
 
 namespace habuffer {
 namespace {
@@ -190,6 +193,79 @@ TEST_F(InputSafety, AUtf8ByteOrderMarkBeforeTheHeaderIsSkipped) {
   // Only before the header: a mark inside the data is a bad field.
   EXPECT_NE(data_error([&] { read_fragments(write("mid.csv", "x,y,depth,rgba\n\xEF\xBB\xBF" "0,0,0.5,1\n"), {1, 1}); })
                 .find("field x: '\\xef\\xbb\\xbf0'"),
+            std::string::npos);
+}
+
+// Issue 34: whole files read within bounds. Only regular files and pipes;
+// a regular file's size is checked before anything is read, a pipe stopped
+// at the limit; the table loader gets the same (a directory gave
+// "basic_filebuf::underflow", /dev/zero ran out of memory).
+TEST_F(InputSafety, WholeFilesAreReadWithinBoundsAndDevicesNever) {
+  EXPECT_NE(data_error([] { (void)read_file_bounded("/dev/zero", "voxel grid", 1000); }).find("/dev/zero: is a device"),
+            std::string::npos);
+  EXPECT_NE(data_error([&] { (void)read_file_bounded(dir_.string(), "voxel grid", 1000); })
+                .find(": is a directory, not a voxel grid"),
+            std::string::npos);
+  EXPECT_NE(data_error([&] { (void)read_file_bounded(path("missing"), "voxel grid", 1000); }).find("cannot open for reading"),
+            std::string::npos);
+  const std::string big = write("big.bin", std::string(1001, 'b'));
+  EXPECT_NE(data_error([&] { (void)read_file_bounded(big, "voxel grid", 1000); })
+                .find("big.bin: 1001 bytes, more than a voxel grid can be (at most 1000 bytes)"),
+            std::string::npos);
+  EXPECT_EQ(read_file_bounded(big, "voxel grid", 1001), std::string(1001, 'b'));
+  EXPECT_EQ(read_file_bounded(write("empty.bin", ""), "voxel grid", 0), "");
+  // A regular file no machine holds: refused from its size, nothing read (a sparse file takes no disk).
+  const std::string sparse = path("sparse.bin");
+  {
+    std::ofstream(sparse, std::ios::binary).put('x');
+    std::error_code ec;
+    fs::resize_file(sparse, std::uint64_t{1} << 43, ec);  // 8 TiB (ext4 holds up to 16)
+    if (!ec) {
+      const std::string why = data_error([&] { (void)read_file_bounded(sparse, "spatial hash table", UINT64_MAX); });
+      EXPECT_NE(why.find("more than this machine's"), std::string::npos) << why;
+    }
+  }
+  // Pipes: read whole within the limit, stopped one byte past it.
+  ASSERT_EQ(::mkfifo(path("pipe").c_str(), 0600), 0);
+  for (const std::size_t n : {std::size_t{100}, std::size_t{101}}) {
+    std::thread writer([&] { std::ofstream(path("pipe"), std::ios::binary) << std::string(n, 'p'); });
+    const std::string why = data_error([&] { EXPECT_EQ(read_file_bounded(path("pipe"), "voxel grid", 100).size(), n); });
+    writer.join();
+    if (n == 100) EXPECT_EQ(why, "");
+    else EXPECT_NE(why.find("pipe: a pipe of more than 100 bytes, more than a voxel grid can be"), std::string::npos) << why;
+  }
+}
+
+TEST_F(InputSafety, TheSpatialHashTableLoaderRefusesDevicesAndDirectoriesByName) {
+  // The directory first: a loader that reads it as a stream would read /dev/zero until memory ran out.
+  ASSERT_NE(data_error([&] { (void)spatial::load_spatial_hash(dir_.string()); })
+                .find(": is a directory, not a spatial hash table"),
+            std::string::npos);
+  EXPECT_NE(data_error([] { (void)spatial::load_spatial_hash("/dev/zero"); }).find("/dev/zero: is a device"),
+            std::string::npos);
+  EXPECT_NE(data_error([&] { (void)spatial::load_spatial_hash(write("short.tab", "HASPATL1")); })
+                .find("short.tab: not a spatial hash table"),
+            std::string::npos);
+}
+
+// A key CSV's header was read by opening the file a second time: a pipe gave
+// its header to that read and its first row to the CSV reader.
+TEST_F(InputSafety, KeyFilesAreReadOnceSoAPipeWorks) {
+  ASSERT_EQ(::mkfifo(path("keys").c_str(), 0600), 0);
+  std::thread writer([&] { std::ofstream(path("keys")) << "x,y,value\n1,2,7\n3,4,0x10\n"; });
+  spatial::KeyFile f;
+  const std::string why = data_error([&] { f = spatial::read_keys_csv(path("keys")); });
+  writer.join();
+  EXPECT_EQ(why, "");
+  ASSERT_EQ(f.keys.size(), 2u);
+  EXPECT_EQ(f.keys[1], glm::uvec3(3, 4, 0));
+  EXPECT_EQ(f.values, (std::vector<std::uint32_t>{7, 16}));
+  EXPECT_FALSE(f.three_d);
+  const std::string header = data_error([&] { (void)spatial::read_keys_csv(write("k.csv", "x,q\n1,2\n")); });
+  EXPECT_NE(header.find("k.csv:1: header is 'x,q', expected 'x,y', 'x,y,z', 'x,y,value' or 'x,y,z,value'"),
+            std::string::npos)
+      << header;
+  EXPECT_NE(data_error([] { (void)spatial::read_keys_csv("/dev/zero"); }).find("/dev/zero: is a device"),
             std::string::npos);
 }
 

@@ -6,8 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <numeric>
 #include <set>
+#include <stdexcept>
 
 #include "gl_test_support.h"
 #include "habuffer/reference_compositor.h"
@@ -265,6 +269,50 @@ TEST(Render, ImagesAndHeatMapsKeepTheViewsOrientation) {
   const glm::vec4 bottom_right = h.pixels[35 + std::size_t{h.size.y - 1 - 35} * h.size.x];
   EXPECT_GT(top_left.r + top_left.g + top_left.b, 0.5f);
   EXPECT_LT(bottom_right.r + bottom_right.g + bottom_right.b, 0.05f);
+}
+
+// Issue 34: an image the writers cannot make says why, never "OpenImageIO
+// gave no reason": an extension no writer takes is refused before anything is
+// written, naming formats that can be; a full device gives its error; a name
+// without extension is PNG. Reading refuses directories and devices, and a
+// header's size is checked against the machine before the pixels are allocated.
+TEST(Render, ImageFilesSayWhatIsWrong) {
+  if (!has_image_support()) GTEST_SKIP() << "image files: " << image_support();
+  const std::string dir = testing::TempDir() + "/issue34_images";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const Image tiny{{2, 2}, std::vector<glm::vec4>(4, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f))};
+  const auto message = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string txt = message([&] { check_image_extension(dir + "/x.txt"); });
+  EXPECT_NE(txt.find("'.txt' is not an image format OpenImageIO can write (png, exr, tif, hdr"), std::string::npos) << txt;
+  EXPECT_THROW(check_image_extension("x.txt"), std::invalid_argument);
+  for (const char* fine : {"x.png", "x.EXR", "x.tif", "x.hdr", "/dev/full", "bare"})
+    EXPECT_NO_THROW(check_image_extension(fine)) << fine;
+  const std::string written = message([&] { write_image(dir + "/x.txt", tiny); });
+  EXPECT_NE(written.find("is not an image format OpenImageIO can write"), std::string::npos) << written;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/x.txt"));
+  for (const std::string& why : {message([&] { write_image("/dev/full", tiny); }),
+                                 message([&] { (void)write_heatmap("/dev/full", {2, 2}, std::vector<float>(4, 1.0f), "t"); })}) {
+    EXPECT_NE(why.find("No space left on device"), std::string::npos) << why;
+    EXPECT_EQ(why.find("gave no reason"), std::string::npos) << why;
+  }
+  write_image(dir + "/bare", tiny);  // no extension: PNG
+  EXPECT_EQ(read_image(dir + "/bare").size, (Extent{2, 2}));
+  EXPECT_NE(message([&] { (void)read_image(dir); }).find("is a directory"), std::string::npos);
+  EXPECT_NE(message([] { (void)read_image("/dev/zero"); }).find("is not a regular file"), std::string::npos);
+  std::ofstream(dir + "/huge.ppm", std::ios::binary) << "P6\n1000000 1000000\n255\n";  // 3 TB of pixels claimed
+  const std::string huge = message([&] { (void)read_image(dir + "/huge.ppm"); });
+  EXPECT_NE(huge.find("1000000x1000000 pixels, 3 channels) needs"), std::string::npos) << huge;
+  EXPECT_NE(huge.find("more than this machine's"), std::string::npos) << huge;
+  EXPECT_NE(message([&] { (void)compare_images(dir + "/huge.ppm", dir + "/bare"); }).find("more than this machine's"),
+            std::string::npos);
 }
 
 // Rotated orthographic views keep every fragment in t's range.

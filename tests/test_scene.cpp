@@ -105,6 +105,9 @@ TEST(Scene, PlyFilesThatCannotHoldWhatTheirHeaderDeclaresAreRefusedBeforeImport)
   EXPECT_NE(message("type.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty quad x\nend_header\n")
                 .find("unknown type"),
             std::string::npos);
+  // A header line without end (binary data after "ply"): refused at 64 KiB, never read whole (issue 34).
+  const std::string long_line = message("long.ply", "ply\n" + std::string(100000, '\x01'));
+  EXPECT_NE(long_line.find("PLY header line longer than 65536 bytes"), std::string::npos) << long_line;
   // Exactly what the header declares: read (one triangle).
   std::string ok = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
                    "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";

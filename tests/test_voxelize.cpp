@@ -12,8 +12,11 @@
 #include <unistd.h>
 #include <stdexcept>
 #include <string>
+#include <sys/stat.h>
+#include <thread>
 
 #include "gl_test_support.h"
+#include "habuffer/data_error.h"
 #include "habuffer/harness/voxel_figure.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/solids.h"
@@ -239,6 +242,43 @@ TEST_F(VoxelFiles, TheGridFileRoundTripsAndRefusesATruncatedOrForeignFile) {
   std::ofstream(path("x.vox")) << "NRRD0004\n";
   EXPECT_THROW((void)load_voxel_grid(path("x.vox")), std::runtime_error);  // DataError, naming the path
   EXPECT_THROW((void)load_voxel_grid(path("missing.vox")), std::runtime_error);  // DataError, naming the path
+}
+
+// Issue 34: the grid loader read a directory into "basic_filebuf::underflow"
+// and /dev/zero until memory ran out; both are refused by name before
+// anything is read, and a pipe is still read whole.
+TEST_F(VoxelFiles, TheGridLoaderRefusesDirectoriesAndDevicesAndReadsAPipe) {
+  const auto message = [](const std::string& p) {
+    try {
+      (void)load_voxel_grid(p);
+    } catch (const DataError& e) {
+      return std::string(e.what());
+    } catch (const std::exception& e) {
+      return "not a DataError: " + std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string directory = message(dir_.string());
+  ASSERT_NE(directory.find(": is a directory, not a voxel grid"), std::string::npos) << directory;  // before /dev/zero
+  EXPECT_NE(message("/dev/zero").find("/dev/zero: is a device"), std::string::npos);
+  const VoxelGrid g = diagonal_grid();
+  save_voxel_grid(path("g.vox"), g);
+  std::ifstream in(path("g.vox"), std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(::mkfifo(path("pipe.vox").c_str(), 0600), 0);
+  std::thread writer([&] { std::ofstream(path("pipe.vox"), std::ios::binary) << bytes; });
+  VoxelGrid back;
+  const std::string why = [&] {
+    try {
+      back = load_voxel_grid(path("pipe.vox"));
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  }();
+  writer.join();
+  EXPECT_EQ(why, "");
+  EXPECT_EQ(back.words, g.words);
 }
 
 TEST_F(VoxelFiles, TheNrrdHeaderPlacesTheGridAndItsBytesAreTheVoxelsXFastest) {

@@ -193,6 +193,7 @@ int run_csg(const std::vector<std::string>& argv) {
   s.cpu = path == "cpu";
   if (args.has("out") && !has_image_support())
     throw UsageError("option --out: this habuffer was built without image files (" + image_support() + ")");
+  if (args.has("out")) usage_errors("out", [&] { check_image_extension(args.required("out")); });
   auto [scene, names] = parse_solids(args.required("solids"));
   check_solids(scene, s.screen);
   std::optional<CsgExpression> expression;

@@ -3,6 +3,7 @@
 // set, a voxel grid or an image's non-background pixels), query it, print its
 // statistics, reconstruct the image it stores.
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdlib>
 #include <cmath>
@@ -226,6 +227,16 @@ BuildKeys voxel_keys(const std::string& path) {
   const VoxelGrid g = load_voxel_grid(path);
   BuildKeys k;
   k.natural = Domain{g.n, g.n, g.n};
+  // Every solid voxel becomes a key: counted and checked before the keys are made (a full 4096^3 grid is 2^36).
+  std::uint64_t solid = 0;
+  for (const std::uint64_t w : g.words) solid += static_cast<std::uint64_t>(std::popcount(w));
+  try {
+    check_fits_in_memory(path + ": " + std::to_string(solid) + " solid voxels as keys",
+                         saturating_product(solid, sizeof(glm::uvec3)));
+  } catch (const std::invalid_argument& e) {
+    throw DataError(e.what());
+  }
+  k.keys.reserve(solid);
   for (std::uint32_t z = 0; z < g.n; ++z)
     for (std::uint32_t y = 0; y < g.n; ++y)
       for (std::uint32_t x = 0; x < g.n; ++x)
@@ -367,9 +378,16 @@ int run_hash_image(const std::vector<std::string>& argv) {
   if (print_help(argv, hash_image_spec())) return 0;
   const Args args(argv, hash_image_spec());
   if (!has_image_support()) throw UsageError("hash image: this habuffer was built without image files");
+  usage_errors("out", [&] { check_image_extension(args.required("out")); });  // before the table is read
   const SpatialHash table = spatial::load_spatial_hash(args.required("table"));
   const Domain d = table.config().domain;
   if (d.z != 1) throw DataError("hash image: the table's domain " + d.str() + " is 3D, not an image");
+  try {  // the pixels (RGBA floats) and the writer's RGB copies of them
+    check_fits_in_memory("hash image: the table's domain " + d.str() + " as an image",
+                         saturating_product(std::uint64_t{d.x} * d.y, 16 + 2 * 12));
+  } catch (const std::invalid_argument& e) {
+    throw DataError(e.what());
+  }
   const glm::vec3 bg = parse_colour(args);
   Image image{{d.x, d.y}, std::vector<glm::vec4>(std::size_t{d.x} * d.y, glm::vec4(bg, 1.0f))};
   table.for_each([&](const spatial::Entry& e) {

@@ -219,13 +219,17 @@ void refuse_scene_options_that_do_not_apply(const Args& args) {
                          "on scene " + excerpt(scene) + " (" + scenes_taking_text(r.key) + ")");
 }
 
-// Images need OpenImageIO (the files themselves are checked by their declared roles).
-void check_image_support(const Args& args) {
+// Images need OpenImageIO (the files themselves are checked by their declared
+// roles), and an extension it writes: "--out x.txt" is refused before any work.
+void check_image_outputs(const Args& args, const std::vector<HeatmapRequest>& heatmaps) {
   if (!has_image_support())
     for (const char* image : {"out", "reference", "heatmap"})
       if (args.has(image))
         throw UsageError(std::string("option --") + image + ": this habuffer was built without image files (" +
                          image_support() + "); give --stats only");
+  for (const char* image : {"out", "reference"})
+    if (args.has(image)) usage_errors(image, [&] { check_image_extension(args.required(image)); });
+  for (const HeatmapRequest& h : heatmaps) usage_errors("heatmap " + h.kind, [&] { check_image_extension(h.path); });
 }
 
 // The catalog's rules (habuffer/scene_catalog.h), as the harness's scene
@@ -480,7 +484,7 @@ int run_render(const std::vector<std::string>& argv) {
   if (light && s.config.layout == Layout::L32)
     throw UsageError("option --shadows needs --layout 64 (the view's shaders read the light's 64-bit records)");
   const std::vector<HeatmapRequest> heatmaps = parse_heatmaps(args, s.technique);
-  check_image_support(args);
+  check_image_outputs(args, heatmaps);
   for (const HeatmapRequest& h : heatmaps) s.per_pixel_culled |= h.kind == "culled";
   s.keep_fragments = args.has("reference") || args.has("error");
   s.count_slot_writes = args.has("slot-writes");

@@ -169,7 +169,7 @@ expect 2 "option --solids: 'cube' is named twice" -- csg --solids "cube=box:0,0,
   --expr cube --out c.png
 expect 2 "option --solids: box box: every side must be positive" -- csg --solids "box=box:0,0,0,0,1,1" --expr box \
   --out c.png
-, its T heat map, the reference check; bad lights refused by name.
+# render --shadows: the light's stats, its T heat map, the reference check; bad lights refused by name.
 ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene engine --size 48x48 --shadows --light-size 96x96 \
   --light-ortho --stats r_shadow.json --heatmap shadow:r_shadow_t.png --shadow-error 0 --frames 2
 for key in '"light":' '"builds":1' '"bias_codes":' '"lookup_ms":' '"within_fraction":' '"silhouette_band":'; do

@@ -248,6 +248,67 @@ for path in cpu gl; do
   done
 done
 
+# --- 8. Issue 34: every reader bounded, image outputs checked, GL limits named -
+# Binary loaders: a device (read until memory ran out), a directory
+# ("basic_filebuf::underflow"); a key file through a pipe (its header was read twice).
+printf 'x,y,value\n1,1,5\n2,3,7\n' >hk.csv
+"$bin" hash build --keys hk.csv --out hk.tab --quiet >/dev/null 2>&1
+for f in /dev/zero sub; do
+  expect input 1 "$f: is a" -- hash query --table $f --keys hk.csv
+  expect input 1 "$f: is a" -- hash stats --table $f
+  expect input 1 "$f: is a" -- hash image --table $f --out hi.png
+  expect input 1 "$f: is a" -- hash build --voxels $f --out hv.tab
+done
+expect input 1 "image '/dev/zero' is not a regular file" -- hash build --image /dev/zero --out hv.tab
+expect input 1 "image 'sub' is a directory" -- hash build --image sub --out hv.tab
+rm -f keys.fifo && mkfifo keys.fifo
+timeout 60 bash -c "printf 'x,y\n1,1\n2,3\n' >keys.fifo" &
+writer=$!
+expect input 0 "" -- hash query --table hk.tab --keys keys.fifo --out hq_pipe.csv --quiet
+kill "$writer" 2>/dev/null; wait "$writer" 2>/dev/null
+[[ "$(tr '\n' ' ' <hq_pipe.csv)" == "x,y,found,value 1,1,1,5 2,3,1,7 " ]] && ok input ||
+  bad input "hash query of keys from a pipe: $(cat hq_pipe.csv 2>/dev/null)"
+# An image header claiming 10^12 pixels: refused from its size before the pixels are allocated.
+printf 'P6\n1000000 1000000\n255\n' >huge.ppm
+expect input 1 "more than this machine's" -- compare huge.ppm huge.ppm
+expect input 1 "more than this machine's" -- hash build --image huge.ppm --out hv.tab
+# Image outputs: an extension no writer takes is bad usage before any work; a
+# full device says so ("OpenImageIO gave no reason" before).
+expect files 2 "option --out: 'x.txt': '.txt' is not an image format OpenImageIO can write (png" -- \
+  render --scene quads --size 8x8 --out x.txt
+expect files 2 "option --reference: 'r.txt': '.txt' is not an image format" -- \
+  render --scene quads --size 8x8 --out q.png --reference r.txt
+expect files 2 "option --heatmap shadow: 'h.txt': '.txt' is not an image format" -- \
+  render --scene quads --size 8x8 --shadows --heatmap shadow:h.txt --out q.png
+expect files 2 "option --out: 'x.txt': '.txt' is not an image format" -- hash image --table hk.tab --out x.txt
+expect files 2 "option --out: 'x.txt': '.txt' is not an image format" -- \
+  csg --solids "cube=box:-1,-1,-1,1,1,1" --expr cube --size 16x16 --out x.txt
+[[ ! -e x.txt && ! -e r.txt && ! -e h.txt ]] && ok files || bad files "a refused image output was written"
+expect files 1 "No space left on device" -- render --scene quads --size 8x8 --out /dev/full
+expect files 1 "No space left on device" -- render --scene quads --size 8x8 --out q.png --shadows --heatmap shadow:/dev/full
+expect files 1 "No space left on device" -- hash image --table hk.tab --out /dev/full
+expect files 1 "No space left on device" -- csg --solids "cube=box:-1,-1,-1,1,1,1" --expr cube --size 16x16 --out /dev/full
+# A size beyond this OpenGL's framebuffer: one line naming --size and the limit (the driver's GL_INVALID_VALUE lines before).
+for path in gl cpu; do
+  expect gl 1 "csg: --size 65535x1 exceeds this OpenGL's largest" -- \
+    csg --solids "cube=box:-1,-1,-1,1,1,1" --expr cube --size 65535x1 --out c.png --path $path
+done
+# A scene without a transparent fragment: bench warns naming it (its rows time an empty pass); sweep refuses it.
+expect losses 0 "habuffer bench: warning: scene 'planes:opacity=1' puts no transparent fragment on the screen at 16x16" -- \
+  bench --scenes planes:opacity=1,quads --techniques ha --size 16x16 --repeats 1 --no-floors --out b.csv --quiet
+[[ $(grep -c "planes:opacity=1" err.txt) -eq 1 ]] && ok losses || bad losses "bench: not one warning line: $(cat err.txt)"
+expect losses 1 "scene 'planes:opacity=1' puts no transparent fragment on the screen at 16x16" -- \
+  sweep --scene planes:opacity=1 --size 16x16 --repeats 1 --out s.json --quiet
+# Sweep's counters sum the repeats: the table says so.
+expect values 0 "" -- sweep --scene quads --size 16x16 --repeats 2 --loads 0.5 --path cpu --out s.json --quiet
+grep -q '"counters": *"fragments, stored, failures, every counter column and age_histogram are sums over the row' s.json &&
+  ok values || bad values "sweep's notes do not say the counters sum the repeats: $(head -c 600 s.json)"
+# A forced atomic mode the layout cannot run is refused (L64), or said (L32), never replaced quietly.
+HABUFFER_ATOMIC_MODE=native32 expect values 1 "HABUFFER_ATOMIC_MODE=native32 does not fit layout L64" -- \
+  render --scene quads --size 8x8 --layout 64 --out q.png
+HABUFFER_ATOMIC_MODE=emulated64 expect values 0 "HABUFFER_ATOMIC_MODE=emulated64 does not apply to layout L32" -- \
+  render --scene quads --size 8x8 --layout 32 --out q.png --quiet
+
 for cls in files losses values input gl progress; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli hardening: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

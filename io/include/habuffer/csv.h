@@ -41,6 +41,11 @@ class CsvReader {
   /// Checks the first line equals `header` (fields separated by commas,
   /// surrounding spaces ignored); throws DataError naming both otherwise.
   void expect_header(const std::vector<std::string_view>& header);
+  /// The same for a file that may have any of `headers`: returns the index of
+  /// the one found; throws DataError naming the header found and every one
+  /// accepted. The header is read from the file like any line (a pipe is
+  /// read once).
+  std::size_t expect_header_among(const std::vector<std::vector<std::string_view>>& headers);
   /// Next non-empty data line split into fields; false at end of file. Throws
   /// DataError when the line has a different number of fields than the header.
   bool next(std::vector<std::string_view>& fields);

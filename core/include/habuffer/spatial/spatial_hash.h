@@ -227,6 +227,9 @@ class SpatialHashView {
 /// The owning table (see the file comment).
 class SpatialHash {
  public:
+  /// The largest table this container allocates (8 bytes a slot): 2^33 slots, 64 GiB.
+  static constexpr std::uint64_t kMaxSlots = std::uint64_t{1} << 33;
+
   /// An empty table sized for `capacity` keys at the target load (at least
   /// one slot). Throws std::invalid_argument for a bad config.
   explicit SpatialHash(SpatialHashConfig config, std::uint64_t capacity = 0);

@@ -22,6 +22,10 @@ void set_log_sink(LogSink sink);
 /// NDEBUG); errors are collected either way.
 void set_throw_on_gl_error(bool enabled);
 
+/// Passes a message of the library's own (a warning) to the sink, once per
+/// process for each text, as driver warnings are.
+void log_once(const std::string& message);
+
 /// Installs the callback on the current context (needs KHR_debug / GL 4.3).
 void install_debug_output();
 /// Throws GlError naming `where` and the collected error messages when raising

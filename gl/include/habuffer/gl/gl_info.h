@@ -57,7 +57,10 @@ std::optional<AtomicMode> atomic_mode_override();
 /// layout (native32 for L32; native64 or emulated64 for L64); else L32
 /// native32, L64 native64 where the driver has 64-bit atomics, else
 /// emulated64; none without 64-bit types. Throws GlError when the override
-/// cannot run here, never falling back silently.
+/// cannot run here or cannot hold the layout (native32 forced for L64),
+/// naming the variable, the mode and the layout; a 64-bit mode forced beside
+/// L32 (whose one mode is native32) is warned about once (log_once), never
+/// replaced silently.
 std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout);
 
 }  // namespace habuffer::gl

@@ -30,6 +30,11 @@ struct BenchSettings {
   std::uint64_t seed = 1;     ///< the HA-buffer's offsets
   bool floors = true;  ///< measure the two floors in every round
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;  ///< (runs done, runs)
+  /// Receives each warning (one line, no newline): a scene that puts no
+  /// transparent fragment on the screen, whose rows time an empty pass.
+  /// Unset: "habuffer bench: warning: ..." on stderr. Kept in the table's
+  /// notes ("warnings") either way.
+  std::function<void(const std::string&)> on_warning;
 };
 
 /// Throws std::invalid_argument for empty lists, zero repeats, or a

@@ -38,8 +38,16 @@ std::string image_support();
 /// Whether this build reads and writes image files (false: HABUFFER_WITH_IMAGES=OFF).
 bool has_image_support();
 
+/// Throws std::invalid_argument naming the file, its extension and formats
+/// that can be written unless OpenImageIO has a writer for the extension of
+/// `path` ("x.txt" is refused before any work; no extension is PNG, as a
+/// device such as /dev/stdout is written). A build without image files
+/// accepts any name (its writers refuse every file). The writers below check it too.
+void check_image_extension(const std::string& path);
 /// Writes RGB (the image is already composited over its background), top row
-/// first. Throws ImageError naming the file.
+/// first, in the format of the file's extension (PNG without one). Throws
+/// ImageError naming the file and the reason (an extension no writer takes,
+/// a full device: "No space left on device").
 void write_image(const std::string& path, const Image& image);
 /// Reads RGB(A) as floats, row 0 at the bottom; alpha 1 when the file has none, a one-channel file's
 /// value in R, G and B. Throws ImageError naming the file.
