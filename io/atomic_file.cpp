@@ -84,6 +84,14 @@ extern "C" void remove_temporaries_and_exit(int signal_number) {
   ::_exit(128 + signal_number);
 }
 
+std::string random_tag() {
+  static thread_local std::mt19937_64 rng{std::random_device{}() ^ static_cast<std::uint64_t>(::getpid())};
+  constexpr char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  std::string tag(8, 'x');
+  for (char& c : tag) c = kChars[rng() % (sizeof kChars - 1)];
+  return tag;
+}
+
 }  // namespace
 
 int register_temporary(const std::string& path) { return register_path(path, 2); }
@@ -93,15 +101,31 @@ void unregister_temporary(int slot) {
 }
 void remove_flat_folder_now(const std::string& path) { remove_flat_folder(path.c_str()); }
 
+Temporary create_temporary(const std::string& directory, const std::string& stem, const std::string& suffix,
+                           bool folder, const std::string& owner) {
+  const std::string dir = directory.empty() ? "." : directory;
+  const char* kind = folder ? "folder" : "file";
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.
+    std::string name(1, '.');
+    name.append(stem).append(1, '.').append(random_tag()).append(".tmp").append(suffix);
+    Temporary t;
+    t.path = (fs::path(dir) / name).string();
+    t.slot = folder ? register_temporary_folder(t.path) : register_temporary(t.path);
+    const int made = folder ? ::mkdir(t.path.c_str(), 0777)
+                            : (t.fd = ::open(t.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666));
+    if (made >= 0) return t;
+    const int error = errno;
+    unregister_temporary(t.slot);
+    if (error != EEXIST)
+      throw DataError(owner + ": cannot create a temporary " + kind + " in " + printable(dir) + ": " +
+                      std::strerror(error));
+  }
+  throw DataError(owner + ": cannot create a temporary " + kind + " in " + printable(dir) + ": 100 names taken");
+}
+
 namespace {
 
-std::string random_tag() {
-  static thread_local std::mt19937_64 rng{std::random_device{}() ^ static_cast<std::uint64_t>(::getpid())};
-  constexpr char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
-  std::string tag(8, 'x');
-  for (char& c : tag) c = kChars[rng() % (sizeof kChars - 1)];
-  return tag;
-}
 
 // write(2) until done: partial writes continue, EINTR retries.
 int write_all(int fd, const char* data, std::size_t size) {
@@ -169,32 +193,13 @@ AtomicFile::AtomicFile(const std::string& path, Access access) : path_(path), ta
 }
 
 void AtomicFile::create_staging(const std::string& directory) {
-  const fs::path target(target_);
-  const std::string dir = directory.empty() ? "." : directory;
   // The extension as the caller named the file: a format chosen by name
   // (an image through a link to a device) must see the name given.
-  const std::string extension = fs::path(path_).extension().string();
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.
-    std::string name(1, '.');
-    name.append(target.stem().string()).append(1, '.').append(random_tag()).append(".tmp").append(extension);
-    const std::string candidate = (fs::path(dir) / name).string();
-    // Registered before it exists: a signal between the two removes nothing.
-    slot_ = register_temporary(candidate);
-    fd_ = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd_ >= 0) {
-      staging_ = candidate;
-      return;
-    }
-    const int error = errno;
-    unregister_temporary(slot_);
-    slot_ = -1;
-    if (error != EEXIST)
-      throw DataError(printable(path_) + ": cannot create a temporary file in " + printable(dir) + ": " +
-                      std::strerror(error));
-  }
-  throw DataError(printable(path_) + ": cannot create a temporary file in " + printable(dir) +
-                  ": 100 names taken");
+  const Temporary t = create_temporary(directory, fs::path(target_).stem().string(), fs::path(path_).extension().string(),
+                                       false, printable(path_));
+  staging_ = t.path;
+  slot_ = t.slot;
+  fd_ = t.fd;
 }
 
 AtomicFile::~AtomicFile() {

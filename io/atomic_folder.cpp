@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <random>
 
 #include "habuffer/atomic_file.h"
 #include "habuffer/csv.h"
@@ -23,13 +22,6 @@ namespace fs = std::filesystem;
 
 bool is_member(const std::string& name, std::string_view members) {
   return ::fnmatch(std::string(members).c_str(), name.c_str(), FNM_PERIOD) == 0;
-}
-
-std::string tag() {
-  static thread_local std::mt19937_64 rng{std::random_device{}() ^ static_cast<std::uint64_t>(::getpid())};
-  char text[20];
-  std::snprintf(text, sizeof text, "%08llx", static_cast<unsigned long long>(rng() & 0xffffffffULL));
-  return text;
 }
 
 // "out/slices/" names the folder "out/slices".
@@ -70,23 +62,9 @@ AtomicFolder::AtomicFolder(const std::string& folder, std::string_view members)
   std::error_code ec;
   target_ = without_trailing_slashes(fs::absolute(link_target(without_trailing_slashes(folder)), ec).lexically_normal().string());
   const fs::path t(target_);
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    // Built by appending: GCC 12 warns falsely (-Wrestrict) on "." + string.
-    std::string name(1, '.');
-    name.append(t.filename().string()).append(1, '.').append(tag()).append(".tmp");
-    const std::string candidate = (t.parent_path() / name).string();
-    slot_ = register_temporary_folder(candidate);  // before it exists: a signal between the two removes nothing
-    if (::mkdir(candidate.c_str(), 0777) == 0) {
-      staging_ = candidate;
-      return;
-    }
-    const int error = errno;
-    unregister_temporary(slot_);
-    slot_ = -1;
-    if (error != EEXIST)
-      throw DataError(printable(folder) + ": cannot create a temporary folder beside it: " + std::strerror(error));
-  }
-  throw DataError(printable(folder) + ": cannot create a temporary folder beside it: 100 names taken");
+  const Temporary staging = create_temporary(t.parent_path().string(), t.filename().string(), "", true, printable(folder));
+  staging_ = staging.path;
+  slot_ = staging.slot;
 }
 
 AtomicFolder::~AtomicFolder() {

@@ -17,4 +17,20 @@ void unregister_temporary(int slot);
 /// Removes a flat folder's files and the folder (what a signal would do).
 void remove_flat_folder_now(const std::string& path);
 
+/// A temporary file or folder made by create_temporary: its path, its slot
+/// in the registry, and (a file) its descriptor open for writing.
+struct Temporary {
+  std::string path;
+  int slot = -1;
+  int fd = -1;
+};
+
+/// Creates a fresh temporary in `directory` named ".STEM.XXXXXXXX.tmpSUFFIX"
+/// (a random tag; up to 100 names tried), registered before it exists so a
+/// signal between the two removes nothing: a file opened for writing
+/// (O_EXCL), or with `folder` an empty folder. DataError "OWNER: cannot
+/// create a temporary file (folder) in DIR: REASON" when it cannot.
+Temporary create_temporary(const std::string& directory, const std::string& stem, const std::string& suffix,
+                           bool folder, const std::string& owner);
+
 }  // namespace habuffer
