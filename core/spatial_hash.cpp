@@ -16,7 +16,6 @@ namespace {
 constexpr std::uint64_t kNoSlot = ~std::uint64_t{0};
 // Below this many records a pass runs on the calling thread: forking costs more.
 constexpr std::size_t kParallelMin = 1u << 13;
-constexpr std::uint64_t kMaxSlots = SpatialHash::kMaxSlots;
 
 std::uint32_t ceil_div(std::uint64_t a, std::uint64_t b) { return static_cast<std::uint32_t>((a + b - 1) / b); }
 
