@@ -1,11 +1,8 @@
 #include "habuffer/mesh_loader.h"
 
-#include <array>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <map>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -17,6 +14,7 @@
 
 #include "habuffer/file_roles.h"
 #include "habuffer/polygon_triangulation.h"
+#include "habuffer/solid_check.h"
 #include "ply_check.h"
 
 namespace habuffer {
@@ -45,36 +43,22 @@ glm::vec3 diffuse_colour(const aiScene& s, const aiMesh& m, std::size_t index) {
 // Vertices at exactly the same position become one (bit patterns compared,
 // -0 as +0): the importer gives each face corner its own vertex.
 void weld_identical(Mesh& m) {
-  std::map<std::array<std::uint32_t, 3>, std::uint32_t> first;
+  const std::vector<std::uint32_t> to = exact_vertex_ids(m.positions);
   std::vector<glm::vec3> kept;
-  std::vector<std::uint32_t> to(m.positions.size());
-  for (std::size_t i = 0; i < m.positions.size(); ++i) {
-    const glm::vec3 p = m.positions[i] + glm::vec3(0.0f);
-    std::array<std::uint32_t, 3> key{};
-    std::memcpy(key.data(), &p.x, 4);
-    std::memcpy(key.data() + 1, &p.y, 4);
-    std::memcpy(key.data() + 2, &p.z, 4);
-    const auto [it, added] = first.emplace(key, static_cast<std::uint32_t>(kept.size()));
-    if (added) kept.push_back(m.positions[i]);
-    to[i] = it->second;
-  }
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    if (to[i] == kept.size()) kept.push_back(m.positions[i]);  // ids are numbered by first appearance
   for (std::uint32_t& index : m.indices) index = to[index];
   m.positions = std::move(kept);
 }
 
 // The welded triangles must enclose the volume of the file's polygons over
-// the file's own vertices (up to rounding, and to the bend of polygons that
-// are not planar): a check of the triangulation and the weld that shares
+// the file's own vertices (`file_volume`; up to rounding, relative to the
+// sum of the volume's terms' magnitudes, and to the bend of polygons that are
+// not planar): a check of the triangulation and the weld that shares
 // neither's code.
-void check_triangulation(const Mesh& m, const std::vector<glm::vec3>& file_positions,
-                         const std::vector<std::vector<std::uint32_t>>& polygons) {
-  double scale = 0.0;  // the sum of the volume's terms' magnitudes
-  for (const std::vector<std::uint32_t>& f : polygons)
-    for (std::size_t i = 1; i + 1 < f.size(); ++i)
-      scale += std::abs(glm::dot(glm::dvec3(file_positions[f[0]]),
-                                 glm::cross(glm::dvec3(file_positions[f[i]]), glm::dvec3(file_positions[f[i + 1]])))) / 6.0;
+void check_triangulation(const Mesh& m, double magnitude) {
   const double triangles = triangles_volume(m.positions, m.indices);
-  if (std::abs(triangles - m.file_volume) > 1e-6 * scale + 1e-300)
+  if (std::abs(triangles - m.file_volume) > 1e-6 * magnitude + 1e-300)
     throw SceneError("mesh '" + m.name + "': its triangles enclose a volume of " + std::to_string(triangles) +
                      ", its polygons " + std::to_string(m.file_volume) + " (polygons that are not planar?)");
 }
@@ -102,10 +86,10 @@ Mesh convert(const aiScene& s, const aiMesh& m, std::size_t index, float opacity
     polygons.emplace_back(face.mIndices, face.mIndices + face.mNumIndices);
     triangulate_polygon(out.positions, polygons.back(), out.indices);
   }
-  out.file_volume = polygons_volume(out.positions, polygons);
-  const std::vector<glm::vec3> file_positions = out.positions;
+  double magnitude = 0.0;
+  out.file_volume = polygons_volume(out.positions, polygons, &magnitude);
   weld_identical(out);
-  check_triangulation(out, file_positions, polygons);
+  check_triangulation(out, magnitude);
   return out;
 }
 

@@ -96,14 +96,19 @@ void triangulate_polygon(std::span<const glm::vec3> positions, std::span<const s
   out.insert(out.end(), {polygon[ring[0]], polygon[ring[1]], polygon[ring[2]]});
 }
 
-double polygons_volume(std::span<const glm::vec3> positions, const std::vector<std::vector<std::uint32_t>>& polygons) {
-  double six_v = 0.0;
+double polygons_volume(std::span<const glm::vec3> positions, const std::vector<std::vector<std::uint32_t>>& polygons,
+                       double* magnitude) {
+  double six_v = 0.0, six_m = 0.0;
   for (const std::vector<std::uint32_t>& f : polygons) {
     if (f.size() < 3) continue;
     const dvec3 p0(positions[f[0]]);
-    for (std::size_t i = 1; i + 1 < f.size(); ++i)
-      six_v += glm::dot(p0, glm::cross(dvec3(positions[f[i]]), dvec3(positions[f[i + 1]])));
+    for (std::size_t i = 1; i + 1 < f.size(); ++i) {
+      const double term = glm::dot(p0, glm::cross(dvec3(positions[f[i]]), dvec3(positions[f[i + 1]])));
+      six_v += term;
+      six_m += std::abs(term);
+    }
   }
+  if (magnitude != nullptr) *magnitude = six_m / 6.0;
   return six_v / 6.0;
 }
 

@@ -30,12 +30,17 @@ PointKey key_of(glm::vec3 p) {
 
 }  // namespace
 
+std::vector<std::uint32_t> exact_vertex_ids(std::span<const glm::vec3> positions) {
+  std::unordered_map<PointKey, std::uint32_t, PointHash> ids;
+  std::vector<std::uint32_t> out(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    out[i] = ids.emplace(key_of(positions[i]), static_cast<std::uint32_t>(ids.size())).first->second;
+  return out;
+}
+
 SolidCheck check_solid(const Mesh& mesh) {
   SolidCheck c;
-  std::unordered_map<PointKey, std::uint32_t, PointHash> ids;
-  std::vector<std::uint32_t> welded(mesh.positions.size());
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    welded[i] = ids.emplace(key_of(mesh.positions[i]), static_cast<std::uint32_t>(ids.size())).first->second;
+  const std::vector<std::uint32_t> welded = exact_vertex_ids(mesh.positions);
   // Per undirected edge: the triangles running it low-to-high and high-to-low.
   std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> edges;
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {

@@ -118,9 +118,7 @@ void check_solid_name(const std::string& name) {
 // scene's extent (camera.h's depth-range rule), so a smaller solid has no
 // depth of its own. Solids smaller than a pixel are warned about.
 void check_solids(const Scene& scene, Extent screen) {
-  Bounds all;
-  for (const Mesh& m : scene.meshes)
-    for (const glm::vec3& p : m.positions) all.add(p);
+  const Bounds all = scene.bounds();
   const float scene_size = glm::length(all.hi - all.lo);
   for (const Mesh& m : scene.meshes) {
     if (const std::string why = solid_problem(check_solid(m)); !why.empty())

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "habuffer/harness/workload.h"
 #include "habuffer/scene_catalog.h"
 
 namespace habuffer::cli {
@@ -39,12 +40,11 @@ std::vector<std::string> scene_file(const std::string& value) {
 std::vector<std::string> scene_word_files(const std::string& value) {
   std::vector<std::string> out;
   for (const std::string& word : listed_files(value)) {
-    if (word.size() >= 4 && word.compare(word.size() - 4, 4, ".csv") == 0) {
-      out.push_back(word);
-      continue;
+    try {
+      if (const std::string file = harness::parse_workload_spec(word).input_file(); !file.empty()) out.push_back(file);
+    } catch (const std::invalid_argument&) {
+      // the command's own parse refuses the word
     }
-    const std::string scene = word.substr(0, word.find(':'));
-    if (!scene.empty() && !is_scene_name(scene)) out.push_back(scene);
   }
   return out;
 }

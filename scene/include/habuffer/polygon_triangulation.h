@@ -29,7 +29,10 @@ void triangulate_polygon(std::span<const glm::vec3> positions, std::span<const s
 /// polygon's own vertices (a fan from its first vertex): for planar polygons
 /// the same whatever triangulation is chosen, so it checks a triangulation
 /// without sharing its code.
-double polygons_volume(std::span<const glm::vec3> positions, const std::vector<std::vector<std::uint32_t>>& polygons);
+/// `magnitude`, when given, receives the sum of the terms' magnitudes (the
+/// scale its rounding is relative to).
+double polygons_volume(std::span<const glm::vec3> positions, const std::vector<std::vector<std::uint32_t>>& polygons,
+                       double* magnitude = nullptr);
 
 /// The signed volume of a triangle list (three indices per triangle).
 double triangles_volume(std::span<const glm::vec3> positions, std::span<const std::uint32_t> indices);

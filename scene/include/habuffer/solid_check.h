@@ -7,7 +7,9 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "habuffer/scene.h"
 
@@ -22,6 +24,11 @@ struct SolidCheck {
   /// Closed, manifold and consistently oriented.
   [[nodiscard]] bool closed() const { return boundary_edges == 0 && non_manifold_edges == 0; }
 };
+
+/// For each position, the index of the first position exactly equal to it
+/// (bit patterns compared, -0 as +0), numbered in order of first
+/// appearance: the weld the solid check and the mesh loader share.
+std::vector<std::uint32_t> exact_vertex_ids(std::span<const glm::vec3> positions);
 
 /// The edges and volume of `mesh` (see the file comment).
 SolidCheck check_solid(const Mesh& mesh);
