@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_spatial_hash.h"
 #include "habuffer/gl/glsl_sources.h"
 #include "habuffer/gl/module_variant.h"
 #include "habuffer/gl/shadow_lookup.h"
@@ -340,6 +341,21 @@ std::string light_lookup_file(AtomicMode mode) {
          light_lookup_part(GlLightBindings{}, mode, true);
 }
 
+// The spatial hash's lookup for file-based pipelines (gl_spatial_hash.h):
+// one file for every mode (it reads slots as uvec2), points overridable.
+std::string spatial_lookup_file() {
+  return "// habuffer " HABUFFER_VERSION ": the spatial hash's lookup (habuffer::gl::GlSpatialHash), for any shader\n"
+         "// stage and any atomic mode (no 64-bit integers needed). Place after `#version 450 core`, at global\n"
+         "// scope (beside a technique file or without one), then call\n"
+         "//   bool habuffer_spatial_find(uvec3 key, out uint stored)       // the rule's encoding, as GlSpatialHash::find\n"
+         "//   bool habuffer_spatial_find_value(uvec3 key, out uint value)  // decoded, as SpatialHash::find\n"
+         "// with the table bound by GlSpatialHash::bind_for_lookup(). Binding points: #define any of\n"
+         "//   HABUFFER_SPATIAL_BINDING_TABLE MAX_AGE OFFSETS (shader-storage) PARAMS (uniform)\n"
+         "// before this file to move them, with the same numbers as habuffer::gl::GlSpatialBindings.\n"
+         "// Reserved names: sh_*, habuffer_spatial*, HabufferSpatial*, HABUFFER_SPATIAL_*, HABUFFER_SH_*.\n" +
+         spatial_lookup_part(GlSpatialBindings{}, true);
+}
+
 }  // namespace
 
 std::vector<GlslFile> host_glsl_files() {
@@ -382,6 +398,7 @@ std::vector<GlslFile> host_glsl_files() {
       }
     if (mode != AtomicMode::Native32) files.push_back({dir + "light_lookup.glsl", light_lookup_file(mode)});
   }
+  files.push_back({"spatial_lookup.glsl", spatial_lookup_file()});
   return files;
 }
 

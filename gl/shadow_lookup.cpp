@@ -2,14 +2,13 @@
 
 #include <epoxy/gl.h>
 
-#include <cctype>
-#include <string_view>
-#include <utility>
+#include <array>
 #include <stdexcept>
 
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
 #include "habuffer/gl/techniques/ha/gl_ha_table.h"
+#include "lookup_points.h"
 
 namespace habuffer::gl {
 namespace {
@@ -26,28 +25,6 @@ struct LightBlock {
 };
 static_assert(sizeof(LightBlock) == 176, "HabufferLight's std140 layout (light_env.glsl)");
 
-bool is_identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; }
-
-// Replaces `from` where it starts an identifier (and, when `whole`, where it
-// is the whole identifier). Hand-written rather than std::regex: GCC 12's
-// <regex> trips -Wmaybe-uninitialized under -fsanitize=address with -Werror.
-std::string replace_identifiers(std::string_view source, std::string_view from, std::string_view to, bool whole) {
-  std::string out;
-  out.reserve(source.size());
-  std::size_t i = 0;
-  while (i < source.size()) {
-    const bool starts = source.compare(i, from.size(), from) == 0 && (i == 0 || !is_identifier_char(source[i - 1]));
-    const std::size_t end = i + from.size();
-    if (starts && (!whole || end >= source.size() || !is_identifier_char(source[end]))) {
-      out += to;
-      i = end;
-    } else {
-      out += source[i++];
-    }
-  }
-  return out;
-}
-
 // A shared source under the prefix hs_: the light buffer's instance beside
 // the view module's ha_ one (its environment in light_env.glsl).
 std::string light_instance(const char* source) {
@@ -55,45 +32,21 @@ std::string light_instance(const char* source) {
                              true);
 }
 
+// The storage points, named as their members.
+std::array<LookupPoint, 3> storage_points(const GlLightBindings& b) {
+  return {LookupPoint{"table", b.table}, LookupPoint{"max_age", b.max_age}, LookupPoint{"offsets", b.offsets}};
+}
+
 }  // namespace
 
 void GlLightBindings::validate(const GlBindings& view) const {
-  const unsigned points[] = {table, max_age, offsets};
-  const char* names[] = {"table", "max_age", "offsets"};
-  GLint max_storage = 0, max_uniform = 0;
-  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &max_storage);
-  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &max_uniform);
-  const std::vector<unsigned> taken = view.storage_points();
-  for (int i = 0; i < 3; ++i) {
-    if (points[i] >= static_cast<unsigned>(max_storage))
-      throw GlError(std::string("shader-storage binding point GlLightBindings::") + names[i] + " = " +
-                    std::to_string(points[i]) + " is beyond this context's GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS (" +
-                    std::to_string(max_storage) + ")");
-    for (const unsigned p : taken)
-      if (p == points[i])
-        throw GlError(std::string("GlLightBindings::") + names[i] + " = " + std::to_string(p) +
-                      " is a point of the view's GlBindings");
-    for (int j = i + 1; j < 3; ++j)
-      if (points[i] == points[j])
-        throw GlError(std::string("GlLightBindings::") + names[i] + " and ::" + names[j] + " are both " +
-                      std::to_string(points[i]));
-  }
-  if (params >= static_cast<unsigned>(max_uniform) || params == view.params)
-    throw GlError("uniform-buffer binding point GlLightBindings::params = " + std::to_string(params) +
-                  " is the view's or beyond this context's GL_MAX_UNIFORM_BUFFER_BINDINGS (" +
-                  std::to_string(max_uniform) + ")");
+  validate_lookup_points("GlLightBindings", storage_points(*this), {"params", params}, view);
 }
 
 std::string GlLightBindings::glsl_defines(bool overridable) const {
-  std::string s;
-  for (const auto& [name, point] : {std::pair{"TABLE", table}, std::pair{"MAX_AGE", max_age},
-                                    std::pair{"OFFSETS", offsets}, std::pair{"PARAMS", params}}) {
-    const std::string macro = std::string("HABUFFER_LIGHT_BINDING_") + name;
-    if (overridable) s += "#ifndef " + macro + "\n";
-    s += "#define " + macro + " " + std::to_string(point) + "\n";
-    if (overridable) s += "#endif\n";
-  }
-  return s;
+  const std::array<LookupPoint, 3> s = storage_points(*this);
+  const LookupPoint all[] = {s[0], s[1], s[2], {"params", params}};
+  return lookup_defines("HABUFFER_LIGHT_BINDING_", all, overridable);
 }
 
 std::string light_lookup_part(const GlLightBindings& bindings, AtomicMode mode, bool overridable) {

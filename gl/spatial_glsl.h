@@ -4,10 +4,15 @@
 
 namespace habuffer::gl {
 
-extern const char* const kShConstants;      ///< spatial/sh_constants.h: outcomes and limits, shared with C++
-extern const char* const kShSpatial;        ///< spatial/sh_spatial.glsl: record, probe, insert step, lookup
-extern const char* const kShEnv;            ///< gl/shaders/spatial_env.glsl: the GPU's environment for it
-extern const char* const kShInsertCompute;  ///< gl/shaders/spatial_insert.comp.glsl: the insert pass
-extern const char* const kShFindCompute;    ///< gl/shaders/spatial_find.comp.glsl: the lookup pass
+extern const char* const kShConstants;       ///< spatial/sh_constants.h: outcomes and limits, shared with C++
+extern const char* const kShSpatial;         ///< spatial/sh_spatial.glsl: record, probe, insert step, lookup
+extern const char* const kShBlock;           ///< gl/shaders/spatial_block.glsl: the parameter block HabufferSpatial
+extern const char* const kShEnv;             ///< gl/shaders/spatial_env.glsl: the compute passes' environment for it
+extern const char* const kShKeys;            ///< gl/shaders/spatial_keys.glsl: domain check, fold, one key's lookup
+extern const char* const kShRecordsCompute;  ///< gl/shaders/spatial_records.comp.glsl: keys to insert records
+extern const char* const kShInsertCompute;   ///< gl/shaders/spatial_insert.comp.glsl: the insert pass
+extern const char* const kShFindCompute;     ///< gl/shaders/spatial_find.comp.glsl: the lookup pass
+extern const char* const kShLookupEnv;       ///< gl/shaders/spatial_lookup_env.glsl: a host shader's environment
+extern const char* const kShLookup;          ///< gl/shaders/spatial_lookup.glsl: habuffer_spatial_find
 
 }  // namespace habuffer::gl

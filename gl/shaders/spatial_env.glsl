@@ -8,22 +8,22 @@
 // unchanged, so the step's loop is the spin, and after
 // habuffer_lock_spin_limit busy attempts the call is cut short,
 // HABUFFER_SH_CUT, and resumed by the next pass) before this file, over
-// ha_table at HABUFFER_RECORDS_BINDING. Buffers at GlBindings' points.
+// ha_table at HABUFFER_RECORDS_BINDING, and spatial_block.glsl (the table's
+// parameters). Buffers at GlBindings' points.
 #define sh_word uint64_t
 #define HABUFFER_INOUT(T) inout T
 
-uniform uint sh_age_bits;
-uniform uvec2 ha_table_size;
-uniform uint sh_quotient_x;
-uniform uint ha_max_age_cells_x;
-uniform uint sh_iter_limit;
-uniform uint sh_block;
+#define sh_age_bits habuffer_spatial.age_bits
+#define ha_table_size habuffer_spatial.table_size
+#define sh_quotient_x habuffer_spatial.quotient_x
+#define ha_max_age_cells_x habuffer_spatial.max_age_cells_x
+#define sh_iter_limit habuffer_spatial.iter_limit
 
 layout(std430, binding = HABUFFER_BINDING_MAX_AGE) coherent buffer ShMaxAge { uint sh_max_age_cells[]; };
 layout(std430, binding = HABUFFER_BINDING_OFFSETS) readonly buffer ShOffsets { uvec2 sh_offsets[]; };
 
 uvec2 ha_offset(uint i) { return sh_offsets[i]; }
-uint ha_div_block(uint v) { return v / sh_block; }
+uint ha_div_block(uint v) { return v / habuffer_spatial.block; }
 uint sh_div_hx(uint v) { return v / ha_table_size.x; }
 uint sh_div_hy(uint v) { return v / ha_table_size.y; }
 sh_word sh_word_of(uint high, uint low) { return packUint2x32(uvec2(low, high)); }

@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
     if (f.path.ends_with("/extensions.glsl")) extensions[f.path.substr(0, f.path.find('/'))] = f.text;
   }
   for (const gl::GlslFile& f : files) {
+    if (f.path.find('/') == std::string::npos) continue;  // spatial_lookup.glsl, for every mode: below
     const std::string name = f.path.substr(f.path.find('/') + 1);
     if (name == "extensions.glsl") continue;
     const std::string mode = f.path.substr(0, f.path.find('/'));
@@ -75,6 +76,21 @@ int main(int argc, char** argv) {
     const std::string path = dir + "/" + mode + "-host-" + base + "." + (fragment ? "frag" : "comp");
     std::ofstream out(path);
     out << source;
+    if (!out) {
+      std::fprintf(stderr, "habuffer_glsl_dump: cannot write %s\n", path.c_str());
+      return 1;
+    }
+    ++written;
+  }
+  // The spatial hash's lookup (any mode) beside each mode's HA-buffer file, in a fragment shader.
+  for (const auto& [mode, ext] : extensions) {
+    const std::string path = dir + "/" + mode + "-host-spatial_lookup.frag";
+    std::ofstream out(path);
+    out << "#version 450 core\n" << ext << "in vec4 host_colour;\n" << texts.at(mode + "/ha.frag.glsl")
+        << texts.at("spatial_lookup.glsl")
+        << "void main() { uint v = 0u;\n"
+           "  if (habuffer_spatial_find(uvec3(gl_FragCoord.xy, 0u), v)) ha_insert_here(unpackUnorm4x8(v));\n"
+           "  if (habuffer_spatial_find_value(uvec3(gl_FragCoord.xy, 1u), v)) ha_insert_here(host_colour); }\n";
     if (!out) {
       std::fprintf(stderr, "habuffer_glsl_dump: cannot write %s\n", path.c_str());
       return 1;

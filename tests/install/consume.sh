@@ -183,6 +183,9 @@ for mode in native32 native64 emulated64; do
   done
   [ -f "$prefix/share/habuffer/glsl/$mode/extensions.glsl" ] || fail "missing $mode/extensions.glsl"
 done
+# The spatial hash's lookup, one file for every mode.
+grep -q "habuffer_spatial_find(uvec3 key, out uint stored)" "$prefix/share/habuffer/glsl/spatial_lookup.glsl" ||
+  fail "missing spatial_lookup.glsl or its habuffer_spatial_find"
 echo "== Python package (where the build made it)"
 if [ -f "$build/python/habuffer/__init__.py" ]; then
   pkg=$prefix/lib/python3/dist-packages

@@ -2,8 +2,9 @@
 /// habuffer's OpenGL 4.5 path in one include (with the CPU path's
 /// habuffer/habuffer.h): a technique's GPU container (make_gl_technique,
 /// GlHaBuffer, ...), the frame driver a host wraps its gather pass in, the
-/// GLSL module its shaders include, binding points, the context queries and,
-/// for hosts without a context of their own, a headless EGL context.
+/// GLSL module its shaders include, binding points, the context queries, the
+/// light lookup and the spatial hash on the GPU (GlSpatialHash) and, for
+/// hosts without a context of their own, a headless EGL context.
 #pragma once
 
 #include "habuffer/habuffer.h"
@@ -19,6 +20,7 @@
 #include "habuffer/gl/gl_frame_driver.h"
 #include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/gl_spatial_hash.h"
 #include "habuffer/gl/techniques/kbuffer/gl_kbuffer.h"
 #include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
 #include "habuffer/gl/gl_technique.h"

@@ -70,6 +70,10 @@ uvec2 sh_record_key(ha_index s, sh_word r) {
   return sh_key(ha_owner(h, sh_age(r)), sh_quotient(r));
 }
 
+// The insert (host environments that only look up, such as a host shader's
+// lookup over read-only buffers, define HABUFFER_SH_LOOKUP_ONLY and need no
+// atomics).
+#ifndef HABUFFER_SH_LOOKUP_ONLY
 // One insert call between probes.
 struct ShCarry {
   uvec2 p;    // position of the carried record's key
@@ -139,6 +143,7 @@ uint sh_insert_run(HABUFFER_INOUT(ShCarry) c) {
   while (outcome == HABUFFER_SH_PENDING) outcome = sh_insert_step(c);
   return outcome == HABUFFER_SH_PENDING ? HABUFFER_SH_CUT : outcome;
 }
+#endif
 
 // The slot holding key k's record (live or tombstone), or -1 as all ones.
 // Probes ages 1 .. M[cell] and stops at the first slot whose key bits are

@@ -97,8 +97,10 @@ struct GlslFile {
 };
 /// Every such file: for each atomic mode, <mode>/extensions.glsl, and for each
 /// technique with a GL path <mode>/<technique>.frag.glsl and .comp.glsl
-/// (technique_module_body at the default, overridable bindings), with a
-/// comment header saying how to use them. Needs no GL context.
+/// (technique_module_body at the default, overridable bindings), for
+/// native64 and emulated64 <mode>/light_lookup.glsl, and once for every mode
+/// spatial_lookup.glsl (spatial_lookup_part), each with a comment header
+/// saying how to use it. Needs no GL context.
 std::vector<GlslFile> host_glsl_files();
 
 /// The compute shader that inserts a fragment stream held in a buffer.
