@@ -15,6 +15,7 @@
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/shader_program.h"
+#include "light_params.h"
 #include "resolve_pass.h"
 
 namespace habuffer::gl {
@@ -88,12 +89,22 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
 GlFrameDriver::~GlFrameDriver() = default;
 
 std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
-  return technique_->module_source(stage, options_.module.defines() + std::string(header));
+  return technique_->module_source(stage, options_.module.defines() + light_module_defines(options_.light) +
+                                              std::string(header));
 }
 
 void GlFrameDriver::resize_screen(Extent screen) {
   technique_->resize_screen(screen);  // strong guarantee: on a throw nothing changed
   write_params();                     // the block's screen for passes run before the next frame
+}
+
+void GlFrameDriver::set_light(const GlLightMapping& light) {
+  if (!options_.light)
+    throw std::invalid_argument("set_light: this driver was made without GlFrameOptions::light (its module has no "
+                                "habuffer_insert_light)");
+  (void)light_depth_map(light, GlWindowDepth{});  // refuses a mapping before anything changes
+  options_.light = light;
+  write_params();
 }
 
 void GlFrameDriver::write_params() const {
@@ -106,6 +117,7 @@ void GlFrameDriver::write_params() const {
   p.habuffer_capture_only = options_.capture_only ? 1u : 0u;
   p.habuffer_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
   p.habuffer_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
+  write_light_params(options_.light, technique_->gather_depth(), p);
   technique_->write_params(p);
   glNamedBufferSubData(gpu_->params.id(), 0, sizeof p, &p);
 }
@@ -164,6 +176,7 @@ void check_depth_convention(DepthConvention convention) {
 
 FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
   check_depth_convention(options_.depth);
+  technique_->record_gather_depth(gather_depth_now(options_));  // what this frame's depths will be
   const GlStateGuard guard(bindings());
   FrameReport report;
   report.index = frames_++;

@@ -72,6 +72,13 @@ GlShadowLookup::GlShadowLookup(const GlHaTable& light, const GlLightMapping& map
   bindings_.validate(view);
   params_ = GlStorage(sizeof(LightBlock));
   update(mapping);
+  check_depths();
+}
+
+void GlShadowLookup::check_depths() const {
+  if (!light_.gather_depth()) return;  // not gathered yet: bind() checks
+  const std::string mismatch = light_depth_mismatch(*light_.gather_depth(), mapping_);
+  if (!mismatch.empty()) throw GlError(mismatch);
 }
 
 void GlShadowLookup::update(const GlLightMapping& mapping) {
@@ -96,6 +103,7 @@ void GlShadowLookup::update(const GlLightMapping& mapping) {
 }
 
 void GlShadowLookup::bind() {
+  check_depths();
   if (light_.config().table != written_table_ || light_.config().screen != written_screen_) update(mapping_);
   light_.bind_for_lookup(bindings_.table, bindings_.max_age, bindings_.offsets);
   bind_at(GL_UNIFORM_BUFFER, bindings_.params, params_.id());

@@ -41,15 +41,19 @@ gl::AtomicMode light_mode() {
   return *mode;
 }
 
-gl::GlFrameOptions light_options(const ShadowSettings& s) {
+gl::GlLightMapping mapping_of(const LightView& v) {
+  return {v.camera.view, v.camera.projection, v.camera.near_plane, v.camera.far_plane};
+}
+
+// The light buffer's driver is told its light: the gather inserts t itself
+// (shading.glsl's r_depth, the lookup's formula), and the lookup checks the
+// records are the light's (GlShadowLookup::check_depths).
+gl::GlFrameOptions light_options(const ShadowSettings& s, const LightView& light) {
   gl::GlFrameOptions o;
   o.max_attempts = s.table == Extent{} ? 16 : 1;  // automatic: grown until nothing is dropped
   o.capture = s.capture;
+  o.light = mapping_of(light);
   return o;
-}
-
-gl::GlLightMapping mapping_of(const LightView& v) {
-  return {v.camera.view, v.camera.projection, v.camera.near_plane, v.camera.far_plane};
 }
 
 }  // namespace
@@ -84,7 +88,7 @@ struct LightPass::Gpu {
   Gpu(const Scene& original, const ShadowSettings& s, const gl::GlBindings& view_bindings, const LightView& light,
       std::uint32_t bias)
       : scene(light_scene(original)),
-        buffer(light_config(s), OffsetSource{}, light_mode(), light_options(s)),
+        buffer(light_config(s), OffsetSource{}, light_mode(), light_options(s, light)),
         renderer(this->scene, s.light.size, buffer, SceneRenderer::GatherCounts{buffer.needs_call_count(), false}),
         lookup(buffer.container(), mapping_of(light), bias, view_bindings) {}
   Scene scene;

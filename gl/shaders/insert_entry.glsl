@@ -36,14 +36,50 @@ uint habuffer_insert(uvec2 pixel, float depth) { return habuffer_insert(pixel, d
 uint ha_pack_rgba(vec4 colour) { return packUnorm4x8(colour.abgr); }
 
 #ifdef HABUFFER_STAGE_FRAGMENT
+// A light pass's t of window depth z (GlFrameOptions::light): the light's
+// projection and window mapping inverted, linear in its eye distance
+// (GlLightDepthMap in habuffer/gl/light_mapping.h), clamped to [0, 1]: the
+// rasterizer clips at the projection's planes, rounding may step past them.
+float habuffer_light_depth(float z) {
+  return clamp((habuffer_light_a * z + habuffer_light_b) / (habuffer_light_c * z + habuffer_light_d), 0.0, 1.0);
+}
+
 // The current fragment at its pixel and window depth, with a straight-alpha
 // colour: gl_FragCoord.z (0 nearest), or 1 - gl_FragCoord.z for a host
 // whose depth convention is reversed-Z (GlFrameOptions::depth: 1 nearest,
-// GL_GREATER), so the lists are nearest first either way.
+// GL_GREATER), so the lists are nearest first either way. In a light pass
+// (GlFrameOptions::light) the light's t of it, as habuffer_insert_light.
 uint habuffer_insert_here(vec4 colour) {
-  float depth = habuffer_depth_reversed != 0u ? 1.0 - gl_FragCoord.z : gl_FragCoord.z;
+  float z = gl_FragCoord.z;
+  float depth = habuffer_light_gather != 0u ? habuffer_light_depth(z) : habuffer_depth_reversed != 0u ? 1.0 - z : z;
   return habuffer_insert(uvec2(gl_FragCoord.xy), depth, ha_pack_rgba(colour));
 }
+
+#ifdef HABUFFER_LIGHT_GATHER
+// A light pass's insert (GlFrameOptions::light, which makes the driver's
+// module define HABUFFER_LIGHT_GATHER): the current fragment at the depth t
+// the light lookup compares, from gl_FragCoord.z through the light's
+// projection. Without the light in the block (a module compiled with the
+// define by hand) nothing is stored: the call counts invalid.
+uint habuffer_insert_light(vec4 colour) {
+  float depth = habuffer_light_gather != 0u ? habuffer_light_depth(gl_FragCoord.z) : -1.0;
+  return habuffer_insert(uvec2(gl_FragCoord.xy), depth, ha_pack_rgba(colour));
+}
+
+// The same from the light's eye distance of the fragment (-z of its
+// light-eye position, interpolated by the host's vertex stage): t =
+// (distance - near) / (far - near), the lookup's own operations, so a
+// surface's records and its lookups agree to the interpolation's rounding
+// (clamped to [0, 1] as above).
+uint habuffer_insert_light(vec4 colour, float eye_distance) {
+  float t = (eye_distance - habuffer_light_near) / (habuffer_light_far - habuffer_light_near);
+  float depth = habuffer_light_gather != 0u ? clamp(t, 0.0, 1.0) : -1.0;
+  return habuffer_insert(uvec2(gl_FragCoord.xy), depth, ha_pack_rgba(colour));
+}
+#else
+// Not a light pass: a call fails to compile, naming what is missing.
+#define habuffer_insert_light habuffer_insert_light_needs_GlFrameOptions_light
+#endif
 #endif
 
 // The names hosts called before the library took one prefix (habuffer_) for

@@ -30,8 +30,12 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_FLOAT(habuffer_depth_near)         // wboit: the depth range its weights span
   HABUFFER_PARAM_FLOAT(habuffer_depth_far)
   HABUFFER_PARAM_UINT(habuffer_depth_reversed)       // every technique: 1: habuffer_insert_here reads 1 - gl_FragCoord.z (reversed-Z)
+  HABUFFER_PARAM_UINT(habuffer_light_gather)        // every technique: 1: a light pass (GlFrameOptions::light), depths are its t
+  HABUFFER_PARAM_FLOAT(habuffer_light_near)         // the light's eye distances of t = 0 and t = 1 (habuffer_insert_light)
+  HABUFFER_PARAM_FLOAT(habuffer_light_far)
+  HABUFFER_PARAM_FLOAT(habuffer_light_a)            // the light's t of window depth z: (a z + b) / (c z + d) (GlLightDepthMap)
+  HABUFFER_PARAM_FLOAT(habuffer_light_b)
+  HABUFFER_PARAM_FLOAT(habuffer_light_c)
+  HABUFFER_PARAM_FLOAT(habuffer_light_d)
   HABUFFER_PARAM_UINT(habuffer_unused_1)             // (block size a multiple of 16 bytes, as std140 rounds it)
-  HABUFFER_PARAM_UINT(habuffer_unused_2)
-  HABUFFER_PARAM_UINT(habuffer_unused_3)
-  HABUFFER_PARAM_UINT(habuffer_unused_4)
 HABUFFER_PARAMS_END

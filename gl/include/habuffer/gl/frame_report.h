@@ -9,6 +9,7 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/fragment.h"
+#include "habuffer/gl/light_mapping.h"
 #include "habuffer/gl/module_variant.h"
 #include "habuffer/lossless_build.h"
 #include "habuffer/resize_policy.h"
@@ -60,6 +61,16 @@ struct GlFrameOptions {
   /// or GL_GEQUAL with Standard, GL_LESS or GL_LEQUAL with Reversed), which
   /// would otherwise composite back to front with no error.
   DepthConvention depth = DepthConvention::Standard;
+  /// The light this driver gathers a light buffer for (translucent shadows,
+  /// light_mapping.h): its records then hold the light's linear depth t,
+  /// which GlShadowLookup compares, rather than window depth. The module
+  /// gains habuffer_insert_light(colour) and (colour, eye_distance), and
+  /// habuffer_insert_here stores t too, from gl_FragCoord.z through the
+  /// projection under the clip control and depth range of the frame() call.
+  /// Unset: depths are what the host inserts, and habuffer_insert_light does
+  /// not compile. The constructor throws std::invalid_argument for a mapping
+  /// light_depth_map refuses.
+  std::optional<GlLightMapping> light;
 };
 
 /// Time of one pass: wall clock from submission to completion (glFinish when

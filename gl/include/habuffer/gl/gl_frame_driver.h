@@ -77,6 +77,12 @@ class GlFrameDriver {
   /// deferred-call buffers are kept (none depends on the screen).
   void resize_screen(Extent screen);
 
+  /// A light pass's light moved (GlFrameOptions::light): the next frames
+  /// store its t. Throws std::invalid_argument for a driver made without a
+  /// light (its module has no habuffer_insert_light) or a mapping
+  /// light_depth_map refuses, and then changes nothing.
+  void set_light(const GlLightMapping& light);
+
   /// The GLSL module for this technique, atomic mode and binding points.
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
 

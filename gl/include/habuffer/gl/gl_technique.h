@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -166,6 +167,14 @@ class GlTechnique {
   /// dumps, compositing on the CPU), its insert counters left to the caller.
   [[nodiscard]] virtual std::unique_ptr<FragmentBuffer> read_back() const = 0;
 
+  /// What the depths of the last frame's records are (the light whose t
+  /// they hold, or window depth by convention and window mapping), recorded
+  /// by the frame driver at every frame; nullopt before the first.
+  /// GlShadowLookup checks it against its mapping (light_depth_mismatch).
+  [[nodiscard]] const std::optional<GlGatherDepth>& gather_depth() const { return gather_depth_; }
+  /// The frame driver's record of it, at the start of every frame.
+  void record_gather_depth(const GlGatherDepth& depth) { gather_depth_ = depth; }
+
  protected:
   /// Adds a pass to passes() (a container declares its passes in its constructor).
   void declare_pass(GlPass pass) { passes_.push_back(std::move(pass)); }
@@ -181,6 +190,7 @@ class GlTechnique {
   GlBindings bindings_;
   Extent screen_;
   std::vector<GlPass> passes_;
+  std::optional<GlGatherDepth> gather_depth_;
 };
 
 /// The container of config.technique on the GPU (offsets and the clear

@@ -23,6 +23,7 @@
 #include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/light_mapping.h"
 
 namespace habuffer::gl {
 
@@ -41,16 +42,6 @@ struct GlLightBindings {
   /// "#define HABUFFER_LIGHT_BINDING_TABLE 25\n...", for light_lookup_part;
   /// with `overridable`, each inside #ifndef (the installed file).
   [[nodiscard]] std::string glsl_defines(bool overridable = false) const;
-};
-
-/// How the light maps world points (habuffer::LightView's camera): the
-/// view and projection matrices, the eye distances of t = 0 and 1, and the
-/// map's pixels.
-struct GlLightMapping {
-  glm::mat4 view{1.0f};        ///< world to the light's eye space
-  glm::mat4 projection{1.0f};  ///< eye to clip space
-  float near_plane = 0.0f;     ///< eye distance of t = 0
-  float far_plane = 1.0f;      ///< eye distance of t = 1
 };
 
 /// The GLSL a view module appends for the lookup (see the file comment): the
@@ -74,7 +65,9 @@ class GlShadowLookup {
  public:
   /// `light` must hold L64 records (colour and opacity) and stay alive while
   /// this is used. Throws std::invalid_argument for L32 records and GlError
-  /// for bindings that collide with `view` or exceed this context's limits.
+  /// for bindings that collide with `view` or exceed this context's limits,
+  /// or for a light buffer already gathered with depths `mapping` does not
+  /// compare (check_depths).
   GlShadowLookup(const GlHaTable& light, const GlLightMapping& mapping, std::uint32_t bias,
                  const GlBindings& view = {}, const GlLightBindings& bindings = {});
   /// Writes the block again from the light buffer's current table and from
@@ -85,7 +78,14 @@ class GlShadowLookup {
   /// A light buffer whose table or screen changed since the block was
   /// written (adaptive sizing, lossless growth, a resize) gets the block
   /// written again first, so a lookup never probes a table it does not hold.
+  /// Throws GlError as check_depths.
   void bind();
+  /// Throws a one-line GlError when the light buffer's last frame stored
+  /// depths that this lookup's mapping does not compare
+  /// (light_depth_mismatch): gathered for another GlFrameOptions::light, or
+  /// window depth (no light given to its driver) under a light whose t it
+  /// is not, a perspective one above all. Nothing before the first frame.
+  void check_depths() const;
   /// The bindings the shaders were assembled with.
   [[nodiscard]] const GlLightBindings& bindings() const { return bindings_; }
   /// Bytes of the block (the light buffer's own are its container's).
