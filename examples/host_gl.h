@@ -82,9 +82,10 @@ inline GLuint make_framebuffer(int width, int height) {
   return framebuffer;
 }
 
-// The framebuffer's pixels against expected(px, py) (RGB in [0, 1]): the
-// channels off by more than rounding (1.5/255), the first three printed;
-// prints the largest error under `name`.
+// The framebuffer's pixels against expected(px, py) (RGB in [0, 1]; a
+// negative value leaves its channel unchecked): the channels off by more
+// than rounding (1.5/255), the first three printed; prints the largest
+// error under `name`.
 template <class Expected>
 int count_wrong_channels(GLuint framebuffer, int width, int height, Expected expected, const char* name) {
   std::vector<unsigned char> pixels(4 * static_cast<std::size_t>(width) * height);
@@ -96,6 +97,7 @@ int count_wrong_channels(GLuint framebuffer, int width, int height, Expected exp
     for (int px = 0; px < width; ++px) {
       const std::vector<float> want = expected(px, py);
       for (int k = 0; k < 3; ++k) {
+        if (want[k] < 0.0f) continue;
         const float got = pixels[4 * (px + py * width) + k] / 255.0f, error = std::fabs(got - want[k]);
         worst = std::max(worst, error);
         if (error > 1.5f / 255.0f && ++wrong <= 3)

@@ -3,7 +3,7 @@
 # then, as a host project would:
 #  - configures examples/ out of tree with find_package(habuffer CONFIG) and a
 #    C++17 default (the package's targets must raise it to C++20), builds it
-#    and runs both examples headless (each checks its own pixels);
+#    and runs every example headless (each checks its own pixels);
 #  - checks the package refuses a newer version and an unknown component;
 #  - adds the source tree to a C++17 host project by add_subdirectory, with
 #    shared libraries and without oneTBB: only the libraries are made, the
@@ -39,6 +39,7 @@ cmake --build "$work/examples" >"$work/build.log" 2>&1 || { cat "$work/build.log
 "$work/examples/cpu_only" || fail "cpu_only failed"
 "$work/examples/host_app" || fail "host_app failed"
 "$work/examples/host_shadows" || fail "host_shadows failed"
+"$work/examples/host_spot_shadows" || fail "host_spot_shadows failed"
 
 echo "== a version the package must refuse"
 mkdir -p "$work/too_new"
