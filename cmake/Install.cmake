@@ -56,6 +56,8 @@ endif()
 # Relocatable: the prefix is found from the .pc file's own directory, so a
 # `cmake --install --prefix` anywhere gives working files.
 file(RELATIVE_PATH HABUFFER_PC_PREFIX_FROM_PCDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+# Without its trailing slash: ${prefix}/share, not ${prefix}//share (a glsldir of "../..//share").
+string(REGEX REPLACE "/+$" "" HABUFFER_PC_PREFIX_FROM_PCDIR "${HABUFFER_PC_PREFIX_FROM_PCDIR}")
 set(HABUFFER_PC_CORE_REQUIRES "${_pc_requires_field}: ${_pc_core_requires}")
 set(HABUFFER_PC_GL_REQUIRES "Requires: habuffer-core = ${PROJECT_VERSION}, epoxy")
 configure_file(cmake/habuffer-core.pc.in ${PROJECT_BINARY_DIR}/habuffer-core.pc @ONLY)

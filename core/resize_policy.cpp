@@ -1,5 +1,7 @@
 #include "habuffer/resize_policy.h"
 
+#include "habuffer/option_rules.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -44,6 +46,13 @@ std::uint64_t ResizePolicy::next(std::uint64_t capacity, std::uint64_t used) con
 
 std::uint64_t ResizePolicy::automatic(std::uint64_t records) const {
   return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(static_cast<double>(records) / grow_at)));
+}
+
+Extent ResizePolicy::initial_table(Extent screen, std::uint64_t records) const {
+  const double load = (grow_at + shrink_at) / 2.0;
+  const double scale = std::sqrt(static_cast<double>(records) / load / static_cast<double>(screen.area()));
+  return table_of_sides(std::max<double>(screen.x, std::ceil(screen.x * scale)),
+                        std::max<double>(screen.y, std::ceil(screen.y * scale)), load, records);
 }
 
 std::uint64_t ResizePolicy::grown(std::uint64_t capacity, std::uint64_t needed) const {

@@ -87,6 +87,13 @@ TechniqueConfig TechniqueConfig::grown(const ResizePolicy& policy, std::uint64_t
   return descriptor(technique).grown(*this, policy, GrowthNeed{nodes_requested, most_arrived});
 }
 
+TechniqueConfig TechniqueConfig::sized_for(const ResizePolicy& policy, std::uint64_t fragments) const {
+  TechniqueConfig c = *this;
+  if (uses_table(technique)) c.buffer.table = policy.initial_table(buffer.screen, fragments);
+  if (uses_pool(technique)) c.pool_capacity = policy.automatic(fragments);
+  return c;
+}
+
 TechniqueConfig TechniqueConfig::relevant() const {
   const TechniqueDescriptor& d = descriptor(technique);
   const TechniqueConfig defaults;

@@ -6,6 +6,7 @@
 
 #include "gl_state_guard.h"
 #include "habuffer/gl/gl_buffer.h"
+#include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
 
 namespace habuffer::gl {
@@ -34,6 +35,7 @@ ClearPass::ClearPass(AtomicMode mode, const GlBindings& bindings)
 }
 
 ClearPass::~ClearPass() {
+  if (!made_on_.current()) return;  // not another context's names (gl_context.h)
   glDeleteQueries(1, &query_);
   glDeleteVertexArrays(1, &vertex_array_);
   glDeleteFramebuffers(1, &framebuffer_);
@@ -50,6 +52,12 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
     tw = std::min(tw, tile);
     th = std::min(th, tile);
   }
+  // The tile loop below steps by tw and th: a limit queried as 0 would never end it.
+  if (tw == 0 || th == 0)
+    throw GlError("the clear pass's tiles are " + std::to_string(tw) + "x" + std::to_string(th) +
+                  " (GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT and GL_MAX_VIEWPORT_DIMS read " + std::to_string(max_w) + ", " +
+                  std::to_string(max_h) + ", " + std::to_string(viewport[0]) + "x" + std::to_string(viewport[1]) +
+                  "; table " + table.str() + ")");
   glNamedFramebufferParameteri(framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, static_cast<GLint>(tw));
   glNamedFramebufferParameteri(framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, static_cast<GLint>(th));
   GlStateGuard::prepare_full_screen_pass();

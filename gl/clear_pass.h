@@ -44,6 +44,7 @@ class ClearPass {
   ShaderProgram program_;
   GpuTimer timer_;
   unsigned framebuffer_ = 0, vertex_array_ = 0, query_ = 0;
+  MadeOn made_on_;
   GlStorage atomic_count_;      // the count of the atomic route (8 bytes, a query result's layout)
   unsigned stream_point_ = 0;   // where the atomic route binds it (the stream point: unused by the pass)
 };

@@ -39,6 +39,7 @@ ComputeInserter::ComputeInserter(GlFrameDriver& buffer, std::size_t max_chunk)
 }
 
 ComputeInserter::~ComputeInserter() {
+  if (!made_on_.current()) return;  // not another context's names (gl_context.h)
   release();
   glDeleteVertexArrays(1, &vertex_array_);
 }

@@ -4,6 +4,8 @@
 #include <epoxy/gl.h>
 
 #include <cstdlib>
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,55 @@ std::optional<int> device_from_env() {
   return static_cast<int>(i);
 }
 
+// The displays the library initialised itself, with the EglContexts alive
+// on each: a display is terminated when the last of them goes, and only if
+// the library initialised it (a display the host had initialised, or the
+// same device display a host shares, is the host's: eglTerminate would
+// break its contexts, EGL_BAD_DISPLAY... 0x3008 at its next eglMakeCurrent).
+struct DisplayUsers {
+  std::mutex mutex;
+  std::map<EGLDisplay, std::pair<int, bool>> users;  // contexts alive, initialised by the library
+};
+
+DisplayUsers& display_users() {
+  static DisplayUsers d;
+  return d;
+}
+
+// eglInitialize unless the display is initialised already (then it is the
+// host's, or an earlier EglContext's); counts this context as a user.
+void initialize_display(EGLDisplay display) {
+  DisplayUsers& d = display_users();
+  const std::lock_guard lock(d.mutex);
+  auto& [count, ours] = d.users[display];
+  if (count == 0) {
+    // An initialised display answers eglQueryString; an uninitialised one fails (EGL_NOT_INITIALIZED).
+    const bool initialised = eglQueryString(display, EGL_VERSION) != nullptr;
+    if (!initialised) {
+      (void)eglGetError();  // the query's EGL_NOT_INITIALIZED, not ours to report
+      EGLint major = 0, minor = 0;
+      if (!eglInitialize(display, &major, &minor)) {
+        d.users.erase(display);
+        throw GlError(egl_error("eglInitialize"));
+      }
+    }
+    ours = !initialised;
+  }
+  ++count;
+}
+
+// One user less; terminates the display after its last user, if the library initialised it.
+void release_display(EGLDisplay display) {
+  DisplayUsers& d = display_users();
+  const std::lock_guard lock(d.mutex);
+  const auto it = d.users.find(display);
+  if (it == d.users.end()) return;
+  if (--it->second.first > 0) return;
+  const bool ours = it->second.second;
+  d.users.erase(it);
+  if (ours) eglTerminate(display);
+}
+
 }  // namespace
 
 EglContext::EglContext(std::optional<int> device) {
@@ -50,10 +101,12 @@ EglContext::EglContext(std::optional<int> device) {
   }
   if (display == EGL_NO_DISPLAY)
     throw GlError("no headless EGL display: neither EGL_EXT_platform_device nor EGL_MESA_platform_surfaceless works");
-  EGLint major = 0, minor = 0;
-  if (!eglInitialize(display, &major, &minor)) throw GlError(egl_error("eglInitialize"));
-  display_ = display;
-  if (!eglBindAPI(EGL_OPENGL_API)) throw GlError(egl_error("eglBindAPI(OpenGL)"));
+  initialize_display(display);
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    const std::string why = egl_error("eglBindAPI(OpenGL)");
+    release_display(display);
+    throw GlError(why);
+  }
   const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
 #ifndef NDEBUG
@@ -63,9 +116,11 @@ EglContext::EglContext(std::optional<int> device) {
   context_ = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
   if (context_ == EGL_NO_CONTEXT) {
     context_ = nullptr;
-    eglTerminate(display);
-    throw GlError(egl_error("creating an OpenGL 4.5 core context"));
+    const std::string why = egl_error("creating an OpenGL 4.5 core context");
+    release_display(display);
+    throw GlError(why);
   }
+  display_ = display;
   make_current();
   if (epoxy_has_gl_extension("GL_KHR_debug") || epoxy_gl_version() >= 43) install_debug_output();
 }
@@ -81,9 +136,10 @@ void EglContext::release_current() {
 
 EglContext::~EglContext() {
   if (display_ == nullptr) return;
-  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  // Released only where it is current: a host context current here stays so.
+  if (eglGetCurrentContext() == context_) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (context_ != nullptr) eglDestroyContext(display_, context_);
-  eglTerminate(display_);
+  release_display(display_);
 }
 
 }  // namespace habuffer::gl

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "habuffer/gl/gl_error.h"
+#include "pixel_store.h"
 
 namespace habuffer::gl {
 
@@ -36,6 +37,7 @@ unsigned create_buffer(std::uint64_t bytes, const void* data) {
 }
 
 void zero_buffer(unsigned buffer) {
+  const NeutralUnpack unpack;  // the clear value is read through the host's unpack state
   const GLuint z = 0;
   glClearNamedBufferData(buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
 }
@@ -54,15 +56,22 @@ void delete_buffer(unsigned& buffer) {
 GlStorage::GlStorage(std::uint64_t bytes, const void* data)
     : id_(create_buffer(bytes, data)), bytes_(std::max<std::uint64_t>((bytes + 3) / 4 * 4, 4)) {}
 
-GlStorage::~GlStorage() { delete_buffer(id_); }
+GlStorage::~GlStorage() { release(); }
 
-GlStorage::GlStorage(GlStorage&& other) noexcept : id_(std::exchange(other.id_, 0u)), bytes_(std::exchange(other.bytes_, 0)) {}
+void GlStorage::release() {
+  if (id_ != 0 && made_on_.current()) delete_buffer(id_);
+  id_ = 0;
+}
+
+GlStorage::GlStorage(GlStorage&& other) noexcept
+    : id_(std::exchange(other.id_, 0u)), bytes_(std::exchange(other.bytes_, 0)), made_on_(other.made_on_) {}
 
 GlStorage& GlStorage::operator=(GlStorage&& other) noexcept {
   if (this != &other) {
-    delete_buffer(id_);
+    release();
     id_ = std::exchange(other.id_, 0u);
     bytes_ = std::exchange(other.bytes_, 0);
+    made_on_ = other.made_on_;
   }
   return *this;
 }
@@ -86,17 +95,22 @@ GlTexture::GlTexture(unsigned format, Extent size, std::uint32_t texel_bytes) : 
   glTextureStorage2D(id_, 1, format, static_cast<GLsizei>(size.x), static_cast<GLsizei>(size.y));
 }
 
-GlTexture::~GlTexture() {
-  if (id_ != 0) glDeleteTextures(1, &id_);
+GlTexture::~GlTexture() { release(); }
+
+void GlTexture::release() {
+  if (id_ != 0 && made_on_.current()) glDeleteTextures(1, &id_);
+  id_ = 0;
 }
 
-GlTexture::GlTexture(GlTexture&& other) noexcept : id_(std::exchange(other.id_, 0u)), bytes_(std::exchange(other.bytes_, 0)) {}
+GlTexture::GlTexture(GlTexture&& other) noexcept
+    : id_(std::exchange(other.id_, 0u)), bytes_(std::exchange(other.bytes_, 0)), made_on_(other.made_on_) {}
 
 GlTexture& GlTexture::operator=(GlTexture&& other) noexcept {
   if (this != &other) {
-    if (id_ != 0) glDeleteTextures(1, &id_);
+    release();
     id_ = std::exchange(other.id_, 0u);
     bytes_ = std::exchange(other.bytes_, 0);
+    made_on_ = other.made_on_;
   }
   return *this;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <tuple>
 
@@ -11,6 +12,7 @@
 #include "gl_params.h"
 #include "gl_state_guard.h"
 #include "gpu_timer.h"
+#include "pixel_store.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
@@ -28,6 +30,7 @@ constexpr std::uint64_t kDeferredCallBytes = 40;  // std430 HaDeferred of ha_ent
 static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
 
 void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {
+  const NeutralUnpack unpack;  // the clear value is read through the host's unpack state
   const GLuint z = 0;
   glClearNamedBufferSubData(buffer, GL_R32UI, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
                             GL_RED_INTEGER, GL_UNSIGNED_INT, &z);
@@ -45,8 +48,17 @@ std::uint64_t grown_append_capacity(std::uint64_t needed, std::uint64_t current,
   return std::min(limit, std::max(needed, current * 2));
 }
 
+// FNV-1a of the module's text, never 0: drivers whose modules are the same
+// text share it (and can share shaders); any difference changes it.
+std::uint32_t fingerprint(const std::string& text) {
+  std::uint32_t h = 2166136261u;
+  for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
+  return h == 0 ? 1u : h;
+}
+
 std::unique_ptr<GlTechnique> checked(std::unique_ptr<GlTechnique> t) {
   if (!t) throw std::invalid_argument("the frame driver needs a technique");
+  t->check_context("GlFrameDriver");  // the container's context, current here
   return t;
 }
 
@@ -67,7 +79,10 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
       gpu_(std::make_unique<Gpu>()) {
   options_.policy.validate();
   options_.module = options_.module.resolved(mode(), query_gl_info());
-  if (options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
+  needs_count_ = technique_->sized_automatically();
+  module_id_ = fingerprint(module_text(ShaderStage::Fragment));
+  if (!options_.max_attempts) options_.max_attempts = needs_count_ ? GlFrameOptions::kAutomaticAttempts : 1u;
+  if (*options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
   if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
   check_viewport_fits(screen());
@@ -88,14 +103,54 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
 
 GlFrameDriver::~GlFrameDriver() = default;
 
-std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
+std::string GlFrameDriver::module_text(ShaderStage stage, std::string_view header) const {
   return technique_->module_source(stage, options_.module.defines() + light_module_defines(options_.light) +
                                               std::string(header));
 }
 
+std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
+  char id[48];
+  std::snprintf(id, sizeof id, "#define HABUFFER_MODULE_ID 0x%08xu\n", module_id_);
+  return module_text(stage, std::string(id) + std::string(header));
+}
+
+void GlFrameDriver::check_foreign_calls(const std::vector<std::uint32_t>& words) const {
+  if (const std::uint32_t foreign = words[HABUFFER_COUNTER_FOREIGN]; foreign > 0)
+    throw GlError(std::to_string(foreign) +
+                  " insert calls came from a shader built from another driver's module_source() (another technique, "
+                  "mode, binding points or variant): build the gather's shaders from this driver's");
+}
+
 void GlFrameDriver::resize_screen(Extent screen) {
+  technique_->check_context("resize_screen");
+  const Extent before = this->screen();
   technique_->resize_screen(screen);  // strong guarantee: on a throw nothing changed
   write_params();                     // the block's screen for passes run before the next frame
+  // An automatic container is counted again for the new screen (its depth
+  // complexity need not scale with the area).
+  if (screen != before && technique_->sized_automatically()) needs_count_ = true;
+}
+
+bool GlFrameDriver::size_for(std::uint64_t fragments) {
+  technique_->check_context("size_for");
+  if (!technique_->sized_automatically())
+    throw std::invalid_argument("size_for: this " + to_string(technique_->technique()) +
+                                " container was given its size (an automatic one is made without a table or pool)");
+  if (fragments > UINT32_MAX)
+    throw GlError("a frame of " + std::to_string(fragments) +
+                  " fragments overflows the GPU path's 32-bit counters: draw fewer fragments per frame");
+  TechniqueConfig wanted;
+  wanted.technique = technique_->technique();
+  wanted.buffer.screen = screen();
+  try {
+    wanted = wanted.sized_for(options_.policy, fragments);
+  } catch (const std::invalid_argument& e) {
+    throw GlError(std::string("sizing for the counted fragments: ") + e.what());
+  }
+  const bool limited = technique_->fit_automatic_size(wanted);
+  write_params();
+  needs_count_ = false;
+  return limited;
 }
 
 void GlFrameDriver::set_light(const GlLightMapping& light) {
@@ -117,6 +172,7 @@ void GlFrameDriver::write_params() const {
   p.habuffer_capture_only = options_.capture_only ? 1u : 0u;
   p.habuffer_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
   p.habuffer_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
+  p.habuffer_module_id = module_id_;
   write_light_params(options_.light, technique_->gather_depth(), p);
   technique_->write_params(p);
   glNamedBufferSubData(gpu_->params.id(), 0, sizeof p, &p);
@@ -136,6 +192,56 @@ void GlFrameDriver::grow_deferred(std::uint64_t needed) {
   }
 }
 
+namespace {
+
+// The gather phase for one scope: back to inserting however the scope ends.
+class PhaseScope {
+ public:
+  PhaseScope(std::uint32_t& phase, std::uint32_t value) : phase_(phase) { phase_ = value; }
+  ~PhaseScope() { phase_ = HABUFFER_PHASE_INSERT; }
+  PhaseScope(const PhaseScope&) = delete;
+  PhaseScope& operator=(const PhaseScope&) = delete;
+
+ private:
+  std::uint32_t& phase_;
+};
+
+}  // namespace
+
+void GlFrameDriver::run_phase_gather(std::uint32_t phase, const std::function<void()>& gather, FrameReport& report,
+                                     const std::function<void()>& after) {
+  const PhaseScope scope(gather_phase_, phase);
+  write_params();
+  {
+    const GlStateGuard guard(bindings());
+    bind();
+    run_passes(GlPassStage::Gather, report);
+    gather();
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    finish_gather_passes();
+    if (after) {
+      bind();  // the host's gather may have bound its own buffers at our points
+      after();
+    }
+  }
+  write_params();  // the inserting phase's block for what follows
+}
+
+void GlFrameDriver::count_and_size(const std::function<void()>& gather, FrameReport& report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  gpu_->counters.zero();
+  run_phase_gather(HABUFFER_PHASE_COUNT, gather, report);
+  const std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
+  check_gl_errors("the counting gather");
+  check_foreign_calls(words);
+  std::uint64_t fragments = 0;
+  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
+    fragments += words[stripe * HABUFFER_COUNTER_STRIDE + HABUFFER_COUNTER_COUNTED];
+  report.counted_fragments = fragments;
+  report.count_limited = size_for(fragments);
+  report.count.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
 void GlFrameDriver::reset_frame_state() const {
   gpu_->counters.zero();
   zero_range(gpu_->capture.id(), 0, kAppendHeaderBytes);
@@ -143,6 +249,7 @@ void GlFrameDriver::reset_frame_state() const {
 }
 
 void GlFrameDriver::bind() const {
+  technique_->check_context("bind");
   // bind_at leaves the generic bindings the host's, so a host that updates
   // "its" GL_UNIFORM_BUFFER or GL_SHADER_STORAGE_BUFFER inside the gather
   // writes its own buffer.
@@ -175,6 +282,7 @@ void check_depth_convention(DepthConvention convention) {
 }  // namespace
 
 FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
+  technique_->check_context("frame");
   check_depth_convention(options_.depth);
   technique_->record_gather_depth(gather_depth_now(options_));  // what this frame's depths will be
   const GlStateGuard guard(bindings());
@@ -186,7 +294,8 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
     bind();
     run_passes(GlPassStage::FrameStart, report);
   }
-  technique_->begin_frame(report, options_);  // sizing only, no GL state touched
+  if (needs_count_) count_and_size(gather, report);  // an automatic container's first frame on this screen
+  technique_->begin_frame(report, options_);         // sizing only, no GL state touched
   for (;;) {
     run_gather(gather, calls, report);
     if (options_.capture && report.captured > capture_capacity_) {
@@ -218,7 +327,7 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       continue;
     }
     report.attempts.push_back({report.table, report.counters, technique_->capacity()});
-    const std::uint32_t allowed = std::max<std::uint32_t>(options_.max_attempts, technique_->grows_at_once() ? 2 : 1);
+    const std::uint32_t allowed = std::max<std::uint32_t>(*options_.max_attempts, technique_->grows_at_once() ? 2 : 1);
     if (report.counters.failures() == 0 || report.attempts.size() >= allowed) break;
     // Failures that are all calls cut short (contention or the driver, not
     // the technique's size): the same buffers, emptied, again.
@@ -260,18 +369,7 @@ double GlFrameDriver::run_fill(const std::function<void()>& gather, FrameReport&
   // A pass of the host's scene that inserts nothing (the k-buffer's
   // occupancy fill), then the technique's own pass over what it gathered.
   const auto t0 = std::chrono::steady_clock::now();
-  gather_phase_ = 1;
-  write_params();
-  {
-    const GlStateGuard fill_guard(bindings());
-    bind();
-    run_passes(GlPassStage::Gather, report);
-    gather();
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    bind();  // the host's gather may have bound its own buffers at our points
-    run_passes(GlPassStage::Fill, report);
-  }
-  gather_phase_ = 0;
+  run_phase_gather(HABUFFER_PHASE_FILL, gather, report, [&] { run_passes(GlPassStage::Fill, report); });
   if (options_.finish_timing) glFinish();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -373,6 +471,7 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
 
 std::vector<std::uint32_t> GlFrameDriver::read_counters(FrameReport& report) const {
   std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
+  check_foreign_calls(words);
   std::uint64_t tally[HABUFFER_GPU_COUNTER_COUNT] = {};
   for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
     for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
@@ -398,6 +497,7 @@ PassTiming GlFrameDriver::resolve(glm::vec3 background, unsigned background_text
 PassTiming GlFrameDriver::resolve_over() { return run_resolve(glm::vec3(0.0f), 0, true); }
 
 PassTiming GlFrameDriver::run_resolve(glm::vec3 background, unsigned background_texture, bool over) {
+  technique_->check_context(over ? "resolve_over" : "resolve");
   const GlStateGuard guard(bindings());
   const GLenum status = glCheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
@@ -426,6 +526,7 @@ std::uint64_t GlFrameDriver::read_deferred_count(int which) const {
 }
 
 std::vector<Fragment> GlFrameDriver::read_capture() const {
+  technique_->check_context("read_capture");
   const std::uint64_t n = std::min(read_capture_count(), capture_capacity_);
   std::vector<Fragment> out(n);
   if (n > 0)

@@ -1,3 +1,4 @@
+#include "habuffer/gl/gl_context.h"
 #include "habuffer/gl/gl_info.h"
 
 #include <algorithm>
@@ -28,6 +29,7 @@ std::string to_string(AtomicMode mode) {
 }
 
 GlInfo query_gl_info() {
+  require_context("query_gl_info");
   GlInfo i;
   i.vendor = gl_string(GL_VENDOR);
   i.renderer = gl_string(GL_RENDERER);

@@ -148,11 +148,22 @@ std::string spatial_lookup_part(const GlSpatialBindings& bindings, bool overrida
   return s + kShLookup;
 }
 
+namespace {
+
+// The context check before the delegated constructor's first GL query.
+const spatial::SpatialHash& on_a_context(const spatial::SpatialHash& table) {
+  require_context("GlSpatialHash");
+  return table;
+}
+
+}  // namespace
+
 GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings)
-    : GlSpatialHash(table, bindings, query_gl_info()) {}
+    : GlSpatialHash(on_a_context(table), bindings, query_gl_info()) {}
 
 GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings, const GlInfo& info)
-    : bindings_(bindings),
+    : context_("GlSpatialHash"),
+      bindings_(bindings),
       config_(table.config()),
       fold_(table.domain()),
       mode_(mode_for_context(info)),
@@ -180,6 +191,7 @@ GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings
 
 spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, std::span<const std::uint32_t> stored,
                                             std::vector<Dropped>& dropped) {
+  context_.check("GlSpatialHash::insert");
   check_rule(config_.rule);
   if (!stored.empty() && stored.size() != keys.size())
     throw std::invalid_argument("spatial hash: " + std::to_string(keys.size()) + " keys but " +
@@ -197,6 +209,7 @@ spatial::InsertReport GlSpatialHash::insert(std::span<const glm::uvec3> keys, st
 
 spatial::InsertReport GlSpatialHash::insert(unsigned keys, unsigned stored, std::uint32_t count,
                                             std::vector<Dropped>& dropped) {
+  context_.check("GlSpatialHash::insert");
   check_rule(config_.rule);
   check_batch(count);
   resume_passes_ = 0;
@@ -292,6 +305,7 @@ spatial::InsertReport GlSpatialHash::insert_records(const GlStorage& input, std:
 
 std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<std::uint32_t> stored,
                                   std::span<std::uint8_t> found) const {
+  context_.check("GlSpatialHash::find");
   if (stored.size() != keys.size() || found.size() != keys.size())
     throw std::invalid_argument("spatial hash: find of " + std::to_string(keys.size()) + " keys into " +
                                 std::to_string(stored.size()) + " stored values and " + std::to_string(found.size()) +
@@ -326,6 +340,7 @@ std::uint64_t GlSpatialHash::find(std::span<const glm::uvec3> keys, std::span<st
 }
 
 void GlSpatialHash::bind_for_lookup(const GlSpatialBindings& bindings) const {
+  context_.check("GlSpatialHash::bind_for_lookup");
   bindings.validate(bindings_);
   bind_at(GL_SHADER_STORAGE_BUFFER, bindings.table, table_.id());
   bind_at(GL_SHADER_STORAGE_BUFFER, bindings.max_age, max_age_.id());
@@ -342,12 +357,19 @@ void GlSpatialHash::bind_table() const {
 }
 
 void GlSpatialHash::clear() {
+  context_.check("GlSpatialHash::clear");
   table_.zero();
   max_age_.zero();
 }
 
-std::vector<std::uint64_t> GlSpatialHash::slots() const { return table_.read<std::uint64_t>(slot_count_); }
-std::vector<std::uint32_t> GlSpatialHash::max_age() const { return max_age_.read<std::uint32_t>(cell_count_); }
+std::vector<std::uint64_t> GlSpatialHash::slots() const {
+  context_.check("GlSpatialHash::slots");
+  return table_.read<std::uint64_t>(slot_count_);
+}
+std::vector<std::uint32_t> GlSpatialHash::max_age() const {
+  context_.check("GlSpatialHash::max_age");
+  return max_age_.read<std::uint32_t>(cell_count_);
+}
 
 spatial::InsertReport gl_insert(spatial::SpatialHash& table, std::span<const glm::uvec3> keys,
                                 std::span<const std::uint32_t> values) {

@@ -66,9 +66,14 @@ void GlStateGuard::set_viewport(GLsizei width, GLsizei height) {
 }
 
 GLuint64 query_result(GLuint query) {
-  glBindBuffer(GL_QUERY_BUFFER, 0);
+  GLint bound = 0;
+  glGetIntegerv(GL_QUERY_BUFFER_BINDING, &bound);
+  if (bound != 0) glBindBuffer(GL_QUERY_BUFFER, 0);
   GLuint64 v = 0;
   glGetQueryObjectui64v(query, GL_QUERY_RESULT, &v);
+  // Put back: a timer read between two guards (the reset pass's clock)
+  // must not leave the next gather without the host's query buffer.
+  if (bound != 0) glBindBuffer(GL_QUERY_BUFFER, static_cast<GLuint>(bound));
   return v;
 }
 

@@ -71,7 +71,7 @@ class GlStateGuard {
 };
 
 // Reads a query's 64-bit result into memory whatever GL_QUERY_BUFFER the
-// host bound (call inside a GlStateGuard, which restores that binding).
+// host bound, and binds the host's query buffer again.
 GLuint64 query_result(GLuint query);
 
 }  // namespace habuffer::gl

@@ -9,7 +9,7 @@
 namespace habuffer::gl {
 
 GlTechnique::GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen)
-    : technique_(technique), mode_(mode), bindings_(bindings), screen_(screen) {
+    : context_("making a GPU container"), technique_(technique), mode_(mode), bindings_(bindings), screen_(screen) {
   // Before any container compiles a shader with them: a point beyond the
   // context's limits is one line naming it, not a compiler's log.
   bindings_.validate();

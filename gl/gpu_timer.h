@@ -9,6 +9,7 @@
 #include <epoxy/gl.h>
 
 #include "gl_state_guard.h"
+#include "habuffer/gl/gl_context.h"
 
 #include <chrono>
 #include <utility>
@@ -18,7 +19,9 @@ namespace habuffer::gl {
 class GpuTimer {
  public:
   GpuTimer() { glCreateQueries(GL_TIMESTAMP, 2, queries_); }
-  ~GpuTimer() { glDeleteQueries(2, queries_); }
+  ~GpuTimer() {
+    if (made_on_.current()) glDeleteQueries(2, queries_);  // not another context's names (gl_context.h)
+  }
   GpuTimer(const GpuTimer&) = delete;
   GpuTimer& operator=(const GpuTimer&) = delete;
 
@@ -32,6 +35,7 @@ class GpuTimer {
 
  private:
   GLuint queries_[2] = {0, 0};
+  MadeOn made_on_;
 };
 
 // Wall clock and GPU timestamps around one pass. With `finish`, the clock

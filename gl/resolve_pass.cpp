@@ -12,7 +12,9 @@ ResolvePass::ResolvePass(const std::string& fragment_source, const std::string& 
   glCreateVertexArrays(1, &vertex_array_);
 }
 
-ResolvePass::~ResolvePass() { glDeleteVertexArrays(1, &vertex_array_); }
+ResolvePass::~ResolvePass() {
+  if (made_on_.current()) glDeleteVertexArrays(1, &vertex_array_);  // not another context's (gl_context.h)
+}
 
 std::pair<double, double> ResolvePass::run(Extent screen, glm::vec3 background, unsigned background_texture,
                                            bool finish) {

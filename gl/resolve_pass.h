@@ -39,6 +39,7 @@ class ResolvePass {
   ShaderProgram program_;
   GpuTimer timer_;
   unsigned vertex_array_ = 0;
+  MadeOn made_on_;
 };
 
 }  // namespace habuffer::gl

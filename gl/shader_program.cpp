@@ -80,14 +80,17 @@ ShaderProgram ShaderProgram::graphics(const std::string& vertex, const std::stri
   return ShaderProgram(link({vs, fs}, name));
 }
 
-ShaderProgram::~ShaderProgram() {
-  if (id_ != 0) glDeleteProgram(id_);
+ShaderProgram::~ShaderProgram() { release(); }
+void ShaderProgram::release() {
+  if (id_ != 0 && made_on_.current()) glDeleteProgram(id_);
+  id_ = 0;
 }
-ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept : id_(std::exchange(o.id_, 0)) {}
+ShaderProgram::ShaderProgram(ShaderProgram&& o) noexcept : id_(std::exchange(o.id_, 0)), made_on_(o.made_on_) {}
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& o) noexcept {
   if (this != &o) {
-    if (id_ != 0) glDeleteProgram(id_);
+    release();
     id_ = std::exchange(o.id_, 0);
+    made_on_ = o.made_on_;
   }
   return *this;
 }

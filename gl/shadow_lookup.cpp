@@ -67,6 +67,7 @@ std::string light_lookup_shader_head(const GlLightBindings& bindings, AtomicMode
 GlShadowLookup::GlShadowLookup(const GlHaTable& light, const GlLightMapping& mapping, std::uint32_t bias,
                                const GlBindings& view, const GlLightBindings& bindings)
     : light_(light), bindings_(bindings), bias_(bias) {
+  light.check_context("GlShadowLookup");
   if (light.config().layout != Layout::L64)
     throw std::invalid_argument("a light buffer of L32 records carries no opacity: build it with L64 records");
   bindings_.validate(view);
@@ -82,6 +83,7 @@ void GlShadowLookup::check_depths() const {
 }
 
 void GlShadowLookup::update(const GlLightMapping& mapping) {
+  light_.check_context("GlShadowLookup::update");
   mapping_ = mapping;
   const BufferConfig& c = light_.config();
   written_table_ = c.table;
@@ -103,6 +105,7 @@ void GlShadowLookup::update(const GlLightMapping& mapping) {
 }
 
 void GlShadowLookup::bind() {
+  light_.check_context("GlShadowLookup::bind");
   check_depths();
   if (light_.config().table != written_table_ || light_.config().screen != written_screen_) update(mapping_);
   light_.bind_for_lookup(bindings_.table, bindings_.max_age, bindings_.offsets);

@@ -1,3 +1,4 @@
+#include "habuffer/gl/gl_context.h"
 #include "habuffer/gl/technique_registry.h"
 
 #include <array>
@@ -49,6 +50,7 @@ const char* mode_prelude(AtomicMode mode) { return mode == AtomicMode::Emulated6
 
 std::unique_ptr<GlTechnique> make_gl_technique(const TechniqueConfig& c, const OffsetSource& offsets, AtomicMode mode,
                                                const GlBindings& bindings, std::uint32_t clear_tile) {
+  require_context("make_gl_technique");  // before any GL call: one line, not an abort in libepoxy
   return gl_descriptor(c.technique).make(c, offsets, mode, bindings, clear_tile);
 }
 

@@ -10,13 +10,6 @@
 
 namespace habuffer {
 
-Extent initial_table(const RenderSettings& s, std::uint64_t fragments) {
-  const double target = (s.policy.grow_at + s.policy.shrink_at) / 2.0;
-  return table_for_load(s.config.screen, fragments, target);
-}
-
-std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments) { return s.policy.automatic(fragments); }
-
 namespace {
 
 InsertOptions frame_insert_options(const RenderSettings& s) {
@@ -33,16 +26,9 @@ CpuBuilder::CpuBuilder(const RenderSettings& settings)
       config_(technique_config(settings)),
       frames_(settings.offsets, frame_insert_options(settings), settings.policy, frame_attempts(settings)) {}
 
-// Both paths size an automatic container from the counting pass: a table
-// at the middle of SPEC 8's band, a pool that holds the fragments at grow_at.
-TechniqueConfig automatic_config(const RenderSettings& s, TechniqueConfig c, std::uint64_t fragments) {
-  if (uses_table(c.technique)) c.buffer.table = initial_table(s, fragments);
-  if (uses_pool(c.technique)) c.pool_capacity = initial_pool(s, fragments);
-  return c;
-}
-
 void CpuBuilder::size_for(std::uint64_t fragments) {
-  if (automatic_size(settings_)) config_ = automatic_config(settings_, config_, fragments);
+  // The GL frame driver sizes its automatic containers by the same rule (TechniqueConfig::sized_for).
+  if (automatic_size(settings_)) config_ = config_.sized_for(settings_.policy, fragments);
 }
 
 const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, FrameStats& fs) {

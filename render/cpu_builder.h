@@ -39,15 +39,6 @@ class CpuBuilder {
   std::optional<std::uint64_t> previous_use_;  // stored records (HA) or nodes asked for (lists)
 };
 
-/// An automatic HA table's first size: the fragments at the middle of the
-/// policy's band of loads ((grow_at + shrink_at) / 2), at least the screen.
-Extent initial_table(const RenderSettings& s, std::uint64_t fragments);
-/// An automatic pool's first size: the fragments at the policy's grow_at use (at least 1 node).
-std::uint64_t initial_pool(const RenderSettings& s, std::uint64_t fragments);
-/// `c` with the automatic container's first size for `fragments` fragments
-/// (the counting pass): initial_table for a hash table, initial_pool for a
-/// node pool; both paths size so (issue 24 fixed the CPU's sorted lists).
-TechniqueConfig automatic_config(const RenderSettings& s, TechniqueConfig c, std::uint64_t fragments);
 
 }  // namespace habuffer
 

@@ -16,9 +16,20 @@
 namespace habuffer {
 namespace {
 
+// The technique as the frame driver sizes it: an automatic table or pool
+// left unset, so the driver adapts it (render counts frame 0 itself, with
+// the per-pixel counts its AMAX check reads, and hands the count to size_for).
+TechniqueConfig gpu_technique_config(const RenderSettings& s) {
+  TechniqueConfig c = technique_config(s);
+  if (automatic_size(s)) {
+    if (uses_table(c.technique)) c.buffer.table = Extent{};
+    if (uses_pool(c.technique)) c.pool_capacity = 0;
+  }
+  return c;
+}
+
 gl::GlFrameOptions gpu_frame_options(const RenderSettings& s) {
   gl::GlFrameOptions o;
-  o.adaptive = automatic_size(s);
   o.policy = s.policy;
   o.max_attempts = frame_attempts(s);
   o.capture = s.keep_fragments;
@@ -29,14 +40,13 @@ gl::GlFrameOptions gpu_frame_options(const RenderSettings& s) {
 class GpuFrames final : public FramePath {
  public:
   GpuFrames(const RenderSettings& s, gl::AtomicMode mode)
-      : settings_(s), mode_(mode), driver_(gl::make_gl_technique(technique_config(s), s.offsets, mode), gpu_frame_options(s)), target_(s.config.screen) {}
+      : settings_(s), mode_(mode), driver_(gl::make_gl_technique(gpu_technique_config(s), s.offsets, mode), gpu_frame_options(s)), target_(s.config.screen) {}
 
   gl::GlFrameDriver& driver() override { return driver_; }
 
   void size_for(std::uint64_t fragments, RenderResult& result) override {
     if (!automatic_size(settings_)) return;
-    const TechniqueConfig wanted = automatic_config(settings_, technique_config(settings_), fragments);
-    result.growth_limited = driver_.technique().fit_automatic_size(wanted) || result.growth_limited;
+    result.growth_limited = driver_.size_for(fragments) || result.growth_limited;
   }
 
   void complete_frame(const gl::FrameReport& report, SceneRenderer& renderer, FrameStats& fs,

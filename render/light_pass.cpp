@@ -135,8 +135,7 @@ bool LightPass::gather() {
       if ((stats_.too_deep = pixel_counted_beyond(g.renderer.read_pixel_fragments(), settings_.light.size,
                                                   light_config(settings_).record_layout().max_age())))
         g.buffer.limit_attempts(1);
-    const ResizePolicy policy;
-    g.buffer.resize(table_for_load(settings_.light.size, fragments, (policy.grow_at + policy.shrink_at) / 2.0));
+    g.buffer.resize(ResizePolicy{}.initial_table(settings_.light.size, fragments));  // SPEC 8's first table
   }
   const gl::FrameReport report =
       g.buffer.frame([&] { g.renderer.gather(camera); }, [&] { return g.renderer.inserted(); });

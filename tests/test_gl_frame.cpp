@@ -139,7 +139,7 @@ TEST(GlFrame, LosslessModeRegathersIntoTheCpuPathsTablesAndLosesNothing) {
     o.max_attempts = 12;
     gl::GlHaBuffer gpu(c, test::random_offsets(2), mode, o);
     const gl::FrameReport r = gl::ComputeInserter(gpu).insert(f);
-    const BuildResult cpu = build(c, test::random_offsets(2), f, {}, o.policy, o.max_attempts);
+    const BuildResult cpu = build(c, test::random_offsets(2), f, {}, o.policy, *o.max_attempts);
     ASSERT_GT(r.attempts.size(), 1u) << "the stream should fail in the first table";
     EXPECT_GT(r.attempts.front().counters.failures(), 0u);
     EXPECT_TRUE(r.lossless());

@@ -783,10 +783,11 @@ TEST(GlHost, ResolveOverBlendsOntoTheHostsFramebuffer) {
 
 // pool_capacity 0 on the GPU is the automatic pool: one node per pixel at
 // first, the first frame (three overlapping triangles: more fragments than
-// pixels) dropped and was gathered again at once into a pool of the nodes it
-// asked for, without lossless mode, and renders the HA-buffer's image; the
-// next frame fits in one attempt.
-TEST(GlHost, AnAutomaticPoolHoldsTheFrameWithoutLosslessMode) {
+// pixels) is counted before its gather and the pool (or the HA-buffer's
+// table) sized from the count by SPEC 8's rule, so nothing drops and one
+// gather suffices, without lossless mode, and renders the HA-buffer's
+// image; the next frame runs no counting gather and fits in one attempt.
+TEST(GlHost, AnAutomaticContainerIsSizedFromACountingGatherBeforeItsFirstFrame) {
   HostContext host;
   const HostLowBuffers host_buffers;
   const HostRaster raster;
@@ -796,20 +797,28 @@ TEST(GlHost, AnAutomaticPoolHoldsTheFrameWithoutLosslessMode) {
     SCOPED_TRACE(to_string(t));
     TechniqueConfig c;
     c.technique = t;
-    c.buffer = test::config({24, 24}, {64, 64}, test::layout_of(mode), 8);
+    c.buffer = test::config({24, 24}, {}, test::layout_of(mode), 8);  // the HA-buffer's table automatic
     c.pool_capacity = 0;  // the default: automatic
     gl::GlFrameDriver gpu(gl::make_gl_technique(c, test::random_offsets(5), mode));
     const auto program = gl::ShaderProgram::graphics(
         kHostVertex, gpu.module_source(gl::ShaderStage::Fragment) + kHostDeclarations + kHostMain, "host gather");
     gl::FrameReport report;
+    ASSERT_TRUE(gpu.counts_next_frame());
     images.push_back(raster.render(gpu, program, report));
+    EXPECT_FALSE(gpu.counts_next_frame());
     EXPECT_EQ(report.counters.failures(), 0u);
-    if (t == Technique::Ha) continue;
-    EXPECT_EQ(report.attempts.size(), 2u);
-    EXPECT_EQ(report.attempts.front().capacity, 24u * 24u);
-    EXPECT_GT(report.attempts.front().counters.dropped_pool, 0u);
+    ASSERT_TRUE(report.counted_fragments.has_value());
+    EXPECT_EQ(*report.counted_fragments, report.counters.fragments);  // every call on the screen
+    EXPECT_GT(*report.counted_fragments, 24u * 24u);                  // more than the screen holds
+    EXPECT_EQ(report.attempts.size(), 1u);
+    const ResizePolicy policy;
+    if (t == Technique::Ha)
+      EXPECT_EQ(table_of(gpu.technique()), policy.initial_table({24, 24}, *report.counted_fragments));
+    else
+      EXPECT_EQ(report.attempts.front().capacity, policy.automatic(*report.counted_fragments));
     EXPECT_TRUE(images.back() == images.front());
     (void)raster.render(gpu, program, report);
+    EXPECT_FALSE(report.counted_fragments.has_value());
     EXPECT_EQ(report.attempts.size(), 1u);
     EXPECT_EQ(report.counters.failures(), 0u);
   }
@@ -1012,6 +1021,9 @@ TEST(GlHost, EveryTechniqueResizedInPlaceRendersWhatAFreshContainerOfTheNewScree
         EXPECT_EQ(gpu.technique().capacity(), made->capacity());
       }
       const std::vector<glm::vec4> image = raster.render(gpu, program, s, report);
+      // An automatic container counts the new screen's first frame and is sized from it.
+      EXPECT_EQ(report.counted_fragments.has_value(), gpu.technique().sized_automatically());
+      table = table_of(gpu.technique());
       EXPECT_EQ(report.off_screen, 0u);
       EXPECT_TRUE(report.lossless());
       EXPECT_GT(report.counters.stored() + report.counters.blended, 0u);

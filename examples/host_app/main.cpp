@@ -113,9 +113,9 @@ int main() {
     check(mode.has_value(), "this OpenGL has no 64-bit shader integers");                    // [habuffer]
     hb::BufferConfig config;                                                                  // [habuffer]
     config.screen = {kWidth, kHeight};                                                        // [habuffer]
+    // No table given: the first frame is counted and sizes it, later frames adapt it (SPEC 8),
+    // and a frame that drops anything is gathered again into a grown table (lossless).
     hb::gl::GlFrameOptions options;                                                           // [habuffer]
-    options.adaptive = true;      // the table follows the fragment count            // [habuffer]
-    options.max_attempts = 4;     // lossless: a frame that drops anything is redone // [habuffer]
     hb::gl::GlHaBuffer oit(config, hb::OffsetSource{}, *mode, options);                      // [habuffer]
     const GLuint panes = link_program(kVertex, oit.module_source(hb::gl::ShaderStage::Fragment) + kPaneMain);  // [habuffer]
 

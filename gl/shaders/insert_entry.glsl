@@ -5,12 +5,28 @@
 // outside the screen cannot be inserted: it counts as invalid and is not
 // captured (a replay could not insert it either). Returns the outcome, or
 // HABUFFER_PENDING for a call deferred to the resume pass (counted there), or
-// HABUFFER_UNCOUNTED in a pass that inserts nothing (the k-buffer's fill pass).
+// HABUFFER_UNCOUNTED in a pass that inserts nothing (the k-buffer's fill pass, the
+// frame driver's counting gather).
 uint habuffer_insert(uvec2 pixel, float depth, uint rgba) {
 #ifdef HABUFFER_STAGE_FRAGMENT
   // Helper invocations' stores and atomics have no effect: skip the work.
   if (gl_HelperInvocation) return HABUFFER_INVALID;
 #endif
+#ifdef HABUFFER_MODULE_ID
+  // A shader built from another driver's module_source() (another technique,
+  // mode, binding points or variant): nothing inserted, the call counted for
+  // the driver to refuse the frame (the installed files define no fingerprint).
+  if (habuffer_module_id != HABUFFER_MODULE_ID) {
+    atomicAdd(ha_counters[HABUFFER_COUNTER_FOREIGN], 1u);
+    return HABUFFER_INVALID;
+  }
+#endif
+  // The frame driver's counting gather: every on-screen call counted once,
+  // nothing inserted or captured (it sizes an automatic container).
+  if (habuffer_gather_phase == HABUFFER_PHASE_COUNT) {
+    if (all(lessThan(pixel, habuffer_screen_size))) ha_counter_add(pixel, HABUFFER_COUNTER_COUNTED, 1u);
+    return HABUFFER_UNCOUNTED;
+  }
 #ifdef HABUFFER_TECHNIQUE_BEGIN
   HABUFFER_TECHNIQUE_BEGIN();  // the blended baselines: no contribution unless the call blends
 #endif

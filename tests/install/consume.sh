@@ -127,6 +127,7 @@ pkg-config --exists habuffer-core habuffer-gl || fail "pkg-config does not find 
 c++ -O1 "$source/examples/cpu_only/main.cpp" -o "$work/cpu_only_pc" $(pkg-config --cflags --libs habuffer-core)
 "$work/cpu_only_pc" >/dev/null || fail "cpu_only built through pkg-config failed"
 [ -d "$(pkg-config --variable=glsldir habuffer-gl)" ] || fail "habuffer-gl's glsldir does not exist"
+case "$(pkg-config --variable=glsldir habuffer-gl)" in *//*) fail "habuffer-gl's glsldir holds //";; esac
 
 echo "== license"
 grep -q "^MIT License" "$prefix/share/doc/habuffer/LICENSE" || fail "the license is not installed in share/doc/habuffer"

@@ -31,6 +31,11 @@ struct ResizePolicy {
   /// grow_at use (so one pool holds them all), at least 1. The library,
   /// render and the CLI size every automatic pool so.
   [[nodiscard]] std::uint64_t automatic(std::uint64_t records) const;
+  /// An automatic table's first size for `records` records on `screen`:
+  /// the records at the middle of the band ((grow_at + shrink_at) / 2),
+  /// the screen's aspect kept, sides rounded up, at least the screen.
+  /// Throws std::invalid_argument beyond 2^32 - 1 slots.
+  [[nodiscard]] Extent initial_table(Extent screen, std::uint64_t records) const;
   /// Lossless growth of a capacity: the largest of `needed`, capacity times (1 + step) rounded up, and capacity + 1.
   [[nodiscard]] std::uint64_t grown(std::uint64_t capacity, std::uint64_t needed) const;
   /// Area times (1 - step), aspect ratio kept, sides rounded up, at least the screen.

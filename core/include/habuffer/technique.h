@@ -126,6 +126,13 @@ struct TechniqueConfig : TechniqueChoice {
   /// more); the k-buffer's K doubled.
   [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
                                       std::uint32_t most_arrived) const;
+  /// An automatic container's first size for a frame of `fragments`
+  /// fragments (the counting pass, SPEC 8): the HA-buffer's table at the
+  /// middle of `policy`'s band of loads (ResizePolicy::initial_table), a
+  /// pool at its grow_at use (ResizePolicy::automatic); K and the other
+  /// fields as they are. Both paths, `render` and the GL frame driver size
+  /// from it. Throws std::invalid_argument beyond 2^32 - 1 slots.
+  [[nodiscard]] TechniqueConfig sized_for(const ResizePolicy& policy, std::uint64_t fragments) const;
   /// This configuration with the choice's fields its technique does not
   /// read at their defaults: configurations whose relevant() parts are equal
   /// make the same container (the buffer's fields are compared as they are).

@@ -81,18 +81,31 @@
 // the screen must: a driver that ends an invocation early leaves the count
 // short, never silently); the calls whose pixel lay outside the screen
 // (counted invalid too; a loss: a host drawing beyond the screen it
-// configured, e.g. after a window resize).
+// configured, e.g. after a window resize); the calls of a counting gather
+// (habuffer_gather_phase HABUFFER_PHASE_COUNT: on-screen calls, nothing
+// inserted), which size an automatic container before its first frame.
 #define HABUFFER_COUNTER_SLOT_WRITES 11u
 #define HABUFFER_COUNTER_MERGED 12u
 #define HABUFFER_COUNTER_SORT_DONE 13u
 #define HABUFFER_COUNTER_OFF_SCREEN 14u
-#define HABUFFER_GPU_COUNTER_COUNT 15u
+#define HABUFFER_COUNTER_COUNTED 15u
+#define HABUFFER_GPU_COUNTER_COUNT 16u
+// The parameter habuffer_gather_phase: an inserting gather, the k-buffer's
+// occupancy fill (inserts nothing), the frame driver's counting gather
+// (counts the calls, inserts nothing).
+#define HABUFFER_PHASE_INSERT 0u
+#define HABUFFER_PHASE_FILL 1u
+#define HABUFFER_PHASE_COUNT 2u
 // Words after the stripes, on a cache line of their own, that are not sums:
 // the linked lists' node counter (one atomic add per fragment, the
 // technique's own hot spot) and the most fragments a fixed-array pixel
 // received when some pixel overflowed.
 #define HABUFFER_COUNTER_NODES (HABUFFER_COUNTER_STRIPES * HABUFFER_COUNTER_STRIDE)
 #define HABUFFER_COUNTER_MOST_ARRIVED (HABUFFER_COUNTER_NODES + 1u)
+// Insert calls from a shader built from another frame driver's module
+// (its HABUFFER_MODULE_ID is not the parameter habuffer_module_id): nothing
+// inserted; the driver refuses the frame naming the count.
+#define HABUFFER_COUNTER_FOREIGN (HABUFFER_COUNTER_NODES + 3u)  // + 2 is the paged lists' wasted pages
 #define HABUFFER_COUNTER_WORDS (HABUFFER_COUNTER_NODES + HABUFFER_COUNTER_STRIDE)
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.

@@ -22,7 +22,7 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_UINT(ll_pool_capacity)        // pool techniques: nodes
   HABUFFER_PARAM_UINT(habuffer_layers)               // fixed arrays, k-buffer: K
   HABUFFER_PARAM_UINT(habuffer_saturation)           // HA-buffer, sorted lists: 1: saturation depth (with early cull)
-  HABUFFER_PARAM_UINT(habuffer_gather_phase)         // k-buffer: 1 during the occupancy fill pass, else 0
+  HABUFFER_PARAM_UINT(habuffer_gather_phase)         // HABUFFER_PHASE_*: 0 inserting, 1 the k-buffer's fill, 2 counting
   HABUFFER_PARAM_UINT(kb_occupancy_culling)            // k-buffer: 1: occupancy-map culling
   HABUFFER_PARAM_UINT(kb_occupancy_words)      // k-buffer: 32-bit words of a pixel's map
   HABUFFER_PARAM_UINT(kb_occupancy_near_code)  // k-buffer: the depth code of the range's near end
@@ -37,5 +37,5 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_FLOAT(habuffer_light_b)
   HABUFFER_PARAM_FLOAT(habuffer_light_c)
   HABUFFER_PARAM_FLOAT(habuffer_light_d)
-  HABUFFER_PARAM_UINT(habuffer_unused_1)             // (block size a multiple of 16 bytes, as std140 rounds it)
+  HABUFFER_PARAM_UINT(habuffer_module_id)           // the frame driver's module fingerprint (HABUFFER_MODULE_ID of its module_source)
 HABUFFER_PARAMS_END

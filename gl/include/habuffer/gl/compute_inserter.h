@@ -12,6 +12,7 @@
 #include "habuffer/fragment.h"
 #include "habuffer/gl/gl_frame_driver.h"
 #include "habuffer/gl/shader_program.h"
+#include "habuffer/gl/gl_context.h"
 
 namespace habuffer::gl {
 
@@ -52,6 +53,7 @@ class ComputeInserter {
   ShaderProgram program_;
   bool points_ = false;         ///< the stream is drawn as points (the blended baselines)
   unsigned vertex_array_ = 0;   ///< the empty vertex array the point draw needs
+  MadeOn made_on_;              ///< the context its names belong to
   struct Chunk {
     unsigned buffer;
     std::size_t count;

@@ -17,7 +17,11 @@ class EglContext {
   /// Creates the context and makes it current on this thread. Throws GlError
   /// with one line saying what was missing (EGL, a display, GL 4.5 core).
   explicit EglContext(std::optional<int> device = std::nullopt);
-  /// Releases and destroys the context, then terminates the display.
+  /// Releases the context where it is current on this thread and destroys
+  /// it. The display is terminated only after the last EglContext on it,
+  /// and only if the library initialised it: a display the host had
+  /// initialised first (its own contexts on the same EGL device) stays
+  /// initialised, so the host's contexts keep working.
   ~EglContext();
   EglContext(const EglContext&) = delete;
   EglContext& operator=(const EglContext&) = delete;

@@ -29,9 +29,20 @@ enum class DepthConvention {
 struct GlFrameOptions {
   /// Resize by `policy` from the previous frame's count (SPEC 8): the
   /// HA-buffer's table, the linked lists' node pool (fixed arrays keep K).
+  /// A container made without a size (the HA-buffer's table or the pool
+  /// not given: GlTechnique::sized_automatically) adapts whatever this says,
+  /// after the frame driver sized it from a counting gather before its first
+  /// frame; this makes a container of a given size adapt from that size.
   bool adaptive = false;
-  ResizePolicy policy;    ///< also the growth step of lossless mode
-  std::uint32_t max_attempts = 1;  ///< above 1: lossless mode, gather again into a grown table on failure
+  ResizePolicy policy;    ///< also the growth step of lossless mode and the counted size's band
+  /// Gathers a frame may take: above 1, lossless mode, a frame that dropped
+  /// fragments gathered again into a grown container. Unset: 1 for a
+  /// container of a given size, kAutomaticAttempts for one sized
+  /// automatically (lossless from its first frame). The driver's options()
+  /// hold the resolved count.
+  std::optional<std::uint32_t> max_attempts;
+  /// The attempts of an automatically sized container when max_attempts is unset.
+  static constexpr std::uint32_t kAutomaticAttempts = 16;
   std::uint32_t lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;  ///< emulated64: attempts before a call is cut short
   /// Calls cut short (a lock given up, the driver's loop budget spent: never
   /// the table's fault) are deferred with their carried state and resumed by
@@ -92,6 +103,14 @@ struct FrameReport {
   std::uint64_t nodes_requested = 0;  ///< linked lists: nodes the final gather asked for (dropped ones included)
   std::uint32_t most_arrived = 0;     ///< fixed arrays: the most fragments a pixel received, when some pixel overflowed
   bool resized = false;     ///< adaptive sizing changed the table before the gather
+  /// Fragments the counting gather found (on-screen insert calls), when this
+  /// frame ran one: an automatic container's first frame, and the first
+  /// after a resize_screen. The container was sized from it before the gather.
+  std::optional<std::uint64_t> counted_fragments;
+  /// Whether this context's limits gave the counted container less than the
+  /// count asked for (the frame may then drop fragments; lossless growth is
+  /// bounded by the same limits).
+  bool count_limited = false;
   /// Whether this frame began with the clear pass (every frame after one that
   /// gathered); its occlusion count goes to a query buffer and is read at the
   /// next frame's start, one frame late, without a stall (SPEC 8).
@@ -124,6 +143,7 @@ struct FrameReport {
   std::uint32_t capture_regathers = 0;  ///< gathers repeated because the capture buffer overflowed
   std::uint64_t captured = 0;           ///< fragments in the capture buffer
   PassTiming clear;   ///< the clear pass (zero on the first frame)
+  PassTiming count;   ///< the counting gather and the sizing after it (zero without one)
   /// The buffer resets before the final gather (tallies, the max-age table,
   /// list heads, ...), with finish_timing waited for before the gather's
   /// clock starts: so `gather` spans the gather alone, not work queued before it.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "habuffer/extent.h"
+#include "habuffer/gl/gl_context.h"
 
 namespace habuffer::gl {
 
@@ -66,8 +67,10 @@ class GlStorage {
 
  private:
   void read_into(void* out, std::uint64_t bytes) const;
+  void release();  // deletes the buffer where its context is current (gl_context.h)
   unsigned id_ = 0;
   std::uint64_t bytes_ = 0;
+  MadeOn made_on_;
 };
 
 /// A 2D texture of one level the library allocated and owns, knowing its
@@ -89,8 +92,10 @@ class GlTexture {
   [[nodiscard]] std::uint64_t bytes() const { return bytes_; }
 
  private:
+  void release();  // deletes the texture where its context is current (gl_context.h)
   unsigned id_ = 0;
   std::uint64_t bytes_ = 0;
+  MadeOn made_on_;
 };
 
 /// The bytes of every object listed: a container's memory_bytes().

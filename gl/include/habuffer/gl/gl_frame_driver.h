@@ -64,7 +64,23 @@ class GlFrameDriver {
   [[nodiscard]] bool needs_call_count() const { return needs_call_count_; }
   /// Caps the attempts per frame from now on (at least 1): a caller that
   /// knows growth cannot help (a pixel deeper than AMAX) stops it.
-  void limit_attempts(std::uint32_t attempts) { options_.max_attempts = std::max(1u, std::min(options_.max_attempts, attempts)); }
+  void limit_attempts(std::uint32_t attempts) {
+    options_.max_attempts = std::max(1u, std::min(*options_.max_attempts, attempts));
+  }
+
+  /// Whether the next frame() begins with a counting gather: the container
+  /// is sized automatically (GlTechnique::sized_automatically) and has not
+  /// been sized for its screen yet (its first frame, the first after a
+  /// resize_screen), and no size_for() came first.
+  [[nodiscard]] bool counts_next_frame() const { return needs_count_; }
+  /// Sizes an automatically sized container for a frame of `fragments`
+  /// fragments (TechniqueConfig::sized_for: the table at the middle of the
+  /// policy's band, a pool at its grow_at use; the largest this context
+  /// holds), as the counting gather does: a host that counted its own
+  /// fragments saves that gather. Returns whether this context's limits made
+  /// it smaller. Throws std::invalid_argument for a container of a given
+  /// size, GlError beyond the GPU path's 32-bit counts.
+  bool size_for(std::uint64_t fragments);
 
   /// A window resize: the technique's screen changed in place
   /// (GlTechnique::resize_screen: every per-pixel buffer made anew, the
@@ -83,7 +99,11 @@ class GlFrameDriver {
   /// light_depth_map refuses, and then changes nothing.
   void set_light(const GlLightMapping& light);
 
-  /// The GLSL module for this technique, atomic mode and binding points.
+  /// The GLSL module for this technique, atomic mode and binding points,
+  /// with this driver's fingerprint (HABUFFER_MODULE_ID): insert calls from
+  /// a shader built from another driver's module, whose text differs, insert
+  /// nothing and make frame() throw a GlError naming them (detected where
+  /// that shader still writes this driver's counters: the same binding points).
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
 
   /// Binds our buffers to their points, leaving the generic
@@ -127,10 +147,24 @@ class GlFrameDriver {
  protected:
   /// Writes the parameter block (the frame's fields and the technique's).
   void write_params() const;
+  /// The host sized the container itself (GlHaBuffer::resize): no counting gather.
+  void sized_by_host() { needs_count_ = false; }
 
  private:
   struct Gpu;
   void reset_frame_state() const;
+  /// The module without its fingerprint define (module_source adds it).
+  [[nodiscard]] std::string module_text(ShaderStage stage, std::string_view header = {}) const;
+  /// Throws GlError when calls came from another driver's module (HABUFFER_COUNTER_FOREIGN).
+  void check_foreign_calls(const std::vector<std::uint32_t>& words) const;
+  /// The counting gather (the host's gather with habuffer_gather_phase
+  /// HABUFFER_PHASE_COUNT: every on-screen call counted, nothing inserted)
+  /// and size_for its count, timed into report.count.
+  void count_and_size(const std::function<void()>& gather, FrameReport& report);
+  /// The host's gather in phase `phase` (fill or count), inside a state guard
+  /// with the Gather passes around it, then `after` with our buffers bound again.
+  void run_phase_gather(std::uint32_t phase, const std::function<void()>& gather, FrameReport& report,
+                        const std::function<void()>& after = {});
   void grow_capture(std::uint64_t needed);
   void grow_deferred(std::uint64_t needed);
   /// Reads the tallies into the report (merged duplicates moved, sort
@@ -163,7 +197,9 @@ class GlFrameDriver {
   std::uint64_t frames_ = 0;
   bool sorted_ = false;  ///< the last gather ran the technique's sort pass
   bool needs_call_count_ = false;
-  std::uint32_t gather_phase_ = 0;  ///< the parameter habuffer_gather_phase: 1 in a fill pass
+  bool needs_count_ = false;
+  std::uint32_t module_id_ = 0;  ///< HABUFFER_MODULE_ID of module_source(), in the parameter block  ///< the next frame runs the counting gather (counts_next_frame)
+  std::uint32_t gather_phase_ = 0;  ///< the parameter habuffer_gather_phase (HABUFFER_PHASE_*)
   std::unique_ptr<Gpu> gpu_;
 };
 

@@ -147,6 +147,7 @@ class GlSpatialHash {
   // The constructor's work on the context's info, queried once.
   GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings, const GlInfo& info);
   void bind_table() const;  // the table's buffers and block at GlBindings' points
+  ContextBound context_;    // first: every call checks its context (gl_context.h)
   // Records from keys and values in GL buffers (refused when a key is
   // outside the domain, the table unchanged), then the insert passes.
   spatial::InsertReport insert_buffers(unsigned keys, unsigned stored, std::uint32_t count,

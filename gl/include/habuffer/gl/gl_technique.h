@@ -18,6 +18,7 @@
 
 #include "habuffer/fragment_buffer.h"
 #include "habuffer/gl/frame_report.h"
+#include "habuffer/gl/gl_context.h"
 #include "habuffer/gl/gl_bindings.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/glsl_sources.h"
@@ -88,6 +89,12 @@ class GlTechnique {
 
   /// The technique this container runs.
   [[nodiscard]] Technique technique() const { return technique_; }
+  /// Throws GlError naming `call` unless the context the container was
+  /// made on is current on this thread (gl_context.h): the frame driver
+  /// checks before every call that reaches GL.
+  void check_context(const char* call) const { context_.check(call); }
+  /// The context the container was made on.
+  [[nodiscard]] const ContextBound& context() const { return context_; }
   /// The atomic mode, which fixes the record layout.
   [[nodiscard]] AtomicMode mode() const { return mode_; }
   /// The binding points of its buffers.
@@ -150,6 +157,12 @@ class GlTechnique {
   [[nodiscard]] virtual bool defers_calls() const { return false; }
   /// Records the technique can hold now.
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
+  /// Whether the container was made without a size for what it stores (the
+  /// HA-buffer's table or the lists' pool not given): the frame driver then
+  /// counts the first frame's fragments before its gather (and again after
+  /// a resize_screen), sizes it by fit_automatic_size, and adapts it every
+  /// frame by SPEC 8 (GlFrameDriver::frame).
+  [[nodiscard]] virtual bool sized_automatically() const { return false; }
   /// Sizes an automatically sized container before its first frame from the
   /// counting pass: `wanted` says the table or pool the fragments need; the
   /// container takes the largest up to it this OpenGL holds. Returns whether
@@ -185,6 +198,7 @@ class GlTechnique {
   virtual void change_screen(Extent screen) = 0;
 
  private:
+  ContextBound context_;  ///< first: checked before the bindings query the context
   Technique technique_;
   AtomicMode mode_;
   GlBindings bindings_;

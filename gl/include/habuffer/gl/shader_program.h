@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "habuffer/gl/gl_context.h"
+
 namespace habuffer::gl {
 
 /// A linked GL program, deleted with the object (move-only).
@@ -37,7 +39,9 @@ class ShaderProgram {
 
  private:
   explicit ShaderProgram(unsigned id) : id_(id) {}
+  void release();  // deletes the program where its context is current (gl_context.h)
   unsigned id_ = 0;
+  MadeOn made_on_;
 };
 
 }  // namespace habuffer::gl

@@ -4,6 +4,7 @@
 
 #include "gl_params.h"
 #include "gl_state_guard.h"
+#include "pixel_store.h"
 #include "habuffer/techniques/blended/blended_image.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
@@ -16,7 +17,10 @@ struct GlBlendedImage::Gpu {
   GLuint framebuffer = 0;
   GlTexture accum, revealage;           // attachments 0 and 1 (revealage: wboit only)
   GlStorage accum_copy, revealage_copy;  // their storage-buffer copies, read by the resolve
-  ~Gpu() { glDeleteFramebuffers(1, &framebuffer); }
+  MadeOn made_on;
+  ~Gpu() {
+    if (made_on.current()) glDeleteFramebuffers(1, &framebuffer);  // not another context's (gl_context.h)
+  }
 };
 
 namespace {
@@ -118,7 +122,9 @@ void GlBlendedImage::bind() const {
 }
 
 void GlBlendedImage::reset() {
-  // glClearTexImage ignores the colour masks and the scissor the host may have set.
+  // glClearTexImage ignores the colour masks and the scissor the host may
+  // have set, not its unpack state, through which it reads the clear value.
+  const NeutralUnpack unpack;
   const float accum[4] = {0.0f, 0.0f, 0.0f, weighted() ? 0.0f : 1.0f};
   glClearTexImage(gpu_->accum.id(), 0, GL_RGBA, GL_FLOAT, accum);
   if (weighted()) {

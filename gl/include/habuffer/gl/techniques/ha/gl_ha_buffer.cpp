@@ -10,11 +10,14 @@ GlHaBuffer::GlHaBuffer(const BufferConfig& config, OffsetSource offsets, AtomicM
       table_(static_cast<GlHaTable&>(technique())) {}
 
 void GlHaBuffer::resize(Extent table) {
+  technique().check_context("resize");
   table_.resize(table);
   write_params();
+  sized_by_host();  // an automatic table given a size by its host is not counted again
 }
 
 std::uint64_t GlHaBuffer::count_stored() {
+  technique().check_context("count_stored");
   const GlStateGuard guard(bindings());
   write_params();
   bind();

@@ -32,7 +32,8 @@ class GlHaBuffer : public GlFrameDriver {
   [[nodiscard]] const OffsetSequence& offsets() const { return table_.offsets(); }
 
   /// Sets the table for the next frame (at least the screen; offsets
-  /// regenerated), e.g. from a host's own estimate before the first frame.
+  /// regenerated), e.g. from a host's own estimate before the first frame
+  /// (an automatic table then skips its counting gather, and still adapts).
   /// Throws std::invalid_argument or GlError (beyond the context's limits).
   /// The table only; a window resize is resize_screen (GlFrameDriver), which
   /// also scales the table (GlHaTable::change_screen).

@@ -69,6 +69,7 @@ GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMod
       source_(std::move(offsets)),
       offsets_(source_.make(config_.table, config_.record_layout().max_age())),
       clear_tile_(clear_tile),
+      auto_table_(config.table == Extent{}),
       gpu_(std::make_unique<Gpu>()) {
   check_atomic_mode(mode, config_.layout);
   cells_ = max_age_cells(config_);
@@ -223,8 +224,9 @@ void GlHaTable::clear(GlPassContext& context) {
 }
 
 void GlHaTable::begin_frame(FrameReport& report, const GlFrameOptions& options) {
-  // Adaptive sizing from the count this frame's clear pass read (SPEC 8).
-  if (options.adaptive && report.counted_stored && report.counted_table == config_.table) {
+  // Adaptive sizing from the count this frame's clear pass read (SPEC 8):
+  // asked for, or the table is automatic.
+  if ((options.adaptive || auto_table_) && report.counted_stored && report.counted_table == config_.table) {
     const Extent next = options.policy.next(config_.table, config_.screen, *report.counted_stored);
     if (next != config_.table) {
       if (table_limit(next).empty()) {

@@ -44,6 +44,9 @@ class GlHaTable final : public GlTechnique {
   /// GlTechnique interface: the largest table up to wanted.buffer.table (same
   /// aspect, at least the screen) the context's storage-buffer limit holds.
   bool fit_automatic_size(const TechniqueConfig& wanted) override;
+  /// GlTechnique interface: whether the config gave no table (Extent{}):
+  /// the frame driver sizes it from a counting gather and adapts it.
+  [[nodiscard]] bool sized_automatically() const override { return auto_table_; }
   /// GlTechnique interface: the largest cell of read_max_age().
   [[nodiscard]] std::uint32_t read_largest_max_age() const override;
   /// Why `table` cannot be allocated here (slot indices, buffer size), or empty.
@@ -103,6 +106,7 @@ class GlHaTable final : public GlTechnique {
   OffsetSequence offsets_;
   std::uint32_t cells_ = 0;
   std::uint32_t clear_tile_ = 0;
+  bool auto_table_ = false;   ///< no table given: sized by the frame driver's counting gather
   bool holds_frame_ = false;  ///< the table holds a gathered frame the next clear pass must count
   std::optional<Extent> pending_count_table_;  ///< the table a count in the query buffer was measured in
   std::unique_ptr<Gpu> gpu_;

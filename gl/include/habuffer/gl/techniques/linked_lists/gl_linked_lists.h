@@ -97,6 +97,8 @@ class GlLinkedLists final : public GlTechnique {
   [[nodiscard]] bool grows_at_once() const override { return auto_pool_; }
   /// Whether the pool is automatic (pool_capacity 0 given).
   [[nodiscard]] bool automatic_pool() const { return auto_pool_; }
+  /// GlTechnique interface: the automatic pool.
+  [[nodiscard]] bool sized_automatically() const override { return auto_pool_; }
   [[nodiscard]] std::uint64_t capacity() const override { return config_.pool_capacity; }
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
