@@ -25,13 +25,14 @@ TechniqueBuild build_technique_on_gl(const TechniqueConfig& config, const Offset
   gl::GlFrameOptions frame_options;
   frame_options.policy = policy;
   frame_options.max_attempts = limit.attempts;
-  gl::GlFrameDriver gpu(gl::make_gl_technique(config, offsets, *mode), frame_options);
-  // A pool of 0: the library's automatic pool, sized as the CPU's (grown at once on a drop).
-  if (uses_pool(config.technique) && config.pool_capacity == 0) {
-    TechniqueConfig wanted = config;
-    wanted.pool_capacity = policy.automatic(fragments.size());
-    gpu.technique().fit_automatic_size(wanted);
-  }
+  // The CPU's table for an unset one (the screen: build_technique's), so both
+  // paths build the same lists; the driver would otherwise size it from a count.
+  TechniqueConfig gl_config = config;
+  gl_config.buffer.table = config.buffer.table_or_screen();
+  gl::GlFrameDriver gpu(gl::make_gl_technique(gl_config, offsets, *mode), frame_options);
+  // A pool of 0: the library's automatic pool, sized as the CPU's from the
+  // stream's length (no counting gather; grown at once on a drop).
+  if (gpu.counts_next_frame()) (void)gpu.size_for(fragments.size());
   gl::ComputeInserter inserter(gpu);
   const auto t0 = std::chrono::steady_clock::now();
   gl::FrameReport report = inserter.insert(fragments);
