@@ -1,5 +1,7 @@
 #include "habuffer/option_rules.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -30,6 +32,13 @@ Extent table_of_sides(double x, double y, double load, std::uint64_t fragments) 
                                 " fragments needs a table of " + shortest_text(x * y) +
                                 " slots, more than 2^32 - 1: raise the load");
   return {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)};
+}
+
+Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
+  if (!(load > 0.0)) throw std::invalid_argument("load must be positive");
+  const double scale = std::sqrt(static_cast<double>(fragments) / load / static_cast<double>(screen.area()));
+  return table_of_sides(std::max<double>(screen.x, std::ceil(screen.x * scale)),
+                        std::max<double>(screen.y, std::ceil(screen.y * scale)), load, fragments);
 }
 
 }  // namespace habuffer

@@ -49,10 +49,7 @@ std::uint64_t ResizePolicy::automatic(std::uint64_t records) const {
 }
 
 Extent ResizePolicy::initial_table(Extent screen, std::uint64_t records) const {
-  const double load = (grow_at + shrink_at) / 2.0;
-  const double scale = std::sqrt(static_cast<double>(records) / load / static_cast<double>(screen.area()));
-  return table_of_sides(std::max<double>(screen.x, std::ceil(screen.x * scale)),
-                        std::max<double>(screen.y, std::ceil(screen.y * scale)), load, records);
+  return table_for_load(screen, records, (grow_at + shrink_at) / 2.0);
 }
 
 std::uint64_t ResizePolicy::grown(std::uint64_t capacity, std::uint64_t needed) const {

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -54,6 +55,14 @@ std::uint32_t fingerprint(const std::string& text) {
   std::uint32_t h = 2166136261u;
   for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
   return h == 0 ? 1u : h;
+}
+
+// Each counter summed over the stripes (entry_common.glsl's ha_counter_add).
+std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> stripe_tally(const std::vector<std::uint32_t>& words) {
+  std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> tally{};
+  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
+    for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
+  return tally;
 }
 
 std::unique_ptr<GlTechnique> checked(std::unique_ptr<GlTechnique> t) {
@@ -234,9 +243,7 @@ void GlFrameDriver::count_and_size(const std::function<void()>& gather, FrameRep
   const std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
   check_gl_errors("the counting gather");
   check_foreign_calls(words);
-  std::uint64_t fragments = 0;
-  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
-    fragments += words[stripe * HABUFFER_COUNTER_STRIDE + HABUFFER_COUNTER_COUNTED];
+  const std::uint64_t fragments = stripe_tally(words)[HABUFFER_COUNTER_COUNTED];
   report.counted_fragments = fragments;
   report.count_limited = size_for(fragments);
   report.count.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -472,9 +479,8 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
 std::vector<std::uint32_t> GlFrameDriver::read_counters(FrameReport& report) const {
   std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
   check_foreign_calls(words);
-  std::uint64_t tally[HABUFFER_GPU_COUNTER_COUNT] = {};
-  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
-    for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
+  const std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> sums = stripe_tally(words);
+  const std::uint64_t* tally = sums.data();
   const std::uint64_t pixels = screen().area();
   if (sorted_ && tally[HABUFFER_COUNTER_SORT_DONE] != pixels)
     throw GlError("the driver ended " + std::to_string(pixels - tally[HABUFFER_COUNTER_SORT_DONE]) + " of " +

@@ -148,18 +148,8 @@ std::string spatial_lookup_part(const GlSpatialBindings& bindings, bool overrida
   return s + kShLookup;
 }
 
-namespace {
-
-// The context check before the delegated constructor's first GL query.
-const spatial::SpatialHash& on_a_context(const spatial::SpatialHash& table) {
-  require_context("GlSpatialHash");
-  return table;
-}
-
-}  // namespace
-
 GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings)
-    : GlSpatialHash(on_a_context(table), bindings, query_gl_info()) {}
+    : GlSpatialHash(table, bindings, query_gl_info()) {}  // query_gl_info checks for a context first
 
 GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings& bindings, const GlInfo& info)
     : context_("GlSpatialHash"),

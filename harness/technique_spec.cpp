@@ -180,7 +180,7 @@ void TechniqueSpec::apply(RenderSettings& s, std::uint64_t fragments) const {
   if (occupancy_words) s.occupancy_words = *occupancy_words;
   s.config.table = {};
   s.pool_capacity = 0;
-  if (load && uses_table(technique)) s.config.table = table_for_load(s.config.screen, fragments, *load);
+  if (load && uses_table(technique)) s.config.table = harness::table_for_load(s.config.screen, fragments, *load);
   if (load && uses_pool(technique)) s.pool_capacity = capacity_for_load(fragments, *load);
 }
 

@@ -95,12 +95,6 @@ std::vector<Fragment> make_stream(Extent screen, const StreamOptions& o) {
   return out;
 }
 
-Extent table_for_load(Extent screen, std::uint64_t fragments, double load) {
-  if (!(load > 0.0)) throw std::invalid_argument("load must be positive");
-  const double scale = std::sqrt(static_cast<double>(fragments) / load / static_cast<double>(screen.area()));
-  return table_of_sides(std::max<double>(screen.x, std::ceil(screen.x * scale)),
-                        std::max<double>(screen.y, std::ceil(screen.y * scale)), load, fragments);
-}
 
 StreamKind parse_stream_kind(const std::string& name) {
   if (name == "random") return StreamKind::Random;

@@ -392,7 +392,7 @@ TEST(Render, ArraysWithFewLayersDropAndCountTheRestAndLosslessModeKeepsEverythin
 // lists only, so sorted lists started from a placeholder of one node per
 // pixel and reached their size by regathering. Both paths now size every
 // pool technique from the counting pass: one attempt, the pool of
-// initial_pool's rule (the fragments at grow_at), on both paths alike.
+// ResizePolicy::automatic's rule (the fragments at grow_at), on both paths alike.
 TEST(Render, EveryPoolTechniquesAutomaticPoolIsSizedFromTheCountingPassOnBothPaths) {
   const Scene hairball = make_scene("hairball", {});
   for (const Technique t : {Technique::Lists, Technique::SortedLists}) {

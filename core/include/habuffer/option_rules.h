@@ -27,4 +27,9 @@ double parse_load_factor(std::string_view text);
 /// infinite double (a tiny load) to an integer is undefined.
 Extent table_of_sides(double x, double y, double load, std::uint64_t fragments);
 
+/// The table that holds `fragments` at `load` on `screen`: the screen's
+/// aspect, sides rounded up, at least the screen (SPEC 1); table_of_sides'
+/// errors. Throws std::invalid_argument for a load that is not positive.
+Extent table_for_load(Extent screen, std::uint64_t fragments, double load);
+
 }  // namespace habuffer

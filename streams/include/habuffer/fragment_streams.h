@@ -10,6 +10,7 @@
 
 #include "habuffer/extent.h"
 #include "habuffer/fragment.h"
+#include "habuffer/option_rules.h"  // table_for_load, which the streams' users size tables with
 
 namespace habuffer {
 
@@ -40,9 +41,6 @@ struct StreamOptions {
 /// range (sides, alpha, spread outside [0, 1], a zero quad side).
 std::vector<Fragment> make_stream(Extent screen, const StreamOptions& options);
 
-/// The table (screen aspect ratio, sides rounded up, at least the screen) that
-/// `fragments` records fill to about `load`. Throws std::invalid_argument unless load > 0.
-Extent table_for_load(Extent screen, std::uint64_t fragments, double load);
 
 /// "random", "coherent", "stacked" or "hot"; throws std::invalid_argument otherwise.
 StreamKind parse_stream_kind(const std::string& name);
