@@ -33,6 +33,19 @@ std::optional<InsertOrder> parse_insert_order(std::string_view name) {
   return std::nullopt;
 }
 
+bool insert_order_needs_coverage(const InsertOptions& options, std::uint64_t fragments, Extent screen) {
+  return options.order == InsertOrder::Auto && options.mode != InsertMode::OwnerComputes &&
+         fragments >= kPixelOrderMinFragments && fragments * kPixelOrderPixelsPerFragment >= screen.area();
+}
+
+InsertOrder choose_insert_order(const InsertOptions& options, std::uint64_t fragments, std::uint64_t covered_pixels,
+                                Extent screen) {
+  if (options.order != InsertOrder::Auto) return options.order;
+  if (!insert_order_needs_coverage(options, fragments, screen) || covered_pixels == 0) return InsertOrder::Arrival;
+  const double depth = static_cast<double>(fragments) / static_cast<double>(covered_pixels);
+  return depth >= kPixelOrderMinDepth ? InsertOrder::Pixel : InsertOrder::Arrival;
+}
+
 std::optional<InsertMode> parse_insert_mode(std::string_view name) {
   if (name == "auto") return InsertMode::Auto;
   if (name == "serial") return InsertMode::Serial;

@@ -39,6 +39,7 @@
 #include "habuffer/extent.h"
 #include "habuffer/fragment.h"
 #include "habuffer/parallel.h"
+#include "jump_start_lanes.h"
 #include "technique_parallel.h"
 
 namespace habuffer::detail {
@@ -52,6 +53,14 @@ struct RowBand {
 // about equal numbers of fragments (a band may be empty of rows when a few
 // rows hold most of the fragments).
 std::vector<RowBand> balanced_row_bands(std::span<const Fragment> fragments, Extent screen, std::uint32_t parts);
+
+// The pixels the batch covers, counted in the on-screen check's pass (issue
+// 36: Auto's rule reads fragments per covered pixel; a pass of its own cost
+// more than it saved): throws as check_on_screen, naming the first fragment
+// off the screen. `threads` slices, each marking a bitmap of its own in
+// `bitmaps` (kept by the caller between calls).
+std::uint64_t check_and_count_covered(std::span<const Fragment> fragments, Extent screen, std::uint32_t threads,
+                                      std::vector<std::vector<std::uint64_t>>& bitmaps);
 
 // One band's fragments as age-1 records bucketed by pixel, each pixel's
 // nearest first (records in decreasing order, identical ones adjacent). Kept
@@ -245,14 +254,16 @@ void insert_pixels_jump_start(Kernel& k, Buckets& buckets, std::uint64_t* tally)
 inline constexpr std::size_t kInterleavedPixels = 16;
 
 // When a band interleaves its pixels (measured with BM_InsertOrder,
-// docs/performance.md): never while the table sits in cache; beyond, where
-// probes are many: deep pixels (several ages per pixel, one stream of slots
-// per age, more streams than the hardware prefetcher follows) or a full
-// table (long probe sequences). Shallow pixels in a half-full table walk the
-// table in a few sequential streams the prefetcher already covers.
+// docs/performance.md): never while the table sits in this machine's L2
+// (cache_sizes.h; a fixed 8 MiB threshold missed engine's 6.6 MiB table on
+// a 2 MiB L2, issue 36); beyond, where probes are many: deep pixels
+// (several ages per pixel, one stream of slots per age, more streams than
+// the hardware prefetcher follows) or a full table (long probe sequences).
+// Shallow pixels in a half-full table walk the table in a few sequential
+// streams the prefetcher already covers.
 struct InterleaveRule {
   std::optional<bool> forced;  // InsertOptions::interleave
-  bool large_table = false;    // at least kInterleaveMinTableBytes
+  bool large_table = false;    // larger than the L2
   double fill = 0.0;           // fragments / slots: the load the batch can reach
 
   static constexpr double kMinDepth = 6.0;  // records per covered pixel
@@ -322,13 +333,15 @@ void insert_pixels_in_order(Kernel& k, Buckets& buckets, std::uint64_t* tally) {
 template <class Word, class MakeKernel>
 Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen, std::uint32_t threads,
                               MakeKernel make_kernel, bool shared, const InterleaveRule& interleave,
-                              std::vector<PixelBuckets<Word>>& buckets) {
+                              InsertStep step, std::vector<PixelBuckets<Word>>& buckets) {
   if (fragments.size() > PixelBuckets<Word>::kMaxFragments) {
     const std::size_t half = fragments.size() / 2;
     Counters total =
-        insert_pixel_ordered<Word>(fragments.first(half), screen, threads, make_kernel, shared, interleave, buckets);
+        insert_pixel_ordered<Word>(fragments.first(half), screen, threads, make_kernel, shared, interleave, step,
+                                   buckets);
     total +=
-        insert_pixel_ordered<Word>(fragments.subspan(half), screen, threads, make_kernel, shared, interleave, buckets);
+        insert_pixel_ordered<Word>(fragments.subspan(half), screen, threads, make_kernel, shared, interleave, step,
+                                   buckets);
     return total;
   }
   const std::vector<RowBand> bands = balanced_row_bands(fragments, screen, threads);
@@ -339,12 +352,18 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
     buckets[b].fill(
         fragments, screen, bands[b], [&](const Fragment& f) { return k.ha_depth_valid(f.depth); },
         [&](const Fragment& f) { return k.ha_pack(1u, k.ha_depth_code(f.depth), f.rgba); }, tally[HABUFFER_INVALID]);
+    using Kernel = std::remove_reference_t<decltype(k)>;
+    const bool lanes = interleave.applies(buckets[b].mean_depth());
     if (k.habuffer_cull_tau > 0.0f)
       insert_pixels_in_order(k, buckets[b], tally);
-    else if (interleave.applies(buckets[b].mean_depth()))
+    else if (step == InsertStep::Shared && lanes)
       insert_pixels_interleaved(k, buckets[b], tally);
-    else
+    else if (step == InsertStep::Shared)
       insert_pixels_jump_start(k, buckets[b], tally);
+    else if (lanes)
+      JumpStartLanes<Kernel, kInterleavedPixels, true>::run(k, buckets[b], tally);
+    else
+      JumpStartLanes<Kernel, 1, false>::run(k, buckets[b], tally);
     parts[b].c.add_tally(tally);
   };
   if (bands.size() == 1 && !shared) {

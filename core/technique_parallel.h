@@ -290,13 +290,18 @@ std::vector<glm::vec4> composite_pixels(Extent screen, std::uint32_t threads, Ma
   return image;
 }
 
+// Throws std::invalid_argument unless there is one background per pixel.
+inline void check_backgrounds(Extent screen, std::span<const glm::vec3> backgrounds) {
+  if (backgrounds.size() != screen.area())
+    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
+                                screen.str());
+}
+
 // The same over one background per pixel (throws for a wrong count).
 template <class MakeKernel, class Composite>
 std::vector<glm::vec4> composite_image(Extent screen, std::span<const glm::vec3> backgrounds, std::uint32_t threads,
                                        MakeKernel make_kernel, Composite composite) {
-  if (backgrounds.size() != screen.area())
-    throw std::invalid_argument("composite_image: " + std::to_string(backgrounds.size()) + " backgrounds for screen " +
-                                screen.str());
+  check_backgrounds(screen, backgrounds);
   return composite_pixels(screen, threads, make_kernel, composite, [&](std::size_t p) { return backgrounds[p]; });
 }
 

@@ -49,7 +49,7 @@ const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, Fra
   fs.attempts = static_cast<std::uint32_t>(b.attempts.size());
   fs.counters = b.counters;
   fs.capacity = b.buffer->capacity();
-  fs.insert_order = b.buffer->insert_order(fragments.size(), frame_insert_options(settings_));
+  fs.insert_order = b.buffer->last_insert_order();
   // What the frame grew to holds the next frames too (a lossless table, pool or K).
   const TechniqueConfig held = b.buffer->technique_config();
   config_.buffer.table = held.buffer.table;

@@ -57,6 +57,42 @@ TEST(Compositing, Float32AgreesWithDoubleReferenceOverDeepLists) {
     for (int ch = 0; ch < 4; ++ch) ASSERT_NEAR(img[i][ch], ref[i][ch], 1e-4) << "pixel " << i << " channel " << ch;
 }
 
+// The CPU composites a row's pixels as a wavefront, kWavefrontPixels of them
+// age by age (core/wavefront_composite.h): each pixel must still blend its own
+// records in its own order, so every pixel equals the one-pixel walk of
+// shared/ha_traverse.glsl bit for bit: widths that are no multiple of the
+// wavefront, tables that wrap, pixels whose walks stop at different ages,
+// empty pixels beside deep ones, per-pixel backgrounds, any thread count.
+TEST(Compositing, TheWavefrontImageEqualsEachPixelsOwnWalkBitForBit) {
+  struct Case {
+    Extent screen, table;
+    StreamKind kind;
+    double load;
+  };
+  for (const Case& c : {Case{{13, 9}, {13, 9}, StreamKind::Coherent, 0.9}, Case{{37, 21}, {50, 29}, StreamKind::Random, 0.7},
+                        Case{{1, 17}, {2, 17}, StreamKind::Random, 0.8}, Case{{64, 40}, {64, 40}, StreamKind::Coherent, 0.95}})
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      SCOPED_TRACE("screen " + c.screen.str() + " table " + c.table.str() + " seed " + std::to_string(seed));
+      HaBuffer b = test::make_buffer(test::config(c.screen, c.table), seed);
+      const auto n = static_cast<std::uint64_t>(c.load * static_cast<double>(c.table.area()));
+      b.insert(test::stream(c.screen, c.kind, n, seed));
+      std::vector<glm::vec3> backgrounds(c.screen.area());
+      for (std::size_t i = 0; i < backgrounds.size(); ++i)
+        backgrounds[i] = glm::vec3(static_cast<float>(i % 7) / 7.0f, 0.25f, static_cast<float>(i % 3) / 3.0f);
+      std::vector<glm::vec4> walked(c.screen.area()), walked_uniform(c.screen.area());
+      for (std::uint32_t y = 0; y < c.screen.y; ++y)
+        for (std::uint32_t x = 0; x < c.screen.x; ++x) {
+          const std::size_t i = x + std::size_t{y} * c.screen.x;
+          walked[i] = b.composite(x, y, backgrounds[i]);
+          walked_uniform[i] = b.composite(x, y, glm::vec3(0.5f));
+        }
+      for (std::uint32_t threads : {1u, 3u}) {
+        EXPECT_TRUE(test::same_bits(b.composite_image(backgrounds, threads), walked));
+        EXPECT_TRUE(test::same_bits(b.composite_image(glm::vec3(0.5f), threads), walked_uniform));
+      }
+    }
+}
+
 TEST(Compositing, ReferenceSortsByUnquantizedDepthThenLargerDataFirst) {
   const std::vector<Fragment> f{{0, 0, 0.5f, 0x00FF00FFu}, {0, 0, 0.5f, 0xFF0000FFu}, {0, 0, 0.1f, 0x00000000u}};
   const auto ref = reference_composite(f, {1, 1}, glm::dvec3(0.0));

@@ -51,12 +51,19 @@ std::vector<Fragment> stream_of(const OrderCase& c, std::uint64_t seed) {
   return f;
 }
 
-InsertOptions ordered(InsertOrder order, std::uint32_t threads = 1) {
+InsertOptions ordered(InsertOrder order, std::uint32_t threads = 1, InsertStep step = InsertStep::Specialised) {
   InsertOptions o;
   o.order = order;
   o.threads = threads;
+  o.step = step;
   return o;
 }
+
+// The jump start's two probe steps: the specialised one (the default) and
+// the shared GLSL step it must equal (core/jump_start_lanes.h).
+const InsertStep kSteps[] = {InsertStep::Specialised, InsertStep::Shared};
+
+std::string to_text(InsertStep step) { return step == InsertStep::Shared ? "shared step" : "specialised step"; }
 
 // Pixel order, arrival order's stream sorted by pixel, nearest first.
 std::vector<Fragment> sorted_by_pixel(std::vector<Fragment> f, const RecordLayout& layout) {
@@ -80,10 +87,11 @@ TEST(InsertOrder, PixelOrderGivesArrivalOrdersTableMaxAgeAndCountersAtOneAndMany
       const Counters na = arrival.insert(f, ordered(InsertOrder::Arrival));
       ASSERT_EQ(na.failures(), 0u) << "the case must not fail: SPEC 9 promises identity only then";
       for (std::uint32_t threads : {1u, 2u, 3u})
-        for (bool interleave : {false, true}) {
-          SCOPED_TRACE("threads " + std::to_string(threads) + (interleave ? " interleaved" : ""));
+        for (bool interleave : {false, true})
+          for (InsertStep step : kSteps) {
+          SCOPED_TRACE("threads " + std::to_string(threads) + (interleave ? " interleaved " : " ") + to_text(step));
           HaBuffer pixel = test::make_buffer(cfg, seed);
-          InsertOptions o = ordered(InsertOrder::Pixel, threads);
+          InsertOptions o = ordered(InsertOrder::Pixel, threads, step);
           o.interleave = interleave;
           const Counters np = pixel.insert(f, o);
           EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
@@ -111,9 +119,11 @@ TEST(InsertOrder, PixelOrderEqualsArrivalOrderWhenNeighboursHoldIdenticalRecords
       HaBuffer arrival = test::make_buffer(cfg, seed);
       const Counters na = arrival.insert(test::shuffled(f, seed), ordered(InsertOrder::Arrival));
       ASSERT_EQ(na.failures(), 0u);
-      for (bool interleave : {false, true}) {
+      for (bool interleave : {false, true})
+        for (InsertStep step : kSteps) {
+        SCOPED_TRACE(to_text(step));
         HaBuffer pixel = test::make_buffer(cfg, seed);
-        InsertOptions o = ordered(InsertOrder::Pixel);
+        InsertOptions o = ordered(InsertOrder::Pixel, 1, step);
         o.interleave = interleave;
         const Counters np = pixel.insert(f, o);
         EXPECT_EQ(np, na);
@@ -128,16 +138,19 @@ TEST(InsertOrder, PixelOrderEqualsArrivalOrderIntoABufferHoldingAnEarlierBatch) 
   const auto first = test::stream(screen, StreamKind::Coherent, 1200, 3);
   auto second = test::stream(screen, StreamKind::Coherent, 1200, 4);
   second.insert(second.end(), first.begin(), first.begin() + 300);  // duplicates of records already stored
-  HaBuffer arrival = test::make_buffer(cfg), pixel = test::make_buffer(cfg);
-  arrival.insert(first, ordered(InsertOrder::Arrival));
-  pixel.insert(first, ordered(InsertOrder::Pixel));
-  const Counters na = arrival.insert(second, ordered(InsertOrder::Arrival));
-  const Counters np = pixel.insert(second, ordered(InsertOrder::Pixel, 2));
-  ASSERT_EQ(na.failures(), 0u);
-  EXPECT_EQ(na.duplicates, 300u);
-  EXPECT_EQ(np, na);
-  EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
-  EXPECT_EQ(pixel.max_age().ages(), arrival.max_age().ages());
+  for (InsertStep step : kSteps) {
+    SCOPED_TRACE(to_text(step));
+    HaBuffer arrival = test::make_buffer(cfg), pixel = test::make_buffer(cfg);
+    arrival.insert(first, ordered(InsertOrder::Arrival));
+    pixel.insert(first, ordered(InsertOrder::Pixel, 1, step));
+    const Counters na = arrival.insert(second, ordered(InsertOrder::Arrival));
+    const Counters np = pixel.insert(second, ordered(InsertOrder::Pixel, 2, step));
+    ASSERT_EQ(na.failures(), 0u);
+    EXPECT_EQ(na.duplicates, 300u);
+    EXPECT_EQ(np, na);
+    EXPECT_EQ(test::table_words(pixel), test::table_words(arrival));
+    EXPECT_EQ(pixel.max_age().ages(), arrival.max_age().ages());
+  }
 }
 
 // The jump start only skips probes that would change nothing: on one thread
@@ -154,13 +167,19 @@ TEST(InsertOrder, JumpStartWritesWhatTheSameOrderFromAgeOneWritesEvenWhenInserts
       for (int i = 0; i < 24; ++i) f.push_back({5, 7, 0.01f * static_cast<float>(i), 0x336699ffu});  // deeper than AMAX
       for (int i = 0; i < 6; ++i) f.push_back(f[static_cast<std::size_t>(i) * 61]);               // duplicates
       f.push_back(f[f.size() - 20]);  // the twin of a record on the deep pixel
-      HaBuffer from_age_one = test::make_buffer(cfg, seed), jumped = test::make_buffer(cfg, seed);
+      HaBuffer from_age_one = test::make_buffer(cfg, seed);
       const Counters n1 = from_age_one.insert(sorted_by_pixel(f, cfg.record_layout()), ordered(InsertOrder::Arrival));
-      const Counters n2 = jumped.insert(test::shuffled(f, seed), ordered(InsertOrder::Pixel));
       EXPECT_GT(n1.failures(), 0u) << "the case must fail somewhere";
-      EXPECT_EQ(n2, n1);
-      EXPECT_EQ(test::table_words(jumped), test::table_words(from_age_one));
-      EXPECT_EQ(jumped.max_age().ages(), from_age_one.max_age().ages());
+      for (InsertStep step : kSteps) {
+        SCOPED_TRACE(to_text(step));
+        HaBuffer jumped = test::make_buffer(cfg, seed);
+        InsertOptions o = ordered(InsertOrder::Pixel, 1, step);
+        o.interleave = false;  // one pixel at a time: interleaving is another order, which failures tell apart
+        const Counters n2 = jumped.insert(test::shuffled(f, seed), o);
+        EXPECT_EQ(n2, n1);
+        EXPECT_EQ(test::table_words(jumped), test::table_words(from_age_one));
+        EXPECT_EQ(jumped.max_age().ages(), from_age_one.max_age().ages());
+      }
     }
 }
 
@@ -197,13 +216,16 @@ TEST(InsertOrder, ATwinAfterAFailedInsertStartsWhereItsRecordWasWrittenAsFromAge
         duplicates += n1.duplicates;
         // One pixel at a time: interleaved pixels are another order, which
         // failures can tell apart (pixel_order.h).
-        HaBuffer jumped = test::make_buffer(cfg, seed);
-        InsertOptions o = ordered(InsertOrder::Pixel);
-        o.interleave = false;
-        const Counters n2 = jumped.insert(test::shuffled(f, seed), o);
-        EXPECT_EQ(n2, n1);
-        EXPECT_EQ(test::table_words(jumped), test::table_words(from_age_one));
-        EXPECT_EQ(jumped.max_age().ages(), from_age_one.max_age().ages());
+        for (InsertStep step : kSteps) {
+          SCOPED_TRACE(to_text(step));
+          HaBuffer jumped = test::make_buffer(cfg, seed);
+          InsertOptions o = ordered(InsertOrder::Pixel, 1, step);
+          o.interleave = false;
+          const Counters n2 = jumped.insert(test::shuffled(f, seed), o);
+          EXPECT_EQ(n2, n1);
+          EXPECT_EQ(test::table_words(jumped), test::table_words(from_age_one));
+          EXPECT_EQ(jumped.max_age().ages(), from_age_one.max_age().ages());
+        }
       }
   EXPECT_GT(failures, 0u) << "the cases must fail somewhere";
   EXPECT_GT(duplicates, 0u);
@@ -218,9 +240,11 @@ TEST(InsertOrder, PixelOrderCountsEveryFragmentWhenAPixelIsDeeperThanAmaxAtManyT
   for (int i = 0; i < 40; ++i) f.push_back({3, 3, 0.02f * static_cast<float>(i), 0});  // 40 records, AMAX 15
   for (std::uint32_t y = 0; y < screen.y; ++y)
     for (std::uint32_t x = 0; x < screen.x; ++x) f.push_back({x, y, 0.5f, 0});  // depth 1 everywhere else
-  for (std::uint32_t threads : {1u, 2u, 4u}) {
+  for (std::uint32_t threads : {1u, 2u, 4u})
+    for (InsertStep step : kSteps) {
+    SCOPED_TRACE(to_text(step) + " threads " + std::to_string(threads));
     HaBuffer b = test::make_buffer(cfg);
-    InsertOptions o = ordered(InsertOrder::Pixel, threads);
+    InsertOptions o = ordered(InsertOrder::Pixel, threads, step);
     o.interleave = threads != 2;
     const Counters n = b.insert(test::shuffled(f, threads), o);
     EXPECT_EQ(n.fragments, f.size());
@@ -231,22 +255,57 @@ TEST(InsertOrder, PixelOrderCountsEveryFragmentWhenAPixelIsDeeperThanAmaxAtManyT
   }
 }
 
-TEST(InsertOrder, AutoChoosesPixelOrderOnlyWhereItGivesArrivalOrdersTableAndPays) {
+TEST(InsertOrder, AutoChoosesPixelOrderForBatchesLargeAndDeepEnoughElseArrivalOrder) {
   const Extent screen{64, 64};
-  BufferConfig cfg = test::config(screen, screen);
-  HaBuffer b = test::make_buffer(cfg);
+  const std::uint64_t enough = screen.area() / kPixelOrderPixelsPerFragment;
+  const auto covering = [](std::uint64_t fragments, double depth) {
+    return static_cast<std::uint64_t>(static_cast<double>(fragments) / depth);
+  };
   InsertOptions o;
-  EXPECT_EQ(b.insert_order(screen.area() / kPixelOrderPixelsPerFragment, o), InsertOrder::Pixel);
-  EXPECT_EQ(b.insert_order(screen.area() / kPixelOrderPixelsPerFragment - 1, o), InsertOrder::Arrival);
-  EXPECT_EQ(b.insert_order(kPixelOrderMinFragments - 1, o), InsertOrder::Arrival);
+  EXPECT_EQ(choose_insert_order(o, enough, covering(enough, 4.0), screen), InsertOrder::Pixel);
+  EXPECT_EQ(choose_insert_order(o, enough, covering(enough, kPixelOrderMinDepth), screen), InsertOrder::Pixel);
+  EXPECT_EQ(choose_insert_order(o, enough, covering(enough, 3.0), screen), InsertOrder::Arrival)
+      << "shallow pixels probe about once each in arrival order";
+  EXPECT_EQ(choose_insert_order(o, enough - 1, covering(enough - 1, 8.0), screen), InsertOrder::Arrival);
+  EXPECT_EQ(choose_insert_order(o, kPixelOrderMinFragments - 1, 1, {4, 4}), InsertOrder::Arrival);
+  EXPECT_EQ(choose_insert_order(ordered(InsertOrder::Pixel), 1, 1, screen), InsertOrder::Pixel);
+  EXPECT_EQ(choose_insert_order(ordered(InsertOrder::Arrival), enough, 1, screen), InsertOrder::Arrival);
   o.mode = InsertMode::OwnerComputes;
-  EXPECT_EQ(b.insert_order(screen.area(), o), InsertOrder::Arrival);
-  o.order = InsertOrder::Pixel;
-  EXPECT_THROW((void)b.insert_order(screen.area(), o), std::invalid_argument);
-  cfg.early_cull_tau = 0.9f;
-  HaBuffer culled = test::make_buffer(cfg);
-  EXPECT_EQ(culled.insert_order(screen.area(), InsertOptions{}), InsertOrder::Arrival);
-  EXPECT_EQ(culled.insert_order(screen.area(), ordered(InsertOrder::Pixel)), InsertOrder::Pixel);
+  EXPECT_EQ(choose_insert_order(o, enough, 1, screen), InsertOrder::Arrival);
+
+  // The buffer counts the covered pixels in its on-screen check and says which order ran.
+  std::vector<Fragment> deep, shallow;
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x) {
+      shallow.push_back({x, y, 0.5f, 0x808080ffu});
+      if (x < 16)
+        for (int k = 0; k < 4; ++k) deep.push_back({x, y, 0.1f * static_cast<float>(k + 1), 0x808080ffu});
+    }
+  for (float tau : {0.0f, 0.9f}) {
+    SCOPED_TRACE("early cull " + std::to_string(tau));
+    BufferConfig cfg = test::config(screen, {96, 96});
+    cfg.early_cull_tau = tau;
+    for (std::uint32_t threads : {1u, 2u}) {
+      HaBuffer b = test::make_buffer(cfg);
+      EXPECT_EQ(b.insert_order(deep, ordered(InsertOrder::Auto, threads)), InsertOrder::Pixel);
+      EXPECT_EQ(b.insert_order(shallow, ordered(InsertOrder::Auto, threads)), InsertOrder::Arrival);
+      EXPECT_EQ(b.last_insert_order(), InsertOrder::Arrival) << "before any insert";
+      b.insert(deep, ordered(InsertOrder::Auto, threads));
+      EXPECT_EQ(b.last_insert_order(), InsertOrder::Pixel);
+      b.insert(shallow, ordered(InsertOrder::Auto, threads));
+      EXPECT_EQ(b.last_insert_order(), InsertOrder::Arrival);
+    }
+  }
+  HaBuffer b = test::make_buffer(test::config(screen, screen));
+  InsertOptions owner = ordered(InsertOrder::Pixel);
+  owner.mode = InsertMode::OwnerComputes;
+  EXPECT_THROW((void)b.insert_order(deep, owner), std::invalid_argument);
+  EXPECT_THROW((void)b.insert(deep, owner), std::invalid_argument);
+  auto off = deep;
+  off[deep.size() / 2].x = screen.x;
+  EXPECT_THROW((void)b.insert(off, InsertOptions{}), std::out_of_range) << "the counting pass checks the screen";
+  EXPECT_THROW((void)b.insert(off, ordered(InsertOrder::Auto, 2)), std::out_of_range);
+  EXPECT_EQ(b.count_stored(), 0u) << "nothing inserted before the check";
   EXPECT_EQ(parse_insert_order("pixel"), InsertOrder::Pixel);
   EXPECT_EQ(parse_insert_order("arrival"), InsertOrder::Arrival);
   EXPECT_EQ(parse_insert_order("auto"), InsertOrder::Auto);

@@ -54,7 +54,7 @@ TechniqueBuild build_lists(const HashOptions& options, const TechniqueConfig& co
   TechniqueBuild built =
       build_technique(config, options.offsets, fragments, options.insert, options.policy, options.max_attempts);
   timing.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  timing.insert_order = to_string(built.buffer->insert_order(fragments.size(), options.insert));
+  timing.insert_order = to_string(built.buffer->last_insert_order());
   return built;
 }
 

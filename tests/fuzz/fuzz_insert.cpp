@@ -84,10 +84,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   o.threads = mode == 0 ? 1 : 2;
   o.mode = mode == 0 ? InsertMode::Serial : mode == 1 ? InsertMode::OwnerComputes : InsertMode::Atomic;
   o.band_rows = 1 + data[7] % 3;
-  // Either order (pixel order has no owner-computes form), interleaved or not.
+  // Either order (pixel order has no owner-computes form), interleaved or
+  // not, through the specialised or the shared jump-start step.
   const std::uint32_t order = (data[6] / 3) % 3;
   o.order = order == 0 || mode == 1 ? InsertOrder::Arrival : order == 1 ? InsertOrder::Pixel : InsertOrder::Auto;
   o.interleave = (data[6] & 0x40) != 0;
+  o.step = (data[6] & 0x80) != 0 ? InsertStep::Shared : InsertStep::Specialised;
   const Counters m = other.insert(reversed, o);
   if (n.failed_iter + m.failed_iter == 0) {
     for (std::uint64_t s = 0; s < serial.slot_count(); ++s) check(serial.slot(s) == other.slot(s));

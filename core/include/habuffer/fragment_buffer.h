@@ -48,10 +48,16 @@ enum class InsertMode {
 /// 9); they differ in speed, and in the probes made (the statistics of
 /// probes per fragment describe the arrival process).
 enum class InsertOrder {
-  /// Pixel where it gives arrival order's result (no early cull) and the
-  /// batch is large enough to pay for bucketing by pixel (at least
-  /// kPixelOrderMinFragments and one fragment per kPixelOrderPixelsPerFragment
-  /// pixels); else Arrival.
+  /// Pixel where it pays: a batch of at least kPixelOrderMinFragments, with
+  /// one fragment per kPixelOrderPixelsPerFragment screen pixels or more
+  /// (bucketing touches every pixel once), and at least kPixelOrderMinDepth
+  /// fragments per pixel it covers (shallow pixels probe about once each in
+  /// arrival order: there bucketing costs more than the jump start saves;
+  /// the covered pixels are counted in the on-screen check's pass). Under
+  /// early cull too: there pixel order is another conservative schedule of
+  /// SPEC 6's rules (it culls at least what arrival order culls and keeps
+  /// SPEC invariant 5's bound; docs/spec-notes.md). Else, and for
+  /// owner-computes insertion, Arrival.
   Auto,
   Arrival,  ///< the batch's order: each fragment probes from age 1
   /// Bucketed by pixel, nearest first, each record started one age past
@@ -74,13 +80,28 @@ std::optional<InsertOrder> parse_insert_order(std::string_view name);
 inline constexpr std::uint64_t kPixelOrderMinFragments = 64;
 /// Auto's rule (see kPixelOrderMinFragments).
 inline constexpr std::uint64_t kPixelOrderPixelsPerFragment = 16;
+/// Auto's rule: fragments per covered pixel below which arrival order is
+/// faster (measured on the CPU path, issue 36: spider, 1.15 probes a record,
+/// 0.68x in arrival order; wuson 0.85x; engine and hairball, 2.8-3.0, faster
+/// in pixel order).
+inline constexpr double kPixelOrderMinDepth = 3.5;
 /// Pixel order without early cull interleaves several pixels per thread
-/// (latency hiding: a slot's miss overlaps other pixels' probes) only when
-/// the table is at least this large and probes are many (deep pixels or a
-/// full table: core/pixel_order.h, InterleaveRule), unless
-/// InsertOptions::interleave says otherwise; below it the table sits in
-/// cache and interleaving only adds work (docs/performance.md, issue 26).
-inline constexpr std::uint64_t kInterleaveMinTableBytes = std::uint64_t{8} << 20;
+/// (latency hiding: a slot's miss overlaps other pixels' probes) when the
+/// table no longer fits this machine's L2 (cache_sizes.h) and probes are many
+/// (deep pixels or a full table: core/pixel_order.h, InterleaveRule), unless
+/// InsertOptions::interleave says otherwise; within the L2 interleaving only
+/// adds work (docs/performance.md, issues 26 and 36).
+
+/// The probe step pixel order's jump start runs (issue 36). Both give the
+/// same table, max-age table and counters; they differ in speed.
+enum class InsertStep {
+  /// core/jump_start_lanes.h: the step written out for the cull-free jump
+  /// start (one load per probe, each lane's next slot computed once).
+  Specialised,
+  /// The shared GLSL step (ha_insert_step_at), which every path runs: the
+  /// reference the tests hold the specialised one to.
+  Shared,
+};
 
 /// How FragmentBuffer::insert runs a batch.
 struct InsertOptions {
@@ -88,10 +109,21 @@ struct InsertOptions {
   InsertMode mode = InsertMode::Auto;  ///< how the threads share the buffer
   InsertOrder order = InsertOrder::Auto;  ///< the HA-buffer's order (others insert in arrival order)
   /// Pixel order: interleave pixels on each thread (true), or not (false);
-  /// nullopt: by the table's size (kInterleaveMinTableBytes). The same table either way.
+  /// nullopt: by the table's size against the L2 (InterleaveRule). The same table either way.
   std::optional<bool> interleave;
+  /// Pixel order without early cull: the jump start's probe step. The same table either way.
+  InsertStep step = InsertStep::Specialised;
   std::uint32_t band_rows = 16;  ///< OwnerComputes: table rows per band; other techniques' Auto: screen rows
 };
+
+/// Auto's rule as a function of what it reads: the order for a batch of
+/// `fragments` covering `covered_pixels` of `screen` (mode: owner-computes
+/// has no pixel order). Explicit orders are returned as they are.
+InsertOrder choose_insert_order(const InsertOptions& options, std::uint64_t fragments, std::uint64_t covered_pixels,
+                                Extent screen);
+/// Whether Auto's rule needs the covered pixels at all (a batch too small
+/// for pixel order, an explicit order or owner-computes does not).
+bool insert_order_needs_coverage(const InsertOptions& options, std::uint64_t fragments, Extent screen);
 
 /// One record of a pixel's list, front to back. `age` is the HA-buffer's
 /// (1-based probe count); other techniques give 0.
@@ -152,10 +184,14 @@ class FragmentBuffer {
   /// The order insert(fragments, options) would use for a batch of
   /// `fragments` (InsertOrder's rule): arrival order unless the container
   /// orders batches itself (the HA-buffer).
-  [[nodiscard]] virtual InsertOrder insert_order(std::size_t fragments, const InsertOptions& options) const {
+  [[nodiscard]] virtual InsertOrder insert_order(std::span<const Fragment> fragments,
+                                                 const InsertOptions& options) const {
     (void)fragments, (void)options;
     return InsertOrder::Arrival;
   }
+  /// The order the last insert() call ran in (Arrival before any, and for
+  /// containers that do not order batches).
+  [[nodiscard]] virtual InsertOrder last_insert_order() const { return InsertOrder::Arrival; }
   /// The coherent hash table the container stores its records in, for what
   /// only such a table has (ages, the max-age table, slot dumps); nullptr
   /// when it has none. The HA-buffer returns itself.

@@ -1,6 +1,7 @@
 #include "habuffer/techniques/ha/ha_buffer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <limits>
 #include <mutex>
@@ -11,12 +12,14 @@
 
 
 #include "habuffer/build_report.h"
+#include "habuffer/cache_sizes.h"
 #include "habuffer/hash_kernel.h"
 #include "habuffer/slot_storage.h"
 #include "habuffer/owner_computes.h"
 #include "habuffer/parallel.h"
 #include "pixel_order.h"
 #include "technique_parallel.h"
+#include "wavefront_composite.h"
 
 namespace habuffer {
 namespace {
@@ -55,6 +58,26 @@ struct HaBuffer::Impl {
   std::mutex buckets_mutex;
   std::vector<detail::PixelBuckets<std::uint64_t>> buckets64;
   std::vector<detail::PixelBuckets<std::uint32_t>> buckets32;
+
+  // The on-screen check's coverage bitmaps (Auto's order rule), kept likewise.
+  std::mutex coverage_mutex;
+  std::vector<std::vector<std::uint64_t>> coverage_bits;
+  std::atomic<InsertOrder> last_order{InsertOrder::Arrival};
+
+  // Checks the batch lies on the screen (throws naming the first fragment
+  // off it) and returns the order it inserts in: Auto's rule reads the
+  // pixels it covers, counted in the same pass.
+  InsertOrder check_and_order(std::span<const Fragment> frags, const InsertOptions& options, std::uint32_t threads) {
+    if (!insert_order_needs_coverage(options, frags.size(), config.screen)) {
+      check_on_screen(frags, config.screen);
+      return choose_insert_order(options, frags.size(), 0, config.screen);
+    }
+    std::unique_lock<std::mutex> kept(coverage_mutex, std::try_to_lock);
+    std::vector<std::vector<std::uint64_t>> own;
+    const std::uint64_t covered =
+        detail::check_and_count_covered(frags, config.screen, threads, kept.owns_lock() ? coverage_bits : own);
+    return choose_insert_order(options, frags.size(), covered, config.screen);
+  }
 
   template <class Word>
   std::vector<detail::PixelBuckets<Word>>& kept_buckets() {
@@ -115,7 +138,7 @@ struct HaBuffer::Impl {
   // The batch bucketed by pixel, nearest first, with the jump start
   // (pixel_order.h): bands of rows, one per thread.
   Counters insert_pixel_ordered(std::span<const Fragment> frags, std::uint32_t threads, bool shared,
-                                std::optional<bool> interleave) {
+                                const InsertOptions& options) {
     return std::visit(
         [&](auto& st) {
           using Word = std::remove_pointer_t<decltype(st.data())>;
@@ -125,18 +148,18 @@ struct HaBuffer::Impl {
           };
           std::unique_lock<std::mutex> kept(buckets_mutex, std::try_to_lock);
           std::vector<detail::PixelBuckets<Word>> own;
-          const detail::InterleaveRule rule{interleave, st.bytes() >= kInterleaveMinTableBytes,
+          const detail::InterleaveRule rule{options.interleave, st.bytes() > cache_sizes().l2,
                                             static_cast<double>(frags.size()) / static_cast<double>(st.size())};
           return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared, rule,
-                                                    kept.owns_lock() ? kept_buckets<Word>() : own);
+                                                    options.step, kept.owns_lock() ? kept_buckets<Word>() : own);
         },
         storage);
   }
 
   // Arrival or pixel order, as `order` says.
   Counters insert_ordered(std::span<const Fragment> frags, InsertOrder order, std::uint32_t threads, bool shared,
-                          std::optional<bool> interleave) {
-    if (order == InsertOrder::Pixel) return insert_pixel_ordered(frags, threads, shared, interleave);
+                          const InsertOptions& options) {
+    if (order == InsertOrder::Pixel) return insert_pixel_ordered(frags, threads, shared, options);
     return insert_slices(frags, threads, shared);
   }
 
@@ -203,35 +226,33 @@ HaBuffer::TableWords HaBuffer::table_words() const {
       impl_->storage);
 }
 
-InsertOrder HaBuffer::insert_order(std::size_t fragments, const InsertOptions& options) const {
+InsertOrder HaBuffer::insert_order(std::span<const Fragment> fragments, const InsertOptions& options) const {
   if (options.order == InsertOrder::Pixel && options.mode == InsertMode::OwnerComputes)
     throw std::invalid_argument("owner-computes insertion follows the probes, not the pixels: it has no pixel order");
-  if (options.order != InsertOrder::Auto) return options.order;
-  // Pixel order gives arrival order's table only without early cull (SPEC 9),
-  // and pays for itself only when the batch is not tiny beside the screen.
-  const bool pays = fragments >= kPixelOrderMinFragments &&
-                    fragments * kPixelOrderPixelsPerFragment >= impl_->config.screen.area();
-  const bool same_result = impl_->config.early_cull_tau <= 0.0f && options.mode != InsertMode::OwnerComputes;
-  return pays && same_result ? InsertOrder::Pixel : InsertOrder::Arrival;
+  return const_cast<Impl&>(*impl_).check_and_order(fragments, options, 1);
 }
 
+InsertOrder HaBuffer::last_insert_order() const { return impl_->last_order.load(std::memory_order_relaxed); }
+
 Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptions& options) {
-  check_on_screen(fragments, impl_->config.screen);
+  if (options.order == InsertOrder::Pixel && options.mode == InsertMode::OwnerComputes)
+    throw std::invalid_argument("owner-computes insertion follows the probes, not the pixels: it has no pixel order");
   const std::uint32_t threads = resolve_threads(options.threads, fragments.size());
-  const InsertOrder order = insert_order(fragments.size(), options);
+  const InsertOrder order = impl_->check_and_order(fragments, options, threads);
+  impl_->last_order.store(order, std::memory_order_relaxed);
   switch (options.mode) {
     case InsertMode::Auto:
       // One thread and no other call running: plain stores, the call alone.
       // Else atomics, beside any other atomic call (InsertGate).
       if (threads == 1)
         if (const auto alone = gate_.alone_if_free())
-          return impl_->insert_ordered(fragments, order, 1, false, options.interleave);
+          return impl_->insert_ordered(fragments, order, 1, false, options);
       break;
     case InsertMode::Serial: {
       if (threads != 1)
         throw std::invalid_argument("serial insertion runs on one thread, not " + std::to_string(threads));
       const auto alone = gate_.alone();
-      return impl_->insert_ordered(fragments, order, 1, false, options.interleave);
+      return impl_->insert_ordered(fragments, order, 1, false, options);
     }
     case InsertMode::Atomic: break;
     case InsertMode::OwnerComputes: {
@@ -245,7 +266,7 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
     }
   }
   const auto shared = gate_.shared();
-  return impl_->insert_ordered(fragments, order, threads, true, options.interleave);
+  return impl_->insert_ordered(fragments, order, threads, true, options);
 }
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {
@@ -356,21 +377,38 @@ glm::vec4 HaBuffer::composite(std::uint32_t x, std::uint32_t y, glm::vec3 backgr
   return impl_->with_kernel([&](auto& k) { return k.ha_composite(glm::uvec2(x, y), background); });
 }
 
+namespace {
+
+// Every pixel composited over background(row-major index), a wavefront of
+// pixels per row (wavefront_composite.h), bands of rows in parallel.
+template <class Kernel, class Background>
+std::vector<glm::vec4> composite_wavefronts(const Kernel& kernel, Extent screen, std::uint32_t threads,
+                                            Background background) {
+  std::vector<glm::vec4> image(screen.area());
+  detail::for_row_bands(screen, resolve_threads(threads, screen.area()),
+                        [&](std::uint32_t, std::uint32_t y0, std::uint32_t y1) {
+                          Kernel k = kernel;
+                          for (std::uint32_t y = y0; y < y1; ++y) {
+                            const std::size_t row = std::size_t{y} * screen.x;
+                            detail::composite_row_wavefront(
+                                k, y, screen.x, [&](std::uint32_t x) { return background(row + x); },
+                                image.data() + row);
+                          }
+                        });
+  return image;
+}
+
+}  // namespace
+
 std::vector<glm::vec4> HaBuffer::composite_image(glm::vec3 background, std::uint32_t threads) const {
-  return impl_->with_kernel([&](auto& k) {
-    return detail::composite_pixels(
-        screen(), threads, [&] { return k; },
-        [](auto& kernel, glm::uvec2 p, glm::vec3 bg) { return kernel.ha_composite(p, bg); },
-        [&](std::size_t) { return background; });
-  });
+  return impl_->with_kernel(
+      [&](auto& k) { return composite_wavefronts(k, screen(), threads, [&](std::size_t) { return background; }); });
 }
 
 std::vector<glm::vec4> HaBuffer::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
-  return impl_->with_kernel([&](auto& k) {
-    return detail::composite_image(
-        screen(), backgrounds, threads, [&] { return k; },
-        [](auto& kernel, glm::uvec2 p, glm::vec3 bg) { return kernel.ha_composite(p, bg); });
-  });
+  detail::check_backgrounds(screen(), backgrounds);
+  return impl_->with_kernel(
+      [&](auto& k) { return composite_wavefronts(k, screen(), threads, [&](std::size_t p) { return backgrounds[p]; }); });
 }
 
 std::vector<std::uint64_t> HaBuffer::age_histogram() const {

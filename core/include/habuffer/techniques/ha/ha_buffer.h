@@ -52,9 +52,14 @@ class HaBuffer final : public FragmentBuffer {
   /// table is the same in every case (SPEC 9).
   Counters insert(std::span<const Fragment> fragments, const InsertOptions& options = {}) override;
   /// The order insert(fragments, options) uses: options.order, with Auto
-  /// resolved (InsertOrder's rule). Throws std::invalid_argument for Pixel
-  /// with OwnerComputes (whose owners follow the probes, not the pixels).
-  [[nodiscard]] InsertOrder insert_order(std::size_t fragments, const InsertOptions& options) const override;
+  /// resolved (InsertOrder's rule; it reads the pixels the batch covers, in
+  /// a pass over it). Throws std::invalid_argument for Pixel with
+  /// OwnerComputes (whose owners follow the probes, not the pixels), and
+  /// std::out_of_range for a fragment off the screen.
+  [[nodiscard]] InsertOrder insert_order(std::span<const Fragment> fragments,
+                                         const InsertOptions& options) const override;
+  /// FragmentBuffer interface: the order the last insert() ran in.
+  [[nodiscard]] InsertOrder last_insert_order() const override;
   /// FragmentBuffer interface: this table.
   [[nodiscard]] const HaBuffer* hash_table() const override { return this; }
   /// FragmentBuffer interface: records, load, ages and the max-age table's largest cell.
