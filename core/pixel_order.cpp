@@ -38,25 +38,25 @@ std::uint64_t check_and_count_covered(std::span<const Fragment> fragments, Exten
   return covered;
 }
 
-std::vector<RowBand> balanced_row_bands(std::span<const Fragment> fragments, Extent screen, std::uint32_t parts) {
-  parts = std::max(1u, std::min(parts, screen.y));
-  if (parts == 1) return {RowBand{0, screen.y}};
-  std::vector<std::uint64_t> per_row(screen.y, 0);
-  for (const Fragment& f : fragments) ++per_row[f.y];
+std::vector<RowBand> bands_from_rows(std::span<const std::uint64_t> per_row, std::uint32_t parts) {
+  const auto rows = static_cast<std::uint32_t>(per_row.size());
+  parts = std::max(1u, std::min(parts, rows));
+  if (parts == 1) return {RowBand{0, rows}};
+  std::uint64_t total = 0;
+  for (const std::uint64_t n : per_row) total += n;
   std::vector<RowBand> bands;
-  const std::uint64_t total = fragments.size();
   std::uint64_t seen = 0;
   std::uint32_t y0 = 0;
-  for (std::uint32_t y = 0; y < screen.y; ++y) {
+  for (std::uint32_t y = 0; y < rows; ++y) {
     seen += per_row[y];
-    // Close band b once it holds its share: (b + 1) / parts of the fragments.
+    // Close band b once it holds its share: (b + 1) / parts of the records.
     const std::uint64_t share = total * (bands.size() + 1) / parts;
     if (bands.size() + 1 < parts && seen >= share && seen > 0) {
       bands.push_back({y0, y + 1});
       y0 = y + 1;
     }
   }
-  bands.push_back({y0, screen.y});
+  bands.push_back({y0, rows});
   return bands;
 }
 

@@ -49,10 +49,10 @@ struct RowBand {
   std::uint32_t y0 = 0, y1 = 0;
 };
 
-// At most `parts` bands of consecutive rows covering the screen, holding
-// about equal numbers of fragments (a band may be empty of rows when a few
-// rows hold most of the fragments).
-std::vector<RowBand> balanced_row_bands(std::span<const Fragment> fragments, Extent screen, std::uint32_t parts);
+// At most `parts` bands of consecutive rows covering rows [0, per_row.size()),
+// holding about equal numbers of records (per_row[y]: row y's; a band may
+// be empty of rows when a few rows hold most of the records).
+std::vector<RowBand> bands_from_rows(std::span<const std::uint64_t> per_row, std::uint32_t parts);
 
 // The pixels the batch covers, counted in the on-screen check's pass (issue
 // 36: Auto's rule reads fragments per covered pixel; a pass of its own cost
@@ -101,6 +101,23 @@ class PixelBuckets {
     records_.resize(n);
     for (const Fragment& f : fragments)
       if (f.y >= band.y0 && f.y < band.y1 && valid(f)) records_[end_[local(f) + 1]++] = pack(f);
+  }
+
+  // The same from records staged for this band (stage_by_band): record i
+  // belongs to the band's pixel pixels[i] (row-major from the band's first row).
+  void fill_staged(std::span<const std::uint32_t> pixels, std::span<const Word> records, Extent screen, RowBand band) {
+    origin_ = std::size_t{band.y0} * screen.x;
+    width_ = screen.x;
+    pixels_ = std::size_t{band.y1 - band.y0} * screen.x;
+    end_.assign(pixels_ + 2, 0);
+    for (const std::uint32_t p : pixels) ++end_[p + 2];
+    covered_ = 0;
+    for (std::size_t i = 2; i < end_.size(); ++i) {
+      covered_ += end_[i] != 0;
+      end_[i] += end_[i - 1];
+    }
+    records_.resize(records.size());
+    for (std::size_t i = 0; i < records.size(); ++i) records_[end_[pixels[i] + 1]++] = records[i];
   }
 
   // Pixels of the band, row by row (indices for records()).
@@ -249,9 +266,6 @@ void insert_pixels_jump_start(Kernel& k, Buckets& buckets, std::uint64_t* tally)
   }
 }
 
-// How many pixels one thread interleaves when hiding latency (AMAC-style):
-// enough independent probes in flight to cover a miss to memory.
-inline constexpr std::size_t kInterleavedPixels = 16;
 
 // When a band interleaves its pixels (measured with BM_InsertOrder,
 // docs/performance.md): never while the table sits in this machine's L2
@@ -325,6 +339,83 @@ void insert_pixels_in_order(Kernel& k, Buckets& buckets, std::uint64_t* tally) {
     for (const auto r : buckets.records(i, p)) ++tally[k.ha_insert_code(p, k.ha_code(r), k.ha_data(r))];
 }
 
+// What pixel order keeps between calls (a frame then touches no fresh
+// pages): one PixelBuckets per band, and the staging of the bucketing pass
+// that several threads share.
+template <class Word>
+struct PixelOrderScratch {
+  std::vector<PixelBuckets<Word>> buckets;
+  std::vector<std::uint32_t> staged_pixels;  // each staged record's pixel within its band
+  std::vector<Word> staged_records;
+  std::vector<std::size_t> band_begin;       // band b's staged records: [band_begin[b], band_begin[b + 1])
+  std::vector<std::vector<std::uint64_t>> row_counts;  // per thread, valid records per row of its slice
+};
+
+// One bucketing pass shared by `threads` threads (issue 36: each used to
+// read the whole stream to pick out its band's fragments): each thread
+// counts the valid records per row of its own slice of the stream; bands of
+// rows are balanced by those records; each thread then scatters its slice's
+// records to their bands (contiguous, in slice order), so a band's thread
+// buckets its pixels from its own staged records alone. Returns the bands;
+// `invalid[t]` counts slice t's fragments whose depth `valid` refuses.
+// Runs inside run_with_threads(threads).
+template <class Word, class Valid, class Pack>
+std::vector<RowBand> stage_by_band(std::span<const Fragment> fragments, Extent screen, std::uint32_t threads,
+                                   Valid valid, Pack pack, PixelOrderScratch<Word>& s,
+                                   std::vector<PartCount>& invalid) {
+  const auto slice = [&](std::uint32_t t) {
+    const std::size_t begin = fragments.size() * t / threads, end = fragments.size() * (t + 1) / threads;
+    return fragments.subspan(begin, end - begin);
+  };
+  s.row_counts.resize(threads);
+  invalid.assign(threads, {});
+  fork_join(threads, [&](std::uint32_t t) {
+    std::vector<std::uint64_t>& rows = s.row_counts[t];
+    rows.assign(screen.y, 0);
+    std::uint64_t bad = 0;
+    for (const Fragment& f : slice(t)) {
+      if (valid(f))
+        ++rows[f.y];
+      else
+        ++bad;
+    }
+    invalid[t].n = bad;
+  });
+  std::vector<std::uint64_t> per_row(screen.y, 0);
+  for (const auto& rows : s.row_counts)
+    for (std::uint32_t y = 0; y < screen.y; ++y) per_row[y] += rows[y];
+  std::vector<RowBand> bands = bands_from_rows(per_row, threads);
+  std::vector<std::uint32_t> band_of_row(screen.y);
+  for (std::uint32_t b = 0; b < bands.size(); ++b)
+    for (std::uint32_t y = bands[b].y0; y < bands[b].y1; ++y) band_of_row[y] = b;
+  // Thread t writes band b's records from cursor[t][b] on: bands in order,
+  // threads in order within a band.
+  std::vector<std::vector<std::size_t>> cursor(threads, std::vector<std::size_t>(bands.size()));
+  s.band_begin.assign(bands.size() + 1, 0);
+  std::size_t at = 0;
+  for (std::uint32_t b = 0; b < bands.size(); ++b) {
+    s.band_begin[b] = at;
+    for (std::uint32_t t = 0; t < threads; ++t) {
+      cursor[t][b] = at;
+      for (std::uint32_t y = bands[b].y0; y < bands[b].y1; ++y) at += s.row_counts[t][y];
+    }
+  }
+  s.band_begin[bands.size()] = at;
+  s.staged_pixels.resize(at);
+  s.staged_records.resize(at);
+  fork_join(threads, [&](std::uint32_t t) {
+    std::vector<std::size_t>& next = cursor[t];
+    for (const Fragment& f : slice(t)) {
+      if (!valid(f)) continue;
+      const std::uint32_t b = band_of_row[f.y];
+      const std::size_t i = next[b]++;
+      s.staged_pixels[i] = static_cast<std::uint32_t>(f.x + std::size_t{f.y - bands[b].y0} * screen.x);
+      s.staged_records[i] = pack(f);
+    }
+  });
+  return bands;
+}
+
 // The whole batch in pixel order on `threads` threads, each owning a band of
 // rows and one of `buckets` (resized to the bands; kept by the caller
 // between calls); `make_kernel(concurrent)` as for_slices (atomics unless one
@@ -333,25 +424,34 @@ void insert_pixels_in_order(Kernel& k, Buckets& buckets, std::uint64_t* tally) {
 template <class Word, class MakeKernel>
 Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen, std::uint32_t threads,
                               MakeKernel make_kernel, bool shared, const InterleaveRule& interleave,
-                              InsertStep step, std::vector<PixelBuckets<Word>>& buckets) {
+                              InsertStep step, PixelOrderScratch<Word>& scratch) {
   if (fragments.size() > PixelBuckets<Word>::kMaxFragments) {
     const std::size_t half = fragments.size() / 2;
     Counters total =
         insert_pixel_ordered<Word>(fragments.first(half), screen, threads, make_kernel, shared, interleave, step,
-                                   buckets);
+                                   scratch);
     total +=
         insert_pixel_ordered<Word>(fragments.subspan(half), screen, threads, make_kernel, shared, interleave, step,
-                                   buckets);
+                                   scratch);
     return total;
   }
-  const std::vector<RowBand> bands = balanced_row_bands(fragments, screen, threads);
-  if (buckets.size() < bands.size()) buckets.resize(bands.size());
-  std::vector<SliceCounters> parts(bands.size());
+  threads = std::max(1u, std::min(threads, screen.y));
+  auto pure = make_kernel(std::false_type{});  // packing only: reads no buffer
+  const auto valid = [&](const Fragment& f) { return pure.ha_depth_valid(f.depth); };
+  const auto pack = [&](const Fragment& f) { return pure.ha_pack(1u, pure.ha_depth_code(f.depth), f.rgba); };
+  std::vector<RowBand> bands{RowBand{0, screen.y}};
+  std::vector<SliceCounters> parts;
+  std::vector<PartCount> invalid;
+  auto& buckets = scratch.buckets;
   const auto run_band = [&](auto& k, std::uint32_t b) {
     std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
-    buckets[b].fill(
-        fragments, screen, bands[b], [&](const Fragment& f) { return k.ha_depth_valid(f.depth); },
-        [&](const Fragment& f) { return k.ha_pack(1u, k.ha_depth_code(f.depth), f.rgba); }, tally[HABUFFER_INVALID]);
+    if (threads == 1) {
+      buckets[b].fill(fragments, screen, bands[b], valid, pack, tally[HABUFFER_INVALID]);
+    } else {
+      const std::size_t begin = scratch.band_begin[b], n = scratch.band_begin[b + 1] - begin;
+      buckets[b].fill_staged(std::span<const std::uint32_t>(scratch.staged_pixels).subspan(begin, n),
+                             std::span<const Word>(scratch.staged_records).subspan(begin, n), screen, bands[b]);
+    }
     using Kernel = std::remove_reference_t<decltype(k)>;
     const bool lanes = interleave.applies(buckets[b].mean_depth());
     if (k.habuffer_cull_tau > 0.0f)
@@ -366,11 +466,20 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
       JumpStartLanes<Kernel, 1, false>::run(k, buckets[b], tally);
     parts[b].c.add_tally(tally);
   };
-  if (bands.size() == 1 && !shared) {
-    auto k = make_kernel(std::false_type{});
-    run_band(k, 0);
+  if (threads == 1) {
+    buckets.resize(std::max<std::size_t>(buckets.size(), 1));
+    parts.resize(1);
+    if (shared) {
+      auto k = make_kernel(std::true_type{});
+      run_band(k, 0);
+    } else {
+      run_band(pure, 0);
+    }
   } else {
-    run_with_threads(static_cast<std::uint32_t>(bands.size()), [&] {
+    run_with_threads(threads, [&] {
+      bands = stage_by_band<Word>(fragments, screen, threads, valid, pack, scratch, invalid);
+      if (buckets.size() < bands.size()) buckets.resize(bands.size());
+      parts.resize(bands.size());
       fork_join(static_cast<std::uint32_t>(bands.size()), [&](std::uint32_t b) {
         auto k = make_kernel(std::true_type{});
         run_band(k, b);
@@ -379,6 +488,9 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
   }
   Counters total;
   for (const auto& part : parts) total += part.c;
+  std::uint64_t bad[HABUFFER_OUTCOME_COUNT] = {};
+  for (const PartCount& p : invalid) bad[HABUFFER_INVALID] += p.n;
+  total.add_tally(bad);
   return total;
 }
 

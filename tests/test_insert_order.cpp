@@ -8,6 +8,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "../core/pixel_order.h"  // the thread partition (a private header)
 #include "test_support.h"
 
 namespace habuffer {
@@ -344,6 +345,69 @@ TEST(InsertOrder, PixelOrderUnderEarlyCullCullsAtLeastArrivalOrderAndKeepsTheBou
           }
         }
       }
+}
+
+// Several threads share one bucketing pass (issue 36): bands of rows hold
+// about equal numbers of records, cover every row once, and each band's
+// staged records are exactly its rows' valid fragments, in stream order.
+TEST(InsertOrder, ThreadsShareOneBucketingPassIntoBandsBalancedByRecords) {
+  SplitMix64 rng(11);
+  for (int round = 0; round < 200; ++round) {
+    const auto rows = static_cast<std::uint32_t>(1 + rng.below(40));
+    const auto parts = static_cast<std::uint32_t>(1 + rng.below(6));
+    std::vector<std::uint64_t> per_row(rows);
+    std::uint64_t total = 0, widest = 0;
+    for (auto& n : per_row) {
+      n = rng.below(4) == 0 ? rng.below(1000) : rng.below(5);
+      total += n;
+      widest = std::max(widest, n);
+    }
+    const auto bands = detail::bands_from_rows(per_row, parts);
+    const std::uint32_t usable = std::min(parts, rows);  // a band has a row at least
+    ASSERT_LE(bands.size(), usable);
+    std::uint32_t next = 0;
+    for (const auto& band : bands) {
+      ASSERT_EQ(band.y0, next) << "bands are consecutive";
+      ASSERT_GE(band.y1, band.y0);
+      next = band.y1;
+      std::uint64_t held = 0;
+      for (std::uint32_t y = band.y0; y < band.y1; ++y) held += per_row[y];
+      EXPECT_LE(held, total / usable + widest + 1) << "a band holds its share and at most one row more";
+    }
+    EXPECT_EQ(next, rows) << "the bands cover every row";
+  }
+
+  const Extent screen{32, 24};
+  auto f = test::stream(screen, StreamKind::Random, 3000, 5);
+  for (std::size_t i = 0; i < f.size(); i += 37) f[i].depth = std::numeric_limits<float>::quiet_NaN();
+  for (std::uint32_t threads : {2u, 3u, 5u}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    detail::PixelOrderScratch<std::uint64_t> scratch;
+    std::vector<detail::PartCount> invalid;
+    const auto valid = [](const Fragment& g) { return g.depth == g.depth; };
+    const auto pack = [&](const Fragment& g) { return std::uint64_t{g.x} << 40 | std::uint64_t{g.y} << 32 | g.rgba; };
+    std::vector<detail::RowBand> bands;
+    run_with_threads(threads, [&] {
+      bands = detail::stage_by_band<std::uint64_t>(f, screen, threads, valid, pack, scratch, invalid);
+    });
+    std::uint64_t refused = 0;
+    for (const auto& p : invalid) refused += p.n;
+    EXPECT_EQ(refused, (f.size() + 36) / 37);
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+      std::vector<std::uint64_t> want;
+      for (const Fragment& g : f)
+        if (valid(g) && g.y >= bands[b].y0 && g.y < bands[b].y1) want.push_back(pack(g));
+      const std::size_t begin = scratch.band_begin[b], end = scratch.band_begin[b + 1];
+      const std::vector<std::uint64_t> got(scratch.staged_records.begin() + static_cast<std::ptrdiff_t>(begin),
+                                           scratch.staged_records.begin() + static_cast<std::ptrdiff_t>(end));
+      EXPECT_EQ(got, want) << "band " << b;
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::uint64_t r = scratch.staged_records[i];
+        const auto x = static_cast<std::uint32_t>(r >> 40), y = static_cast<std::uint32_t>((r >> 32) & 0xFF);
+        ASSERT_EQ(scratch.staged_pixels[i], x + (y - bands[b].y0) * screen.x);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "cli_args.h"
 #include "commands.h"
+#include "habuffer/cache_sizes.h"
 #include "habuffer/parallel.h"
 #include "habuffer/render/image.h"
 #include "habuffer/technique.h"
@@ -32,9 +33,14 @@ int run_info(const std::vector<std::string>& argv) {
   std::printf("  cpu: available (%s, %u hardware threads; layouts L64 and L32; age bits 4..12)\n",
               parallel_runtime().c_str(), default_concurrency());
   std::printf("    HA-buffer insert order: auto = pixel (bucketed by pixel, nearest first, jump-started; the table of\n"
-              "    arrival order) without early cull and at >= 1 fragment per %llu pixels, else arrival; "
-              "--insert-order\n",
-              static_cast<unsigned long long>(kPixelOrderPixelsPerFragment));
+              "    arrival order; under early cull another conservative schedule) at >= 1 fragment per %llu pixels\n"
+              "    and >= %.1f fragments per covered pixel, else arrival; --insert-order\n",
+              static_cast<unsigned long long>(kPixelOrderPixelsPerFragment), kPixelOrderMinDepth);
+  const CacheSizes& caches = cache_sizes();
+  const auto kib = [](std::uint64_t bytes) { return static_cast<unsigned long long>(bytes >> 10); };
+  std::printf("    caches (%s): L1d %llu KiB, L2 %llu KiB, L3 %llu KiB; pixel order interleaves %zu pixels a thread\n"
+              "    where the table exceeds the L2 and probes are many\n",
+              caches.source.c_str(), kib(caches.l1d), kib(caches.l2), kib(caches.l3), kInterleavedPixels);
   try {
     const gl::EglContext context;
     const gl::GlInfo info = gl::query_gl_info();

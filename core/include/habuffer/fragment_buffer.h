@@ -92,6 +92,10 @@ inline constexpr double kPixelOrderMinDepth = 3.5;
 /// InsertOptions::interleave says otherwise; within the L2 interleaving only
 /// adds work (docs/performance.md, issues 26 and 36).
 
+/// Pixels one thread interleaves when pixel order hides latency (AMAC-style):
+/// enough independent probes in flight to cover a miss to memory.
+inline constexpr std::size_t kInterleavedPixels = 16;
+
 /// The probe step pixel order's jump start runs (issue 36). Both give the
 /// same table, max-age table and counters; they differ in speed.
 enum class InsertStep {

@@ -56,8 +56,8 @@ struct HaBuffer::Impl {
   // Pixel order's buckets, kept between calls (a frame then touches no fresh
   // pages); a call that finds them taken by an overlapping call makes its own.
   std::mutex buckets_mutex;
-  std::vector<detail::PixelBuckets<std::uint64_t>> buckets64;
-  std::vector<detail::PixelBuckets<std::uint32_t>> buckets32;
+  detail::PixelOrderScratch<std::uint64_t> scratch64;
+  detail::PixelOrderScratch<std::uint32_t> scratch32;
 
   // The on-screen check's coverage bitmaps (Auto's order rule), kept likewise.
   std::mutex coverage_mutex;
@@ -80,11 +80,11 @@ struct HaBuffer::Impl {
   }
 
   template <class Word>
-  std::vector<detail::PixelBuckets<Word>>& kept_buckets() {
+  detail::PixelOrderScratch<Word>& kept_scratch() {
     if constexpr (std::is_same_v<Word, std::uint64_t>)
-      return buckets64;
+      return scratch64;
     else
-      return buckets32;
+      return scratch32;
   }
 
   Impl(const BufferConfig& c, OffsetSequence o)
@@ -147,11 +147,11 @@ struct HaBuffer::Impl {
                                                                  max_age.data());
           };
           std::unique_lock<std::mutex> kept(buckets_mutex, std::try_to_lock);
-          std::vector<detail::PixelBuckets<Word>> own;
+          detail::PixelOrderScratch<Word> own;
           const detail::InterleaveRule rule{options.interleave, st.bytes() > cache_sizes().l2,
                                             static_cast<double>(frags.size()) / static_cast<double>(st.size())};
           return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared, rule,
-                                                    options.step, kept.owns_lock() ? kept_buckets<Word>() : own);
+                                                    options.step, kept.owns_lock() ? kept_scratch<Word>() : own);
         },
         storage);
   }
