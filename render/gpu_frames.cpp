@@ -52,7 +52,8 @@ class GpuFrames final : public FramePath {
   void complete_frame(const gl::FrameReport& report, SceneRenderer& renderer, FrameStats& fs,
                       RenderResult& result) override {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target_.framebuffer());
-    fs.resolve_ms = report.sort.wall_ms + driver_.resolve(settings_.background, renderer.opaque_colour_texture()).wall_ms;
+    fs.sort_ms = report.sort.wall_ms;
+    fs.resolve_ms = fs.sort_ms + driver_.resolve(settings_.background, renderer.opaque_colour_texture()).wall_ms;
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     fs.table = report.table;
     fs.capacity = report.capacity;

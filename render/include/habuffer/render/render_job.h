@@ -101,6 +101,11 @@ struct FrameStats {
   /// the buffer resets before the gather, which the gather's clock leaves out;
   /// frame: the whole frame, wall clock.
   double gather_ms = 0.0, resolve_ms = 0.0, clear_ms = 0.0, frame_ms = 0.0;
+  /// Milliseconds of the sort pass that resolve_ms holds (GPU path: lists,
+  /// arrays); 0 where the lists are sorted by the gather (the HA-buffer, the
+  /// insertion-sorted techniques, and every CPU container, whose gather sorts).
+  /// gather_ms + sort_ms: the cost to sorted lists.
+  double sort_ms = 0.0;
 };
 
 /// What render_scene and render_fragments return: the last frame's image and lists, every frame's stats.
