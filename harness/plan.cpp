@@ -9,6 +9,7 @@
 
 #include "habuffer/harness/technique_spec.h"
 #include "habuffer/memory_model.h"
+#include "habuffer/number_text.h"
 #include "habuffer/pixel_depth.h"
 #include "habuffer/probe_simulator.h"
 
@@ -139,29 +140,60 @@ Prediction predict_lists(const ExactCapture& c, Extent screen, Technique techniq
   return p;
 }
 
-// The recommendation: least memory among the lossless (no trial lost
-// anything), or among those whose predicted PSNR meets the target (a hash
-// table's only without failure risk).
-const Prediction* recommended(const std::vector<Prediction>& preds, const PlanSettings& s) {
+// Bytes per fragment of the capture.
+double per_fragment(const Prediction& p, std::uint64_t fragments) {
+  return static_cast<double>(p.memory) / static_cast<double>(fragments);
+}
+
+bool within_budget(const Prediction& p, std::uint64_t fragments, const PlanSettings& s) {
+  return !s.memory_budget || per_fragment(p, fragments) <= *s.memory_budget;
+}
+
+// The aim: lossless (no trial lost anything), or a predicted PSNR that meets
+// the target (a hash table's only without failure risk).
+bool meets_aim(const Prediction& p, const PlanSettings& s) {
+  return s.target_psnr ? (p.psnr && *p.psnr >= *s.target_psnr && (!uses_table(p.spec.technique) || p.risk == 0.0))
+                       : p.risk == 0.0;
+}
+
+// Accuracy for the fallback under a budget: the predicted PSNR, -inf for a
+// hash table that may fail (its failures' PSNR is not predicted).
+double accuracy(const Prediction& p) {
+  if (!p.psnr || (uses_table(p.spec.technique) && p.risk > 0.0)) return -kInf;
+  return *p.psnr;
+}
+
+// The recommendation (plan.h): least memory among those meeting the aim
+// within the budget; else, with a budget, the most accurate within it.
+// `fallback` is set when the second rule chose.
+const Prediction* recommended(const std::vector<Prediction>& preds, std::uint64_t fragments, const PlanSettings& s,
+                              bool& fallback) {
+  fallback = false;
   const Prediction* best = nullptr;
-  for (const Prediction& p : preds) {
-    const bool ok = s.target_psnr
-                        ? (p.psnr && *p.psnr >= *s.target_psnr && (!uses_table(p.spec.technique) || p.risk == 0.0))
-                        : p.risk == 0.0;
-    if (ok && (!best || p.memory < best->memory)) best = &p;
-  }
+  for (const Prediction& p : preds)
+    if (meets_aim(p, s) && within_budget(p, fragments, s) && (!best || p.memory < best->memory)) best = &p;
+  if (best || !s.memory_budget) return best;
+  const auto better = [](const Prediction& a, const Prediction& b) {
+    if (accuracy(a) != accuracy(b)) return accuracy(a) > accuracy(b);
+    if (a.failures != b.failures) return a.failures < b.failures;
+    return a.memory < b.memory;
+  };
+  for (const Prediction& p : preds)
+    if (within_budget(p, fragments, s) && (!best || better(p, *best))) best = &p;
+  fallback = best != nullptr;
   return best;
 }
 
 // One prediction as a row of the plan's table.
-ResultRow plan_row(const Prediction& p, const PlanSettings& s, bool best) {
+ResultRow plan_row(const Prediction& p, std::uint64_t fragments, const PlanSettings& s, bool best) {
   ResultRow row;
-  row.set("technique", p.spec.label()).set("memory_bytes", p.memory);
+  row.set("technique", p.spec.label()).set("memory_bytes", p.memory).set("bytes_per_fragment", per_fragment(p, fragments));
   if (p.max_age) row.set("predicted_max_age", *p.max_age).set("predicted_max_age_max", p.max_age_max);
   row.set("predicted_failures", p.failures).set("failure_risk", p.risk);
   if (p.psnr) row.set("predicted_psnr", *p.psnr);
   row.set("lossless", p.risk == 0.0);
   if (s.target_psnr) row.set("meets_target", p.psnr && *p.psnr >= *s.target_psnr);
+  if (s.memory_budget) row.set("within_budget", within_budget(p, fragments, s));
   row.set("recommended", best);
   return row;
 }
@@ -171,6 +203,9 @@ void check_settings(const PlanSettings& s) {
   if (s.trials == 0) throw std::invalid_argument("plan needs at least one trial");
   if (s.target_psnr && !(std::isfinite(*s.target_psnr) && *s.target_psnr > 0.0))
     throw std::invalid_argument("target PSNR " + std::to_string(*s.target_psnr) + " is not a finite PSNR above 0 dB");
+  if (s.memory_budget && !(std::isfinite(*s.memory_budget) && *s.memory_budget >= 0.0))
+    throw std::invalid_argument("memory budget " + std::to_string(*s.memory_budget) +
+                                " is not a finite number of bytes per fragment at least 0");
 }
 
 }  // namespace
@@ -205,10 +240,11 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
     preds.push_back(predict_layers(c, screen, Technique::KBuffer, k));
     preds.push_back(predict_layers(c, screen, Technique::Arrays, k));
   }
-  const Prediction* best = recommended(preds, s);
+  bool fallback = false;
+  const Prediction* best = recommended(preds, c.fragments, s, fallback);
   ResultTable table;
   table.title = "plan";
-  for (const Prediction& p : preds) table.rows.push_back(plan_row(p, s, &p == best));
+  for (const Prediction& p : preds) table.rows.push_back(plan_row(p, c.fragments, s, &p == best));
   std::vector<std::uint64_t> depth(deepest + 1, 0);
   for (const std::uint32_t n : c.pixel_fragments) ++depth[n];
   std::string hist;
@@ -220,7 +256,15 @@ ResultTable plan_from_capture(const ExactCapture& c, Extent screen, const PlanSe
     table.notes["ha_beyond_amax"] =
         too_deep_message(*too_deep, s.age_bits) + "; the ha rows are predicted without simulation";
   table.notes["depth_complexity_histogram"] = hist + " (fragments per pixel : pixels)";
-  table.notes["recommendation"] = best ? best->spec.label() : std::string("none meets the target");
+  table.notes["recommendation"] =
+      best ? best->spec.label() : std::string(s.memory_budget ? "none fits the memory budget" : "none meets the target");
+  if (s.memory_budget) {
+    const std::string aim = s.target_psnr ? "the target" : "losslessness";
+    table.notes["budget"] = shortest_text(*s.memory_budget) + " bytes per fragment: " +
+                            (!best       ? std::string("no configuration fits it")
+                             : fallback ? "no configuration meets " + aim + " within it; the most accurate within it"
+                                        : "the least memory meeting " + aim + " within it");
+  }
   table.notes["model"] =
       "HA-buffer: SPEC 3's insertion (stats library model) of a synthetic stream with the scene's per-pixel counts and "
       "random depths, " + std::to_string(s.trials) + " seeds; k-buffer and arrays: the k nearest or first k fragments of "

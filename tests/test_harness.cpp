@@ -310,7 +310,7 @@ TEST(Harness, ParetoMarksOnlyUndominatedRowsPerScene) {
   const auto row = [&](const char* scene, const char* tech, double ms, double mem, double psnr) {
     ResultRow r;
     r.set("scene", scene).set("size", "8x8").set("path", "cpu").set("technique", tech).set("total_ms", ms)
-        .set("memory_bytes", mem).set("psnr", psnr);
+        .set("memory_bytes", mem).set("bytes_per_fragment", mem / 10.0).set("psnr", psnr);
     t.rows.push_back(r);
   };
   row("a", "fast-bad", 1.0, 100.0, 20.0);
@@ -362,6 +362,65 @@ TEST(Harness, EqualPointsAreBothOnTheParetoFrontAndAStrictlyBetterOneDropsThem) 
   EXPECT_FALSE(mark(2, "pareto_time")) << "as accurate, strictly slower";
   EXPECT_TRUE(mark(2, "pareto_memory")) << "as much memory and as accurate: a tie in memory";
   EXPECT_FALSE(mark(3, "pareto_time")) << "as fast, strictly less accurate";
+}
+
+// Issue 36: the frontier in time, memory and error at once. A row is on it
+// when no other row is at least as good on all three and better on one.
+ResultRow frontier_row(const char* tech, double ms, double bytes_per_fragment, double psnr) {
+  ResultRow r;
+  r.set("scene", "a").set("size", "8x8").set("path", "cpu").set("technique", tech).set("total_ms", ms)
+      .set("memory_bytes", 100.0 * bytes_per_fragment).set("bytes_per_fragment", bytes_per_fragment).set("psnr", psnr);
+  return r;
+}
+
+TEST(Harness, TheThreeAxisFrontKeepsARowThatEachTwoAxisFrontDropsAndDropsOnlyRowsDominatedOnAllThree) {
+  ResultTable t;
+  t.rows = {frontier_row("fast-big", 1.0, 16.0, INFINITY), frontier_row("slow-small", 5.0, 8.0, INFINITY),
+            frontier_row("between", 3.0, 12.0, INFINITY), frontier_row("worse-everywhere", 6.0, 20.0, 30.0),
+            frontier_row("slower-same-rest", 1.5, 16.0, INFINITY), frontier_row("cheap-lossy", 0.5, 2.0, 20.0)};
+  mark_pareto(t);
+  const auto mark = [&](std::size_t i, const char* c) { return std::get<bool>(*t.rows[i].find(c)); };
+  EXPECT_TRUE(mark(0, "pareto_3d"));
+  EXPECT_TRUE(mark(1, "pareto_3d"));
+  EXPECT_FALSE(mark(2, "pareto_time")) << "fast-big is faster and as exact";
+  EXPECT_FALSE(mark(2, "pareto_memory")) << "slow-small is smaller and as exact";
+  EXPECT_TRUE(mark(2, "pareto_3d")) << "neither is both faster and smaller";
+  EXPECT_FALSE(mark(3, "pareto_3d")) << "slower, larger and less accurate than fast-big";
+  EXPECT_FALSE(mark(4, "pareto_3d")) << "equal to fast-big in memory and psnr, slower";
+  EXPECT_TRUE(mark(5, "pareto_3d")) << "the fastest and smallest, however inaccurate";
+  EXPECT_NE(t.notes.at("pareto").find("pareto_3d (total_ms, memory_bytes, psnr)"), std::string::npos);
+}
+
+TEST(Harness, RowsEqualOnAllThreeAxesStayOnTheThreeAxisFrontTogether) {
+  ResultTable t;
+  t.rows = {frontier_row("twin-1", 2.0, 8.0, 40.0), frontier_row("twin-2", 2.0, 8.0, 40.0),
+            frontier_row("twin-but-worse", 2.0, 8.0, 39.0), frontier_row("other-scene", 9.0, 90.0, 1.0)};
+  t.rows[3].set("scene", "b");
+  mark_pareto(t);
+  const auto mark = [&](std::size_t i) { return std::get<bool>(*t.rows[i].find("pareto_3d")); };
+  EXPECT_TRUE(mark(0)) << "a tie dominates nobody";
+  EXPECT_TRUE(mark(1));
+  EXPECT_FALSE(mark(2));
+  EXPECT_TRUE(mark(3)) << "alone in its scene";
+}
+
+TEST(Harness, PicksAreTheFastestRowMeetingEachTargetWithinEachMemoryBudgetOrNone) {
+  ResultTable t;
+  t.rows = {frontier_row("lists", 1.0, 17.0, INFINITY), frontier_row("ha:load=0.9", 2.0, 9.0, INFINITY),
+            frontier_row("kbuffer:k=1", 0.5, 4.0, 25.0)};
+  const ResultTable picks = frontier_picks(t, {20.0, 50.0}, {kNoMemoryBudget, 10.0, 3.0});
+  ASSERT_EQ(picks.rows.size(), 6u);  // per target, per budget in the order given
+  const auto pick = [&](std::size_t i) { return text(picks.rows[i], "technique"); };
+  EXPECT_EQ(pick(0), "kbuffer:k=1");  // 20 dB, no budget
+  EXPECT_EQ(pick(1), "kbuffer:k=1");  // 20 dB, 10 B
+  EXPECT_EQ(pick(2), "none");         // 20 dB, 3 B: nothing is that small
+  EXPECT_EQ(pick(3), "lists");        // exact, no budget: the fastest exact
+  EXPECT_EQ(pick(4), "ha:load=0.9");  // exact within 10 B per fragment: lists do not fit
+  EXPECT_EQ(pick(5), "none");
+  EXPECT_EQ(num(picks.rows[4], "memory_budget"), 10.0);
+  EXPECT_EQ(num(picks.rows[4], "bytes_per_fragment"), 9.0);
+  EXPECT_TRUE(std::isinf(num(picks.rows[3], "memory_budget")));
+  EXPECT_EQ(picks.rows[5].find("total_ms"), nullptr);
 }
 
 TEST(Harness, SceneWordsObeyRendersRulesForEveryKey) {
@@ -485,6 +544,62 @@ TEST(Harness, ThePlanRefusesATargetPsnrThatIsNotAFinitePositiveNumberOfDecibels)
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("no fragment"), std::string::npos) << e.what();
   }
+}
+
+// A capture made by hand: 4x4 pixels, three fragments each of distinct
+// colours and depths, over a white background.
+ExactCapture three_deep_capture() {
+  ExactCapture c;
+  const Extent screen{4, 4};
+  c.pixel_fragments.assign(screen.area(), 3);
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x)
+      for (std::uint32_t i = 0; i < 3; ++i)
+        c.stream.push_back(Fragment{x, y, 0.9f - 0.3f * static_cast<float>(i), 0x80000000u | (0xffu << (8 * i))});
+  c.fragments = c.stream.size();
+  c.backgrounds.assign(screen.area(), glm::vec3(1.0f));
+  c.reference = reference_image(c.stream, screen, c.backgrounds);
+  return c;
+}
+
+// Issue 36: `plan --memory-budget`: the least memory meeting the aim within
+// the budget; below every such configuration, the most accurate within it;
+// below every configuration, none.
+TEST(Harness, ThePlanRecommendsWithinAMemoryBudgetAndTheMostAccurateThereWhenNoneIsLossless) {
+  const ExactCapture c = three_deep_capture();
+  PlanSettings ps;
+  ps.loads = {0.5, 0.9};
+  ps.trials = 1;
+  const ResultTable unbudgeted = plan_from_capture(c, {4, 4}, ps);
+  const std::string cheapest = unbudgeted.notes.at("recommendation");
+  double cheapest_bytes = 0.0;
+  for (const ResultRow& r : unbudgeted.rows)
+    if (text(r, "technique") == cheapest) cheapest_bytes = num(r, "bytes_per_fragment");
+  ASSERT_GT(cheapest_bytes, 0.0);
+
+  ps.memory_budget = cheapest_bytes;
+  const ResultTable fits = plan_from_capture(c, {4, 4}, ps);
+  EXPECT_EQ(fits.notes.at("recommendation"), cheapest);
+  EXPECT_NE(fits.notes.at("budget").find("the least memory meeting losslessness within it"), std::string::npos);
+
+  ps.memory_budget = cheapest_bytes - 0.01;
+  const ResultTable tight = plan_from_capture(c, {4, 4}, ps);
+  EXPECT_NE(tight.notes.at("budget").find("no configuration meets losslessness within it"), std::string::npos);
+  const ResultRow* chosen = nullptr;
+  for (const ResultRow& r : tight.rows)
+    if (std::get<bool>(*r.find("recommended"))) chosen = &r;
+  ASSERT_NE(chosen, nullptr);
+  EXPECT_TRUE(std::get<bool>(*chosen->find("within_budget")));
+  EXPECT_FALSE(std::get<bool>(*chosen->find("lossless")));
+  for (const ResultRow& r : tight.rows)
+    if (std::get<bool>(*r.find("within_budget")) && r.find("predicted_psnr") && text(r, "technique").rfind("ha", 0) != 0) {
+      EXPECT_GE(num(*chosen, "predicted_psnr"), num(r, "predicted_psnr")) << text(r, "technique");
+    }
+
+  ps.memory_budget = 0.0;
+  EXPECT_EQ(plan_from_capture(c, {4, 4}, ps).notes.at("recommendation"), "none fits the memory budget");
+  ps.memory_budget = -1.0;
+  EXPECT_THROW((void)plan_from_capture(c, {4, 4}, ps), std::invalid_argument);
 }
 
 // The plan's predictions for engine at 256x256 against measured renders:

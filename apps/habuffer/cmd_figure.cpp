@@ -95,6 +95,10 @@ harness::ResultTable run_bench_figure(FigureRun& r, const std::string& name, har
   usage_errors("", [&] { harness::validate_bench(b); });
   const std::vector<double> targets =
       r.args.has("picks") ? parse_reals(r.args, "targets", 0.0, 1000.0) : std::vector<double>{};
+  // Every target is picked without a budget, then within each budget.
+  std::vector<double> budgets{harness::kNoMemoryBudget};
+  if (r.args.has("picks"))
+    for (const double budget : parse_reals(r.args, "memory-budgets", 0.0, 1e9)) budgets.push_back(budget);
   r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
   harness::ResultTable table = harness::run_bench(b);
@@ -102,7 +106,7 @@ harness::ResultTable run_bench_figure(FigureRun& r, const std::string& name, har
   if (name == "frontier") {
     harness::mark_pareto(table);
     if (!r.outputs.picks.empty()) {
-      harness::ResultTable p = harness::frontier_picks(table, targets);
+      harness::ResultTable p = harness::frontier_picks(table, targets, budgets);
       write_outputs(("figure " + name).c_str(), p, r.outputs.picks, r.argv);
     }
   }
@@ -230,10 +234,13 @@ const std::vector<Figure>& figures() {
         {"loads", "L,..", "0.9,0.8,0.5", "loads (Table 1's)"},
         {"no-allocate", "", "", "skip the allocation"}},
        run_table1},
-      {"frontier", "  techniques and knobs: time, memory and psnr, Pareto rows marked\n",
+      {"frontier", "  techniques and knobs: time, memory and psnr, Pareto rows marked (time, memory, both);\n"
+                   "  picks: the fastest per psnr target and memory budget\n",
        {{"scenes", "S,..", "engine,hairball", "the scenes", reads_in(scene_word_files, "{}")},
         {"picks", "F.json[,F.csv]", "", "the fastest configuration at each target", writes_in(listed_files, "{}")},
-        {"targets", "DB,..", "30,40,50", "the picks' psnr targets (with --picks)"}},
+        {"targets", "DB,..", "30,40,50", "the picks' psnr targets (with --picks)"},
+        {"memory-budgets", "B,..", "10,16,32",
+         "the picks' memory budgets, bytes per fragment (with --picks; each target is also picked without one)"}},
        run_frontier},
       {"shadows", "  the shadow frontier: light buffers (ha exact and culled, k-buffer, opacity shadow maps) from one\n"
                   "  light pass, RMSE of T against the ray-traced reference vs memory vs build time\n",
@@ -318,7 +325,8 @@ int run_figure(const std::vector<std::string>& argv) {
   if (name != "table1" && name != "shadows")
     args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
   s.tau = usage_errors("tau", [&] { return parse_cull_threshold(args.str("tau")); });
-  args.refuse_unless(args.has("picks"), {"targets"}, "without --picks (the targets choose the picks)");
+  args.refuse_unless(args.has("picks"), {"targets", "memory-budgets"},
+                     "without --picks (the targets and budgets choose the picks)");
   ProgressBar progress = ProgressBar::for_terminal("habuffer figure " + name, "runs", args.has("quiet"));
   s.on_progress = progress.callback();
   // Every file and value is checked before the first render.

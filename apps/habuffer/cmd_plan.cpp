@@ -18,6 +18,8 @@ const CommandSpec& plan_spec() {
           {"scene", "NAME|FILE", "", "the scene, with options", reads_in(scene_word_files, "{}")},
           {"fragments", "F.csv", "", "a fragment file instead", reads()},
           {"target-psnr", "DB", "", "recommend the cheapest configuration that meets it (default: lossless)"},
+          {"memory-budget", "B", "",
+           "bytes per fragment: recommend only within it (the most accurate there when none meets the aim)"},
           {"loads", "L1,L2,...", "0.5,0.6,0.7,0.8,0.9,0.95", "the loads in (0, 1] predicted (as sweep's)"},
           {"trials", "N", "3",
            "seeds of the HA-buffer's simulated insertion (a prediction: fewer than stats' 5 trials)"},
@@ -28,7 +30,8 @@ const CommandSpec& plan_spec() {
       "  from them: memory of every technique and setting, the HA-buffer's max age and failure risk (SPEC 3's\n"
       "  insertion of a stream with the same per-pixel counts over N seeds), the layers' overflow and the\n"
       "  PSNR of the truncating ones. Recommends the cheapest lossless configuration, or the cheapest that\n"
-      "  meets --target-psnr. A progress bar (loads simulated) shows on a terminal unless --quiet.\n"};
+      "  meets --target-psnr, within --memory-budget when given. A progress bar (loads simulated) shows on\n"
+      "  a terminal unless --quiet.\n"};
   return spec;
 }
 
@@ -41,6 +44,11 @@ int run_plan(const std::vector<std::string>& argv) {
     s.target_psnr = args.real("target-psnr", 0.0);  // finite (parse_float64)
     if (!(*s.target_psnr > 0.0))
       throw UsageError("option --target-psnr: " + args.str("target-psnr") + " is not a PSNR above 0 dB");
+  }
+  if (args.has("memory-budget")) {
+    s.memory_budget = args.real("memory-budget", 0.0);  // finite (parse_float64)
+    if (!(*s.memory_budget >= 0.0))
+      throw UsageError("option --memory-budget: " + args.str("memory-budget") + " is not a number of bytes per fragment at least 0");
   }
   s.trials = args.u32_in("trials", 1, 1000);
   s.seed = args.u64_in("seed");
@@ -62,6 +70,7 @@ int run_plan(const std::vector<std::string>& argv) {
   std::printf("habuffer plan: recommended %s (%s fragments, depth complexity up to %s)\n",
               table.notes["recommendation"].c_str(), table.notes["fragments"].c_str(),
               table.notes["max_depth_complexity"].c_str());
+  if (s.memory_budget) std::printf("habuffer plan: budget %s\n", table.notes["budget"].c_str());
   return 0;
 }
 

@@ -159,6 +159,9 @@ expect values 2 "in the domain 60000000x60000000 (--domain)" -- hash build --key
 for psnr in -1 0 -0 -1e-300; do
   expect values 2 "option --target-psnr: $psnr is not a PSNR above 0 dB" -- plan --scene quads --size 8x8 --out p.json --target-psnr "$psnr"
 done
+for budget in -1 -1e-300 nan; do
+  expect values 2 "option --memory-budget: " -- plan --scene quads --size 8x8 --out p.json --memory-budget "$budget"
+done
 
 # --- 4. Bounded input: devices, binary data, endless lines --------------------
 head -c 3000000 /dev/urandom >binary.csv

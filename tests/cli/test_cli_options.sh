@@ -28,6 +28,7 @@ expect read 0 "" -- stats --screen 16x16 --loads 0.5 --trials 1 --seed 2 --block
 expect read 0 "" -- stats --keys sparse-image --domain 16x16 --coverage 0.5 --loads 0.5 --trials 1 --misses 10 --out k.csv
 expect read 0 "" -- stats --keys random --domain 16x16 --count 20 --loads 0.5 --trials 1 --out k2.csv
 expect read 0 "" -- plan --scene quads:count=4 --size 16x16 --loads 0.5,0.9 --trials 1 --seed 2 --out p.json --quiet
+expect read 0 "" -- plan --scene quads:count=4 --size 16x16 --loads 0.5 --trials 1 --memory-budget 20 --out pb.json --quiet
 expect read 0 "" -- csg --solids "A=box:0,0,0,1,1,1;B=sphere:0.5,0.5,0.5,0.6" --expr "A-B" --size 32x24 --yaw 10 --pitch 5 --fov 50 --path cpu --reference --quiet --stats c.json
 expect read 0 "" -- hash build --key-set sparse-image --domain 32x32 --coverage 0.3 --seed 2 --offsets farthest --threads 2 --out t.tab --quiet
 expect read 0 "" -- hash build --key-set random --domain 32x32 --count 100 --out t2.tab --quiet
@@ -49,7 +50,7 @@ expect read 0 "" -- figure fig8 --scene quads:count=64 --frames 2 --load 0.64 --
 expect read 0 "" -- figure fig10 --planes 4 --size 8x8 --repeats 1 --tau 0.9 --out f10.json --quiet
 expect read 0 "" -- figure table1 --size 64x64 --fragments 1000 --loads 0.5 --no-allocate --out t1.json --quiet
 expect read 2 "no effect on table1" -- figure table1 --size 64x64 --path cpu --repeats 2 --threads 1 --tau 0.9 --out t1.json
-expect read 0 "" -- figure frontier --scenes quads:count=64 --size 16x16 --repeats 1 --path cpu --threads 1 --tau 0.9 --picks pk.json --targets 30 --out fr.json --quiet
+expect read 0 "" -- figure frontier --scenes quads:count=64 --size 16x16 --repeats 1 --path cpu --threads 1 --tau 0.9 --picks pk.json --targets 30 --memory-budgets 16,32 --out fr.json --quiet
 expect read 0 "" -- figure shadows --scene quads:count=4 --size 8x8 --light-size 16x16 --receivers 10 --threads 1 --repeats 1 --out sh.json --quiet
 expect read 2 "no effect on figure shadows" -- figure shadows --scene quads:count=4 --tau 0.9 --out sh.json
 expect read 2 "no effect on figure shadows" -- figure shadows --scene quads:count=4 --path cpu --out sh.json

@@ -91,6 +91,8 @@ expect files 2 "(two outputs)" -- "${F[@]}" --out f.json --picks f.json
 expect files 2 "the same file as --scenes" -- "${F[@]}" --out f.json --picks scene.csv
 expect files 2 "--picks" -- "${F[@]}" --out f.json --picks missing_dir/p.json
 expect values 2 "--targets has no effect without --picks" -- "${F[@]}" --out f.json --targets 30
+expect values 2 "--memory-budgets has no effect without --picks" -- "${F[@]}" --out f.json --memory-budgets 16
+expect values 2 "--memory-budgets: '-1' is not a number in [0, " -- "${F[@]}" --out f.json --picks p.json --memory-budgets -1
 expect files 2 "the same file as --scenes" -- bench --path cpu --size 16x16 --scenes scene.csv --techniques ha --out scene.csv
 expect files 2 "the same file as --fragments" -- sweep --size 16x16 --fragments scene.csv --out scene.csv
 expect files 2 "the same file as --fragments" -- plan --size 16x16 --fragments scene.csv --out scene.csv
