@@ -93,11 +93,7 @@ class PixelBuckets {
           ++invalid;
         }
       }
-    covered_ = 0;
-    for (std::size_t i = 2; i < end_.size(); ++i) {
-      covered_ += end_[i] != 0;
-      end_[i] += end_[i - 1];
-    }
+    for (std::size_t i = 2; i < end_.size(); ++i) end_[i] += end_[i - 1];
     records_.resize(n);
     for (const Fragment& f : fragments)
       if (f.y >= band.y0 && f.y < band.y1 && valid(f)) records_[end_[local(f) + 1]++] = pack(f);
@@ -111,21 +107,13 @@ class PixelBuckets {
     pixels_ = std::size_t{band.y1 - band.y0} * screen.x;
     end_.assign(pixels_ + 2, 0);
     for (const std::uint32_t p : pixels) ++end_[p + 2];
-    covered_ = 0;
-    for (std::size_t i = 2; i < end_.size(); ++i) {
-      covered_ += end_[i] != 0;
-      end_[i] += end_[i - 1];
-    }
+    for (std::size_t i = 2; i < end_.size(); ++i) end_[i] += end_[i - 1];
     records_.resize(records.size());
     for (std::size_t i = 0; i < records.size(); ++i) records_[end_[pixels[i] + 1]++] = records[i];
   }
 
   // Pixels of the band, row by row (indices for records()).
   [[nodiscard]] std::size_t pixels() const { return pixels_; }
-  // Records per pixel holding any (0 for none).
-  [[nodiscard]] double mean_depth() const {
-    return covered_ > 0 ? static_cast<double>(records_.size()) / static_cast<double>(covered_) : 0.0;
-  }
   // Pixel i's records, sorted nearest first by this call (empty: none); `p`
   // is set to the pixel.
   std::span<const Word> records(std::size_t i, glm::uvec2& p) {
@@ -156,7 +144,7 @@ class PixelBuckets {
     }
   }
 
-  std::size_t origin_ = 0, width_ = 1, pixels_ = 0, covered_ = 0;
+  std::size_t origin_ = 0, width_ = 1, pixels_ = 0;
   std::vector<std::uint32_t> end_;  // end_[i + 1]: the end of pixel i's records (end_[0] = end_[1] = 0)
   std::vector<Word> records_;
 };
@@ -267,26 +255,18 @@ void insert_pixels_jump_start(Kernel& k, Buckets& buckets, std::uint64_t* tally)
 }
 
 
-// When a band interleaves its pixels (measured with BM_InsertOrder,
-// docs/performance.md): never while the table sits in this machine's L2
-// (cache_sizes.h; a fixed 8 MiB threshold missed engine's 6.6 MiB table on
-// a 2 MiB L2, issue 36); beyond, where probes are many: deep pixels
-// (several ages per pixel, one stream of slots per age, more streams than
-// the hardware prefetcher follows) or a full table (long probe sequences).
-// Shallow pixels in a half-full table walk the table in a few sequential
-// streams the prefetcher already covers.
+// When a band interleaves its pixels: whenever the table exceeds this
+// machine's L2 (cache_sizes.h). Measured with the specialised step
+// (BM_InsertOrder and BM_HaSceneInsert, docs/performance.md, issue 36): 16
+// lanes were as fast or faster than one pixel at a time on every stream
+// beyond the L2, one record per pixel at load 0.5 included; within it they
+// only add work. (Issue 26's shared-step lanes paid only for deep pixels or
+// full tables above 8 MiB, which missed engine's 6.6 MiB table.)
 struct InterleaveRule {
   std::optional<bool> forced;  // InsertOptions::interleave
   bool large_table = false;    // larger than the L2
-  double fill = 0.0;           // fragments / slots: the load the batch can reach
 
-  static constexpr double kMinDepth = 6.0;  // records per covered pixel
-  static constexpr double kMinFill = 0.7;
-
-  [[nodiscard]] bool applies(double mean_depth) const {
-    if (forced) return *forced;
-    return large_table && (mean_depth >= kMinDepth || fill >= kMinFill);
-  }
+  [[nodiscard]] bool applies() const { return forced ? *forced : large_table; }
 };
 
 // Every pixel of `buckets` through the jump start, kInterleavedPixels at a
@@ -453,7 +433,7 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
                              std::span<const Word>(scratch.staged_records).subspan(begin, n), screen, bands[b]);
     }
     using Kernel = std::remove_reference_t<decltype(k)>;
-    const bool lanes = interleave.applies(buckets[b].mean_depth());
+    const bool lanes = interleave.applies();
     if (k.habuffer_cull_tau > 0.0f)
       insert_pixels_in_order(k, buckets[b], tally);
     else if (step == InsertStep::Shared && lanes)

@@ -39,7 +39,7 @@ int run_info(const std::vector<std::string>& argv) {
   const CacheSizes& caches = cache_sizes();
   const auto kib = [](std::uint64_t bytes) { return static_cast<unsigned long long>(bytes >> 10); };
   std::printf("    caches (%s): L1d %llu KiB, L2 %llu KiB, L3 %llu KiB; pixel order interleaves %zu pixels a thread\n"
-              "    where the table exceeds the L2 and probes are many\n",
+              "    where the table exceeds the L2\n",
               caches.source.c_str(), kib(caches.l1d), kib(caches.l2), kib(caches.l3), kInterleavedPixels);
   try {
     const gl::EglContext context;

@@ -87,10 +87,9 @@ inline constexpr std::uint64_t kPixelOrderPixelsPerFragment = 16;
 inline constexpr double kPixelOrderMinDepth = 3.5;
 /// Pixel order without early cull interleaves several pixels per thread
 /// (latency hiding: a slot's miss overlaps other pixels' probes) when the
-/// table no longer fits this machine's L2 (cache_sizes.h) and probes are many
-/// (deep pixels or a full table: core/pixel_order.h, InterleaveRule), unless
-/// InsertOptions::interleave says otherwise; within the L2 interleaving only
-/// adds work (docs/performance.md, issues 26 and 36).
+/// table no longer fits this machine's L2 (cache_sizes.h; core/pixel_order.h,
+/// InterleaveRule), unless InsertOptions::interleave says otherwise; within
+/// the L2 interleaving only adds work (docs/performance.md, issues 26 and 36).
 
 /// Pixels one thread interleaves when pixel order hides latency (AMAC-style):
 /// enough independent probes in flight to cover a miss to memory.

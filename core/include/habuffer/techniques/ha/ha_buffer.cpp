@@ -148,8 +148,7 @@ struct HaBuffer::Impl {
           };
           std::unique_lock<std::mutex> kept(buckets_mutex, std::try_to_lock);
           detail::PixelOrderScratch<Word> own;
-          const detail::InterleaveRule rule{options.interleave, st.bytes() > cache_sizes().l2,
-                                            static_cast<double>(frags.size()) / static_cast<double>(st.size())};
+          const detail::InterleaveRule rule{options.interleave, st.bytes() > cache_sizes().l2};
           return detail::insert_pixel_ordered<Word>(frags, config.screen, threads, make_kernel, shared, rule,
                                                     options.step, kept.owns_lock() ? kept_scratch<Word>() : own);
         },
