@@ -13,6 +13,7 @@
 
 #include "gl_test_support.h"
 #include "habuffer/harness/bench.h"
+#include "habuffer/harness/floors.h"
 #include "habuffer/harness/figures.h"
 #include "habuffer/harness/frontier.h"
 #include "habuffer/harness/plan.h"
@@ -154,6 +155,8 @@ TEST(Harness, BenchGivesEveryCombinationWithFloorsAndTheErrorOfEachTechnique) {
     expect_accounting_identity(r);
     EXPECT_GT(num(r, "atomic_floor_ms"), 0.0);
     EXPECT_GT(num(r, "blend_floor_ms"), 0.0);
+    EXPECT_GT(num(r, "exact_floor_ms"), 0.0);
+    EXPECT_DOUBLE_EQ(num(r, "total_vs_exact_floor"), num(r, "total_ms") / num(r, "exact_floor_ms"));
     EXPECT_GT(num(r, "memory_bytes"), 0.0);
     EXPECT_DOUBLE_EQ(num(r, "total_ms"), num(r, "total_ms"));
     const std::string tech = text(r, "technique");
@@ -169,6 +172,28 @@ TEST(Harness, BenchGivesEveryCombinationWithFloorsAndTheErrorOfEachTechnique) {
   }
   s.path = RenderPath::Gl;
   EXPECT_NO_THROW(validate_bench(s));  // every technique has its GL form
+}
+
+// The exact floor (issue 36) does an exact technique's whole work: its
+// image is every exact technique's, bit for bit, duplicates and invalid
+// depths included, at any thread count; it refuses a wrong background count
+// and a fragment off the screen.
+TEST(Harness, TheExactFloorsImageIsTheHaBuffersBitForBit) {
+  const Extent screen{37, 23};
+  auto f = test::stream(screen, StreamKind::Random, 4000, 9);
+  for (std::size_t i = 0; i < 300; ++i) f.push_back(f[i * 7]);  // duplicates
+  f[5].depth = std::numeric_limits<float>::quiet_NaN();
+  f[6].depth = 2.0f;
+  std::vector<glm::vec3> backgrounds(screen.area());
+  for (std::size_t i = 0; i < backgrounds.size(); ++i) backgrounds[i] = glm::vec3(0.1f * static_cast<float>(i % 10), 0.5f, 1.0f);
+  HaBuffer ha = test::make_buffer(test::config(screen, {111, 69}));  // load about 0.55
+  ASSERT_EQ(ha.insert(f).failures(), 0u);
+  const auto want = ha.composite_image(backgrounds, 1);
+  ExactFloor floor;
+  for (std::uint32_t threads : {1u, 3u}) EXPECT_TRUE(test::same_bits(floor.image(f, screen, backgrounds, threads), want));
+  EXPECT_THROW((void)floor.image(f, screen, std::span(backgrounds).first(10), 1), std::invalid_argument);
+  f[9].x = screen.x;
+  EXPECT_THROW((void)floor.image(f, screen, backgrounds, 1), std::out_of_range);
 }
 
 // Issue 34: a scene with no transparent fragment (opaque planes) gave a row

@@ -18,7 +18,8 @@ const CommandSpec& bench_spec() {
           {"no-floors", "", "", "skip the floors"}} +
           harness_options({"out", "size", "path", "repeats", "seed", "threads", "insert-order", "quiet"}),
       "  Every technique on every scene at every size, repetitions interleaved (each combination once per\n"
-      "  round) with the floors (one atomic add per fragment; unsorted blending) measured in every round.\n"
+      "  round) with the floors (one atomic add per fragment; unsorted blending; on the CPU path the exact\n"
+      "  floor: bucket by pixel, sort, composite from the buckets) measured in every round.\n"
       "  One row per combination: gather_ms, resolve_ms, total_ms (medians, min and max), memory_bytes,\n"
       "  bytes_per_fragment, every counter, psnr, rmse and max_error against the exact reference, the\n"
       "  floors and the ratios to them.\n"
