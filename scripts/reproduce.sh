@@ -14,7 +14,13 @@ mode=full
 H=./build/bin/habuffer
 R=docs/results
 mkdir -p "$R"
-rm -f "$R"/*.json "$R"/*.csv "$R"/*.png
+# Only what this script writes: docs/results also keeps tables made elsewhere
+# (the H100 runs, issue 11's technique tables), which it must not delete.
+for t in sweep-ha-cpu sweep-ha-gl sweep-lists-cpu sweep-arrays-cpu sweep-kbuffer-cpu bench fig2 fig8 fig10 table1 \
+         frontier frontier-picks plan; do
+  rm -f "$R/$t.json" "$R/$t.csv"
+done
+rm -f "$R"/sweep.png "$R"/fig2.png "$R"/fig8.png "$R"/fig10.png "$R"/frontier.png
 if [[ $mode == quick ]]; then
   size=128x128; reps=3; gl_reps=2; hair=hairball:count=600; quads=quads:count=64; frames=12; planes=16
   loads=0.3,0.5,0.7,0.8,0.9,0.95
