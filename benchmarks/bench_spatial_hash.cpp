@@ -111,10 +111,19 @@ void ours_build(benchmark::State& state, std::string name, double load, std::uin
   set_counters(state, s.keys.size(), h.stats().bytes_per_key, h.load());
 }
 
-void ours_find(benchmark::State& state, std::string name, double load, const std::vector<glm::uvec3>& (*queries)(const Dataset&)) {
+// Slots a lookup reads, on average over the queries (SpatialHash::probes).
+double slots_per_query(const SpatialHash& h, const std::vector<glm::uvec3>& q) {
+  double sum = 0;
+  for (const glm::uvec3 k : q) sum += h.probes(k);
+  return q.empty() ? 0.0 : sum / static_cast<double>(q.size());
+}
+
+void ours_find(benchmark::State& state, std::string name, double load, const std::vector<glm::uvec3>& (*queries)(const Dataset&),
+               std::uint32_t filter_bits) {
   const Dataset& s = dataset(name);
   SpatialHash h = ours(s, load, 2);
   h.insert(s.keys, s.values);
+  h.set_miss_filter(filter_bits);
   const SpatialHashView v = h.view();
   const std::vector<glm::uvec3>& q = queries(s);
   for (auto _ : state) {
@@ -123,6 +132,65 @@ void ours_find(benchmark::State& state, std::string name, double load, const std
     benchmark::DoNotOptimize(sum);
   }
   set_counters(state, q.size(), h.stats().bytes_per_key, h.load());
+  state.counters["slots_per_query"] = slots_per_query(h, q);
+}
+
+// --- the miss filter's candidates (issue 36) ----------------------------------
+// Each candidate answers "absent" from its own structure, built from the
+// table's records, or passes the key on to the table's lookup without a
+// filter. Timed on the misses (the structure's bytes counted in the bytes per
+// key); `passed` is the share of queries the candidate could not answer.
+enum class MissCandidate { Occupancy, Fingerprint };
+
+void miss_candidate(benchmark::State& state, std::string name, double load, Queries queries, MissCandidate what) {
+  const Dataset& s = dataset(name);
+  SpatialHash h = ours(s, load, 2);
+  h.insert(s.keys, s.values);
+  h.set_miss_filter(0);
+  SpatialHashKernel<false> k(h.kernel_params(), h.offsets().values().data(),
+                             const_cast<std::uint64_t*>(h.table().data()),
+                             const_cast<std::uint32_t*>(h.max_age().data()), nullptr);
+  const Extent t = h.table_extent();
+  const std::uint32_t cells_x = (t.x + 7) / 8;
+  // Occupancy: one bit a position, 64 to a word per 8 x 8 block (a key's
+  // position holds some record's key). Fingerprint: one byte a position,
+  // bit (hash of the quotient) mod 8 of every key there.
+  std::vector<std::uint64_t> occupancy(std::uint64_t{cells_x} * ((t.y + 7) / 8), 0);
+  std::vector<std::uint8_t> fingerprint(t.area(), 0);
+  const auto fp_bit = [](std::uint32_t q) { return static_cast<std::uint8_t>(1u << ((q * 0x9E3779B1u) >> 29)); };
+  for (std::uint64_t slot = 0; slot < h.table().size(); ++slot) {
+    const std::uint64_t r = h.table()[slot];
+    if (r == 0) continue;
+    const glm::uvec2 p = k.sh_position(k.sh_record_key(slot, r));
+    occupancy[(p.x >> 3) + (p.y >> 3) * std::uint64_t{cells_x}] |= std::uint64_t{1} << ((p.x & 7u) | (p.y & 7u) << 3);
+    fingerprint[p.x + std::uint64_t{p.y} * t.x] |= fp_bit(k.sh_quotient(r));
+  }
+  const SpatialHashView v = h.view();
+  const std::vector<glm::uvec3>& q = queries(s);
+  const FoldedDomain& fold = h.domain();
+  std::uint64_t passed = 0;
+  for (auto _ : state) {
+    std::uint64_t sum = 0, pass = 0;
+    for (const glm::uvec3 key : q) {
+      const glm::uvec2 f = fold.fold(key), p = k.sh_position(f);
+      const bool maybe =
+          what == MissCandidate::Occupancy
+              ? (occupancy[(p.x >> 3) + (p.y >> 3) * std::uint64_t{cells_x}] >> ((p.x & 7u) | (p.y & 7u) << 3) & 1u) != 0
+              : (fingerprint[p.x + std::uint64_t{p.y} * t.x] & fp_bit(k.sh_key_quotient(f))) != 0;
+      if (!maybe) {
+        sum += 1;
+        continue;
+      }
+      ++pass;
+      sum += v.find(key).value_or(1u);
+    }
+    passed = pass;
+    benchmark::DoNotOptimize(sum);
+  }
+  const double extra = what == MissCandidate::Occupancy ? static_cast<double>(occupancy.size() * 8)
+                                                        : static_cast<double>(fingerprint.size());
+  set_counters(state, q.size(), (static_cast<double>(h.memory_bytes()) + extra) / static_cast<double>(h.size()), h.load());
+  state.counters["passed"] = static_cast<double>(passed) / static_cast<double>(q.size());
 }
 
 void ours_find_batch(benchmark::State& state, std::string name, double load, std::uint32_t threads, Queries queries) {
@@ -321,10 +389,27 @@ int register_all() {
             ->Unit(benchmark::kMillisecond)
             ->MinTime(0.2)
             ->UseRealTime();
-      for (const auto& [what, q] : finds)
-        benchmark::RegisterBenchmark(("BM_Spatial/" + set + "/" + what + "/" + l).c_str(), ours_find, set, load, q)
+      for (const auto& [what, q] : finds) {
+        benchmark::RegisterBenchmark(("BM_Spatial/" + set + "/" + what + "/" + l).c_str(), ours_find, set, load, q,
+                                     HABUFFER_SH_DEFAULT_FILTER_BITS)
             ->Unit(benchmark::kMillisecond)
             ->MinTime(0.2);
+        // Issue 36: the same lookups with the miss filter at 8 bits a slot
+        // and without it, and the filter's candidates, at our load 0.95.
+        if (load != 0.95) continue;
+        for (const auto& [label, bits] : {std::pair{"filter-8", 8u}, std::pair{"no-filter", 0u}})
+          benchmark::RegisterBenchmark(("BM_Spatial/" + set + "/" + what + "/" + l + "/" + label).c_str(), ours_find,
+                                       set, load, q, bits)
+              ->Unit(benchmark::kMillisecond)
+              ->MinTime(0.2);
+        if (what.starts_with("hits")) continue;
+        for (const auto& [label, c] : {std::pair{"occupancy", MissCandidate::Occupancy},
+                                       std::pair{"fingerprint", MissCandidate::Fingerprint}})
+          benchmark::RegisterBenchmark(("BM_Spatial/" + set + "/" + what + "/" + l + "/candidate-" + label).c_str(),
+                                       miss_candidate, set, load, q, c)
+              ->Unit(benchmark::kMillisecond)
+              ->MinTime(0.2);
+      }
       for (const auto& [what, q] : finds)
         for (const std::uint32_t threads : {1u, 2u})
           benchmark::RegisterBenchmark(

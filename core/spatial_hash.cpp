@@ -103,6 +103,8 @@ void SpatialHashConfig::validate() const {
   if (!(shrink_at >= 0.0 && shrink_at < grow_at))
     bad("shrink_at " + std::to_string(shrink_at) + " outside [0, grow_at = " + std::to_string(grow_at) + ")");
   if (iter_limit == 0) bad("iteration limit 0");
+  if (miss_filter_bits != 0 && miss_filter_bits != 8 && miss_filter_bits != 16)
+    bad("miss filter bits " + std::to_string(miss_filter_bits) + " not 0, 8 or 16");
   if (max_growths > 64) bad("max_growths " + std::to_string(max_growths) + " above 64");
   if (threads > kMaxThreads) bad("threads " + std::to_string(threads) + " outside 0.." + std::to_string(kMaxThreads));
 }
@@ -151,7 +153,9 @@ std::uint64_t SpatialHash::memory_for(const SpatialHashConfig& config, Extent ta
   const std::uint64_t cells = saturating_product(ceil_div(table.x, block), ceil_div(table.y, block));
   const std::uint64_t amax = (std::uint64_t{1} << std::min(config.age_bits, 32u)) - 1u;
   const std::uint64_t parts[] = {saturating_product(table.area(), sizeof(std::uint64_t)),
-                                 saturating_product(cells, sizeof(std::uint32_t)), amax * sizeof(glm::uvec2)};
+                                 saturating_product(cells, sizeof(std::uint32_t)), amax * sizeof(glm::uvec2),
+                                 saturating_product(SpatialKernelParams::filter_words_for(table, config.miss_filter_bits),
+                                                    sizeof(std::uint32_t))};
   constexpr std::uint64_t kAll = std::numeric_limits<std::uint64_t>::max();
   std::uint64_t sum = 0;
   for (const std::uint64_t p : parts) sum = p > kAll - sum ? kAll : sum + p;
@@ -202,6 +206,7 @@ SpatialHash SpatialHash::restore(SpatialHashConfig config, Extent table, std::ve
   }
   for (const std::uint32_t cell : h.max_age_)
     if (cell > amax) bad("a max-age cell of " + std::to_string(cell) + " beyond AMAX " + std::to_string(amax));
+  h.fill_filter();
   // Every record where a lookup finds it: the Robin Hood order holds, and no key is there twice.
   for (std::uint64_t s = 0; s < h.table_.size(); ++s) {
     const std::uint64_t r = h.table_[s];
@@ -227,9 +232,34 @@ void SpatialHash::reset(Extent table) {
   offsets_.emplace(OffsetSequence::make(config_.offsets, table, amax, config_.seed));
   table_.assign(table.area(), 0);
   cells_x_ = ceil_div(table.x, config_.block);
-  params_.emplace(config_.age_bits, table, quotient_x_, config_.block, config_.iter_limit);
+  params_.emplace(config_.age_bits, table, quotient_x_, config_.block, config_.iter_limit, config_.miss_filter_bits);
   max_age_.assign(std::uint64_t{cells_x_} * ceil_div(table.y, config_.block), 0);
+  filter_.assign(params_->filter_words, 0);
   live_ = tombstones_ = 0;
+}
+
+void SpatialHash::fill_filter() {
+  std::fill(filter_.begin(), filter_.end(), 0);
+  if (filter_.empty()) return;
+  SpatialHashKernel<false> k = reader();
+  for (std::uint64_t s = 0; s < table_.size(); ++s) {
+    const std::uint64_t r = table_[s];
+    if (r == 0) continue;
+    const glm::uvec2 pos = k.sh_position(k.sh_record_key(s, r));
+    const std::uint32_t hash = k.sh_filter_hash(pos, k.sh_quotient(r));
+    filter_[k.sh_filter_word(pos, hash)] |= k.sh_filter_bits(hash);
+  }
+}
+
+void SpatialHash::set_miss_filter(std::uint32_t bits) {
+  SpatialHashConfig c = config_;
+  c.miss_filter_bits = bits;
+  c.validate();
+  config_.miss_filter_bits = bits;
+  params_.emplace(config_.age_bits, extent_, quotient_x_, config_.block, config_.iter_limit, bits);
+  filter_.assign(params_->filter_words, 0);
+  filter_.shrink_to_fit();
+  fill_filter();
 }
 
 void SpatialHash::set_threads(std::uint32_t threads) {
@@ -245,15 +275,16 @@ std::uint32_t SpatialHash::threads() const {
 
 SpatialHashKernel<false> SpatialHash::reader() const {
   return SpatialHashKernel<false>(*params_, offsets_->values().data(), const_cast<std::uint64_t*>(table_.data()),
-                                  const_cast<std::uint32_t*>(max_age_.data()));
+                                  const_cast<std::uint32_t*>(max_age_.data()), const_cast<std::uint32_t*>(filter_.data()));
 }
 
 SpatialHashView::SpatialHashView(const SpatialHash& t)
     : kernel_(t.kernel_params(), t.offsets().values().data(), const_cast<std::uint64_t*>(t.table().data()),
-              const_cast<std::uint32_t*>(t.max_age().data())),
+              const_cast<std::uint32_t*>(t.max_age().data()), const_cast<std::uint32_t*>(t.filter().data())),
       fold_(t.domain()),
       slots_(t.table().data()),
       max_age_(t.max_age().data()),
+      filter_(t.filter().empty() ? nullptr : t.filter().data()),
       complement_(t.config().rule == DuplicateRule::Min) {}
 
 void SpatialHash::check_key(glm::uvec3 key, std::size_t index, bool batch) const {
@@ -276,7 +307,7 @@ std::vector<SpatialHash::Pending> SpatialHash::insert_pass(std::span<const Pendi
   std::vector<InsertReport> reports(n);
   std::vector<std::vector<Pending>> dropped(n);
   const auto run = [&]<bool Concurrent>(std::uint32_t t) {
-    SpatialHashKernel<Concurrent> k(p, offsets_->values().data(), table_.data(), max_age_.data());
+    SpatialHashKernel<Concurrent> k(p, offsets_->values().data(), table_.data(), max_age_.data(), filter_.data());
     InsertReport& r = reports[t];
     const std::size_t lo = records.size() * t / n, hi = records.size() * (t + 1) / n;
     for (std::size_t i = lo; i < hi; ++i) {
@@ -549,6 +580,7 @@ void SpatialHash::reserve(std::uint64_t keys, double load) {
 void SpatialHash::clear() {
   std::fill(table_.begin(), table_.end(), 0);
   std::fill(max_age_.begin(), max_age_.end(), 0);
+  std::fill(filter_.begin(), filter_.end(), 0);
   live_ = tombstones_ = 0;
 }
 
@@ -586,7 +618,7 @@ double SpatialHash::load() const {
 }
 
 std::uint64_t SpatialHash::memory_bytes() const {
-  return table_.size() * sizeof(std::uint64_t) + max_age_.size() * sizeof(std::uint32_t) +
+  return table_.size() * sizeof(std::uint64_t) + (max_age_.size() + filter_.size()) * sizeof(std::uint32_t) +
          offsets_->size() * sizeof(glm::uvec2);
 }
 

@@ -32,7 +32,7 @@ struct SpatialBlock {
   std::uint32_t age_bits, quotient_x, max_age_cells_x, block, iter_limit, complement;
   std::uint32_t domain[3];
   std::uint32_t interleave_shift, slices_per_row;
-  std::uint32_t pad[3];
+  std::uint32_t filter_blocks_x, filter_base, filter_shift_y;
 };
 static_assert(sizeof(SpatialBlock) == 64, "HabufferSpatial's std140 layout (spatial_block.glsl)");
 
@@ -53,6 +53,9 @@ SpatialBlock block_of(const spatial::SpatialHash& table) {
   b.domain[2] = f.domain().z;
   b.interleave_shift = static_cast<std::uint32_t>(std::countr_zero(f.interleave()));
   b.slices_per_row = f.slices_per_row();
+  b.filter_blocks_x = k.filter_blocks_x;
+  b.filter_base = static_cast<std::uint32_t>(table.max_age().size());
+  b.filter_shift_y = k.filter_shift_y;
   return b;
 }
 
@@ -142,7 +145,8 @@ std::string GlSpatialBindings::glsl_defines(bool overridable) const {
 }
 
 std::string spatial_lookup_part(const GlSpatialBindings& bindings, bool overridable) {
-  std::string s = bindings.glsl_defines(overridable) + kShBlock + "\n" + kShLookupEnv + "\n";
+  // The constants (the miss filter's block) and the block, then the environment.
+  std::string s = bindings.glsl_defines(overridable) + kShConstants + "\n" + kShBlock + "\n" + kShLookupEnv + "\n";
   // The shared probe, record and key sources under sh_ (a technique module's ha_ instance may sit beside them).
   for (const char* shared : {kHaProbe, kShSpatial, kShKeys}) s += replace_identifiers(shared, "ha_", "sh_", false) + "\n";
   return s + kShLookup;
@@ -165,10 +169,15 @@ GlSpatialHash::GlSpatialHash(const spatial::SpatialHash& table, const GlBindings
       find_(ShaderProgram::compute(source(bindings_, mode_, kShFindCompute), "spatial hash find compute shader")) {
   slot_count_ = table.table().size();
   cell_count_ = table.max_age().size();
+  filter_count_ = table.filter().size();
   if (slot_count_ > 0xFFFFFFFFull) throw GlError("spatial hash on the GPU: more than 2^32 slots");
   check_size(slot_count_ * 8, "table");
+  check_size((cell_count_ + filter_count_) * 4, "max-age cells and miss filter");
   table_ = GlStorage(slot_count_ * 8, table.table().data());
-  max_age_ = GlStorage(cell_count_ * 4, table.max_age().data());
+  // One buffer: the max-age cells, then the miss filter's words (filter_base).
+  std::vector<std::uint32_t> cells(table.max_age().begin(), table.max_age().end());
+  cells.insert(cells.end(), table.filter().begin(), table.filter().end());
+  max_age_ = GlStorage(cells.size() * 4, cells.data());
   const std::span<const glm::uvec2> o = table.offsets().values();
   offsets_ = GlStorage(o.size() * sizeof(glm::uvec2), o.data());
   const SpatialBlock block = block_of(table);
@@ -359,6 +368,12 @@ std::vector<std::uint64_t> GlSpatialHash::slots() const {
 std::vector<std::uint32_t> GlSpatialHash::max_age() const {
   context_.check("GlSpatialHash::max_age");
   return max_age_.read<std::uint32_t>(cell_count_);
+}
+std::vector<std::uint32_t> GlSpatialHash::filter() const {
+  context_.check("GlSpatialHash::filter");
+  std::vector<std::uint32_t> words = max_age_.read<std::uint32_t>(cell_count_ + filter_count_);
+  words.erase(words.begin(), words.begin() + static_cast<std::ptrdiff_t>(cell_count_));
+  return words;
 }
 
 spatial::InsertReport gl_insert(spatial::SpatialHash& table, std::span<const glm::uvec3> keys,

@@ -73,6 +73,48 @@ TEST(GlSpatialHash, TheGpusTableIsTheCpusBitForBitAtEveryLoadWithRepeatedKeys) {
   }
 }
 
+// The miss filter (issue 36): the GPU's atomic ors leave the CPU's words;
+// its lookups, with the filter and without one, answer as the CPU's.
+TEST(GlSpatialHash, TheGpusMissFilterIsTheCpusWordForWordAndLookupsAnswerAlikeWithAndWithoutIt) {
+  gl_context();
+  for (const bool three_d : {false, true}) {
+    SCOPED_TRACE(three_d ? "3D" : "2D");
+    KeySetOptions o;
+    o.set = three_d ? KeySet::VoxelShell : KeySet::SparseImage;
+    o.domain = three_d ? Domain{40, 40, 40} : Domain{160, 120, 1};
+    const std::vector<glm::uvec3> keys = make_keys(o);
+    const std::vector<glm::uvec3> absent = absent_keys(keys, o.domain, 3000, 10);
+    const std::vector<std::uint32_t> values = values_for(keys.size(), 5);
+    SpatialHash cpu(config_of(o.domain, DuplicateRule::Max));
+    cpu.reserve(keys.size(), 0.95);
+    gl::GlSpatialHash gpu(cpu);
+    std::vector<gl::GlSpatialHash::Dropped> dropped;
+    gpu.insert(keys, values, dropped);
+    ASSERT_TRUE(dropped.empty());
+    cpu.insert(keys, values);
+    const std::vector<std::uint64_t> slots = gpu.slots();
+    ASSERT_TRUE(std::equal(slots.begin(), slots.end(), cpu.table().begin(), cpu.table().end()));
+    const std::vector<std::uint32_t> words = gpu.filter();
+    ASSERT_FALSE(words.empty());
+    EXPECT_TRUE(std::equal(words.begin(), words.end(), cpu.filter().begin(), cpu.filter().end()));
+    std::vector<glm::uvec3> queries = keys;
+    queries.insert(queries.end(), absent.begin(), absent.end());
+    std::vector<std::uint32_t> cv(queries.size());
+    std::vector<std::uint8_t> cf(queries.size());
+    cpu.find(queries, cv, cf);
+    for (const std::uint32_t bits : {8u, 0u}) {
+      cpu.set_miss_filter(bits);
+      const gl::GlSpatialHash uploaded(cpu);
+      EXPECT_EQ(uploaded.filter().empty(), bits == 0u);
+      std::vector<std::uint32_t> gv(queries.size());
+      std::vector<std::uint8_t> gf(queries.size());
+      EXPECT_EQ(uploaded.find(queries, gv, gf), keys.size());
+      EXPECT_EQ(gv, cv);
+      EXPECT_EQ(gf, cf);
+    }
+  }
+}
+
 TEST(GlSpatialHash, BatchedLookupsOnTheGpuAnswerAsTheCpusForHitsAndMisses) {
   gl_context();
   KeySetOptions o;

@@ -400,10 +400,136 @@ TEST(SpatialHash, StatsCountAgesAndMemoryAndMissesStopEarly) {
   EXPECT_LT(s.mean_age, 4.0);
   EXPECT_GE(s.max_age, 2u);
   EXPECT_EQ(s.memory_bytes, h.memory_bytes());
-  EXPECT_NEAR(s.bytes_per_key, 8.0 / 0.8, 0.5);
+  EXPECT_NEAR(s.bytes_per_key, 10.0 / 0.8, 0.5);  // a slot's 8 bytes and the miss filter's 2
   double probes = 0;
   for (const Key& k : absent) probes += h.probes(k);
   EXPECT_LT(probes / static_cast<double>(absent.size()), static_cast<double>(s.max_age));
+}
+
+// The miss filter (issue 36) is derived state: a table with one and a table
+// without hold the same slots and max-age cells and answer alike, before and
+// after erases; with it most misses read no slot.
+TEST(SpatialHash, TheMissFilterChangesNoSlotAndNoAnswerAndAnswersMostMissesWithoutReadingASlot) {
+  for (const Domain d : {Domain{2048, 1024, 1}, Domain{96, 80, 64}}) {
+    const auto [keys, absent] = random_keys(d, 60000, 60000, 11);
+    const std::vector<std::uint32_t> values = values_of(keys);
+    for (const auto& [load, bits] : {std::pair{0.5, 16u}, std::pair{0.95, 16u}, std::pair{0.99, 16u},
+                                     std::pair{0.95, 8u}}) {
+      SCOPED_TRACE(d.str() + " load " + std::to_string(load) + ", " + std::to_string(bits) + " bits");
+      SpatialHashConfig with = fixed(d), without = fixed(d);
+      with.miss_filter_bits = bits;
+      without.miss_filter_bits = 0;
+      SpatialHash a(with), b(without);
+      a.reserve(keys.size(), load);
+      b.reserve(keys.size(), load);
+      a.insert(keys, values);
+      b.insert(keys, values);
+      ASSERT_TRUE(std::ranges::equal(a.table(), b.table()));
+      EXPECT_TRUE(std::ranges::equal(a.max_age(), b.max_age()));
+      EXPECT_TRUE(b.filter().empty());
+      EXPECT_EQ(a.memory_bytes() - b.memory_bytes(), a.filter().size() * 4);
+      std::vector<Key> queries = keys;
+      queries.insert(queries.end(), absent.begin(), absent.end());
+      for (const int round : {0, 1}) {
+        std::vector<std::uint32_t> va(queries.size()), vb(queries.size());
+        std::vector<std::uint8_t> fa(queries.size()), fb(queries.size());
+        EXPECT_EQ(a.find(queries, va, fa), b.find(queries, vb, fb));
+        EXPECT_EQ(va, vb) << "round " << round;
+        EXPECT_EQ(fa, fb) << "round " << round;
+        // Then every third key erased: tombstones keep their filter bits.
+        const std::vector<Key> gone(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(keys.size() / 3));
+        a.erase(gone);
+        b.erase(gone);
+      }
+      std::uint64_t unread = 0;
+      for (const Key& k : absent) unread += a.probes(k) == 0u;
+      EXPECT_GT(static_cast<double>(unread) / static_cast<double>(absent.size()), bits == 16u ? 0.97 : 0.9);
+    }
+  }
+}
+
+// The filter's words are ors of the keys' bits: the same for every thread
+// count and order, and made again from the records alike (restore,
+// set_miss_filter). Keys whose records were pushed out keep their bits in
+// the table that inserted them: the filter made from the records is then a
+// subset, never a superset.
+TEST(SpatialHash, TheMissFilterIsTheSameForEveryThreadCountAndOrderAndIsMadeAgainFromTheRecordsParallel) {
+  const Domain d{512, 384, 1};
+  auto [keys, unused] = random_keys(d, 50000, 0, 12);
+  std::vector<std::uint32_t> reference;
+  for (const std::uint32_t threads : {1u, 2u, 4u}) {
+    SpatialHashConfig c = fixed(d, threads);
+    c.rule = DuplicateRule::Max;
+    SpatialHash h(c);
+    h.reserve(keys.size(), 0.95);
+    std::shuffle(keys.begin(), keys.end(), std::mt19937_64(threads));
+    h.insert(keys);
+    const std::vector<std::uint32_t> words(h.filter().begin(), h.filter().end());
+    if (reference.empty()) reference = words;
+    else EXPECT_TRUE(words == reference) << threads << " threads";
+    const SpatialHash back = SpatialHash::restore(h.config(), h.table_extent(), {h.table().begin(), h.table().end()},
+                                                  {h.max_age().begin(), h.max_age().end()});
+    EXPECT_TRUE(std::ranges::equal(back.filter(), h.filter()));
+    h.set_miss_filter(0);
+    EXPECT_TRUE(h.filter().empty());
+    EXPECT_EQ(h.find(keys[5]), 0u);
+    h.set_miss_filter(8);
+    EXPECT_EQ(h.filter().size(), std::uint64_t{(h.table_extent().x + 7) / 8} * ((h.table_extent().y + 7) / 8) * 16);
+    EXPECT_EQ(h.find(keys[6]), 0u);
+    h.set_miss_filter(16);
+    EXPECT_TRUE(std::ranges::equal(h.filter(), reference));
+    EXPECT_THROW(h.set_miss_filter(4), std::invalid_argument);
+  }
+  // Tombstones pushed out and lost keys (1 700 records for 1 600 slots, no growth):
+  // their bits stay, the records' filter lacks them, the answers agree.
+  SpatialHashConfig c = fixed({64, 64, 1}, 1);
+  c.age_bits = 4;
+  c.lossless = false;
+  SpatialHash h(c);
+  h.rehash({40, 40});
+  const auto [first, second] = random_keys({64, 64, 1}, 1000, 700, 13);
+  h.insert(first);
+  h.erase(first);
+  const InsertReport r = h.insert(second);
+  ASSERT_GT(r.tombstones_dropped + r.lost, 0u);
+  const SpatialHash back = SpatialHash::restore(h.config(), h.table_extent(), {h.table().begin(), h.table().end()},
+                                                {h.max_age().begin(), h.max_age().end()});
+  for (std::size_t w = 0; w < h.filter().size(); ++w) EXPECT_EQ(back.filter()[w] & ~h.filter()[w], 0u) << w;
+  for (std::uint32_t y = 0; y < 64; ++y)
+    for (std::uint32_t x = 0; x < 64; ++x) EXPECT_EQ(back.find({x, y, 0}), h.find({x, y, 0})) << x << ", " << y;
+}
+
+// Limit cases: sides not a multiple of the filter's 8, one slot, one row,
+// max-age blocks of 1 and wider than the table, the fewest and most age
+// bits; memory_for counts the filter.
+TEST(SpatialHash, TheMissFilterCoversTablesOfEverySideBlockAndAgeBits) {
+  for (const Extent t : {Extent{1, 1}, Extent{7, 9}, Extent{9, 17}, Extent{300, 1}, Extent{100, 37}})
+    for (const std::uint32_t block : {1u, 8u, 512u})
+      for (const std::uint32_t age_bits : {4u, 12u}) {
+        SCOPED_TRACE(t.str() + " block " + std::to_string(block) + " age bits " + std::to_string(age_bits));
+        SpatialHashConfig c = fixed({300, 300, 1}, 1);
+        c.block = block;
+        c.age_bits = age_bits;
+        c.rule = DuplicateRule::Max;
+        SpatialHash h(c);
+        h.rehash(t);
+        EXPECT_EQ(h.filter().size(), std::uint64_t{(t.x + 7) / 8} * ((t.y + 3) / 4) * 16);
+        EXPECT_EQ(SpatialHash::memory_for(h.config(), t), h.memory_bytes());
+        const std::size_t n = std::min<std::uint64_t>(t.area(), 300) * 3 / 4;
+        const auto [keys, absent] = random_keys({300, 300, 1}, n, 2000, 14);
+        h.insert(keys);  // lossless growth where the small table cannot hold them
+        for (const Key& k : keys) ASSERT_TRUE(h.contains(k));
+        for (const Key& k : absent) ASSERT_FALSE(h.contains(k));
+        c.miss_filter_bits = 0;
+        EXPECT_EQ(SpatialHash::memory_for(h.config(), h.table_extent()) -
+                      SpatialHash::memory_for(c, h.table_extent()),
+                  h.filter().size() * 4);
+        h.set_miss_filter(8);
+        EXPECT_EQ(h.filter().size(), std::uint64_t{(h.table_extent().x + 7) / 8} * ((h.table_extent().y + 7) / 8) * 16);
+        EXPECT_EQ(SpatialHash::memory_for(h.config(), h.table_extent()), h.memory_bytes());
+        for (const Key& k : keys) ASSERT_TRUE(h.contains(k));
+        for (const Key& k : absent) ASSERT_FALSE(h.contains(k));
+      }
 }
 
 }  // namespace

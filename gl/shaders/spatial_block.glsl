@@ -13,4 +13,7 @@ layout(std140, binding = HABUFFER_SPATIAL_BINDING_PARAMS) uniform HabufferSpatia
   uvec3 domain;           // the key space (Dx, Dy, Dz)
   uint interleave_shift;  // log2 of the slices interleaved along x (G)
   uint slices_per_row;    // groups of slices per row of the fold (F)
+  uint filter_blocks_x;   // miss-filter blocks per row (0: no filter)
+  uint filter_base;       // the filter's first word in the max-age buffer (after the cells)
+  uint filter_shift_y;    // log2 of a filter block's height
 } habuffer_spatial;

@@ -9,7 +9,8 @@
 // habuffer_lock_spin_limit busy attempts the call is cut short,
 // HABUFFER_SH_CUT, and resumed by the next pass) before this file, over
 // ha_table at HABUFFER_RECORDS_BINDING, and spatial_block.glsl (the table's
-// parameters). Buffers at GlBindings' points.
+// parameters). Buffers at GlBindings' points; the miss filter's words
+// follow the max-age cells in theirs (at habuffer_spatial.filter_base).
 #define sh_word uint64_t
 #define HABUFFER_INOUT(T) inout T
 
@@ -18,6 +19,8 @@
 #define sh_quotient_x habuffer_spatial.quotient_x
 #define ha_max_age_cells_x habuffer_spatial.max_age_cells_x
 #define sh_iter_limit habuffer_spatial.iter_limit
+#define sh_filter_blocks_x habuffer_spatial.filter_blocks_x
+#define sh_filter_shift_y habuffer_spatial.filter_shift_y
 
 layout(std430, binding = HABUFFER_BINDING_MAX_AGE) coherent buffer ShMaxAge { uint sh_max_age_cells[]; };
 layout(std430, binding = HABUFFER_BINDING_OFFSETS) readonly buffer ShOffsets { uvec2 sh_offsets[]; };
@@ -34,6 +37,12 @@ void sh_atomic_max_age(uint cell, uint a) {
   if (sh_max_age_cells[cell] < a) atomicMax(sh_max_age_cells[cell], a);
 }
 uint sh_load_max_age(uint cell) { return sh_max_age_cells[cell]; }
+// The miss filter's words follow the max-age cells in their buffer.
+uint sh_load_filter(ha_index w) { return sh_max_age_cells[habuffer_spatial.filter_base + w]; }
+void sh_atomic_or_filter(ha_index w, uint bits) {
+  ha_index at = habuffer_spatial.filter_base + w;
+  if ((sh_max_age_cells[at] & bits) != bits) atomicOr(sh_max_age_cells[at], bits);
+}
 sh_word sh_atomic_max_slot(ha_index s, sh_word r) { return ha_atomic_max_slot(s, r); }
 // The prelude's "missed" codes in the spatial hash's numbering.
 uint sh_atomic_missed() {

@@ -1,6 +1,7 @@
 // The spatial hash's environment in a host shader (spatial_lookup_part):
 // GlSpatialHash's table, max-age cells and offsets, read-only at the points
-// HABUFFER_SPATIAL_BINDING_TABLE, _MAX_AGE and _OFFSETS, and its block
+// HABUFFER_SPATIAL_BINDING_TABLE, _MAX_AGE (the miss filter's words after
+// the cells) and _OFFSETS, and its block
 // HabufferSpatial (spatial_block.glsl) at _PARAMS. The shared probe and
 // lookup follow under the prefix sh_ (ha_probe as sh_probe, ...), beside a
 // technique module's own ha_ instance. Slots are read as uvec2 (low, high
@@ -19,6 +20,8 @@ layout(std430, binding = HABUFFER_SPATIAL_BINDING_OFFSETS) readonly buffer Habuf
 #define sh_table_size habuffer_spatial.table_size
 #define sh_quotient_x habuffer_spatial.quotient_x
 #define sh_max_age_cells_x habuffer_spatial.max_age_cells_x
+#define sh_filter_blocks_x habuffer_spatial.filter_blocks_x
+#define sh_filter_shift_y habuffer_spatial.filter_shift_y
 
 uvec2 sh_offset(uint i) { return sh_offsets[i]; }
 uint sh_div_block(uint v) { return v / habuffer_spatial.block; }
@@ -29,3 +32,4 @@ uint sh_high(sh_word r) { return r.y; }
 uint sh_low(sh_word r) { return r.x; }
 sh_word sh_load_slot(sh_index s) { return sh_slots[s]; }
 uint sh_load_max_age(uint cell) { return sh_max_age_cells[cell]; }
+uint sh_load_filter(sh_index w) { return sh_max_age_cells[habuffer_spatial.filter_base + w]; }

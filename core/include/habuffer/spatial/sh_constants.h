@@ -34,4 +34,12 @@
 #define HABUFFER_SH_MAX_AGE_BITS 12u
 #define HABUFFER_SH_DEFAULT_ITER_LIMIT 65536u
 
+// The miss filter (sh_spatial.glsl, issue 36): one block of
+// HABUFFER_SH_FILTER_WORDS 32-bit words (one 64-byte line) per
+// 2^HABUFFER_SH_FILTER_SHIFT_X positions along x and 512 / (bits a position
+// x 2^HABUFFER_SH_FILTER_SHIFT_X) along y; 16 bits a position by default.
+#define HABUFFER_SH_FILTER_SHIFT_X 3u
+#define HABUFFER_SH_FILTER_WORDS 16u
+#define HABUFFER_SH_DEFAULT_FILTER_BITS 16u
+
 #endif

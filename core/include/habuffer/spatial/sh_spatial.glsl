@@ -26,7 +26,11 @@
 // or HABUFFER_SH_CUT, see sh_insert_step; always 0 where atomics are native),
 // sh_word sh_load_slot(ha_index s), void sh_atomic_max_age(uint cell, uint a),
 // uint sh_load_max_age(uint cell), sh_word sh_word_of(uint high, uint low),
-// uint sh_high(sh_word r), uint sh_low(sh_word r), HABUFFER_INOUT(T).
+// uint sh_high(sh_word r), uint sh_low(sh_word r), HABUFFER_INOUT(T);
+// for the miss filter: uint sh_filter_blocks_x (filter blocks per row; 0:
+// the table has no filter), uint sh_filter_shift_y (log2 of a block's
+// height), uint sh_load_filter(ha_index w) and, where
+// records are inserted, void sh_atomic_or_filter(ha_index w, uint bits).
 
 uint sh_max_age() { return (1u << sh_age_bits) - 1u; }
 uint sh_quotient_bits() { return 31u - sh_age_bits; }
@@ -70,6 +74,52 @@ uvec2 sh_record_key(ha_index s, sh_word r) {
   return sh_key(ha_owner(h, sh_age(r)), sh_quotient(r));
 }
 
+// The miss filter (issue 36). A lookup of an absent key walked its ages
+// until a younger slot: two or three slots at random places at load 0.95.
+// The filter answers most such lookups from one 32-bit word. The table's
+// positions are cut into blocks 8 wide and 2^sh_filter_shift_y high (4 for
+// 16 bits a position, 8 for 8 bits); each block owns 16 words (one 64-byte
+// line), blocks row-major, so neighbouring keys read the same line. A key
+// (p, q) hashes (its place in the block and its quotient) to one word of its
+// block and up to 4 bits of that word; every insert call sets them (an
+// atomic or: the words are the same for every order and thread count)
+// before its first probe. A lookup finding one of its bits clear ends
+// there: the key was never inserted since the table was made or cleared.
+// The filter holds the keys of every record in the table and possibly more
+// (keys whose records were pushed out: dropped tombstones, lost keys), so
+// it only ever turns a walk into an early "absent": no answer depends on it.
+uint sh_filter_hash(uvec2 p, uint q) {
+  uint place = (p.x & ((1u << HABUFFER_SH_FILTER_SHIFT_X) - 1u)) |
+               ((p.y & ((1u << sh_filter_shift_y) - 1u)) << HABUFFER_SH_FILTER_SHIFT_X);
+  uint h = q + place * 0x9E3779B9u;
+  // A 32-bit finaliser (Wellons' lowbias32): the word and every bit number
+  // below depend on every bit of q and of the place.
+  h ^= h >> 16u;
+  h *= 0x7FEB352Du;
+  h ^= h >> 15u;
+  h *= 0x846CA68Bu;
+  h ^= h >> 16u;
+  return h;
+}
+// The word of key (p, hash h) in the filter.
+ha_index sh_filter_word(uvec2 p, uint h) {
+  ha_index block = ha_index(p.x >> HABUFFER_SH_FILTER_SHIFT_X) +
+                   ha_index(p.y >> sh_filter_shift_y) * ha_index(sh_filter_blocks_x);
+  return block * ha_index(HABUFFER_SH_FILTER_WORDS) + ha_index(h & (HABUFFER_SH_FILTER_WORDS - 1u));
+}
+// Its bits in that word (four bit numbers; some may coincide).
+uint sh_filter_bits(uint h) {
+  return (1u << ((h >> 4u) & 31u)) | (1u << ((h >> 9u) & 31u)) | (1u << ((h >> 14u) & 31u)) |
+         (1u << ((h >> 19u) & 31u));
+}
+// Whether key (p, q) may be in the table (false: it is not).
+bool sh_filter_may_hold(uvec2 p, uint q) {
+  if (sh_filter_blocks_x == 0u) return true;
+  uint h = sh_filter_hash(p, q);
+  uint bits = sh_filter_bits(h);
+  return (sh_load_filter(sh_filter_word(p, h)) & bits) == bits;
+}
+
 // The insert (host environments that only look up, such as a host shader's
 // lookup over read-only buffers, define HABUFFER_SH_LOOKUP_ONLY and need no
 // atomics).
@@ -96,6 +146,12 @@ uvec2 sh_carry_key(ShCarry c) { return sh_key(c.p, sh_quotient(c.r)); }
 
 // One probe: HABUFFER_SH_PENDING while a record must go on, else the call's outcome.
 uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
+  // The call's key joins the miss filter before its first probe (a step
+  // an emulated atomic repeats sets the same bits again).
+  if (c.iter == 0u && sh_filter_blocks_x != 0u) {
+    uint h = sh_filter_hash(c.p, sh_quotient(c.r));
+    sh_atomic_or_filter(sh_filter_word(c.p, h), sh_filter_bits(h));
+  }
   if (c.a > sh_max_age()) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_AGE : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_ITER : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   uvec2 h = ha_probe(c.p, c.a);
@@ -151,13 +207,15 @@ uint sh_insert_run(HABUFFER_INOUT(ShCarry) c) {
 // here by a record of larger key bits, and a slot's key bits only grow
 // (values change, erase keeps them): the paper's Proposition A (SPEC 7) with
 // the quotient. An empty slot or a younger record is the common case; a
-// record of the same age and a smaller quotient stops it too. Returns the
-// probes made in `probes`.
+// record of the same age and a smaller quotient stops it too. The miss
+// filter answers most absent keys before the max-age cell or any slot is
+// read. Returns the slots read in `probes` (0 when the filter answered).
 ha_index sh_find_slot(uvec2 k, HABUFFER_INOUT(uint) probes) {
   uvec2 p = sh_position(k);
   uint want = sh_key_quotient(k);
-  uint amax = sh_load_max_age(ha_cell(p));
   probes = 0u;
+  if (!sh_filter_may_hold(p, want)) return ~ha_index(0);
+  uint amax = sh_load_max_age(ha_cell(p));
   for (uint a = 1u; a <= amax; a += 1u) {
     ha_index s = ha_slot(ha_probe(p, a));
     uint key = sh_key_bits(sh_load_slot(s));

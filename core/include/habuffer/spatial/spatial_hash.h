@@ -33,6 +33,25 @@
 /// first slot younger than the age probed (SPEC 7's early stop), so an absent
 /// key costs a few probes, not AMAX.
 ///
+/// Misses in one line (issue 36). A few probes are still two or three slots
+/// at random places, where a table of control bytes (absl) answers a miss
+/// from one byte. The miss filter (`miss_filter_bits`: 16 bits a slot by
+/// default, 8, or none) is a blocked Bloom filter laid over the table's
+/// positions: one 64-byte line per 8 x 4 positions (8 x 8 at 8 bits), each
+/// key 4 bits of one 32-bit word of its block (sh_spatial.glsl). Every
+/// insert call sets its key's bits; a lookup reads that word first and,
+/// when a bit is clear, answers "absent" without the max-age cell or any
+/// slot. Neighbouring keys read the same line, so row-major and
+/// neighbourhood misses stay coherent. Measured beside an occupancy bit and
+/// a fingerprint byte per position (docs/performance.md, issue 36): an
+/// occupancy bit cannot tell apart the keys that share a position (a table
+/// smaller than the domain puts several there), and one byte a position
+/// errs as often as the 8-bit filter on the voxel shell. The filter is
+/// derived state: it holds every record's key and possibly keys since
+/// pushed out (only a rebuild or clear() empties it), no answer depends on
+/// it, and restore() and set_miss_filter() make it again from the records
+/// (files hold none: their format is unchanged).
+///
 /// Erase leaves a tombstone: the key's age and quotient with live 0 and value
 /// 0. Every other key compares with it as with the erased key, so the Robin
 /// Hood order of the table (and every lookup's early stop) is unchanged; the
@@ -146,6 +165,7 @@ struct SpatialHashConfig {
   std::uint32_t max_growths = 24;                       ///< lossless: growths of one insert before it throws
   std::uint32_t iter_limit = HABUFFER_SH_DEFAULT_ITER_LIMIT;     ///< probes of one insert call (SPEC 6's LIMIT)
   std::uint32_t threads = 0;                            ///< inserting and querying threads, 0..kMaxThreads; 0: the default count
+  std::uint32_t miss_filter_bits = HABUFFER_SH_DEFAULT_FILTER_BITS;  ///< the miss filter's bits a slot: 16, 8 or 0 (none); see the file comment
 
   /// Throws std::invalid_argument naming the field and its bounds.
   void validate() const;
@@ -175,7 +195,7 @@ struct SpatialHashStats {
   double mean_age = 0.0;            ///< over live keys (1: every key at its first probe)
   std::vector<std::uint64_t> ages;  ///< live keys per age, ages[a] for a = 0..AMAX (ages[0] = 0)
   std::uint32_t quotient_bits = 0;  ///< bits the domain's quotients need (at most 31 - A)
-  std::uint64_t memory_bytes = 0;   ///< table, max-age cells and offsets
+  std::uint64_t memory_bytes = 0;   ///< table, max-age cells, miss filter and offsets
   double bytes_per_key = 0.0;       ///< memory_bytes / keys
 };
 
@@ -206,12 +226,14 @@ class SpatialHashView {
     return complement_ ? ~static_cast<std::uint32_t>(r) : static_cast<std::uint32_t>(r);
   }
   [[nodiscard]] bool contains(glm::uvec3 key) const { return find(key).has_value(); }
-  /// Asks the cache for the key's first probe and max-age cell: a batch
+  /// Asks the cache for the key's filter word, first probe and max-age cell: a batch
   /// of scattered lookups issues it some keys ahead, so their memory
   /// latencies overlap.
   void prefetch(glm::uvec3 key) const {
     if (!fold_.contains(key)) return;
-    const glm::uvec2 p = kernel_.sh_position(fold_.fold(key));
+    const glm::uvec2 f = fold_.fold(key), p = kernel_.sh_position(f);
+    if (filter_ != nullptr)
+      __builtin_prefetch(filter_ + kernel_.sh_filter_word(p, kernel_.sh_filter_hash(p, kernel_.sh_key_quotient(f))));
     __builtin_prefetch(max_age_ + kernel_.ha_cell(p));
     __builtin_prefetch(slots_ + kernel_.ha_slot(kernel_.ha_probe(p, 1u)));
   }
@@ -221,6 +243,7 @@ class SpatialHashView {
   FoldedDomain fold_;
   const std::uint64_t* slots_;
   const std::uint32_t* max_age_;
+  const std::uint32_t* filter_;  // null without a miss filter
   bool complement_;
 };
 
@@ -295,6 +318,11 @@ class SpatialHash {
   /// the table unchanged (a loaded table's own, say). Throws
   /// std::invalid_argument above kMaxThreads.
   void set_threads(std::uint32_t threads);
+  /// Makes the miss filter again from the records at `bits` bits a slot
+  /// (16, 8; 0 drops it), the table unchanged: lookups answer the same,
+  /// misses at another cost. Files hold no filter: a loaded table gets the
+  /// default `miss_filter_bits`. Throws std::invalid_argument for other bits.
+  void set_miss_filter(std::uint32_t bits);
   [[nodiscard]] const FoldedDomain& domain() const { return fold_; }
   /// Counters summed over every insert since construction.
   [[nodiscard]] const InsertReport& totals() const { return totals_; }
@@ -303,6 +331,9 @@ class SpatialHash {
   [[nodiscard]] std::span<const std::uint64_t> table() const { return table_; }
   /// The max-age cells, row-major over ceil(Hx / B) x ceil(Hy / B).
   [[nodiscard]] std::span<const std::uint32_t> max_age() const { return max_age_; }
+  /// The miss filter's words, 16 per block of 8 x 4 positions (8 x 8 at 8
+  /// bits a slot), blocks row-major (sh_spatial.glsl); empty without one.
+  [[nodiscard]] std::span<const std::uint32_t> filter() const { return filter_; }
   [[nodiscard]] const OffsetSequence& offsets() const { return *offsets_; }
   /// qx = ceil(Du / Hx): quotients per row of table tiles.
   [[nodiscard]] std::uint32_t quotient_x() const { return quotient_x_; }
@@ -315,7 +346,7 @@ class SpatialHash {
   /// extent, its slots and its max-age cells. Every record is checked (its
   /// age, its quotient, its key in the domain, its max-age cell covering its
   /// age); throws std::invalid_argument naming the first slot or size that
-  /// is wrong.
+  /// is wrong. The miss filter is made from the records.
   static SpatialHash restore(SpatialHashConfig config, Extent table, std::vector<std::uint64_t> slots,
                              std::vector<std::uint32_t> max_age);
 
@@ -324,7 +355,7 @@ class SpatialHash {
   /// 31 - age_bits bits). Throws std::invalid_argument when no table fits.
   static Extent table_for(const FoldedDomain& fold, std::uint32_t age_bits, std::uint64_t keys, double load);
   /// The bytes a table of `table` slots made with `config` holds (its
-  /// memory_bytes(): slots, max-age cells and offsets), saturating: what a
+  /// memory_bytes(): slots, max-age cells, miss filter and offsets), saturating: what a
   /// caller checks against the machine before making it.
   static std::uint64_t memory_for(const SpatialHashConfig& config, Extent table);
 
@@ -342,6 +373,8 @@ class SpatialHash {
   [[nodiscard]] std::uint32_t decode(std::uint32_t word) const;
   [[nodiscard]] std::uint32_t encode(std::uint32_t value) const;
   [[nodiscard]] std::vector<Pending> live_records() const;
+  // The miss filter made again from the records (restore, set_miss_filter).
+  void fill_filter();
   // Inserts distinct-or-ruled records as they are (the atomicMax loop),
   // growing losslessly; `report` gets the counts.
   void insert_records(std::vector<Pending> records, InsertReport& report);
@@ -363,6 +396,7 @@ class SpatialHash {
   std::optional<SpatialKernelParams> params_;  // always set, with the table (reset())
   std::vector<std::uint64_t> table_;
   std::vector<std::uint32_t> max_age_;
+  std::vector<std::uint32_t> filter_;  // the miss filter (empty without one)
   std::uint32_t cells_x_ = 1;
   std::uint64_t live_ = 0, tombstones_ = 0;
   InsertReport totals_;

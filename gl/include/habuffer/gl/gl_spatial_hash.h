@@ -138,6 +138,8 @@ class GlSpatialHash {
   /// The slots and max-age cells read back.
   [[nodiscard]] std::vector<std::uint64_t> slots() const;
   [[nodiscard]] std::vector<std::uint32_t> max_age() const;
+  /// The miss filter's words (SpatialHash::filter()'s layout; empty without one).
+  [[nodiscard]] std::vector<std::uint32_t> filter() const;
   /// native64 or emulated64.
   [[nodiscard]] AtomicMode mode() const { return mode_; }
   /// Resume passes the last insert needed (0: none was cut short).
@@ -160,7 +162,7 @@ class GlSpatialHash {
   AtomicMode mode_;
   bool timed_;  // GL_TIME_ELAPSED times the shaders (not on Mesa's software rasterizers)
   ShaderProgram records_, insert_, find_;
-  std::uint64_t slot_count_ = 0, cell_count_ = 0;
+  std::uint64_t slot_count_ = 0, cell_count_ = 0, filter_count_ = 0;
   GlStorage table_, max_age_, offsets_, locks_, params_;
   std::uint32_t resume_passes_ = 0;
   mutable double gpu_ms_ = 0.0;
