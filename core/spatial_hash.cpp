@@ -61,7 +61,7 @@ FoldedDomain::FoldedDomain(Domain d) : domain_(d) {
   // G slices interleaved along x, G a power of two (x-neighbours G slots apart, z-neighbours of
   // a group adjacent: a 3D neighbourhood within a few cache lines), then F
   // groups per row, so that Dx G F and Dy ceil(groups / F) are about equal.
-  while (shift_ < 2 && (2u << shift_) <= std::min<std::uint32_t>(d.z, kInterleave)) ++shift_;
+  while ((2u << shift_) <= std::min<std::uint32_t>(d.z, kInterleave)) ++shift_;
   const std::uint32_t interleave = 1u << shift_;
   const std::uint64_t groups = ceil_div(d.z, interleave), width = std::uint64_t{d.x} * interleave;
   const double f = std::sqrt(static_cast<double>(groups) * d.y / static_cast<double>(width));
@@ -246,8 +246,7 @@ void SpatialHash::fill_filter() {
     const std::uint64_t r = table_[s];
     if (r == 0) continue;
     const glm::uvec2 pos = k.sh_position(k.sh_record_key(s, r));
-    const std::uint32_t hash = k.sh_filter_hash(pos, k.sh_quotient(r));
-    filter_[k.sh_filter_word(pos, hash)] |= k.sh_filter_bits(hash);
+    filter_[k.sh_filter_word(pos)] |= k.sh_filter_bits(pos, k.sh_quotient(r));
   }
 }
 

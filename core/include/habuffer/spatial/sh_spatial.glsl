@@ -77,47 +77,62 @@ uvec2 sh_record_key(ha_index s, sh_word r) {
 // The miss filter (issue 36). A lookup of an absent key walked its ages
 // until a younger slot: two or three slots at random places at load 0.95.
 // The filter answers most such lookups from one 32-bit word. The table's
-// positions are cut into blocks 8 wide and 2^sh_filter_shift_y high (4 for
-// 16 bits a position, 8 for 8 bits); each block owns 16 words (one 64-byte
-// line), blocks row-major, so neighbouring keys read the same line. A key
-// (p, q) hashes (its place in the block and its quotient) to one word of its
-// block and up to 4 bits of that word; every insert call sets them (an
-// atomic or: the words are the same for every order and thread count)
-// before its first probe. A lookup finding one of its bits clear ends
-// there: the key was never inserted since the table was made or cleared.
-// The filter holds the keys of every record in the table and possibly more
-// (keys whose records were pushed out: dropped tombstones, lost keys), so
-// it only ever turns a walk into an early "absent": no answer depends on it.
-uint sh_filter_hash(uvec2 p, uint q) {
-  uint place = (p.x & ((1u << HABUFFER_SH_FILTER_SHIFT_X) - 1u)) |
-               ((p.y & ((1u << sh_filter_shift_y) - 1u)) << HABUFFER_SH_FILTER_SHIFT_X);
+// positions are cut into blocks 8 wide and 2^sh_filter_shift_y high (4 at
+// 16 bits a position, 8 at 8 bits); each block owns 16 words (one 64-byte
+// line), blocks row-major, so neighbouring keys read the same line. A
+// position's place in its block picks its word (2 places a word at 16 bits,
+// 4 at 8). The word's low 16 bits are the places' own fields of e bits
+// (e = 8 or 4), its high 16 bits are shared. Key (p, q) sets 4 bits of its
+// word: bit fold(q) mod e of its place's field, where fold xors q's groups
+// of log2(e) bits, so quotients below e never share it and no other place
+// sets it (where the domain has at most e quotients, every miss is answered
+// here), and 3 bits of the shared half from a hash of place and quotient.
+// Every insert call sets them (an atomic or: the words are the same for
+// every order and thread count) before its first probe. A lookup finding one
+// of its bits clear ends there: the key was never inserted since the table
+// was made or cleared. The filter holds the keys of every record in the
+// table and possibly more (keys whose records were pushed out: dropped
+// tombstones, lost keys), so it only ever turns a walk into an early
+// "absent": no answer depends on it.
+// log2(places a word): 1 at 16 bits a position, 2 at 8.
+uint sh_filter_places_log2() { return sh_filter_shift_y - 1u; }
+// Position p's place in its block, x fastest.
+uint sh_filter_place(uvec2 p) {
+  return (p.x & ((1u << HABUFFER_SH_FILTER_SHIFT_X) - 1u)) |
+         ((p.y & ((1u << sh_filter_shift_y) - 1u)) << HABUFFER_SH_FILTER_SHIFT_X);
+}
+// The word of position p in the filter.
+ha_index sh_filter_word(uvec2 p) {
+  ha_index block = ha_index(p.x >> HABUFFER_SH_FILTER_SHIFT_X) +
+                   ha_index(p.y >> sh_filter_shift_y) * ha_index(sh_filter_blocks_x);
+  return block * ha_index(HABUFFER_SH_FILTER_WORDS) + ha_index(sh_filter_place(p) >> sh_filter_places_log2());
+}
+// Key (p, q)'s bits in that word (four bit numbers; the hashed ones may coincide).
+uint sh_filter_bits(uvec2 p, uint q) {
+  uint place = sh_filter_place(p);
+  uint g = 4u - sh_filter_places_log2();  // log2(e): 3 or 2
+  uint f = q;
+  f ^= f >> (8u * g);
+  f ^= f >> (4u * g);
+  f ^= f >> (2u * g);
+  f ^= f >> g;
+  uint own = ((place & ((1u << sh_filter_places_log2()) - 1u)) << g) + (f & ((1u << g) - 1u));
   uint h = q + place * 0x9E3779B9u;
-  // A 32-bit finaliser (Wellons' lowbias32): the word and every bit number
-  // below depend on every bit of q and of the place.
+  // A 32-bit finaliser (Wellons' lowbias32): each hashed bit number depends
+  // on every bit of q and of the place.
   h ^= h >> 16u;
   h *= 0x7FEB352Du;
   h ^= h >> 15u;
   h *= 0x846CA68Bu;
   h ^= h >> 16u;
-  return h;
-}
-// The word of key (p, hash h) in the filter.
-ha_index sh_filter_word(uvec2 p, uint h) {
-  ha_index block = ha_index(p.x >> HABUFFER_SH_FILTER_SHIFT_X) +
-                   ha_index(p.y >> sh_filter_shift_y) * ha_index(sh_filter_blocks_x);
-  return block * ha_index(HABUFFER_SH_FILTER_WORDS) + ha_index(h & (HABUFFER_SH_FILTER_WORDS - 1u));
-}
-// Its bits in that word (four bit numbers; some may coincide).
-uint sh_filter_bits(uint h) {
-  return (1u << ((h >> 4u) & 31u)) | (1u << ((h >> 9u) & 31u)) | (1u << ((h >> 14u) & 31u)) |
-         (1u << ((h >> 19u) & 31u));
+  return (1u << own) | (1u << (16u + (h & 15u))) | (1u << (16u + ((h >> 4u) & 15u))) |
+         (1u << (16u + ((h >> 8u) & 15u)));
 }
 // Whether key (p, q) may be in the table (false: it is not).
 bool sh_filter_may_hold(uvec2 p, uint q) {
   if (sh_filter_blocks_x == 0u) return true;
-  uint h = sh_filter_hash(p, q);
-  uint bits = sh_filter_bits(h);
-  return (sh_load_filter(sh_filter_word(p, h)) & bits) == bits;
+  uint bits = sh_filter_bits(p, q);
+  return (sh_load_filter(sh_filter_word(p)) & bits) == bits;
 }
 
 // The insert (host environments that only look up, such as a host shader's
@@ -148,10 +163,7 @@ uvec2 sh_carry_key(ShCarry c) { return sh_key(c.p, sh_quotient(c.r)); }
 uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
   // The call's key joins the miss filter before its first probe (a step
   // an emulated atomic repeats sets the same bits again).
-  if (c.iter == 0u && sh_filter_blocks_x != 0u) {
-    uint h = sh_filter_hash(c.p, sh_quotient(c.r));
-    sh_atomic_or_filter(sh_filter_word(c.p, h), sh_filter_bits(h));
-  }
+  if (c.iter == 0u && sh_filter_blocks_x != 0u) sh_atomic_or_filter(sh_filter_word(c.p), sh_filter_bits(c.p, sh_quotient(c.r)));
   if (c.a > sh_max_age()) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_AGE : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_ITER : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   uvec2 h = ha_probe(c.p, c.a);
