@@ -50,9 +50,9 @@
 /// position (a table smaller than the domain puts several there: 57-62 %
 /// of misses pass), a byte a position lets 11 % of the voxel shell's misses
 /// through, this filter 1.7 % (7.4 % at 8 bits), and none of the sparse
-/// image's. Hits pay the filter's word too (35 % slower at load 0.95 on
-/// this VM): a table looked up mostly for keys it holds is faster with
-/// `miss_filter_bits` 0. The filter is
+/// image's. Hits pay the filter's word too (about a third slower at load
+/// 0.95 on this project's VM): a table looked up mostly for keys it holds
+/// is faster with `miss_filter_bits` 0. The filter is
 /// derived state: it holds every record's key and possibly keys since
 /// pushed out (only a rebuild or clear() empties it), no answer depends on
 /// it, and restore() and set_miss_filter() make it again from the records
