@@ -163,7 +163,8 @@ uvec2 sh_carry_key(ShCarry c) { return sh_key(c.p, sh_quotient(c.r)); }
 uint sh_insert_step(HABUFFER_INOUT(ShCarry) c) {
   // The call's key joins the miss filter before its first probe (a step
   // an emulated atomic repeats sets the same bits again).
-  if (c.iter == 0u && sh_filter_blocks_x != 0u) sh_atomic_or_filter(sh_filter_word(c.p), sh_filter_bits(c.p, sh_quotient(c.r)));
+  if (c.iter == 0u && sh_filter_blocks_x != 0u)
+    sh_atomic_or_filter(sh_filter_word(c.p), sh_filter_bits(c.p, sh_quotient(c.r)));
   if (c.a > sh_max_age()) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_AGE : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   if (c.iter >= sh_iter_limit) return sh_live(c.r) != 0u ? HABUFFER_SH_FAILED_ITER : HABUFFER_SH_STORED_TOMBSTONE_DROPPED;
   uvec2 h = ha_probe(c.p, c.a);

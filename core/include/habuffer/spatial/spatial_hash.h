@@ -171,7 +171,8 @@ struct SpatialHashConfig {
   std::uint32_t max_growths = 24;                       ///< lossless: growths of one insert before it throws
   std::uint32_t iter_limit = HABUFFER_SH_DEFAULT_ITER_LIMIT;     ///< probes of one insert call (SPEC 6's LIMIT)
   std::uint32_t threads = 0;                            ///< inserting and querying threads, 0..kMaxThreads; 0: the default count
-  std::uint32_t miss_filter_bits = HABUFFER_SH_DEFAULT_FILTER_BITS;  ///< the miss filter's bits a slot: 16, 8 or 0 (none); see the file comment
+  /// The miss filter's bits a slot: 16, 8 or 0 (none); see the file comment.
+  std::uint32_t miss_filter_bits = HABUFFER_SH_DEFAULT_FILTER_BITS;
 
   /// Throws std::invalid_argument naming the field and its bounds.
   void validate() const;
