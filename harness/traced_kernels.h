@@ -1,0 +1,280 @@
+// The techniques' shared GLSL compiled a third time, over host arrays whose
+// every access is recorded into a WarpRecorder (habuffer/harness/warp_traffic.h)
+// at the address and with the kind the GPU path's environment gives it
+// (gl/shaders/ha_env.glsl, gl/include/habuffer/gl/techniques/*/ *_env.glsl):
+// the GPU traffic model runs the techniques' real insert, sort and composite
+// code, not a re-implementation. Serial (one lane at a time), so plain loads
+// and stores stand for the GPU's atomics; the kernels of hash_kernel.h and
+// the techniques' *_kernel.h are untouched. Private to the harness.
+#pragma once
+
+#include <cstdint>
+
+#include "habuffer/glsl_env.h"
+#include "habuffer/hash_kernel.h"
+#include "habuffer/harness/warp_traffic.h"
+#include "habuffer/technique_params.h"
+
+namespace habuffer::harness::traced {
+
+/// Each buffer its own region of one address space, so no two buffers share a sector.
+enum class Buffer : std::uint64_t { Counters = 1, Offsets, Table, MaxAge, Saturation, Heads, Nodes, Links, Counts, Layers };
+/// The byte address of `offset` in `b`.
+inline std::uint64_t address(Buffer b, std::uint64_t offset) { return (static_cast<std::uint64_t>(b) << 44) + offset; }
+
+/// Static access sites: accesses at different sites never share a warp instruction.
+enum Site : std::uint16_t {
+  kTally = 1, kHaOffset, kHaSlotLoad, kHaSlotAtomic, kHaMaxAgeRaise, kHaMaxAgeLoad, kSaturationLoad, kSaturationRaise,
+  kNodeCounter, kHeadExchange, kHeadLoad, kHeadStore, kEntryLoad, kEntryStore, kLinkLoad, kLinkStore, kLinkSwap,
+  kCountAdd, kCountLoad, kCountStore, kLayerLoad, kLayerStore, kOverflowNote
+};
+
+/// What every traced environment shares: the recorder and the outcome tally
+/// of gl/shaders/entry_common.glsl (one reduction per call, striped by pixel).
+class Tracer {
+ public:
+  explicit Tracer(WarpRecorder& r) : rec_(&r) {}
+  /// Records one access (see WarpRecorder::record); a link of the chain when
+  /// the lane waits for it: loads and atomics, not stores or reductions.
+  void touch(Site site, Buffer b, std::uint64_t offset, AccessKind kind) const {
+    rec_->record(site, address(b, offset), kind, kind == AccessKind::Load || kind == AccessKind::Atomic);
+  }
+  /// A load of a read-only buffer: no chain link (L1-resident on a GPU).
+  void touch_constant(Site site, Buffer b, std::uint64_t offset) const {
+    rec_->record(site, address(b, offset), AccessKind::Load, false);
+  }
+  /// habuffer_insert's tally of `outcome` at pixel (x, y): atomicAdd to the pixel's stripe.
+  void tally(std::uint32_t x, std::uint32_t y, std::uint32_t outcome) const {
+    if (outcome >= HABUFFER_OUTCOME_COUNT) return;
+    const std::uint32_t stripe = (x + y * 5u) & (HABUFFER_COUNTER_STRIPES - 1u);
+    touch(kTally, Buffer::Counters, 4ull * (stripe * HABUFFER_COUNTER_STRIDE + outcome), AccessKind::Reduction);
+  }
+
+ private:
+  WarpRecorder* rec_;
+};
+
+// The GPU path's defaults with native atomics (gl/module_variant.h): no plain
+// slot load before a probe's atomicMax, one atomicMax per placement on the
+// max-age cell, its result unused.
+#pragma push_macro("HABUFFER_SLOT_READ_FIRST")
+#undef HABUFFER_SLOT_READ_FIRST
+#define HABUFFER_SLOT_READ_FIRST 0
+
+/// The HA-buffer (shared/ha_*.glsl) over `Word` slots.
+template <class Word>
+class HashKernel : public Tracer {
+ public:
+  HABUFFER_GLSL_CLASS_PRELUDE
+  using ha_word = Word;
+  using ha_index = std::uint64_t;
+
+  HashKernel(const KernelParams& params, const glm::uvec2* offsets, Word* table, std::uint32_t* max_age,
+             WarpRecorder& r)
+      : Tracer(r),
+        habuffer_age_bits(params.age_bits),
+        ha_payload_bits(params.payload_bits),
+        ha_table_size(params.table.x, params.table.y),
+        ha_block(params.block),
+        ha_max_age_cells_x(params.max_age_cells_x),
+        habuffer_iter_limit(params.iter_limit),
+        habuffer_cull_tau(params.cull_tau),
+        habuffer_screen_size(params.screen.x, params.screen.y),
+        habuffer_saturation(params.saturation != nullptr ? 1u : 0u),
+        saturation_(params.saturation),
+        offsets_(offsets),
+        table_(table),
+        max_age_(max_age) {}
+
+  static constexpr uint ha_word_bits = sizeof(Word) * 8;
+  uint habuffer_age_bits;
+  uint ha_payload_bits;
+  uvec2 ha_table_size;
+  uint ha_block;
+  uint ha_max_age_cells_x;
+  uint habuffer_iter_limit;
+  float habuffer_cull_tau;
+  uvec2 habuffer_screen_size;
+  uint habuffer_saturation;
+
+  uvec2 ha_offset(uint i) const {
+    touch_constant(kHaOffset, Buffer::Offsets, 8ull * i);
+    return offsets_[i];
+  }
+  uint ha_div_block(uint v) const { return v / ha_block; }
+  Word ha_atomic_max_slot(ha_index s, Word r) {
+    touch(kHaSlotAtomic, Buffer::Table, sizeof(Word) * s, AccessKind::Atomic);
+    const Word old = table_[s];
+    if (old < r) table_[s] = r;
+    return old;
+  }
+  static uint ha_atomic_missed() { return 0u; }
+  void ha_atomic_max_age(uint cell, uint age) {
+    touch(kHaMaxAgeRaise, Buffer::MaxAge, 4ull * cell, AccessKind::Reduction);
+    if (max_age_[cell] < age) max_age_[cell] = age;
+  }
+  Word ha_load_slot(ha_index s) const {
+    touch(kHaSlotLoad, Buffer::Table, sizeof(Word) * s, AccessKind::Load);
+    return table_[s];
+  }
+  uint ha_load_max_age(uint cell) const {
+    touch(kHaMaxAgeLoad, Buffer::MaxAge, 4ull * cell, AccessKind::Load);
+    return max_age_[cell];
+  }
+  uint ha_load_saturation(uint pixel) const {
+    touch(kSaturationLoad, Buffer::Saturation, 4ull * pixel, AccessKind::Load);
+    return saturation_[pixel];
+  }
+  void ha_max_saturation(uint pixel, uint code) {
+    touch(kSaturationRaise, Buffer::Saturation, 4ull * pixel, AccessKind::Reduction);
+    if (saturation_[pixel] < code) saturation_[pixel] = code;
+  }
+
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_probe.glsl"
+#include "habuffer/shared/ha_carry.glsl"
+#include "habuffer/shared/ha_saturation.glsl"
+#include "habuffer/shared/ha_insert.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/shared/ha_shadow.glsl"
+#include "habuffer/shared/ha_traverse.glsl"
+
+ private:
+  std::uint32_t* saturation_;
+  const glm::uvec2* offsets_;
+  Word* table_;
+  std::uint32_t* max_age_;
+};
+
+#pragma pop_macro("HABUFFER_SLOT_READ_FIRST")
+
+/// Linked lists, sorted after the gather or while inserting
+/// (techniques/linked_lists/ha_lists.glsl, ha_sorted_lists.glsl), over the
+/// GPU's buffers (lists_env.glsl): heads, 8-byte entries, 4-byte links, and
+/// the node counter, one word of the counters buffer.
+class ListsKernel : public KernelUniforms, public Tracer {
+ public:
+  HABUFFER_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_LOCAL_ARRAY
+  using ha_word = std::uint64_t;
+  static constexpr uint ha_word_bits = 64;
+
+  ListsKernel(const KernelUniforms& u, std::uint32_t* heads, glm::uvec2* entries, std::uint32_t* next,
+              std::uint32_t* saturation, WarpRecorder& r)
+      : KernelUniforms(u), Tracer(r), heads_(heads), entries_(entries), next_(next), saturation_(saturation) {}
+
+  uint ll_allocate_node() {
+    touch(kNodeCounter, Buffer::Counters, 4ull * HABUFFER_COUNTER_NODES, AccessKind::Atomic);
+    return nodes_++;
+  }
+  uint ll_exchange_head(uint pixel, uint link) {
+    touch(kHeadExchange, Buffer::Heads, 4ull * pixel, AccessKind::Atomic);
+    const uint old = heads_[pixel];
+    heads_[pixel] = link;
+    return old;
+  }
+  uint ll_load_head(uint pixel) const {
+    touch(kHeadLoad, Buffer::Heads, 4ull * pixel, AccessKind::Load);
+    return heads_[pixel];
+  }
+  void ll_store_head(uint pixel, uint link) {
+    touch(kHeadStore, Buffer::Heads, 4ull * pixel, AccessKind::Store);
+    heads_[pixel] = link;
+  }
+  uvec2 ll_load_entry(uint node) const {
+    touch(kEntryLoad, Buffer::Nodes, 8ull * node, AccessKind::Load);
+    return entries_[node];
+  }
+  void ll_store_entry(uint node, uvec2 e) {
+    touch(kEntryStore, Buffer::Nodes, 8ull * node, AccessKind::Store);
+    entries_[node] = e;
+  }
+  uint ll_load_next(uint node) const {
+    touch(kLinkLoad, Buffer::Links, 4ull * node, AccessKind::Load);
+    return next_[node];
+  }
+  void ll_store_next(uint node, uint link) {
+    touch(kLinkStore, Buffer::Links, 4ull * node, AccessKind::Store);
+    next_[node] = link;
+  }
+  uint sl_load_link(uint pixel, uint where) const {
+    if (where == 0) return ll_load_head(pixel);
+    return ll_load_next(where - 1);
+  }
+  uint sl_swap_link(uint pixel, uint where, uint expected, uint link) {
+    uint& w = where == 0 ? heads_[pixel] : next_[where - 1];
+    touch(kLinkSwap, where == 0 ? Buffer::Heads : Buffer::Links, 4ull * (where == 0 ? pixel : where - 1),
+          AccessKind::Atomic);
+    const uint found = w;
+    if (found == expected) w = link;
+    return found;
+  }
+  uint ha_load_saturation(uint pixel) const {
+    touch(kSaturationLoad, Buffer::Saturation, 4ull * pixel, AccessKind::Load);
+    return saturation_[pixel];
+  }
+  void ha_max_saturation(uint pixel, uint code) {
+    touch(kSaturationRaise, Buffer::Saturation, 4ull * pixel, AccessKind::Reduction);
+    if (saturation_[pixel] < code) saturation_[pixel] = code;
+  }
+
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/shared/ha_entries.glsl"
+#include "habuffer/techniques/linked_lists/ha_lists.glsl"
+#include "habuffer/shared/ha_saturation.glsl"
+#include "habuffer/techniques/linked_lists/ha_sorted_lists.glsl"
+
+ private:
+  std::uint32_t* heads_;
+  glm::uvec2* entries_;
+  std::uint32_t* next_;
+  std::uint32_t* saturation_;
+  std::uint32_t nodes_ = 0;  // the node counter
+};
+
+/// Fixed per-pixel arrays (techniques/arrays/ha_arrays.glsl) over the GPU's
+/// buffers (arrays_env.glsl): a count per pixel, K layer-major entries.
+class ArraysKernel : public KernelUniforms, public Tracer {
+ public:
+  HABUFFER_GLSL_CLASS_PRELUDE
+  HABUFFER_GLSL_CLASS_LOCAL_ARRAY
+  using ha_word = std::uint64_t;
+  static constexpr uint ha_word_bits = 64;
+
+  ArraysKernel(const KernelUniforms& u, std::uint32_t* counts, glm::uvec2* layers, WarpRecorder& r)
+      : KernelUniforms(u), Tracer(r), counts_(counts), layers_(layers) {}
+
+  uint fa_count_add(uint pixel) {
+    touch(kCountAdd, Buffer::Counts, 4ull * pixel, AccessKind::Atomic);
+    return counts_[pixel]++;
+  }
+  uint fa_load_count(uint pixel) const {
+    touch(kCountLoad, Buffer::Counts, 4ull * pixel, AccessKind::Load);
+    return counts_[pixel];
+  }
+  void fa_store_count(uint pixel, uint n) {
+    touch(kCountStore, Buffer::Counts, 4ull * pixel, AccessKind::Store);
+    counts_[pixel] = n;
+  }
+  uvec2 fa_load_layer(uint slot) const {
+    touch(kLayerLoad, Buffer::Layers, 8ull * slot, AccessKind::Load);
+    return layers_[slot];
+  }
+  void fa_store_layer(uint slot, uvec2 e) {
+    touch(kLayerStore, Buffer::Layers, 8ull * slot, AccessKind::Store);
+    layers_[slot] = e;
+  }
+  void fa_note_overflow(uint) { touch(kOverflowNote, Buffer::Counters, 4ull * HABUFFER_COUNTER_MOST_ARRIVED, AccessKind::Reduction); }
+
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/shared/ha_entries.glsl"
+#include "habuffer/techniques/arrays/ha_arrays.glsl"
+
+ private:
+  std::uint32_t* counts_;
+  glm::uvec2* layers_;
+};
+
+}  // namespace habuffer::harness::traced
