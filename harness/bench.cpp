@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "habuffer/harness/floors.h"
+#include "habuffer/harness/gpu_model.h"
 
 namespace habuffer::harness {
 namespace {
@@ -31,6 +32,8 @@ struct Cell3 {  // one technique on one case, over the rounds
   std::uint64_t memory_bytes = 0, memory_model_bytes = 0;
   ImageDifference error;
   std::string device;
+  TechniqueConfig config;  // as the first round ran it (the table resolved): the GPU model's
+  OffsetSource offsets;
 };
 
 ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c, const Cell3& r) {
@@ -60,6 +63,8 @@ ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c
     }
   }
   row.set("device", r.device);
+  if (s.model_gpu && gpu_model_covers(t.technique))
+    set_gpu_model_columns(row, model_gpu_frame(r.config, r.offsets, c.capture.stream), GpuCostModel::h100());
   return row;
 }
 
@@ -141,7 +146,13 @@ std::string measure_cell(const BenchSettings& s, const TechniqueSpec& t, const C
   cell.memory_bytes = r.memory_bytes;
   cell.memory_model_bytes = r.memory_model_bytes;
   cell.device = r.device;
-  if (first_round) cell.error = compare_pixels(r.image, c.capture.reference);
+  if (first_round) {
+    cell.error = compare_pixels(r.image, c.capture.reference);
+    cell.config.buffer = rs.config;
+    static_cast<TechniqueChoice&>(cell.config) = rs;
+    if (uses_table(t.technique)) cell.config.buffer.table = f.table;
+    cell.offsets = rs.offsets;
+  }
   return r.device;
 }
 
@@ -159,6 +170,14 @@ void add_bench_notes(ResultTable& table) {
       "atomic: one atomic add per fragment; blend: unsorted blending; exact (CPU path): bucket by pixel, sort each "
       "pixel, composite from the buckets (the least an exact technique does; bucketing on one thread); measured in "
       "every round";
+}
+
+void add_model_notes(ResultTable& table) {
+  table.notes["model"] =
+      "model_*: the GPU traffic model (docs/performance.md, GPU traffic model): the captured frame replayed in warps of "
+      "32 through the technique's shared GLSL; per pass (gather, sort, resolve) the distinct 32-byte sectors and "
+      "128-byte lines of each warp instruction, lane atomics, same-address conflicts in an instruction, and the "
+      "warps' dependent-load chains, summed; model_*_ms: " + GpuCostModel::h100().source;
 }
 
 }  // namespace
@@ -189,6 +208,7 @@ ResultTable run_bench(const BenchSettings& s) {
       }
     }
   add_bench_notes(table);
+  if (s.model_gpu) add_model_notes(table);
   for (std::size_t ci = 0; ci < cases.size(); ++ci)
     for (std::size_t ti = 0; ti < s.techniques.size(); ++ti)
       table.rows.push_back(make_row(s, s.techniques[ti], cases[ci], cells[ci][ti]));

@@ -120,16 +120,56 @@ GpuTraffic model_arrays(const TechniqueConfig& c, std::span<const Fragment> frag
   return t;
 }
 
+// The k-buffer: with occupancy, the gather is three passes (kbuffer_entry.glsl's
+// fill over the fragments, kb_count.comp.glsl's count per pixel, then the
+// insertion), their counts summed; its layers stay sorted (no sort pass).
+template <class Word>
+GpuTraffic model_kbuffer(const TechniqueConfig& c, std::span<const Fragment> fragments) {
+  const std::uint64_t pixels = std::uint64_t{c.buffer.screen.x} * c.buffer.screen.y;
+  const KernelUniforms u = kernel_uniforms(c);
+  std::vector<Word> slots(pixels * c.layers, Word{0});
+  std::vector<std::uint32_t> occupancy(c.occupancy ? pixels * c.occupancy_words : 0u, 0u);
+  std::vector<std::uint32_t> limits(c.occupancy ? pixels : 0u, 0u);
+  GpuTraffic t;
+  if (c.occupancy) {
+    WarpRecorder fill;
+    traced::KBufferKernel<Word> kf(u, slots.data(), occupancy.data(), limits.data(), fill);
+    for (std::size_t i = 0; i < fragments.size(); ++i) {
+      const Fragment& f = fragments[i];
+      fill.begin_lane(static_cast<std::uint32_t>(i % WarpRecorder::kLanes));
+      if (kf.ha_depth_valid(f.depth)) kf.kb_fill(glm::uvec2(f.x, f.y), kf.ha_depth_code(f.depth));
+      if (i % WarpRecorder::kLanes == WarpRecorder::kLanes - 1 || i + 1 == fragments.size()) fill.end_warp();
+    }
+    t.gather += fill.counts();
+    t.gather += replay_pixels(c.buffer.screen, [&](std::uint32_t x, std::uint32_t y, WarpRecorder& r) {
+      traced::KBufferKernel<Word> kc(u, slots.data(), occupancy.data(), limits.data(), r);
+      kc.kb_count_pixel(glm::uvec2(x, y));
+    });
+    t.gather.lanes = 0;  // the fragments are counted once, by the insertion below
+  }
+  WarpRecorder rec;
+  traced::KBufferKernel<Word> k(u, slots.data(), occupancy.data(), limits.data(), rec);
+  t.gather += replay_gather(fragments, rec, k, [&](const Fragment& f) {
+    return k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+  });
+  t.resolve = replay_pixels(c.buffer.screen, [&](std::uint32_t x, std::uint32_t y, WarpRecorder& r) {
+    traced::KBufferKernel<Word> kr(u, slots.data(), occupancy.data(), limits.data(), r);
+    (void)kr.kb_composite(glm::uvec2(x, y), glm::vec3(1.0f));
+  });
+  return t;
+}
+
 }  // namespace
 
 bool gpu_model_covers(Technique t) {
-  return t == Technique::Ha || t == Technique::Lists || t == Technique::SortedLists || t == Technique::Arrays;
+  return t == Technique::Ha || t == Technique::Lists || t == Technique::SortedLists || t == Technique::Arrays ||
+         t == Technique::KBuffer;
 }
 
 GpuTraffic model_gpu_frame(const TechniqueConfig& c, const OffsetSource& offsets, std::span<const Fragment> fragments) {
   if (!gpu_model_covers(c.technique))
     throw std::invalid_argument("the GPU traffic model has no traced kernel for technique " + to_string(c.technique) +
-                                " (it models ha, lists, sorted-lists and arrays)");
+                                " (it models ha, lists, sorted-lists, arrays and kbuffer)");
   // Fragments off the screen are counted and never reach the technique (habuffer_insert).
   std::vector<Fragment> on_screen;
   on_screen.reserve(fragments.size());
@@ -141,6 +181,9 @@ GpuTraffic model_gpu_frame(const TechniqueConfig& c, const OffsetSource& offsets
                                             : model_ha<std::uint32_t>(c, offsets, on_screen);
     case Technique::Arrays:
       return model_arrays(c, on_screen);
+    case Technique::KBuffer:
+      return c.buffer.layout == Layout::L64 ? model_kbuffer<std::uint64_t>(c, on_screen)
+                                            : model_kbuffer<std::uint32_t>(c, on_screen);
     default:
       return model_lists(c, on_screen);
   }

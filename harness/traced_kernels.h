@@ -8,6 +8,7 @@
 // the techniques' *_kernel.h are untouched. Private to the harness.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "habuffer/glsl_env.h"
@@ -18,7 +19,9 @@
 namespace habuffer::harness::traced {
 
 /// Each buffer its own region of one address space, so no two buffers share a sector.
-enum class Buffer : std::uint64_t { Counters = 1, Offsets, Table, MaxAge, Saturation, Heads, Nodes, Links, Counts, Layers };
+enum class Buffer : std::uint64_t {
+  Counters = 1, Offsets, Table, MaxAge, Saturation, Heads, Nodes, Links, Counts, Layers, Occupancy, Limits
+};
 /// The byte address of `offset` in `b`.
 inline std::uint64_t address(Buffer b, std::uint64_t offset) { return (static_cast<std::uint64_t>(b) << 44) + offset; }
 
@@ -26,7 +29,8 @@ inline std::uint64_t address(Buffer b, std::uint64_t offset) { return (static_ca
 enum Site : std::uint16_t {
   kTally = 1, kHaOffset, kHaSlotLoad, kHaSlotAtomic, kHaMaxAgeRaise, kHaMaxAgeLoad, kSaturationLoad, kSaturationRaise,
   kNodeCounter, kHeadExchange, kHeadLoad, kHeadStore, kEntryLoad, kEntryStore, kLinkLoad, kLinkStore, kLinkSwap,
-  kCountAdd, kCountLoad, kCountStore, kLayerLoad, kLayerStore, kOverflowNote
+  kCountAdd, kCountLoad, kCountStore, kLayerLoad, kLayerStore, kOverflowNote, kOccupancyLoad, kOccupancyOr,
+  kLimitLoad, kLimitStore
 };
 
 /// What every traced environment shares: the recorder and the outcome tally
@@ -275,6 +279,63 @@ class ArraysKernel : public KernelUniforms, public Tracer {
  private:
   std::uint32_t* counts_;
   glm::uvec2* layers_;
+};
+
+/// The k-buffer (techniques/kbuffer/ha_kbuffer.glsl) over `Word` slots, K
+/// per pixel, layer-major, with the occupancy map and limits of
+/// kbuffer_env.glsl (its or: a load, then an atomicOr when a bit is missing).
+template <class Word>
+class KBufferKernel : public KernelUniforms, public Tracer {
+ public:
+  HABUFFER_GLSL_CLASS_PRELUDE
+  using ha_word = Word;
+  using ha_index = std::uint64_t;
+  static constexpr uint ha_word_bits = sizeof(Word) * 8;
+
+  KBufferKernel(const KernelUniforms& u, Word* slots, std::uint32_t* occupancy, std::uint32_t* limits,
+                WarpRecorder& r)
+      : KernelUniforms(u), Tracer(r), slots_(slots), occupancy_(occupancy), limits_(limits) {}
+
+  Word ha_atomic_max_slot(ha_index s, Word r) {
+    touch(kHaSlotAtomic, Buffer::Layers, sizeof(Word) * s, AccessKind::Atomic);
+    const Word old = slots_[s];
+    if (old < r) slots_[s] = r;
+    return old;
+  }
+  static uint ha_atomic_missed() { return 0u; }
+  Word ha_load_slot(ha_index s) const {
+    touch(kHaSlotLoad, Buffer::Layers, sizeof(Word) * s, AccessKind::Load);
+    return slots_[s];
+  }
+  void kb_or_occupancy(uint word, uint bits) {
+    touch(kOccupancyLoad, Buffer::Occupancy, 4ull * word, AccessKind::Load);
+    if ((occupancy_[word] & bits) == bits) return;
+    touch(kOccupancyOr, Buffer::Occupancy, 4ull * word, AccessKind::Reduction);
+    occupancy_[word] |= bits;
+  }
+  uint kb_load_occupancy(uint word) const {
+    touch(kOccupancyLoad, Buffer::Occupancy, 4ull * word, AccessKind::Load);
+    return occupancy_[word];
+  }
+  uint kb_load_limit(uint pixel) const {
+    touch(kLimitLoad, Buffer::Limits, 4ull * pixel, AccessKind::Load);
+    return limits_[pixel];
+  }
+  void kb_store_limit(uint pixel, uint bucket) {
+    touch(kLimitStore, Buffer::Limits, 4ull * pixel, AccessKind::Store);
+    limits_[pixel] = bucket;
+  }
+  static uint ha_lowest_bit(uint w) { return static_cast<uint>(std::countr_zero(w)); }
+
+#include "habuffer/shared/ha_record.glsl"
+#include "habuffer/shared/ha_carry.glsl"
+#include "habuffer/shared/ha_blend.glsl"
+#include "habuffer/techniques/kbuffer/ha_kbuffer.glsl"
+
+ private:
+  Word* slots_;
+  std::uint32_t* occupancy_;
+  std::uint32_t* limits_;
 };
 
 }  // namespace habuffer::harness::traced

@@ -9,7 +9,9 @@
 # in arrival and in pixel order, the compute entry at 2^24 fragments, the
 # technique table of `habuffer bench` on engine, hairball and spider at 512
 # and 1024, hairball at three loads, BM_Technique beside `habuffer bench`),
-# then the older checks as time allows (GL tests in emulated64, the scene
+# issue 36's GPU traffic model beside the measurement (`bench --model gpu`
+# on the GL path, then scripts/gpu_model_check.py: Spearman per scene, HA /
+# lists measured and predicted), then the older checks as time allows (GL tests in emulated64, the scene
 # tests, renders' stats, issue 11's whole technique table).
 #
 # Usage (repository root): scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]
@@ -33,7 +35,7 @@ case "${1:-}" in
   --dry-run) mode=dry; shift ;;
 esac
 out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
-all_steps=info,gl-tests,spatial,shadows,gather,harness,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+all_steps=info,gl-tests,spatial,shadows,gather,harness,model,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
 steps=${2:-$all_steps}
 budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
@@ -82,13 +84,13 @@ sharded() {
 
 # Sizes, repeats and filters: the real run, or toys for --smoke.
 if [[ $mode == smoke ]]; then
-  sizes=64x64 repeats=1 sides='256' gtest_filter='GlBookkeeping.*:GlFrame.*:Render.Planes*'
+  sizes=64x64 repeats=1 sides='256' model_size=64x64 gtest_filter='GlBookkeeping.*:GlFrame.*:Render.Planes*'
   render_size=96x96 bench_time=0.05 bench_reps=1 log2n='18' l64=emulated64  # llvmpipe has no native64
   fig2_size=64x64 light_size=128x128
   spatial_gpu_filter='BM_GlSpatial/image/(build|hits-row-major)/gl-load-0.80'
   spatial_cpu_filter='BM_Spatial/image/build/ours-load-0.80/threads-2'
 else
-  sizes=512x512,1024x1024 repeats=3 sides='512|1024' gtest_filter='*'
+  sizes=512x512,1024x1024 repeats=3 sides='512|1024' model_size=1024x1024 gtest_filter='*'
   render_size=2048x2048 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
   fig2_size=1024x1024 light_size=2048x2048
   spatial_gpu_filter='BM_GlSpatial/'
@@ -141,6 +143,15 @@ fi
 want harness && step 150 harness habuffer bench --path gl --quiet --repeats "$repeats" --size "$sizes" \
   --scenes engine,hairball,spider --techniques ha,ha:cull=0.99,lists,sorted-lists,sorted-lists:cull=0.99 \
   --out techniques.json,techniques.csv
+# Issue 36 part 7: the GPU traffic model beside the GPU's own times (one
+# repeat; the replay runs on one CPU core, about a minute for both scenes at
+# 1024), then model against measurement: Spearman per scene and HA / lists.
+if want model; then
+  step 150 model habuffer bench --path gl --quiet --repeats 1 --no-floors --model gpu --size "$model_size" \
+    --scenes engine,hairball --techniques ha,ha:cull=0.99,sorted-lists,sorted-lists:cull=0.99,lists,arrays:k=16 \
+    --out model.json,model.csv
+  step 20 model-check python3 "$repo/scripts/gpu_model_check.py" model.json
+fi
 # The captured hairball stream through the compute entry, arrival and pixel
 # order, loads 0.3/0.55/0.8 and the variants, in the L64 mode the GPU runs.
 want captured && step 120 captured habuffer_bench --benchmark_filter="BM_GlCaptured/hairball/(arrival|pixel)/$l64/side:($sides)/" \

@@ -126,6 +126,18 @@ TEST(GpuTrafficModel, ArraysOnThirtyTwoNeighbouringPixelsCountAndStoreCoalesced)
   EXPECT_EQ(t.gather.chain, 1u);
 }
 
+TEST(GpuTrafficModel, TheKBufferOnThirtyTwoNeighbouringPixelsReadsThenRaisesItsFirstLayer) {
+  const GpuTraffic t = model_gpu_frame(config(Technique::KBuffer, {32, 1}), {}, row_stream(1));
+  // slot read (8 sectors, 2 lines), its atomicMax (8, 2), tallies (32, 16)
+  EXPECT_EQ(t.gather.sectors, 48u);
+  EXPECT_EQ(t.gather.lines, 20u);
+  EXPECT_EQ(t.gather.atomics, 64u);
+  EXPECT_EQ(t.gather.chain, 2u);
+  // Composite: layer 0 holds the record, layer 1 is empty and ends the walk.
+  EXPECT_EQ(t.resolve.instructions, 2u);
+  EXPECT_EQ(t.resolve.chain, 2u);
+}
+
 TEST(GpuTrafficModel, TheHaBufferOnThirtyTwoNeighbouringPixelsProbesOneCoalescedRow) {
   const GpuTraffic t = model_gpu_frame(config(Technique::Ha, {64, 64}), line_offsets(), row_stream(1));
   // offset O[0] (one sector for all), slot atomics on slots 0..31 (8 sectors, 2 lines),

@@ -15,14 +15,16 @@ const CommandSpec& bench_spec() {
       std::vector<OptionSpec>{
           {"scenes", "S1,S2,...", "", "the scenes (required; S below)", reads_in(scene_word_files, "{}")},
           {"techniques", "T1,T2,...", "", "the techniques and their knobs (required; T below)"},
-          {"no-floors", "", "", "skip the floors"}} +
+          {"no-floors", "", "", "skip the floors"},
+          {"model", "gpu", "", "add the GPU traffic model's columns (model_*) beside the timings"}} +
           harness_options({"out", "size", "path", "repeats", "seed", "threads", "insert-order", "quiet"}),
       "  Every technique on every scene at every size, repetitions interleaved (each combination once per\n"
       "  round) with the floors (one atomic add per fragment; unsorted blending; on the CPU path the exact\n"
       "  floor: bucket by pixel, sort, composite from the buckets) measured in every round.\n"
       "  One row per combination: gather_ms, resolve_ms, total_ms (medians, min and max), memory_bytes,\n"
       "  bytes_per_fragment, every counter, psnr, rmse and max_error against the exact reference, the\n"
-      "  floors and the ratios to them.\n"
+      "  floors and the ratios to them. --model gpu adds, for ha, lists, sorted-lists, arrays and kbuffer, the\n"
+      "  frame's GPU traffic (sectors, lines, atomics, conflicts, dependent-load chains per pass) and an H100 time.\n"
       "  S: a scene name or mesh file with options (planes:order=front:count=32), or a fragment CSV (CPU).\n"
       "  T: NAME[:KNOB...], NAME a technique (habuffer techniques lists them); knobs\n" +
       technique_knob_help() + "     e.g. kbuffer:k=8:occ.\n"};
@@ -43,6 +45,10 @@ int run_bench(const std::vector<std::string>& argv) {
   s.insert_order = insert_order_option(args);
   args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"}, "with --path gl (the GPU inserts)");
   s.floors = !args.has("no-floors");
+  if (args.has("model")) {
+    if (args.str("model") != "gpu") throw UsageError("--model must be gpu, not '" + args.str("model") + "'");
+    s.model_gpu = true;
+  }
   try {
     harness::validate_bench(s);
   } catch (const std::invalid_argument& e) {

@@ -29,6 +29,10 @@ struct BenchSettings {
   InsertOrder insert_order = InsertOrder::Auto;  ///< CPU path, the HA-buffer
   std::uint64_t seed = 1;     ///< the HA-buffer's offsets
   bool floors = true;  ///< measure the two floors in every round
+  /// Add the GPU traffic model's columns (model_*, habuffer/harness/gpu_model.h)
+  /// to the rows of the techniques it covers: the frame replayed through the
+  /// technique's traced kernel in the configuration the bench ran, once.
+  bool model_gpu = false;
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;  ///< (runs done, runs)
   /// Receives each warning (one line, no newline): a scene that puts no
   /// transparent fragment on the screen, whose rows time an empty pass.

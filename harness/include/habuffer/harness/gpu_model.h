@@ -10,7 +10,8 @@
 /// Passes, as the GPU path runs them: gather, the captured fragments in
 /// their order (the CPU path's capture keeps the rasterizer's append order)
 /// in warps of 32 consecutive fragments, each through habuffer_insert's call
-/// and outcome tally; sort (lists and arrays), then resolve (composite), one
+/// and outcome tally (the k-buffer's occupancy fill and count passes added
+/// to it, as the GPU runs them inside its gather); sort (lists and arrays), then resolve (composite), one
 /// lane per pixel, 32 consecutive pixels of a row-major screen a warp. The
 /// memory starts empty, as after the frame's clear; lanes run one after the
 /// other, so the table and lists end as the GPU's do (SPEC 9) while their
@@ -36,7 +37,7 @@ struct GpuTraffic {
   TrafficCounts resolve;  ///< the composite pass
 };
 
-/// Whether the model has a traced kernel for `t` (ha, lists, sorted-lists, arrays).
+/// Whether the model has a traced kernel for `t` (ha, lists, sorted-lists, arrays, kbuffer).
 bool gpu_model_covers(Technique t);
 
 /// Replays `fragments` through `c`'s technique (c.buffer.table resolved: the
