@@ -191,20 +191,27 @@ GpuTraffic model_gpu_frame(const TechniqueConfig& c, const OffsetSource& offsets
 
 GpuCostModel GpuCostModel::h100() {
   GpuCostModel m;
-  m.fragment_ns = 0.0;
   m.sector_ns = 32.0 / 3350.0;  // 32 bytes at HBM3's 3.35 TB/s
-  m.atomic_ns = 0.0;
-  m.conflict_ns = 0.0;
-  m.chain_ns = 0.0;
-  m.source = "H100 a priori: HBM3 3.35 TB/s per sector";
+  // Fitted on docs/results/techniques-h100-512.json (scripts/gpu_model_check.py --fit 512x512): cold first
+  // frames, so the per-pass constants hold allocation and first touch as well as launch and rasterization.
+  m.gather_frame_ms = 8.13;
+  m.gather_instruction_ns = 6.05;
+  m.resolve_frame_ms = 0.574;
+  m.resolve_instruction_ns = 1.05;
+  m.source = "H100, fitted on its 512x512 round: gather 8.13 ms + 6.05 ns a warp memory instruction, "
+             "resolve 0.574 ms + 1.05 ns a warp memory instruction; a priori: 32 B / 3.35 TB/s a sector";
   return m;
 }
 
-double GpuCostModel::pass_ms(const TrafficCounts& p, bool gather) const {
-  const double ns = (gather ? fragment_ns * static_cast<double>(p.lanes) : 0.0) +
-                    sector_ns * static_cast<double>(p.sectors) + atomic_ns * static_cast<double>(p.atomics) +
-                    conflict_ns * static_cast<double>(p.conflicts) + chain_ns * static_cast<double>(p.chain);
-  return ns * 1e-6;
+double GpuCostModel::gather_ms(const GpuTraffic& t) const {
+  return gather_frame_ms + (gather_instruction_ns * static_cast<double>(t.gather.instructions) +
+                            sector_ns * static_cast<double>(t.gather.sectors)) * 1e-6;
+}
+
+double GpuCostModel::resolve_ms(const GpuTraffic& t) const {
+  const double instructions = static_cast<double>(t.sort.instructions + t.resolve.instructions);
+  const double sectors = static_cast<double>(t.sort.sectors + t.resolve.sectors);
+  return resolve_frame_ms + (resolve_instruction_ns * instructions + sector_ns * sectors) * 1e-6;
 }
 
 void set_gpu_model_columns(ResultRow& row, const GpuTraffic& t, const GpuCostModel& m) {
@@ -217,7 +224,7 @@ void set_gpu_model_columns(ResultRow& row, const GpuTraffic& t, const GpuCostMod
   pass("gather", t.gather);
   pass("sort", t.sort);
   pass("resolve", t.resolve);
-  const double gather = m.pass_ms(t.gather, true), resolve = m.pass_ms(t.sort, false) + m.pass_ms(t.resolve, false);
+  const double gather = m.gather_ms(t), resolve = m.resolve_ms(t);
   row.set("model_gather_ms", gather).set("model_resolve_ms", resolve).set("model_total_ms", gather + resolve);
 }
 

@@ -161,21 +161,23 @@ TEST(GpuTrafficModel, TheHaBufferOnOnePixelProbesOneAgeMorePerFragmentOnOneSlotE
   EXPECT_EQ(t.gather.chain_max, 32u);
 }
 
-TEST(GpuTrafficModel, TheCostModelAddsItsTermsAndRefusesTechniquesWithoutATracedKernel) {
+TEST(GpuTrafficModel, TheCostModelPricesEachPassAndRefusesTechniquesWithoutATracedKernel) {
   GpuCostModel m;
-  m.fragment_ns = 1;
-  m.sector_ns = 2;
-  m.atomic_ns = 3;
-  m.conflict_ns = 4;
-  m.chain_ns = 5;
-  TrafficCounts p;
-  p.lanes = 10;
-  p.sectors = 100;
-  p.atomics = 1000;
-  p.conflicts = 10000;
-  p.chain = 100000;
-  EXPECT_DOUBLE_EQ(m.pass_ms(p, true), (10 + 200 + 3000 + 40000 + 500000) * 1e-6);
-  EXPECT_DOUBLE_EQ(m.pass_ms(p, false), (200 + 3000 + 40000 + 500000) * 1e-6);
+  m.gather_frame_ms = 1;
+  m.gather_instruction_ns = 2;
+  m.resolve_frame_ms = 3;
+  m.resolve_instruction_ns = 4;
+  m.sector_ns = 5;
+  GpuTraffic t;
+  t.gather.instructions = 1000;
+  t.gather.sectors = 10000;
+  t.gather.atomics = 7;  // counted, not priced
+  t.sort.instructions = 100;
+  t.sort.sectors = 200;
+  t.resolve.instructions = 300;
+  t.resolve.sectors = 400;
+  EXPECT_DOUBLE_EQ(m.gather_ms(t), 1 + (2000 + 50000) * 1e-6);
+  EXPECT_DOUBLE_EQ(m.resolve_ms(t), 3 + (4 * 400 + 5 * 600) * 1e-6);
   EXPECT_FALSE(gpu_model_covers(Technique::Wboit));
   EXPECT_THROW((void)model_gpu_frame(config(Technique::Wboit, {32, 1}), {}, row_stream(1)), std::invalid_argument);
 }

@@ -45,22 +45,29 @@ bool gpu_model_covers(Technique t);
 /// std::invalid_argument for a technique gpu_model_covers refuses.
 GpuTraffic model_gpu_frame(const TechniqueConfig& c, const OffsetSource& offsets, std::span<const Fragment> fragments);
 
-/// A time from the counts: per pass, fragment_ns per lane of the gather (the
-/// rasterizer and the entry), and sector_ns, atomic_ns, conflict_ns and
-/// chain_ns per sector, lane atomic, conflict and chain link summed over the
-/// warps. Constants and where they come from: h100().
+/// A time from the counts, pass by pass: the gather's gather_frame_ms plus
+/// gather_instruction_ns per warp memory instruction of the gather; the
+/// resolve's (sort and composite) resolve_frame_ms plus
+/// resolve_instruction_ns per warp memory instruction of both; sector_ns per
+/// sector in every pass. Sectors, atomics, conflicts and chains are counted
+/// and reported; only what the H100's times were found to follow is priced
+/// (docs/performance.md, "GPU traffic model": the forms tried). Constants
+/// and where they come from: h100().
 struct GpuCostModel {
-  double fragment_ns = 0.0;  ///< per gathered fragment
-  double sector_ns = 0.0;    ///< per sector moved
-  double atomic_ns = 0.0;    ///< per lane atomic
-  double conflict_ns = 0.0;  ///< per same-address atomic serialized
-  double chain_ns = 0.0;     ///< per warp chain link (latency over the warps in flight)
-  std::string source;        ///< where the constants come from, one line
-  /// The H100 constants (docs/performance.md: a priori from its data sheet,
-  /// the conflict and chain ones fitted on the 512x512 round, 1024x1024 held out).
+  double gather_frame_ms = 0.0;         ///< per gather (what it costs besides its traffic)
+  double gather_instruction_ns = 0.0;   ///< per warp memory instruction of the gather
+  double resolve_frame_ms = 0.0;        ///< per resolve (sort and composite)
+  double resolve_instruction_ns = 0.0;  ///< per warp memory instruction of the sort and composite
+  double sector_ns = 0.0;               ///< per sector moved, every pass
+  std::string source;                   ///< where the constants come from, one line
+  /// The H100's: sector_ns a priori (32 bytes at HBM3's 3.35 TB/s), the
+  /// other four fitted on the H100's 512x512 round (gather_ms and resolve_ms
+  /// apart; 1024x1024 held out).
   static GpuCostModel h100();
-  /// Milliseconds of one pass.
-  [[nodiscard]] double pass_ms(const TrafficCounts& pass, bool gather) const;
+  /// The gather's milliseconds.
+  [[nodiscard]] double gather_ms(const GpuTraffic& t) const;
+  /// The sort's and composite's milliseconds (as the bench's resolve_ms).
+  [[nodiscard]] double resolve_ms(const GpuTraffic& t) const;
 };
 
 /// Adds the model's columns to a bench row: model_{gather,sort,resolve}_{sectors,
