@@ -5,12 +5,14 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "habuffer/harness/floors.h"
 #include "habuffer/harness/gpu_model.h"
+#include "habuffer/parallel.h"
 
 namespace habuffer::harness {
 namespace {
@@ -36,7 +38,8 @@ struct Cell3 {  // one technique on one case, over the rounds
   OffsetSource offsets;
 };
 
-ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c, const Cell3& r) {
+ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c, const Cell3& r,
+                   const std::optional<GpuTraffic>& traffic) {
   ResultRow row;
   row.set("technique", t.label()).set("scene", c.workload->label()).set("size", c.workload->size().str())
       .set("path", s.path == RenderPath::Gl ? "gl" : "cpu").set("repeats", s.repeats);
@@ -63,8 +66,7 @@ ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c
     }
   }
   row.set("device", r.device);
-  if (s.model_gpu && gpu_model_covers(t.technique))
-    set_gpu_model_columns(row, model_gpu_frame(r.config, r.offsets, c.capture.stream), GpuCostModel::h100());
+  if (traffic) set_gpu_model_columns(row, *traffic, GpuCostModel::h100());
   return row;
 }
 
@@ -208,10 +210,20 @@ ResultTable run_bench(const BenchSettings& s) {
       }
     }
   add_bench_notes(table);
-  if (s.model_gpu) add_model_notes(table);
+  // The GPU model's replays, one task per row it covers (each on its own copy of the frame's buffers).
+  const std::size_t techniques = s.techniques.size();
+  std::vector<std::optional<GpuTraffic>> traffic(cases.size() * techniques);
+  if (s.model_gpu) {
+    add_model_notes(table);
+    fork_join(static_cast<std::uint32_t>(traffic.size()), [&](std::uint32_t i) {
+      const std::size_t ci = i / techniques, ti = i % techniques;
+      if (gpu_model_covers(s.techniques[ti].technique))
+        traffic[i] = model_gpu_frame(cells[ci][ti].config, cells[ci][ti].offsets, cases[ci].capture.stream);
+    });
+  }
   for (std::size_t ci = 0; ci < cases.size(); ++ci)
-    for (std::size_t ti = 0; ti < s.techniques.size(); ++ti)
-      table.rows.push_back(make_row(s, s.techniques[ti], cases[ci], cells[ci][ti]));
+    for (std::size_t ti = 0; ti < techniques; ++ti)
+      table.rows.push_back(make_row(s, s.techniques[ti], cases[ci], cells[ci][ti], traffic[ci * techniques + ti]));
   return table;
 }
 

@@ -144,8 +144,9 @@ want harness && step 150 harness habuffer bench --path gl --quiet --repeats "$re
   --scenes engine,hairball,spider --techniques ha,ha:cull=0.99,lists,sorted-lists,sorted-lists:cull=0.99 \
   --out techniques.json,techniques.csv
 # Issue 36 part 7: the GPU traffic model beside the GPU's own times (one
-# repeat; the replay runs on one CPU core, about a minute for both scenes at
-# 1024), then model against measurement: Spearman per scene and HA / lists.
+# repeat; the replays run one row a task on the host's cores: hairball's six
+# at 1024 took 73 s on this project's 2-vCPU VM), then model against
+# measurement: Spearman per scene and HA / lists.
 if want model; then
   step 150 model habuffer bench --path gl --quiet --repeats 1 --no-floors --model gpu --size "$model_size" \
     --scenes engine,hairball --techniques ha,ha:cull=0.99,sorted-lists,sorted-lists:cull=0.99,lists,arrays:k=16 \

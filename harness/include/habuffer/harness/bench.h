@@ -31,7 +31,8 @@ struct BenchSettings {
   bool floors = true;  ///< measure the two floors in every round
   /// Add the GPU traffic model's columns (model_*, habuffer/harness/gpu_model.h)
   /// to the rows of the techniques it covers: the frame replayed through the
-  /// technique's traced kernel in the configuration the bench ran, once.
+  /// technique's traced kernel in the configuration the bench ran, once
+  /// (the rows' replays in parallel, fork_join).
   bool model_gpu = false;
   std::function<void(std::uint64_t, std::uint64_t)> on_progress;  ///< (runs done, runs)
   /// Receives each warning (one line, no newline): a scene that puts no
