@@ -108,6 +108,7 @@ expect values 2 "a fragment file takes no options" -- bench --path cpu --scenes 
 expect values 2 "count given twice" -- bench --scenes quads:count=3:count=4 --techniques ha --out b.json
 expect values 2 "cull given twice" -- bench --scenes quads --techniques ha:cull=0.5:cull=0.6 --out b.json
 expect values 2 "smallest normal float32" -- bench --scenes quads --techniques ha:cull=1e-40 --out b.json
+expect values 2 "--model must be gpu, not 'cpu'" -- bench --scenes quads --techniques ha --model cpu --out b.json
 expect values 2 "sweep sets the load" -- sweep --scene quads --technique ha:load=0.5 --out s.json
 expect values 2 "sweep sets the layers" -- sweep --scene quads --technique arrays:k=4 --out s.json
 expect values 2 "--offsets has no effect with --technique lists" -- sweep --scene quads --technique lists --offsets random --out s.json
