@@ -196,6 +196,48 @@ TEST(Harness, TheExactFloorsImageIsTheHaBuffersBitForBit) {
   EXPECT_THROW((void)floor.image(f, screen, backgrounds, 1), std::out_of_range);
 }
 
+// Issue 36: bench --model gpu replays each row's frame through the technique's
+// traced kernel: the model's columns on the rows it covers, none on the others,
+// and the counts no order changes (the lists: a node counter add, a head
+// exchange and a tally per fragment, two chain links per warp).
+TEST(Harness, BenchWithTheGpuModelAddsItsColumnsToTheTechniquesItCovers) {
+  gl_context();
+  BenchSettings s;
+  s.path = RenderPath::Cpu;
+  s.scenes = {parse_workload_spec("planes:order=front:count=4")};
+  for (const char* t : {"ha", "lists", "arrays:k=4", "blend"}) s.techniques.push_back(parse_technique_spec(t));
+  s.sizes = {{32, 24}};
+  s.repeats = 1;
+  s.floors = false;
+  s.model_gpu = true;
+  const ResultTable t = run_bench(s);
+  ASSERT_EQ(t.rows.size(), 4u);
+  EXPECT_EQ(t.notes.count("model"), 1u);
+  for (const ResultRow& r : t.rows) {
+    const std::string tech = text(r, "technique");
+    if (tech == "blend") {
+      EXPECT_EQ(r.find("model_gather_sectors"), nullptr);
+      continue;
+    }
+    const double fragments = num(r, "fragments"), warps = std::ceil(fragments / 32.0);
+    ASSERT_GT(fragments, 0.0);
+    EXPECT_GT(num(r, "model_gather_sectors"), 0.0) << tech;
+    EXPECT_GT(num(r, "model_resolve_instructions"), 0.0) << tech;
+    EXPECT_GT(num(r, "model_total_ms"), num(r, "model_gather_ms")) << tech;
+    if (tech == "lists") {
+      EXPECT_EQ(num(r, "model_gather_atomics"), 3.0 * fragments);
+      EXPECT_EQ(num(r, "model_gather_chain"), 2.0 * warps);
+      EXPECT_GT(num(r, "model_sort_instructions"), 0.0);
+    }
+    if (tech == "arrays:k=4") {
+      EXPECT_EQ(num(r, "model_gather_atomics"), 2.0 * fragments);
+    }
+    if (tech == "ha") {
+      EXPECT_EQ(num(r, "model_sort_instructions"), 0.0);
+    }
+  }
+}
+
 // Issue 34: a scene with no transparent fragment (opaque planes) gave a row
 // of 0 fragments timing an empty pass without a word: bench warns, one line
 // per scene naming it and its sizes, kept in the notes; sweep refuses it.
