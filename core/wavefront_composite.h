@@ -41,10 +41,16 @@ void composite_row_wavefront(Kernel& k, std::uint32_t y, std::uint32_t width, Ba
       if (amax[i] != 0) active |= 1u << i;
       deepest = std::max(deepest, amax[i]);
     }
+    glm::uvec2 h = k.ha_probe(glm::uvec2(x0, y), 1);  // the first pixel's probe at age a
     for (std::uint32_t a = 1; active != 0 && a <= deepest; ++a) {
+      // Neighbouring pixels probe neighbouring slots of one row unless the
+      // row of the table wraps between them (coherent probing, SPEC 3).
+      const bool contiguous = h.x + n <= k.ha_table_size.x;
+      const auto first = k.ha_slot(h);
       if (a < deepest) {  // the next age's lines, while this age blends
-        __builtin_prefetch(k.slots() + k.ha_slot(k.ha_probe(glm::uvec2(x0, y), a + 1)));
-        __builtin_prefetch(k.slots() + k.ha_slot(k.ha_probe(glm::uvec2(x0 + n - 1, y), a + 1)));
+        h = k.ha_probe(glm::uvec2(x0, y), a + 1);
+        __builtin_prefetch(k.slots() + k.ha_slot(h));
+        if (h.x + n <= k.ha_table_size.x) __builtin_prefetch(k.slots() + k.ha_slot(h) + (n - 1));
       }
       for (std::uint32_t left = active; left != 0; left &= left - 1) {
         const auto i = static_cast<std::uint32_t>(__builtin_ctz(left));
@@ -52,7 +58,7 @@ void composite_row_wavefront(Kernel& k, std::uint32_t y, std::uint32_t width, Ba
           active &= ~(1u << i);
           continue;
         }
-        const auto r = k.ha_load_slot(k.ha_slot(k.ha_probe(glm::uvec2(x0 + i, y), a)));
+        const auto r = k.ha_load_slot(contiguous ? first + i : k.ha_slot(k.ha_probe(glm::uvec2(x0 + i, y), a)));
         const std::uint32_t v = k.ha_visit(r, a);
         if (v == HABUFFER_VISIT_STOP)
           active &= ~(1u << i);
