@@ -58,6 +58,24 @@ class Tracer {
   WarpRecorder* rec_;
 };
 
+/// A tracer whose technique keeps the saturation depth (shared/ha_saturation.glsl's
+/// environment: a code per pixel, raised by atomic max).
+class SaturationTracer : public Tracer {
+ public:
+  SaturationTracer(WarpRecorder& r, std::uint32_t* saturation) : Tracer(r), saturation_(saturation) {}
+  uint ha_load_saturation(uint pixel) const {
+    touch(kSaturationLoad, Buffer::Saturation, 4ull * pixel, AccessKind::Load);
+    return saturation_[pixel];
+  }
+  void ha_max_saturation(uint pixel, uint code) {
+    touch(kSaturationRaise, Buffer::Saturation, 4ull * pixel, AccessKind::Reduction);
+    if (saturation_[pixel] < code) saturation_[pixel] = code;
+  }
+
+ private:
+  std::uint32_t* saturation_;
+};
+
 // The GPU path's defaults with native atomics (gl/module_variant.h): no plain
 // slot load before a probe's atomicMax, one atomicMax per placement on the
 // max-age cell, its result unused.
@@ -67,7 +85,7 @@ class Tracer {
 
 /// The HA-buffer (shared/ha_*.glsl) over `Word` slots.
 template <class Word>
-class HashKernel : public Tracer {
+class HashKernel : public SaturationTracer {
  public:
   HABUFFER_GLSL_CLASS_PRELUDE
   using ha_word = Word;
@@ -75,7 +93,7 @@ class HashKernel : public Tracer {
 
   HashKernel(const KernelParams& params, const glm::uvec2* offsets, Word* table, std::uint32_t* max_age,
              WarpRecorder& r)
-      : Tracer(r),
+      : SaturationTracer(r, params.saturation),
         habuffer_age_bits(params.age_bits),
         ha_payload_bits(params.payload_bits),
         ha_table_size(params.table.x, params.table.y),
@@ -85,7 +103,6 @@ class HashKernel : public Tracer {
         habuffer_cull_tau(params.cull_tau),
         habuffer_screen_size(params.screen.x, params.screen.y),
         habuffer_saturation(params.saturation != nullptr ? 1u : 0u),
-        saturation_(params.saturation),
         offsets_(offsets),
         table_(table),
         max_age_(max_age) {}
@@ -125,14 +142,6 @@ class HashKernel : public Tracer {
     touch(kHaMaxAgeLoad, Buffer::MaxAge, 4ull * cell, AccessKind::Load);
     return max_age_[cell];
   }
-  uint ha_load_saturation(uint pixel) const {
-    touch(kSaturationLoad, Buffer::Saturation, 4ull * pixel, AccessKind::Load);
-    return saturation_[pixel];
-  }
-  void ha_max_saturation(uint pixel, uint code) {
-    touch(kSaturationRaise, Buffer::Saturation, 4ull * pixel, AccessKind::Reduction);
-    if (saturation_[pixel] < code) saturation_[pixel] = code;
-  }
 
 #include "habuffer/shared/ha_record.glsl"
 #include "habuffer/shared/ha_probe.glsl"
@@ -144,7 +153,6 @@ class HashKernel : public Tracer {
 #include "habuffer/shared/ha_traverse.glsl"
 
  private:
-  std::uint32_t* saturation_;
   const glm::uvec2* offsets_;
   Word* table_;
   std::uint32_t* max_age_;
@@ -156,7 +164,7 @@ class HashKernel : public Tracer {
 /// (techniques/linked_lists/ha_lists.glsl, ha_sorted_lists.glsl), over the
 /// GPU's buffers (lists_env.glsl): heads, 8-byte entries, 4-byte links, and
 /// the node counter, one word of the counters buffer.
-class ListsKernel : public KernelUniforms, public Tracer {
+class ListsKernel : public KernelUniforms, public SaturationTracer {
  public:
   HABUFFER_GLSL_CLASS_PRELUDE
   HABUFFER_GLSL_CLASS_LOCAL_ARRAY
@@ -165,7 +173,7 @@ class ListsKernel : public KernelUniforms, public Tracer {
 
   ListsKernel(const KernelUniforms& u, std::uint32_t* heads, glm::uvec2* entries, std::uint32_t* next,
               std::uint32_t* saturation, WarpRecorder& r)
-      : KernelUniforms(u), Tracer(r), heads_(heads), entries_(entries), next_(next), saturation_(saturation) {}
+      : KernelUniforms(u), SaturationTracer(r, saturation), heads_(heads), entries_(entries), next_(next) {}
 
   uint ll_allocate_node() {
     touch(kNodeCounter, Buffer::Counters, 4ull * HABUFFER_COUNTER_NODES, AccessKind::Atomic);
@@ -213,14 +221,6 @@ class ListsKernel : public KernelUniforms, public Tracer {
     if (found == expected) w = link;
     return found;
   }
-  uint ha_load_saturation(uint pixel) const {
-    touch(kSaturationLoad, Buffer::Saturation, 4ull * pixel, AccessKind::Load);
-    return saturation_[pixel];
-  }
-  void ha_max_saturation(uint pixel, uint code) {
-    touch(kSaturationRaise, Buffer::Saturation, 4ull * pixel, AccessKind::Reduction);
-    if (saturation_[pixel] < code) saturation_[pixel] = code;
-  }
 
 #include "habuffer/shared/ha_record.glsl"
 #include "habuffer/shared/ha_blend.glsl"
@@ -233,7 +233,6 @@ class ListsKernel : public KernelUniforms, public Tracer {
   std::uint32_t* heads_;
   glm::uvec2* entries_;
   std::uint32_t* next_;
-  std::uint32_t* saturation_;
   std::uint32_t nodes_ = 0;  // the node counter
 };
 
