@@ -97,7 +97,8 @@ py::array_t<bool> mask_of(const std::vector<std::uint8_t>& found) {
 
 std::unique_ptr<LockedHash> make_hash(py::handle domain, const IntArg& capacity_arg, const std::string& rule,
                                       const IntArg& age_bits, double load, bool adaptive, const IntArg& seed,
-                                      const std::string& offsets, const IntArg& threads) {
+                                      const std::string& offsets, const IntArg& threads,
+                                      const IntArg& miss_filter_bits) {
   SpatialHashConfig c;
   c.domain = domain_arg(domain);
   const std::uint64_t capacity = uint_arg(capacity_arg, "capacity", 0, UINT64_MAX);
@@ -116,6 +117,9 @@ std::unique_ptr<LockedHash> make_hash(py::handle domain, const IntArg& capacity_
   c.seed = seed_arg(seed);
   c.offsets = offsets_arg(offsets);
   c.threads = threads_arg(threads);
+  c.miss_filter_bits = u32_arg(miss_filter_bits, "miss_filter_bits", 0, 16);
+  if (c.miss_filter_bits % 8 != 0)
+    throw py::value_error("miss_filter_bits: " + std::to_string(c.miss_filter_bits) + " is not 0, 8 or 16");
   return std::make_unique<LockedHash>(c, capacity);
 }
 
@@ -158,7 +162,10 @@ void bind_spatial(py::module_& m) {
       .def(py::init(&make_hash), py::arg("domain"), py::kw_only(), py::arg("capacity") = 0, py::arg("rule") = "last",
            py::arg("age_bits") = HABUFFER_SH_DEFAULT_AGE_BITS, py::arg("load") = 0.8, py::arg("adaptive") = true,
            py::arg("seed") = 1, py::arg("offsets") = "random", py::arg("threads") = 0,
-           "An empty table for keys of `domain` ((X, Y) or (X, Y, Z)), sized for `capacity` keys at `load`.")
+           py::arg("miss_filter_bits") = HABUFFER_SH_DEFAULT_FILTER_BITS,
+           "An empty table for keys of `domain` ((X, Y) or (X, Y, Z)), sized for `capacity` keys at `load`; "
+           "`miss_filter_bits` (16, 8 or 0: none) per slot answer most absent keys in one load (hits pay one more "
+           "load).")
       .def("insert", &insert_keys, py::arg("keys"), py::arg("values") = py::none(),
            "Inserts keys (N, 2|3) uint32 with values (N,) uint32 (None: a set); duplicates by the rule. Returns the "
            "call's report (dict).")

@@ -64,6 +64,8 @@ def integer_calls():
     frags = np.zeros(2, dtype=hb.FRAGMENT_DTYPE)
     return [
         (lambda: hb.SpatialHash((8, 8), threads=-1), "threads: -1 is outside 0..1024"),
+        (lambda: hb.SpatialHash((8, 8), miss_filter_bits=4), "miss_filter_bits: 4 is not 0, 8 or 16"),
+        (lambda: hb.SpatialHash((8, 8), miss_filter_bits=32), "miss_filter_bits: 32 is outside 0..16"),
         (lambda: hb.SpatialHash((8, 8), capacity=2**64), "capacity: 18446744073709551616 is outside 0.." + U64),
         (lambda: hb.Buffer(screen=(4, 4), seed=-1), "seed: -1 is outside 0.." + U64),
         (lambda: hb.build(xy, depth, screen=(4, 4), threads=-1), "threads: -1 is outside 0..1024"),

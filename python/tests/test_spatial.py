@@ -15,11 +15,12 @@ def random_keys(n, domain, seed=4):
     return np.unique(keys, axis=0)
 
 
+@pytest.mark.parametrize("filter_bits", [16, 8, 0])
 @pytest.mark.parametrize("domain", [(300, 200), (40, 30, 20)])
-def test_find_and_contains_agree_with_a_dict(domain):
+def test_find_and_contains_agree_with_a_dict(domain, filter_bits):
     keys = random_keys(20000, domain)
     values = np.arange(len(keys), dtype=np.uint32) * 7
-    h = hb.SpatialHash(domain, capacity=len(keys))
+    h = hb.SpatialHash(domain, capacity=len(keys), miss_filter_bits=filter_bits)
     report = h.insert(keys, values)
     assert report["stored"] == len(keys) and report["lost"] == 0 and len(h) == len(keys)
     probe = random_keys(5000, domain, seed=9)
