@@ -56,6 +56,7 @@ const CommandSpec& hash_build_spec() {
        {"fixed", "", "", "no adaptive resizing (the table stays sized for --load; lossless growth still)"},
        {"rule", "max|min|first|last", "last", "which value a key given twice keeps"},
        {"age-bits", "A", "8", "age bits of a record, 4..12 (quotients get 31 - A)"},
+       {"miss-filter-bits", "0|8|16", "16", "miss filter bits a slot: most absent keys answered in one load (0: none)"},
        {"offsets", "random|farthest", "random", "the probe offsets"},
        {"seed", "S", "1", "the offsets' seed (and the key set's)"},
        {"threads", "N", "0", "inserting threads; 0: the default count"},
@@ -146,6 +147,9 @@ spatial::SpatialHashConfig parse_build_config(const Args& args) {
   c.offsets = *offsets;
   c.seed = args.u64_in("seed");
   c.threads = args.u32_in("threads", 0, kMaxThreads);
+  c.miss_filter_bits = args.u32_in("miss-filter-bits", 0, 16);
+  if (c.miss_filter_bits % 8 != 0)
+    throw UsageError("option --miss-filter-bits: " + args.str("miss-filter-bits") + " is not 0, 8 or 16");
   c.target_load = args.real("load");
   if (!(c.target_load > 0.0 && c.target_load <= 1.0))
     throw UsageError("option --load: " + args.str("load") + " is outside (0, 1]");

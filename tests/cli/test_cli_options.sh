@@ -46,6 +46,8 @@ expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --sl
 expect read 0 "" -- bench --scenes quads:count=4 --techniques ha --size 16x16 --repeats 1 --no-floors --out b2.json --quiet
 expect read 0 "" -- bench --scenes quads:count=4 --techniques ha,lists --size 16x16 --repeats 1 --no-floors --model gpu --out b3.json --quiet
 expect read 0 "" -- hash build --key-set random --domain 32x32 --count 100 --age-bits 6 --out t3.tab --quiet
+expect read 0 "" -- hash build --key-set random --domain 32x32 --count 100 --miss-filter-bits 8 --out t4.tab --quiet
+expect read 2 "option --miss-filter-bits: 4 is not 0, 8 or 16" -- hash build --key-set random --domain 32x32 --count 100 --miss-filter-bits 4 --out t5.tab --quiet
 expect read 0 "" -- figure fig2 --scene quads:count=4 --opacities 0.5,1 --size 8x8 --repeats 1 --path cpu --threads 1 --tau 0.9 --out f2.json --quiet
 expect read 0 "" -- figure fig8 --scene quads:count=64 --frames 2 --load 0.64 --size 16x16 --repeats 1 --path cpu --threads 1 --tau 0.9 --out f8.json --quiet
 expect read 0 "" -- figure fig10 --planes 4 --size 8x8 --repeats 1 --tau 0.9 --out f10.json --quiet
