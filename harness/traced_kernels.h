@@ -10,6 +10,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <type_traits>
 
 #include "habuffer/glsl_env.h"
 #include "habuffer/hash_kernel.h"
@@ -47,6 +48,18 @@ class Tracer {
   void touch_constant(Site site, Buffer b, std::uint64_t offset) const {
     rec_->record(site, address(b, offset), AccessKind::Load, false);
   }
+  /// Element i of `base`, one of buffer b's arrays: a recorded load.
+  template <class T>
+  T load(Site site, Buffer b, const T* base, std::uint64_t i) const {
+    touch(site, b, sizeof(T) * i, AccessKind::Load);
+    return base[i];
+  }
+  /// Element i of `base` set to v: a recorded store.
+  template <class T>
+  void store(Site site, Buffer b, T* base, std::uint64_t i, std::type_identity_t<T> v) const {
+    touch(site, b, sizeof(T) * i, AccessKind::Store);
+    base[i] = v;
+  }
   /// habuffer_insert's tally of `outcome` at pixel (x, y): atomicAdd to the pixel's stripe.
   void tally(std::uint32_t x, std::uint32_t y, std::uint32_t outcome) const {
     if (outcome >= HABUFFER_OUTCOME_COUNT) return;
@@ -64,8 +77,7 @@ class SaturationTracer : public Tracer {
  public:
   SaturationTracer(WarpRecorder& r, std::uint32_t* saturation) : Tracer(r), saturation_(saturation) {}
   uint ha_load_saturation(uint pixel) const {
-    touch(kSaturationLoad, Buffer::Saturation, 4ull * pixel, AccessKind::Load);
-    return saturation_[pixel];
+    return load(kSaturationLoad, Buffer::Saturation, saturation_, pixel);
   }
   void ha_max_saturation(uint pixel, uint code) {
     touch(kSaturationRaise, Buffer::Saturation, 4ull * pixel, AccessKind::Reduction);
@@ -135,12 +147,10 @@ class HashKernel : public SaturationTracer {
     if (max_age_[cell] < age) max_age_[cell] = age;
   }
   Word ha_load_slot(ha_index s) const {
-    touch(kHaSlotLoad, Buffer::Table, sizeof(Word) * s, AccessKind::Load);
-    return table_[s];
+    return load(kHaSlotLoad, Buffer::Table, table_, s);
   }
   uint ha_load_max_age(uint cell) const {
-    touch(kHaMaxAgeLoad, Buffer::MaxAge, 4ull * cell, AccessKind::Load);
-    return max_age_[cell];
+    return load(kHaMaxAgeLoad, Buffer::MaxAge, max_age_, cell);
   }
 
 #include "habuffer/shared/ha_record.glsl"
@@ -186,28 +196,22 @@ class ListsKernel : public KernelUniforms, public SaturationTracer {
     return old;
   }
   uint ll_load_head(uint pixel) const {
-    touch(kHeadLoad, Buffer::Heads, 4ull * pixel, AccessKind::Load);
-    return heads_[pixel];
+    return load(kHeadLoad, Buffer::Heads, heads_, pixel);
   }
   void ll_store_head(uint pixel, uint link) {
-    touch(kHeadStore, Buffer::Heads, 4ull * pixel, AccessKind::Store);
-    heads_[pixel] = link;
+    store(kHeadStore, Buffer::Heads, heads_, pixel, link);
   }
   uvec2 ll_load_entry(uint node) const {
-    touch(kEntryLoad, Buffer::Nodes, 8ull * node, AccessKind::Load);
-    return entries_[node];
+    return load(kEntryLoad, Buffer::Nodes, entries_, node);
   }
   void ll_store_entry(uint node, uvec2 e) {
-    touch(kEntryStore, Buffer::Nodes, 8ull * node, AccessKind::Store);
-    entries_[node] = e;
+    store(kEntryStore, Buffer::Nodes, entries_, node, e);
   }
   uint ll_load_next(uint node) const {
-    touch(kLinkLoad, Buffer::Links, 4ull * node, AccessKind::Load);
-    return next_[node];
+    return load(kLinkLoad, Buffer::Links, next_, node);
   }
   void ll_store_next(uint node, uint link) {
-    touch(kLinkStore, Buffer::Links, 4ull * node, AccessKind::Store);
-    next_[node] = link;
+    store(kLinkStore, Buffer::Links, next_, node, link);
   }
   uint sl_load_link(uint pixel, uint where) const {
     if (where == 0) return ll_load_head(pixel);
@@ -253,20 +257,16 @@ class ArraysKernel : public KernelUniforms, public Tracer {
     return counts_[pixel]++;
   }
   uint fa_load_count(uint pixel) const {
-    touch(kCountLoad, Buffer::Counts, 4ull * pixel, AccessKind::Load);
-    return counts_[pixel];
+    return load(kCountLoad, Buffer::Counts, counts_, pixel);
   }
   void fa_store_count(uint pixel, uint n) {
-    touch(kCountStore, Buffer::Counts, 4ull * pixel, AccessKind::Store);
-    counts_[pixel] = n;
+    store(kCountStore, Buffer::Counts, counts_, pixel, n);
   }
   uvec2 fa_load_layer(uint slot) const {
-    touch(kLayerLoad, Buffer::Layers, 8ull * slot, AccessKind::Load);
-    return layers_[slot];
+    return load(kLayerLoad, Buffer::Layers, layers_, slot);
   }
   void fa_store_layer(uint slot, uvec2 e) {
-    touch(kLayerStore, Buffer::Layers, 8ull * slot, AccessKind::Store);
-    layers_[slot] = e;
+    store(kLayerStore, Buffer::Layers, layers_, slot, e);
   }
   void fa_note_overflow(uint) { touch(kOverflowNote, Buffer::Counters, 4ull * HABUFFER_COUNTER_MOST_ARRIVED, AccessKind::Reduction); }
 
@@ -303,8 +303,7 @@ class KBufferKernel : public KernelUniforms, public Tracer {
   }
   static uint ha_atomic_missed() { return 0u; }
   Word ha_load_slot(ha_index s) const {
-    touch(kHaSlotLoad, Buffer::Layers, sizeof(Word) * s, AccessKind::Load);
-    return slots_[s];
+    return load(kHaSlotLoad, Buffer::Layers, slots_, s);
   }
   void kb_or_occupancy(uint word, uint bits) {
     touch(kOccupancyLoad, Buffer::Occupancy, 4ull * word, AccessKind::Load);
@@ -313,16 +312,13 @@ class KBufferKernel : public KernelUniforms, public Tracer {
     occupancy_[word] |= bits;
   }
   uint kb_load_occupancy(uint word) const {
-    touch(kOccupancyLoad, Buffer::Occupancy, 4ull * word, AccessKind::Load);
-    return occupancy_[word];
+    return load(kOccupancyLoad, Buffer::Occupancy, occupancy_, word);
   }
   uint kb_load_limit(uint pixel) const {
-    touch(kLimitLoad, Buffer::Limits, 4ull * pixel, AccessKind::Load);
-    return limits_[pixel];
+    return load(kLimitLoad, Buffer::Limits, limits_, pixel);
   }
   void kb_store_limit(uint pixel, uint bucket) {
-    touch(kLimitStore, Buffer::Limits, 4ull * pixel, AccessKind::Store);
-    limits_[pixel] = bucket;
+    store(kLimitStore, Buffer::Limits, limits_, pixel, bucket);
   }
   static uint ha_lowest_bit(uint w) { return static_cast<uint>(std::countr_zero(w)); }
 
