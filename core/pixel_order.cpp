@@ -9,26 +9,11 @@ std::uint64_t check_and_count_covered(std::span<const Fragment> fragments, Exten
   threads = std::max<std::uint32_t>(1, threads);
   const std::size_t words = (screen.area() + 63) / 64;
   if (bitmaps.size() < threads) bitmaps.resize(threads);
-  std::vector<PartCount> first_off(threads);
-  const auto mark = [&](std::uint32_t t) {
-    std::vector<std::uint64_t>& bits = bitmaps[t];
-    bits.assign(words, 0);
-    const std::size_t begin = fragments.size() * t / threads, end = fragments.size() * (t + 1) / threads;
-    std::size_t i = begin;
-    for (; i < end; ++i) {
-      const Fragment& f = fragments[i];
-      if (f.x >= screen.x || f.y >= screen.y) break;
-      const std::size_t pixel = f.x + std::size_t{f.y} * screen.x;
-      bits[pixel / 64] |= std::uint64_t{1} << (pixel % 64);
-    }
-    first_off[t].n = i < end ? i : fragments.size();
-  };
-  if (threads == 1)
-    mark(0);
-  else
-    run_with_threads(threads, [&] { fork_join(threads, mark); });
-  for (const PartCount& f : first_off)
-    if (f.n < fragments.size()) habuffer::check_on_screen(fragments.first(f.n + 1), screen);  // throws, naming it
+  for (std::uint32_t t = 0; t < threads; ++t) bitmaps[t].assign(words, 0);
+  for_slices_on_screen(fragments, screen, threads, [&](std::uint32_t t, const Fragment& f) {
+    const std::size_t pixel = f.x + std::size_t{f.y} * screen.x;
+    bitmaps[t][pixel / 64] |= std::uint64_t{1} << (pixel % 64);
+  });
   std::uint64_t covered = 0;
   for (std::size_t w = 0; w < words; ++w) {
     std::uint64_t any = 0;

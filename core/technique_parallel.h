@@ -74,22 +74,33 @@ inline InsertPlan insert_plan(const InsertOptions& options, Technique technique,
   return plan;
 }
 
+// visit(t, fragment) for every fragment of slice t of `threads` contiguous
+// slices of the stream, in parallel, each slice up to its first fragment
+// off the screen; then throws as check_on_screen (fragment_buffer.h),
+// naming the first fragment off the screen, if there is one.
+template <class Visit>
+void for_slices_on_screen(std::span<const Fragment> frags, Extent screen, std::uint32_t threads, Visit visit) {
+  std::vector<PartCount> first_off(threads);
+  const auto run = [&](std::uint32_t t) {
+    const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
+    std::size_t i = begin;
+    for (; i < end && frags[i].x < screen.x && frags[i].y < screen.y; ++i) visit(t, frags[i]);
+    first_off[t].n = i < end ? i : frags.size();
+  };
+  if (threads == 1)
+    run(0);
+  else
+    run_with_threads(threads, [&] { fork_join(threads, run); });
+  for (const PartCount& f : first_off)
+    if (f.n < frags.size()) habuffer::check_on_screen(frags.first(f.n + 1), screen);  // throws, naming it
+}
+
 // check_on_screen (fragment_buffer.h) on `threads` slices in parallel:
 // throws as it does, naming the first fragment off the screen. One thread
 // reading the whole batch took 4-5 % of the lists' time on hairball.
 inline void check_on_screen(std::span<const Fragment> frags, Extent screen, std::uint32_t threads) {
   if (threads == 1) return habuffer::check_on_screen(frags, screen);
-  std::vector<PartCount> first_off(threads);
-  run_with_threads(threads, [&] {
-    fork_join(threads, [&](std::uint32_t t) {
-      const std::size_t begin = frags.size() * t / threads, end = frags.size() * (t + 1) / threads;
-      std::size_t i = begin;
-      while (i < end && frags[i].x < screen.x && frags[i].y < screen.y) ++i;
-      first_off[t].n = i < end ? i : frags.size();
-    });
-  });
-  for (const PartCount& f : first_off)
-    if (f.n < frags.size()) habuffer::check_on_screen(frags.first(f.n + 1), screen);  // throws, naming it
+  for_slices_on_screen(frags, screen, threads, [](std::uint32_t, const Fragment&) {});
 }
 
 // Every fragment is thread 0's (one thread, or slices of the stream).
