@@ -29,6 +29,9 @@ void BufferConfig::validate() const {
     throw std::invalid_argument("early cull needs the L64 layout (it reads opacity from the colour data)");
   if (saturation && early_cull_tau <= 0.0f)
     throw std::invalid_argument("saturation depth needs early cull (a threshold in (0, 1])");
+  if (early_cull_tau > 0.0f && samples > 1)
+    throw std::invalid_argument("early cull accumulates a whole pixel's opacity: it does not apply to " +
+                                std::to_string(samples) + " samples per pixel (samples 1 only)");
 }
 
 }  // namespace habuffer

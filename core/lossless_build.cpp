@@ -55,7 +55,7 @@ std::optional<PixelLoss> pixel_most_lost(const FragmentBuffer& buffer, std::span
   const Extent screen = buffer.screen();
   const RecordLayout layout = c.buffer.record_layout();
   const auto valid = [&](const Fragment& f) {
-    return f.x < screen.x && f.y < screen.y && RecordLayout::depth_valid(f.depth);
+    return f.x < screen.x && f.y < screen.y && RecordLayout::depth_valid(f.depth) && layout.covers_sample(f.coverage);
   };
   std::vector<std::uint32_t> count(screen.area(), 0);  // valid fragments per pixel, row-major
   for (const Fragment& f : fragments)
@@ -79,7 +79,7 @@ std::optional<PixelLoss> pixel_most_lost(const FragmentBuffer& buffer, std::span
     if (!valid(f)) continue;
     const std::uint64_t i = f.x + std::uint64_t{f.y} * screen.x;
     if (held[i] == kNone) continue;
-    records.emplace_back(i, std::uint64_t{layout.depth_code(f.depth)} << 32 | (layout.has_data() ? f.rgba : 0u));
+    records.emplace_back(i, std::uint64_t{layout.fragment_code(f.depth, f.coverage)} << 32 | (layout.has_data() ? f.rgba : 0u));
   }
   std::sort(records.begin(), records.end());
   records.erase(std::unique(records.begin(), records.end()), records.end());

@@ -103,11 +103,11 @@ class OwnerComputes {
     for (const Fragment& f : fragments) {
       const glm::uvec2 p(f.x, f.y);
       if (owner_of_row(k.ha_probe(p, 1).y) != t) continue;
-      if (!k.ha_depth_valid(f.depth)) {
+      if (!k.ha_depth_valid(f.depth) || !k.ha_covers_sample(f.coverage)) {
         ++owners_[t].tally[HABUFFER_INVALID];
         continue;
       }
-      drive(t, k, k.habuffer_carry_begin(p, k.ha_depth_code(f.depth), f.rgba), 0);
+      drive(t, k, k.habuffer_carry_begin(p, k.ha_fragment_code(f.depth, f.coverage), f.rgba), 0);
     }
   }
 

@@ -11,7 +11,7 @@ namespace habuffer {
 std::optional<PixelDepth> pixel_deeper_than(std::span<const Fragment> fragments, Extent screen,
                                             const RecordLayout& layout, std::uint64_t limit) {
   const auto on_screen = [&](const Fragment& f) {
-    return f.x < screen.x && f.y < screen.y && RecordLayout::depth_valid(f.depth);
+    return f.x < screen.x && f.y < screen.y && RecordLayout::depth_valid(f.depth) && layout.covers_sample(f.coverage);
   };
   std::vector<std::uint32_t> count(screen.area(), 0);
   for (const Fragment& f : fragments)
@@ -26,7 +26,7 @@ std::optional<PixelDepth> pixel_deeper_than(std::span<const Fragment> fragments,
     const std::uint64_t index = f.x + std::uint64_t{f.y} * screen.x;
     if (count[index] <= limit) continue;
     const std::uint32_t data = layout.has_data() ? f.rgba : 0;
-    deep[index].push_back(std::uint64_t{layout.depth_code(f.depth)} << 32 | data);
+    deep[index].push_back(std::uint64_t{layout.fragment_code(f.depth, f.coverage)} << 32 | data);
   }
   std::optional<PixelDepth> deepest;
   for (auto& [index, records] : deep) {

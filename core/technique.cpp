@@ -40,6 +40,9 @@ void TechniqueConfig::validate() const {
   if (!d.early_cull && buffer.early_cull_tau > 0.0f)
     throw std::invalid_argument("early cull applies to " + techniques_taking("early-cull") + ": technique " +
                                 to_string(technique) + " has none");
+  if (buffer.samples > 1 && !d.stores_lists)
+    throw std::invalid_argument("samples " + std::to_string(buffer.samples) + " per pixel need a technique that stores "
+                                "lists (a coverage mask per record): " + to_string(technique) + " stores none");
   if (occupancy && !d.takes("occupancy"))
     throw std::invalid_argument("occupancy maps apply to " + techniques_taking("occupancy") + ", not " +
                                 to_string(technique));
@@ -146,6 +149,7 @@ namespace habuffer {
 
 void write_technique_params(const TechniqueConfig& c, ParamBlock& p) {
   p.habuffer_age_bits = c.buffer.age_bits;
+  p.habuffer_coverage_bits = c.buffer.record_layout().coverage_bits();
   p.ll_pool_capacity = static_cast<std::uint32_t>(c.pool_capacity);
   p.habuffer_layers = c.layers;
   p.habuffer_iter_limit = c.buffer.iter_limit;

@@ -38,6 +38,13 @@ constexpr TechniqueOption kOptions[] = {
      .get = [](const TechniqueConfig& c) { return OptionValue{std::uint64_t{c.buffer.age_bits}}; },
      .put = [](TechniqueConfig& c, const OptionValue& v) { c.buffer.age_bits = u32(v); },
      .knob_applies = [](const TechniqueDescriptor& d) { return d.capacity == CapacityKind::TableSlots; }},
+    {.flag = "samples", .knob = "", .value_name = "S", .kind = OptionKind::Count, .min = 1,
+     .max = RecordLayout::kMaxSamples, .power_of_two = true,
+     .help = "samples per pixel, 1, 2, 4 or 8: above 1 each record keeps its fragment's coverage mask in S low "
+             "bits of its depth code and the image is resolved per sample",
+     .buffer_field = true,
+     .get = [](const TechniqueConfig& c) { return OptionValue{std::uint64_t{c.buffer.samples}}; },
+     .put = [](TechniqueConfig& c, const OptionValue& v) { c.buffer.samples = u32(v); }},
     {.flag = "layers", .knob = "k", .value_name = "K", .kind = OptionKind::Count, .min = 1,
      .max = HABUFFER_MAX_LAYERS, .help = "layers per pixel", .json = "layers",
      .get = [](const TechniqueConfig& c) { return OptionValue{std::uint64_t{c.layers}}; },
@@ -117,8 +124,13 @@ const TechniqueOption* find_option_knob(std::string_view knob) {
 
 OptionValue parse_option_value(const TechniqueOption& o, std::string_view text) {
   switch (o.kind) {
-    case OptionKind::Count:
-      return parse_unsigned(text, o.min, o.max);
+    case OptionKind::Count: {
+      const std::uint64_t n = parse_unsigned(text, o.min, o.max);
+      if (o.power_of_two && (n & (n - 1)) != 0)
+        throw std::invalid_argument(std::to_string(n) + " is not a power of two in " + std::to_string(o.min) + ".." +
+                                    std::to_string(o.max));
+      return n;
+    }
     case OptionKind::CountOrAuto:
       return text == "auto" ? std::uint64_t{0} : parse_unsigned(text, o.min, o.max);
     case OptionKind::Switch:

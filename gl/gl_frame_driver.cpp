@@ -1,5 +1,6 @@
 #include "habuffer/gl/gl_frame_driver.h"
 
+#include <cstddef>
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -28,7 +29,8 @@ constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
 static_assert(HABUFFER_GPU_COUNTER_COUNT <= HABUFFER_COUNTER_STRIDE, "a stripe's counters fit its cache line");
 constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
 constexpr std::uint64_t kDeferredCallBytes = 40;  // std430 HaDeferred of ha_entry.glsl
-static_assert(sizeof(Fragment) == 16, "captured fragments are the std430 HaFragment");
+static_assert(sizeof(Fragment) == 20 && offsetof(Fragment, coverage) == 16,
+              "captured fragments are the std430 HaFragment (entry_common.glsl): change both together");
 
 void zero_range(GLuint buffer, std::uint64_t offset, std::uint64_t bytes) {
   const NeutralUnpack unpack;  // the clear value is read through the host's unpack state
@@ -77,6 +79,7 @@ struct GlFrameDriver::Gpu {
   GlStorage counters, capture, params;
   GlStorage deferred[2];  // ping-pong: the calls a round resumes, the calls it defers again
   std::unique_ptr<ResolvePass> resolve;
+  std::unique_ptr<ResolvePass> resolve_per_sample;  // a multisampled buffer into a target of its samples
   std::unique_ptr<ShaderProgram> resume;
   GpuTimer gather_timer, reset_timer;
 };
@@ -102,8 +105,14 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
   if (technique_->defers_calls()) grow_deferred(std::max<std::uint64_t>(options_.deferred_capacity, 1));
   write_params();
   // Compile the passes now, so the first frame's timings measure the passes, not the compiler.
+  const std::uint32_t samples = technique_->samples();
   gpu_->resolve = std::make_unique<ResolvePass>(
-      resolve_fragment(technique_->technique(), mode(), bindings()), to_string(technique_->technique()) + " resolve pass");
+      resolve_fragment(technique_->technique(), mode(), bindings(), samples, SampleResolve::Pixel),
+      to_string(technique_->technique()) + " resolve pass");
+  if (samples > 1)
+    gpu_->resolve_per_sample = std::make_unique<ResolvePass>(
+        resolve_fragment(technique_->technique(), mode(), bindings(), samples, SampleResolve::Sample),
+        to_string(technique_->technique()) + " per-sample resolve pass");
   if (technique_->defers_calls())
     gpu_->resume = std::make_unique<ShaderProgram>(
         ShaderProgram::compute(module_source(ShaderStage::Compute) + kResumeCompute, "resume compute shader"));
@@ -123,11 +132,17 @@ std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view hea
   return module_text(stage, std::string(id) + std::string(header));
 }
 
-void GlFrameDriver::check_foreign_calls(const std::vector<std::uint32_t>& words) const {
+void GlFrameDriver::check_refused_calls(const std::vector<std::uint32_t>& words) const {
   if (const std::uint32_t foreign = words[HABUFFER_COUNTER_FOREIGN]; foreign > 0)
     throw GlError(std::to_string(foreign) +
                   " insert calls came from a shader built from another driver's module_source() (another technique, "
                   "mode, binding points or variant): build the gather's shaders from this driver's");
+  if (const std::uint32_t mismatched = words[HABUFFER_COUNTER_SAMPLES_MISMATCH]; mismatched > 0)
+    throw GlError(std::to_string(mismatched) + " insert calls came from a framebuffer of " +
+                  std::to_string(words[HABUFFER_COUNTER_SAMPLES_SEEN]) + " samples per pixel into a buffer of " +
+                  std::to_string(technique_->samples()) + ": make the technique with that many samples "
+                  "(BufferConfig::samples) so no pixel is resolved from one sample, or gather into a framebuffer of " +
+                  std::to_string(technique_->samples()));
 }
 
 void GlFrameDriver::resize_screen(Extent screen) {
@@ -242,7 +257,7 @@ void GlFrameDriver::count_and_size(const std::function<void()>& gather, FrameRep
   run_phase_gather(HABUFFER_PHASE_COUNT, gather, report);
   const std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
   check_gl_errors("the counting gather");
-  check_foreign_calls(words);
+  check_refused_calls(words);
   const std::uint64_t fragments = stripe_tally(words)[HABUFFER_COUNTER_COUNTED];
   report.counted_fragments = fragments;
   report.count_limited = size_for(fragments);
@@ -291,6 +306,9 @@ void check_depth_convention(DepthConvention convention) {
 FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
   technique_->check_context("frame");
   check_depth_convention(options_.depth);
+  if (technique_->samples() > 1 && glIsEnabled(GL_SAMPLE_SHADING))
+    throw GlError("frame: sample shading is on: every sample would insert a record of its own; switch it off for the "
+                  "gather (each fragment's coverage mask names its samples)");
   technique_->record_gather_depth(gather_depth_now(options_));  // what this frame's depths will be
   const GlStateGuard guard(bindings());
   FrameReport report;
@@ -478,7 +496,7 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
 
 std::vector<std::uint32_t> GlFrameDriver::read_counters(FrameReport& report) const {
   std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
-  check_foreign_calls(words);
+  check_refused_calls(words);
   const std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> sums = stripe_tally(words);
   const std::uint64_t* tally = sums.data();
   const std::uint64_t pixels = screen().area();
@@ -512,9 +530,20 @@ PassTiming GlFrameDriver::run_resolve(glm::vec3 background, unsigned background_
     throw GlError("resolve: the bound draw framebuffer " + std::to_string(bound) +
                   " is not complete (status 0x" + std::to_string(status) + "); bind one with a colour attachment");
   }
+  // A multisampled buffer resolves per sample into a target of its samples,
+  // per pixel into a single-sampled one; a buffer of one sample resolves
+  // into any target (each sample gets its pixel's colour).
+  GLint target_samples = 0;
+  glGetIntegerv(GL_SAMPLES, &target_samples);
+  const std::uint32_t samples = technique_->samples(), target = std::max(1, target_samples);
+  if (samples > 1 && target != 1 && target != samples)
+    throw GlError(std::string(over ? "resolve_over" : "resolve") + ": the bound draw framebuffer has " +
+                  std::to_string(target) + " samples per pixel and the buffer " + std::to_string(samples) +
+                  ": resolve into a framebuffer of " + std::to_string(samples) + " (per sample) or 1 (per pixel)");
+  ResolvePass& pass = samples > 1 && target == samples ? *gpu_->resolve_per_sample : *gpu_->resolve;
   bind();
-  const auto [wall, gpu] = over ? gpu_->resolve->run_over(screen(), options_.finish_timing)
-                                : gpu_->resolve->run(screen(), background, background_texture, options_.finish_timing);
+  const auto [wall, gpu] = over ? pass.run_over(screen(), options_.finish_timing)
+                                : pass.run(screen(), background, background_texture, options_.finish_timing);
   check_gl_errors("the resolve pass");
   return {wall, gpu};
 }

@@ -13,7 +13,11 @@ GLint limit(GLenum name) {
 std::vector<std::pair<GLenum, GLint>> pass_capabilities() {
   std::vector<std::pair<GLenum, GLint>> caps{
       {GL_DEPTH_TEST, -1},       {GL_STENCIL_TEST, -1},     {GL_CULL_FACE, -1},
-      {GL_RASTERIZER_DISCARD, -1}, {GL_COLOR_LOGIC_OP, -1}, {GL_PROGRAM_POINT_SIZE, -1}};
+      {GL_RASTERIZER_DISCARD, -1}, {GL_COLOR_LOGIC_OP, -1}, {GL_PROGRAM_POINT_SIZE, -1},
+      // A multisampled host's coverage state: our passes write every sample
+      // (resolve_over must not follow the host's alpha-to-coverage or mask).
+      {GL_SAMPLE_ALPHA_TO_COVERAGE, -1}, {GL_SAMPLE_ALPHA_TO_ONE, -1}, {GL_SAMPLE_COVERAGE, -1},
+      {GL_SAMPLE_MASK, -1}, {GL_SAMPLE_SHADING, -1}};
   for (GLint i = 0; i < limit(GL_MAX_DRAW_BUFFERS); ++i) caps.emplace_back(GL_BLEND, i);
   for (GLint i = 0; i < limit(GL_MAX_VIEWPORTS); ++i) caps.emplace_back(GL_SCISSOR_TEST, i);
   for (GLint i = 0; i < limit(GL_MAX_CLIP_DISTANCES); ++i) caps.emplace_back(GL_CLIP_DISTANCE0 + i, -1);

@@ -8,8 +8,14 @@
 
 namespace habuffer::gl {
 
-GlTechnique::GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen)
-    : context_("making a GPU container"), technique_(technique), mode_(mode), bindings_(bindings), screen_(screen) {
+GlTechnique::GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen,
+                         std::uint32_t samples)
+    : context_("making a GPU container"),
+      technique_(technique),
+      mode_(mode),
+      bindings_(bindings),
+      screen_(screen),
+      samples_(samples) {
   // Before any container compiles a shader with them: a point beyond the
   // context's limits is one line naming it, not a compiler's log.
   bindings_.validate();

@@ -283,8 +283,17 @@ std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings) {
 }
 
 std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings) {
-  return technique_module(technique, mode, bindings, ShaderStage::Fragment, "#define HABUFFER_RESOLVE_PASS\n") +
-         kResolveFragment;
+  return resolve_fragment(technique, mode, bindings, 1, SampleResolve::Pixel);
+}
+
+std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings, std::uint32_t samples,
+                             SampleResolve how) {
+  std::string header = "#define HABUFFER_RESOLVE_PASS\n";
+  if (samples > 1)
+    header += how == SampleResolve::Pixel
+                  ? "#define HABUFFER_RESOLVE_PIXEL\n"
+                  : "#define HABUFFER_RESOLVE_SAMPLE\nuint habuffer_resolve_sample() { return uint(gl_SampleID); }\n";
+  return technique_module(technique, mode, bindings, ShaderStage::Fragment, header) + kResolveFragment;
 }
 
 std::pair<std::string, std::string> insert_stream_points(Technique technique, AtomicMode mode,
@@ -312,6 +321,12 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
       shaders.push_back({name + "insert", "frag", fragment});
     }
     shaders.push_back({name + "resolve", "frag", resolve_fragment(d->technique, mode, bindings)});
+    if (d->stores_lists) {  // the multisampled resolves (4 samples; the sample count is a parameter)
+      shaders.push_back({name + "resolve-msaa-pixel", "frag",
+                         resolve_fragment(d->technique, mode, bindings, 4, SampleResolve::Pixel)});
+      shaders.push_back({name + "resolve-msaa-sample", "frag",
+                         resolve_fragment(d->technique, mode, bindings, 4, SampleResolve::Sample)});
+    }
     if (const auto own = gl_descriptor(d->technique).own_shaders) {
       std::vector<ShaderSource> more = own(mode, bindings);
       shaders.insert(shaders.end(), more.begin(), more.end());

@@ -28,8 +28,9 @@ static_assert(sizeof(LightBlock) == 176, "HabufferLight's std140 layout (light_e
 // A shared source under the prefix hs_: the light buffer's instance beside
 // the view module's ha_ one (its environment in light_env.glsl).
 std::string light_instance(const char* source) {
-  return replace_identifiers(replace_identifiers(source, "ha_", "hs_", false), "habuffer_age_bits", "hs_age_bits",
-                             true);
+  const std::string renamed = replace_identifiers(replace_identifiers(source, "ha_", "hs_", false),
+                                                  "habuffer_age_bits", "hs_age_bits", true);
+  return replace_identifiers(renamed, "habuffer_coverage_bits", "hs_coverage_bits", true);
 }
 
 // The storage points, named as their members.

@@ -50,6 +50,7 @@ GpuTraffic model_ha(const TechniqueConfig& c, const OffsetSource& source, std::s
   std::vector<std::uint32_t> saturation(b.saturation ? std::uint64_t{b.screen.x} * b.screen.y : 0u, 0u);
   KernelParams p;
   p.age_bits = b.age_bits;
+  p.coverage_bits = b.record_layout().coverage_bits();
   p.payload_bits = b.layout == Layout::L64 ? 32 : 0;
   p.table = table;
   p.block = b.block;
@@ -62,7 +63,7 @@ GpuTraffic model_ha(const TechniqueConfig& c, const OffsetSource& source, std::s
   WarpRecorder rec;
   traced::HashKernel<Word> k(p, offsets.values().data(), slots.data(), max_age.data(), rec);
   t.gather = replay_gather(fragments, rec, k, [&](const Fragment& f) {
-    return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+    return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba);
   });
   t.resolve = replay_pixels(b.screen, [&](std::uint32_t x, std::uint32_t y, WarpRecorder& r) {
     traced::HashKernel<Word> kr(p, offsets.values().data(), slots.data(), max_age.data(), r);
@@ -84,7 +85,7 @@ GpuTraffic model_lists(const TechniqueConfig& c, std::span<const Fragment> fragm
   traced::ListsKernel k(u, heads.data(), entries.data(), next.data(), saturation.data(), rec);
   t.gather = replay_gather(fragments, rec, k, [&](const Fragment& f) {
     const glm::uvec2 p(f.x, f.y);
-    return sorted ? k.sl_insert_fragment(p, f.depth, f.rgba) : k.ll_insert_fragment(p, f.depth, f.rgba);
+    return sorted ? k.sl_insert_fragment(p, f.depth, f.coverage, f.rgba) : k.ll_insert_fragment(p, f.depth, f.coverage, f.rgba);
   });
   if (!sorted)
     t.sort = replay_pixels(c.buffer.screen, [&](std::uint32_t x, std::uint32_t y, WarpRecorder& r) {
@@ -107,7 +108,7 @@ GpuTraffic model_arrays(const TechniqueConfig& c, std::span<const Fragment> frag
   WarpRecorder rec;
   traced::ArraysKernel k(u, counts.data(), layers.data(), rec);
   t.gather = replay_gather(fragments, rec, k, [&](const Fragment& f) {
-    return k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+    return k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba);
   });
   t.sort = replay_pixels(c.buffer.screen, [&](std::uint32_t x, std::uint32_t y, WarpRecorder& r) {
     traced::ArraysKernel ks(u, counts.data(), layers.data(), r);
@@ -150,7 +151,7 @@ GpuTraffic model_kbuffer(const TechniqueConfig& c, std::span<const Fragment> fra
   WarpRecorder rec;
   traced::KBufferKernel<Word> k(u, slots.data(), occupancy.data(), limits.data(), rec);
   t.gather += replay_gather(fragments, rec, k, [&](const Fragment& f) {
-    return k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+    return k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba);
   });
   t.resolve = replay_pixels(c.buffer.screen, [&](std::uint32_t x, std::uint32_t y, WarpRecorder& r) {
     traced::KBufferKernel<Word> kr(u, slots.data(), occupancy.data(), limits.data(), r);

@@ -107,6 +107,7 @@ class HashKernel : public SaturationTracer {
              WarpRecorder& r)
       : SaturationTracer(r, params.saturation),
         habuffer_age_bits(params.age_bits),
+        habuffer_coverage_bits(params.coverage_bits),
         ha_payload_bits(params.payload_bits),
         ha_table_size(params.table.x, params.table.y),
         ha_block(params.block),
@@ -121,6 +122,7 @@ class HashKernel : public SaturationTracer {
 
   static constexpr uint ha_word_bits = sizeof(Word) * 8;
   uint habuffer_age_bits;
+  uint habuffer_coverage_bits;
   uint ha_payload_bits;
   uvec2 ha_table_size;
   uint ha_block;

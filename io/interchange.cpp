@@ -1,5 +1,6 @@
 #include "habuffer/interchange.h"
 
+#include <algorithm>
 #include <charconv>
 #include <new>
 
@@ -13,11 +14,13 @@ std::vector<Fragment> read_fragments(const std::string& path, Extent screen) {
 }
 
 std::vector<Fragment> parse_fragments(CsvReader& in, Extent screen) {
-  in.expect_header({"x", "y", "depth", "rgba"});
+  // A multisampled stream adds the coverage word (0: the whole pixel).
+  const bool covered = in.expect_header_among({{"x", "y", "depth", "rgba"}, {"x", "y", "depth", "rgba", "coverage"}}) == 1;
   std::vector<Fragment> out;
   std::vector<std::string_view> f;
   while (in.next(f)) {
-    Fragment frag{in.u32(f[0], "x"), in.u32(f[1], "y"), in.f32(f[2], "depth"), in.u32_dec_or_hex(f[3], "rgba")};
+    Fragment frag{in.u32(f[0], "x"), in.u32(f[1], "y"), in.f32(f[2], "depth"), in.u32_dec_or_hex(f[3], "rgba"),
+                  covered ? in.u32_dec_or_hex(f[4], "coverage") : 0u};
     if (frag.x >= screen.x) in.fail("x", std::to_string(frag.x) + " outside screen " + screen.str());
     if (frag.y >= screen.y) in.fail("y", std::to_string(frag.y) + " outside screen " + screen.str());
     try {
@@ -31,14 +34,20 @@ std::vector<Fragment> parse_fragments(CsvReader& in, Extent screen) {
 
 void write_fragments(const std::string& path, std::span<const Fragment> fragments) {
   CsvWriter out(path);
-  out.text("x,y,depth,rgba\n");
+  // The coverage column only where a fragment has a mask: streams of one
+  // sample per pixel read and write as SPEC 10's.
+  const bool covered =
+      std::any_of(fragments.begin(), fragments.end(), [](const Fragment& f) { return f.coverage != 0; });
+  out.text(covered ? "x,y,depth,rgba,coverage\n" : "x,y,depth,rgba\n");
   char tmp[32];
   for (const Fragment& f : fragments) {
     // Shortest text that reads back as the same float32.
     auto [end, ec] = std::to_chars(tmp, tmp + sizeof tmp, f.depth);
     (void)ec;
     out.u64(f.x).comma().u64(f.y).comma().text(std::string_view(tmp, static_cast<std::size_t>(end - tmp)));
-    out.comma().hex(f.rgba, 8).endl();
+    out.comma().hex(f.rgba, 8);
+    if (covered) out.comma().hex(f.coverage, 2);
+    out.endl();
   }
   out.close();
 }
@@ -74,14 +83,20 @@ void write_offsets(const std::string& path, const OffsetSequence& offsets) {
 
 void write_lists(const std::string& path, const FragmentBuffer& buffer) {
   CsvWriter out(path);
-  out.text("x,y,rank,code,rgba\n");
+  const RecordLayout layout = buffer.technique_config().buffer.record_layout();
+  const std::uint32_t c = layout.coverage_bits();
+  out.text(c > 0 ? "x,y,rank,code,rgba,coverage\n" : "x,y,rank,code,rgba\n");
   std::vector<ListEntry> list;
   const Extent v = buffer.screen();
   for (std::uint32_t y = 0; y < v.y; ++y)
     for (std::uint32_t x = 0; x < v.x; ++x) {
       buffer.list(x, y, list);
-      for (std::size_t rank = 0; rank < list.size(); ++rank)
-        out.u64(x).comma().u64(y).comma().u64(rank).comma().u64(list[rank].code).comma().u64(list[rank].data).endl();
+      for (std::size_t rank = 0; rank < list.size(); ++rank) {
+        const ListEntry& e = list[rank];
+        out.u64(x).comma().u64(y).comma().u64(rank).comma().u64(e.code >> c).comma().u64(e.data);
+        if (c > 0) out.comma().u64(e.code & layout.coverage_mask());
+        out.endl();
+      }
     }
   out.close();
 }

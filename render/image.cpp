@@ -29,8 +29,9 @@ ImageDifference compare_pixels(const Image& image, const Image& reference) {
   return d;
 }
 
-Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds) {
-  const std::vector<glm::dvec4> exact = reference_composite(fragments, size, backgrounds);
+Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds,
+                      std::uint32_t samples) {
+  const std::vector<glm::dvec4> exact = reference_composite(fragments, size, backgrounds, samples);
   Image image{size, std::vector<glm::vec4>(exact.size())};
   for (std::size_t i = 0; i < exact.size(); ++i) image.pixels[i] = glm::vec4(exact[i]);
   return image;

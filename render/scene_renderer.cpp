@@ -18,8 +18,11 @@ namespace {
 
 constexpr unsigned kPixelFragmentsBinding = 10, kPixelCulledBinding = 11, kRejectedBinding = 12;
 
-// The gather shader's own defines: its binding points and what it counts.
-std::string gather_header(const gl::GlBindings& b, SceneRenderer::GatherCounts counts) {
+// The gather shader's own defines: its binding points, what it counts and,
+// on a multisampled screen, its samples (R_SAMPLES: each sample of a
+// fragment is tested against its own opaque depth, the rest inserted with
+// the fragment's coverage mask).
+std::string gather_header(const gl::GlBindings& b, SceneRenderer::GatherCounts counts, std::uint32_t samples) {
   for (unsigned p : b.storage_points())
     if (p == kPixelFragmentsBinding || p == kPixelCulledBinding || p == kRejectedBinding)
       throw gl::GlError("the renderer's shader-storage points 10-12 collide with the library's");
@@ -28,6 +31,7 @@ std::string gather_header(const gl::GlBindings& b, SceneRenderer::GatherCounts c
                   "\n#define R_BINDING_REJECTED " + std::to_string(kRejectedBinding) + "\n";
   if (counts.fragments) h += "#define R_COUNT_FRAGMENTS\n";
   if (counts.culled) h += "#define R_COUNT_CULLED\n";
+  if (samples > 1) h += "#define R_SAMPLES " + std::to_string(samples) + "\n";
   return h;
 }
 
@@ -66,11 +70,13 @@ SceneRenderer::GatherCounts SceneRenderer::GatherCounts::for_driver(const gl::Gl
 }
 
 SceneRenderer::Sources SceneRenderer::shader_sources(gl::AtomicMode mode, const gl::GlBindings& b, Technique technique,
-                                                     GatherCounts counts, std::optional<ShadowReceiving> shadows) {
+                                                     GatherCounts counts, std::optional<ShadowReceiving> shadows,
+                                                     std::uint32_t samples) {
   Sources s;
   s.vertex = render::kSceneVertex;
   s.opaque_fragment = opaque_source(shadows, mode);
-  s.gather_fragment = gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, gather_header(b, counts)) +
+  s.gather_fragment =
+      gl::technique_module(technique, mode, b, gl::ShaderStage::Fragment, gather_header(b, counts, samples)) +
                       shadow_part(shadows, mode) + gather_code();
   if (shadows) s.shadow_map_fragment = shadow_map_source(*shadows, mode);
   return s;
@@ -88,7 +94,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
           gl::ShaderProgram::graphics(render::kSceneVertex, opaque_source(shadows, buffer.mode()), "opaque pass")),
       gather_program_(gl::ShaderProgram::graphics(
           render::kSceneVertex,
-          buffer.module_source(gl::ShaderStage::Fragment, gather_header(buffer.bindings(), counts)) +
+          buffer.module_source(gl::ShaderStage::Fragment,
+                               gather_header(buffer.bindings(), counts, buffer.technique().samples())) +
               shadow_part(shadows, buffer.mode()) + gather_code(),
           "gather pass")),
       blend_program_(gl::ShaderProgram::graphics(
@@ -99,8 +106,12 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
           std::string("#version 450 core\n#define R_BINDING_PIXEL_FRAGMENTS 10\n") + render::kShading +
               render::kAtomicFloorFragment,
           "atomic floor")),
-      technique_framebuffer_(buffer.technique().gather_framebuffer()) {
+      technique_framebuffer_(buffer.technique().gather_framebuffer()),
+      samples_(buffer.technique().samples()) {
   check_screen_fits(screen, "screen");  // the textures and renderbuffer below; before any GL object is made
+  if (samples_ > 1 && shadows)
+    throw gl::GlError("translucent shadows are not drawn on a multisampled screen (" + std::to_string(samples_) +
+                      " samples): render with one sample per pixel for shadows");
   for (const Mesh& m : scene.meshes) {
     GpuMesh g;
     g.count = static_cast<std::int32_t>(m.indices.size());
@@ -125,9 +136,28 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glCreateRenderbuffers(1, &depth_buffer_);
   glNamedRenderbufferStorage(depth_buffer_, GL_DEPTH_COMPONENT32F, w, h);
   glCreateFramebuffers(1, &opaque_framebuffer_);
-  glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
-  glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT1, depth_, 0);
-  glNamedFramebufferRenderbuffer(opaque_framebuffer_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer_);
+  if (samples_ > 1) {
+    // The opaque pass is multisampled: its colour and t per sample; colour_
+    // and depth_ get their box-filtered resolve (the backgrounds, per pixel).
+    const auto s = static_cast<GLsizei>(samples_);
+    glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &ms_colour_);
+    glTextureStorage2DMultisample(ms_colour_, s, GL_RGBA32F, w, h, GL_TRUE);
+    glCreateTextures(GL_TEXTURE_2D_MULTISAMPLE, 1, &ms_depth_);
+    glTextureStorage2DMultisample(ms_depth_, s, GL_R32F, w, h, GL_TRUE);
+    glCreateRenderbuffers(1, &ms_depth_buffer_);
+    glNamedRenderbufferStorageMultisample(ms_depth_buffer_, s, GL_DEPTH_COMPONENT32F, w, h);
+    glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT0, ms_colour_, 0);
+    glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT1, ms_depth_, 0);
+    glNamedFramebufferRenderbuffer(opaque_framebuffer_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, ms_depth_buffer_);
+    glCreateFramebuffers(1, &resolved_framebuffer_);
+    glNamedFramebufferTexture(resolved_framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
+    glNamedFramebufferTexture(resolved_framebuffer_, GL_COLOR_ATTACHMENT1, depth_, 0);
+  } else {
+    glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
+    glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT1, depth_, 0);
+  }
+  if (samples_ <= 1)
+    glNamedFramebufferRenderbuffer(opaque_framebuffer_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer_);
   const GLenum draw[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(opaque_framebuffer_, 2, draw);
   if (glCheckNamedFramebufferStatus(opaque_framebuffer_, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
@@ -137,6 +167,8 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glCreateFramebuffers(1, &gather_framebuffer_);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
+  if (samples_ > 1)
+    glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_SAMPLES, static_cast<GLint>(samples_));
   for (const gl::ShaderProgram* p : {&gather_program_, &atomic_floor_program_}) p->set("r_screen_width", screen.x);
   if (shadows) {
     shadow_program_.emplace(
@@ -162,11 +194,13 @@ SceneRenderer::~SceneRenderer() {
   }
   const GLuint buffers[] = {pixel_fragments_, pixel_culled_, rejected_};
   glDeleteBuffers(3, buffers);
-  const GLuint framebuffers[] = {opaque_framebuffer_, gather_framebuffer_, blend_framebuffer_, shadow_framebuffer_};
-  glDeleteFramebuffers(4, framebuffers);  // 0 (no shadows) is ignored
-  glDeleteRenderbuffers(1, &depth_buffer_);
-  const GLuint textures[] = {colour_, depth_, shadow_map_};
-  glDeleteTextures(3, textures);
+  const GLuint framebuffers[] = {opaque_framebuffer_, gather_framebuffer_, blend_framebuffer_, shadow_framebuffer_,
+                                 resolved_framebuffer_};
+  glDeleteFramebuffers(5, framebuffers);  // 0 (no shadows, one sample) is ignored
+  const GLuint renderbuffers[] = {depth_buffer_, ms_depth_buffer_};
+  glDeleteRenderbuffers(2, renderbuffers);
+  const GLuint textures[] = {colour_, depth_, shadow_map_, ms_colour_, ms_depth_};
+  glDeleteTextures(5, textures);
 }
 
 void SceneRenderer::draw_meshes(const gl::ShaderProgram& program, const Camera& camera, bool opaque) const {
@@ -203,6 +237,16 @@ void SceneRenderer::draw_opaque(const Camera& camera, glm::vec3 background) {
   draw_meshes(opaque_program_, camera, true);
   glDisable(GL_DEPTH_TEST);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  if (samples_ > 1) {
+    // The backgrounds per pixel: each attachment's samples box-filtered.
+    const auto w = static_cast<GLint>(screen_.x), h = static_cast<GLint>(screen_.y);
+    for (GLenum a : {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1}) {
+      glNamedFramebufferReadBuffer(opaque_framebuffer_, a);
+      glNamedFramebufferDrawBuffer(resolved_framebuffer_, a);
+      glBlitNamedFramebuffer(opaque_framebuffer_, resolved_framebuffer_, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
+                             GL_NEAREST);
+    }
+  }
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   opaque_ = camera;
 }
@@ -246,7 +290,9 @@ void SceneRenderer::draw_transparent(const gl::ShaderProgram& program, const Cam
   glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  glBindTextureUnit(0, depth_);  // every transparent pass rejects what lies behind the opaque surfaces
+  // Every transparent pass rejects what lies behind the opaque surfaces (the
+  // gather per sample on a multisampled screen; the floors per pixel).
+  glBindTextureUnit(0, samples_ > 1 && &program == &gather_program_ ? ms_depth_ : depth_);
   draw_meshes(program, camera, false);
   glBindTextureUnit(0, 0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);

@@ -245,7 +245,7 @@ TEST(PagedLists, ParallelKernelsRacingForFewPixelsLinkEveryFragmentAndCountEvery
       PagedListsKernel<true> k(params, b);
       start.arrive_and_wait();
       for (std::size_t i = t; i < frags.size(); i += kThreads)
-        ++tallies[t][k.pl_insert_fragment(glm::uvec2(frags[i].x, frags[i].y), frags[i].depth, frags[i].rgba)];
+        ++tallies[t][k.pl_insert_fragment(glm::uvec2(frags[i].x, frags[i].y), frags[i].depth, frags[i].coverage, frags[i].rgba)];
     });
   for (std::thread& th : threads) th.join();
   std::uint64_t stored = 0;

@@ -194,4 +194,21 @@ inline bool within_bound(const std::vector<glm::vec4>& a, const std::vector<glm:
   return true;
 }
 
+// A stream whose fragments cover random samples of S: whole pixels (0 or
+// every bit), edges (a few bits), and some masks with bits beyond S alone.
+inline std::vector<Fragment> covered_stream(Extent screen, std::size_t count, std::uint64_t seed, std::uint32_t samples,
+                                            StreamKind kind = StreamKind::Coherent) {
+  std::vector<Fragment> frags = stream(screen, kind, count, seed);
+  SplitMix64 rng(seed * 977 + 5);
+  for (Fragment& f : frags) {
+    switch (rng.below(8)) {
+      case 0: f.coverage = 0; break;
+      case 1: f.coverage = (1u << samples) - 1u; break;
+      case 2: f.coverage = 1u << (samples + rng.below(4)); break;  // no sample of the S: invalid
+      default: f.coverage = static_cast<std::uint32_t>(rng.next() & ((1u << (2 * samples)) - 1u)); break;
+    }
+  }
+  return frags;
+}
+
 }  // namespace habuffer::test

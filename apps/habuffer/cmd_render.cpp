@@ -249,6 +249,10 @@ RenderSettings parse_settings(const Args& args) {
   const std::string table = args.str("table");
   const Extent t = table == "auto" ? Extent{0, 0} : args.extent("table").value();
   s.config = parse_buffer_config(args, size, t);
+  refuse_samples_without_lists(s.config, s.technique);
+  if (s.config.samples > 1 && args.has("shadows"))
+    throw UsageError("option --samples: translucent shadows are not drawn on a multisampled screen; render them "
+                     "with --samples 1");
   s.offsets = parse_offset_source(args, s.config);
   const std::string path = args.str("path");
   if (path != "gl" && path != "cpu") throw UsageError("option --path: '" + path + "' is not gl or cpu");
@@ -458,7 +462,7 @@ void write_render_outputs(const Args& args, const RenderSettings& s, const Rende
   }
   outputs.heatmaps = write_heatmaps(heatmaps, r, s.config.screen);
   if (args.has("reference") || args.has("error")) {
-    const Image reference = reference_image(r.fragments, s.config.screen, r.backgrounds);
+    const Image reference = reference_image(r.fragments, s.config.screen, r.backgrounds, s.config.samples);
     outputs.error = compare_pixels(r.image, reference);
     if (args.has("reference")) {
       outputs.reference = args.required("reference");

@@ -70,6 +70,12 @@ BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table) 
   return c;
 }
 
+void refuse_samples_without_lists(const BufferConfig& config, Technique technique) {
+  if (config.samples > 1 && !stores_lists(technique))
+    throw UsageError("option --samples: " + std::to_string(config.samples) + " samples per pixel need a technique "
+                     "that stores lists (a coverage mask per record): " + to_string(technique) + " stores none");
+}
+
 TechniqueConfig technique_config(const HashOptions& options) {
   TechniqueConfig c = options.technique;
   c.buffer = options.config;
@@ -83,6 +89,7 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   if (!screen) throw UsageError("option --screen is required");
   o.config = parse_buffer_config(args, *screen, args.extent("table").value_or(*screen));
   const BufferConfig& c = o.config;
+  if (techniques) refuse_samples_without_lists(c, o.technique.technique);
   // The default thread count is every command's: 0, the default count for
   // the batch (resolve_threads); serial insertion is one thread.
   const std::string mode = args.str("insert-mode");

@@ -53,6 +53,9 @@ HashOptions parse_hash_options(const Args& args, bool techniques = false);
 /// --iter-limit, --early-cull for a screen and table (zero table: auto);
 /// --offsets and --seed.
 BufferConfig parse_buffer_config(const Args& args, Extent screen, Extent table);
+/// Throws UsageError naming --samples when `config` has more than one
+/// sample per pixel and `technique` stores no lists (the blended baselines).
+void refuse_samples_without_lists(const BufferConfig& config, Technique technique);
 /// --offsets (random, farthest or a file, read for `config`'s table and ages) and --seed.
 OffsetSource parse_offset_source(const Args& args, const BufferConfig& config);
 

@@ -103,7 +103,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   json.field("device", r.device).field("layout", to_string(set.config.layout));
   write_technique_fields(json, technique_config(set), last.capacity);
   json.field("saturation", set.config.saturation);
-  json.field("age_bits", set.config.age_bits).field("block", set.config.block);
+  json.field("age_bits", set.config.age_bits).field("samples", set.config.samples).field("block", set.config.block);
   json.field("early_cull", static_cast<double>(set.config.early_cull_tau));
   json.field("table_mode", automatic_size(set) ? "auto" : (set.lossless ? "lossless" : "fixed"));
   write_counters(json, last.counters);

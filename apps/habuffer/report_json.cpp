@@ -34,7 +34,8 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
   const Technique technique = buffer.technique();
   json.field("path", options.gl ? "gl" : "cpu").field("technique", to_string(technique));
   json.field("layout", to_string(options.config.layout));
-  json.field("age_bits", options.config.age_bits).field("block", options.config.block);
+  json.field("age_bits", options.config.age_bits).field("samples", options.config.samples);
+  json.field("block", options.config.block);
   write_extent(json, "screen", options.config.screen);
   write_extent(json, "table", report.table);
   json.field("capacity", report.capacity);

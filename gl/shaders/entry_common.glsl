@@ -8,6 +8,7 @@ struct HaFragment {
   uint y;
   float depth;  // as given: the CPU path derives the same depth code from it
   uint rgba;
+  uint coverage;  // as given (0: the whole pixel); the CPU path derives the same mask from it
 };
 
 layout(std430, binding = HABUFFER_BINDING_COUNTERS) buffer HaCounters { uint ha_counters[]; };
@@ -19,9 +20,9 @@ layout(std430, binding = HABUFFER_BINDING_CAPTURE) buffer HaCapture {
   HaFragment ha_captured[];
 };
 
-void ha_capture(uvec2 pixel, float depth, uint rgba) {
+void ha_capture(uvec2 pixel, float depth, uint coverage, uint rgba) {
   uint i = atomicAdd(ha_capture_count, 1u);
-  if (i < habuffer_capture_capacity) ha_captured[i] = HaFragment(pixel.x, pixel.y, depth, rgba);
+  if (i < habuffer_capture_capacity) ha_captured[i] = HaFragment(pixel.x, pixel.y, depth, rgba, coverage);
 }
 
 // The counter stripe of a call: neighbouring pixels (the lanes of one SIMD

@@ -6,5 +6,6 @@
 // side compiles with -ffp-contract=off, and the NVIDIA compiler fuses
 // (the H100 gave images one rounding apart without it).
 #define HABUFFER_PRECISE precise
+#define HABUFFER_UNUSED(x)
 #define ha_floor floor
 #define ha_float_bits floatBitsToUint

@@ -7,7 +7,12 @@
 // HABUFFER_PENDING for a call deferred to the resume pass (counted there), or
 // HABUFFER_UNCOUNTED in a pass that inserts nothing (the k-buffer's fill pass, the
 // frame driver's counting gather).
-uint habuffer_insert(uvec2 pixel, float depth, uint rgba) {
+//
+// `coverage`: the samples of a multisampled screen the fragment covers, one
+// bit per sample (gl_SampleMaskIn[0] in a fragment shader), 0 for the whole
+// pixel; not read when the screen is not multisampled (docs/spec-notes.md,
+// "Multisampled records").
+uint habuffer_insert(uvec2 pixel, float depth, uint coverage, uint rgba) {
 #ifdef HABUFFER_STAGE_FRAGMENT
   // Helper invocations' stores and atomics have no effect: skip the work.
   if (gl_HelperInvocation) return HABUFFER_INVALID;
@@ -32,9 +37,9 @@ uint habuffer_insert(uvec2 pixel, float depth, uint rgba) {
 #endif
   uint outcome = HABUFFER_INVALID;
   if (all(lessThan(pixel, habuffer_screen_size))) {
-    if (habuffer_capture_capacity > 0u && habuffer_gather_phase == 0u) ha_capture(pixel, depth, rgba);
+    if (habuffer_capture_capacity > 0u && habuffer_gather_phase == 0u) ha_capture(pixel, depth, coverage, rgba);
     if (habuffer_capture_only != 0u) return HABUFFER_INVALID;
-    outcome = HABUFFER_TECHNIQUE_CALL(pixel, depth, rgba);
+    outcome = HABUFFER_TECHNIQUE_CALL(pixel, depth, coverage, rgba);
   } else {
     // Counted once per frame: not in a pass that inserts nothing (the k-buffer's fill pass).
     if (habuffer_gather_phase != 0u) return HABUFFER_UNCOUNTED;
@@ -42,6 +47,33 @@ uint habuffer_insert(uvec2 pixel, float depth, uint rgba) {
   }
   if (outcome < HABUFFER_OUTCOME_COUNT) ha_counter_add(pixel, outcome, 1u);
   return outcome;
+}
+
+// The current invocation's coverage: in a fragment shader on a multisampled
+// screen, the samples the rasterizer gave it (gl_SampleMaskIn[0]); else 0,
+// the whole pixel.
+uint habuffer_coverage_here() {
+#ifdef HABUFFER_STAGE_FRAGMENT
+  if (habuffer_coverage_bits != 0u) return uint(gl_SampleMaskIn[0]);
+#endif
+  return 0u;
+}
+
+// A fragment of the current invocation's coverage (habuffer_coverage_here).
+// In a fragment shader the rasterizer's sample count must be the buffer's:
+// a fragment of a multisampled framebuffer in a buffer of one sample would
+// be resolved from one sample, a buffer of S samples needs S-bit masks, so
+// such calls insert nothing and the driver refuses the frame.
+uint habuffer_insert(uvec2 pixel, float depth, uint rgba) {
+#ifdef HABUFFER_STAGE_FRAGMENT
+  uint samples = uint(max(gl_NumSamples, 1));
+  if (samples != max(habuffer_coverage_bits, 1u)) {
+    atomicAdd(ha_counters[HABUFFER_COUNTER_SAMPLES_MISMATCH], 1u);
+    atomicMax(ha_counters[HABUFFER_COUNTER_SAMPLES_SEEN], samples);
+    return HABUFFER_INVALID;
+  }
+#endif
+  return habuffer_insert(pixel, depth, habuffer_coverage_here(), rgba);
 }
 
 // Depth-only form (L32 records carry no payload).

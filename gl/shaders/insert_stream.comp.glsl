@@ -12,5 +12,5 @@ void main() {
   uint i = group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   if (i >= ha_stream_count) return;
   HaFragment f = ha_stream[i];
-  habuffer_insert(uvec2(f.x, f.y), f.depth, f.rgba);
+  habuffer_insert(uvec2(f.x, f.y), f.depth, f.coverage, f.rgba);
 }

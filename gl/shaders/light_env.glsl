@@ -26,6 +26,7 @@ layout(std140, binding = HABUFFER_LIGHT_BINDING_PARAMS) uniform HabufferLight {
 #define hs_word_bits 64u
 #define hs_payload_bits 32u
 #define hs_age_bits habuffer_light.age_bits
+#define hs_coverage_bits 0u  // light buffers are never multisampled
 #define hs_table_size habuffer_light.table_size
 #define hs_max_age_cells_x habuffer_light.max_age_cells_x
 #define hs_floor floor

@@ -4,5 +4,5 @@ flat in uint ha_point_index;
 
 void main() {
   HaFragment f = ha_stream[ha_point_index];
-  habuffer_insert(uvec2(f.x, f.y), f.depth, f.rgba);
+  habuffer_insert(uvec2(f.x, f.y), f.depth, f.coverage, f.rgba);
 }

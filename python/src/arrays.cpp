@@ -106,12 +106,14 @@ std::vector<Fragment> fragments_from(py::handle xy_obj, py::handle depth_obj, py
 }
 
 py::dtype fragment_dtype() {
-  static_assert(sizeof(Fragment) == 16 && offsetof(Fragment, depth) == 8 && offsetof(Fragment, rgba) == 12,
+  static_assert(sizeof(Fragment) == 20 && offsetof(Fragment, depth) == 8 && offsetof(Fragment, rgba) == 12 &&
+                    offsetof(Fragment, coverage) == 16,
                 "FRAGMENT_DTYPE mirrors Fragment's layout: change both together");
   py::list fields;
   for (const char* f : {"x", "y"}) fields.append(py::make_tuple(f, "<u4"));
   fields.append(py::make_tuple("depth", "<f4"));
   fields.append(py::make_tuple("rgba", "<u4"));
+  fields.append(py::make_tuple("coverage", "<u4"));
   return py::dtype::from_args(fields);
 }
 

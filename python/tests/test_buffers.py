@@ -311,7 +311,7 @@ def test_array_likes_obey_the_dtype_rule_and_lists_are_checked_to_fit():
     assert c["stored"] == 2 and buf.counters["fragments"] == 2
     assert buf.insert(ArrayLike(xy), ArrayLike(depth), ArrayLike(rgba))["fragments"] == 10
     frags = np.zeros(8, hb.FRAGMENT_DTYPE)
-    unaligned = np.frombuffer(b"\0" * (16 * 4 + 4), hb.FRAGMENT_DTYPE, count=4, offset=4)
+    unaligned = np.frombuffer(b"\0" * (hb.FRAGMENT_DTYPE.itemsize * 4 + 4), hb.FRAGMENT_DTYPE, count=4, offset=4)
     assert buf.insert_fragments(frags)["fragments"] == 8
     if not unaligned.flags.aligned:
         with pytest.raises(ValueError, match="aligned"):

@@ -43,6 +43,13 @@ expect read 0 "" -- sweep --scene quads:count=4 --size 16x16 --loads 0.2 --repea
 expect read 0 "" -- bench --scenes quads:count=4 --techniques ha --size 16x16 --repeats 1 --path cpu --seed 3 --insert-order pixel --out b.json --quiet
 expect read 0 "" -- techniques --markdown
 expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --slot-writes --quiet
+# Issue 37: multisampled records on both paths, and the refusals in context.
+expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 4 --path cpu --error --quiet
+expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 2 --technique lists --quiet
+expect read 0 "" -- build-lists --in f.csv --out ls.csv --screen 16x16 --samples 4 --technique sorted-lists
+expect read 2 "option --samples: 3 is not a power of two in 1..8" -- build-lists --in f.csv --out l.csv --screen 16x16 --samples 3
+expect read 2 "wboit stores none" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 4 --technique wboit --quiet
+expect read 2 "translucent shadows are not drawn on a multisampled screen" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 4 --shadows --quiet
 expect read 0 "" -- bench --scenes quads:count=4 --techniques ha --size 16x16 --repeats 1 --no-floors --out b2.json --quiet
 expect read 0 "" -- bench --scenes quads:count=4 --techniques ha,lists --size 16x16 --repeats 1 --no-floors --model gpu --out b3.json --quiet
 expect read 0 "" -- hash build --key-set random --domain 32x32 --count 100 --age-bits 6 --out t3.tab --quiet

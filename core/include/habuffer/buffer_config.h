@@ -32,11 +32,17 @@ struct BufferConfig {
   /// saturation image (atomic max), and later fragments strictly behind it
   /// are rejected before insertion (saturated_rejected; guacamole, Fig. 6).
   bool saturation = false;
+  /// S, the samples of a multisampled screen: 1 (not multisampled), 2, 4 or
+  /// 8. Above 1, every record carries the S-bit coverage mask of its
+  /// fragment in the low bits of its code field, which leaves the depth
+  /// 32 - A - S bits (docs/spec-notes.md, "Multisampled records").
+  std::uint32_t samples = 1;
 
   /// The table H: `table`, or the screen when `table` is 0x0.
   [[nodiscard]] Extent table_or_screen() const { return table == Extent{} ? screen : table; }
-  /// The record layout of `layout` and `age_bits`; throws std::invalid_argument for age bits outside 4..12.
-  [[nodiscard]] RecordLayout record_layout() const { return {layout, age_bits}; }
+  /// The record layout of `layout`, `age_bits` and `samples`; throws
+  /// std::invalid_argument for age bits outside 4..12 or samples not 1, 2, 4 or 8.
+  [[nodiscard]] RecordLayout record_layout() const { return {layout, age_bits, samples}; }
   /// Throws std::invalid_argument with a message naming the field and values
   /// (a screen or table with a zero side, geometry rule of SPEC 1, age bits,
   /// block, cull threshold, size limits).

@@ -175,8 +175,17 @@ class FragmentBuffer {
   /// the container (insert, clear, import_state).
   virtual std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const = 0;
   /// Each pixel over its own background (row-major, screen area entries).
-  [[nodiscard]] virtual std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
-                                                               std::uint32_t threads = 0) const = 0;
+  /// One sample per pixel: the technique's composite_pixels. A multisampled
+  /// buffer (BufferConfig::samples above 1) resolves per pixel: each pixel's
+  /// list (list()) walked once, every sample compositing the records its
+  /// mask names, the samples averaged (ha_blend.glsl's ha_samples_*).
+  /// Throws std::invalid_argument unless there is one background per pixel.
+  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+                                                       std::uint32_t threads = 0) const;
+  /// Each pixel over its own background by the technique's own walk, every
+  /// record blended whatever its coverage mask (one sample per pixel).
+  [[nodiscard]] virtual std::vector<glm::vec4> composite_pixels(std::span<const glm::vec3> backgrounds,
+                                                                std::uint32_t threads = 0) const = 0;
   /// Bytes of every buffer the technique allocated.
   [[nodiscard]] virtual std::uint64_t memory_bytes() const = 0;
   /// What the last insert asked for beyond what the container held (nodes

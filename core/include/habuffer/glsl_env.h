@@ -19,6 +19,8 @@
 /// GLSL's `precise` (no fused multiply-add): the C++ side is compiled with
 /// -ffp-contract=off, so nothing to say here.
 #define HABUFFER_PRECISE
+/// A parameter one build of a shared function does not read (GLSL: nothing).
+#define HABUFFER_UNUSED(x) (void)(x)
 
 /// GLSL's types (uint, uvec2, vec3, vec4) and the builtins the shared sources
 /// call (ha_floor, ha_float_bits, min, max), declared at class scope.

@@ -201,6 +201,7 @@ static_assert(HABUFFER_FLOAT_ONE_BITS == std::bit_cast<std::uint32_t>(1.0f) &&
 /// Everything a kernel reads besides its buffers: the GLSL "uniforms".
 struct KernelParams {
   std::uint32_t age_bits = HABUFFER_DEFAULT_AGE_BITS;  ///< A (SPEC 2)
+  std::uint32_t coverage_bits = 0;  ///< C: the samples of a multisampled screen, 0 for one
   std::uint32_t payload_bits = 32;  ///< 32 for L64, 0 for L32
   Extent table;  ///< H, in slots
   std::uint32_t block = HABUFFER_DEFAULT_BLOCK;  ///< B, the max-age block side in pixels (SPEC 5)
@@ -228,6 +229,7 @@ class HashKernel {
   /// (and params.saturation's image when set); it owns none of them.
   HashKernel(const KernelParams& params, const glm::uvec2* offsets, Word* table, std::uint32_t* max_age)
       : habuffer_age_bits(params.age_bits),
+        habuffer_coverage_bits(params.coverage_bits),
         ha_payload_bits(params.payload_bits),
         ha_table_size(params.table.x, params.table.y),
         ha_block(params.block),
@@ -245,6 +247,7 @@ class HashKernel {
   /// --- the environment the shared GLSL expects -----------------------------
   static constexpr uint ha_word_bits = sizeof(Word) * 8;  ///< bits of Word
   uint habuffer_age_bits;  ///< A
+  uint habuffer_coverage_bits;  ///< C
   uint ha_payload_bits;  ///< 32 for L64, 0 for L32
   uvec2 ha_table_size;  ///< H
   uint ha_block;  ///< B

@@ -46,6 +46,7 @@ struct TechniqueOption {
   OptionKind kind;              ///< how the value is read
   std::uint64_t min = 0;        ///< Count, CountOrAuto: the smallest count
   std::uint64_t max = 0;        ///< Count, CountOrAuto: the largest count
+  bool power_of_two = false;    ///< Count: only powers of two in [min, max] (samples per pixel)
   std::string_view help = {};        ///< what it sets, one phrase (the default is added from TechniqueConfig)
   std::string_view json = {};        ///< its key in the technique's report fields; "" for none
   /// The option (flag) that must be on for this one to be given ("" for

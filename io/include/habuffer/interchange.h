@@ -36,7 +36,9 @@ OffsetSequence read_offsets(const std::string& path, Extent table, std::uint32_t
 /// Writes one row per age of `offsets` in read_offset_rows' format; throws DataError.
 void write_offsets(const std::string& path, const OffsetSequence& offsets);
 
-/// Header x,y,rank,code,rgba: every pixel's list, pixels row-major.
+/// Header x,y,rank,code,rgba: every pixel's list, pixels row-major. A
+/// multisampled buffer adds a last column, coverage (the record's mask), and
+/// its code is the depth code alone (the code field shifted right by S).
 void write_lists(const std::string& path, const FragmentBuffer& buffer);
 /// Header slot,record: non-empty slots ascending, record in 0x hex (16 or 8 digits).
 void write_table(const std::string& path, const HaBuffer& buffer);

@@ -21,3 +21,86 @@ vec4 ha_finish(vec4 c, vec3 background) {
   HABUFFER_PRECISE vec3 rgb = vec3(c) + (1.0f - c.a) * background;
   return vec4(rgb, c.a);
 }
+
+// A multisampled pixel's resolve (issue 37; docs/spec-notes.md,
+// "Multisampled records"): the pixel's records are walked once, nearest
+// first, each blended under the accumulator of every sample its coverage
+// mask names, and the pixel is the mean of its S samples, each finished
+// over the background, summed in sample order and scaled by 1/S (a power of
+// two: exact), the same float32 operations on both paths.
+// (Declared once per GLSL module, which may hold a second, renamed instance
+// of this file, the light lookup's; once per kernel class in C++.)
+#if defined(__cplusplus) || !defined(HABUFFER_SAMPLE_COLOURS_DECLARED)
+#ifndef __cplusplus
+#define HABUFFER_SAMPLE_COLOURS_DECLARED
+#endif
+struct HaSampleColours {
+  vec4 c[HABUFFER_MAX_SAMPLES];
+};
+#endif
+
+HaSampleColours ha_samples_begin() {
+  HaSampleColours s;
+  for (uint i = 0u; i < HABUFFER_MAX_SAMPLES; ++i) s.c[i] = vec4(0.0f);
+  return s;
+}
+
+// Blends colour f under the first `samples` accumulators whose bit is set in `mask`.
+void ha_samples_under(HABUFFER_INOUT(HaSampleColours) s, uint samples, uint mask, vec4 f) {
+  for (uint i = 0u; i < samples; ++i)
+    if (((mask >> i) & 1u) != 0u) s.c[i] = ha_blend_under(s.c[i], f);
+}
+
+vec4 ha_samples_finish(HaSampleColours s, uint samples, vec3 background) {
+  HABUFFER_PRECISE vec4 sum = vec4(0.0f);
+  for (uint i = 0u; i < samples; ++i) sum = sum + ha_finish(s.c[i], background);
+  return sum * (1.0f / float(samples));
+}
+
+// A technique's composite walk blends a pixel's records, nearest first, into
+// one HABUFFER_PIXEL_COLOUR (ha_pixel_begin, ha_pixel_under of each record's
+// code field and data, ha_pixel_finish), whose kind the module's resolve
+// mode fixes, so each technique writes its walk once for every mode:
+// - one sample per pixel (every CPU kernel; a GL module of one sample): a
+//   vec4, every record blended (SPEC 7's composite, unchanged);
+// - HABUFFER_RESOLVE_PIXEL (a GL module of S samples): the per-pixel
+//   resolve, ha_samples_* above; the CPU path runs the same functions over
+//   each pixel's list (FragmentBuffer::composite_image), so both agree bit for bit;
+// - HABUFFER_RESOLVE_SAMPLE (the per-sample resolve, drawn into a
+//   multisampled target with sample shading): a vec4 of the records whose
+//   mask holds the invocation's sample, habuffer_resolve_sample().
+// The multisampled modes need ha_record.glsl (the coverage mask of a code).
+#ifndef HABUFFER_PIXEL_COLOUR
+#ifdef HABUFFER_RESOLVE_PIXEL
+#define HABUFFER_PIXEL_COLOUR HaSampleColours
+#else
+#define HABUFFER_PIXEL_COLOUR vec4
+#endif
+#endif
+
+HABUFFER_PIXEL_COLOUR ha_pixel_begin() {
+#ifdef HABUFFER_RESOLVE_PIXEL
+  return ha_samples_begin();
+#else
+  return vec4(0.0f);
+#endif
+}
+
+void ha_pixel_under(HABUFFER_INOUT(HABUFFER_PIXEL_COLOUR) c, uint code, uint data) {
+#if defined(HABUFFER_RESOLVE_PIXEL)
+  ha_samples_under(c, habuffer_coverage_bits, code & ha_coverage_mask(), ha_unpack_rgba(data));
+#elif defined(HABUFFER_RESOLVE_SAMPLE)
+  if (((code >> habuffer_resolve_sample()) & 1u) != 0u) c = ha_blend_under(c, ha_unpack_rgba(data));
+#else
+  HABUFFER_UNUSED(code);
+  c = ha_blend_under(c, ha_unpack_rgba(data));
+#endif
+}
+
+vec4 ha_pixel_finish(HABUFFER_PIXEL_COLOUR c, vec3 background) {
+#ifdef HABUFFER_RESOLVE_PIXEL
+  return ha_samples_finish(c, habuffer_coverage_bits, background);
+#else
+  return ha_finish(c, background);
+#endif
+}

@@ -57,6 +57,8 @@
 #define HABUFFER_LAYOUT_32 32u
 #define HABUFFER_MIN_AGE_BITS 4u
 #define HABUFFER_MAX_AGE_BITS 12u
+// The most samples per pixel of a multisampled screen (a record's coverage mask).
+#define HABUFFER_MAX_SAMPLES 8u
 #define HABUFFER_DEFAULT_AGE_BITS 8u
 
 // Defaults of SPEC 5, 6 and 8.
@@ -106,6 +108,11 @@
 // (its HABUFFER_MODULE_ID is not the parameter habuffer_module_id): nothing
 // inserted; the driver refuses the frame naming the count.
 #define HABUFFER_COUNTER_FOREIGN (HABUFFER_COUNTER_NODES + 3u)  // + 2 is the paged lists' wasted pages
+// Insert calls that took their coverage from a rasterizer of another sample
+// count than the buffer's (gl_NumSamples against BufferConfig::samples), and
+// the most samples seen: nothing inserted; the driver refuses the frame.
+#define HABUFFER_COUNTER_SAMPLES_MISMATCH (HABUFFER_COUNTER_NODES + 4u)
+#define HABUFFER_COUNTER_SAMPLES_SEEN (HABUFFER_COUNTER_NODES + 5u)
 #define HABUFFER_COUNTER_WORDS (HABUFFER_COUNTER_NODES + HABUFFER_COUNTER_STRIDE)
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.

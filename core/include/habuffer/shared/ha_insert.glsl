@@ -139,7 +139,7 @@ uint ha_insert_code(uvec2 p, uint code, uint data) {
 
 // The whole insert call of one fragment on the CPU path (the GL entry
 // habuffer_insert adds counting, capture and the deferral of calls cut short).
-uint ha_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
-  return ha_insert_code(p, ha_depth_code(t), data);
+uint ha_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
+  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  return ha_insert_code(p, ha_fragment_code(t, coverage), data);
 }

@@ -1,12 +1,25 @@
 // Record packing of SPEC 2, written once for both paths.
 // Host environment provides: type ha_word (uint or uint64_t), uint habuffer_age_bits,
-// uint ha_word_bits (32 or 64), uint ha_payload_bits (32 for L64, 0 for L32),
-// and ha_floor / ha_float_bits as the GLSL builtins floor / floatBitsToUint.
+// uint habuffer_coverage_bits (C: 0, or the samples S of a multisampled
+// screen), uint ha_word_bits (32 or 64), uint ha_payload_bits (32 for L64, 0
+// for L32), and ha_floor / ha_float_bits as the GLSL builtins floor / floatBitsToUint.
+//
+// The code field (32 - A bits) holds the depth code in its high 32 - A - C
+// bits and, multisampled, the fragment's coverage mask (one bit per sample)
+// in its low C bits (docs/spec-notes.md, "Multisampled records"): records
+// order by depth, then coverage, then data, and with C = 0 the field is
+// SPEC 2's depth code exactly.
 
 uint ha_age_shift() { return ha_word_bits - habuffer_age_bits; }
-uint ha_depth_bits() { return 32u - habuffer_age_bits; }
+// The code field's bits, 32 - A.
+uint ha_code_bits() { return 32u - habuffer_age_bits; }
+// The depth's own bits within it, D = 32 - A - C.
+uint ha_depth_bits() { return ha_code_bits() - habuffer_coverage_bits; }
 uint ha_max_age() { return (1u << habuffer_age_bits) - 1u; }
-uint ha_max_code() { return uint((ha_word(1) << ha_depth_bits()) - ha_word(1)); }
+// The code field's largest value, 2^(32 - A) - 1.
+uint ha_max_code() { return uint((ha_word(1) << ha_code_bits()) - ha_word(1)); }
+// The coverage bits of a code field: (1 << C) - 1 (0 when not multisampled).
+uint ha_coverage_mask() { return (1u << habuffer_coverage_bits) - 1u; }
 
 ha_word ha_pack(uint age, uint code, uint data) {
   return (ha_word(age) << ha_age_shift()) | (ha_word(code) << ha_payload_bits) |
@@ -42,10 +55,29 @@ bool ha_depth_valid(float t) {
   return bits <= HABUFFER_FLOAT_ONE_BITS || bits == HABUFFER_FLOAT_NEG_ZERO_BITS;
 }
 
-// code(t) = (2^D - 1) - min(2^D - 1, floor(t * 2^D)); t * 2^D is exact in
-// float32 (a power-of-two scale), so both paths get the same integer.
+// code(t) = (2^D - 1) - min(2^D - 1, floor(t * 2^D)), in the code field's
+// high D bits (shifted left by C); t * 2^D is exact in float32 (a
+// power-of-two scale), so both paths get the same integer.
 uint ha_depth_code(float t) {
+  uint top = (1u << ha_depth_bits()) - 1u;
   float scaled = ha_floor(t * float(1u << ha_depth_bits()));
   uint q = uint(scaled);
-  return ha_max_code() - (q > ha_max_code() ? ha_max_code() : q);
+  return (top - (q > top ? top : q)) << habuffer_coverage_bits;
 }
+
+// The samples a fragment's coverage word gives, as the code field's low C
+// bits: 0 (no mask given) is the whole pixel; bits beyond the S samples are
+// ignored. Not multisampled (C = 0): always 0.
+uint ha_fragment_coverage(uint coverage) {
+  return coverage == 0u ? ha_coverage_mask() : coverage & ha_coverage_mask();
+}
+
+// Whether a fragment's coverage word covers a sample of the screen: always
+// when not multisampled; else its mask must name one of the S samples.
+bool ha_covers_sample(uint coverage) { return habuffer_coverage_bits == 0u || ha_fragment_coverage(coverage) != 0u; }
+
+// The code field of a fragment at depth t with coverage word `coverage`.
+uint ha_fragment_code(float t, uint coverage) { return ha_depth_code(t) | ha_fragment_coverage(coverage); }
+
+// A record's coverage mask (0 when not multisampled).
+uint ha_coverage(ha_word r) { return ha_code(r) & ha_coverage_mask(); }

@@ -13,15 +13,15 @@ uint ha_visit(ha_word r, uint age) {
 
 // Composite every record of pixel p over the background.
 vec4 ha_composite(uvec2 p, vec3 background) {
-  vec4 c = vec4(0.0f);
+  HABUFFER_PIXEL_COLOUR c = ha_pixel_begin();
   uint amax = ha_load_max_age(ha_cell(p));
   for (uint a = 1u; a <= amax; ++a) {
     ha_word r = ha_load_slot(ha_slot(ha_probe(p, a)));
     uint v = ha_visit(r, a);
     if (v == HABUFFER_VISIT_STOP) break;
-    if (v == HABUFFER_VISIT_EMIT) c = ha_blend_under(c, ha_unpack_rgba(ha_data(r)));
+    if (v == HABUFFER_VISIT_EMIT) ha_pixel_under(c, ha_code(r), ha_data(r));
   }
-  return ha_finish(c, background);
+  return ha_pixel_finish(c, background);
 }
 
 // The light's transmittance at pixel p of a light-view buffer, for a

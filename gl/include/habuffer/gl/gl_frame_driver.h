@@ -155,8 +155,10 @@ class GlFrameDriver {
   void reset_frame_state() const;
   /// The module without its fingerprint define (module_source adds it).
   [[nodiscard]] std::string module_text(ShaderStage stage, std::string_view header = {}) const;
-  /// Throws GlError when calls came from another driver's module (HABUFFER_COUNTER_FOREIGN).
-  void check_foreign_calls(const std::vector<std::uint32_t>& words) const;
+  /// Throws GlError when calls came from another driver's module
+  /// (HABUFFER_COUNTER_FOREIGN) or from a framebuffer of another sample
+  /// count than the buffer's (HABUFFER_COUNTER_SAMPLES_MISMATCH).
+  void check_refused_calls(const std::vector<std::uint32_t>& words) const;
   /// The counting gather (the host's gather with habuffer_gather_phase
   /// HABUFFER_PHASE_COUNT: every on-screen call counted, nothing inserted)
   /// and size_for its count, timed into report.count.

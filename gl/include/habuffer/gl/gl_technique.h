@@ -81,7 +81,8 @@ class GlTechnique {
   /// Records what every container shares and checks the binding points
   /// against the current context's limits (GlBindings::validate: GlError),
   /// before the container compiles anything with them.
-  GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen);
+  GlTechnique(Technique technique, AtomicMode mode, const GlBindings& bindings, Extent screen,
+              std::uint32_t samples = 1);
   /// Virtual: frame drivers own containers through this base.
   virtual ~GlTechnique();
   GlTechnique(const GlTechnique&) = delete;
@@ -101,6 +102,8 @@ class GlTechnique {
   [[nodiscard]] const GlBindings& bindings() const { return bindings_; }
   /// The screen, in pixels.
   [[nodiscard]] Extent screen() const { return screen_; }
+  /// The samples per pixel its records carry masks of (BufferConfig::samples; 1: none).
+  [[nodiscard]] std::uint32_t samples() const { return samples_; }
   /// The GLSL module host shaders append their code to (technique_module).
   [[nodiscard]] std::string module_source(ShaderStage stage, std::string_view header = {}) const;
 
@@ -203,6 +206,7 @@ class GlTechnique {
   AtomicMode mode_;
   GlBindings bindings_;
   Extent screen_;
+  std::uint32_t samples_;  ///< BufferConfig::samples
   std::vector<GlPass> passes_;
   std::optional<GlGatherDepth> gather_depth_;
 };

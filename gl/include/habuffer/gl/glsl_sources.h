@@ -135,6 +135,22 @@ std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings);
 /// The same for any technique.
 std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings);
 
+/// How a resolve pass composites a multisampled buffer (BufferConfig::samples
+/// above 1; docs/spec-notes.md, "Multisampled records").
+enum class SampleResolve {
+  /// Per pixel: each sample composites the records its mask names, the
+  /// pixel is their mean (into a single-sampled target; the CPU path's
+  /// FragmentBuffer::composite_image, bit for bit).
+  Pixel,
+  /// Per sample: drawn into a multisampled target of the same samples, each
+  /// sample's invocation (gl_SampleID) composites its own records; the
+  /// host's MSAA resolve (a blit) averages them afterwards.
+  Sample,
+};
+/// The resolve pass of a buffer of `samples` per pixel (1: the one above) resolved as `how`.
+std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings, std::uint32_t samples,
+                             SampleResolve how);
+
 /// The sort pass of the techniques that sort after the gather (one
 /// invocation per pixel); throws GlError for the HA-buffer.
 std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings& bindings = {});

@@ -54,8 +54,10 @@ void write_image(const std::string& path, const Image& image);
 Image read_image(const std::string& path);
 
 /// The exact reference of `fragments` (SPEC 7 in double precision, each pixel
-/// over its own background: `backgrounds` per pixel, row 0 at the bottom), as a float image.
-Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds);
+/// over its own background: `backgrounds` per pixel, row 0 at the bottom), as
+/// a float image; `samples` above 1: per sample, averaged (reference_composite).
+Image reference_image(std::span<const Fragment> fragments, Extent size, std::span<const glm::vec3> backgrounds,
+                      std::uint32_t samples = 1);
 
 /// How two images' RGB differ (compare_pixels, compare_images).
 struct ImageDifference {

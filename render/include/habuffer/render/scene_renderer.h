@@ -54,7 +54,7 @@ class SceneRenderer {
   /// See Sources; with `shadows`, as the constructor's (throws GlError for native32).
   static Sources shader_sources(gl::AtomicMode mode, const gl::GlBindings& bindings,
                                 Technique technique = Technique::Ha, GatherCounts counts = {true, true},
-                                std::optional<ShadowReceiving> shadows = std::nullopt);
+                                std::optional<ShadowReceiving> shadows = std::nullopt, std::uint32_t samples = 1);
 
   /// Compiles the gather shader from `buffer`'s module (technique, mode,
   /// binding points and variant), counting GatherCounts::for_driver(buffer).
@@ -146,6 +146,10 @@ class SceneRenderer {
   unsigned opaque_framebuffer_ = 0, colour_ = 0, depth_ = 0, depth_buffer_ = 0;
   unsigned gather_framebuffer_ = 0, blend_framebuffer_ = 0;
   unsigned technique_framebuffer_ = 0;  // where the technique blends (wboit, blend), else 0
+  // A multisampled screen (the buffer's samples above 1): the opaque pass's
+  // attachments per sample, and the framebuffer of their per-pixel resolve.
+  std::uint32_t samples_ = 1;
+  unsigned ms_colour_ = 0, ms_depth_ = 0, ms_depth_buffer_ = 0, resolved_framebuffer_ = 0;
   unsigned pixel_fragments_ = 0, pixel_culled_ = 0, rejected_ = 0;
   // The camera of the last pass over the transparent meshes, the one whose
   // fragments pixel_fragments_ holds, and the opaque pass's (none before the first of each).

@@ -31,7 +31,7 @@ Counters FixedArrays::insert(std::span<const Fragment> fragments, const InsertOp
   const auto make_sorter = [&] { return ArraysKernel<false>(params_, buffers()); };
   return detail::insert_then_sort(
       fragments, screen(), plan, make, make_sorter,
-      [](auto& k, const Fragment& f) { return k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); },
+      [](auto& k, const Fragment& f) { return k.fa_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba); },
       [](auto& k, glm::uvec2 p) { return k.fa_sort_pixel(p); });
 }
 
@@ -69,7 +69,7 @@ std::uint32_t FixedArrays::list(std::uint32_t x, std::uint32_t y, std::vector<Li
   return 1 + counts_[pixel];
 }
 
-std::vector<glm::vec4> FixedArrays::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+std::vector<glm::vec4> FixedArrays::composite_pixels(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
   return detail::composite_image(
       screen(), backgrounds, threads, [&] { return ArraysKernel<false>(params_, buffers()); },
       [](auto& k, glm::uvec2 p, glm::vec3 background) { return k.fa_composite(p, background); });

@@ -24,9 +24,9 @@ uint fa_insert_code(uvec2 p, uint code, uint data) {
   return HABUFFER_STORED;
 }
 
-uint fa_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
-  return fa_insert_code(p, ha_depth_code(t), ha_payload_bits == 0u ? 0u : data);
+uint fa_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
+  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  return fa_insert_code(p, ha_fragment_code(t, coverage), ha_payload_bits == 0u ? 0u : data);
 }
 
 // Max-heap (the entry that goes last at the root) sift-down within the first n layers.
@@ -101,7 +101,10 @@ uint fa_sort_pixel(uvec2 p) {
 vec4 fa_composite(uvec2 p, vec3 background) {
   uint pixel = ha_pixel_index(p);
   uint n = fa_load_count(pixel);
-  vec4 c = vec4(0.0f);
-  for (uint k = 0u; k < n; ++k) c = ha_blend_under(c, ha_unpack_rgba(fa_load_layer(fa_slot(pixel, k)).y));
-  return ha_finish(c, background);
+  HABUFFER_PIXEL_COLOUR c = ha_pixel_begin();
+  for (uint k = 0u; k < n; ++k) {
+    uvec2 e = fa_load_layer(fa_slot(pixel, k));
+    ha_pixel_under(c, e.x, e.y);
+  }
+  return ha_pixel_finish(c, background);
 }

@@ -70,7 +70,7 @@ std::uint32_t BlendedImage::list(std::uint32_t x, std::uint32_t y, std::vector<L
   return 0;
 }
 
-std::vector<glm::vec4> BlendedImage::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+std::vector<glm::vec4> BlendedImage::composite_pixels(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
   const std::uint32_t width = screen().x;
   return detail::composite_image(
       screen(), backgrounds, threads, [&] { return BlendedKernel(params_); },

@@ -49,7 +49,7 @@ class BlendedImage final : public FragmentBuffer {
   /// FragmentBuffer interface: resolves each pixel's accumulators over its
   /// background; throws std::invalid_argument unless `backgrounds` has screen
   /// area entries.
-  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+  [[nodiscard]] std::vector<glm::vec4> composite_pixels(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
   /// The accumulators: 16 bytes per pixel (blend), 20 (wboit: RGBA and revealage, float32).
   [[nodiscard]] std::uint64_t memory_bytes() const override;

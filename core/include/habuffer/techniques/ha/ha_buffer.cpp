@@ -33,6 +33,7 @@ std::string hex_word(std::uint64_t w) {
 KernelParams make_params(const BufferConfig& c, const MaxAgeTable& m) {
   KernelParams p;
   p.age_bits = c.age_bits;
+  p.coverage_bits = c.record_layout().coverage_bits();
   p.payload_bits = c.layout == Layout::L64 ? 32 : 0;
   p.table = c.table_or_screen();
   p.block = c.block;
@@ -129,7 +130,7 @@ struct HaBuffer::Impl {
                 return HashKernel<Word, decltype(concurrent)::value>(params, offsets.values().data(), st.data(),
                                                                      max_age.data());
               },
-              [](auto& k, const Fragment& f) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); },
+              [](auto& k, const Fragment& f) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba); },
               shared);
         },
         storage);
@@ -270,7 +271,7 @@ Counters HaBuffer::insert(std::span<const Fragment> fragments, const InsertOptio
 
 std::uint32_t HaBuffer::insert_one(const Fragment& f) {
   check_on_screen({&f, 1}, impl_->config.screen);
-  const auto insert = [&](auto& k) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); };
+  const auto insert = [&](auto& k) { return k.ha_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba); };
   if (const auto alone = gate_.alone_if_free()) return impl_->with_kernel<false>(insert);
   const auto shared = gate_.shared();
   return impl_->with_kernel<true>(insert);
@@ -400,11 +401,13 @@ std::vector<glm::vec4> composite_wavefronts(const Kernel& kernel, Extent screen,
 }  // namespace
 
 std::vector<glm::vec4> HaBuffer::composite_image(glm::vec3 background, std::uint32_t threads) const {
+  if (config().samples > 1)
+    return FragmentBuffer::composite_image(std::vector<glm::vec3>(screen().area(), background), threads);
   return impl_->with_kernel(
       [&](auto& k) { return composite_wavefronts(k, screen(), threads, [&](std::size_t) { return background; }); });
 }
 
-std::vector<glm::vec4> HaBuffer::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+std::vector<glm::vec4> HaBuffer::composite_pixels(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
   detail::check_backgrounds(screen(), backgrounds);
   return impl_->with_kernel(
       [&](auto& k) { return composite_wavefronts(k, screen(), threads, [&](std::size_t p) { return backgrounds[p]; }); });

@@ -114,10 +114,12 @@ class HaBuffer final : public FragmentBuffer {
   /// Front-to-back float32 compositing of pixel (x, y) over `background`;
   /// throws std::out_of_range for a pixel off the screen.
   [[nodiscard]] glm::vec4 composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const;
-  /// The whole screen, row-major.
+  /// The whole screen, row-major (resolved per pixel when multisampled, as
+  /// FragmentBuffer::composite_image).
   [[nodiscard]] std::vector<glm::vec4> composite_image(glm::vec3 background, std::uint32_t threads = 0) const;
+  using FragmentBuffer::composite_image;
   /// Each pixel over its own background (row-major, screen area entries).
-  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+  [[nodiscard]] std::vector<glm::vec4> composite_pixels(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
 
   /// The light's transmittance at pixel (x, y) of a buffer built from a

@@ -105,11 +105,12 @@ uint kb_insert_run(HABUFFER_INOUT(HabufferCarry) c) {
 
 // The whole insert call on the CPU path (the occupancy test included; the
 // fill and count passes are the host's).
-uint kb_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
-  uint code = ha_depth_code(t);
-  if (kb_occupancy_rejects(p, code)) return HABUFFER_OCCUPANCY_REJECTED;
-  HabufferCarry c = habuffer_carry_begin(p, code, data);
+// The occupancy map reads the depth code alone (the fill pass's), the record
+// carries the coverage too.
+uint kb_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
+  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  if (kb_occupancy_rejects(p, ha_depth_code(t))) return HABUFFER_OCCUPANCY_REJECTED;
+  HabufferCarry c = habuffer_carry_begin(p, ha_fragment_code(t, coverage), data);
   return kb_insert_run(c);
 }
 
@@ -123,11 +124,11 @@ uint kb_length(uvec2 p) {
 
 vec4 kb_composite(uvec2 p, vec3 background) {
   uint pixel = kb_pixel(p);
-  vec4 c = vec4(0.0f);
+  HABUFFER_PIXEL_COLOUR c = ha_pixel_begin();
   for (uint k = 0u; k < habuffer_layers; ++k) {
     ha_word r = ha_load_slot(kb_slot(pixel, k));
     if (r == ha_word(0)) break;
-    c = ha_blend_under(c, ha_unpack_rgba(ha_data(r)));
+    ha_pixel_under(c, ha_code(r), ha_data(r));
   }
-  return ha_finish(c, background);
+  return ha_pixel_finish(c, background);
 }

@@ -67,7 +67,7 @@ Counters KBuffer::insert_words(std::span<const Fragment> fragments, const detail
     // A local tally: counters in memory could alias the buffers and force a store per fragment.
     std::uint64_t tally[HABUFFER_OUTCOME_COUNT] = {};
     for (const Fragment& f : mine)
-      if (owns(f)) ++tally[k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba)];
+      if (owns(f)) ++tally[k.kb_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba)];
     parts[t].c.add_tally(tally);
   };
   detail::for_insert_threads(fragments, screen(), plan, make, insert_mine);
@@ -126,7 +126,7 @@ std::uint32_t KBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListEn
   return reads;
 }
 
-std::vector<glm::vec4> KBuffer::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+std::vector<glm::vec4> KBuffer::composite_pixels(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
   const auto composite = [](auto& k, glm::uvec2 p, glm::vec3 background) { return k.kb_composite(p, background); };
   if (wide())
     return detail::composite_image(

@@ -28,9 +28,9 @@ uint ll_insert_code(uvec2 p, uint code, uint data) {
 
 // The whole insert call of one fragment (identical entries are merged when
 // the lists are sorted, and counted as duplicates then).
-uint ll_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
-  return ll_insert_code(p, ha_depth_code(t), ha_payload_bits == 0u ? 0u : data);
+uint ll_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
+  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  return ll_insert_code(p, ha_fragment_code(t, coverage), ha_payload_bits == 0u ? 0u : data);
 }
 
 uint ll_length(uint head) {
@@ -122,8 +122,10 @@ uint ll_sort_pixel(uvec2 p) {
 
 // Composites pixel p's sorted list over the background.
 vec4 ll_composite(uvec2 p, vec3 background) {
-  vec4 c = vec4(0.0f);
-  for (uint l = ll_load_head(ha_pixel_index(p)); l != 0u; l = ll_load_next(l - 1u))
-    c = ha_blend_under(c, ha_unpack_rgba(ll_load_entry(l - 1u).y));
-  return ha_finish(c, background);
+  HABUFFER_PIXEL_COLOUR c = ha_pixel_begin();
+  for (uint l = ll_load_head(ha_pixel_index(p)); l != 0u; l = ll_load_next(l - 1u)) {
+    uvec2 e = ll_load_entry(l - 1u);
+    ha_pixel_under(c, e.x, e.y);
+  }
+  return ha_pixel_finish(c, background);
 }

@@ -69,7 +69,7 @@ uint sl_insert_code(uvec2 p, uint code, uint data) {
   return HABUFFER_FAILED_ITER;
 }
 
-uint sl_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
-  return sl_insert_code(p, ha_depth_code(t), ha_payload_bits == 0u ? 0u : data);
+uint sl_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
+  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  return sl_insert_code(p, ha_fragment_code(t, coverage), ha_payload_bits == 0u ? 0u : data);
 }

@@ -211,11 +211,11 @@ Counters LinkedLists::insert(std::span<const Fragment> fragments, const InsertOp
                                 " fragments since the last clear are too many");
   if (sorted_on_insert())
     return gather(fragments, plan, [](auto& k, const Fragment& f) {
-      return k.sl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+      return k.sl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba);
     });
   // New nodes are prepended; gather sorts every pixel's list.
   return gather(fragments, plan, [](auto& k, const Fragment& f) {
-    return k.ll_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba);
+    return k.ll_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba);
   });
 }
 
@@ -268,7 +268,7 @@ std::uint32_t read_linked_list(const std::vector<std::uint32_t>& heads, const st
   return reads;
 }
 
-std::vector<glm::vec4> LinkedLists::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+std::vector<glm::vec4> LinkedLists::composite_pixels(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
   return detail::composite_image(
       screen(), backgrounds, threads, [&] { return ListsKernel<false>(params_, buffers()); },
       [](auto& k, glm::uvec2 p, glm::vec3 background) { return k.ll_composite(p, background); });

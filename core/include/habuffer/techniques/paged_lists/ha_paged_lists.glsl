@@ -68,9 +68,9 @@ uint pl_insert_code(uvec2 p, uint code, uint data) {
 
 // The whole insert call of one fragment (identical entries are merged when
 // the lists are sorted, and counted as duplicates then).
-uint pl_insert_fragment(uvec2 p, float t, uint data) {
-  if (!ha_depth_valid(t)) return HABUFFER_INVALID;
-  return pl_insert_code(p, ha_depth_code(t), ha_payload_bits == 0u ? 0u : data);
+uint pl_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
+  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  return pl_insert_code(p, ha_fragment_code(t, coverage), ha_payload_bits == 0u ? 0u : data);
 }
 
 // Makes the pixel's list start at its highest node, keeping the order of its

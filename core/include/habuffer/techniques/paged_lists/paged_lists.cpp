@@ -49,7 +49,7 @@ Counters PagedLists::insert(std::span<const Fragment> fragments, const InsertOpt
   const auto make_sorter = [&] { return PagedListsKernel<false>(params_, b); };
   return detail::insert_then_sort(
       fragments, screen(), plan, make, make_sorter,
-      [](auto& k, const Fragment& f) { return k.pl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.rgba); },
+      [](auto& k, const Fragment& f) { return k.pl_insert_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage, f.rgba); },
       [](auto& k, glm::uvec2 p) { return k.pl_sort_pixel(p); });
 }
 
@@ -83,7 +83,7 @@ std::uint32_t PagedLists::list(std::uint32_t x, std::uint32_t y, std::vector<Lis
   return read_linked_list(heads_, entries_, next_, x + std::size_t{y} * screen().x, out);
 }
 
-std::vector<glm::vec4> PagedLists::composite_image(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
+std::vector<glm::vec4> PagedLists::composite_pixels(std::span<const glm::vec3> backgrounds, std::uint32_t threads) const {
   return detail::composite_image(
       screen(), backgrounds, threads, [&] { return PagedListsKernel<false>(params_, buffers()); },
       [](auto& k, glm::uvec2 p, glm::vec3 background) { return k.ll_composite(p, background); });

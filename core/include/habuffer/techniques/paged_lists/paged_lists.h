@@ -63,7 +63,7 @@ class PagedLists final : public FragmentBuffer {
   std::uint32_t list(std::uint32_t x, std::uint32_t y, std::vector<ListEntry>& out) const override;
   /// FragmentBuffer interface; throws std::invalid_argument unless `backgrounds`
   /// has screen area entries.
-  [[nodiscard]] std::vector<glm::vec4> composite_image(std::span<const glm::vec3> backgrounds,
+  [[nodiscard]] std::vector<glm::vec4> composite_pixels(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads = 0) const override;
   /// Head pointers, nodes (entry and link), the node counter and the wasted-page count.
   [[nodiscard]] std::uint64_t memory_bytes() const override;

@@ -18,7 +18,8 @@ struct GlFixedArrays::Gpu {
 };
 
 GlFixedArrays::GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(Technique::Arrays, mode, bindings, validated_as(config, Technique::Arrays).buffer.screen),
+    : GlTechnique(Technique::Arrays, mode, bindings, validated_as(config, Technique::Arrays).buffer.screen,
+                  config.buffer.samples),
       config_(validated_as(config, Technique::Arrays)),
       gpu_(std::make_unique<Gpu>()) {
   check_atomic_mode(mode, config_.buffer.layout);

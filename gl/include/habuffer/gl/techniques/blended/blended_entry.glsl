@@ -10,7 +10,9 @@ void bl_begin_call() {
 #endif
 }
 
-uint bl_insert_fragment(uvec2 pixel, float depth, uint rgba) {
+// The blended baselines store no lists: a multisampled host blends them per
+// sample in its own target, so the coverage word is not read.
+uint bl_insert_fragment(uvec2 pixel, float depth, uint coverage, uint rgba) {
   if (!ha_depth_valid(depth)) return HABUFFER_INVALID;
 #ifdef HABUFFER_BLENDED_OUTPUTS
   if (any(notEqual(pixel, uvec2(gl_FragCoord.xy)))) return HABUFFER_INVALID;  // the blender writes here only

@@ -44,7 +44,7 @@ void copy_target(const GlTexture& texture, GLenum format, const GlStorage& buffe
 }  // namespace
 
 GlBlendedImage::GlBlendedImage(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(config.technique, mode, bindings, config.buffer.screen),  // records only: no GL yet
+    : GlTechnique(config.technique, mode, bindings, config.buffer.screen, config.buffer.samples),  // records only: no GL yet
       config_(BlendedImage::checked_config(config)),
       gpu_(std::make_unique<Gpu>()) {
   check_framebuffer_fits(screen());

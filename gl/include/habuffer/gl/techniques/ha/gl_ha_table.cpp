@@ -64,7 +64,7 @@ struct GlHaTable::Gpu {
 
 GlHaTable::GlHaTable(const BufferConfig& config, OffsetSource offsets, AtomicMode mode, const GlBindings& bindings,
                      std::uint32_t clear_tile)
-    : GlTechnique(Technique::Ha, mode, bindings, validated(config).screen),
+    : GlTechnique(Technique::Ha, mode, bindings, validated(config).screen, config.samples),
       config_(validated(config)),
       source_(std::move(offsets)),
       offsets_(source_.make(config_.table, config_.record_layout().max_age())),
@@ -114,6 +114,7 @@ void GlHaTable::write_params(GlParams& p) const {
   p.ha_table_size[0] = config_.table.x;
   p.ha_table_size[1] = config_.table.y;
   p.habuffer_age_bits = config_.age_bits;
+  p.habuffer_coverage_bits = config_.record_layout().coverage_bits();
   p.ha_block = config_.block;
   p.ha_max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
   p.habuffer_iter_limit = config_.iter_limit;

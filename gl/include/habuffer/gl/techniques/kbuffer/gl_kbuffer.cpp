@@ -20,7 +20,8 @@ struct GlKBuffer::Gpu {
 };
 
 GlKBuffer::GlKBuffer(const TechniqueConfig& config, AtomicMode mode, const GlBindings& bindings)
-    : GlTechnique(Technique::KBuffer, mode, bindings, validated_as(config, Technique::KBuffer).buffer.screen),
+    : GlTechnique(Technique::KBuffer, mode, bindings, validated_as(config, Technique::KBuffer).buffer.screen,
+                  config.buffer.samples),
       config_(validated_as(config, Technique::KBuffer)),
       gpu_(std::make_unique<Gpu>()) {
   check_atomic_mode(mode, config_.buffer.layout);

@@ -42,7 +42,8 @@ GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, AtomicMode mode, con
 
 GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, const GlNodeListKind& kind, AtomicMode mode,
                              const GlBindings& bindings)
-    : GlTechnique(kind.technique, mode, bindings, validated_pool(config, kind).buffer.screen),
+    : GlTechnique(kind.technique, mode, bindings, validated_pool(config, kind).buffer.screen,
+                  config.buffer.samples),
       kind_(kind),
       config_(validated_pool(config, kind)),
       auto_pool_(config.pool_capacity == 0),

@@ -1,0 +1,47 @@
+// FragmentBuffer::composite_image: one sample per pixel through the
+// technique's own walk, or the per-pixel resolve of a multisampled buffer
+// over each pixel's list (the shared ha_samples_* of ha_blend.glsl).
+#include <vector>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/glsl_env.h"
+#include "habuffer/shared/ha_constants.h"
+#include "technique_parallel.h"
+
+namespace habuffer {
+namespace {
+
+// The shared blending and sample resolve, compiled as C++ (reads no buffer).
+struct SampleBlender {
+  HABUFFER_GLSL_CLASS_PRELUDE
+#include "habuffer/shared/ha_blend.glsl"
+};
+
+}  // namespace
+
+std::vector<glm::vec4> FragmentBuffer::composite_image(std::span<const glm::vec3> backgrounds,
+                                                       std::uint32_t threads) const {
+  const std::uint32_t samples = technique_config().buffer.samples;
+  if (samples <= 1 || !stores_lists(technique())) return composite_pixels(backgrounds, threads);
+  const Extent s = screen();
+  detail::check_backgrounds(s, backgrounds);
+  const RecordLayout layout = technique_config().buffer.record_layout();
+  std::vector<glm::vec4> image(s.area());
+  struct Walker {
+    SampleBlender blend;
+    std::vector<ListEntry> list;
+  };
+  detail::for_every_pixel(s, resolve_threads(threads, s.area()), [] { return Walker{}; },
+                          [&](Walker& w, glm::uvec2 p, std::uint32_t) {
+                            list(p.x, p.y, w.list);
+                            SampleBlender::HaSampleColours c = w.blend.ha_samples_begin();
+                            for (const ListEntry& e : w.list)
+                              w.blend.ha_samples_under(c, samples, e.code & layout.coverage_mask(),
+                                                       w.blend.ha_unpack_rgba(e.data));
+                            const std::size_t i = p.x + std::size_t{p.y} * s.x;
+                            image[i] = w.blend.ha_samples_finish(c, samples, backgrounds[i]);
+                          });
+  return image;
+}
+
+}  // namespace habuffer
