@@ -35,9 +35,9 @@ std::vector<glm::vec4> FragmentBuffer::composite_image(std::span<const glm::vec3
                           [&](Walker& w, glm::uvec2 p, std::uint32_t) {
                             list(p.x, p.y, w.list);
                             SampleBlender::HaSampleColours c = w.blend.ha_samples_begin();
+                            const std::uint32_t mask = layout.coverage_mask();
                             for (const ListEntry& e : w.list)
-                              w.blend.ha_samples_under(c, samples, e.code & layout.coverage_mask(),
-                                                       w.blend.ha_unpack_rgba(e.data));
+                              w.blend.ha_samples_under(c, samples, e.code & mask, e.code & ~mask, e.data);
                             const std::size_t i = p.x + std::size_t{p.y} * s.x;
                             image[i] = w.blend.ha_samples_finish(c, samples, backgrounds[i]);
                           });

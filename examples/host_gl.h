@@ -68,13 +68,14 @@ inline GLuint link_program(const std::string& vertex, const std::string& fragmen
   return program;
 }
 
-// The host's framebuffer: a colour and a depth renderbuffer.
-inline GLuint make_framebuffer(int width, int height) {
+// The host's framebuffer: a colour and a depth renderbuffer (of `samples`
+// samples each when above 0: a multisampled framebuffer).
+inline GLuint make_framebuffer(int width, int height, int samples = 0) {
   GLuint colour = 0, depth = 0, framebuffer = 0;
   glCreateRenderbuffers(1, &colour);
-  glNamedRenderbufferStorage(colour, GL_RGBA8, width, height);
+  glNamedRenderbufferStorageMultisample(colour, samples, GL_RGBA8, width, height);
   glCreateRenderbuffers(1, &depth);
-  glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, width, height);
+  glNamedRenderbufferStorageMultisample(depth, samples, GL_DEPTH_COMPONENT24, width, height);
   glCreateFramebuffers(1, &framebuffer);
   glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
   glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);

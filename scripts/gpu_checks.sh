@@ -11,7 +11,8 @@
 # and 1024, hairball at three loads, BM_Technique beside `habuffer bench`),
 # issue 36's GPU traffic model beside the measurement (`bench --model gpu`
 # on the GL path, then scripts/gpu_model_check.py: Spearman per scene, HA /
-# lists measured and predicted), then the older checks as time allows (GL tests in emulated64, the scene
+# lists measured and predicted), issue 37's multisampled renders (each technique
+# of lists at 1 and 4 samples on engine and hairball), then the older checks as time allows (GL tests in emulated64, the scene
 # tests, renders' stats, issue 11's whole technique table).
 #
 # Usage (repository root): scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]
@@ -35,7 +36,7 @@ case "${1:-}" in
   --dry-run) mode=dry; shift ;;
 esac
 out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
-all_steps=info,gl-tests,spatial,shadows,gather,harness,model,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+all_steps=info,gl-tests,spatial,shadows,gather,harness,model,msaa,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
 steps=${2:-$all_steps}
 budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
@@ -85,13 +86,13 @@ sharded() {
 # Sizes, repeats and filters: the real run, or toys for --smoke.
 if [[ $mode == smoke ]]; then
   sizes=64x64 repeats=1 sides='256' model_size=64x64 gtest_filter='GlBookkeeping.*:GlFrame.*:Render.Planes*'
-  render_size=96x96 bench_time=0.05 bench_reps=1 log2n='18' l64=emulated64  # llvmpipe has no native64
+  render_size=96x96 msaa_size=64x64 bench_time=0.05 bench_reps=1 log2n='18' l64=emulated64  # llvmpipe has no native64
   fig2_size=64x64 light_size=128x128
   spatial_gpu_filter='BM_GlSpatial/image/'
   spatial_cpu_filter='BM_Spatial/image/build/ours-load-0.80/threads-2'
 else
   sizes=512x512,1024x1024 repeats=3 sides='512|1024' model_size=1024x1024 gtest_filter='*'
-  render_size=2048x2048 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
+  render_size=2048x2048 msaa_size=512x512 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
   fig2_size=1024x1024 light_size=2048x2048
   spatial_gpu_filter='BM_GlSpatial/[a-z]+/'
   spatial_cpu_filter='BM_Spatial/(image|shell)/(build|hits-row-major|hits-shuffled|misses)/(ours-load-0.(80|99)|absl)'
@@ -158,6 +159,18 @@ if want model; then
     --scenes engine,hairball --techniques ha,ha:cull=0.99,sorted-lists,sorted-lists:cull=0.99,lists,arrays:k=16 \
     --out model.json,model.csv
   step 20 model-check python3 "$repo/scripts/gpu_model_check.py" model.json
+fi
+# Issue 37: multisampled transparency on the GPU, each technique of lists at
+# 1 and 4 samples per pixel on engine and hairball (render's GL path: its
+# gather into a 4x framebuffer, the per-pixel resolve), three frames each;
+# the stats' gather_ms and resolve_ms give the GPU's 4x / 1x.
+if want msaa; then
+  for scene in engine hairball; do
+    step 60 "msaa-$scene" bash -c 'for t in ha lists sorted-lists paged-lists arrays kbuffer; do for s in 1 4; do
+        extra=; [ $t = arrays ] && extra=--lossless
+        habuffer render --scene '"$scene"' --size '"$msaa_size"' --path gl --technique $t --samples $s $extra --frames 3 \
+          --quiet --stats msaa-'"$scene"'-$t-$s.json || echo "msaa '"$scene"' $t $s: rc=$?"; done; done'
+  done
 fi
 # The captured hairball stream through the compute entry, arrival and pixel
 # order, loads 0.3/0.55/0.8 and the variants, in the L64 mode the GPU runs.

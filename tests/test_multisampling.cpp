@@ -131,6 +131,24 @@ TEST(Multisampling, RecordsOfOneDepthAndColourMergeOnlyWhenTheirMasksAreEqual) {
   }
 }
 
+// Two fragments of one surface (one depth and colour) whose masks overlap
+// stay two records, but a sample both cover blends the surface once: the
+// per-sample form of SPEC 6's merge, so a doubled face does not darken the
+// samples its two triangles share.
+TEST(Multisampling, ASamplesDuplicateOfOneDepthAndColourBlendsOnce) {
+  const Extent screen{1, 1};
+  const std::vector<Fragment> doubled{{0, 0, 0.5f, 0x00FF0080u, 0b1111u}, {0, 0, 0.5f, 0x00FF0080u, 0b0011u},
+                                      {0, 0, 0.25f, 0x0000FF40u, 0b0110u}};
+  const std::vector<Fragment> single{{0, 0, 0.5f, 0x00FF0080u, 0b1111u}, {0, 0, 0.25f, 0x0000FF40u, 0b0110u}};
+  for (Technique t : kExact) {
+    const TechniqueBuild a = build_technique(config_of(t, screen, 4, 3), OffsetSource{}, doubled, InsertOptions{});
+    const TechniqueBuild b = build_technique(config_of(t, screen, 4, 3), OffsetSource{}, single, InsertOptions{});
+    EXPECT_EQ(a.counters.stored(), 3u) << to_string(t);
+    const std::vector<glm::vec3> white(1, glm::vec3(1.0f));
+    EXPECT_EQ(a.buffer->composite_image(white), b.buffer->composite_image(white)) << to_string(t);
+  }
+}
+
 TEST(Multisampling, AHalfCoveredPixelBlendsItsColourIntoHalfItsSamples) {
   const Extent screen{1, 1};
   const std::vector<Fragment> frags{{0, 0, 0.25f, 0xFF0000FFu, 0b0101u}};

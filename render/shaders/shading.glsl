@@ -9,14 +9,7 @@ uniform vec3 r_colour;
 uniform float r_opacity;
 uniform float r_near;
 uniform float r_far;
-#ifdef R_SAMPLES
-// A multisampled gather: t at the centroid of the samples the fragment
-// covers, inside its triangle (the pixel centre of an edge fragment may lie
-// outside it, where t can leave [0, 1] and the fragment would be invalid).
-centroid in vec3 v_eye;
-#else
 in vec3 v_eye;
-#endif
 #ifdef R_SHADOWS
 in vec3 v_world;
 #endif

@@ -40,6 +40,7 @@ cmake --build "$work/examples" >"$work/build.log" 2>&1 || { cat "$work/build.log
 "$work/examples/host_app" || fail "host_app failed"
 "$work/examples/host_shadows" || fail "host_shadows failed"
 "$work/examples/host_spot_shadows" || fail "host_spot_shadows failed"
+"$work/examples/host_msaa" || fail "host_msaa failed"
 
 echo "== a version the package must refuse"
 mkdir -p "$work/too_new"

@@ -27,7 +27,10 @@ vec4 ha_finish(vec4 c, vec3 background) {
 // first, each blended under the accumulator of every sample its coverage
 // mask names, and the pixel is the mean of its S samples, each finished
 // over the background, summed in sample order and scaled by 1/S (a power of
-// two: exact), the same float32 operations on both paths.
+// two: exact), the same float32 operations on both paths. A record of the
+// depth code and data a sample blended last is that sample's duplicate
+// (two fragments of one surface whose masks overlap, which a pixel of one
+// sample merges by SPEC 6): it is not blended into that sample again.
 // (Declared once per GLSL module, which may hold a second, renamed instance
 // of this file, the light lookup's; once per kernel class in C++.)
 #if defined(__cplusplus) || !defined(HABUFFER_SAMPLE_COLOURS_DECLARED)
@@ -36,19 +39,31 @@ vec4 ha_finish(vec4 c, vec3 background) {
 #endif
 struct HaSampleColours {
   vec4 c[HABUFFER_MAX_SAMPLES];
+  uint last_depth[HABUFFER_MAX_SAMPLES];  // the depth code (coverage bits 0) a sample blended last
+  uint last_data[HABUFFER_MAX_SAMPLES];   // and its data
 };
 #endif
 
 HaSampleColours ha_samples_begin() {
   HaSampleColours s;
-  for (uint i = 0u; i < HABUFFER_MAX_SAMPLES; ++i) s.c[i] = vec4(0.0f);
+  for (uint i = 0u; i < HABUFFER_MAX_SAMPLES; ++i) {
+    s.c[i] = vec4(0.0f);
+    s.last_depth[i] = 0xFFFFFFFFu;  // no depth code: codes have at most 32 - A <= 28 bits
+    s.last_data[i] = 0u;
+  }
   return s;
 }
 
-// Blends colour f under the first `samples` accumulators whose bit is set in `mask`.
-void ha_samples_under(HABUFFER_INOUT(HaSampleColours) s, uint samples, uint mask, vec4 f) {
-  for (uint i = 0u; i < samples; ++i)
-    if (((mask >> i) & 1u) != 0u) s.c[i] = ha_blend_under(s.c[i], f);
+// Blends a record of depth code `depth` (coverage bits 0) and data `data`
+// under the first `samples` accumulators whose bit is set in `mask`, but
+// for a sample whose last record had the same depth code and data.
+void ha_samples_under(HABUFFER_INOUT(HaSampleColours) s, uint samples, uint mask, uint depth, uint data) {
+  for (uint i = 0u; i < samples; ++i) {
+    if (((mask >> i) & 1u) == 0u || (s.last_depth[i] == depth && s.last_data[i] == data)) continue;
+    s.last_depth[i] = depth;
+    s.last_data[i] = data;
+    s.c[i] = ha_blend_under(s.c[i], ha_unpack_rgba(data));
+  }
 }
 
 vec4 ha_samples_finish(HaSampleColours s, uint samples, vec3 background) {
@@ -67,11 +82,12 @@ vec4 ha_samples_finish(HaSampleColours s, uint samples, vec3 background) {
 //   resolve, ha_samples_* above; the CPU path runs the same functions over
 //   each pixel's list (FragmentBuffer::composite_image), so both agree bit for bit;
 // - HABUFFER_RESOLVE_SAMPLE (the per-sample resolve, drawn into a
-//   multisampled target with sample shading): a vec4 of the records whose
-//   mask holds the invocation's sample, habuffer_resolve_sample().
+//   multisampled target with sample shading): the one sample
+//   habuffer_resolve_sample() of the invocation, its records alone, by the
+//   same ha_samples_* (as sample 0 of one).
 // The multisampled modes need ha_record.glsl (the coverage mask of a code).
 #ifndef HABUFFER_PIXEL_COLOUR
-#ifdef HABUFFER_RESOLVE_PIXEL
+#if defined(HABUFFER_RESOLVE_PIXEL) || defined(HABUFFER_RESOLVE_SAMPLE)
 #define HABUFFER_PIXEL_COLOUR HaSampleColours
 #else
 #define HABUFFER_PIXEL_COLOUR vec4
@@ -79,7 +95,7 @@ vec4 ha_samples_finish(HaSampleColours s, uint samples, vec3 background) {
 #endif
 
 HABUFFER_PIXEL_COLOUR ha_pixel_begin() {
-#ifdef HABUFFER_RESOLVE_PIXEL
+#if defined(HABUFFER_RESOLVE_PIXEL) || defined(HABUFFER_RESOLVE_SAMPLE)
   return ha_samples_begin();
 #else
   return vec4(0.0f);
@@ -88,9 +104,9 @@ HABUFFER_PIXEL_COLOUR ha_pixel_begin() {
 
 void ha_pixel_under(HABUFFER_INOUT(HABUFFER_PIXEL_COLOUR) c, uint code, uint data) {
 #if defined(HABUFFER_RESOLVE_PIXEL)
-  ha_samples_under(c, habuffer_coverage_bits, code & ha_coverage_mask(), ha_unpack_rgba(data));
+  ha_samples_under(c, habuffer_coverage_bits, code & ha_coverage_mask(), code & ~ha_coverage_mask(), data);
 #elif defined(HABUFFER_RESOLVE_SAMPLE)
-  if (((code >> habuffer_resolve_sample()) & 1u) != 0u) c = ha_blend_under(c, ha_unpack_rgba(data));
+  ha_samples_under(c, 1u, (code >> habuffer_resolve_sample()) & 1u, code & ~ha_coverage_mask(), data);
 #else
   HABUFFER_UNUSED(code);
   c = ha_blend_under(c, ha_unpack_rgba(data));
@@ -98,8 +114,10 @@ void ha_pixel_under(HABUFFER_INOUT(HABUFFER_PIXEL_COLOUR) c, uint code, uint dat
 }
 
 vec4 ha_pixel_finish(HABUFFER_PIXEL_COLOUR c, vec3 background) {
-#ifdef HABUFFER_RESOLVE_PIXEL
+#if defined(HABUFFER_RESOLVE_PIXEL)
   return ha_samples_finish(c, habuffer_coverage_bits, background);
+#elif defined(HABUFFER_RESOLVE_SAMPLE)
+  return ha_finish(c.c[0], background);
 #else
   return ha_finish(c, background);
 #endif
