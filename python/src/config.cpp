@@ -82,8 +82,9 @@ void apply_options(TechniqueConfig& c, const TechniqueDescriptor& d, const py::k
     const std::string name = key.cast<std::string>();
     const TechniqueOption* o = option_named(name);
     if (!o) throw py::type_error("unknown option '" + name + "'");
-    // Age bits fix the depth code of every technique; the rest only where the descriptor takes them.
-    if (o->flag != "age-bits" && !d.takes(o->flag))
+    // Age bits and samples fix the record of every technique (TechniqueConfig::validate
+    // refuses samples above 1 where no lists are stored); the rest only where the descriptor takes them.
+    if (o->flag != "age-bits" && o->flag != "samples" && !d.takes(o->flag))
       throw py::value_error("option " + name + " does not apply to technique " + std::string(d.name) + " (it applies to " +
                             techniques_taking(o->flag) + ")");
     const std::string text = option_text(*o, value);

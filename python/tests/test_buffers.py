@@ -371,3 +371,23 @@ def test_gpu_calls_overlapping_from_two_threads_do_not_deadlock(gl_available):
         t.join(timeout=120)
     assert not any(t.is_alive() for t in threads), "a GL call deadlocked"
     assert len(done) == 22
+
+
+def test_multisampled_buffers_keep_each_fragments_coverage_mask_and_refuse_bad_sample_counts():
+    """samples=4 (issue 37): FRAGMENT_DTYPE's coverage field is each fragment's mask; two halves of a
+    pixel at one depth and colour make the whole pixel, a quarter blends into a quarter of it."""
+    frags = np.zeros(3, hb.FRAGMENT_DTYPE)
+    frags["x"], frags["y"] = [1, 1, 2], [1, 1, 1]
+    frags["depth"], frags["rgba"] = [0.5, 0.5, 0.5], 0xFF0000FF  # opaque red
+    frags["coverage"] = [0b0011, 0b1100, 0b0001]
+    for technique, extra in [("ha", {}), ("lists", {"pool": 16}), ("arrays", {"layers": 4})]:
+        buf = hb.Buffer(technique, screen=(4, 4), samples=4, **extra)
+        c = buf.insert_fragments(frags)
+        assert c["stored"] == 3 and c["duplicates"] == 0, technique
+        image = buf.composite_image((1.0, 1.0, 1.0))
+        assert np.array_equal(image[1, 1], [1.0, 0.0, 0.0, 1.0]), technique
+        assert np.array_equal(image[1, 2], [1.0, 0.75, 0.75, 0.25]), technique
+    with pytest.raises(ValueError, match="option samples: 3 is not a power of two in 1..8"):
+        hb.Buffer("ha", screen=(4, 4), samples=3)
+    with pytest.raises(ValueError, match="wboit stores none"):
+        hb.Buffer("wboit", screen=(4, 4), samples=4)
