@@ -77,9 +77,18 @@ void validate_bench(const BenchSettings& s) {
   if (s.techniques.empty()) throw std::invalid_argument("--techniques is empty");
   if (s.sizes.empty()) throw std::invalid_argument("--size is empty");
   if (s.repeats == 0) throw std::invalid_argument("--repeats must be at least 1");
-  for (const WorkloadSpec& w : s.scenes)
+  for (const WorkloadSpec& w : s.scenes) {
     if (s.path == RenderPath::Gl && !w.fragments.empty())
       throw std::invalid_argument("fragment stream '" + w.word + "' renders on the CPU path only (--path cpu)");
+    if (w.samples > 1 && std::none_of(s.techniques.begin(), s.techniques.end(),
+                                      [&](const TechniqueSpec& t) { return bench_cell_applies(t, w); }))
+      throw std::invalid_argument("scene '" + w.word + "' is multisampled: none of the techniques keeps coverage "
+                                  "masks (list techniques without early cull only)");
+  }
+}
+
+bool bench_cell_applies(const TechniqueSpec& t, const WorkloadSpec& w) {
+  return w.samples <= 1 || (stores_lists(t.technique) && t.cull <= 0.0f);
 }
 
 namespace {
@@ -112,6 +121,22 @@ void warn_empty_scenes(const BenchSettings& s, const std::vector<Case>& cases, R
     else it->second += ", " + size;
   }
   std::string all;
+  // The blended baselines store no lists, so a multisampled scene has no row of theirs.
+  std::string skipped_techniques, skipped_scenes;
+  WorkloadSpec multisampled;
+  multisampled.samples = 2;
+  for (const TechniqueSpec& t : s.techniques)
+    if (!bench_cell_applies(t, multisampled)) skipped_techniques += (skipped_techniques.empty() ? "" : ", ") + t.label();
+  for (const WorkloadSpec& w : s.scenes)
+    if (w.samples > 1) skipped_scenes += (skipped_scenes.empty() ? "'" : ", '") + w.word + "'";
+  if (!skipped_techniques.empty() && !skipped_scenes.empty()) {
+    const std::string line = "techniques " + skipped_techniques + " have no rows for the multisampled scenes " +
+                             skipped_scenes + " (no lists to keep coverage masks in, or early cull, whose opacity is "
+                             "a whole pixel's)";
+    if (s.on_warning) s.on_warning(line);
+    else std::fprintf(stderr, "habuffer bench: warning: %s\n", line.c_str());
+    all += line;
+  }
   for (const auto& [scene, sizes] : empty) {
     const std::string line = "scene '" + scene + "' puts no transparent fragment on the screen at " + sizes +
                              " (out of view, fully opaque or degenerate): its rows time an empty pass (0 fragments)";
@@ -205,7 +230,8 @@ ResultTable run_bench(const BenchSettings& s) {
         if (s.on_progress) s.on_progress(++done, total);
       }
       for (std::size_t ti = 0; ti < s.techniques.size(); ++ti) {
-        table.provenance.renderer = measure_cell(s, s.techniques[ti], c, round == 0, cells[ci][ti]);
+        if (bench_cell_applies(s.techniques[ti], c.workload->spec()))
+          table.provenance.renderer = measure_cell(s, s.techniques[ti], c, round == 0, cells[ci][ti]);
         if (s.on_progress) s.on_progress(++done, total);
       }
     }
@@ -217,13 +243,14 @@ ResultTable run_bench(const BenchSettings& s) {
     add_model_notes(table);
     fork_join(static_cast<std::uint32_t>(traffic.size()), [&](std::uint32_t i) {
       const std::size_t ci = i / techniques, ti = i % techniques;
-      if (gpu_model_covers(s.techniques[ti].technique))
+      if (gpu_model_covers(s.techniques[ti].technique) && bench_cell_applies(s.techniques[ti], cases[ci].workload->spec()))
         traffic[i] = model_gpu_frame(cells[ci][ti].config, cells[ci][ti].offsets, cases[ci].capture.stream);
     });
   }
   for (std::size_t ci = 0; ci < cases.size(); ++ci)
     for (std::size_t ti = 0; ti < techniques; ++ti)
-      table.rows.push_back(make_row(s, s.techniques[ti], cases[ci], cells[ci][ti], traffic[ci * techniques + ti]));
+      if (bench_cell_applies(s.techniques[ti], cases[ci].workload->spec()))
+        table.rows.push_back(make_row(s, s.techniques[ti], cases[ci], cells[ci][ti], traffic[ci * techniques + ti]));
   return table;
 }
 

@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "habuffer/interchange.h"
+#include "habuffer/number_text.h"
+#include "habuffer/record_layout.h"
 
 namespace habuffer::harness {
 namespace {
@@ -37,6 +39,12 @@ WorkloadSpec parse_workload_spec(const std::string& word) {
     const std::string key = part.substr(0, eq), value = part.substr(eq + 1);
     if (!w.keys.insert(key).second) refuse(key + " given twice");
     try {
+      if (key == "samples") {
+        const std::uint64_t n = parse_unsigned(value, 1, RecordLayout::kMaxSamples);
+        if (!RecordLayout::samples_valid(static_cast<std::uint32_t>(n))) throw std::invalid_argument("not 1, 2, 4 or 8");
+        w.samples = static_cast<std::uint32_t>(n);
+        continue;
+      }
       if (!scene_takes(w.scene, key)) refuse("scene " + w.scene + " does not take " + key + " (" + scenes_taking_text(key) + ")");
       set_scene_option(w.options, key, value);
     } catch (const std::invalid_argument& e) {
@@ -61,6 +69,7 @@ Workload::Workload(const WorkloadSpec& spec, Extent size) : spec_(spec), size_(s
 
 RenderResult Workload::render(RenderSettings s) const {
   s.config.screen = size_;
+  s.config.samples = spec_.samples;
   s.orbit = false;  // one fixed view: every frame the same (warm-up frames, then timed ones)
   if (!scene_) {
     if (s.path == RenderPath::Gl) throw std::invalid_argument("fragment stream '" + spec_.word + "' renders on the CPU path only");
@@ -74,9 +83,10 @@ ExactCapture Workload::capture() const {
   RenderSettings s;
   s.path = RenderPath::Cpu;
   // The CPU path keeps the captured fragments whatever the technique: the
-  // cheapest one (unsorted blending, one pass, nothing to grow or regather)
-  // gives them, their count and the backgrounds.
-  s.technique = Technique::Blend;
+  // cheapest one (unsorted blending, one pass, nothing to grow or regather;
+  // multisampled, unsorted lists, the cheapest that keeps masks) gives them,
+  // their count and the backgrounds.
+  s.technique = spec_.samples > 1 ? Technique::Lists : Technique::Blend;
   s.keep_fragments = true;
   RenderResult r = render(s);
   ExactCapture c;
@@ -84,7 +94,7 @@ ExactCapture Workload::capture() const {
   c.pixel_fragments = std::move(r.pixel_fragments);
   c.stream = std::move(r.fragments);
   c.backgrounds = std::move(r.backgrounds);
-  c.reference = reference_image(c.stream, size_, c.backgrounds);
+  c.reference = reference_image(c.stream, size_, c.backgrounds, spec_.samples);
   return c;
 }
 

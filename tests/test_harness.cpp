@@ -178,6 +178,50 @@ TEST(Harness, BenchGivesEveryCombinationWithFloorsAndTheErrorOfEachTechnique) {
 // image is every exact technique's, bit for bit, duplicates and invalid
 // depths included, at any thread count; it refuses a wrong background count
 // and a fragment off the screen.
+// Issue 37: samples per pixel as a workload dimension ("quads:samples=4"):
+// the capture and reference are per sample, every list technique keeps the
+// masks (exact ones equal to one another and near the per-sample reference),
+// and a technique without lists or a sample count outside 1, 2, 4, 8 is refused.
+TEST(Harness, AMultisampledSceneWordRunsEveryListTechniqueWithMasksAgainstThePerSampleReference) {
+  gl_context();
+  EXPECT_EQ(parse_workload_spec("quads:count=6:samples=4").samples, 4u);
+  EXPECT_EQ(parse_workload_spec("quads:count=6").samples, 1u);
+  EXPECT_THROW((void)parse_workload_spec("quads:samples=3"), std::invalid_argument);
+  BenchSettings s;
+  s.path = RenderPath::Cpu;
+  s.scenes = {parse_workload_spec("quads:count=12"), parse_workload_spec("quads:count=12:samples=4")};
+  for (const char* t : {"ha", "lists", "sorted-lists"}) s.techniques.push_back(parse_technique_spec(t));
+  s.sizes = {{32, 24}};
+  s.repeats = 1;
+  s.floors = false;
+  const ResultTable t = run_bench(s);
+  ASSERT_EQ(t.rows.size(), 6u);
+  double one = 0.0, four = 0.0;
+  for (const ResultRow& r : t.rows) {
+    expect_accounting_identity(r);
+    EXPECT_GT(num(r, "psnr"), 60.0) << text(r, "technique") << " " << text(r, "scene");
+    (text(r, "scene") == "quads:count=12" ? one : four) = num(r, "fragments");
+  }
+  EXPECT_GT(four, one) << "the edges of a multisampled quad add the fragments of partly covered pixels";
+  // The blended baselines keep their rows on the scene of one sample and
+  // have none on the multisampled one (a warning names them).
+  s.techniques.push_back(parse_technique_spec("wboit"));
+  std::vector<std::string> warnings;
+  s.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  const ResultTable with_wboit = run_bench(s);
+  EXPECT_EQ(with_wboit.rows.size(), 7u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("wboit have no rows for the multisampled scenes 'quads:count=12:samples=4'"),
+            std::string::npos) << warnings[0];
+  s.techniques = {parse_technique_spec("wboit")};
+  try {
+    validate_bench(s);
+    ADD_FAILURE() << "a multisampled scene with no list technique was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("none of the techniques keeps coverage masks"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Harness, TheExactFloorsImageIsTheHaBuffersBitForBit) {
   const Extent screen{37, 23};
   auto f = test::stream(screen, StreamKind::Random, 4000, 9);

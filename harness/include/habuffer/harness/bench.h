@@ -45,6 +45,11 @@ struct BenchSettings {
 /// Throws std::invalid_argument for empty lists, zero repeats, or a
 /// technique the path cannot render (wboit and blend on GL).
 void validate_bench(const BenchSettings& s);
+/// Whether technique `t` runs on workload `w`: everywhere, but on a
+/// multisampled scene neither a technique storing no lists (wboit, blend: no
+/// masks to keep) nor early cull (its opacity is a whole pixel's): those
+/// cells have no row, and run_bench warns once naming them.
+bool bench_cell_applies(const TechniqueSpec& t, const WorkloadSpec& w);
 
 /// Runs the bench (validated first). Needs a current GL context for scenes.
 ResultTable run_bench(const BenchSettings& s);

@@ -8,8 +8,12 @@
 /// count, order (front|back), opacity, seed and spread, e.g.
 /// "planes:order=front:count=32", each obeying the rule of its `habuffer
 /// render` flag (one catalog: habuffer/scene_catalog.h); a key the scene does
-/// not take, or given twice, is refused. A word ending in .csv is a fragment
-/// stream and takes no keys.
+/// not take, or given twice, is refused. One key belongs to the workload
+/// rather than the scene: samples=S (1, 2, 4 or 8), the samples per pixel it
+/// is rasterized with (issue 37: "engine:samples=4" is engine antialiased,
+/// every technique run with coverage masks and scored against the
+/// per-sample reference). A word ending in .csv is a fragment stream and
+/// takes no keys.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +37,7 @@ struct WorkloadSpec {
   SceneOptions options;   ///< the word's keys applied to the scene's defaults
   std::string word;       ///< as given
   std::set<std::string> keys;  ///< the option keys the word gave ("count", ...)
+  std::uint32_t samples = 1;   ///< samples per pixel (the word's samples=S; 1 by default)
   /// The file the workload reads (a fragment CSV or a mesh file), or empty
   /// for a named scene: the harness checks it against the outputs.
   [[nodiscard]] std::string input_file() const;
@@ -59,6 +64,8 @@ class Workload {
 
   /// The word as given.
   [[nodiscard]] const std::string& label() const { return spec_.word; }
+  /// The word, parsed.
+  [[nodiscard]] const WorkloadSpec& spec() const { return spec_; }
   /// The screen, pixels.
   [[nodiscard]] Extent size() const { return size_; }
   /// Whether it is a recorded fragment stream (no scene).
