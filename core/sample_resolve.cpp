@@ -19,6 +19,14 @@ struct SampleBlender {
 
 }  // namespace
 
+glm::vec4 resolve_samples(std::span<const ListEntry> records, const RecordLayout& layout, glm::vec3 background) {
+  SampleBlender blend;
+  SampleBlender::HaSampleColours c = blend.ha_samples_begin();
+  const std::uint32_t mask = layout.coverage_mask();
+  for (const ListEntry& e : records) blend.ha_samples_under(c, layout.samples(), e.code & mask, e.code & ~mask, e.data);
+  return blend.ha_samples_finish(c, layout.samples(), background);
+}
+
 std::vector<glm::vec4> FragmentBuffer::composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads) const {
   const std::uint32_t samples = technique_config().buffer.samples;
@@ -27,19 +35,11 @@ std::vector<glm::vec4> FragmentBuffer::composite_image(std::span<const glm::vec3
   detail::check_backgrounds(s, backgrounds);
   const RecordLayout layout = technique_config().buffer.record_layout();
   std::vector<glm::vec4> image(s.area());
-  struct Walker {
-    SampleBlender blend;
-    std::vector<ListEntry> list;
-  };
-  detail::for_every_pixel(s, resolve_threads(threads, s.area()), [] { return Walker{}; },
-                          [&](Walker& w, glm::uvec2 p, std::uint32_t) {
-                            list(p.x, p.y, w.list);
-                            SampleBlender::HaSampleColours c = w.blend.ha_samples_begin();
-                            const std::uint32_t mask = layout.coverage_mask();
-                            for (const ListEntry& e : w.list)
-                              w.blend.ha_samples_under(c, samples, e.code & mask, e.code & ~mask, e.data);
+  detail::for_every_pixel(s, resolve_threads(threads, s.area()), [] { return std::vector<ListEntry>{}; },
+                          [&](std::vector<ListEntry>& records, glm::uvec2 p, std::uint32_t) {
+                            list(p.x, p.y, records);
                             const std::size_t i = p.x + std::size_t{p.y} * s.x;
-                            image[i] = w.blend.ha_samples_finish(c, samples, backgrounds[i]);
+                            image[i] = resolve_samples(records, layout, backgrounds[i]);
                           });
   return image;
 }

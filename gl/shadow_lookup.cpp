@@ -71,6 +71,9 @@ GlShadowLookup::GlShadowLookup(const GlHaTable& light, const GlLightMapping& map
   light.check_context("GlShadowLookup");
   if (light.config().layout != Layout::L64)
     throw std::invalid_argument("a light buffer of L32 records carries no opacity: build it with L64 records");
+  if (light.config().samples > 1)
+    throw std::invalid_argument("a light buffer is one sample per pixel: its records' codes are depths alone "
+                                "(this one has " + std::to_string(light.config().samples) + " samples)");
   bindings_.validate(view);
   params_ = GlStorage(sizeof(LightBlock));
   update(mapping);

@@ -153,6 +153,7 @@ std::string measure_cell(const BenchSettings& s, const TechniqueSpec& t, const C
   rs.path = s.path;
   rs.threads = s.threads;
   rs.config.screen = c.workload->size();
+  rs.config.samples = c.workload->spec().samples;  // Workload::render sets it too; the cell's config records it
   rs.offsets.seed = s.seed;
   rs.background = glm::vec3(1.0f);
   rs.insert_order = s.insert_order;

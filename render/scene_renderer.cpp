@@ -133,8 +133,6 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glTextureStorage2D(colour_, 1, GL_RGBA32F, w, h);
   glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
   glTextureStorage2D(depth_, 1, GL_R32F, w, h);
-  glCreateRenderbuffers(1, &depth_buffer_);
-  glNamedRenderbufferStorage(depth_buffer_, GL_DEPTH_COMPONENT32F, w, h);
   glCreateFramebuffers(1, &opaque_framebuffer_);
   if (samples_ > 1) {
     // The opaque pass is multisampled: its colour and t per sample; colour_
@@ -153,11 +151,12 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
     glNamedFramebufferTexture(resolved_framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
     glNamedFramebufferTexture(resolved_framebuffer_, GL_COLOR_ATTACHMENT1, depth_, 0);
   } else {
+    glCreateRenderbuffers(1, &depth_buffer_);
+    glNamedRenderbufferStorage(depth_buffer_, GL_DEPTH_COMPONENT32F, w, h);
     glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
     glNamedFramebufferTexture(opaque_framebuffer_, GL_COLOR_ATTACHMENT1, depth_, 0);
-  }
-  if (samples_ <= 1)
     glNamedFramebufferRenderbuffer(opaque_framebuffer_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_buffer_);
+  }
   const GLenum draw[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   glNamedFramebufferDrawBuffers(opaque_framebuffer_, 2, draw);
   if (glCheckNamedFramebufferStatus(opaque_framebuffer_, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
@@ -167,8 +166,11 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
   glCreateFramebuffers(1, &gather_framebuffer_);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, w);
   glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT, h);
-  if (samples_ > 1)
+  if (samples_ > 1) {
+    // Sample s of gl_SampleMaskIn at sample s of the opaque depth texture: both at fixed locations.
     glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_SAMPLES, static_cast<GLint>(samples_));
+    glNamedFramebufferParameteri(gather_framebuffer_, GL_FRAMEBUFFER_DEFAULT_FIXED_SAMPLE_LOCATIONS, GL_TRUE);
+  }
   for (const gl::ShaderProgram* p : {&gather_program_, &atomic_floor_program_}) p->set("r_screen_width", screen.x);
   if (shadows) {
     shadow_program_.emplace(

@@ -174,10 +174,6 @@ TEST(Harness, BenchGivesEveryCombinationWithFloorsAndTheErrorOfEachTechnique) {
   EXPECT_NO_THROW(validate_bench(s));  // every technique has its GL form
 }
 
-// The exact floor (issue 36) does an exact technique's whole work: its
-// image is every exact technique's, bit for bit, duplicates and invalid
-// depths included, at any thread count; it refuses a wrong background count
-// and a fragment off the screen.
 // Issue 37: samples per pixel as a workload dimension ("quads:samples=4"):
 // the capture and reference are per sample, every list technique keeps the
 // masks (exact ones equal to one another and near the per-sample reference),
@@ -222,6 +218,10 @@ TEST(Harness, AMultisampledSceneWordRunsEveryListTechniqueWithMasksAgainstThePer
   }
 }
 
+// The exact floor (issue 36) does an exact technique's whole work: its
+// image is every exact technique's, bit for bit, duplicates and invalid
+// depths included, at any thread count; it refuses a wrong background count
+// and a fragment off the screen.
 TEST(Harness, TheExactFloorsImageIsTheHaBuffersBitForBit) {
   const Extent screen{37, 23};
   auto f = test::stream(screen, StreamKind::Random, 4000, 9);

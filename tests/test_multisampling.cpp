@@ -185,6 +185,20 @@ TEST(Multisampling, ThePerPixelResolveMatchesThePerSampleReferenceAndEveryExactT
   }
 }
 
+TEST(Multisampling, TheHaBuffersOnePixelCompositeIsThePerPixelResolveAndItRefusesToBeALightBuffer) {
+  const Extent screen{9, 7};
+  const std::vector<Fragment> frags = test::covered_stream(screen, 300, 4, 4);
+  const TechniqueBuild b =
+      build_technique(config_of(Technique::Ha, screen, 4, frags.size()), OffsetSource{}, frags, InsertOptions{},
+                      ResizePolicy{}, 32);
+  const HaBuffer& ha = *b.buffer->hash_table();
+  const glm::vec3 background(0.3f, 0.6f, 0.9f);
+  const std::vector<glm::vec4> image = ha.composite_image(background, 1);
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x) EXPECT_EQ(ha.composite(x, y, background), image[x + y * screen.x]);
+  EXPECT_THROW((void)ha.transmittance(0, 0, 0, 0), std::invalid_argument);
+}
+
 TEST(Multisampling, ReversingTheDrawOrderGivesTheSameListsAndImage) {
   const Extent screen{19, 21};
   std::vector<Fragment> frags = test::covered_stream(screen, 3000, 7, 4);

@@ -313,7 +313,9 @@ void bind_buffers(py::module_& m) {
       .def("lists", &lists_csr,
           "Every pixel's list, nearest first, pixels row-major (y, then x) as CSR: Lists(offsets (W*H + 1,) uint64, "
           "codes, rgba, ages (uint32; ages 0 for techniques other than ha)). Pixel (x, y)'s entries are "
-          "[offsets[y*W + x], offsets[y*W + x + 1]).")
+          "[offsets[y*W + x], offsets[y*W + x + 1]). With samples=S above 1 each code is the record's code "
+          "field: the depth code shifted left by S, the coverage mask in its low S bits (codes >> S, codes & "
+          "(2**S - 1); the lists CSV writes them as two columns).")
       .def("composite_image", &composite, py::arg("background") = py::make_tuple(1.0f, 1.0f, 1.0f),
            py::arg("threads") = 0,
            "Front-to-back compositing over `background` ((3,) or (H, W, 3) float32): (H, W, 4) float32, row y = 0 first.")

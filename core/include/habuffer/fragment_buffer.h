@@ -221,6 +221,14 @@ class FragmentBuffer {
   InsertGate gate_;
 };
 
+/// A multisampled pixel's per-pixel resolve (FragmentBuffer::composite_image's
+/// for one pixel): `records`, the pixel's list nearest first, each blended
+/// into the samples of its mask (a sample's repeat of the depth code and data
+/// it blended last skipped), every sample finished over `background`, the
+/// mean of the layout's samples.
+[[nodiscard]] glm::vec4 resolve_samples(std::span<const ListEntry> records, const RecordLayout& layout,
+                                        glm::vec3 background);
+
 /// Throws std::out_of_range naming the first fragment outside `screen`.
 void check_on_screen(std::span<const Fragment> fragments, Extent screen);
 /// Throws std::out_of_range naming pixel (x, y) and `screen` when the pixel

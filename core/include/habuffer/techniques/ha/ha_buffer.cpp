@@ -351,6 +351,9 @@ float HaBuffer::transmittance(std::uint32_t x, std::uint32_t y, std::uint32_t co
   check_pixel(x, y, screen());
   if (config().layout != Layout::L64)
     throw std::invalid_argument("a light buffer of L32 records carries no opacity: build it with L64 records");
+  if (config().samples > 1)
+    throw std::invalid_argument("a light buffer is one sample per pixel: its records' codes are depths alone "
+                                "(this one has " + std::to_string(config().samples) + " samples)");
   return impl_->with_kernel([&](auto& k) { return k.ha_transmittance(glm::uvec2(x, y), code, bias); });
 }
 
@@ -374,6 +377,11 @@ std::uint32_t HaBuffer::list(std::uint32_t x, std::uint32_t y, std::vector<ListE
 
 glm::vec4 HaBuffer::composite(std::uint32_t x, std::uint32_t y, glm::vec3 background) const {
   check_pixel(x, y, screen());
+  if (config().samples > 1) {  // the per-pixel resolve of composite_image, for one pixel
+    std::vector<ListEntry> records;
+    list(x, y, records);
+    return resolve_samples(records, config().record_layout(), background);
+  }
   return impl_->with_kernel([&](auto& k) { return k.ha_composite(glm::uvec2(x, y), background); });
 }
 
