@@ -41,7 +41,7 @@ constexpr TechniqueOption kOptions[] = {
     {.flag = "samples", .knob = "", .value_name = "S", .kind = OptionKind::Count, .min = 1,
      .max = RecordLayout::kMaxSamples, .power_of_two = true,
      .help = "samples per pixel, 1, 2, 4 or 8: above 1 each record keeps its fragment's coverage mask in S low "
-             "bits of its depth code and the image is resolved per sample",
+             "bits of its depth code (S depth bits fewer) and the image is resolved per sample",
      .buffer_field = true,
      .get = [](const TechniqueConfig& c) { return OptionValue{std::uint64_t{c.buffer.samples}}; },
      .put = [](TechniqueConfig& c, const OptionValue& v) { c.buffer.samples = u32(v); }},
