@@ -55,7 +55,7 @@ std::optional<PixelLoss> pixel_most_lost(const FragmentBuffer& buffer, std::span
   const Extent screen = buffer.screen();
   const RecordLayout layout = c.buffer.record_layout();
   const auto valid = [&](const Fragment& f) {
-    return f.x < screen.x && f.y < screen.y && RecordLayout::depth_valid(f.depth) && layout.covers_sample(f.coverage);
+    return f.x < screen.x && f.y < screen.y && layout.fragment_valid(f.depth, f.coverage);
   };
   std::vector<std::uint32_t> count(screen.area(), 0);  // valid fragments per pixel, row-major
   for (const Fragment& f : fragments)

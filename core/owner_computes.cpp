@@ -103,7 +103,7 @@ class OwnerComputes {
     for (const Fragment& f : fragments) {
       const glm::uvec2 p(f.x, f.y);
       if (owner_of_row(k.ha_probe(p, 1).y) != t) continue;
-      if (!k.ha_depth_valid(f.depth) || !k.ha_covers_sample(f.coverage)) {
+      if (!k.ha_fragment_valid(f.depth, f.coverage)) {
         ++owners_[t].tally[HABUFFER_INVALID];
         continue;
       }

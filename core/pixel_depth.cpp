@@ -11,7 +11,7 @@ namespace habuffer {
 std::optional<PixelDepth> pixel_deeper_than(std::span<const Fragment> fragments, Extent screen,
                                             const RecordLayout& layout, std::uint64_t limit) {
   const auto on_screen = [&](const Fragment& f) {
-    return f.x < screen.x && f.y < screen.y && RecordLayout::depth_valid(f.depth) && layout.covers_sample(f.coverage);
+    return f.x < screen.x && f.y < screen.y && layout.fragment_valid(f.depth, f.coverage);
   };
   std::vector<std::uint32_t> count(screen.area(), 0);
   for (const Fragment& f : fragments)

@@ -417,7 +417,7 @@ Counters insert_pixel_ordered(std::span<const Fragment> fragments, Extent screen
   }
   threads = std::max(1u, std::min(threads, screen.y));
   auto pure = make_kernel(std::false_type{});  // packing only: reads no buffer
-  const auto valid = [&](const Fragment& f) { return pure.ha_depth_valid(f.depth) && pure.ha_covers_sample(f.coverage); };
+  const auto valid = [&](const Fragment& f) { return pure.ha_fragment_valid(f.depth, f.coverage); };
   const auto pack = [&](const Fragment& f) { return pure.ha_pack(1u, pure.ha_fragment_code(f.depth, f.coverage), f.rgba); };
   std::vector<RowBand> bands{RowBand{0, screen.y}};
   std::vector<SliceCounters> parts;

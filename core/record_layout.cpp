@@ -72,6 +72,9 @@ std::uint32_t RecordLayout::fragment_coverage(std::uint32_t coverage) const {
 bool RecordLayout::covers_sample(std::uint32_t coverage) const {
   return RecordCodec<std::uint64_t>(age_bits_, coverage_bits()).ha_covers_sample(coverage);
 }
+bool RecordLayout::fragment_valid(float t, std::uint32_t coverage) const {
+  return RecordCodec<std::uint64_t>(age_bits_, coverage_bits()).ha_fragment_valid(t, coverage);
+}
 std::uint32_t RecordLayout::fragment_code(float t, std::uint32_t coverage) const {
   return RecordCodec<std::uint64_t>(age_bits_, coverage_bits()).ha_fragment_code(t, coverage);
 }

@@ -29,11 +29,10 @@ glm::vec4 resolve_samples(std::span<const ListEntry> records, const RecordLayout
 
 std::vector<glm::vec4> FragmentBuffer::composite_image(std::span<const glm::vec3> backgrounds,
                                                        std::uint32_t threads) const {
-  const std::uint32_t samples = technique_config().buffer.samples;
-  if (samples <= 1 || !stores_lists(technique())) return composite_pixels(backgrounds, threads);
+  const RecordLayout layout = technique_config().buffer.record_layout();
+  if (layout.samples() <= 1 || !stores_lists(technique())) return composite_pixels(backgrounds, threads);
   const Extent s = screen();
   detail::check_backgrounds(s, backgrounds);
-  const RecordLayout layout = technique_config().buffer.record_layout();
   std::vector<glm::vec4> image(s.area());
   detail::for_every_pixel(s, resolve_threads(threads, s.area()), [] { return std::vector<ListEntry>{}; },
                           [&](std::vector<ListEntry>& records, glm::uvec2 p, std::uint32_t) {

@@ -1,10 +1,11 @@
 // What the example host apps share that is not habuffer's: a headless
-// EGL context, shader compilation with its log, the app's framebuffer, and
-// the pixel check against an expected image. Header-only, included by the
+// EGL context, shader compilation with its log, the app's framebuffer, the
+// pixel check against an expected image and the hand-made blend it expects. Header-only, included by the
 // examples by relative path (no include directory needed).
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -15,6 +16,27 @@
 #include <epoxy/gl.h>
 
 namespace host_gl {
+
+// What a point must show, computed by hand: of `covering` (the translucent
+// layers covering it: anything with a depth, an RGB and a straight alpha),
+// those nearer than `opaque`, sorted near to far, blended front to back
+// over it, each alpha rounded to the 8 bits the records keep.
+template <class Layer>
+std::array<double, 3> blend_in_front(std::vector<const Layer*> covering, const Layer& opaque) {
+  covering.erase(std::remove_if(covering.begin(), covering.end(), [&](const Layer* l) { return l->depth >= opaque.depth; }),
+                 covering.end());
+  std::sort(covering.begin(), covering.end(), [](const Layer* a, const Layer* b) { return a->depth < b->depth; });
+  std::array<double, 3> c{0, 0, 0};
+  double transmittance = 1.0;
+  for (const Layer* l : covering) {
+    const double a = std::round(l->a * 255.0) / 255.0, w = transmittance * a;
+    c[0] += w * l->r;
+    c[1] += w * l->g;
+    c[2] += w * l->b;
+    transmittance *= 1.0 - a;
+  }
+  return {c[0] + transmittance * opaque.r, c[1] + transmittance * opaque.g, c[2] + transmittance * opaque.b};
+}
 
 inline void check(bool ok, const std::string& what) {
   if (!ok) throw std::runtime_error(what);

@@ -138,8 +138,7 @@ GpuTraffic model_kbuffer(const TechniqueConfig& c, std::span<const Fragment> fra
     for (std::size_t i = 0; i < fragments.size(); ++i) {
       const Fragment& f = fragments[i];
       fill.begin_lane(static_cast<std::uint32_t>(i % WarpRecorder::kLanes));
-      if (kf.ha_depth_valid(f.depth) && kf.ha_covers_sample(f.coverage))
-        kf.kb_fill(glm::uvec2(f.x, f.y), kf.ha_depth_code(f.depth));
+      kf.kb_fill_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage);
       if (i % WarpRecorder::kLanes == WarpRecorder::kLanes - 1 || i + 1 == fragments.size()) fill.end_warp();
     }
     t.gather += fill.counts();

@@ -83,13 +83,6 @@ class Target {
   GLuint colour_ = 0, framebuffer_ = 0, single_ = 0, single_framebuffer_ = 0;
 };
 
-float largest_difference(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& b) {
-  float worst = 0.0f;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(a[i][c] - b[i][c]));
-  return worst;
-}
-
 class GlMultisampling : public ::testing::Test {
  protected:
   void SetUp() override { test::gl_context(); }
@@ -129,7 +122,7 @@ TEST_F(GlMultisampling, ThePerSampleResolveIntoATargetOfTheBuffersSamplesBlitsTo
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.framebuffer());
     gpu.resolve(glm::vec3(1.0f, 0.5f, 0.0f));
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    EXPECT_LT(largest_difference(target.read(), per_pixel), 1e-6f);
+    EXPECT_LT(test::largest_difference(target.read(), per_pixel), 1e-6f);
   }
 }
 

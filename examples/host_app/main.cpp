@@ -14,6 +14,7 @@
 // Exits 0 when the pixels read back match the front-to-back blend computed
 // by hand here (within 1.5/255), 1 otherwise.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -84,17 +85,9 @@ std::vector<float> expected_pixel(int px, int py) {
   const Quad& opaque = inside(kBox, x, y) ? kBox : kFloor;
   std::vector<const Quad*> panes;
   for (const Quad& q : kPanes)
-    if (inside(q, x, y) && q.depth < opaque.depth) panes.push_back(&q);
-  std::sort(panes.begin(), panes.end(), [](const Quad* a, const Quad* b) { return a->depth < b->depth; });
-  float c[3] = {0, 0, 0}, transmittance = 1.0f;
-  for (const Quad* q : panes) {
-    const float a = std::round(q->a * 255.0f) / 255.0f, w = transmittance * a;
-    c[0] += w * q->r;
-    c[1] += w * q->g;
-    c[2] += w * q->b;
-    transmittance *= 1.0f - a;
-  }
-  return {c[0] + transmittance * opaque.r, c[1] + transmittance * opaque.g, c[2] + transmittance * opaque.b};
+    if (inside(q, x, y)) panes.push_back(&q);
+  const std::array<double, 3> c = host_gl::blend_in_front(panes, opaque);
+  return {static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[2])};
 }
 
 }  // namespace

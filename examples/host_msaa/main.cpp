@@ -116,18 +116,8 @@ std::array<double, 3> expected_sample(float x, float y) {
   const Triangle& opaque = covers(kWedge, x, y) ? kWedge : kFloor[0];
   std::vector<const Triangle*> panes;
   for (const Triangle& t : kPanes)
-    if (covers(t, x, y) && t.depth < opaque.depth) panes.push_back(&t);
-  std::sort(panes.begin(), panes.end(), [](const Triangle* a, const Triangle* b) { return a->depth < b->depth; });
-  std::array<double, 3> c{0, 0, 0};
-  double transmittance = 1.0;
-  for (const Triangle* t : panes) {
-    const double a = std::round(t->a * 255.0) / 255.0, w = transmittance * a;
-    c[0] += w * t->r;
-    c[1] += w * t->g;
-    c[2] += w * t->b;
-    transmittance *= 1.0 - a;
-  }
-  return {c[0] + transmittance * opaque.r, c[1] + transmittance * opaque.g, c[2] + transmittance * opaque.b};
+    if (covers(t, x, y)) panes.push_back(&t);
+  return host_gl::blend_in_front(panes, opaque);
 }
 
 }  // namespace

@@ -69,7 +69,7 @@ uint ha_call_code(uvec2 pixel, uint code, uint rgba) {
 
 // The HA-buffer's insert call for insert_entry.glsl's habuffer_insert.
 uint ha_call(uvec2 pixel, float depth, uint coverage, uint rgba) {
-  if (!ha_depth_valid(depth) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  if (!ha_fragment_valid(depth, coverage)) return HABUFFER_INVALID;
   uint code = ha_fragment_code(depth, coverage);
   if (ha_saturated(pixel, code)) return HABUFFER_SATURATED;
   return ha_call_code(pixel, code, rgba);

@@ -78,6 +78,9 @@ class RecordLayout {
   /// Whether a fragment of this coverage word is stored: always when not
   /// multisampled, else when its mask names one of the S samples (otherwise it is invalid).
   [[nodiscard]] bool covers_sample(std::uint32_t coverage) const;
+  /// Whether a fragment at depth t with coverage word `coverage` makes a
+  /// record: depth_valid(t) and covers_sample(coverage); else it is invalid.
+  [[nodiscard]] bool fragment_valid(float t, std::uint32_t coverage) const;
   /// The code field of a fragment at valid depth t with coverage word `coverage`.
   [[nodiscard]] std::uint32_t fragment_code(float t, std::uint32_t coverage) const;
 

@@ -140,6 +140,6 @@ uint ha_insert_code(uvec2 p, uint code, uint data) {
 // The whole insert call of one fragment on the CPU path (the GL entry
 // habuffer_insert adds counting, capture and the deferral of calls cut short).
 uint ha_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
-  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  if (!ha_fragment_valid(t, coverage)) return HABUFFER_INVALID;
   return ha_insert_code(p, ha_fragment_code(t, coverage), data);
 }

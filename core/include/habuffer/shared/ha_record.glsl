@@ -76,8 +76,9 @@ uint ha_fragment_coverage(uint coverage) {
 // when not multisampled; else its mask must name one of the S samples.
 bool ha_covers_sample(uint coverage) { return habuffer_coverage_bits == 0u || ha_fragment_coverage(coverage) != 0u; }
 
+// Whether a fragment makes a record: a valid depth (SPEC 2) and, when
+// multisampled, a sample of the screen in its mask; else it is invalid.
+bool ha_fragment_valid(float t, uint coverage) { return ha_depth_valid(t) && ha_covers_sample(coverage); }
+
 // The code field of a fragment at depth t with coverage word `coverage`.
 uint ha_fragment_code(float t, uint coverage) { return ha_depth_code(t) | ha_fragment_coverage(coverage); }
-
-// A record's coverage mask (0 when not multisampled).
-uint ha_coverage(ha_word r) { return ha_code(r) & ha_coverage_mask(); }

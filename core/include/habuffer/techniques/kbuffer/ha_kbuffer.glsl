@@ -46,6 +46,13 @@ void kb_fill(uvec2 p, uint code) {
   kb_or_occupancy(kb_pixel(p) * kb_occupancy_words + b / 32u, 1u << (b & 31u));
 }
 
+// The fill step of one fragment on every path: an invalid fragment (by
+// depth, or a mask of no sample) fills nothing; the map reads the depth
+// code alone.
+void kb_fill_fragment(uvec2 p, float t, uint coverage) {
+  if (ha_fragment_valid(t, coverage)) kb_fill(p, ha_depth_code(t));
+}
+
 // Count pass: the bucket holding the k-th occupied bit of pixel p (nearest
 // first), or kb_buckets() when fewer than K buckets are occupied (nothing is
 // rejected). O(K) bit clears (Kernighan), as the paper counts.
@@ -108,7 +115,7 @@ uint kb_insert_run(HABUFFER_INOUT(HabufferCarry) c) {
 // The occupancy map reads the depth code alone (the fill pass's), the record
 // carries the coverage too.
 uint kb_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
-  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  if (!ha_fragment_valid(t, coverage)) return HABUFFER_INVALID;
   if (kb_occupancy_rejects(p, ha_depth_code(t))) return HABUFFER_OCCUPANCY_REJECTED;
   HabufferCarry c = habuffer_carry_begin(p, ha_fragment_code(t, coverage), data);
   return kb_insert_run(c);

@@ -10,12 +10,10 @@
 namespace habuffer {
 namespace {
 
-// The occupancy map's fill step for one fragment (invalid ones, by depth or
-// by a mask of no sample, fill nothing: kbuffer_entry.glsl's rule).
+// The occupancy map's fill step for one fragment (ha_kbuffer.glsl's kb_fill_fragment).
 template <class Kernel>
 void fill(Kernel& k, const Fragment& f) {
-  if (k.ha_depth_valid(f.depth) && k.ha_covers_sample(f.coverage))
-    k.kb_fill(glm::uvec2(f.x, f.y), k.ha_depth_code(f.depth));
+  k.kb_fill_fragment(glm::uvec2(f.x, f.y), f.depth, f.coverage);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ uint ll_insert_code(uvec2 p, uint code, uint data) {
 // The whole insert call of one fragment (identical entries are merged when
 // the lists are sorted, and counted as duplicates then).
 uint ll_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
-  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  if (!ha_fragment_valid(t, coverage)) return HABUFFER_INVALID;
   return ll_insert_code(p, ha_fragment_code(t, coverage), ha_payload_bits == 0u ? 0u : data);
 }
 

@@ -70,6 +70,6 @@ uint sl_insert_code(uvec2 p, uint code, uint data) {
 }
 
 uint sl_insert_fragment(uvec2 p, float t, uint coverage, uint data) {
-  if (!ha_depth_valid(t) || !ha_covers_sample(coverage)) return HABUFFER_INVALID;
+  if (!ha_fragment_valid(t, coverage)) return HABUFFER_INVALID;
   return sl_insert_code(p, ha_fragment_code(t, coverage), ha_payload_bits == 0u ? 0u : data);
 }

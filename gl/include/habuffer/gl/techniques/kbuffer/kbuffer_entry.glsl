@@ -3,12 +3,11 @@
 // then the occupancy test, and the insertion through ha_entry.glsl's run
 // with deferral (HABUFFER_CARRY_RUN is kb_insert_run).
 uint kb_call(uvec2 pixel, float depth, uint coverage, uint rgba) {
-  bool valid = ha_depth_valid(depth) && ha_covers_sample(coverage);
   if (habuffer_gather_phase != 0u) {
-    if (valid) kb_fill(pixel, ha_depth_code(depth));
+    kb_fill_fragment(pixel, depth, coverage);
     return HABUFFER_UNCOUNTED;
   }
-  if (!valid) return HABUFFER_INVALID;
+  if (!ha_fragment_valid(depth, coverage)) return HABUFFER_INVALID;
   if (kb_occupancy_rejects(pixel, ha_depth_code(depth))) return HABUFFER_OCCUPANCY_REJECTED;
   return ha_call_code(pixel, ha_fragment_code(depth, coverage), rgba);
 }
