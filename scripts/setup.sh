@@ -14,6 +14,9 @@ packages=(
   python3-matplotlib
   libabsl-dev libsparsehash-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
+  python3-setuptools python3-pip python3-venv
+  libglfw3-dev libimgui-dev xvfb xauth
+  libopenvdb-dev libopencsg-dev
 )
 
 missing=()
