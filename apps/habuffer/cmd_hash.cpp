@@ -20,6 +20,7 @@
 #include "habuffer/key_streams.h"
 #include "habuffer/memory_budget.h"
 #include "habuffer/render/image.h"
+#include "habuffer/render/voxel_vdb.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/spatial_hash_file.h"
 #include "key_options.h"
@@ -45,7 +46,8 @@ const CommandSpec& hash_build_spec() {
       "hash build (--keys CSV | --key-set NAME | --voxels GRID | --image IMAGE) --out TABLE [OPTIONS]",
       {{"keys", "CSV", "", "keys with header x,y / x,y,z / x,y,value / x,y,z,value", reads()},
        key_set_option("key-set"),
-       {"voxels", "GRID", "", "the solid voxels of a voxel grid file (habuffer voxelize --out)", reads()},
+       {"voxels", "GRID", "", "the solid voxels of a voxel grid file: HAVOXEL1 (voxelize --out) or OpenVDB (voxelize --vdb, "
+                              "a bool grid or a float fog volume), told by its first bytes", reads()},
        {"image", "IMAGE", "", "the pixels of an image that differ from --background, valued RGBA8", reads()},
        {"background", "R,G,B", "1,1,1", "(--image) the colour left out, in [0, 1]"},
        {"domain", "XxY[xZ]", "", "the key space; default: the keys' bounds (the image's or grid's size)"},
@@ -228,7 +230,7 @@ struct BuildKeys {
 };
 
 BuildKeys voxel_keys(const std::string& path) {
-  const VoxelGrid g = load_voxel_grid(path);
+  const VoxelGrid g = load_voxel_file(path);
   BuildKeys k;
   k.natural = Domain{g.n, g.n, g.n};
   // Every solid voxel becomes a key: counted and checked before the keys are made (a full 4096^3 grid is 2^36).

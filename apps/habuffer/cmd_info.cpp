@@ -8,6 +8,7 @@
 #include "habuffer/cache_sizes.h"
 #include "habuffer/parallel.h"
 #include "habuffer/render/image.h"
+#include "habuffer/render/voxel_vdb.h"
 #include "habuffer/technique.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
@@ -29,6 +30,7 @@ int run_info(const std::vector<std::string>& argv) {
   std::printf("compiler: %s\n", __VERSION__);
   std::printf("techniques: %s (every one on both paths; --technique)\n", technique_names().c_str());
   std::printf("image files: %s\n", image_support().c_str());
+  std::printf("voxel files: HAVOXEL1, NRRD, OpenVDB: %s\n", vdb_support().c_str());
   std::printf("paths:\n");
   std::printf("  cpu: available (%s, %u hardware threads; layouts L64 and L32; age bits 4..12)\n",
               parallel_runtime().c_str(), default_concurrency());

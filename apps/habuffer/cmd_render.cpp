@@ -26,25 +26,10 @@
 #include "hash_options.h"
 #include "loss_report.h"
 #include "render_report.h"
+#include "scene_options.h"
 #include "technique_options.h"
 
 namespace habuffer::cli {
-namespace {
-
-// The scene options (scene_catalog.h's rules), with the scenes that take each.
-std::vector<OptionSpec> scene_option_specs() {
-  const std::pair<const char*, const char*> shapes[] = {
-      {"count", "N"}, {"scene-seed", "N"}, {"opacity", "A"}, {"spread", "S"}, {"order", "front|back"}};
-  std::vector<OptionSpec> specs;
-  for (const SceneOptionRule& r : scene_option_rules())
-    for (const auto& [flag, shape] : shapes)
-      if (std::string(r.flag) == flag)
-        specs.push_back(
-            {flag, shape, "", std::string("the scene's ") + r.key + " (" + scenes_taking_text(r.key) + ")"});
-  return specs;
-}
-
-}  // namespace
 
 const CommandSpec& render_spec() {
   static const CommandSpec spec{
@@ -110,16 +95,6 @@ const CommandSpec& render_spec() {
 
 namespace {
 
-glm::vec3 parse_point(const char* option, const std::string& text) {
-  glm::vec3 v(0.0f);
-  std::istringstream in(text);
-  char comma = 0;
-  if (!(in >> v.x >> comma >> v.y >> comma >> v.z) || !in.eof() || !std::isfinite(v.x) || !std::isfinite(v.y) ||
-      !std::isfinite(v.z))
-    throw UsageError(std::string("option --") + option + ": '" + text + "' is not X,Y,Z of finite numbers");
-  return v;
-}
-
 // The light of --shadows, before the scene is known (a spot along a
 // direction is placed from the scene's bounds: light_for).
 struct LightArgs {
@@ -173,18 +148,6 @@ std::optional<LightArgs> parse_light(const Args& args) {
   return l;
 }
 
-glm::vec3 parse_background(const std::string& text) {
-  glm::vec3 c(1.0f);
-  try {
-    c = parse_point("background", text);
-  } catch (const UsageError&) {
-    c = glm::vec3(-1.0f);  // refused below with the option's own wording
-  }
-  if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-    throw UsageError("option --background: '" + text + "' is not R,G,B with each in [0, 1]");
-  return c;
-}
-
 struct HeatmapRequest {
   std::string kind, path;
 };
@@ -209,16 +172,6 @@ std::vector<HeatmapRequest> parse_heatmaps(const Args& args, Technique technique
   return out;
 }
 
-// Scene options refused on scenes that ignore them (the catalog says which
-// scenes take which).
-void refuse_scene_options_that_do_not_apply(const Args& args) {
-  const std::string scene = args.has("scene") ? args.required("scene") : "";
-  for (const SceneOptionRule& r : scene_option_rules())
-    if (!scene.empty() && !r.takers.empty())
-      args.refuse_unless(scene_takes(scene, r.key), {r.flag},
-                         "on scene " + excerpt(scene) + " (" + scenes_taking_text(r.key) + ")");
-}
-
 // Images need OpenImageIO (the files themselves are checked by their declared
 // roles), and an extension it writes: "--out x.txt" is refused before any work.
 void check_image_outputs(const Args& args, const std::vector<HeatmapRequest>& heatmaps) {
@@ -230,15 +183,6 @@ void check_image_outputs(const Args& args, const std::vector<HeatmapRequest>& he
   for (const char* image : {"out", "reference"})
     if (args.has(image)) usage_errors(image, [&] { check_image_extension(args.required(image)); });
   for (const HeatmapRequest& h : heatmaps) usage_errors("heatmap " + h.kind, [&] { check_image_extension(h.path); });
-}
-
-// The catalog's rules (habuffer/scene_catalog.h), as the harness's scene
-// words obey them.
-SceneOptions parse_scene_options(const Args& args) {
-  SceneOptions o;
-  for (const SceneOptionRule& r : scene_option_rules())
-    if (args.has(r.flag)) usage_errors(r.flag, [&] { set_scene_option(o, r.key, args.str(r.flag, "")); });
-  return o;
 }
 
 RenderSettings parse_settings(const Args& args) {
@@ -275,38 +219,6 @@ RenderSettings parse_settings(const Args& args) {
   return s;
 }
 
-void apply_camera(const Args& args, const Scene& scene, RenderSettings& s) {
-  s.camera.yaw = static_cast<float>(args.real("yaw", scene.default_yaw));
-  s.camera.pitch = static_cast<float>(args.real("pitch", scene.default_pitch));
-  s.camera.fov = static_cast<float>(args.real("fov"));
-}
-
-// Before any file is read or context made: camera values out of range are bad usage.
-void check_camera_args(const Args& args) {
-  if (!std::isfinite(static_cast<float>(args.real("yaw", 0.0))))
-    throw UsageError("option --yaw: must be a finite angle in degrees");
-  if (!(std::abs(args.real("pitch", 0.0)) <= 90.0)) throw UsageError("option --pitch: must be in [-90, 90] degrees");
-  const double fov = args.real("fov");
-  if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov: must be in (1, 179) degrees");
-}
-
-void make_opaque(const std::vector<std::string>& indices, Scene& scene) {
-  for (const std::string& item : indices) {
-    std::size_t used = 0;
-    unsigned long index = 0;
-    try {
-      index = std::stoul(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || item.empty())
-      throw UsageError("option --opaque-meshes: " + excerpt(item) + " is not a mesh index");
-    if (index >= scene.meshes.size())
-      throw UsageError("option --opaque-meshes: mesh " + item + " does not exist (the scene has " +
-                       std::to_string(scene.meshes.size()) + " meshes)");
-    scene.meshes[index].opacity = 1.0f;
-  }
-}
 
 // --shadow-error: the light buffer's T at every receiving point of the view against the ray-traced reference.
 ShadowAccuracy shadow_error(const Scene& scene, const RenderSettings& s, const RenderResult& r, std::uint64_t receivers) {
@@ -330,7 +242,7 @@ RenderResult render_with_gl(const Args& args, const std::vector<std::string>& op
                                     light->settings.light.size);
   }
   described = {scene.name, scene.meshes.size(), scene.triangle_count()};
-  apply_camera(args, scene, s);
+  s.camera = camera_params(args, scene);
   std::optional<gl::EglContext> context;
   try {
     context.emplace();

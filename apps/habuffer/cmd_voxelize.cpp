@@ -15,6 +15,7 @@
 #include "habuffer/printable.h"
 #include "habuffer/solid_check.h"
 #include "habuffer/render/image.h"
+#include "habuffer/render/voxel_vdb.h"
 #include "habuffer/render/voxelizer.h"
 #include "habuffer/scene_catalog.h"
 #include "habuffer/harness/voxel_figure.h"
@@ -36,6 +37,9 @@ const CommandSpec& voxelize_spec() {
        {"axis", "x|y|z|all", "z", "the views' axis; all: three-axis voting (for meshes that are not watertight)"},
        {"out", "GRID", "", "the grid file (HAVOXEL1: header, then N^3 bits; habuffer/render/voxelizer.h)", writes_creating_parents()},
        {"nrrd", "FILE", "", "the grid as NRRD too (uint8 0/1, placed in the mesh's space): ParaView, VTK, teem's unu", writes()},
+       {"vdb", "FILE", "",
+        "the grid as OpenVDB too (a BoolGrid 'solid', placed in the mesh's space): Blender, Houdini, vdb_view",
+        writes()},
        {"stats", "S.json", "", "voxels, crossings, merged crossings, odd columns, memory, load, times", writes()},
        {"slices", "DIR", "", "one PNG per z layer of voxels (slice_0000.png, ...), solid white", writes_set(kSliceMembers)},
        {"reference", "", "",
@@ -113,6 +117,8 @@ int run_voxelize(const std::vector<std::string>& argv) {
   s.threads = args.u32_in("threads", 0, 1024);
   args.refuse_unless(s.cpu, {"threads"}, "with --path gl (the GPU builds the lists)");
   const std::string mesh = args.required("mesh");
+  if (args.has("vdb") && !has_vdb_support())
+    throw UsageError("option --vdb: this habuffer was built without OpenVDB (" + vdb_support() + ")");
   if (args.has("slices") && !has_image_support())
     throw UsageError("option --slices: this habuffer was built without image files (" + image_support() + ")");
   const Scene scene = harness::voxel_mesh(mesh);
@@ -125,6 +131,7 @@ int run_voxelize(const std::vector<std::string>& argv) {
   const Voxelization v = axis == "all" ? voxelize_voting(scene, s) : voxelize(scene, s);
   save_voxel_grid(args.required("out"), v.grid);
   if (args.has("nrrd")) save_voxel_nrrd(args.required("nrrd"), v.grid, "habuffer voxelize --mesh " + mesh);
+  if (args.has("vdb")) save_voxel_vdb(args.required("vdb"), v.grid, "habuffer voxelize --mesh " + mesh);
   if (args.has("slices")) write_slices(args.required("slices"), v.grid);
   std::optional<VoxelCheck> ref;
   if (args.has("reference")) ref = axis == "all" ? check_voxels_voting(scene, s, v.grid) : check_voxels(scene, s, v.grid);

@@ -1,0 +1,114 @@
+#include "oit_session.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_info.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
+
+namespace habuffer::view {
+
+OitSession::OitSession(const GpuMeshes& meshes, TechniqueConfig config, OffsetSource offsets, SessionOptions options)
+    : meshes_(meshes), config_(std::move(config)), offsets_(std::move(offsets)), options_(options) {
+  driver_ = make_driver(config_, false);
+  passes_ = std::make_unique<ViewPasses>(meshes_, *driver_);
+}
+
+OitSession::~OitSession() = default;
+
+std::unique_ptr<gl::GlFrameDriver> OitSession::make_driver(const TechniqueConfig& config, bool capture) const {
+  const std::optional<gl::AtomicMode> mode = gl::chosen_atomic_mode(gl::query_gl_info(), config.buffer.layout);
+  if (!mode)
+    throw gl::GlError("this OpenGL has no atomic mode for --layout " + to_string(config.buffer.layout) +
+                      " (64-bit records need GL_ARB_gpu_shader_int64)");
+  gl::GlFrameOptions o;
+  o.policy = options_.policy;
+  if (options_.lossless) o.max_attempts = options_.max_attempts;
+  o.capture = capture;
+  return std::make_unique<gl::GlFrameDriver>(gl::make_gl_technique(config, offsets_, *mode), o);
+}
+
+std::string OitSession::reconfigure(TechniqueConfig config) {
+  try {
+    std::unique_ptr<gl::GlFrameDriver> driver = make_driver(config, false);
+    auto passes = std::make_unique<ViewPasses>(meshes_, *driver);
+    passes_ = std::move(passes);  // the old passes go before the old driver they compiled from
+    driver_ = std::move(driver);
+    config_ = std::move(config);
+    return {};
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  } catch (const gl::GlError& e) {
+    return e.what();
+  }
+}
+
+void OitSession::resize(Extent screen) {
+  if (screen == driver_->screen()) return;
+  passes_.reset();
+  driver_->resize_screen(screen);
+  config_.buffer.screen = screen;
+  passes_ = std::make_unique<ViewPasses>(meshes_, *driver_);
+}
+
+FrameFigures OitSession::run_frame(gl::GlFrameDriver& driver, ViewPasses& passes, const Camera& camera,
+                                   glm::vec3 background) {
+  const auto start = std::chrono::steady_clock::now();
+  passes.draw_opaque(camera, background);
+  const gl::FrameReport r = driver.frame([&] { passes.gather(camera); }, [&] { return passes.calls(); });
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, passes.image_framebuffer());
+  const gl::PassTiming resolve = driver.resolve(background, passes.opaque_colour());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  FrameFigures f;
+  f.index = r.index;
+  f.counters = r.counters;
+  f.capacity = r.capacity;
+  f.table = r.table;
+  f.attempts = static_cast<std::uint32_t>(r.attempts.size());
+  f.max_age = driver.technique().read_largest_max_age();
+  f.memory_bytes = driver.memory_bytes() - driver.capture_bytes();
+  f.clear_ms = r.clear.gpu_ms + r.reset.gpu_ms;
+  f.count_ms = r.count.gpu_ms;
+  f.gather_ms = r.gather.gpu_ms;
+  f.sort_ms = r.sort.gpu_ms;
+  f.resolve_ms = resolve.gpu_ms;
+  f.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return f;
+}
+
+FrameFigures OitSession::frame(const Camera& camera, glm::vec3 background) {
+  return run_frame(*driver_, *passes_, camera, background);
+}
+
+double OitSession::reference_psnr(const Camera& camera, glm::vec3 background) {
+  const Image shown = passes_->read_image();
+  // The same view through a capturing driver: its fragments are the frame's.
+  std::unique_ptr<gl::GlFrameDriver> capturing = make_driver(config_, true);
+  ViewPasses passes(meshes_, *capturing);
+  run_frame(*capturing, passes, camera, background);
+  const std::vector<Fragment> fragments = capturing->read_capture();
+  const Image reference = reference_image(fragments, passes.screen(), passes.read_opaque_colour(), config_.buffer.samples);
+  return compare_pixels(shown, reference).psnr;
+}
+
+std::vector<std::uint32_t> OitSession::max_age_per_pixel() const {
+  const std::unique_ptr<FragmentBuffer> back = driver_->technique().read_back();
+  const HaBuffer* ha = back ? back->hash_table() : nullptr;
+  if (ha == nullptr) return {};
+  const Extent s = ha->screen();
+  std::vector<std::uint32_t> ages(s.area(), 0);
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < s.y; ++y)
+    for (std::uint32_t x = 0; x < s.x; ++x) {
+      ha->list(x, y, list);
+      for (const ListEntry& e : list) ages[x + std::size_t{y} * s.x] = std::max(ages[x + std::size_t{y} * s.x], e.age + 1);
+    }
+  return ages;
+}
+
+}  // namespace habuffer::view

@@ -1,0 +1,92 @@
+/// @file
+/// One technique's order-independent transparency in habuffer-view: the
+/// GlFrameDriver made from a TechniqueConfig by the technique factory
+/// (make_gl_technique), the viewer's passes around it, and what a frame
+/// shows (FrameFigures). Switching the technique or an option makes a new
+/// driver; a window resize calls the driver's resize_screen. A change the
+/// library refuses leaves the running one as it was and says why.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gpu_meshes.h"
+#include "habuffer/gl/gl_frame_driver.h"
+#include "habuffer/lossless_build.h"
+#include "habuffer/render/image.h"
+#include "habuffer/technique.h"
+#include "view_passes.h"
+
+namespace habuffer::view {
+
+/// What one frame did, for the panel and the report.
+struct FrameFigures {
+  std::uint64_t index = 0;
+  Counters counters;             ///< the final gather's outcome tallies
+  std::uint64_t capacity = 0;    ///< records the container could hold
+  std::uint32_t max_age = 0;     ///< the largest cell of the max-age table (HA-buffer)
+  std::uint64_t memory_bytes = 0;  ///< the technique's and the frame's buffers
+  std::uint32_t attempts = 0;    ///< gathers (lossless mode)
+  Extent table;                  ///< the HA-buffer's table
+  /// Per pass, GPU time (ms): clear, count, gather, sort, resolve.
+  double clear_ms = 0, count_ms = 0, gather_ms = 0, sort_ms = 0, resolve_ms = 0;
+  double frame_ms = 0;           ///< wall clock of the whole frame (ms)
+  [[nodiscard]] double load() const {
+    return capacity == 0 ? 0.0 : static_cast<double>(counters.stored()) / static_cast<double>(capacity);
+  }
+};
+
+/// How the frames run besides the technique (GlFrameOptions' policy and attempts).
+struct SessionOptions {
+  ResizePolicy policy;
+  bool lossless = false;
+  std::uint32_t max_attempts = 1;  ///< with lossless
+};
+
+class OitSession {
+ public:
+  /// Makes the driver for `config` (its screen is the window's) and the passes.
+  /// Throws std::invalid_argument or GlError naming what the library refused.
+  OitSession(const GpuMeshes& meshes, TechniqueConfig config, OffsetSource offsets, SessionOptions options);
+  ~OitSession();
+
+  /// The technique as configured now.
+  [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  /// A new technique or options: a new driver; on a refusal (std::invalid_argument,
+  /// GlError) the running one stays and the message is returned; empty on success.
+  std::string reconfigure(TechniqueConfig config);
+  /// The window's framebuffer changed: the driver's resize_screen and new passes.
+  void resize(Extent screen);
+  /// One frame: the opaque pass, the driver's frame around the gather, the
+  /// resolve into the scene image. With `capture`, the frame's fragments are
+  /// kept for the exact reference (reference_psnr).
+  FrameFigures frame(const Camera& camera, glm::vec3 background);
+  /// PSNR (dB; infinite when equal) of the last frame's image against the
+  /// exact reference of the same view: the same frame rendered again with a
+  /// capturing driver, its fragments composited in double precision over the
+  /// opaque colours. The running driver is kept.
+  double reference_psnr(const Camera& camera, glm::vec3 background);
+  /// Max age per pixel of the last frame (HA-buffer: read back), else empty.
+  [[nodiscard]] std::vector<std::uint32_t> max_age_per_pixel() const;
+
+  [[nodiscard]] const ViewPasses& passes() const { return *passes_; }
+  [[nodiscard]] const gl::GlFrameDriver& driver() const { return *driver_; }
+
+ private:
+  std::unique_ptr<gl::GlFrameDriver> make_driver(const TechniqueConfig& config, bool capture) const;
+  FrameFigures run_frame(gl::GlFrameDriver& driver, ViewPasses& passes, const Camera& camera, glm::vec3 background);
+
+  const GpuMeshes& meshes_;
+  TechniqueConfig config_;
+  OffsetSource offsets_;
+  SessionOptions options_;
+  std::unique_ptr<gl::GlFrameDriver> driver_;
+  std::unique_ptr<ViewPasses> passes_;
+};
+
+}  // namespace habuffer::view

@@ -1,0 +1,149 @@
+#!/usr/bin/env python3
+"""habuffer-view's checks, each a ctest test, run under Xvfb (xvfb-run; GLX on
+Mesa's llvmpipe). A check that needs a window exits 77 (ctest's skip) with
+the reason when xvfb-run is missing or no OpenGL 4.5 window can be made.
+
+usage: view_checks.py CHECK --view EXE --habuffer EXE --workdir DIR
+checks:
+  screenshot   the scene image equals `habuffer render` of the same view (PSNR inf)
+  resize       a window resized mid-run renders the new size, equal to render's
+  switches     100 technique switches and 20 resizes: no GL error, no GL object
+               left behind (per technique), resident memory flat (under 16 MiB growth)
+  usage        bad command lines: one line naming the option, exit 2; a bad scene exit 1
+"""
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+SKIP = 77
+
+
+def run(cmd, timeout=900):
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+
+
+class Checks:
+    def __init__(self, a):
+        self.view, self.cli, self.work = a.view, a.habuffer, os.path.abspath(a.workdir)
+        os.makedirs(self.work, exist_ok=True)
+
+    def path(self, name):
+        return os.path.join(self.work, name)
+
+    def windowed(self, *args):
+        """habuffer-view under a fresh Xvfb server; skips when there is no window."""
+        if shutil.which("xvfb-run") is None:
+            print("SKIP: xvfb-run not found (Debian xvfb; scripts/setup.sh installs it)")
+            sys.exit(SKIP)
+        r = run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", self.view, *map(str, args)])
+        if r.returncode != 0 and ("no window system" in r.stderr or "no OpenGL 4.5 core window" in r.stderr):
+            print("SKIP: " + r.stderr.strip())
+            sys.exit(SKIP)
+        if r.returncode != 0:
+            raise SystemExit("habuffer-view %s failed (%d): %s" % (" ".join(map(str, args)), r.returncode, r.stderr))
+        return r
+
+    def render(self, out, *args):
+        r = run([self.cli, "render", "--out", out, "--quiet", *map(str, args)])
+        if r.returncode != 0:
+            raise SystemExit("habuffer render failed (%d): %s" % (r.returncode, r.stderr))
+
+    def psnr(self, a, b):
+        r = run([self.cli, "compare", a, b])
+        if r.returncode != 0:
+            raise SystemExit("habuffer compare failed: " + r.stderr)
+        return r.stdout.split("psnr ")[1].split()[0]
+
+    def expect_equal(self, what, shot, image):
+        p = self.psnr(shot, image)
+        print("%s: PSNR %s against habuffer render" % (what, p))
+        if p != "inf":
+            raise SystemExit("%s: the viewer's image differs from habuffer render's (PSNR %s)" % (what, p))
+
+    def screenshot(self):
+        views = [("engine", ["--technique", "ha", "--yaw", "40", "--pitch", "15"], "200x150"),
+                 ("hairball", ["--technique", "sorted-lists", "--samples", "4"], "160x128"),
+                 ("quads", ["--technique", "kbuffer", "--layers", "4"], "96x96")]
+        for scene, options, size in views:
+            shot, image = self.path("%s_view.png" % scene), self.path("%s_render.png" % scene)
+            self.windowed("--scene", scene, "--size", size, "--frames", 2, "--screenshot", shot, *options)
+            self.render(image, "--scene", scene, "--size", size, *options)
+            self.expect_equal(scene + " " + " ".join(options), shot, image)
+
+    def resize(self):
+        shot, report = self.path("resized.png"), self.path("resized.json")
+        self.windowed("--scene", "engine", "--size", "160x120", "--resize", "2:224x168,3:200x136", "--frames", 5,
+                      "--screenshot", shot, "--report", report)
+        with open(report) as f:
+            r = json.load(f)
+        screens = [f["screen"] for f in r["per_frame"]]
+        if screens != ["160x120", "160x120", "224x168", "200x136", "200x136"] or r["resizes"] != 2:
+            raise SystemExit("resize: the frames ran at %s (%d resizes), not 160x120 x2, 224x168, 200x136 x2"
+                             % (screens, r["resizes"]))
+        image = self.path("resized_render.png")
+        self.render(image, "--scene", "engine", "--size", "200x136")
+        self.expect_equal("engine after two resizes", shot, image)
+
+    def switches(self):
+        report = self.path("switches.json")
+        resizes = ",".join("%d:%dx%d" % (3 + 5 * i, 96 + 8 * (i % 4), 72 + 8 * (i % 3)) for i in range(20))
+        self.windowed("--scene", "engine", "--size", "128x96", "--frames", 101, "--cycle", 100, "--resize", resizes,
+                      "--report", report)
+        with open(report) as f:
+            r = json.load(f)
+        problems = []
+        if r["technique_switches"] != 100 or r["switches_refused"] != 0:
+            problems.append("%d switches, %d refused" % (r["technique_switches"], r["switches_refused"]))
+        if r["resizes"] != 20:
+            problems.append("%d resizes, not 20" % r["resizes"])
+        if r["gl_errors"] != 0:
+            problems.append("%d GL errors" % r["gl_errors"])
+        if len(r["gl_objects"]) < 8:
+            problems.append("only %s ran after the warm-up" % sorted(r["gl_objects"]))
+        for technique, seen in r["gl_objects"].items():
+            if seen["first"] != seen["last"]:
+                problems.append("%s: live GL objects %s, later %s" % (technique, seen["first"], seen["last"]))
+        growth = r["rss_kib"]["end"] - r["rss_kib"]["warm"]
+        print("switches: resident memory %d KiB after the warm-up, %d at the end (%+d)"
+              % (r["rss_kib"]["warm"], r["rss_kib"]["end"], growth))
+        if growth > 16 * 1024:
+            problems.append("resident memory grew by %d KiB" % growth)
+        if problems:
+            raise SystemExit("switches: " + "; ".join(problems))
+
+    def usage(self):
+        cases = [(["--scene", "engine", "--screenshot", self.path("x.png")], 2, "--screenshot"),
+                 (["--scene", "engine", "--frames", "2", "--resize", "1:0x5"], 2, "--resize"),
+                 (["--scene", "engine", "--frames", "3", "--resize", "2:64x64,1:32x32"], 2, "--resize"),
+                 (["--scene", "engine", "--technique", "nope"], 2, "--technique"),
+                 (["--scene", "engine", "--overlay", "heat"], 2, "--overlay"),
+                 (["--scene", "engine", "--size", "0x4"], 2, "--size"),
+                 (["--scene", "engine", "--layers", "4"], 2, "--layers"),
+                 (["--scene", self.path("missing.obj"), "--frames", "1"], 1, "missing.obj")]
+        for args, code, named in cases:
+            r = run([self.view, *args])
+            lines = r.stderr.strip().splitlines()
+            if r.returncode != code or len(lines) != 1 or named not in lines[0]:
+                raise SystemExit("usage: %s exited %d (want %d) saying %r (want one line naming %s)"
+                                 % (" ".join(args), r.returncode, code, r.stderr, named))
+            print("usage: %s -> %d: %s" % (" ".join(args), code, lines[0]))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("check", choices=["screenshot", "resize", "switches", "usage"])
+    ap.add_argument("--view", required=True)
+    ap.add_argument("--habuffer", required=True)
+    ap.add_argument("--workdir", required=True)
+    a = ap.parse_args()
+    getattr(Checks(a), a.check)()
+    print("%s: passed" % a.check)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,126 @@
+#include "view_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "habuffer/option_rules.h"
+#include "habuffer/technique_descriptor.h"
+#include "technique_edit.h"
+
+namespace habuffer::view {
+namespace {
+
+constexpr std::size_t kPlotFrames = 120;
+
+// The technique combo: a switch asks for the technique with its other options kept.
+void technique_combo(const TechniqueConfig& config, PanelRequest& request) {
+  const std::string current = to_string(config.technique);
+  if (!ImGui::BeginCombo("technique", current.c_str())) return;
+  for (const TechniqueDescriptor* d : technique_registry()) {
+    const std::string name(d->name);
+    if (ImGui::Selectable(name.c_str(), name == current) && name != current)
+      request.config = with_technique(config, *parse_technique(name));
+  }
+  ImGui::EndCombo();
+}
+
+// One text field per option the technique takes, as the CLI spells values;
+// Enter applies it (the option's own parser and the configuration's rules).
+void option_fields(PanelState& state, const TechniqueConfig& config, PanelRequest& request) {
+  for (const TechniqueOption* o : editable_options(config.technique)) {
+    const std::string flag(o->flag);
+    std::string& text = state.edits[flag];
+    if (text.empty()) text = option_text(*o, config);
+    char buffer[64] = {};
+    text.copy(buffer, sizeof buffer - 1);
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::InputText(("--" + flag).c_str(), buffer, sizeof buffer, ImGuiInputTextFlags_EnterReturnsTrue)) {
+      try {
+        request.config = with_option(config, *o, buffer);
+        state.refusal.clear();
+      } catch (const std::invalid_argument& e) {
+        state.refusal = e.what();
+      }
+      state.edits.clear();  // every field shows the running values again
+    } else {
+      text = buffer;
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s (%s)", std::string(o->help).c_str(), std::string(o->value_name).c_str());
+  }
+}
+
+// The HA-buffer's table: automatic (sized from the counting pass, adapted by
+// SPEC 8), or fixed at a load factor of the last frame's fragments.
+void load_control(PanelState& state, const TechniqueConfig& config, const FrameFigures& figures,
+                  PanelRequest& request) {
+  if (!uses_table(config.technique)) return;
+  bool changed = ImGui::Checkbox("fixed load", &state.fixed_load);
+  if (state.fixed_load) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(140);
+    changed = ImGui::SliderFloat("load", &state.load, 0.05f, 1.0f, "%.2f") || changed;
+  }
+  if (!changed || ImGui::IsItemActive()) return;
+  TechniqueConfig c = config;
+  c.buffer.table = state.fixed_load
+                       ? table_for_load(config.buffer.screen, std::max<std::uint64_t>(figures.counters.stored(), 1),
+                                        static_cast<double>(state.load))
+                       : Extent{};
+  request.config = c;
+}
+
+void figures_table(const FrameFigures& f, const PanelState& state) {
+  const Counters& c = f.counters;
+  ImGui::Text("fragments %llu  stored %llu", static_cast<unsigned long long>(c.fragments),
+              static_cast<unsigned long long>(c.stored()));
+  ImGui::Text("load %.3f  capacity %llu", f.load(), static_cast<unsigned long long>(f.capacity));
+  if (f.table.area() > 0) ImGui::Text("table %s  max age %u", f.table.str().c_str(), f.max_age);
+  if (c.failures() > 0)
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "failures %llu (of them culled %llu)",
+                       static_cast<unsigned long long>(c.failures()), static_cast<unsigned long long>(c.culled));
+  else
+    ImGui::Text("failures 0  culled %llu", static_cast<unsigned long long>(c.culled));
+  ImGui::Text("memory %.2f MiB  attempts %u", static_cast<double>(f.memory_bytes) / (1024.0 * 1024.0), f.attempts);
+  ImGui::Text("GPU ms: clear %.2f count %.2f gather %.2f sort %.2f resolve %.2f", f.clear_ms, f.count_ms, f.gather_ms,
+              f.sort_ms, f.resolve_ms);
+  if (state.psnr) {
+    if (std::isinf(*state.psnr))
+      ImGui::Text("PSNR vs exact: inf (equal)");
+    else
+      ImGui::Text("PSNR vs exact: %.2f dB", *state.psnr);
+  } else {
+    ImGui::TextDisabled("PSNR vs exact: press P");
+  }
+  const std::vector<float> plot(state.frame_ms.begin(), state.frame_ms.end());
+  ImGui::PlotLines("frame ms", plot.data(), static_cast<int>(plot.size()), 0, nullptr, 0.0f, FLT_MAX, ImVec2(0, 50));
+}
+
+}  // namespace
+
+PanelRequest draw_panel(PanelState& state, const TechniqueConfig& config, const FrameFigures& figures,
+                        Overlay& overlay) {
+  state.frame_ms.push_back(static_cast<float>(figures.frame_ms));
+  while (state.frame_ms.size() > kPlotFrames) state.frame_ms.pop_front();
+  PanelRequest request;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("habuffer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  technique_combo(config, request);
+  option_fields(state, config, request);
+  load_control(state, config, figures, request);
+  int o = static_cast<int>(overlay);
+  ImGui::Combo("overlay", &o, "none\0depth complexity\0culled\0max age\0");
+  overlay = static_cast<Overlay>(o);
+  if (ImGui::Button("PSNR vs exact (P)")) request.psnr = true;
+  if (!state.refusal.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", state.refusal.c_str());
+  ImGui::Separator();
+  figures_table(figures, state);
+  ImGui::End();
+  return request;
+}
+
+}  // namespace habuffer::view

@@ -1,0 +1,39 @@
+/// @file
+/// habuffer-view's panel (Dear ImGui): the technique and its options (the
+/// technique option table's rows, edited as the CLI spells them), the
+/// HA-buffer's load, the overlay, and the live figures of the last frame
+/// with a frame-time plot. It only asks: the run applies what it returns.
+#pragma once
+
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "habuffer/technique.h"
+#include "oit_session.h"
+#include "view_command.h"
+
+namespace habuffer::view {
+
+/// What the panel keeps between frames.
+struct PanelState {
+  std::map<std::string, std::string> edits;  ///< option flag -> the text being typed
+  std::string refusal;                       ///< the library's last refusal, shown until the next change
+  std::optional<double> psnr;                ///< the last PSNR measured against the exact reference
+  std::deque<float> frame_ms;                ///< recent frame times, for the plot
+  bool fixed_load = false;                   ///< the HA-buffer's table fixed at `load` of the last frame's fragments
+  float load = 0.6f;
+};
+
+/// What the user asked for this frame.
+struct PanelRequest {
+  std::optional<TechniqueConfig> config;  ///< a new technique or option values
+  bool psnr = false;                      ///< measure PSNR against the exact reference
+};
+
+/// Draws the panel for the running `config` and `figures`; `overlay` is edited in place.
+PanelRequest draw_panel(PanelState& state, const TechniqueConfig& config, const FrameFigures& figures,
+                        Overlay& overlay);
+
+}  // namespace habuffer::view

@@ -1,0 +1,63 @@
+/// @file
+/// habuffer-view's passes for one screen and one technique's frame driver,
+/// as any host app writes them: the opaque pass into the host's colour and t
+/// images (per sample on a multisampled screen), the gather that calls the
+/// driver's module, and the image the driver resolves into (RGBA32F, the
+/// scene without the panel). Made anew when the window or the technique
+/// changes; deletes every GL object it made.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gpu_meshes.h"
+#include "habuffer/gl/gl_frame_driver.h"
+#include "habuffer/render/image.h"
+
+namespace habuffer::view {
+
+/// Where the viewer's own shader-storage buffer is bound (below the library's points).
+inline constexpr unsigned kCountsBinding = 2;
+
+class ViewPasses {
+ public:
+  /// Compiles the gather from `driver`'s module (its samples, bindings and
+  /// variant) and makes the images for `screen` (the driver's). Throws GlError.
+  ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver);
+  ~ViewPasses();
+  ViewPasses(const ViewPasses&) = delete;
+  ViewPasses& operator=(const ViewPasses&) = delete;
+
+  /// The opaque meshes over `background` into the colour and t images.
+  void draw_opaque(const Camera& camera, glm::vec3 background);
+  /// The transparent meshes through the module (inside GlFrameDriver::frame;
+  /// it may run more than once a frame: the counts start from zero each time).
+  void gather(const Camera& camera);
+  /// habuffer_insert calls of the last gather (the frame driver's call count).
+  [[nodiscard]] std::uint64_t calls() const;
+  /// The framebuffer the driver resolves into (the scene image).
+  [[nodiscard]] unsigned image_framebuffer() const { return image_framebuffer_; }
+  /// The opaque colour per pixel, the background texture of the resolve.
+  [[nodiscard]] unsigned opaque_colour() const { return colour_; }
+  /// The per-pixel counts buffer: word 0 the calls, then two words a pixel (fragments, culled).
+  [[nodiscard]] unsigned counts_buffer() const { return counts_; }
+  /// The scene image, row 0 at the bottom.
+  [[nodiscard]] Image read_image() const;
+  /// The opaque colour per pixel (the backgrounds of the exact reference).
+  [[nodiscard]] std::vector<glm::vec3> read_opaque_colour() const;
+  [[nodiscard]] Extent screen() const { return screen_; }
+
+ private:
+  const GpuMeshes& meshes_;
+  Extent screen_;
+  std::uint32_t samples_;
+  unsigned technique_framebuffer_;  // where a blending technique's gather draws (0: the gather framebuffer)
+  gl::ShaderProgram opaque_program_, gather_program_;
+  unsigned colour_ = 0, t_ = 0, depth_ = 0, opaque_framebuffer_ = 0;  // per pixel
+  unsigned ms_colour_ = 0, ms_t_ = 0, ms_depth_ = 0, resolved_framebuffer_ = 0;  // per sample (samples above 1)
+  unsigned gather_framebuffer_ = 0, image_ = 0, image_framebuffer_ = 0, counts_ = 0;
+};
+
+}  // namespace habuffer::view

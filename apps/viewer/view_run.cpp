@@ -1,0 +1,317 @@
+#include "view_run.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "habuffer/json_writer.h"
+#include "habuffer/render/image.h"
+#include "habuffer/technique_descriptor.h"
+#include "heat_overlay.h"
+#include "oit_session.h"
+#include "scene_options.h"
+#include "technique_edit.h"
+#include "view_panel.h"
+#include "view_window.h"
+
+namespace habuffer::view {
+namespace {
+
+// Resident memory of this process (KiB), from /proc/self/statm.
+std::uint64_t resident_kib() {
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t size = 0, resident = 0;
+  statm >> size >> resident;
+  return resident * 4;  // pages of 4 KiB on the platforms habuffer runs on
+}
+
+// Live GL objects of each kind: the names in use among the first `probe`
+// (GL names are small integers, reused once freed), a leak check that needs
+// no bookkeeping of ours.
+struct LiveObjects {
+  std::uint64_t buffers = 0, textures = 0, framebuffers = 0, programs = 0, vertex_arrays = 0, queries = 0;
+  [[nodiscard]] std::uint64_t total() const {
+    return buffers + textures + framebuffers + programs + vertex_arrays + queries;
+  }
+};
+
+LiveObjects live_objects(GLuint probe = 1u << 14) {
+  LiveObjects o;
+  for (GLuint n = 1; n <= probe; ++n) {
+    o.buffers += glIsBuffer(n);
+    o.textures += glIsTexture(n);
+    o.framebuffers += glIsFramebuffer(n);
+    o.programs += glIsProgram(n);
+    o.vertex_arrays += glIsVertexArray(n);
+    o.queries += glIsQuery(n);
+  }
+  return o;
+}
+
+void write_objects(JsonWriter& j, const LiveObjects& o) {
+  j.begin_object()
+      .field("buffers", o.buffers)
+      .field("textures", o.textures)
+      .field("framebuffers", o.framebuffers)
+      .field("programs", o.programs)
+      .field("vertex_arrays", o.vertex_arrays)
+      .field("queries", o.queries)
+      .field("total", o.total())
+      .end_object();
+}
+
+// The window's colour (what the user sees, panel included), row 0 at the bottom.
+Image read_window(Extent size) {
+  std::vector<float> rgba(4 * size.area());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, static_cast<GLsizei>(size.x), static_cast<GLsizei>(size.y), GL_RGBA, GL_FLOAT, rgba.data());
+  Image image{size, std::vector<glm::vec4>(size.area())};
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = glm::vec4(rgba[4 * i], rgba[4 * i + 1], rgba[4 * i + 2], 1.0f);
+  return image;
+}
+
+// The next technique of the registry after `t` (wrapping).
+Technique next_technique(Technique t) {
+  const auto all = technique_registry();
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (all[i]->technique == t) return all[(i + 1) % all.size()]->technique;
+  return all.front()->technique;
+}
+
+Overlay next_overlay(Overlay o) { return static_cast<Overlay>((static_cast<int>(o) + 1) % 4); }
+
+// One frame's line of the report.
+struct FrameRow {
+  std::string technique, screen;
+  FrameFigures figures;
+};
+
+struct RunTally {
+  std::uint64_t switches = 0, refused = 0, resizes = 0, gl_errors = 0;
+  std::optional<std::uint64_t> warm_rss;
+  /// Per technique, the live GL objects the first and the last time it ran
+  /// after the warm-up (a technique's own buffers differ from another's).
+  std::map<std::string, std::pair<LiveObjects, LiveObjects>> objects;
+  std::string first_refusal;
+};
+
+class ViewRun {
+ public:
+  ViewRun(const ViewSettings& s, const Scene& scene)
+      : s_(s),
+        scene_(scene),
+        window_(s.window, "habuffer-view: " + scene.name),
+        meshes_(scene),
+        session_(meshes_, screen_config(s.technique, window_.framebuffer()), s.offsets,
+                 SessionOptions{s.policy, s.lossless, s.max_attempts}),
+        overlay_(s.overlay),
+        gui_(s.gui) {
+    camera_.yaw = s.yaw.value_or(scene.default_yaw);
+    camera_.pitch = s.pitch.value_or(scene.default_pitch);
+    camera_.fov = s.fov;
+    if (window_.framebuffer() != s.window)
+      std::fprintf(stderr, "habuffer-view: the window system gave a %s framebuffer, not %s\n",
+                   window_.framebuffer().str().c_str(), s.window.str().c_str());
+  }
+
+  int run() {
+    const std::uint64_t warm_frame = s_.frames / 5;
+    for (std::uint32_t frame = 0; s_.frames == 0 || frame < s_.frames; ++frame) {
+      if (window_.should_close()) break;
+      const bool last = s_.frames != 0 && frame + 1 == s_.frames;
+      scripted_steps(frame);
+      handle_input(window_.poll());
+      follow_window();
+      const FrameFigures f = draw_frame(last);
+      if (!s_.report.empty()) rows_.push_back({to_string(session_.config().technique), session_.driver().screen().str(), f});
+      if (frame == warm_frame) tally_.warm_rss = resident_kib();
+      if (!s_.report.empty() && frame >= warm_frame) {
+        const LiveObjects live = live_objects();
+        const auto [it, first] = tally_.objects.try_emplace(to_string(session_.config().technique), live, live);
+        if (!first) it->second.second = live;
+      }
+      if (last) finish(f);
+      window_.swap();
+    }
+    if (tally_.refused > 0) std::fprintf(stderr, "habuffer-view: %llu scripted switches refused; the first: %s\n",
+                                         static_cast<unsigned long long>(tally_.refused), tally_.first_refusal.c_str());
+    if (tally_.gl_errors > 0)
+      std::fprintf(stderr, "habuffer-view: %llu GL errors\n", static_cast<unsigned long long>(tally_.gl_errors));
+    return tally_.refused == 0 && tally_.gl_errors == 0 ? 0 : 1;
+  }
+
+ private:
+  static TechniqueConfig screen_config(TechniqueConfig c, Extent screen) {
+    c.buffer.screen = screen;
+    return c;
+  }
+
+  void scripted_steps(std::uint32_t frame) {
+    for (const ScriptedResize& r : s_.resizes)
+      if (r.frame == frame) {
+        window_.resize(r.size);
+        ++tally_.resizes;
+      }
+    if (tally_.switches < s_.cycle && frame > 0) apply(with_technique(session_.config(), next_technique(session_.config().technique)), true);
+  }
+
+  void handle_input(const InputEvents& e) {
+    camera_.yaw += static_cast<float>(e.drag_x) * 0.3f;
+    camera_.pitch = std::clamp(camera_.pitch - static_cast<float>(e.drag_y) * 0.3f, -89.0f, 89.0f);
+    camera_.fov = std::clamp(camera_.fov * std::pow(0.9f, static_cast<float>(e.scroll)), 5.0f, 120.0f);
+    if (e.next_overlay) overlay_ = next_overlay(overlay_);
+    if (e.toggle_gui) gui_ = !gui_;
+    if (e.next_technique) apply(with_technique(session_.config(), next_technique(session_.config().technique)), false);
+    psnr_requested_ = psnr_requested_ || e.psnr;
+  }
+
+  void apply(const TechniqueConfig& c, bool scripted) {
+    const std::string refusal = session_.reconfigure(c);
+    panel_.refusal = refusal;
+    panel_.edits.clear();
+    panel_.psnr.reset();
+    if (!scripted) return;
+    ++tally_.switches;
+    if (!refusal.empty() && tally_.refused++ == 0) tally_.first_refusal = refusal;
+  }
+
+  void follow_window() {
+    const Extent fb = window_.framebuffer();
+    if (fb.area() == 0 || fb == session_.driver().screen()) return;  // minimized, or unchanged
+    session_.resize(fb);
+    panel_.psnr.reset();
+  }
+
+  FrameFigures draw_frame(bool last) {
+    const Extent screen = session_.driver().screen();
+    const Camera camera = frame_scene(scene_, camera_, screen);
+    const FrameFigures f = session_.frame(camera, s_.background);
+    if (psnr_requested_ || (last && s_.psnr)) {
+      panel_.psnr = session_.reference_psnr(camera, s_.background);
+      psnr_requested_ = false;
+    }
+    // The scene image into the window, then the overlay and the panel over it.
+    const Extent window = window_.framebuffer();
+    glBlitNamedFramebuffer(session_.passes().image_framebuffer(), 0, 0, 0, static_cast<GLint>(screen.x),
+                           static_cast<GLint>(screen.y), 0, 0, static_cast<GLint>(window.x), static_cast<GLint>(window.y),
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    draw_overlay(f, screen, window);
+    if (gui_) {
+      window_.begin_gui();
+      const PanelRequest request = draw_panel(panel_, session_.config(), f, overlay_);
+      window_.end_gui();
+      if (request.config) apply(*request.config, false);
+      psnr_requested_ = psnr_requested_ || request.psnr;
+    }
+    for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) ++tally_.gl_errors;
+    return f;
+  }
+
+  void draw_overlay(const FrameFigures& f, Extent screen, Extent window) {
+    switch (overlay_) {
+      case Overlay::Depth:
+      case Overlay::Culled: {
+        const double full = std::max<double>(1.0, 2.0 * static_cast<double>(f.counters.fragments) /
+                                                       static_cast<double>(std::max<std::uint64_t>(screen.area(), 1)));
+        heat_.draw(session_.passes().counts_buffer(), overlay_ == Overlay::Depth ? 1 : 2, 2, screen,
+                   overlay_ == Overlay::Depth ? 4.0 * full : full, window);
+        break;
+      }
+      case Overlay::Age:
+        if (uses_table(session_.config().technique))
+          heat_.draw(session_.max_age_per_pixel(), screen, std::max(f.max_age, 1u) + 1.0, window);
+        break;
+      case Overlay::None: break;
+    }
+  }
+
+  static void write_row(JsonWriter& j, const FrameRow& row) {
+    const FrameFigures& f = row.figures;
+    j.begin_object()
+        .field("technique", row.technique)
+        .field("screen", row.screen)
+        .field("fragments", f.counters.fragments)
+        .field("stored", f.counters.stored())
+        .field("failures", f.counters.failures())
+        .field("load", f.load())
+        .field("max_age", f.max_age)
+        .field("memory_bytes", f.memory_bytes)
+        .field("gather_gpu_ms", f.gather_ms)
+        .field("resolve_gpu_ms", f.resolve_ms)
+        .field("frame_ms", f.frame_ms)
+        .end_object();
+  }
+
+  void finish(const FrameFigures& f) {
+    if (!s_.window_shot.empty()) write_image(s_.window_shot, read_window(window_.framebuffer()));
+    if (!s_.screenshot.empty()) write_image(s_.screenshot, session_.passes().read_image());
+    if (s_.report.empty()) return;
+    JsonWriter j;
+    j.begin_object()
+        .field("scene", scene_.name)
+        .field("technique", to_string(session_.config().technique))
+        .field("screen", session_.driver().screen().str())
+        .field("frames", static_cast<std::uint64_t>(s_.frames))
+        .field("technique_switches", tally_.switches)
+        .field("switches_refused", tally_.refused)
+        .field("resizes", tally_.resizes)
+        .field("gl_errors", tally_.gl_errors)
+        .field("fragments", f.counters.fragments)
+        .field("failures", f.counters.failures());
+    j.key("psnr");
+    if (panel_.psnr)
+      j.value(std::isinf(*panel_.psnr) ? std::string("inf") : std::to_string(*panel_.psnr));
+    else
+      j.value(std::string("not measured"));
+    j.key("rss_kib").begin_object().field("warm", tally_.warm_rss.value_or(0)).field("end", resident_kib()).end_object();
+    j.key("gl_objects").begin_object();
+    for (const auto& [technique, seen] : tally_.objects) {
+      j.key(technique).begin_object().key("first");
+      write_objects(j, seen.first);
+      j.key("last");
+      write_objects(j, seen.second);
+      j.end_object();
+    }
+    j.end_object();
+    j.key("per_frame").begin_array();
+    for (const FrameRow& row : rows_) write_row(j, row);
+    j.end_array().end_object();
+    j.save(s_.report);
+  }
+
+  const ViewSettings& s_;
+  const Scene& scene_;
+  ViewWindow window_;
+  GpuMeshes meshes_;
+  OitSession session_;
+  HeatOverlay heat_;
+  CameraParams camera_;
+  Overlay overlay_;
+  bool gui_;
+  bool psnr_requested_ = false;
+  PanelState panel_;
+  RunTally tally_;
+  std::vector<FrameRow> rows_;
+};
+
+}  // namespace
+
+int run_view(const ViewSettings& settings) {
+  Scene scene = make_scene(settings.scene, settings.scene_options);
+  cli::make_opaque(settings.opaque_meshes, scene);
+  ViewRun run(settings, scene);
+  return run.run();
+}
+
+}  // namespace habuffer::view
