@@ -5,7 +5,8 @@ Usage: plot_results.py RESULTS_DIR MARKDOWN MODE
 
 RESULTS_DIR holds the JSON tables `scripts/reproduce.sh` wrote (sweep-*.json,
 bench.json, fig2.json, fig8.json, fig10.json, table1.json, frontier.json,
-frontier-picks.json, plan.json); the PNG figures are written beside them and
+frontier-picks.json, plan.json; csg-peers.json from habuffer_csg_peers where
+OpenCSG is built); the PNG figures are written beside them and
 MARKDOWN links them, each captioned with the machine, the renderer and the
 command that produced it. Findings are computed from the tables, never typed.
 """
@@ -202,6 +203,57 @@ def plot_frontier(directory, t, rel):
     return [f"![frontier]({rel}/{name})", "", caption(t)]
 
 
+def csg_peers_section(directory, t, rel, findings):
+    """The CSG curve: habuffer beside OpenCSG (habuffer_csg_peers), time and
+    pixels wrong against the ray caster, per cylinder count and method."""
+    rows = t["rows"]
+    methods = []
+    for r in rows:
+        if r["method"] not in methods:
+            methods.append(r["method"])
+    workloads = []
+    for r in rows:
+        if r["workload"] not in workloads:
+            workloads.append(r["workload"])
+    cell = {(r["workload"], r["method"]): r for r in rows}
+    out = ["Each cell: median ms of one render (to glFinish) / pixels whose visible primitive differs from the ray "
+           "caster outside its edge band (of " + str(rows[0]["pixels"]) + "). Every primitive is convex; OpenCSG "
+           "renders the expression's sum of products on the same EGL context (compatibility profile).", "",
+           "| workload | " + " | ".join(methods) + " |", "|---|" + "---|" * len(methods)]
+    for w in workloads:
+        out.append(f"| {w} | " + " | ".join(
+            f"{cell[(w, m)]['ms']:.1f} / {cell[(w, m)]['mismatches']}" if (w, m) in cell else "" for m in methods) + " |")
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for m in methods:
+        pts = [(r["cylinders"], r["ms"], r["mismatches"]) for r in rows if r["method"] == m and r["cylinders"] > 0]
+        pts.sort()
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker="o", label=m,
+                linestyle="-" if all(p[2] == 0 for p in pts) else "--")
+    ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
+    ax.set_xlabel("cylinders subtracted from the cube")
+    ax.set_ylabel("ms per render (median)")
+    ax.set_title("CSG: habuffer vs OpenCSG (dashed: pixels wrong)")
+    ax.legend(fontsize=7)
+    name = save(fig, directory, "csg-peers.png")
+    out += ["", f"![CSG peers]({rel}/{name})", "", caption(t)]
+    exact = "opencsg-goldfeather+occlusion"
+    curve = sorted({r["cylinders"] for r in rows if r["cylinders"] > 0})
+    faster = [n for n in curve if (f"cube - {n} cylinders", exact) in cell
+              and cell[(f"cube - {n} cylinders", "habuffer-ha")]["ms"] < cell[(f"cube - {n} cylinders", exact)]["ms"]]
+    if faster:
+        top = curve[-1]
+        ratio = cell[(f"cube - {top} cylinders", exact)]["ms"] / cell[(f"cube - {top} cylinders", "habuffer-ha")]["ms"]
+        findings.append(f"csg: habuffer's CSG is faster than OpenCSG's exact method ({exact}) from {faster[0]} "
+                        f"cylinders on ({ratio:.1f}x at {top}); below that OpenCSG is faster.")
+    for m in methods:
+        wrong = [n for n in curve if cell.get((f"cube - {n} cylinders", m), {}).get("mismatches", 0) > 0]
+        if wrong:
+            findings.append(f"csg: {m} draws pixels the ray caster disagrees with from {wrong[0]} cylinders on "
+                            f"(up to {max(cell[(f'cube - {n} cylinders', m)]['mismatches'] for n in wrong)}).")
+    return out
+
+
 def plan_errors(plan, frontier):
     scene, size = plan["notes"].get("scene"), plan["notes"].get("size")
     measured = {r["technique"]: r for r in frontier["rows"] if r["scene"] == scene and r["size"] == size}
@@ -281,6 +333,10 @@ def main():
                                 + (f"within {budget} bytes per fragment " if budget != "none" else "")
                                 + f"is {tech} ({r['total_ms']:.2f} ms).")
             md += [""]
+    peers = load(directory, "csg-peers.json")
+    if peers:
+        md += ["## CSG beside OpenCSG (a cube minus N cylinders, nested differences)", ""] + \
+              csg_peers_section(directory, peers, rel, findings) + [""]
     plan = load(directory, "plan.json")
     if plan:
         md += ["## Plan vs measured", "",

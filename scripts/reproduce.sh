@@ -17,10 +17,10 @@ mkdir -p "$R"
 # Only what this script writes: docs/results also keeps tables made elsewhere
 # (the H100 runs, issue 11's technique tables), which it must not delete.
 for t in sweep-ha-cpu sweep-ha-gl sweep-lists-cpu sweep-arrays-cpu sweep-kbuffer-cpu bench fig2 fig8 fig10 table1 \
-         frontier frontier-picks plan; do
+         frontier frontier-picks plan csg-peers; do
   rm -f "$R/$t.json" "$R/$t.csv"
 done
-rm -f "$R"/sweep.png "$R"/fig2.png "$R"/fig8.png "$R"/fig10.png "$R"/frontier.png
+rm -f "$R"/sweep.png "$R"/fig2.png "$R"/fig8.png "$R"/fig10.png "$R"/frontier.png "$R"/csg-peers.png
 if [[ $mode == quick ]]; then
   size=128x128; reps=3; gl_reps=2; hair=hairball:count=600; quads=quads:count=64; frames=12; planes=16
   loads=0.3,0.5,0.7,0.8,0.9,0.95
@@ -55,6 +55,11 @@ $H figure frontier --scenes engine,$hair --size $size --repeats $reps --path cpu
   --picks $R/frontier-picks.json,$R/frontier-picks.csv --quiet
 step "plan"
 $H plan --scene engine --size $size --out $R/plan.json,$R/plan.csv
+if [[ -x ./build/bin/habuffer_csg_peers ]]; then
+  step "CSG beside OpenCSG (GPL-2+, a benchmark binary; built where libopencsg-dev is found)"
+  csg_size=128x128; [[ $mode == full ]] && csg_size=256x256
+  ./build/bin/habuffer_csg_peers --size $csg_size --repeats $reps --out $R/csg-peers.json,$R/csg-peers.csv >/dev/null
+fi
 step "plots and docs/results.md"
 py=python3
 [[ -x /usr/bin/python3 ]] && py=/usr/bin/python3  # Debian's, with python3-matplotlib

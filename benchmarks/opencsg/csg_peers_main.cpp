@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "habuffer/csg.h"
+#include "habuffer/gl/gl_info.h"
 #include "habuffer/harness/csg_figure.h"
 #include "habuffer/harness/result_table.h"
 #include "habuffer/render/csg_renderer.h"
@@ -178,6 +179,11 @@ int main(int argc, char** argv) {
     peers::CompatContext context;
     harness::ResultTable table;
     table.title = "csg peers";
+    std::string command = "habuffer_csg_peers";
+    for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+    table.provenance.command = command;
+    table.provenance.machine = harness::machine_description();
+    table.provenance.renderer = gl::query_gl_info().renderer + " (" + gl::query_gl_info().version + ")";
     for (std::uint32_t n : o.cylinders) run(cylinders_workload(n), n, o, table);
     run(nested_workload(), 0, o, table);
     table.notes["workload"] = "a cube minus N cylinders on a grid through it (one product of convex primitives), and "
