@@ -16,7 +16,7 @@ namespace habuffer::view {
 OitSession::OitSession(const GpuMeshes& meshes, TechniqueConfig config, OffsetSource offsets, SessionOptions options)
     : meshes_(meshes), config_(std::move(config)), offsets_(std::move(offsets)), options_(options) {
   driver_ = make_driver(config_, false);
-  passes_ = std::make_unique<ViewPasses>(meshes_, *driver_);
+  passes_ = make_passes(*driver_, config_);
 }
 
 OitSession::~OitSession() = default;
@@ -33,10 +33,32 @@ std::unique_ptr<gl::GlFrameDriver> OitSession::make_driver(const TechniqueConfig
   return std::make_unique<gl::GlFrameDriver>(gl::make_gl_technique(config, offsets_, *mode), o);
 }
 
+std::unique_ptr<ViewPasses> OitSession::make_passes(const gl::GlFrameDriver& driver, const TechniqueConfig& config) const {
+  if (light_ != nullptr && config.buffer.samples > 1)
+    throw std::invalid_argument("translucent shadows are drawn with one sample a pixel: set --samples 1 first");
+  return std::make_unique<ViewPasses>(meshes_, driver, light_ != nullptr ? &light_->bindings() : nullptr);
+}
+
+std::string OitSession::set_shadows(ShadowLight* light) {
+  ShadowLight* before = light_;
+  light_ = light;
+  try {
+    std::unique_ptr<ViewPasses> passes = make_passes(*driver_, config_);
+    passes_ = std::move(passes);
+    return {};
+  } catch (const std::invalid_argument& e) {
+    light_ = before;
+    return e.what();
+  } catch (const gl::GlError& e) {
+    light_ = before;
+    return e.what();
+  }
+}
+
 std::string OitSession::reconfigure(TechniqueConfig config) {
   try {
     std::unique_ptr<gl::GlFrameDriver> driver = make_driver(config, false);
-    auto passes = std::make_unique<ViewPasses>(meshes_, *driver);
+    auto passes = make_passes(*driver, config);
     passes_ = std::move(passes);  // the old passes go before the old driver they compiled from
     driver_ = std::move(driver);
     config_ = std::move(config);
@@ -53,12 +75,13 @@ void OitSession::resize(Extent screen) {
   passes_.reset();
   driver_->resize_screen(screen);
   config_.buffer.screen = screen;
-  passes_ = std::make_unique<ViewPasses>(meshes_, *driver_);
+  passes_ = make_passes(*driver_, config_);
 }
 
 FrameFigures OitSession::run_frame(gl::GlFrameDriver& driver, ViewPasses& passes, const Camera& camera,
                                    glm::vec3 background) {
   const auto start = std::chrono::steady_clock::now();
+  if (light_ != nullptr) light_->bind();  // the lookup's buffers and block, at points of their own
   passes.draw_opaque(camera, background);
   const gl::FrameReport r = driver.frame([&] { passes.gather(camera); }, [&] { return passes.calls(); });
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, passes.image_framebuffer());
@@ -89,7 +112,8 @@ double OitSession::reference_psnr(const Camera& camera, glm::vec3 background) {
   const Image shown = passes_->read_image();
   // The same view through a capturing driver: its fragments are the frame's.
   std::unique_ptr<gl::GlFrameDriver> capturing = make_driver(config_, true);
-  ViewPasses passes(meshes_, *capturing);
+  const std::unique_ptr<ViewPasses> passes_ptr = make_passes(*capturing, config_);
+  ViewPasses& passes = *passes_ptr;
   run_frame(*capturing, passes, camera, background);
   const std::vector<Fragment> fragments = capturing->read_capture();
   const Image reference = reference_image(fragments, passes.screen(), passes.read_opaque_colour(), config_.buffer.samples);

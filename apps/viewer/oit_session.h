@@ -20,6 +20,7 @@
 #include "habuffer/lossless_build.h"
 #include "habuffer/render/image.h"
 #include "habuffer/technique.h"
+#include "shadow_light.h"
 #include "view_passes.h"
 
 namespace habuffer::view {
@@ -62,6 +63,11 @@ class OitSession {
   std::string reconfigure(TechniqueConfig config);
   /// The window's framebuffer changed: the driver's resize_screen and new passes.
   void resize(Extent screen);
+  /// Shades by `light` from now on (nullptr: no shadows): new passes, and
+  /// the light bound before every frame. Returns the refusal (the view's
+  /// module must read 64-bit records, one sample a pixel) or empty.
+  std::string set_shadows(ShadowLight* light);
+  [[nodiscard]] const ShadowLight* shadows() const { return light_; }
   /// One frame: the opaque pass, the driver's frame around the gather, the
   /// resolve into the scene image. With `capture`, the frame's fragments are
   /// kept for the exact reference (reference_psnr).
@@ -75,10 +81,12 @@ class OitSession {
   [[nodiscard]] std::vector<std::uint32_t> max_age_per_pixel() const;
 
   [[nodiscard]] const ViewPasses& passes() const { return *passes_; }
+  [[nodiscard]] ViewPasses& passes() { return *passes_; }
   [[nodiscard]] const gl::GlFrameDriver& driver() const { return *driver_; }
 
  private:
   std::unique_ptr<gl::GlFrameDriver> make_driver(const TechniqueConfig& config, bool capture) const;
+  std::unique_ptr<ViewPasses> make_passes(const gl::GlFrameDriver& driver, const TechniqueConfig& config) const;
   FrameFigures run_frame(gl::GlFrameDriver& driver, ViewPasses& passes, const Camera& camera, glm::vec3 background);
 
   const GpuMeshes& meshes_;
@@ -87,6 +95,7 @@ class OitSession {
   SessionOptions options_;
   std::unique_ptr<gl::GlFrameDriver> driver_;
   std::unique_ptr<ViewPasses> passes_;
+  ShadowLight* light_ = nullptr;  // owned by the run
 };
 
 }  // namespace habuffer::view

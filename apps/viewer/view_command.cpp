@@ -20,6 +20,7 @@ const char* to_string(Overlay o) {
     case Overlay::Depth: return "depth";
     case Overlay::Culled: return "culled";
     case Overlay::Age: return "age";
+    case Overlay::Shadow: return "shadow";
     case Overlay::None: break;
   }
   return "none";
@@ -43,8 +44,9 @@ const cli::CommandSpec& view_spec() {
           {"fov", "DEG", "45", "vertical field of view in (1, 179); the mouse wheel changes it"},
           {"background", "R,G,B", "1,1,1", "each in [0, 1]"},
           {"opaque-meshes", "I,J,...", "", "meshes (indices in file order) drawn opaque with the depth test"},
-          {"overlay", "none|depth|culled|age", "none",
-           "a heat map over the view: fragments, early-culled fragments, max age per pixel (the HA-buffer's)"},
+          {"overlay", "none|depth|culled|age|shadow", "none",
+           "a heat map over the view: fragments, early-culled fragments, max age per pixel (the HA-buffer's), the "
+           "light's T at the nearest surface (--shadows)"},
           {"no-gui", "", "", "no panel: the scene alone in the window"},
           {"frames", "N", "0", "frames to render, then exit (0: until the window closes)"},
           {"screenshot", "IMAGE", "",
@@ -57,7 +59,11 @@ const cli::CommandSpec& view_spec() {
            writes()},
           {"resize", "F:WxH[,...]", "", "scripted window resizes: at frame F the window becomes WxH"},
           {"cycle", "N", "0", "scripted technique switches: one per frame through every technique, N in all"},
-          {"psnr", "", "", "the last frame's PSNR against the exact reference (the P key does it live)"}} +
+          {"psnr", "", "", "the last frame's PSNR against the exact reference (the P key does it live)"},
+          {"shadows", "", "",
+           "translucent shadows (seed 000, section 6) from a spot along --light-dir, as habuffer render --shadows"},
+          {"light-dir", "X,Y,Z", "-0.4,-1,-0.3", "(--shadows) where the light shines; the panel turns it"},
+          {"light-size", "WxH", "1024x1024", "(--shadows) the light map's pixels (the light buffer's screen)"}} +
           cli::scene_option_specs() + cli::shared_options({"technique"}) + cli::technique_option_specs(false) +
           cli::technique_option_specs(true) + cli::shared_options({"layout", "offsets", "seed", "lossless", "max-attempts"}),
       "  Keys: left drag orbits, wheel zooms, P measures PSNR against the exact reference, O cycles the overlay,\n"
@@ -77,9 +83,9 @@ std::string view_help() {
 namespace {
 
 Overlay parse_overlay(const std::string& text) {
-  for (Overlay o : {Overlay::None, Overlay::Depth, Overlay::Culled, Overlay::Age})
+  for (Overlay o : {Overlay::None, Overlay::Depth, Overlay::Culled, Overlay::Age, Overlay::Shadow})
     if (text == to_string(o)) return o;
-  throw UsageError("option --overlay: " + excerpt(text) + " is not none, depth, culled or age");
+  throw UsageError("option --overlay: " + excerpt(text) + " is not none, depth, culled, age or shadow");
 }
 
 // "F:WxH,..." in order of F, each size with pixels.
@@ -152,6 +158,18 @@ ViewSettings parse_view_settings(const Args& args) {
   s.resizes = parse_resizes(args);
   s.cycle = args.u32_in("cycle", 0, 1000000);
   s.psnr = args.has("psnr");
+  s.shadows = args.has("shadows");
+  if (s.overlay == Overlay::Shadow && !s.shadows)
+    throw UsageError("option --overlay shadow: the light's transmittance needs --shadows");
+  args.refuse_unless(s.shadows, {"light-dir", "light-size"}, "without --shadows");
+  s.light_dir = cli::parse_point("light-dir", args.str("light-dir"));
+  if (s.light_dir == glm::vec3(0.0f)) throw UsageError("option --light-dir: the zero vector has no direction");
+  s.light_size = args.size("light-size");
+  if (s.light_size.area() == 0) throw UsageError("option --light-size: " + s.light_size.str() + " has no pixels");
+  if (s.shadows && s.technique.buffer.samples > 1)
+    throw UsageError("option --samples: translucent shadows are drawn with one sample a pixel; use --samples 1");
+  if (s.shadows && s.technique.buffer.layout == Layout::L32)
+    throw UsageError("option --shadows needs --layout 64 (the view's shaders read the light's 64-bit records)");
   return s;
 }
 

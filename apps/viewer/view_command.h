@@ -24,8 +24,8 @@
 namespace habuffer::view {
 
 /// A heat map drawn over the view (none, or one of these).
-enum class Overlay { None, Depth, Culled, Age };
-/// "none", "depth", "culled", "age".
+enum class Overlay { None, Depth, Culled, Age, Shadow };
+/// "none", "depth", "culled", "age", "shadow".
 const char* to_string(Overlay o);
 
 /// A scripted window resize: at frame `frame` (counted from 0) the window becomes `size`.
@@ -59,6 +59,9 @@ struct ViewSettings {
   std::vector<ScriptedResize> resizes;
   std::uint32_t cycle = 0;         ///< technique switches, one per frame, through every registered technique
   bool psnr = false;               ///< the last frame's PSNR against the exact reference (--psnr)
+  bool shadows = false;            ///< translucent shadows from a spot along light_dir
+  glm::vec3 light_dir{-0.4f, -1.0f, -0.3f};
+  Extent light_size{1024, 1024};   ///< the light map's pixels
 };
 
 /// The declaration (usage, options, notes).

@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
 #include "habuffer/option_rules.h"
 #include "habuffer/technique_descriptor.h"
 #include "technique_edit.h"
@@ -73,6 +76,24 @@ void load_control(PanelState& state, const TechniqueConfig& config, const FrameF
   request.config = c;
 }
 
+// Shadows on or off, and the light's direction while on.
+void shadow_controls(PanelState& state, const ShadowLight* light, PanelRequest& request) {
+  bool on = light != nullptr;
+  if (ImGui::Checkbox("shadows", &on)) request.shadows = on;
+  if (light == nullptr) return;
+  // The light buffer is gathered again when a slider is let go, not while it moves.
+  ImGui::SetNextItemWidth(140);
+  ImGui::SliderFloat("light azimuth", &state.light_azimuth, -180.0f, 180.0f, "%.0f deg");
+  bool let_go = ImGui::IsItemDeactivatedAfterEdit();
+  ImGui::SetNextItemWidth(140);
+  ImGui::SliderFloat("light elevation", &state.light_elevation, 5.0f, 90.0f, "%.0f deg");
+  let_go = ImGui::IsItemDeactivatedAfterEdit() || let_go;
+  if (let_go) request.light = light_direction(state.light_azimuth, state.light_elevation);
+  const LightFigures& l = light->figures();
+  ImGui::Text("light %s: table %s, %llu records, %u gathers, %.1f ms", l.size.str().c_str(), l.table.str().c_str(),
+              static_cast<unsigned long long>(l.stored), l.attempts, l.build_ms);
+}
+
 void figures_table(const FrameFigures& f, const PanelState& state) {
   const Counters& c = f.counters;
   ImGui::Text("fragments %llu  stored %llu", static_cast<unsigned long long>(c.fragments),
@@ -101,8 +122,19 @@ void figures_table(const FrameFigures& f, const PanelState& state) {
 
 }  // namespace
 
+glm::vec3 light_direction(float azimuth_deg, float elevation_deg) {
+  const float a = glm::radians(azimuth_deg), e = glm::radians(elevation_deg);
+  return {-std::cos(e) * std::sin(a), -std::sin(e), -std::cos(e) * std::cos(a)};
+}
+
+void light_angles(glm::vec3 d, float& azimuth_deg, float& elevation_deg) {
+  d = glm::normalize(d);
+  elevation_deg = glm::degrees(std::asin(std::clamp(-d.y, -1.0f, 1.0f)));
+  azimuth_deg = glm::degrees(std::atan2(-d.x, -d.z));
+}
+
 PanelRequest draw_panel(PanelState& state, const TechniqueConfig& config, const FrameFigures& figures,
-                        Overlay& overlay) {
+                        const ShadowLight* light, Overlay& overlay) {
   state.frame_ms.push_back(static_cast<float>(figures.frame_ms));
   while (state.frame_ms.size() > kPlotFrames) state.frame_ms.pop_front();
   PanelRequest request;
@@ -112,8 +144,9 @@ PanelRequest draw_panel(PanelState& state, const TechniqueConfig& config, const 
   technique_combo(config, request);
   option_fields(state, config, request);
   load_control(state, config, figures, request);
+  shadow_controls(state, light, request);
   int o = static_cast<int>(overlay);
-  ImGui::Combo("overlay", &o, "none\0depth complexity\0culled\0max age\0");
+  ImGui::Combo("overlay", &o, "none\0depth complexity\0culled\0max age\0light T (shadows)\0");
   overlay = static_cast<Overlay>(o);
   if (ImGui::Button("PSNR vs exact (P)")) request.psnr = true;
   if (!state.refusal.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", state.refusal.c_str());

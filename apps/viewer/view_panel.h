@@ -11,7 +11,10 @@
 #include <string>
 
 #include "habuffer/technique.h"
+#include <glm/vec3.hpp>
+
 #include "oit_session.h"
+#include "shadow_light.h"
 #include "view_command.h"
 
 namespace habuffer::view {
@@ -24,16 +27,27 @@ struct PanelState {
   std::deque<float> frame_ms;                ///< recent frame times, for the plot
   bool fixed_load = false;                   ///< the HA-buffer's table fixed at `load` of the last frame's fragments
   float load = 0.6f;
+  /// The light's direction as the sliders hold it (degrees): azimuth around
+  /// the vertical, elevation below the horizon (light_direction()).
+  float light_azimuth = 0.0f, light_elevation = 60.0f;
 };
+
+/// The direction the light sliders describe.
+glm::vec3 light_direction(float azimuth_deg, float elevation_deg);
+/// The sliders' angles of `direction` (any non-zero vector).
+void light_angles(glm::vec3 direction, float& azimuth_deg, float& elevation_deg);
 
 /// What the user asked for this frame.
 struct PanelRequest {
   std::optional<TechniqueConfig> config;  ///< a new technique or option values
   bool psnr = false;                      ///< measure PSNR against the exact reference
+  std::optional<bool> shadows;            ///< shadows switched on or off
+  std::optional<glm::vec3> light;         ///< the light turned (shadows on)
 };
 
-/// Draws the panel for the running `config` and `figures`; `overlay` is edited in place.
+/// Draws the panel for the running `config` and `figures` (`light`: the
+/// shadows' light, or nullptr); `overlay` is edited in place.
 PanelRequest draw_panel(PanelState& state, const TechniqueConfig& config, const FrameFigures& figures,
-                        Overlay& overlay);
+                        const ShadowLight* light, Overlay& overlay);
 
 }  // namespace habuffer::view

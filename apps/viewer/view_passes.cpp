@@ -2,6 +2,8 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "habuffer/gl/gl_buffer.h"
@@ -50,18 +52,34 @@ unsigned framebuffer(std::initializer_list<unsigned> colours, unsigned depth, co
   return f;
 }
 
+// The opaque pass's fragment shader: with shadows, the lookup's head first.
+std::string opaque_source(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows) {
+  const std::string head = shadows != nullptr ? gl::light_lookup_shader_head(*shadows, driver.mode()) + "#define R_SHADOWS\n"
+                                              : std::string("#version 450 core\n");
+  return head + kShading + kOpaqueFragment;
+}
+
+// The gather: the driver's module, the lookup with shadows, then the shading and ours.
+std::string gather_source(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows) {
+  std::string s = driver.module_source(gl::ShaderStage::Fragment, gather_header(driver));
+  if (shadows != nullptr) s += gl::light_lookup_part(*shadows, driver.mode()) + "#define R_SHADOWS\n";
+  return s + kShading + kGatherFragment;
+}
+
+// The transmittance map's shader: render's shadow_map.frag.glsl after the lookup.
+std::string transmittance_source(const gl::GlFrameDriver& driver, const gl::GlLightBindings& shadows) {
+  return gl::light_lookup_shader_head(shadows, driver.mode()) + "#define R_SHADOWS\n" + kShading + kShadowMapFragment;
+}
+
 }  // namespace
 
-ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver)
+ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows)
     : meshes_(meshes),
       screen_(driver.screen()),
       samples_(driver.technique().samples()),
       technique_framebuffer_(driver.technique().gather_framebuffer()),
-      opaque_program_(gl::ShaderProgram::graphics(
-          kSceneVertex, std::string("#version 450 core\n") + kShading + kOpaqueFragment, "habuffer-view opaque pass")),
-      gather_program_(gl::ShaderProgram::graphics(
-          kSceneVertex, driver.module_source(gl::ShaderStage::Fragment, gather_header(driver)) + kShading + kGatherFragment,
-          "habuffer-view gather")) {
+      opaque_program_(gl::ShaderProgram::graphics(kSceneVertex, opaque_source(driver, shadows), "habuffer-view opaque pass")),
+      gather_program_(gl::ShaderProgram::graphics(kSceneVertex, gather_source(driver, shadows), "habuffer-view gather")) {
   gl::check_viewport_fits(screen_);
   colour_ = texture(GL_TEXTURE_2D, GL_RGBA32F, screen_, 1);
   t_ = texture(GL_TEXTURE_2D, GL_R32F, screen_, 1);
@@ -88,14 +106,21 @@ ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver)
   image_ = texture(GL_TEXTURE_2D, GL_RGBA32F, screen_, 1);
   image_framebuffer_ = framebuffer({image_}, 0, "scene image's");
   counts_ = gl::create_buffer((1 + 2 * screen_.area()) * sizeof(std::uint32_t));
+  if (shadows != nullptr && samples_ == 1) {
+    transmittance_program_.emplace(
+        gl::ShaderProgram::graphics(kSceneVertex, transmittance_source(driver, *shadows), "habuffer-view light T map"));
+    transmittance_ = texture(GL_TEXTURE_2D, GL_R32F, screen_, 1);
+    transmittance_framebuffer_ = framebuffer({transmittance_}, depth_, "light T map's");
+  }
   gather_program_.set("v_screen_width", screen_.x);
 }
 
 ViewPasses::~ViewPasses() {
-  const GLuint framebuffers[] = {opaque_framebuffer_, resolved_framebuffer_, gather_framebuffer_, image_framebuffer_};
-  glDeleteFramebuffers(4, framebuffers);
-  const GLuint textures[] = {colour_, t_, depth_, ms_colour_, ms_t_, ms_depth_, image_};
-  glDeleteTextures(7, textures);
+  const GLuint framebuffers[] = {opaque_framebuffer_, resolved_framebuffer_, gather_framebuffer_, image_framebuffer_,
+                                 transmittance_framebuffer_};
+  glDeleteFramebuffers(5, framebuffers);
+  const GLuint textures[] = {colour_, t_, depth_, ms_colour_, ms_t_, ms_depth_, image_, transmittance_};
+  glDeleteTextures(8, textures);
   gl::delete_buffer(counts_);
 }
 
@@ -135,6 +160,27 @@ void ViewPasses::gather(const Camera& camera) {
   glBindTextureUnit(0, 0);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kCountsBinding, 0);
+}
+
+std::vector<std::uint32_t> ViewPasses::transmittance_map(const Camera& camera) {
+  if (!transmittance_program_) return {};
+  const float none[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
+  glClearNamedFramebufferfv(transmittance_framebuffer_, GL_COLOR, 0, none);
+  glClearNamedFramebufferfi(transmittance_framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, transmittance_framebuffer_);
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  meshes_.draw(*transmittance_program_, camera, true);
+  meshes_.draw(*transmittance_program_, camera, false);
+  glDisable(GL_DEPTH_TEST);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  std::vector<float> t(screen_.area());
+  glGetTextureImage(transmittance_, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(t.size() * sizeof(float)), t.data());
+  std::vector<std::uint32_t> out(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i)
+    out[i] = t[i] < 0.0f ? 0u : 1u + static_cast<std::uint32_t>(std::lround(254.0f * std::min(t[i], 1.0f)));
+  return out;
 }
 
 std::uint64_t ViewPasses::calls() const {

@@ -8,12 +8,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "gpu_meshes.h"
 #include "habuffer/gl/gl_frame_driver.h"
+#include "habuffer/gl/shadow_lookup.h"
 #include "habuffer/render/image.h"
 
 namespace habuffer::view {
@@ -24,8 +26,10 @@ inline constexpr unsigned kCountsBinding = 2;
 class ViewPasses {
  public:
   /// Compiles the gather from `driver`'s module (its samples, bindings and
-  /// variant) and makes the images for `screen` (the driver's). Throws GlError.
-  ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver);
+  /// variant) and makes the images for `screen` (the driver's). With
+  /// `shadows`, both passes shade by the light buffer bound at those points
+  /// (R_SHADOWS: lit colour times the light's T). Throws GlError.
+  ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows = nullptr);
   ~ViewPasses();
   ViewPasses(const ViewPasses&) = delete;
   ViewPasses& operator=(const ViewPasses&) = delete;
@@ -35,6 +39,10 @@ class ViewPasses {
   /// The transparent meshes through the module (inside GlFrameDriver::frame;
   /// it may run more than once a frame: the counts start from zero each time).
   void gather(const Camera& camera);
+  /// With shadows: the light's T at each pixel's nearest surface (every mesh
+  /// depth-tested; the light bound), as 1 + round(254 T), 0 where no surface:
+  /// the shadow heat map. Empty without shadows.
+  [[nodiscard]] std::vector<std::uint32_t> transmittance_map(const Camera& camera);
   /// habuffer_insert calls of the last gather (the frame driver's call count).
   [[nodiscard]] std::uint64_t calls() const;
   /// The framebuffer the driver resolves into (the scene image).
@@ -55,6 +63,8 @@ class ViewPasses {
   std::uint32_t samples_;
   unsigned technique_framebuffer_;  // where a blending technique's gather draws (0: the gather framebuffer)
   gl::ShaderProgram opaque_program_, gather_program_;
+  std::optional<gl::ShaderProgram> transmittance_program_;  // with shadows
+  unsigned transmittance_ = 0, transmittance_framebuffer_ = 0;
   unsigned colour_ = 0, t_ = 0, depth_ = 0, opaque_framebuffer_ = 0;  // per pixel
   unsigned ms_colour_ = 0, ms_t_ = 0, ms_depth_ = 0, resolved_framebuffer_ = 0;  // per sample (samples above 1)
   unsigned gather_framebuffer_ = 0, image_ = 0, image_framebuffer_ = 0, counts_ = 0;

@@ -17,6 +17,7 @@
 #include "heat_overlay.h"
 #include "oit_session.h"
 #include "scene_options.h"
+#include "shadow_light.h"
 #include "technique_edit.h"
 #include "view_panel.h"
 #include "view_window.h"
@@ -88,7 +89,7 @@ Technique next_technique(Technique t) {
   return all.front()->technique;
 }
 
-Overlay next_overlay(Overlay o) { return static_cast<Overlay>((static_cast<int>(o) + 1) % 4); }
+Overlay next_overlay(Overlay o) { return static_cast<Overlay>((static_cast<int>(o) + 1) % 5); }
 
 // One frame's line of the report.
 struct FrameRow {
@@ -119,6 +120,8 @@ class ViewRun {
     camera_.yaw = s.yaw.value_or(scene.default_yaw);
     camera_.pitch = s.pitch.value_or(scene.default_pitch);
     camera_.fov = s.fov;
+    light_angles(s.light_dir, panel_.light_azimuth, panel_.light_elevation);
+    if (s.shadows) switch_shadows(true, s.light_dir, true);
     if (window_.framebuffer() != s.window)
       std::fprintf(stderr, "habuffer-view: the window system gave a %s framebuffer, not %s\n",
                    window_.framebuffer().str().c_str(), s.window.str().c_str());
@@ -185,6 +188,24 @@ class ViewRun {
     if (!refusal.empty() && tally_.refused++ == 0) tally_.first_refusal = refusal;
   }
 
+  // Shadows on (a light along `direction`, gathered now) or off. A refusal
+  // (a multisampled or 32-bit view) is shown, or with `scripted` thrown.
+  void switch_shadows(bool on, glm::vec3 direction, bool scripted) {
+    std::string refusal;
+    if (!on) {
+      refusal = session_.set_shadows(nullptr);
+      light_.reset();
+    } else {
+      auto light = std::make_unique<ShadowLight>(scene_, direction, s_.light_size, session_.driver().bindings());
+      light->build();
+      refusal = session_.set_shadows(light.get());
+      if (refusal.empty()) light_ = std::move(light);  // the old light goes once the passes no longer use it
+    }
+    if (!refusal.empty() && scripted) throw std::runtime_error(refusal);
+    panel_.refusal = refusal;
+    panel_.psnr.reset();
+  }
+
   void follow_window() {
     const Extent fb = window_.framebuffer();
     if (fb.area() == 0 || fb == session_.driver().screen()) return;  // minimized, or unchanged
@@ -206,19 +227,21 @@ class ViewRun {
                            static_cast<GLint>(screen.y), 0, 0, static_cast<GLint>(window.x), static_cast<GLint>(window.y),
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    draw_overlay(f, screen, window);
+    draw_overlay(f, camera, screen, window);
     if (gui_) {
       window_.begin_gui();
-      const PanelRequest request = draw_panel(panel_, session_.config(), f, overlay_);
+      const PanelRequest request = draw_panel(panel_, session_.config(), f, light_.get(), overlay_);
       window_.end_gui();
       if (request.config) apply(*request.config, false);
+      if (request.shadows) switch_shadows(*request.shadows, light_direction(panel_.light_azimuth, panel_.light_elevation), false);
+      if (request.light && light_) switch_shadows(true, *request.light, false);
       psnr_requested_ = psnr_requested_ || request.psnr;
     }
     for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) ++tally_.gl_errors;
     return f;
   }
 
-  void draw_overlay(const FrameFigures& f, Extent screen, Extent window) {
+  void draw_overlay(const FrameFigures& f, const Camera& camera, Extent screen, Extent window) {
     switch (overlay_) {
       case Overlay::Depth:
       case Overlay::Culled: {
@@ -231,6 +254,14 @@ class ViewRun {
       case Overlay::Age:
         if (uses_table(session_.config().technique))
           heat_.draw(session_.max_age_per_pixel(), screen, std::max(f.max_age, 1u) + 1.0, window);
+        break;
+      case Overlay::Shadow:
+        if (light_) {
+          light_->bind();
+          const std::vector<std::uint32_t> t = session_.passes().transmittance_map(camera);
+          glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+          heat_.draw(t, screen, 255.0, window);
+        }
         break;
       case Overlay::None: break;
     }
@@ -268,7 +299,8 @@ class ViewRun {
         .field("resizes", tally_.resizes)
         .field("gl_errors", tally_.gl_errors)
         .field("fragments", f.counters.fragments)
-        .field("failures", f.counters.failures());
+        .field("failures", f.counters.failures())
+        .field("shadows", light_ != nullptr);
     j.key("psnr");
     if (panel_.psnr)
       j.value(std::isinf(*panel_.psnr) ? std::string("inf") : std::to_string(*panel_.psnr));
@@ -294,6 +326,7 @@ class ViewRun {
   const Scene& scene_;
   ViewWindow window_;
   GpuMeshes meshes_;
+  std::unique_ptr<ShadowLight> light_;  // before the session: destroyed after it
   OitSession session_;
   HeatOverlay heat_;
   CameraParams camera_;

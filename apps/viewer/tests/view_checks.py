@@ -5,7 +5,8 @@ the reason when xvfb-run is missing or no OpenGL 4.5 window can be made.
 
 usage: view_checks.py CHECK --view EXE --habuffer EXE --workdir DIR
 checks:
-  screenshot   the scene image equals `habuffer render` of the same view (PSNR inf)
+  screenshot   the scene image equals `habuffer render` of the same view (PSNR inf),
+               translucent shadows included
   resize       a window resized mid-run renders the new size, equal to render's
   switches     100 technique switches and 20 resizes: no GL error, no GL object
                left behind (per technique), resident memory flat (under 16 MiB growth)
@@ -67,9 +68,10 @@ class Checks:
     def screenshot(self):
         views = [("engine", ["--technique", "ha", "--yaw", "40", "--pitch", "15"], "200x150"),
                  ("hairball", ["--technique", "sorted-lists", "--samples", "4"], "160x128"),
-                 ("quads", ["--technique", "kbuffer", "--layers", "4"], "96x96")]
-        for scene, options, size in views:
-            shot, image = self.path("%s_view.png" % scene), self.path("%s_render.png" % scene)
+                 ("quads", ["--technique", "kbuffer", "--layers", "4"], "96x96"),
+                 ("engine", ["--technique", "lists", "--shadows", "--light-size", "256x256"], "200x150")]
+        for k, (scene, options, size) in enumerate(views):
+            shot, image = self.path("%d_%s_view.png" % (k, scene)), self.path("%d_%s_render.png" % (k, scene))
             self.windowed("--scene", scene, "--size", size, "--frames", 2, "--screenshot", shot, *options)
             self.render(image, "--scene", scene, "--size", size, *options)
             self.expect_equal(scene + " " + " ".join(options), shot, image)
@@ -123,6 +125,10 @@ class Checks:
                  (["--scene", "engine", "--overlay", "heat"], 2, "--overlay"),
                  (["--scene", "engine", "--size", "0x4"], 2, "--size"),
                  (["--scene", "engine", "--layers", "4"], 2, "--layers"),
+                 (["--scene", "engine", "--light-dir", "1,0,0"], 2, "--light-dir"),
+                 (["--scene", "engine", "--overlay", "shadow"], 2, "--overlay shadow"),
+                 (["--scene", "engine", "--shadows", "--samples", "4"], 2, "--samples"),
+                 (["--scene", "engine", "--shadows", "--light-dir", "0,0,0"], 2, "--light-dir"),
                  (["--scene", self.path("missing.obj"), "--frames", "1"], 1, "missing.obj")]
         for args, code, named in cases:
             r = run([self.view, *args])
