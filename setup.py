@@ -96,11 +96,14 @@ class CMakeBuild(build_ext):
             self.copy_file(os.path.join(built, f), os.path.join(dest, f))
 
 
+# setuptools' own build folder, away from the CMake presets' build/ (egg_info
+# needs it to exist before it runs).
+os.makedirs(os.path.join(SOURCE_DIR, "build-pip"), exist_ok=True)
+
 setup(
     version=project_version(),
     ext_modules=[CMakeExtension("habuffer._habuffer", target="habuffer_python")],
     cmdclass={"build_ext": CMakeBuild},
-    # setuptools' own build folder, away from the CMake presets' build/.
     options={"build": {"build_base": "build-pip"}, "egg_info": {"egg_base": "build-pip"}},
     zip_safe=False,
 )

@@ -35,13 +35,30 @@ openvdb::math::Transform::Ptr cell_transform(const VoxelGrid& grid) {
   return xf;
 }
 
-// The grid `load_voxel_vdb` reads: "solid", or the only one.
+// The grid's active voxels span at most kMaxSide along every axis, and its
+// grid of side n (the largest span) fits in memory as n^3 bits: checked from
+// the file's bounding-box metadata before any voxel is read where the
+// writer stored it (OpenVDB does by default), and from the grid read otherwise.
+void check_extent(const openvdb::Coord& lo, const openvdb::Coord& hi, const std::string& what) {
+  std::int64_t side = 0;
+  for (int a = 0; a < 3; ++a) side = std::max<std::int64_t>(side, static_cast<std::int64_t>(hi[a]) - lo[a] + 1);
+  if (side > kMaxSide)
+    throw DataError(what + " spans " + std::to_string(side) + " voxels along an axis; at most " + std::to_string(kMaxSide));
+  const auto n = static_cast<std::uint64_t>(std::max<std::int64_t>(side, 1));
+  try {
+    check_fits_in_memory(what + " (a grid of side " + std::to_string(n) + ")", n * n * n / 8 + 8);
+  } catch (const std::invalid_argument& e) {
+    throw DataError(e.what());
+  }
+}
+
+// The grid `load_voxel_vdb` reads: the first named "solid", or the only one.
 openvdb::GridBase::Ptr pick_grid(openvdb::io::File& file, const std::string& path) {
   const openvdb::GridPtrVecPtr all = file.readAllGridMetadata();
   if (all->empty()) throw DataError(path + ": the OpenVDB file holds no grid");
   openvdb::GridBase::Ptr meta;
   for (const openvdb::GridBase::Ptr& g : *all)
-    if (g->getName() == kGridName) meta = g;
+    if (!meta && g->getName() == kGridName) meta = g;
   if (!meta) {
     if (all->size() != 1) {
       std::string names;
@@ -50,27 +67,23 @@ openvdb::GridBase::Ptr pick_grid(openvdb::io::File& file, const std::string& pat
     }
     meta = all->front();
   }
-  if (!meta->isType<openvdb::BoolGrid>() && !meta->isType<openvdb::FloatGrid>())
-    throw DataError(path + ": grid '" + meta->getName() + "' holds " + meta->valueType() +
-                    " values; voxel grids are bool grids or float fog volumes");
-  if (meta->getGridClass() == openvdb::GRID_LEVEL_SET)
-    throw DataError(path + ": grid '" + meta->getName() +
-                    "' is a level set (its inside is not stored as active voxels): convert it to a fog volume");
-  // The active voxels' box, from the file's metadata, before any voxel is read.
-  const openvdb::Vec3i lo = meta->metaValue<openvdb::Vec3i>(openvdb::GridBase::META_FILE_BBOX_MIN);
-  const openvdb::Vec3i hi = meta->metaValue<openvdb::Vec3i>(openvdb::GridBase::META_FILE_BBOX_MAX);
-  for (int a = 0; a < 3; ++a)
-    if (static_cast<std::int64_t>(hi[a]) - lo[a] >= kMaxSide)
-      throw DataError(path + ": grid '" + meta->getName() + "' spans " +
-                      std::to_string(static_cast<std::int64_t>(hi[a]) - lo[a] + 1) + " voxels along an axis; at most " +
-                      std::to_string(kMaxSide));
-  const openvdb::Index64 voxels = meta->metaValue<openvdb::Int64>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
-  try {
-    check_fits_in_memory(path + ": " + std::to_string(voxels) + " active voxels", voxels * 16);
-  } catch (const std::invalid_argument& e) {
-    throw DataError(e.what());
-  }
-  return file.readGrid(meta->getName());
+  const std::string what = path + ": grid '" + meta->getName() + "'";
+  const auto check_kind = [&](const openvdb::GridBase& g) {
+    if (!g.isType<openvdb::BoolGrid>() && !g.isType<openvdb::FloatGrid>())
+      throw DataError(what + " holds " + g.valueType() + " values; voxel grids are bool grids or float fog volumes");
+    if (g.getGridClass() == openvdb::GRID_LEVEL_SET)
+      throw DataError(what + " is a level set (its inside is not stored as active voxels): convert it to a fog volume");
+  };
+  check_kind(*meta);
+  const auto lo = meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+  const auto hi = meta->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+  if (lo && hi) check_extent(openvdb::Coord(lo->value()), openvdb::Coord(hi->value()), what);
+  // The first grid of the name, as readGrid takes it; checked again as read.
+  openvdb::GridBase::Ptr grid = file.readGrid(meta->getName());
+  check_kind(*grid);
+  const openvdb::CoordBBox box = grid->evalActiveVoxelBoundingBox();
+  if (!box.empty()) check_extent(box.min(), box.max(), what);
+  return grid;
 }
 
 // The solid voxels of `base` (bool: active and true; float: active and above 0), by `visit(coord)`.
@@ -132,7 +145,11 @@ Placement placement(const openvdb::GridBase& g, const std::string& path) {
                     " transform; voxel grids take a scale and a translation only");
   if (active.empty()) throw DataError(path + ": grid '" + g.getName() + "' has no active voxels to place a grid around");
   const openvdb::Coord extent = active.dim();
-  p.n = static_cast<std::uint32_t>(std::max({extent.x(), extent.y(), extent.z()}));
+  const int side = std::max({extent.x(), extent.y(), extent.z()});
+  if (side > kMaxSide)
+    throw DataError(path + ": grid '" + g.getName() + "' spans " + std::to_string(side) + " voxels; at most " +
+                    std::to_string(kMaxSide));
+  p.n = static_cast<std::uint32_t>(side);
   p.origin = active.min();
   const openvdb::Vec3d lo = xf.indexToWorld(openvdb::Vec3d(p.origin.asVec3d()) - openvdb::Vec3d(0.5));
   const openvdb::Vec3d hi = xf.indexToWorld(openvdb::Vec3d(p.origin.asVec3d()) + openvdb::Vec3d(p.n - 0.5));

@@ -71,11 +71,17 @@ std::string OitSession::reconfigure(TechniqueConfig config) {
 }
 
 void OitSession::resize(Extent screen) {
-  if (screen == driver_->screen()) return;
-  passes_.reset();
-  driver_->resize_screen(screen);
-  config_.buffer.screen = screen;
-  passes_ = make_passes(*driver_, config_);
+  const Extent before = driver_->screen();
+  if (screen == before) return;
+  driver_->resize_screen(screen);  // strong guarantee: on a throw it keeps its old screen
+  try {
+    std::unique_ptr<ViewPasses> passes = make_passes(*driver_, config_);
+    passes_ = std::move(passes);
+    config_.buffer.screen = screen;
+  } catch (...) {
+    driver_->resize_screen(before);  // back to the screen the running passes have
+    throw;
+  }
 }
 
 FrameFigures OitSession::run_frame(gl::GlFrameDriver& driver, ViewPasses& passes, const Camera& camera,

@@ -61,7 +61,9 @@ class OitSession {
   /// A new technique or options: a new driver; on a refusal (std::invalid_argument,
   /// GlError) the running one stays and the message is returned; empty on success.
   std::string reconfigure(TechniqueConfig config);
-  /// The window's framebuffer changed: the driver's resize_screen and new passes.
+  /// The window's framebuffer changed: the driver's resize_screen and new
+  /// passes. On a refusal (std::invalid_argument, GlError: the context's
+  /// limits) everything stays at the old screen and the error propagates.
   void resize(Extent screen);
   /// Shades by `light` from now on (nullptr: no shadows): new passes, and
   /// the light bound before every frame. Returns the refusal (the view's

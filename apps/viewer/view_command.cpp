@@ -157,6 +157,13 @@ ViewSettings parse_view_settings(const Args& args) {
   s.report = args.str("report");
   s.resizes = parse_resizes(args);
   s.cycle = args.u32_in("cycle", 0, 1000000);
+  // A scripted step beyond the last frame would be ignored: refused instead.
+  if (s.frames > 0 && s.cycle > s.frames - 1)
+    throw UsageError("option --cycle: " + std::to_string(s.cycle) + " switches need " + std::to_string(s.cycle + 1) +
+                     " frames (one a frame after the first), not --frames " + std::to_string(s.frames));
+  if (s.frames > 0 && !s.resizes.empty() && s.resizes.back().frame >= s.frames)
+    throw UsageError("option --resize: frame " + std::to_string(s.resizes.back().frame) + " is beyond --frames " +
+                     std::to_string(s.frames));
   s.psnr = args.has("psnr");
   s.shadows = args.has("shadows");
   if (s.overlay == Overlay::Shadow && !s.shadows)

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <string>
 
@@ -66,6 +67,15 @@ std::string gather_source(const gl::GlFrameDriver& driver, const gl::GlLightBind
   return s + kShading + kGatherFragment;
 }
 
+// glGetTextureImage's byte count is a GLsizei: refuse a read that does not fit it.
+GLsizei read_bytes(Extent screen, std::uint64_t bytes_per_pixel) {
+  const std::uint64_t bytes = screen.area() * bytes_per_pixel;
+  if (bytes > static_cast<std::uint64_t>(INT32_MAX))
+    throw gl::GlError("habuffer-view: the " + screen.str() + " image (" + std::to_string(bytes) +
+                      " bytes) is beyond one read-back of 2 GiB");
+  return static_cast<GLsizei>(bytes);
+}
+
 // The transmittance map's shader: render's shadow_map.frag.glsl after the lookup.
 std::string transmittance_source(const gl::GlFrameDriver& driver, const gl::GlLightBindings& shadows) {
   return gl::light_lookup_shader_head(shadows, driver.mode()) + "#define R_SHADOWS\n" + kShading + kShadowMapFragment;
@@ -80,6 +90,16 @@ ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver,
       technique_framebuffer_(driver.technique().gather_framebuffer()),
       opaque_program_(gl::ShaderProgram::graphics(kSceneVertex, opaque_source(driver, shadows), "habuffer-view opaque pass")),
       gather_program_(gl::ShaderProgram::graphics(kSceneVertex, gather_source(driver, shadows), "habuffer-view gather")) {
+  // The images one by one: a throw part way deletes those made (release).
+  try {
+    make_images(driver, shadows);
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+void ViewPasses::make_images(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows) {
   gl::check_viewport_fits(screen_);
   colour_ = texture(GL_TEXTURE_2D, GL_RGBA32F, screen_, 1);
   t_ = texture(GL_TEXTURE_2D, GL_R32F, screen_, 1);
@@ -115,7 +135,9 @@ ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver,
   gather_program_.set("v_screen_width", screen_.x);
 }
 
-ViewPasses::~ViewPasses() {
+ViewPasses::~ViewPasses() { release(); }
+
+void ViewPasses::release() {
   const GLuint framebuffers[] = {opaque_framebuffer_, resolved_framebuffer_, gather_framebuffer_, image_framebuffer_,
                                  transmittance_framebuffer_};
   glDeleteFramebuffers(5, framebuffers);
@@ -175,8 +197,9 @@ std::vector<std::uint32_t> ViewPasses::transmittance_map(const Camera& camera) {
   meshes_.draw(*transmittance_program_, camera, false);
   glDisable(GL_DEPTH_TEST);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  const GLsizei bytes = read_bytes(screen_, sizeof(float));
   std::vector<float> t(screen_.area());
-  glGetTextureImage(transmittance_, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(t.size() * sizeof(float)), t.data());
+  glGetTextureImage(transmittance_, 0, GL_RED, GL_FLOAT, bytes, t.data());
   std::vector<std::uint32_t> out(t.size());
   for (std::size_t i = 0; i < t.size(); ++i)
     out[i] = t[i] < 0.0f ? 0u : 1u + static_cast<std::uint32_t>(std::lround(254.0f * std::min(t[i], 1.0f)));
@@ -189,15 +212,16 @@ std::uint64_t ViewPasses::calls() const {
 }
 
 Image ViewPasses::read_image() const {
+  const GLsizei bytes = read_bytes(screen_, sizeof(glm::vec4));
   Image image{screen_, std::vector<glm::vec4>(screen_.area())};
-  glGetTextureImage(image_, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.pixels.size() * sizeof(glm::vec4)),
-                    image.pixels.data());
+  glGetTextureImage(image_, 0, GL_RGBA, GL_FLOAT, bytes, image.pixels.data());
   return image;
 }
 
 std::vector<glm::vec3> ViewPasses::read_opaque_colour() const {
+  const GLsizei bytes = read_bytes(screen_, sizeof(glm::vec4));
   std::vector<glm::vec4> rgba(screen_.area());
-  glGetTextureImage(colour_, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(glm::vec4)), rgba.data());
+  glGetTextureImage(colour_, 0, GL_RGBA, GL_FLOAT, bytes, rgba.data());
   std::vector<glm::vec3> out(rgba.size());
   for (std::size_t i = 0; i < rgba.size(); ++i) out[i] = glm::vec3(rgba[i]);
   return out;

@@ -58,6 +58,8 @@ class ViewPasses {
   [[nodiscard]] Extent screen() const { return screen_; }
 
  private:
+  void make_images(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows);
+  void release();
   const GpuMeshes& meshes_;
   Extent screen_;
   std::uint32_t samples_;

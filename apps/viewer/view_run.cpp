@@ -1,6 +1,7 @@
 #include "view_run.h"
 
 #include <epoxy/gl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,8 @@
 #include "heat_overlay.h"
 #include "oit_session.h"
 #include "scene_options.h"
+#include "habuffer/gl/gl_error.h"
+#include "habuffer/scene.h"
 #include "shadow_light.h"
 #include "technique_edit.h"
 #include "view_panel.h"
@@ -30,7 +33,7 @@ std::uint64_t resident_kib() {
   std::ifstream statm("/proc/self/statm");
   std::uint64_t size = 0, resident = 0;
   statm >> size >> resident;
-  return resident * 4;  // pages of 4 KiB on the platforms habuffer runs on
+  return resident * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE)) / 1024;
 }
 
 // Live GL objects of each kind: the names in use among the first `probe`
@@ -130,7 +133,14 @@ class ViewRun {
   int run() {
     const std::uint64_t warm_frame = s_.frames / 5;
     for (std::uint32_t frame = 0; s_.frames == 0 || frame < s_.frames; ++frame) {
-      if (window_.should_close()) break;
+      if (window_.should_close()) {
+        if (s_.frames > 0) {
+          std::fprintf(stderr, "habuffer-view: the window closed at frame %u of %u: no outputs written\n", frame,
+                       s_.frames);
+          return 1;
+        }
+        break;
+      }
       const bool last = s_.frames != 0 && frame + 1 == s_.frames;
       scripted_steps(frame);
       handle_input(window_.poll());
@@ -192,25 +202,51 @@ class ViewRun {
   // (a multisampled or 32-bit view) is shown, or with `scripted` thrown.
   void switch_shadows(bool on, glm::vec3 direction, bool scripted) {
     std::string refusal;
-    if (!on) {
-      refusal = session_.set_shadows(nullptr);
-      light_.reset();
-    } else {
-      auto light = std::make_unique<ShadowLight>(scene_, direction, s_.light_size, session_.driver().bindings());
-      light->build();
-      refusal = session_.set_shadows(light.get());
-      if (refusal.empty()) light_ = std::move(light);  // the old light goes once the passes no longer use it
+    try {
+      if (!on) {
+        refusal = session_.set_shadows(nullptr);
+        if (refusal.empty()) light_.reset();
+      } else {
+        auto light = std::make_unique<ShadowLight>(scene_, direction, s_.light_size, session_.driver().bindings());
+        light->build();
+        refusal = session_.set_shadows(light.get());
+        if (refusal.empty()) light_ = std::move(light);  // the old light goes once the passes no longer use it
+      }
+    } catch (const SceneError& e) {
+      refusal = e.what();
+    } catch (const std::invalid_argument& e) {
+      refusal = e.what();
+    } catch (const gl::GlError& e) {
+      refusal = e.what();
     }
-    if (!refusal.empty() && scripted) throw std::runtime_error(refusal);
+    if (!refusal.empty() && scripted) throw std::runtime_error("--shadows: " + refusal);
+    if (light_ && light_->figures().failures > 0 && refusal.empty())
+      refusal = "the light buffer dropped " + std::to_string(light_->figures().failures) +
+                " fragments after 16 gathers: shadows are lighter than they are";
     panel_.refusal = refusal;
     panel_.psnr.reset();
   }
 
   void follow_window() {
     const Extent fb = window_.framebuffer();
-    if (fb.area() == 0 || fb == session_.driver().screen()) return;  // minimized, or unchanged
-    session_.resize(fb);
+    if (fb.area() == 0 || fb == session_.driver().screen() || fb == refused_screen_) return;  // minimized, unchanged
+    try {
+      session_.resize(fb);
+      refused_screen_ = Extent{};
+    } catch (const std::invalid_argument& e) {
+      refuse_screen(fb, e.what());
+    } catch (const gl::GlError& e) {
+      refuse_screen(fb, e.what());
+    }
     panel_.psnr.reset();
+  }
+
+  // A window the library cannot follow: the view keeps its size (drawn in
+  // the window's corner) and says why, once for that size.
+  void refuse_screen(Extent fb, const std::string& why) {
+    refused_screen_ = fb;
+    panel_.refusal = "window " + fb.str() + ": " + why;
+    if (s_.frames > 0) ++tally_.refused;
   }
 
   FrameFigures draw_frame(bool last) {
@@ -252,8 +288,10 @@ class ViewRun {
         break;
       }
       case Overlay::Age:
-        if (uses_table(session_.config().technique))
-          heat_.draw(session_.max_age_per_pixel(), screen, std::max(f.max_age, 1u) + 1.0, window);
+        if (uses_table(session_.config().technique)) {
+          const std::vector<std::uint32_t> ages = session_.max_age_per_pixel();
+          if (ages.size() == screen.area()) heat_.draw(ages, screen, std::max(f.max_age, 1u) + 1.0, window);
+        }
         break;
       case Overlay::Shadow:
         if (light_) {
@@ -287,6 +325,7 @@ class ViewRun {
   void finish(const FrameFigures& f) {
     if (!s_.window_shot.empty()) write_image(s_.window_shot, read_window(window_.framebuffer()));
     if (!s_.screenshot.empty()) write_image(s_.screenshot, session_.passes().read_image());
+    for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) ++tally_.gl_errors;
     if (s_.report.empty()) return;
     JsonWriter j;
     j.begin_object()
@@ -333,6 +372,7 @@ class ViewRun {
   Overlay overlay_;
   bool gui_;
   bool psnr_requested_ = false;
+  Extent refused_screen_;  // a window size the library refused (not retried)
   PanelState panel_;
   RunTally tally_;
   std::vector<FrameRow> rows_;

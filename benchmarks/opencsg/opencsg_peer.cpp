@@ -37,7 +37,10 @@ CompatContext::CompatContext() : state_(std::make_unique<State>()) {
                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT, EGL_NONE};
   state_->context = eglCreateContext(d, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
   if (state_->context == EGL_NO_CONTEXT) throw std::runtime_error("no OpenGL 4.5 compatibility-profile context (OpenCSG needs one)");
-  if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, state_->context)) throw std::runtime_error("eglMakeCurrent failed");
+  if (!eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, state_->context)) {
+    eglDestroyContext(d, state_->context);
+    throw std::runtime_error("eglMakeCurrent failed");
+  }
   // OpenCSG calls GLEW's entry points but leaves glewInit to its host. GLEW
   // (as Debian builds it, for GLX) fills them from the current context and
   // then reports that no GLX display is there (4, GLEW_ERROR_NO_GLX_DISPLAY):
@@ -45,9 +48,13 @@ CompatContext::CompatContext() : state_(std::make_unique<State>()) {
   // libopencsg's own GLEW, so no GLEW headers or link are needed.
   using GlewInit = unsigned (*)();
   const auto glew_init = reinterpret_cast<GlewInit>(dlsym(RTLD_DEFAULT, "glewInit"));
-  if (glew_init == nullptr) throw std::runtime_error("GLEW's glewInit is not loaded (libopencsg links it)");
-  const unsigned r = glew_init();
-  if (r != 0 && r != 4) throw std::runtime_error("glewInit failed with " + std::to_string(r));
+  const unsigned r = glew_init != nullptr ? glew_init() : 1u;
+  if (glew_init == nullptr || (r != 0 && r != 4)) {
+    eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(d, state_->context);
+    throw std::runtime_error(glew_init == nullptr ? "GLEW's glewInit is not loaded (libopencsg links it)"
+                                                  : "glewInit failed with " + std::to_string(r));
+  }
 }
 
 CompatContext::Current::Current(const CompatContext& c)
@@ -68,7 +75,8 @@ CompatContext::Current::~Current() {
 }
 
 CompatContext::~CompatContext() {
-  OpenCSG::freeResources();
+  // OpenCSG's names are this context's: freed with it current.
+  if (eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, state_->context)) OpenCSG::freeResources();
   eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglDestroyContext(state_->display, state_->context);
 }
@@ -104,6 +112,7 @@ class MeshPrimitive final : public OpenCSG::Primitive {
   MeshPrimitive& operator=(const MeshPrimitive&) = delete;
 
   void render() override {
+    glBindVertexArray(0);  // the compatibility profile's default vertex array, not a host's
     glBindBuffer(GL_ARRAY_BUFFER, vertices_);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_);
     glEnableClientState(GL_VERTEX_ARRAY);
@@ -148,7 +157,12 @@ OpenCsgPeer::OpenCsgPeer(const Scene& scene, std::vector<std::uint32_t> convexit
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, gpu_->depth);
   const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!complete) throw std::runtime_error("OpenCsgPeer: the framebuffer " + screen.str() + " is not complete");
+  if (!complete) {
+    glDeleteFramebuffers(1, &gpu_->framebuffer);
+    glDeleteRenderbuffers(1, &gpu_->colour);
+    glDeleteRenderbuffers(1, &gpu_->depth);
+    throw std::runtime_error("OpenCsgPeer: the framebuffer " + screen.str() + " is not complete");
+  }
 }
 
 OpenCsgPeer::~OpenCsgPeer() {

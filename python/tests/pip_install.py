@@ -5,7 +5,7 @@ numpy), offline (--no-index); then `import habuffer` from the environment and
 the notebook, then `pip uninstall`. The copy holds what a fresh clone holds
 (git's tracked and not-ignored files), so nothing of a build tree can help.
 
-usage: pip_install.py SOURCE_DIR --workdir DIR
+usage: pip_install.py SOURCE_DIR --workdir DIR [--python PYTHON3]
 Exit 0 when every step passed; a failing step names itself and its output.
 """
 
@@ -50,6 +50,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("source")
     ap.add_argument("--workdir", required=True)
+    ap.add_argument("--python", default="/usr/bin/python3", help="the interpreter the environment is made from")
     a = ap.parse_args()
     work = os.path.abspath(a.workdir)
     shutil.rmtree(work, ignore_errors=True)
@@ -59,7 +60,7 @@ def main():
 
     env = {k: v for k, v in os.environ.items() if not k.startswith("PYTHON") and k != "VIRTUAL_ENV"}
     env.update(MPLBACKEND="Agg", PIP_DISABLE_PIP_VERSION_CHECK="1", PYTHONDONTWRITEBYTECODE="1")
-    step("venv", ["/usr/bin/python3", "-m", "venv", "--system-site-packages", venv], env)
+    step("venv", [a.python, "-m", "venv", "--system-site-packages", venv], env)
     py = os.path.join(venv, "bin", "python")
     step("pip install", [py, "-m", "pip", "install", "--no-build-isolation", "--no-index", "-v", "."], env, cwd=src)
 
@@ -81,9 +82,12 @@ def main():
                       "--workdir", os.path.join(work, "notebook")], env, cwd=work)
 
     step("pip uninstall", [py, "-m", "pip", "uninstall", "-y", "habuffer"], env, cwd=work)
-    r = subprocess.run([py, "-c", "import habuffer"], env=env, cwd=work, capture_output=True)
-    if r.returncode == 0:
-        raise SystemExit("pip_install: habuffer still imports after pip uninstall")
+    # A habuffer the system has (cmake --install into dist-packages) may
+    # still import through the system site packages: only the environment's must be gone.
+    r = subprocess.run([py, "-c", "import habuffer; print(habuffer.__file__)"], env=env, cwd=work, capture_output=True,
+                       text=True)
+    if r.returncode == 0 and os.path.realpath(r.stdout.strip()).startswith(os.path.realpath(venv) + os.sep):
+        raise SystemExit("pip_install: habuffer still imports from the environment after pip uninstall")
     print("pip_install: install, import, notebook and uninstall passed")
     return 0
 
