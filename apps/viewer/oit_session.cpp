@@ -36,7 +36,19 @@ std::unique_ptr<gl::GlFrameDriver> OitSession::make_driver(const TechniqueConfig
 std::unique_ptr<ViewPasses> OitSession::make_passes(const gl::GlFrameDriver& driver, const TechniqueConfig& config) const {
   if (light_ != nullptr && config.buffer.samples > 1)
     throw std::invalid_argument("translucent shadows are drawn with one sample a pixel: set --samples 1 first");
-  return std::make_unique<ViewPasses>(meshes_, driver, light_ != nullptr ? &light_->bindings() : nullptr);
+  return std::make_unique<ViewPasses>(meshes_, driver, light_ != nullptr ? &light_->bindings() : nullptr, count_pixels_);
+}
+
+void OitSession::count_pixels(bool on) {
+  if (on == count_pixels_) return;
+  count_pixels_ = on;
+  try {
+    std::unique_ptr<ViewPasses> passes = make_passes(*driver_, config_);
+    passes_ = std::move(passes);
+  } catch (...) {
+    count_pixels_ = !on;  // the running passes stay
+    throw;
+  }
 }
 
 std::string OitSession::set_shadows(ShadowLight* light) {

@@ -70,6 +70,9 @@ class OitSession {
   /// module must read 64-bit records, one sample a pixel) or empty.
   std::string set_shadows(ShadowLight* light);
   [[nodiscard]] const ShadowLight* shadows() const { return light_; }
+  /// Whether the gather counts fragments per pixel (the depth and culled
+  /// heat maps); a change compiles the gather again.
+  void count_pixels(bool on);
   /// One frame: the opaque pass, the driver's frame around the gather, the
   /// resolve into the scene image. With `capture`, the frame's fragments are
   /// kept for the exact reference (reference_psnr).
@@ -98,6 +101,7 @@ class OitSession {
   std::unique_ptr<gl::GlFrameDriver> driver_;
   std::unique_ptr<ViewPasses> passes_;
   ShadowLight* light_ = nullptr;  // owned by the run
+  bool count_pixels_ = false;
 };
 
 }  // namespace habuffer::view

@@ -14,13 +14,15 @@
 namespace habuffer::view {
 namespace {
 
-std::string gather_header(const gl::GlFrameDriver& driver) {
+std::string gather_header(const gl::GlFrameDriver& driver, bool count_pixels) {
   for (unsigned p : driver.bindings().storage_points())
     if (p == kCountsBinding)
       throw gl::GlError("habuffer-view's counts buffer (binding " + std::to_string(kCountsBinding) +
                         ") collides with the library's points");
   std::string h = "#define V_BINDING_COUNTS " + std::to_string(kCountsBinding) + "\n";
   if (driver.technique().samples() > 1) h += "#define V_SAMPLES " + std::to_string(driver.technique().samples()) + "\n";
+  if (driver.needs_call_count()) h += "#define V_COUNT_CALLS\n";
+  if (count_pixels) h += "#define V_COUNT_PIXELS\n";
   return h;
 }
 
@@ -61,8 +63,8 @@ std::string opaque_source(const gl::GlFrameDriver& driver, const gl::GlLightBind
 }
 
 // The gather: the driver's module, the lookup with shadows, then the shading and ours.
-std::string gather_source(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows) {
-  std::string s = driver.module_source(gl::ShaderStage::Fragment, gather_header(driver));
+std::string gather_source(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows, bool count_pixels) {
+  std::string s = driver.module_source(gl::ShaderStage::Fragment, gather_header(driver, count_pixels));
   if (shadows != nullptr) s += gl::light_lookup_part(*shadows, driver.mode()) + "#define R_SHADOWS\n";
   return s + kShading + kGatherFragment;
 }
@@ -83,13 +85,15 @@ std::string transmittance_source(const gl::GlFrameDriver& driver, const gl::GlLi
 
 }  // namespace
 
-ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows)
+ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows,
+                       bool count_pixels)
     : meshes_(meshes),
       screen_(driver.screen()),
       samples_(driver.technique().samples()),
       technique_framebuffer_(driver.technique().gather_framebuffer()),
       opaque_program_(gl::ShaderProgram::graphics(kSceneVertex, opaque_source(driver, shadows), "habuffer-view opaque pass")),
-      gather_program_(gl::ShaderProgram::graphics(kSceneVertex, gather_source(driver, shadows), "habuffer-view gather")) {
+      gather_program_(gl::ShaderProgram::graphics(kSceneVertex, gather_source(driver, shadows, count_pixels),
+                                                  "habuffer-view gather")) {
   // The images one by one: a throw part way deletes those made (release).
   try {
     make_images(driver, shadows);

@@ -28,8 +28,12 @@ class ViewPasses {
   /// Compiles the gather from `driver`'s module (its samples, bindings and
   /// variant) and makes the images for `screen` (the driver's). With
   /// `shadows`, both passes shade by the light buffer bound at those points
-  /// (R_SHADOWS: lit colour times the light's T). Throws GlError.
-  ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows = nullptr);
+  /// (R_SHADOWS: lit colour times the light's T). With `count_pixels`, the
+  /// gather counts each pixel's fragments and early-culled ones
+  /// (counts_buffer(): the heat maps), an atomic per fragment otherwise
+  /// left out. Throws GlError.
+  ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows = nullptr,
+             bool count_pixels = false);
   ~ViewPasses();
   ViewPasses(const ViewPasses&) = delete;
   ViewPasses& operator=(const ViewPasses&) = delete;
@@ -49,7 +53,8 @@ class ViewPasses {
   [[nodiscard]] unsigned image_framebuffer() const { return image_framebuffer_; }
   /// The opaque colour per pixel, the background texture of the resolve.
   [[nodiscard]] unsigned opaque_colour() const { return colour_; }
-  /// The per-pixel counts buffer: word 0 the calls, then two words a pixel (fragments, culled).
+  /// The counts buffer: word 0 the calls (where the driver asks for them),
+  /// then two words a pixel, fragments and culled (with count_pixels; zero otherwise).
   [[nodiscard]] unsigned counts_buffer() const { return counts_; }
   /// The scene image, row 0 at the bottom.
   [[nodiscard]] Image read_image() const;

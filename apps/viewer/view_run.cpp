@@ -250,6 +250,7 @@ class ViewRun {
   }
 
   FrameFigures draw_frame(bool last) {
+    session_.count_pixels(overlay_ == Overlay::Depth || overlay_ == Overlay::Culled);
     const Extent screen = session_.driver().screen();
     const Camera camera = frame_scene(scene_, camera_, screen);
     const FrameFigures f = session_.frame(camera, s_.background);

@@ -1,9 +1,11 @@
 // habuffer-view's gather: the host's own shader around the module's
 // habuffer_insert (appended after the module and shading.glsl). Each
-// transparent fragment in front of the opaque surfaces is inserted; the
-// fragments and the early-culled ones are counted per pixel for the heat
-// maps (v_counts: two words a pixel), and the calls in all (v_calls: the
-// frame driver's call count where the driver can end a call unanswered).
+// transparent fragment in front of the opaque surfaces is inserted. Counted
+// only where compiled in (an atomic per fragment nobody reads costs):
+//   V_COUNT_PIXELS  the fragments and the early-culled ones per pixel, for
+//                   the heat maps (v_counts: two words a pixel);
+//   V_COUNT_CALLS   the calls in all (v_calls), the frame driver's call
+//                   count where the driver can end a call unanswered.
 layout(std430, binding = V_BINDING_COUNTS) buffer VCounts { uint v_calls; uint v_counts[]; };
 #ifdef V_SAMPLES
 layout(binding = 0) uniform sampler2DMS v_opaque_t;  // t of each sample's nearest opaque surface
@@ -31,8 +33,12 @@ void main() {
   if (t >= texelFetch(v_opaque_t, ivec2(p), 0).r) discard;
   uint outcome = habuffer_insert(p, t, rgba);
 #endif
-  uint i = 2u * (p.x + p.y * v_screen_width);
+#ifdef V_COUNT_CALLS
   atomicAdd(v_calls, 1u);
+#endif
+#ifdef V_COUNT_PIXELS
+  uint i = 2u * (p.x + p.y * v_screen_width);
   atomicAdd(v_counts[i], 1u);
   if (outcome == HABUFFER_CULLED) atomicAdd(v_counts[i + 1u], 1u);
+#endif
 }
