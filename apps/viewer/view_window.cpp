@@ -105,7 +105,8 @@ Extent ViewWindow::framebuffer() const {
 
 void ViewWindow::resize(Extent size) {
   glfwSetWindowSize(window_, static_cast<int>(size.x), static_cast<int>(size.y));
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  // A window manager, or a loaded machine, may take a while; the loop ends as soon as the size arrives.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
   while (framebuffer() != size && std::chrono::steady_clock::now() < until) {
     glfwWaitEventsTimeout(0.01);
   }

@@ -34,7 +34,7 @@ class ViewWindow {
   InputEvents poll();
   /// The framebuffer's size now (it follows resizes; 0x0 while minimized).
   [[nodiscard]] Extent framebuffer() const;
-  /// Asks for a framebuffer of `size` and waits (at most a second) until the window system gives it.
+  /// Asks for a framebuffer of `size` and waits (at most 5 s) until the window system gives it.
   void resize(Extent size);
   /// Starts the GUI's frame (before any ImGui call).
   void begin_gui();
