@@ -256,18 +256,6 @@ RenderResult render_with_gl(const Args& args, const std::vector<std::string>& op
 
 std::vector<float> as_floats(const std::vector<std::uint32_t>& v) { return {v.begin(), v.end()}; }
 
-// Per pixel, the age of its deepest record (its list length with no gaps).
-std::vector<float> max_age_per_pixel(const HaBuffer& b) {
-  std::vector<float> ages(b.screen().area(), 0.0f);
-  std::vector<ListEntry> list;
-  for (std::uint32_t y = 0; y < b.screen().y; ++y)
-    for (std::uint32_t x = 0; x < b.screen().x; ++x) {
-      b.list(x, y, list);
-      for (const ListEntry& e : list) ages[x + std::size_t{y} * b.screen().x] = std::max(ages[x + std::size_t{y} * b.screen().x], static_cast<float>(e.age));
-    }
-  return ages;
-}
-
 std::vector<HeatmapOutput> write_heatmaps(const std::vector<HeatmapRequest>& requests, const RenderResult& r, Extent size) {
   std::vector<HeatmapOutput> out;
   for (const HeatmapRequest& h : requests) {
@@ -277,7 +265,7 @@ std::vector<HeatmapOutput> write_heatmaps(const std::vector<HeatmapRequest>& req
       values = as_floats(r.pixel_fragments);
       title = "fragments per pixel";
     } else if (h.kind == "age") {
-      values = max_age_per_pixel(*r.ha_buffer());
+      values = as_floats(max_age_per_pixel(*r.ha_buffer()));
       title = "max age per pixel";
     } else if (h.kind == "shadow") {
       values = r.shadow_map;  // -1 where no surface: drawn as 0, the ramp's dark end

@@ -141,16 +141,7 @@ double OitSession::reference_psnr(const Camera& camera, glm::vec3 background) {
 std::vector<std::uint32_t> OitSession::max_age_per_pixel() const {
   const std::unique_ptr<FragmentBuffer> back = driver_->technique().read_back();
   const HaBuffer* ha = back ? back->hash_table() : nullptr;
-  if (ha == nullptr) return {};
-  const Extent s = ha->screen();
-  std::vector<std::uint32_t> ages(s.area(), 0);
-  std::vector<ListEntry> list;
-  for (std::uint32_t y = 0; y < s.y; ++y)
-    for (std::uint32_t x = 0; x < s.x; ++x) {
-      ha->list(x, y, list);
-      for (const ListEntry& e : list) ages[x + std::size_t{y} * s.x] = std::max(ages[x + std::size_t{y} * s.x], e.age + 1);
-    }
-  return ages;
+  return ha != nullptr ? habuffer::max_age_per_pixel(*ha) : std::vector<std::uint32_t>{};
 }
 
 }  // namespace habuffer::view

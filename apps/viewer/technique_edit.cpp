@@ -32,13 +32,7 @@ std::vector<const TechniqueOption*> editable_options(Technique t) {
 TechniqueConfig with_option(const TechniqueConfig& config, const TechniqueOption& o, const std::string& text) {
   TechniqueConfig c = config;
   try {
-    set_option(o, c, text);
-    // The rules of a configuration; an automatic table or pool (left 0 for
-    // the frame driver to size) is checked as one of a single slot or node.
-    TechniqueConfig checked = c;
-    if (checked.pool_capacity == 0) checked.pool_capacity = 1;
-    if (checked.buffer.table.area() == 0) checked.buffer.table = checked.buffer.screen;
-    checked.validate();
+    set_option(o, c, text);  // the value's own rule; the configuration's are make_gl_technique's
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("--" + std::string(o.flag) + " " + text + ": " + e.what());
   }

@@ -21,7 +21,9 @@ TechniqueConfig with_technique(const TechniqueConfig& config, Technique t);
 /// those its descriptor takes (never the technique-word knobs alone).
 std::vector<const TechniqueOption*> editable_options(Technique t);
 /// `config` with option `o` set from `text` (the CLI's spelling); throws
-/// std::invalid_argument naming the option and the reason.
+/// std::invalid_argument naming the option and the reason for a value the
+/// option refuses. The configuration's rules are checked where the driver
+/// is made (OitSession::reconfigure shows that refusal).
 TechniqueConfig with_option(const TechniqueConfig& config, const TechniqueOption& o, const std::string& text);
 /// The option's value in `config` as the CLI writes it.
 std::string option_text(const TechniqueOption& o, const TechniqueConfig& config);

@@ -150,18 +150,24 @@ void ViewPasses::release() {
   gl::delete_buffer(counts_);
 }
 
+void ViewPasses::draw_depth_tested(unsigned framebuffer, const gl::ShaderProgram& program, const Camera& camera,
+                                   bool transparent_too) const {
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  meshes_.draw(program, camera, true);
+  if (transparent_too) meshes_.draw(program, camera, false);
+  glDisable(GL_DEPTH_TEST);
+}
+
 void ViewPasses::draw_opaque(const Camera& camera, glm::vec3 background) {
   const float bg[4] = {background.x, background.y, background.z, 1.0f};
   const float none[4] = {2.0f, 0.0f, 0.0f, 0.0f};  // t beyond every fragment's
   glClearNamedFramebufferfv(opaque_framebuffer_, GL_COLOR, 0, bg);
   glClearNamedFramebufferfv(opaque_framebuffer_, GL_COLOR, 1, none);
   glClearNamedFramebufferfi(opaque_framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, opaque_framebuffer_);
-  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  meshes_.draw(opaque_program_, camera, true);
-  glDisable(GL_DEPTH_TEST);
+  draw_depth_tested(opaque_framebuffer_, opaque_program_, camera, false);
   if (samples_ > 1) {
     // The per-pixel backgrounds: each attachment's samples box-filtered.
     const auto w = static_cast<GLint>(screen_.x), h = static_cast<GLint>(screen_.y);
@@ -193,13 +199,7 @@ std::vector<std::uint32_t> ViewPasses::transmittance_map(const Camera& camera) {
   const float none[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
   glClearNamedFramebufferfv(transmittance_framebuffer_, GL_COLOR, 0, none);
   glClearNamedFramebufferfi(transmittance_framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, transmittance_framebuffer_);
-  glViewport(0, 0, static_cast<GLsizei>(screen_.x), static_cast<GLsizei>(screen_.y));
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  meshes_.draw(*transmittance_program_, camera, true);
-  meshes_.draw(*transmittance_program_, camera, false);
-  glDisable(GL_DEPTH_TEST);
+  draw_depth_tested(transmittance_framebuffer_, *transmittance_program_, camera, true);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   const GLsizei bytes = read_bytes(screen_, sizeof(float));
   std::vector<float> t(screen_.area());

@@ -64,6 +64,9 @@ class ViewPasses {
 
  private:
   void make_images(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows);
+  // The opaque meshes (and with `transparent_too` the others) into `framebuffer`, depth-tested.
+  void draw_depth_tested(unsigned framebuffer, const gl::ShaderProgram& program, const Camera& camera,
+                         bool transparent_too) const;
   void release();
   const GpuMeshes& meshes_;
   Extent screen_;

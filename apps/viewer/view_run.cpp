@@ -291,7 +291,7 @@ class ViewRun {
       case Overlay::Age:
         if (uses_table(session_.config().technique)) {
           const std::vector<std::uint32_t> ages = session_.max_age_per_pixel();
-          if (ages.size() == screen.area()) heat_.draw(ages, screen, std::max(f.max_age, 1u) + 1.0, window);
+          if (ages.size() == screen.area()) heat_.draw(ages, screen, std::max(f.max_age, 1u), window);
         }
         break;
       case Overlay::Shadow:

@@ -26,11 +26,6 @@ layout(binding = 0) uniform sampler2D r_opaque_depth;  // t of the nearest opaqu
 uniform uint r_screen_width;  // its own: the counting pass reads nothing of the technique's
 uniform uint r_count_only;
 
-uint r_pack_rgba(vec3 c, float a) {
-  uvec4 b = uvec4(round(clamp(vec4(c, a), 0.0, 1.0) * 255.0));
-  return (b.r << 24u) | (b.g << 16u) | (b.b << 8u) | b.a;
-}
-
 void main() {
   uvec2 p = uvec2(gl_FragCoord.xy);
   uint rgba = r_pack_rgba(r_shaded_colour(), r_opacity);  // derivatives before any branch

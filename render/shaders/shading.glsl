@@ -30,3 +30,10 @@ vec3 r_shaded_colour() {
 }
 
 float r_depth() { return (-v_eye.z - r_near) / (r_far - r_near); }
+
+// The record's colour word, RGBA8 (R in the high byte): what every gather
+// inserts (render's and habuffer-view's).
+uint r_pack_rgba(vec3 c, float a) {
+  uvec4 b = uvec4(round(clamp(vec4(c, a), 0.0, 1.0) * 255.0));
+  return (b.r << 24u) | (b.g << 16u) | (b.b << 8u) | b.a;
+}

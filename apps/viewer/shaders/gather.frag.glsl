@@ -14,14 +14,9 @@ layout(binding = 0) uniform sampler2D v_opaque_t;  // t of the nearest opaque su
 #endif
 uniform uint v_screen_width;
 
-uint v_pack_rgba(vec3 c, float a) {
-  uvec4 b = uvec4(round(clamp(vec4(c, a), 0.0, 1.0) * 255.0));
-  return (b.r << 24u) | (b.g << 16u) | (b.b << 8u) | b.a;
-}
-
 void main() {
   uvec2 p = uvec2(gl_FragCoord.xy);
-  uint rgba = v_pack_rgba(r_shaded_colour(), r_opacity);  // derivatives before any branch
+  uint rgba = r_pack_rgba(r_shaded_colour(), r_opacity);  // derivatives before any branch
   float t = r_depth();
 #ifdef V_SAMPLES
   uint coverage = uint(gl_SampleMaskIn[0]);

@@ -436,4 +436,17 @@ std::uint64_t HaBuffer::memory_bytes() const {
   return table + impl_->max_age.bytes() + impl_->offsets.size() * sizeof(glm::uvec2) + impl_->saturation.size() * 4;
 }
 
+std::vector<std::uint32_t> max_age_per_pixel(const HaBuffer& buffer) {
+  const Extent s = buffer.screen();
+  std::vector<std::uint32_t> ages(s.area(), 0);
+  std::vector<ListEntry> list;
+  for (std::uint32_t y = 0; y < s.y; ++y)
+    for (std::uint32_t x = 0; x < s.x; ++x) {
+      buffer.list(x, y, list);
+      std::uint32_t& deepest = ages[x + std::size_t{y} * s.x];
+      for (const ListEntry& e : list) deepest = std::max(deepest, e.age);
+    }
+  return ages;
+}
+
 }  // namespace habuffer

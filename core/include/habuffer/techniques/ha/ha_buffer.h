@@ -142,4 +142,8 @@ class HaBuffer final : public FragmentBuffer {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Per pixel, row-major, the age of its deepest record (ages start at 1, so
+/// 0 where the pixel holds none): the max-age heat maps of `render` and habuffer-view.
+std::vector<std::uint32_t> max_age_per_pixel(const HaBuffer& buffer);
+
 }  // namespace habuffer
