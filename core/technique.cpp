@@ -85,9 +85,8 @@ std::string TechniqueConfig::limit() const {
   return {};
 }
 
-TechniqueConfig TechniqueConfig::grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
-                                       std::uint32_t most_arrived) const {
-  return descriptor(technique).grown(*this, policy, GrowthNeed{nodes_requested, most_arrived});
+TechniqueConfig TechniqueConfig::grown(const ResizePolicy& policy, const GrowthNeed& need) const {
+  return descriptor(technique).grown(*this, policy, need);
 }
 
 TechniqueConfig TechniqueConfig::sized_for(const ResizePolicy& policy, std::uint64_t fragments) const {

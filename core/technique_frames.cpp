@@ -1,5 +1,6 @@
 #include "habuffer/technique_frames.h"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -8,10 +9,13 @@
 namespace habuffer {
 namespace {
 
-// The lossless attempt after `buffer` dropped fragments.
-TechniqueConfig next_attempt(const TechniqueConfig& c, const FragmentBuffer& buffer, const ResizePolicy& policy) {
-  const GrowthNeed need = buffer.growth_need();
-  return c.grown(policy, need.nodes_requested, need.most_arrived);
+// The lossless attempt after `buffer` dropped fragments, sized by what the
+// attempt counted (every fragment it received has an outcome).
+TechniqueConfig next_attempt(const TechniqueConfig& c, const FragmentBuffer& buffer, const Counters& counters,
+                             const ResizePolicy& policy) {
+  GrowthNeed need = buffer.growth_need();
+  need.records = counters.records_needed();
+  return c.grown(policy, need);
 }
 
 // Whether `buffer` is the container make_fragment_buffer would make for `c`
@@ -52,11 +56,15 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
   std::uint32_t attempts = automatic_pool ? std::max<std::uint32_t>(max_attempts_, 2) : max_attempts_;
   bool rule_asked = false;  // lossless_attempts, asked once: after the first failed attempt
   auto b = std::make_unique<TechniqueBuild>();
+  std::uint64_t sized_for = 0;  // the count the next attempt is sized by
   for (;;) {
+    const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<FragmentBuffer> buffer = container_for(c);
     last_.reset();  // a failed attempt's container is not kept: the next is larger
     const Counters counters = buffer->insert(fragments, options_);
-    b->attempts.push_back({uses_table(c.technique) ? c.buffer.table : Extent{}, counters, buffer->capacity()});
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    b->attempts.push_back(
+        {uses_table(c.technique) ? c.buffer.table : Extent{}, counters, buffer->capacity(), sized_for, ms});
     b->counters = counters;
     b->buffer = std::move(buffer);
     if (counters.failures() == 0 || b->attempts.size() >= attempts) break;
@@ -69,7 +77,8 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
       b->too_deep = std::move(limit.too_deep);
       if (b->attempts.size() >= attempts) break;
     }
-    const TechniqueConfig next = next_attempt(c, *b->buffer, policy_);
+    const TechniqueConfig next = next_attempt(c, *b->buffer, b->counters, policy_);
+    sized_for = uses_pool(c.technique) ? b->buffer->growth_need().nodes_requested : b->counters.records_needed();
     if (!next.limit().empty()) {  // no larger buffer can be built: the last attempt's result, marked
       b->growth_limited = true;
       break;

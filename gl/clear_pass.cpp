@@ -41,7 +41,7 @@ ClearPass::~ClearPass() {
   glDeleteFramebuffers(1, &framebuffer_);
 }
 
-ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, bool finish, unsigned result_buffer) {
+ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, ClockMode clock, unsigned result_buffer) {
   GLint max_w = 0, max_h = 0, viewport[2] = {};
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_w);
   glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_h);
@@ -67,7 +67,7 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   program_.set("ha_clear_writes", writes ? 1u : 0u);
   const bool atomic = host_occlusion_query_active();
   program_.set("ha_clear_atomic_count", atomic ? 1u : 0u);
-  PassClock clock(timer_, finish);
+  PassClock pass_clock(timer_, clock);
   if (atomic) {
     atomic_count_.zero();
     bind_at(GL_SHADER_STORAGE_BUFFER, stream_point_, atomic_count_.id());  // the caller's guard restores the point
@@ -100,7 +100,7 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   } else {
     stored = query_result(query_);
   }
-  const auto [wall, gpu] = clock.stop();
+  const auto [wall, gpu] = pass_clock.stop();
   return {stored, wall, gpu};
 }
 

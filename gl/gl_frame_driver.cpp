@@ -9,11 +9,13 @@
 #include <cstdio>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "compute_grid.h"
 #include "gl_params.h"
 #include "gl_state_guard.h"
 #include "gpu_timer.h"
+#include "late_readback.h"
 #include "pixel_store.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
@@ -82,7 +84,12 @@ struct GlFrameDriver::Gpu {
   std::unique_ptr<ResolvePass> resolve_per_sample;  // a multisampled buffer into a target of its samples
   std::unique_ptr<ShaderProgram> resume;
   GpuTimer gather_timer, reset_timer;
+  LateReadback late;  // Readback::Deferred's ring of readbacks
 };
+
+std::string_view to_string(Readback readback) {
+  return readback == Readback::Deferred ? "deferred" : "immediate";
+}
 
 GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options)
     : technique_(checked(std::move(technique))),
@@ -93,8 +100,27 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
   options_.module = options_.module.resolved(mode(), query_gl_info());
   needs_count_ = technique_->sized_automatically();
   module_id_ = fingerprint(module_text(ShaderStage::Fragment));
-  if (!options_.max_attempts) options_.max_attempts = needs_count_ ? GlFrameOptions::kAutomaticAttempts : 1u;
+  if (!options_.readback) options_.readback = Readback::Immediate;
+  const bool deferred = *options_.readback == Readback::Deferred;
+  if (deferred && options_.finish_timing.value_or(false))
+    throw std::invalid_argument("finish_timing waits for the GPU around every pass; a Deferred readback never waits: "
+                                "leave it unset or false");
+  if (!options_.finish_timing) options_.finish_timing = !deferred;
+  if (!options_.max_attempts)
+    options_.max_attempts = needs_count_ && !deferred ? GlFrameOptions::kAutomaticAttempts : 1u;
   if (*options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
+  if (deferred && *options_.max_attempts > 1)
+    throw std::invalid_argument("max_attempts " + std::to_string(*options_.max_attempts) +
+                                " regathers a frame that lost fragments, which needs that frame's count at once: "
+                                "Readback::Immediate (a Deferred readback never waits)");
+  if (deferred && options_.capture)
+    throw std::invalid_argument("capture reads the frame's fragments back at once: Readback::Immediate");
+  if (!(options_.attempt_budget_ms >= 0.0 && options_.attempt_budget_ms < 1e12))
+    throw std::invalid_argument("attempt_budget_ms " + std::to_string(options_.attempt_budget_ms) +
+                                " must be 0 (none) or a positive number of milliseconds");
+  if (!(options_.growth_budget == 0.0 || (options_.growth_budget >= 1.0 && options_.growth_budget < 1e12)))
+    throw std::invalid_argument("growth_budget " + std::to_string(options_.growth_budget) +
+                                " must be 0 (none) or a factor of at least 1");
   if (options_.lock_spin_limit == 0) throw std::invalid_argument("the lock spin limit must be at least 1");
   if (options_.capture_only && !options_.capture) throw std::invalid_argument("capture_only needs capture");
   check_viewport_fits(screen());
@@ -122,8 +148,9 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
 GlFrameDriver::~GlFrameDriver() = default;
 
 std::string GlFrameDriver::module_text(ShaderStage stage, std::string_view header) const {
+  const char* count_calls = needs_call_count_ ? "#define HABUFFER_COUNT_CALLS\n" : "";
   return technique_->module_source(stage, options_.module.defines() + light_module_defines(options_.light) +
-                                              std::string(header));
+                                              count_calls + std::string(header));
 }
 
 std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
@@ -148,11 +175,55 @@ void GlFrameDriver::check_refused_calls(const std::vector<std::uint32_t>& words)
 void GlFrameDriver::resize_screen(Extent screen) {
   technique_->check_context("resize_screen");
   const Extent before = this->screen();
+  // Frames in flight were gathered on the old screen: read now (a wait, on
+  // a resize only), handed over by the next frame().
+  if (options_.readback == Readback::Deferred && screen != before)
+    for (FrameReport& r : collect_late(true)) held_reports_.push_back(std::move(r));
   technique_->resize_screen(screen);  // strong guarantee: on a throw nothing changed
   write_params();                     // the block's screen for passes run before the next frame
   // An automatic container is counted again for the new screen (its depth
-  // complexity need not scale with the area).
-  if (screen != before && technique_->sized_automatically()) needs_count_ = true;
+  // complexity need not scale with the area); counts of the old screen
+  // (frames still in flight included) size nothing.
+  if (screen != before) {
+    if (technique_->sized_automatically()) needs_count_ = true;
+    latest_count_.reset();
+    sizing_floor_ = frames_;
+  }
+}
+
+void GlFrameDriver::request_recount() {
+  if (!technique_->sized_automatically())
+    throw std::invalid_argument("request_recount: this " + to_string(technique_->technique()) +
+                                " container was given its size (an automatic one is made without a table or pool)");
+  needs_count_ = true;
+}
+
+std::size_t GlFrameDriver::frames_in_flight() const { return gpu_->late.pending(); }
+
+std::vector<FrameReport> GlFrameDriver::finish_reports() {
+  technique_->check_context("finish_reports");
+  if (options_.readback != Readback::Deferred) return {};
+  std::vector<FrameReport> out = std::exchange(held_reports_, {});
+  for (FrameReport& r : collect_late(true)) out.push_back(std::move(r));
+  return out;
+}
+
+void GlFrameDriver::note_count(const FrameReport& report) {
+  if (report.index < sizing_floor_) return;
+  if (latest_count_ && latest_count_->frame > report.index) return;
+  latest_count_ = SizingCount{report.index, report.counters.records_needed(), report.nodes_requested};
+}
+
+bool GlFrameDriver::within_budget(const FrameReport& report, std::uint64_t start_capacity, double elapsed_ms) const {
+  if (options_.attempt_budget_ms > 0.0 && elapsed_ms >= options_.attempt_budget_ms) return false;
+  if (options_.growth_budget > 0.0) {
+    // The next size, as ResizePolicy sizes a table or pool for the count.
+    const std::uint64_t need = uses_pool(technique_->technique()) ? report.nodes_requested
+                                                                   : report.counters.records_needed();
+    const std::uint64_t next = std::max(technique_->capacity() + 1, options_.policy.counted_capacity(need));
+    if (static_cast<double>(next) > options_.growth_budget * static_cast<double>(start_capacity)) return false;
+  }
+  return true;
 }
 
 bool GlFrameDriver::size_for(std::uint64_t fragments) {
@@ -174,6 +245,10 @@ bool GlFrameDriver::size_for(std::uint64_t fragments) {
   const bool limited = technique_->fit_automatic_size(wanted);
   write_params();
   needs_count_ = false;
+  // Sized for this count: counts of frames gathered before (the last one's,
+  // frames still in flight) decide nothing.
+  latest_count_.reset();
+  sizing_floor_ = frames_;
   return limited;
 }
 
@@ -261,6 +336,7 @@ void GlFrameDriver::count_and_size(const std::function<void()>& gather, FrameRep
   const std::uint64_t fragments = stripe_tally(words)[HABUFFER_COUNTER_COUNTED];
   report.counted_fragments = fragments;
   report.count_limited = size_for(fragments);
+  sizing_floor_ = report.index;  // this frame, sized by its own count, sizes the next
   report.count.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -311,7 +387,14 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
                   "gather (each fragment's coverage mask names its samples)");
   technique_->record_gather_depth(gather_depth_now(options_));  // what this frame's depths will be
   const GlStateGuard guard(bindings());
+  const bool deferred = options_.readback == Readback::Deferred;
   FrameReport report;
+  // Earlier frames whose fences signalled: read without a wait, their count
+  // sizes this frame.
+  if (deferred) {
+    report.completed = std::exchange(held_reports_, {});
+    for (FrameReport& r : collect_late(false)) report.completed.push_back(std::move(r));
+  }
   report.index = frames_++;
   if (has_passes(GlPassStage::FrameStart)) {
     const GlStateGuard begin_guard(bindings());  // the gather gets the host's state back
@@ -320,7 +403,19 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
     run_passes(GlPassStage::FrameStart, report);
   }
   if (needs_count_) count_and_size(gather, report);  // an automatic container's first frame on this screen
+  report.sized_by = std::exchange(latest_count_, std::nullopt);
   technique_->begin_frame(report, options_);         // sizing only, no GL state touched
+  if (deferred) {
+    run_deferred_gather(gather, report);
+    return report;
+  }
+  const auto frame_t0 = std::chrono::steady_clock::now();
+  const std::uint64_t start_capacity = technique_->capacity();
+  std::uint64_t sized_for = 0;  // the count the next attempt is sized by
+  auto attempt_t0 = frame_t0;
+  const auto ms_since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
   for (;;) {
     run_gather(gather, calls, report);
     if (options_.capture && report.captured > capture_capacity_) {
@@ -351,7 +446,8 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       ++report.cut_short_retries;
       continue;
     }
-    report.attempts.push_back({report.table, report.counters, technique_->capacity()});
+    report.attempts.push_back({report.table, report.counters, technique_->capacity(), sized_for, ms_since(attempt_t0)});
+    attempt_t0 = std::chrono::steady_clock::now();
     const std::uint32_t allowed = std::max<std::uint32_t>(*options_.max_attempts, technique_->grows_at_once() ? 2 : 1);
     if (report.counters.failures() == 0 || report.attempts.size() >= allowed) break;
     // Failures that are all calls cut short (contention or the driver, not
@@ -360,14 +456,131 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       technique_->reset();
       continue;
     }
-    // Lossless mode: the same frame again, with room for what was dropped.
+    if (!within_budget(report, start_capacity, ms_since(frame_t0))) {
+      report.budget_stopped = true;
+      break;
+    }
+    // Lossless mode: the same frame again, sized for what this gather counted.
+    sized_for = uses_pool(technique_->technique()) ? report.nodes_requested : report.counters.records_needed();
     if (!technique_->grow(report, options_)) {
       report.growth_limited = true;
       break;
     }
   }
   report.capacity = technique_->capacity();
+  note_count(report);
   return report;
+}
+
+void GlFrameDriver::run_deferred_gather(const std::function<void()>& gather, FrameReport& report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  LateReadback& late = gpu_->late;
+  const std::uint32_t rounds = technique_->defers_calls() ? options_.late_resume_rounds : 0;
+  LateReadback::Slot& slot = late.begin(kCounterWords + 1 + rounds);
+  try {
+    late.mark(LateReadback::FrameBegin);
+    reset_frame_state();
+    technique_->before_gather();
+    if (has_passes(GlPassStage::Fill)) (void)run_fill(gather, report);
+    write_params();
+    {
+      const GlStateGuard attempt_guard(bindings());
+      bind();
+      run_passes(GlPassStage::Gather, report);
+      late.mark(LateReadback::GatherBegin);
+      gather();
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
+      finish_gather_passes();
+      bind();  // the host's gather may have bound its own buffers at our points
+      if (technique_->defers_calls()) {
+        // Resume rounds dispatched for the buffer's capacity, each reading
+        // its calls' count on the GPU (resume.comp.glsl), each count copied
+        // for the late report: the calls deferred, those lost to an
+        // overflow, those still cut short after the last round.
+        late.copy(gpu_->deferred[0].id(), 0, kCounterWords, 4);
+        int in = 0;
+        for (std::uint32_t r = 0; r < rounds; ++r) {
+          const int out = 1 - in;
+          zero_range(gpu_->deferred[out].id(), 0, kAppendHeaderBytes);
+          glUseProgram(gpu_->resume->id());
+          gpu_->deferred[in].bind_storage(bindings().stream);
+          gpu_->deferred[out].bind_storage(bindings().deferred);
+          gpu_->resume->set("ha_resume_count", static_cast<unsigned>(deferred_capacity_));
+          dispatch_grid(deferred_capacity_, 64);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+          late.copy(gpu_->deferred[out].id(), 0, kCounterWords + 1 + r, 4);
+          in = out;
+        }
+        slot.rounds = rounds;
+      }
+      late.mark(LateReadback::GatherEnd);
+      sorted_ = !options_.capture_only && has_passes(GlPassStage::Sort);
+      if (sorted_) {
+        bind();
+        run_passes(GlPassStage::Sort, report);
+      }
+    }
+    late.mark(LateReadback::FrameEnd);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    late.copy(gpu_->counters.id(), 0, 0, kCounterWords * 4);
+    check_gl_errors("the gather pass");
+    report.complete = false;
+    report.capacity = technique_->capacity();
+    report.table = technique_->table_extent();
+    slot.report = report;
+    slot.report.completed.clear();
+    slot.capacity = report.capacity;
+    slot.deferred_capacity = deferred_capacity_;
+    slot.sorted = sorted_;
+    slot.submit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    report.gather.wall_ms = slot.submit_ms;
+    late.end();
+  } catch (...) {
+    late.abandon();
+    throw;
+  }
+}
+
+std::vector<FrameReport> GlFrameDriver::collect_late(bool wait) {
+  std::vector<FrameReport> out;
+  for (LateReadback::Done& d : gpu_->late.collect(wait)) {
+    FrameReport r = std::move(d.slot.report);
+    r.complete = true;
+    sorted_ = d.slot.sorted;
+    (void)read_counters_from(d.words, r);
+    // The resume rounds' counts: calls beyond a buffer's capacity lost their
+    // carried state, calls left after the last round stayed cut short; both
+    // end as failed_iter (SPEC invariant 1), and the buffer grows for later frames.
+    std::uint64_t unfinished = 0;
+    if (technique_->defers_calls()) {
+      const std::uint64_t cap = d.slot.deferred_capacity;
+      std::uint64_t most = 0;
+      for (std::uint32_t k = 0; k <= d.slot.rounds; ++k) {
+        const std::uint64_t h = d.words[kCounterWords + k];
+        most = std::max(most, h);
+        if (h > cap) unfinished += h - cap;
+        if (k < d.slot.rounds) r.deferred += std::min(h, cap);
+        if (k > 0 && h > 0) r.resume_rounds = k;
+      }
+      unfinished += std::min<std::uint64_t>(d.words[kCounterWords + d.slot.rounds], cap);
+      if (most > deferred_capacity_) grow_deferred(most);
+    }
+    r.counters.fragments += unfinished;
+    r.counters.failed_iter += unfinished;
+    r.cut_short = unfinished;
+    if (needs_call_count_ && !options_.capture_only) count_own_calls(d.words, r);
+    const Extent table = r.table;
+    technique_->gathered(d.words, r);
+    r.table = table;  // the table it was gathered into, not the current one
+    r.capacity = d.slot.capacity;
+    r.reset = {0.0, d.gpu_ms[0]};
+    r.gather = {d.slot.submit_ms, d.gpu_ms[1]};
+    r.sort = {0.0, d.gpu_ms[2]};
+    r.attempts = {BuildAttempt{r.table, r.counters, r.capacity, 0, d.slot.submit_ms}};
+    note_count(r);
+    out.push_back(std::move(r));
+  }
+  return out;
 }
 
 bool GlFrameDriver::has_passes(GlPassStage stage) const {
@@ -395,14 +608,14 @@ double GlFrameDriver::run_fill(const std::function<void()>& gather, FrameReport&
   // occupancy fill), then the technique's own pass over what it gathered.
   const auto t0 = std::chrono::steady_clock::now();
   run_phase_gather(HABUFFER_PHASE_FILL, gather, report, [&] { run_passes(GlPassStage::Fill, report); });
-  if (options_.finish_timing) glFinish();
+  if (clock_mode(options_) == ClockMode::Finish) glFinish();
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
                                FrameReport& report) {
   {
-    PassClock clock(gpu_->reset_timer, options_.finish_timing);
+    PassClock clock(gpu_->reset_timer, clock_mode(options_));
     reset_frame_state();
     technique_->before_gather();
     std::tie(report.reset.wall_ms, report.reset.gpu_ms) = clock.stop();
@@ -415,7 +628,7 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
     bind();
     run_passes(GlPassStage::Gather, report);
     {
-      PassClock clock(gpu_->gather_timer, options_.finish_timing);
+      PassClock clock(gpu_->gather_timer, clock_mode(options_));
       gather();
       // Resolve, read-backs and the next clear see every insert.
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_UNIFORM_BARRIER_BIT);
@@ -443,18 +656,33 @@ void GlFrameDriver::run_gather(const std::function<void()>& gather, const std::f
   report.counters.fragments += unfinished;
   report.counters.failed_iter += unfinished;
   report.cut_short += unfinished;
-  if (calls && needs_call_count_ && !options_.capture_only) {
-    const std::uint64_t made = calls();
-    if (made < report.counters.fragments)
-      throw GlError("the gather counted " + std::to_string(report.counters.fragments) + " insert calls, the host " +
-                    std::to_string(made));
-    // Calls a driver ended without an outcome or a deferral: nothing to resume.
-    const std::uint64_t ended_by_driver = made - report.counters.fragments;
-    report.counters.fragments += ended_by_driver;
-    report.counters.failed_iter += ended_by_driver;
-    report.cut_short += ended_by_driver;
+  if (needs_call_count_ && !options_.capture_only) {
+    if (calls)
+      count_ended_by_driver(calls(), report);
+    else
+      count_own_calls(counter_words, report);
   }
   technique_->gathered(counter_words, report);
+}
+
+void GlFrameDriver::count_own_calls(std::span<const std::uint32_t> words, FrameReport& report) const {
+  // The module's own count (HABUFFER_COUNT_CALLS) covers the shaders built
+  // from module_source(); a gather from the installed GLSL files counts no
+  // calls, so a count below the outcomes (never possible otherwise: a call
+  // is counted before its outcome) means there is nothing to reconcile.
+  const std::uint64_t made = std::uint64_t{words[HABUFFER_COUNTER_CALLS]} + report.off_screen;
+  if (made >= report.counters.fragments) count_ended_by_driver(made, report);
+}
+
+void GlFrameDriver::count_ended_by_driver(std::uint64_t made, FrameReport& report) const {
+  if (made < report.counters.fragments)
+    throw GlError("the gather counted " + std::to_string(report.counters.fragments) + " insert calls, " +
+                  std::to_string(made) + " were made");
+  // Calls a driver ended without an outcome or a deferral: nothing to resume.
+  const std::uint64_t ended_by_driver = made - report.counters.fragments;
+  report.counters.fragments += ended_by_driver;
+  report.counters.failed_iter += ended_by_driver;
+  report.cut_short += ended_by_driver;
 }
 
 std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
@@ -473,7 +701,7 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
   if (count == 0) return 0;
   bind();
   // The rounds' own span (each count read waits for its round: part of it).
-  PassClock clock(gpu_->gather_timer, options_.finish_timing);
+  PassClock clock(gpu_->gather_timer, clock_mode(options_));
   while (count > 0 && report.resume_rounds < options_.resume_rounds) {
     report.deferred += count;
     const int out = 1 - in;
@@ -496,6 +724,11 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
 
 std::vector<std::uint32_t> GlFrameDriver::read_counters(FrameReport& report) const {
   std::vector<std::uint32_t> words = gpu_->counters.read_words(kCounterWords);
+  return read_counters_from(std::move(words), report);
+}
+
+std::vector<std::uint32_t> GlFrameDriver::read_counters_from(std::vector<std::uint32_t> words,
+                                                            FrameReport& report) const {
   check_refused_calls(words);
   const std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> sums = stripe_tally(words);
   const std::uint64_t* tally = sums.data();
@@ -542,8 +775,8 @@ PassTiming GlFrameDriver::run_resolve(glm::vec3 background, unsigned background_
                   ": resolve into a framebuffer of " + std::to_string(samples) + " (per sample) or 1 (per pixel)");
   ResolvePass& pass = samples > 1 && target == samples ? *gpu_->resolve_per_sample : *gpu_->resolve;
   bind();
-  const auto [wall, gpu] = over ? pass.run_over(screen(), options_.finish_timing)
-                                : pass.run(screen(), background, background_texture, options_.finish_timing);
+  const auto [wall, gpu] = over ? pass.run_over(screen(), clock_mode(options_))
+                                : pass.run(screen(), background, background_texture, clock_mode(options_));
   check_gl_errors("the resolve pass");
   return {wall, gpu};
 }
@@ -573,7 +806,7 @@ std::vector<Fragment> GlFrameDriver::read_capture() const {
 std::uint64_t GlFrameDriver::capture_bytes() const { return gpu_->capture.bytes(); }
 
 std::uint64_t GlFrameDriver::memory_bytes() const {
-  return technique_->memory_bytes() +
+  return technique_->memory_bytes() + gpu_->late.bytes() +
          bytes_of(gpu_->counters, gpu_->params, gpu_->capture, gpu_->deferred[0], gpu_->deferred[1]);
 }
 

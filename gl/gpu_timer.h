@@ -9,6 +9,7 @@
 #include <epoxy/gl.h>
 
 #include "gl_state_guard.h"
+#include "habuffer/gl/frame_report.h"
 #include "habuffer/gl/gl_context.h"
 
 #include <chrono>
@@ -38,34 +39,51 @@ class GpuTimer {
   MadeOn made_on_;
 };
 
-// Wall clock and GPU timestamps around one pass. With `finish`, the clock
-// waits for the GPU (glFinish) before it starts and when it stops, so the
-// wall time is the pass's whole time and none of the work queued before it
-// (a fresh buffer's zeroing, a host's pass). Nothing stays active, so a pass
+// How a pass is timed: whether the clock waits for the GPU around it, and
+// whether it reads its GPU timestamps at once (a wait for the queries).
+enum class ClockMode : std::uint8_t {
+  Finish,  // glFinish before and after; GPU time read (GlFrameOptions::finish_timing)
+  Read,    // no finish; GPU time read when the pass ends (waits for the timestamps)
+  Unread,  // no finish, no read: wall time of submission only (Readback::Deferred never waits)
+};
+
+// The clock mode of a frame of `options` (resolved by the frame driver).
+inline ClockMode clock_mode(const GlFrameOptions& options) {
+  if (options.readback == Readback::Deferred) return ClockMode::Unread;
+  return options.finish_timing.value_or(true) ? ClockMode::Finish : ClockMode::Read;
+}
+
+// Wall clock and GPU timestamps around one pass. With ClockMode::Finish,
+// the clock waits for the GPU (glFinish) before it starts and when it
+// stops, so the wall time is the pass's whole time and none of the work
+// queued before it (a fresh buffer's zeroing, a host's pass); with Unread
+// it neither waits nor reads (GPU time 0). Nothing stays active, so a pass
 // that throws needs no clean-up.
 class PassClock {
  public:
-  PassClock(const GpuTimer& timer, bool finish) : timer_(timer), finish_(finish), start_(started(finish)) {
-    timer_.begin();
+  PassClock(const GpuTimer& timer, ClockMode mode) : timer_(timer), mode_(mode), start_(started(mode)) {
+    if (mode_ != ClockMode::Unread) timer_.begin();
   }
   PassClock(const PassClock&) = delete;
   PassClock& operator=(const PassClock&) = delete;
   // Ends the pass: {wall ms, GPU ms}.
   [[nodiscard]] std::pair<double, double> stop() {
+    if (mode_ == ClockMode::Unread)
+      return {std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count(), 0.0};
     timer_.end();
-    if (finish_) glFinish();
+    if (mode_ == ClockMode::Finish) glFinish();
     const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
     return {wall, timer_.milliseconds()};
   }
 
  private:
-  static std::chrono::steady_clock::time_point started(bool finish) {
-    if (finish) glFinish();
+  static std::chrono::steady_clock::time_point started(ClockMode mode) {
+    if (mode == ClockMode::Finish) glFinish();
     return std::chrono::steady_clock::now();
   }
 
   const GpuTimer& timer_;
-  bool finish_;
+  ClockMode mode_;
   std::chrono::steady_clock::time_point start_;
 };
 

@@ -17,16 +17,16 @@ ResolvePass::~ResolvePass() {
 }
 
 std::pair<double, double> ResolvePass::run(Extent screen, glm::vec3 background, unsigned background_texture,
-                                           bool finish) {
-  return draw(screen, background, background_texture, false, finish);
+                                           ClockMode clock) {
+  return draw(screen, background, background_texture, false, clock);
 }
 
-std::pair<double, double> ResolvePass::run_over(Extent screen, bool finish) {
-  return draw(screen, glm::vec3(0.0f), 0, true, finish);
+std::pair<double, double> ResolvePass::run_over(Extent screen, ClockMode clock) {
+  return draw(screen, glm::vec3(0.0f), 0, true, clock);
 }
 
 std::pair<double, double> ResolvePass::draw(Extent screen, glm::vec3 background, unsigned background_texture,
-                                            bool over, bool finish) {
+                                            bool over, ClockMode clock) {
   GlStateGuard::prepare_full_screen_pass();
   if (over) {
     // Over a zero background the composite is the premultiplied (C, 1 - T).
@@ -45,9 +45,9 @@ std::pair<double, double> ResolvePass::draw(Extent screen, glm::vec3 background,
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit0);
   if (background_texture != 0) glBindTextureUnit(0, background_texture);
   GlStateGuard::set_viewport(static_cast<GLsizei>(screen.x), static_cast<GLsizei>(screen.y));
-  PassClock clock(timer_, finish);
+  PassClock pass_clock(timer_, clock);
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  const auto times = clock.stop();
+  const auto times = pass_clock.stop();
   glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(unit0));
   glActiveTexture(static_cast<GLenum>(active));
   return times;

@@ -26,15 +26,15 @@ class ResolvePass {
   // background_texture: 0 for the uniform background, else a 2D texture read per pixel.
   // Writes every colour channel of draw buffer 0 and no other draw buffer (prepare_full_screen_pass;
   // the caller's guard restores the host's mask and blend setup).
-  std::pair<double, double> run(Extent screen, glm::vec3 background, unsigned background_texture, bool finish);
+  std::pair<double, double> run(Extent screen, glm::vec3 background, unsigned background_texture, ClockMode clock);
   // The same over what the framebuffer holds: premultiplied (C, 1 - T)
   // blended with (GL_ONE, GL_ONE_MINUS_SRC_ALPHA), so a pixel with nothing
   // stored keeps its colour exactly.
-  std::pair<double, double> run_over(Extent screen, bool finish);
+  std::pair<double, double> run_over(Extent screen, ClockMode clock);
 
  private:
   std::pair<double, double> draw(Extent screen, glm::vec3 background, unsigned background_texture, bool over,
-                                 bool finish);
+                                 ClockMode clock);
 
   ShaderProgram program_;
   GpuTimer timer_;

@@ -17,7 +17,7 @@ class SortPass {
  public:
   SortPass(Technique technique, AtomicMode mode, const GlBindings& bindings);
   // Needs every buffer bound and the caller's state guard.
-  PassTiming run(Extent screen, bool finish);
+  PassTiming run(Extent screen, ClockMode clock);
 
  private:
   ShaderProgram program_;

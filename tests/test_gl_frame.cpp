@@ -65,61 +65,61 @@ TEST(GlFrame, ClearPassOcclusionCountIsExactAndEmptiesTheTable) {
   }
 }
 
-// A scripted sequence whose content grows then shrinks: frame k reads the
-// count frame k-1's clear pass made of frame k-2's records (read one frame
-// late, as the paper does), and its table is ResizePolicy::next of that
-// count; a count of a table replaced since is dropped; never
+// A scripted sequence whose content grows then shrinks: frame k's table is
+// ResizePolicy::next of frame k-1's table and the records it asked to keep
+// (its outcome counters, read with the frame: Readback::Immediate), a frame
+// that still overflows regathers into the table for its own count; never
 // below the screen, offsets regenerated for every size, and each frame's
 // table is the CPU path's.
-TEST(GlFrame, AdaptiveSizingFollowsSpec8FromCountsReadOneFrameLate) {
+TEST(GlFrame, AdaptiveSizingDecidesFromTheLastFramesCountAndRegathersByTheCount) {
   gl_context();
   const Extent screen{40, 32};
-  // Loads stay below 1 despite the two frames between a count and its use,
-  // so every frame's table can be compared with the CPU path's.
-  const std::vector<std::uint64_t> script{400, 800, 1000, 1100, 1100, 1200, 1200, 1200, 700, 300, 200, 100, 100, 100, 100};
+  const std::vector<std::uint64_t> script{400, 800, 1000, 1100, 1100, 1200, 3000, 1200, 700, 300, 200, 100, 100, 100, 100};
   for (gl::AtomicMode mode : modes()) {
     SCOPED_TRACE(gl::to_string(mode));
     gl::GlFrameOptions o;
     o.adaptive = true;
     gl::GlHaBuffer gpu(test::config(screen, {}, test::layout_of(mode), 8), test::random_offsets(6), mode, o);
     gl::ComputeInserter inserter(gpu);
-    Extent expected = screen;
-    std::vector<std::pair<Extent, std::uint64_t>> gathered;  // each frame's table and exact count
-    bool grew = false, shrank = false, resized_before = false;
+    Extent previous_table;
+    std::uint64_t previous_records = 0;
+    bool grew = false, shrank = false;
     for (std::size_t k = 0; k < script.size(); ++k) {
       SCOPED_TRACE("frame " + std::to_string(k));
       const auto f = test::stream(screen, StreamKind::Random, script[k], 100 + k);
       const gl::FrameReport r = inserter.insert(f);
-      EXPECT_EQ(r.cleared, k >= 1);
-      if (resized_before) {
-        // The count in flight was of a table no longer in use: dropped.
-        EXPECT_FALSE(r.counted_stored.has_value());
-        EXPECT_FALSE(r.resized);
-      } else if (k >= 2) {
-        const auto [counted_table, counted] = gathered[k - 2];
-        ASSERT_TRUE(r.counted_stored.has_value());
-        EXPECT_EQ(*r.counted_stored, counted);
-        EXPECT_EQ(r.counted_table, counted_table);
-        const Extent next = counted_table == expected ? o.policy.next(expected, screen, counted) : expected;
-        grew |= next.area() > expected.area();
-        shrank |= next.area() < expected.area();
-        EXPECT_EQ(r.resized, next != expected);
-        expected = next;
+      ASSERT_FALSE(r.attempts.empty());
+      EXPECT_TRUE(r.lossless());
+      if (k == 0) {
+        EXPECT_FALSE(r.sized_by.has_value());
       } else {
-        EXPECT_FALSE(r.counted_stored.has_value());
+        ASSERT_TRUE(r.sized_by.has_value());
+        EXPECT_EQ(r.sized_by->frame, k - 1);
+        EXPECT_EQ(r.sized_by->records, previous_records);
+        const Extent next = o.policy.next(previous_table, screen, previous_records);
+        EXPECT_EQ(r.attempts.front().table, next);
+        EXPECT_EQ(r.resized, next != previous_table);
+        grew |= next.area() > previous_table.area();
+        shrank |= next.area() < previous_table.area();
       }
-      ASSERT_EQ(r.table, expected);
+      for (std::size_t a = 1; a < r.attempts.size(); ++a) {
+        const std::uint64_t counted = r.attempts[a - 1].counters.records_needed();
+        EXPECT_EQ(r.attempts[a].sized_for, counted);
+        EXPECT_EQ(r.attempts[a].table, o.policy.grown(r.attempts[a - 1].table, screen, counted));
+      }
+      EXPECT_LE(r.attempts.size(), 2u) << "any jump in one regather";
       EXPECT_GE(r.table.x, screen.x);
       EXPECT_GE(r.table.y, screen.y);
       EXPECT_EQ(gpu.offsets().table(), r.table);
       const HaBuffer cpu = test::cpu_twin(gpu, f);
       EXPECT_EQ(gpu.read_table(), test::table_words(cpu));
-      gathered.emplace_back(r.table, cpu.count_stored());
-      resized_before = r.resized;
+      previous_table = r.table;
+      previous_records = r.counters.records_needed();
+      EXPECT_EQ(previous_records, cpu.count_stored());
     }
     EXPECT_TRUE(grew);
     EXPECT_TRUE(shrank);
-    EXPECT_EQ(expected, screen);  // shrank back to the geometry rule, not below
+    EXPECT_EQ(previous_table, screen);  // shrank back to the geometry rule, not below
   }
 }
 

@@ -197,7 +197,7 @@ TEST_F(GlTechniques, AdaptivePoolGrowsPastItsGrowThresholdAndShrinksBelowItsShri
   const Extent screen{16, 16};
   const std::vector<Fragment> frags = test::stream(screen, StreamKind::Random, 900, 2);
   TechniqueConfig c = technique_config(Technique::Lists, screen, gl::AtomicMode::Emulated64);
-  c.pool_capacity = 1000;  // 90% use: grows 25% next frame
+  c.pool_capacity = 1000;  // 90% use: grows to the middle of the band next frame (the count rule)
   gl::GlFrameOptions options;
   options.adaptive = true;
   gl::GlFrameDriver gpu(gl_technique(c, gl::AtomicMode::Emulated64), options);
@@ -205,12 +205,12 @@ TEST_F(GlTechniques, AdaptivePoolGrowsPastItsGrowThresholdAndShrinksBelowItsShri
   EXPECT_EQ(inserter.insert(frags).capacity, 1000u);
   const gl::FrameReport grown = inserter.insert(frags);
   EXPECT_TRUE(grown.resized);
-  EXPECT_EQ(grown.capacity, 1250u);
-  const std::span<const Fragment> few(frags.data(), 100);  // 8% use: shrinks 25%
+  EXPECT_EQ(grown.capacity, ResizePolicy{}.counted_capacity(900));  // 1637: 900 at 55 % use
+  const std::span<const Fragment> few(frags.data(), 100);  // 6% use: shrinks to the middle of the band
   inserter.insert(few);
   const gl::FrameReport shrunk = inserter.insert(few);
   EXPECT_TRUE(shrunk.resized);
-  EXPECT_EQ(shrunk.capacity, 938u);
+  EXPECT_EQ(shrunk.capacity, ResizePolicy{}.counted_capacity(100));  // 182
   EXPECT_EQ(shrunk.counters.stored(), 100u);
 }
 

@@ -7,14 +7,18 @@
 
 #include "habuffer/data_error.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/technique_frames.h"
 #include "habuffer/pixel_depth.h"
 #include "test_support.h"
 
 namespace habuffer {
 namespace {
 
+// The paper's step rule (ResizeRule::Step), kept for studies.
+const ResizePolicy kStep{0.80, 0.30, 0.25, ResizeRule::Step};
+
 TEST(ResizePolicy, GrowsAboveEightyShrinksBelowThirtyKeepsOtherwise) {
-  const ResizePolicy p;
+  const ResizePolicy p = kStep;
   const Extent screen{1000, 500}, table{2000, 1000};
   EXPECT_EQ(p.next(table, screen, 1'700'000), p.grown(table));   // 0.85
   EXPECT_EQ(p.next(table, screen, 500'000), p.shrunk(table, screen));  // 0.25
@@ -23,7 +27,7 @@ TEST(ResizePolicy, GrowsAboveEightyShrinksBelowThirtyKeepsOtherwise) {
 }
 
 TEST(ResizePolicy, StepsScaleTheAreaByAQuarterKeepingTheAspectRatio) {
-  const ResizePolicy p;
+  const ResizePolicy p = kStep;
   const Extent g = p.grown({2000, 1000});
   EXPECT_EQ(g, (Extent{2237, 1119}));  // ceil(2000 * sqrt(1.25)), ceil(1000 * sqrt(1.25))
   EXPECT_NEAR(static_cast<double>(g.area()) / 2e6, 1.25, 0.002);
@@ -32,14 +36,14 @@ TEST(ResizePolicy, StepsScaleTheAreaByAQuarterKeepingTheAspectRatio) {
 }
 
 TEST(ResizePolicy, NeverShrinksBelowTheScreenAndAlwaysGrows) {
-  const ResizePolicy p;
+  const ResizePolicy p = kStep;
   EXPECT_EQ(p.shrunk({1100, 600}, {1024, 512}), (Extent{1024, 520}));
   EXPECT_EQ(p.next({1024, 512}, {1024, 512}, 0), (Extent{1024, 512}));
   EXPECT_GT(p.grown({1, 1}).area(), 1u);
 }
 
 TEST(ResizePolicy, ThresholdsAreConfigurableAndValidated) {
-  ResizePolicy p{0.9, 0.1, 0.5};
+  ResizePolicy p{0.9, 0.1, 0.5, ResizeRule::Step};
   EXPECT_NO_THROW(p.validate());
   EXPECT_EQ(p.next({100, 100}, {10, 10}, 8500), (Extent{100, 100}));
   EXPECT_THROW((ResizePolicy{0.3, 0.8, 0.25}.validate()), std::invalid_argument);
@@ -48,8 +52,8 @@ TEST(ResizePolicy, ThresholdsAreConfigurableAndValidated) {
 
 // A scripted sequence of frames whose content grows then shrinks: the table
 // follows SPEC 8 frame by frame (CPU counts are exact, so no latency here).
-TEST(ResizePolicy, FollowsGrowingThenShrinkingContent) {
-  const ResizePolicy p;
+TEST(ResizePolicy, TheStepRuleFollowsGrowingThenShrinkingContentOneStepPerDecision) {
+  const ResizePolicy p = kStep;
   const Extent screen{256, 256};
   Extent table = screen;
   std::vector<Extent> sizes;
@@ -76,6 +80,160 @@ TEST(ResizePolicy, FollowsGrowingThenShrinkingContent) {
   EXPECT_EQ(sizes[0], screen);
   EXPECT_GT(sizes[1].area(), screen.area());
   EXPECT_EQ(sizes.back(), screen) << "shrinks back to the screen, never below";
+}
+
+// The count rule (the default): a decision leaves the band straight to the
+// counted records at the middle of the band, whatever the jump.
+TEST(ResizePolicy, TheCountRuleSizesForTheCountedRecordsAtTheMiddleOfTheBandInOneDecision) {
+  const ResizePolicy p;
+  EXPECT_EQ(p.rule, ResizeRule::Count);
+  EXPECT_DOUBLE_EQ(p.target_load(), 0.55);
+  const Extent screen{64, 64};
+  for (std::uint64_t records : {163'840ull, 40'960ull, 5'000ull, 3'300ull}) {
+    SCOPED_TRACE(records);
+    const Extent t = p.next(screen, screen, records);  // from the screen, load records / 4096
+    const double load = static_cast<double>(records) / static_cast<double>(t.area());
+    EXPECT_GE(load, p.target_load() * 0.98);
+    EXPECT_LE(load, p.target_load()) << "rounded up: never above the middle";
+    EXPECT_EQ(t, p.initial_table(screen, records)) << "the same table the counting pass gives";
+  }
+  // Inside the band: kept, at both edges included.
+  const Extent t{100, 100};
+  EXPECT_EQ(p.next(t, screen, 8000), t);
+  EXPECT_EQ(p.next(t, screen, 3000), t);
+  EXPECT_EQ(p.next(t, screen, 5500), t);
+  // A drop: straight back to the middle of the band (or the screen) in one decision.
+  const Extent big = p.initial_table(screen, 163'840);
+  const Extent after_drop = p.next(big, screen, 4096);  // 40 layers to 1
+  EXPECT_EQ(after_drop, p.initial_table(screen, 4096));
+  EXPECT_EQ(p.next(big, screen, 10), screen) << "never below the screen";
+  EXPECT_EQ(p.next(screen, screen, 0), screen);
+  // Pools: the same rule in records.
+  EXPECT_EQ(p.next(1000, 900), p.counted_capacity(900));
+  EXPECT_EQ(p.next(1000, 100), p.counted_capacity(100));
+  EXPECT_EQ(p.next(1000, 500), 1000u);
+  EXPECT_EQ(p.counted_capacity(550), 1000u);
+  EXPECT_EQ(p.counted_capacity(0), 1u);
+}
+
+TEST(ResizePolicy, LosslessGrowthHoldsTheCountInOneStepAndAlwaysGrows) {
+  const ResizePolicy p;
+  const Extent screen{32, 32};
+  const Extent g = p.grown(screen, screen, 40'960);  // an empty frame's table, then 40 layers
+  EXPECT_EQ(g, p.initial_table(screen, 40'960));
+  EXPECT_LE(40'960.0 / static_cast<double>(g.area()), p.target_load());
+  // A failure at a load inside the band (an unlucky pixel) still grows, by a step.
+  const Extent t{100, 100};
+  EXPECT_EQ(p.grown(t, screen, 5000), p.grown(t));
+  EXPECT_GT(p.grown(t, screen, 0).area(), t.area());
+  EXPECT_EQ(kStep.grown(t, screen, 1'000'000), kStep.grown(t)) << "the step rule ignores the count";
+  // Pools.
+  EXPECT_EQ(p.grown(100, 5000), p.counted_capacity(5000));
+  EXPECT_EQ(p.grown(100, 10), 101u);
+  EXPECT_EQ(kStep.grown(100, 5000), 5000u);
+  EXPECT_EQ(kStep.grown(100, 10), 125u);
+}
+
+TEST(ResizePolicy, ACountBeyondTwoToTheThirtyTwoSlotsIsCappedNotThrown) {
+  const ResizePolicy p;
+  const Extent screen{4096, 4096};
+  const Extent t = p.next(screen, screen, 4'000'000'000ull);
+  EXPECT_LE(t.area(), std::uint64_t{UINT32_MAX});
+  EXPECT_GT(t.area(), screen.area());
+  EXPECT_GE(t.x, screen.x);
+  EXPECT_LE(p.grown(screen, screen, 4'000'000'000ull).area(), std::uint64_t{UINT32_MAX});
+}
+
+// A load oscillating 5 % around either threshold: the count rule lands mid
+// band on the first crossing, and resizes no more (the hysteresis).
+TEST(ResizePolicy, ALoadOscillatingAroundEitherThresholdResizesAtMostOnce) {
+  const ResizePolicy p;
+  const Extent screen{128, 128};
+  for (const double threshold : {p.grow_at, p.shrink_at}) {
+    for (const ResizePolicy& rule : {p, kStep}) {
+      if (rule.rule == ResizeRule::Step && threshold == p.shrink_at) continue;  // a step from 0.3 stays outside 0.3
+      SCOPED_TRACE(std::string(to_string(rule.rule)) + " around " + std::to_string(threshold));
+      Extent table{400, 400};
+      const double base = threshold * static_cast<double>(table.area());
+      int resizes = 0;
+      for (int k = 0; k < 200; ++k) {
+        const double wobble = (k % 2 == 0 ? 1.05 : 0.95) * (1.0 + 0.001 * std::sin(k));
+        const Extent next = rule.next(table, screen, static_cast<std::uint64_t>(base * wobble));
+        resizes += next != table;
+        table = next;
+      }
+      EXPECT_LE(resizes, 1);
+    }
+  }
+}
+
+TEST(ResizePolicy, RulesAreSpelledCountAndStep) {
+  EXPECT_EQ(parse_resize_rule("count"), ResizeRule::Count);
+  EXPECT_EQ(parse_resize_rule("step"), ResizeRule::Step);
+  EXPECT_EQ(to_string(ResizeRule::Step), "step");
+  try {
+    (void)parse_resize_rule("half");
+    ADD_FAILURE();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "resize rule 'half': expected count or step");
+  }
+}
+
+// `layers` full-screen layers of distinct depths on `screen`, each pixel's
+// depths shuffled by `seed`.
+std::vector<Fragment> full_screen_layers(Extent screen, int layers, std::uint32_t seed) {
+  std::vector<Fragment> f;
+  for (int l = 0; l < layers; ++l)
+    for (std::uint32_t y = 0; y < screen.y; ++y)
+      for (std::uint32_t x = 0; x < screen.x; ++x) {
+        const std::uint32_t h = (x * 73856093u) ^ (y * 19349663u) ^ (static_cast<std::uint32_t>(l) * 83492791u) ^ seed;
+        f.push_back({x, y, (static_cast<float>(l) + 0.25f + 0.5f * static_cast<float>(h % 1000) / 1000.0f) /
+                               static_cast<float>(layers),
+                     h | 0xffu});
+      }
+  return f;
+}
+
+// The jumps of a host whose depth complexity leaps in one frame, on the CPU
+// path's kept frames (as render's and Python's): lossless in at most two
+// attempts, the regather sized by the failed attempt's own count.
+TEST(Lossless, AnyJumpIsLosslessInAtMostOneRegatherSizedByTheFailedAttemptsCount) {
+  const Extent screen{32, 32};
+  const ResizePolicy policy;
+  for (const int from : {0, 1}) {
+    SCOPED_TRACE("jump " + std::to_string(from) + " -> 40 layers");
+    TechniqueConfig c = ha_technique_config(test::config(screen, {}, Layout::L64, 8));
+    c.buffer.table = policy.initial_table(screen, std::max<std::uint64_t>(1, from * screen.area()));
+    TechniqueFrames frames(OffsetSource{}, InsertOptions{}, policy, 16);
+    (void)frames.build(c, full_screen_layers(screen, from, 1));
+    const std::vector<Fragment> deep = full_screen_layers(screen, 40, 2);
+    const TechniqueBuild& b = frames.build(c, deep);
+    EXPECT_TRUE(b.lossless());
+    ASSERT_EQ(b.attempts.size(), 2u);
+    EXPECT_GT(b.attempts[0].counters.failures(), 0u);
+    EXPECT_EQ(b.attempts[0].sized_for, 0u);
+    EXPECT_EQ(b.attempts[1].sized_for, 40u * screen.area()) << "every fragment received, counted";
+    EXPECT_EQ(b.attempts[1].table, policy.grown(b.attempts[0].table, screen, 40u * screen.area()));
+    EXPECT_GE(b.attempts[1].ms, 0.0);
+    EXPECT_EQ(test::traversed_lists(*b.buffer), test::exact_lists(deep, c.buffer.record_layout()));
+    // The step rule takes many attempts for the same jump.
+    TechniqueFrames stepped(OffsetSource{}, InsertOptions{}, kStep, 6);
+    (void)stepped.build(c, full_screen_layers(screen, from, 1));
+    EXPECT_FALSE(stepped.build(c, deep).lossless()) << "six steps of a quarter do not reach 40 layers";
+  }
+}
+
+TEST(Lossless, APoolJumpIsLosslessInOneRegatherToo) {
+  const Extent screen{16, 16};
+  TechniqueConfig c = ha_technique_config(test::config(screen, {}, Layout::L64, 8));
+  c.technique = Technique::Lists;
+  c.pool_capacity = 64;
+  const std::vector<Fragment> deep = full_screen_layers(screen, 40, 3);
+  const TechniqueBuild b = build_technique(c, OffsetSource{}, deep, {}, ResizePolicy{}, 16);
+  EXPECT_TRUE(b.lossless());
+  ASSERT_EQ(b.attempts.size(), 2u);
+  EXPECT_EQ(b.attempts[1].sized_for, deep.size());
+  EXPECT_EQ(b.attempts[1].capacity, ResizePolicy{}.counted_capacity(deep.size()));
 }
 
 TEST(Lossless, GrowsAndRegathersUntilNothingFails) {
@@ -186,7 +344,7 @@ TEST(Lossless, ALossyEndAfterEveryAttemptThrowsADataErrorNamingThePixelAmaxTheAt
   const std::vector<Fragment> f = one_deep_pixel(1, 2, 4000);
   const TechniqueBuild b =
       build_technique(ha_technique_config(test::config({4, 4}, {4, 4}, Layout::L64, 12)), OffsetSource{}, f, {},
-                      ResizePolicy{}, 2);
+                      kStep, 2);  // two steps from 16 slots cannot hold 4000 records
   ASSERT_FALSE(b.lossless());
   EXPECT_EQ(b.attempts.size(), 2u);
   EXPECT_FALSE(b.too_deep.has_value());

@@ -39,6 +39,10 @@ uint habuffer_insert(uvec2 pixel, float depth, uint coverage, uint rgba) {
   if (all(lessThan(pixel, habuffer_screen_size))) {
     if (habuffer_capture_capacity > 0u && habuffer_gather_phase == 0u) ha_capture(pixel, depth, coverage, rgba);
     if (habuffer_capture_only != 0u) return HABUFFER_INVALID;
+#ifdef HABUFFER_COUNT_CALLS
+    // Counted before the call can be cut short (HABUFFER_COUNTER_CALLS).
+    if (habuffer_gather_phase == HABUFFER_PHASE_INSERT) atomicAdd(ha_counters[HABUFFER_COUNTER_CALLS], 1u);
+#endif
     outcome = HABUFFER_TECHNIQUE_CALL(pixel, depth, coverage, rgba);
   } else {
     // Counted once per frame: not in a pass that inserts nothing (the k-buffer's fill pass).

@@ -9,12 +9,15 @@ layout(std430, binding = HABUFFER_BINDING_STREAM) readonly buffer HaResumeCalls 
   uint ha_resume_header[4];
   HaDeferred ha_resume[];
 };
+// The calls to resume: the driver's count (Readback::Immediate) or the
+// buffer's capacity with the count read here from its header, so a round
+// is dispatched without the driver reading the count back (Deferred).
 uniform uint ha_resume_count;
 
 void main() {
   uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
   uint i = group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
-  if (i >= ha_resume_count) return;
+  if (i >= min(ha_resume_count, ha_resume_header[0])) return;
   HabufferCarry c = ha_carry_from(ha_resume[i]);
   ha_call_writes = 0u;
   // Two statements: arguments are evaluated left to right, so one call would

@@ -191,6 +191,8 @@ py::dict attempt_dict(const BuildAttempt& a) {
   d["table"] = py::make_tuple(a.table.x, a.table.y);
   d["capacity"] = a.capacity;
   d["counters"] = counters_dict(a.counters);
+  d["sized_for"] = a.sized_for;  // the count a regather was sized by (0 for a first attempt)
+  d["ms"] = a.ms;
   return d;
 }
 

@@ -250,13 +250,16 @@ def test_a_lossless_build_stopped_where_growing_cannot_help_raises_naming_the_pi
 
 
 def test_a_lossless_build_still_lossy_after_max_attempts_raises_naming_the_pixel_amax_and_max_attempts():
-    # 4000 depths at one pixel fit AMAX 4095 (age bits 12): the table grows, but two attempts cannot hold them.
+    # 4000 depths at one pixel fit AMAX 4095 (age bits 12): the table could grow, but one attempt cannot hold
+    # them (a second, sized for the first one's count, does).
     xy = np.tile(np.array([[1, 2]], np.uint32), (4000, 1))
     depth = (np.arange(4000, dtype=np.float32) + 0.5) / 4000
-    with pytest.raises(hb.DataError, match=r"after 2 attempts \(last table \d+x\d+; AMAX = 2\^12 - 1 = 4095\): "
+    with pytest.raises(hb.DataError, match=r"after 1 attempt \(last table \d+x\d+; AMAX = 2\^12 - 1 = 4095\): "
                                            r"pixel \(1, 2\) lost the most, \d+ of its 4000 distinct records: "
-                                           r"raise max_attempts above 2$"):
-        hb.build(xy, depth, screen=(4, 4), age_bits=12, lossless=True, max_attempts=2)
+                                           r"raise max_attempts above 1$"):
+        hb.build(xy, depth, screen=(4, 4), age_bits=12, lossless=True, max_attempts=1)
+    assert len(hb.build(xy, depth, screen=(4, 4), age_bits=12, lossless=True, max_attempts=2)
+               .build_report["attempts"]) == 2
 
 
 def test_both_paths_stop_a_lossless_build_alike_on_a_pixel_deeper_than_amax(gl_available):
@@ -391,3 +394,24 @@ def test_multisampled_buffers_keep_each_fragments_coverage_mask_and_refuse_bad_s
         hb.Buffer("ha", screen=(4, 4), samples=3)
     with pytest.raises(ValueError, match="wboit stores none"):
         hb.Buffer("wboit", screen=(4, 4), samples=4)
+
+
+def test_a_jump_of_depth_complexity_is_lossless_in_one_regather_sized_by_the_failed_attempts_count(gl_available):
+    # 40 full-screen layers into a table of the screen (load 40): the failed
+    # attempt counted every fragment it received, and the regather's table
+    # holds them at the middle of the 80/30 band, on both paths.
+    w, h, layers = 16, 16, 40
+    ys, xs = np.mgrid[0:h, 0:w]
+    xy = np.concatenate([np.stack([xs.ravel(), ys.ravel()], axis=1)] * layers).astype(np.uint32)
+    order = (7 * np.repeat(np.arange(layers), w * h) + np.tile(xs.ravel() + ys.ravel(), layers)) % layers
+    depth = ((order + 0.5) / layers).astype(np.float32)
+    rgba = np.full(len(depth), 0x80808080, dtype=np.uint32)
+    for path in ("cpu", "gl") if gl_available else ("cpu",):
+        b = hb.build(xy, depth, rgba, screen=(w, h), table=(w, h), lossless=True, path=path)
+        attempts = b.build_report["attempts"]
+        assert len(attempts) == 2, (path, attempts)
+        assert attempts[0]["counters"]["failures"] > 0 and attempts[0]["sized_for"] == 0
+        assert attempts[1]["sized_for"] == w * h * layers, path
+        assert attempts[1]["counters"]["failures"] == 0
+        tx, ty = attempts[1]["table"]
+        assert 0.5 <= w * h * layers / (tx * ty) <= 0.55, (path, attempts[1]["table"])

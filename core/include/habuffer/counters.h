@@ -46,6 +46,10 @@ struct Counters {
   [[nodiscard]] std::uint64_t failures() const;
   /// Records stored: the fragments less every other outcome (SPEC invariant 1).
   [[nodiscard]] std::uint64_t stored() const;
+  /// Records the insert asked to keep: stored() plus failures(). What an
+  /// overflowing frame needed, whatever its container could hold: adaptive
+  /// sizing and lossless growth size by it (ResizePolicy).
+  [[nodiscard]] std::uint64_t records_needed() const { return stored() + failures(); }
   /// Records counted stored at insertion and found equal to another record of
   /// their pixel when the lists were sorted: moved to duplicates.
   void merge_duplicates(std::uint64_t merged) { duplicates += merged; }

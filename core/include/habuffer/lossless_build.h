@@ -38,6 +38,11 @@ struct BuildAttempt {
   Extent table;  ///< the HA-buffer's table; zero for other techniques
   Counters counters;  ///< the attempt's counters
   std::uint64_t capacity = 0;  ///< records the technique could hold (slots, nodes, layers of every pixel)
+  /// The records (pool techniques: nodes) this attempt's size was computed
+  /// for: the previous attempt's count (Counters::records_needed, the nodes
+  /// it asked for) for a regather; 0 for a first attempt.
+  std::uint64_t sized_for = 0;
+  double ms = 0.0;  ///< wall time of the attempt (its gather, resume rounds and sort)
 };
 
 /// An HA-buffer build: the final attempt's buffer and every attempt.

@@ -78,6 +78,9 @@ struct DepthRange {
 struct GrowthNeed {
   std::uint64_t nodes_requested = 0;  ///< pool techniques: the nodes the batch asked for
   std::uint32_t most_arrived = 0;     ///< per-pixel techniques: the most fragments a pixel received
+  /// Records the attempt asked to keep: stored plus failed
+  /// (Counters::records_needed); the HA-buffer's table is sized for them.
+  std::uint64_t records = 0;
 };
 
 /// Which technique, and the parameters only some techniques read: declared
@@ -120,12 +123,13 @@ struct TechniqueConfig : TechniqueChoice {
   friend bool operator==(const TechniqueConfig&, const TechniqueConfig&) = default;
 
   /// Lossless mode's next configuration after an attempt that dropped
-  /// fragments (the descriptor's rule): the HA-buffer's table grown by
-  /// `policy`; a pool to at least the nodes asked for (and one step); fixed
-  /// arrays' K to the most fragments a pixel received (and at least one
-  /// more); the k-buffer's K doubled.
-  [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, std::uint64_t nodes_requested,
-                                      std::uint32_t most_arrived) const;
+  /// fragments (the descriptor's rule), from what the attempt asked for:
+  /// the HA-buffer's table for need.records by `policy`
+  /// (ResizePolicy::grown: at the middle of the band in one step under the
+  /// count rule); a pool for the nodes asked for (likewise); fixed arrays'
+  /// K to the most fragments a pixel received (and at least one more); the
+  /// k-buffer's K doubled.
+  [[nodiscard]] TechniqueConfig grown(const ResizePolicy& policy, const GrowthNeed& need) const;
   /// An automatic container's first size for a frame of `fragments`
   /// fragments (the counting pass, SPEC 8): the HA-buffer's table at the
   /// middle of `policy`'s band of loads (ResizePolicy::initial_table), a

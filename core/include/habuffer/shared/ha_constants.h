@@ -113,6 +113,12 @@
 // the most samples seen: nothing inserted; the driver refuses the frame.
 #define HABUFFER_COUNTER_SAMPLES_MISMATCH (HABUFFER_COUNTER_NODES + 4u)
 #define HABUFFER_COUNTER_SAMPLES_SEEN (HABUFFER_COUNTER_NODES + 5u)
+// Insert calls that entered a technique's insert in an inserting gather,
+// counted before the call can be cut short: only where the module defines
+// HABUFFER_COUNT_CALLS (the frame driver does on an implementation whose loop
+// budget can end a call without an outcome: llvmpipe), so the driver counts
+// such calls failed_iter without asking its host for a call count.
+#define HABUFFER_COUNTER_CALLS (HABUFFER_COUNTER_NODES + 6u)
 #define HABUFFER_COUNTER_WORDS (HABUFFER_COUNTER_NODES + HABUFFER_COUNTER_STRIDE)
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.

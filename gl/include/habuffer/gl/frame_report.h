@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "habuffer/extent.h"
@@ -26,6 +27,29 @@ enum class DepthConvention {
   Reversed,  ///< window depth 1 is nearest (reversed-Z: GL_GREATER / GL_GEQUAL, glClipControl zero-to-one)
 };
 
+/// When the frame driver reads a frame's outcome (its counters, the calls
+/// its resume rounds left, its GPU times) back to the CPU; what each mode
+/// guarantees and what a frame costs in it: docs/embedding.md, "What a
+/// frame waits for".
+enum class Readback : std::uint8_t {
+  /// Never waits for the GPU: the frame's counters are copied on the GPU
+  /// into a ring of readback buffers behind a fence and read once the fence
+  /// has signalled, one or more frames later (FrameReport::completed); the
+  /// GPU times come from timestamp queries read then; no glFinish. Sizing
+  /// decides from the latest complete count, once it arrives. A frame is
+  /// gathered once (no lossless regather: a jump loses fragments in the
+  /// frames before its count arrives, each loss counted in its late report),
+  /// and the counting gather of an automatic container's first frame (and
+  /// after resize_screen or request_recount) is its only wait.
+  Deferred,
+  /// Waits for every frame's counters (a read-back after the gather): exact
+  /// per-frame reports, lossless regathers (max_attempts above 1), capture.
+  Immediate,
+};
+
+/// "deferred" or "immediate".
+std::string_view to_string(Readback readback);
+
 struct GlFrameOptions {
   /// Resize by `policy` from the previous frame's count (SPEC 8): the
   /// HA-buffer's table, the linked lists' node pool (fixed arrays keep K).
@@ -36,19 +60,39 @@ struct GlFrameOptions {
   bool adaptive = false;
   ResizePolicy policy;    ///< also the growth step of lossless mode and the counted size's band
   /// Gathers a frame may take: above 1, lossless mode, a frame that dropped
-  /// fragments gathered again into a grown container. Unset: 1 for a
-  /// container of a given size, kAutomaticAttempts for one sized
-  /// automatically (lossless from its first frame). The driver's options()
-  /// hold the resolved count.
+  /// fragments gathered again into a container sized for what the failed
+  /// gather counted (ResizePolicy::grown: any jump in one regather, two
+  /// where the counted size still fails). Unset: 1 for a container of a
+  /// given size or a Deferred readback, kAutomaticAttempts for one sized
+  /// automatically with an Immediate readback (lossless from its first
+  /// frame). Above 1 needs Readback::Immediate. The driver's options() hold
+  /// the resolved count.
   std::optional<std::uint32_t> max_attempts;
   /// The attempts of an automatically sized container when max_attempts is unset.
   static constexpr std::uint32_t kAutomaticAttempts = 16;
+  /// When the frame's outcome is read (Readback). Unset: Immediate, which
+  /// every existing host gets unchanged; an engine that must never wait
+  /// sets Deferred. The driver's options() hold the resolved mode.
+  std::optional<Readback> readback;
+  /// Lossless mode's time budget: no regather starts once the frame's
+  /// attempts have taken this many milliseconds (wall); the frame then keeps
+  /// its last gather, lossy, with FrameReport::budget_stopped. 0: none.
+  double attempt_budget_ms = 0.0;
+  /// Lossless mode's growth budget: no regather grows the container beyond
+  /// this factor of its capacity at the frame's start (FrameReport::
+  /// budget_stopped as above). 0: none (the context's limits only).
+  double growth_budget = 0.0;
   std::uint32_t lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;  ///< emulated64: attempts before a call is cut short
   /// Calls cut short (a lock given up, the driver's loop budget spent: never
   /// the table's fault) are deferred with their carried state and resumed by
   /// the resume pass, round after round while any remain, at most this many
   /// rounds; only calls still cut short after the last round count failed_iter.
   std::uint32_t resume_rounds = 256;
+  /// Readback::Deferred: the resume rounds every frame dispatches without
+  /// reading a count (each round reads its calls' count on the GPU; a round
+  /// with none is an empty dispatch). Calls still cut short after them count
+  /// failed_iter in the frame's late report.
+  std::uint32_t late_resume_rounds = 8;
   /// First capacity of the two deferred-call buffers (40 bytes a call); grows
   /// (and the frame gathers again) on overflow.
   std::uint64_t deferred_capacity = 1u << 12;
@@ -62,8 +106,9 @@ struct GlFrameOptions {
   std::uint64_t capture_capacity = 1u << 20;  ///< first capacity; grows (and the frame regathers) on overflow
   std::uint32_t clear_tile = 0;  ///< side of the clear pass's tiles; 0: the framebuffer limits
   /// glFinish before and after each pass, so a pass's wall_ms is its whole
-  /// time and nothing queued before it.
-  bool finish_timing = true;
+  /// time and nothing queued before it. Unset: on with Readback::Immediate;
+  /// a Deferred readback never waits (no finish, GPU times read late).
+  std::optional<bool> finish_timing;
   /// The insertion module's compile-time variant (slot-write tally, read-first
   /// loads): in module_source() and every pass of the driver.
   ModuleVariant module;
@@ -94,10 +139,35 @@ struct PassTiming {
   double gpu_ms = 0.0;   ///< between two GL_TIMESTAMP queries (ms)
 };
 
+/// The count a sizing decision read: the latest complete frame's.
+struct SizingCount {
+  std::uint64_t frame = 0;    ///< the frame it was counted in (FrameReport::index)
+  std::uint64_t records = 0;  ///< records that frame asked to keep (Counters::records_needed)
+  std::uint64_t nodes = 0;    ///< pool techniques: the nodes it asked for, dropped ones included
+};
+
 /// What one GlFrameDriver::frame did: sizes, outcome tallies, gathers repeated,
 /// and the time of each pass.
 struct FrameReport {
   std::uint64_t index = 0;  ///< frames since construction
+  /// Whether the outcome below (counters, attempts, GPU times, the
+  /// technique's counts) is this frame's: always with Readback::Immediate;
+  /// with Deferred, only in the reports of `completed` (frame() returns the
+  /// submitted frame's sizes, its outcome arrives in a later frame's report).
+  bool complete = true;
+  /// Readback::Deferred: the reports of earlier frames whose outcome arrived
+  /// since the last frame() (oldest first, each complete), read without a
+  /// wait; GlFrameDriver::finish_reports() waits for the rest.
+  std::vector<FrameReport> completed;
+  /// The count adaptive sizing decided from at this frame's start (the
+  /// latest complete frame's, each count read once), when a new one had
+  /// arrived: ResizePolicy::next of it (the table or pool for its records
+  /// at the middle of the band when its load left the band).
+  std::optional<SizingCount> sized_by;
+  /// Lossless mode stopped before the frame was lossless because the next
+  /// regather would have passed GlFrameOptions::attempt_budget_ms or
+  /// growth_budget (the last gather's losses are counted as always).
+  bool budget_stopped = false;
   Extent table;             ///< HA-buffer: the table this frame was gathered into
   std::uint64_t capacity = 0;  ///< records the technique could hold in this frame (slots, nodes, layers of every pixel)
   std::uint64_t nodes_requested = 0;  ///< linked lists: nodes the final gather asked for (dropped ones included)
@@ -113,17 +183,20 @@ struct FrameReport {
   bool count_limited = false;
   /// Whether this frame began with the clear pass (every frame after one that
   /// gathered); its occlusion count goes to a query buffer and is read at the
-  /// next frame's start, one frame late, without a stall (SPEC 8).
+  /// next frame's start, one frame late (SPEC 8; Readback::Immediate only).
   bool cleared = false;
-  /// The count read at this frame's start: the records the previous frame's
-  /// clear pass found (those of the frame before it), in `counted_table`;
-  /// none on the first two frames. Adaptive sizing decides from it when
-  /// counted_table is still the table (a table resized since then is not
-  /// judged by a count it did not hold).
+  /// The count read at this frame's start (Readback::Immediate): the records
+  /// the previous frame's clear pass found (those of the frame before it),
+  /// in `counted_table`; none on the first two frames. Informative: adaptive
+  /// sizing decides from the outcome counters (sized_by), which also count
+  /// what an overflowing frame failed to store.
   std::optional<std::uint64_t> counted_stored;
   Extent counted_table;  ///< the table counted_stored was measured in
   Counters counters;                   ///< of the final gather
-  std::vector<BuildAttempt> attempts;  ///< every gather of lossless mode, in order
+  /// Every gather of lossless mode, in order: its size, counters, the count
+  /// it was sized for (a regather's: the previous gather's records needed)
+  /// and its wall time.
+  std::vector<BuildAttempt> attempts;
   /// Insert calls cut short by something other than the table (an emulated64
   /// lock given up, the driver's loop budget spent) and resumed by the resume
   /// pass, summed over its rounds (a call cut twice counts twice).

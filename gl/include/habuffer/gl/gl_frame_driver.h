@@ -21,6 +21,8 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,10 +59,13 @@ class GlFrameDriver {
   [[nodiscard]] Extent screen() const { return technique_->screen(); }
   /// The options every frame runs with (the module variant resolved: ModuleVariant::resolved).
   [[nodiscard]] const GlFrameOptions& options() const { return options_; }
-  /// Whether frame() asks its host for the gather's call count: only where
-  /// the implementation can end a call without an outcome (its loop budget:
-  /// GlInfo::software_rasterizer),
-  /// so a host elsewhere need not count its calls per fragment.
+  /// Whether the implementation can end an insert call without an outcome
+  /// (its loop budget: GlInfo::software_rasterizer). The driver then counts
+  /// the calls of shaders built from module_source() itself
+  /// (HABUFFER_COUNTER_CALLS, one atomic per call compiled into the module
+  /// only there) and counts calls ended so as failed_iter; a host need not
+  /// count its calls (frame()'s `calls` is optional; a host whose shaders
+  /// come from the installed GLSL files gives it where it can).
   [[nodiscard]] bool needs_call_count() const { return needs_call_count_; }
   /// Caps the attempts per frame from now on (at least 1): a caller that
   /// knows growth cannot help (a pixel deeper than AMAX) stops it.
@@ -81,6 +86,21 @@ class GlFrameDriver {
   /// it smaller. Throws std::invalid_argument for a container of a given
   /// size, GlError beyond the GPU path's 32-bit counts.
   bool size_for(std::uint64_t fragments);
+  /// The next frame() begins with a counting gather and sizes the container
+  /// from it, as the first frame does (counts_next_frame()): for a host
+  /// that knows its scene changed at once (a cut, a level load) and wants
+  /// that frame sized before it gathers. Throws std::invalid_argument for a
+  /// container of a given size.
+  void request_recount();
+
+  /// Readback::Deferred: waits (at most 10 s a frame, GlError beyond) for
+  /// every frame still in flight and returns their reports, oldest first,
+  /// each complete; the sizing count they carry is taken too. Empty with
+  /// Readback::Immediate. For tools and tests that want every figure before
+  /// they stop, never needed per frame.
+  std::vector<FrameReport> finish_reports();
+  /// Readback::Deferred: frames whose outcome has not been read yet.
+  [[nodiscard]] std::size_t frames_in_flight() const;
 
   /// A window resize: the technique's screen changed in place
   /// (GlTechnique::resize_screen: every per-pixel buffer made anew, the
@@ -115,11 +135,19 @@ class GlFrameDriver {
   /// One frame around `gather`, which draws or dispatches shaders calling
   /// habuffer_insert with our buffers bound, in the GL state the host had when it
   /// called frame() (restored before every gather and after the frame).
-  /// `calls`, when the host can tell, returns how many habuffer_insert calls the
-  /// gather made: calls a driver ended without an outcome (llvmpipe's loop
-  /// budget can stop a SIMD group's lanes) are then counted as failed_iter
-  /// and cut short, and retried like the others, so nothing goes uncounted.
-  /// It is asked only where needs_call_count(), after the gather's clock.
+  /// `calls`, optional, returns how many habuffer_insert calls the gather
+  /// made (Readback::Immediate): where needs_call_count() the driver counts
+  /// them itself, and a host's count, when given, is used instead. Calls a
+  /// driver ended without an outcome (llvmpipe's loop budget can stop a SIMD
+  /// group's lanes) are counted as failed_iter and cut short, and retried
+  /// like the others, so nothing goes uncounted.
+  ///
+  /// Readback::Immediate returns the frame's whole report (its counters read
+  /// back after the gather: a wait). Readback::Deferred never waits: the
+  /// report holds what was known at submission (complete false) and, in
+  /// `completed`, the reports of earlier frames whose outcome arrived; a
+  /// deferred frame's GL errors and refused calls (another driver's module,
+  /// a framebuffer of other samples) throw from the frame() that reads them.
   FrameReport frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls = {});
 
   /// Composites every screen pixel over `background` into the framebuffer
@@ -172,6 +200,8 @@ class GlFrameDriver {
   /// Reads the tallies into the report (merged duplicates moved, sort
   /// checked); returns the counter words, for the technique's own.
   std::vector<std::uint32_t> read_counters(FrameReport& report) const;
+  /// The same from words already read (a deferred frame's readback slot).
+  std::vector<std::uint32_t> read_counters_from(std::vector<std::uint32_t> words, FrameReport& report) const;
   /// Whether the technique declared a pass of `stage`.
   [[nodiscard]] bool has_passes(GlPassStage stage) const;
   /// Runs the technique's passes of `stage` in their order (Gather: their `run`).
@@ -188,6 +218,24 @@ class GlFrameDriver {
   PassTiming run_resolve(glm::vec3 background, unsigned background_texture, bool over);
   void run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
                   FrameReport& report);
+  /// Readback::Deferred's one gather: resume rounds and the sort recorded
+  /// without a read-back, the counters copied into a readback slot behind a fence.
+  void run_deferred_gather(const std::function<void()>& gather, FrameReport& report);
+  /// The reports of deferred frames whose fences signalled (all with `wait`),
+  /// each completed from its slot's words; the latest sizing count taken.
+  std::vector<FrameReport> collect_late(bool wait);
+  /// Whether lossless mode may regather after `report`'s last attempt
+  /// (GlFrameOptions::attempt_budget_ms, growth_budget).
+  [[nodiscard]] bool within_budget(const FrameReport& report, std::uint64_t start_capacity,
+                                   double elapsed_ms) const;
+  /// Records the sizing count of a complete frame (the next frame decides from it).
+  void note_count(const FrameReport& report);
+  /// Calls the gather entered (the module's own count, where needs_call_count())
+  /// less those that ended with an outcome: counted failed_iter and cut short.
+  void count_ended_by_driver(std::uint64_t made, FrameReport& report) const;
+  /// The same from the module's own count (HABUFFER_COUNTER_CALLS in
+  /// `words`), where the gather's shaders were built from module_source().
+  void count_own_calls(std::span<const std::uint32_t> words, FrameReport& report) const;
   [[nodiscard]] std::uint64_t read_capture_count() const;
   [[nodiscard]] std::uint64_t read_deferred_count(int which) const;
 
@@ -202,6 +250,9 @@ class GlFrameDriver {
   bool needs_count_ = false;
   std::uint32_t module_id_ = 0;  ///< HABUFFER_MODULE_ID of module_source(), in the parameter block  ///< the next frame runs the counting gather (counts_next_frame)
   std::uint32_t gather_phase_ = 0;  ///< the parameter habuffer_gather_phase (HABUFFER_PHASE_*)
+  std::optional<SizingCount> latest_count_;  ///< the latest complete frame's count, not yet decided from
+  std::uint64_t sizing_floor_ = 0;
+  std::vector<FrameReport> held_reports_;  ///< deferred reports read by resize_screen, for the next frame()  ///< counts of frames before this one are not sized by (a resize_screen since)
   std::unique_ptr<Gpu> gpu_;
 };
 

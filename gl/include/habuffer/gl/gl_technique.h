@@ -160,6 +160,8 @@ class GlTechnique {
   [[nodiscard]] virtual bool defers_calls() const { return false; }
   /// Records the technique can hold now.
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
+  /// The HA-buffer's table now (FrameReport::table); zero for other techniques.
+  [[nodiscard]] virtual Extent table_extent() const { return {}; }
   /// Whether the container was made without a size for what it stores (the
   /// HA-buffer's table or the lists' pool not given): the frame driver then
   /// counts the first frame's fragments before its gather (and again after

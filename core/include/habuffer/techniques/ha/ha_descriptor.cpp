@@ -34,9 +34,9 @@ std::unique_ptr<FragmentBuffer> make(const TechniqueConfig& c, const OffsetSourc
   return std::make_unique<HaBuffer>(c.buffer, offsets.make(table, c.buffer.record_layout().max_age()));
 }
 
-TechniqueConfig grown(const TechniqueConfig& c, const ResizePolicy& policy, const GrowthNeed&) {
+TechniqueConfig grown(const TechniqueConfig& c, const ResizePolicy& policy, const GrowthNeed& need) {
   TechniqueConfig next = c;
-  next.buffer.table = policy.grown(c.buffer.table_or_screen());
+  next.buffer.table = policy.grown(c.buffer.table_or_screen(), c.buffer.screen, need.records);
   return next;
 }
 

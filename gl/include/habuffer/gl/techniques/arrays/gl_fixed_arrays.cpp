@@ -28,7 +28,7 @@ GlFixedArrays::GlFixedArrays(const TechniqueConfig& config, AtomicMode mode, con
   allocate_layers(config_.layers);
   gpu_->sort = std::make_unique<SortPass>(Technique::Arrays, mode, bindings);
   declare_pass({GlPassStage::Sort, "the arrays' sort pass", [this](GlPassContext& c) {
-                  c.report.sort = gpu_->sort->run(screen(), c.options.finish_timing);
+                  c.report.sort = gpu_->sort->run(screen(), clock_mode(c.options));
                 }});
 }
 
@@ -82,7 +82,7 @@ void GlFixedArrays::gathered(std::span<const std::uint32_t> counter_words, Frame
 
 bool GlFixedArrays::grow(const FrameReport& report, const GlFrameOptions& options) {
   // K as large as the deepest pixel: the regather keeps every fragment.
-  const TechniqueConfig next = config_.grown(options.policy, 0, report.most_arrived);
+  const TechniqueConfig next = config_.grown(options.policy, GrowthNeed{.most_arrived = report.most_arrived});
   if (!next.limit().empty() ||
       std::uint64_t{next.layers} * screen().area() * sizeof(glm::uvec2) > max_storage_bytes())
     return false;

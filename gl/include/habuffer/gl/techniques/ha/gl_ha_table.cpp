@@ -200,7 +200,7 @@ void GlHaTable::change_screen(Extent screen) {
 }
 
 std::uint64_t GlHaTable::count_stored() {
-  const std::uint64_t stored = gpu_->clear->run(config_.table, clear_tile_, false, true).stored;
+  const std::uint64_t stored = gpu_->clear->run(config_.table, clear_tile_, false, ClockMode::Finish).stored;
   check_gl_errors("the counting pass");
   return stored;
 }
@@ -211,12 +211,12 @@ void GlHaTable::clear(GlPassContext& context) {
   // The count the previous frame's clear pass left in the query buffer (the
   // GPU wrote it a frame ago: reading it does not stall), then this frame's
   // clear pass, whose count will be read next frame.
-  if (pending_count_table_) {
+  if (pending_count_table_ && context.options.readback == Readback::Immediate) {
     report.counted_stored = gpu_->count.read<std::uint64_t>(1)[0];
     report.counted_table = *pending_count_table_;
   }
   const ClearPass::Result r =
-      gpu_->clear->run(config_.table, clear_tile_, true, context.options.finish_timing, gpu_->count.id());
+      gpu_->clear->run(config_.table, clear_tile_, true, clock_mode(context.options), gpu_->count.id());
   report.clear = {r.wall_ms, r.gpu_ms};
   check_gl_errors("the clear pass");
   pending_count_table_ = config_.table;
@@ -225,10 +225,11 @@ void GlHaTable::clear(GlPassContext& context) {
 }
 
 void GlHaTable::begin_frame(FrameReport& report, const GlFrameOptions& options) {
-  // Adaptive sizing from the count this frame's clear pass read (SPEC 8):
-  // asked for, or the table is automatic.
-  if ((options.adaptive || auto_table_) && report.counted_stored && report.counted_table == config_.table) {
-    const Extent next = options.policy.next(config_.table, config_.screen, *report.counted_stored);
+  // Adaptive sizing (SPEC 8, ResizePolicy's rule) from the latest complete
+  // count of the records a frame asked to keep (stored + failed, whatever
+  // table it was gathered into): asked for, or the table is automatic.
+  if ((options.adaptive || auto_table_) && report.sized_by) {
+    const Extent next = options.policy.next(config_.table, config_.screen, report.sized_by->records);
     if (next != config_.table) {
       if (table_limit(next).empty()) {
         allocate_table(next);
@@ -250,8 +251,10 @@ void GlHaTable::reset() { gpu_->table.zero(); }
 
 void GlHaTable::gathered(std::span<const std::uint32_t>, FrameReport& report) { report.table = config_.table; }
 
-bool GlHaTable::grow(const FrameReport&, const GlFrameOptions& options) {
-  const Extent grown = options.policy.grown(config_.table);
+bool GlHaTable::grow(const FrameReport& report, const GlFrameOptions& options) {
+  // Every fragment the gather received has an outcome: the table for what it
+  // asked to keep, at the middle of the band (one regather for any jump).
+  const Extent grown = options.policy.grown(config_.table, config_.screen, report.counters.records_needed());
   if (!table_limit(grown).empty()) return false;
   allocate_table(grown);
   return true;

@@ -79,6 +79,7 @@ class GlHaTable final : public GlTechnique {
   bool grow(const FrameReport& report, const GlFrameOptions& options) override;
   [[nodiscard]] bool defers_calls() const override { return true; }
   [[nodiscard]] std::uint64_t capacity() const override { return config_.table.area(); }
+  [[nodiscard]] Extent table_extent() const override { return config_.table; }
   [[nodiscard]] std::uint64_t memory_bytes() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
 

@@ -106,7 +106,7 @@ void GlKBuffer::count_limits() const {
 }
 
 bool GlKBuffer::grow(const FrameReport&, const GlFrameOptions& options) {
-  const TechniqueConfig next = config_.grown(options.policy, 0, 0);
+  const TechniqueConfig next = config_.grown(options.policy, GrowthNeed{});
   if (!next.limit().empty() || std::uint64_t{next.layers} * screen().area() * word_bytes() > max_storage_bytes())
     return false;
   allocate_layers(next.layers);

@@ -56,7 +56,7 @@ GlLinkedLists::GlLinkedLists(const TechniqueConfig& config, const GlNodeListKind
   if (kind_.sort_pass) {
     gpu_->sort = std::make_unique<SortPass>(kind_.technique, mode, bindings);
     declare_pass({GlPassStage::Sort, to_string(kind_.technique) + " sort pass", [this](GlPassContext& c) {
-                    c.report.sort = gpu_->sort->run(screen(), c.options.finish_timing);
+                    c.report.sort = gpu_->sort->run(screen(), clock_mode(c.options));
                   }});
   }
 }
@@ -116,7 +116,6 @@ void GlLinkedLists::change_screen(Extent screen) {
   config_ = next;
   // The last request was made on the old screen: SPEC 8's rule waits for a
   // frame of the new one.
-  has_request_ = false;
   last_requested_ = 0;
 }
 
@@ -144,9 +143,10 @@ std::string GlLinkedLists::pool_limit(std::uint64_t nodes) const {
 }
 
 void GlLinkedLists::begin_frame(FrameReport& report, const GlFrameOptions& options) {
-  if (!(options.adaptive || auto_pool_) || !has_request_) return;
-  // SPEC 8's rule on the pool: its use is the nodes the last frame asked for.
-  const std::uint64_t next = options.policy.next(config_.pool_capacity, last_requested_);
+  if (!(options.adaptive || auto_pool_) || !report.sized_by) return;
+  // SPEC 8's rule on the pool (ResizePolicy): its use is the nodes the
+  // latest complete frame asked for, dropped ones included.
+  const std::uint64_t next = options.policy.next(config_.pool_capacity, report.sized_by->nodes);
   if (next == config_.pool_capacity) return;
   if (!pool_limit(next).empty()) {
     report.resize_limited = true;
@@ -166,12 +166,11 @@ void GlLinkedLists::gathered(std::span<const std::uint32_t> counter_words, Frame
   // (in pages for paged lists).
   report.nodes_requested = counter_words[HABUFFER_COUNTER_NODES];
   last_requested_ = report.nodes_requested;
-  has_request_ = true;
 }
 
 bool GlLinkedLists::grow(const FrameReport& report, const GlFrameOptions& options) {
   // The counter counted every node asked for: a pool of that size holds the frame.
-  const std::uint64_t next = config_.grown(options.policy, report.nodes_requested, 0).pool_capacity;
+  const std::uint64_t next = config_.grown(options.policy, GrowthNeed{.nodes_requested = report.nodes_requested}).pool_capacity;
   if (!pool_limit(next).empty()) return false;
   allocate_pool(next);
   return true;

@@ -123,7 +123,6 @@ class GlLinkedLists final : public GlTechnique {
   TechniqueConfig config_;
   bool auto_pool_ = false;
   std::uint64_t last_requested_ = 0;
-  bool has_request_ = false;
   std::unique_ptr<Gpu> gpu_;
 };
 
