@@ -106,6 +106,7 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
     throw std::invalid_argument("finish_timing waits for the GPU around every pass; a Deferred readback never waits: "
                                 "leave it unset or false");
   if (!options_.finish_timing) options_.finish_timing = !deferred;
+  late_rounds_ = options_.late_resume_rounds;
   if (!options_.max_attempts)
     options_.max_attempts = needs_count_ && !deferred ? GlFrameOptions::kAutomaticAttempts : 1u;
   if (*options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
@@ -272,6 +273,7 @@ void GlFrameDriver::write_params() const {
   p.habuffer_deferred_capacity = static_cast<std::uint32_t>(deferred_capacity_);
   p.habuffer_depth_reversed = options_.depth == DepthConvention::Reversed ? 1u : 0u;
   p.habuffer_module_id = module_id_;
+  p.habuffer_stop_at_failure = stop_at_failure_ ? 1u : 0u;
   write_light_params(options_.light, technique_->gather_depth(), p);
   technique_->write_params(p);
   glNamedBufferSubData(gpu_->params.id(), 0, sizeof p, &p);
@@ -416,7 +418,13 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
   const auto ms_since = [](std::chrono::steady_clock::time_point t) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
   };
+  const std::uint32_t allowed = std::max<std::uint32_t>(*options_.max_attempts, technique_->grows_at_once() ? 2 : 1);
   for (;;) {
+    // A lossless attempt that a regather may follow stops inserting at its
+    // first failure: it only needs to count (the HA-buffer's table, whose
+    // overfull probes are the costly ones).
+    stop_at_failure_ = uses_table(technique_->technique()) && !options_.capture_only &&
+                       report.attempts.size() + 1 < allowed;
     run_gather(gather, calls, report);
     if (options_.capture && report.captured > capture_capacity_) {
       // A gather is deterministic in what it rasterizes, so one regather suffices;
@@ -448,7 +456,6 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
     }
     report.attempts.push_back({report.table, report.counters, technique_->capacity(), sized_for, ms_since(attempt_t0)});
     attempt_t0 = std::chrono::steady_clock::now();
-    const std::uint32_t allowed = std::max<std::uint32_t>(*options_.max_attempts, technique_->grows_at_once() ? 2 : 1);
     if (report.counters.failures() == 0 || report.attempts.size() >= allowed) break;
     // Failures that are all calls cut short (contention or the driver, not
     // the technique's size): the same buffers, emptied, again.
@@ -467,6 +474,7 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       break;
     }
   }
+  stop_at_failure_ = false;
   report.capacity = technique_->capacity();
   note_count(report);
   return report;
@@ -475,7 +483,7 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
 void GlFrameDriver::run_deferred_gather(const std::function<void()>& gather, FrameReport& report) {
   const auto t0 = std::chrono::steady_clock::now();
   LateReadback& late = gpu_->late;
-  const std::uint32_t rounds = technique_->defers_calls() ? options_.late_resume_rounds : 0;
+  const std::uint32_t rounds = technique_->defers_calls() ? late_rounds_ : 0;
   LateReadback::Slot& slot = late.begin(kCounterWords + 1 + rounds);
   try {
     late.mark(LateReadback::FrameBegin);
@@ -562,8 +570,15 @@ std::vector<FrameReport> GlFrameDriver::collect_late(bool wait) {
         if (k < d.slot.rounds) r.deferred += std::min(h, cap);
         if (k > 0 && h > 0) r.resume_rounds = k;
       }
-      unfinished += std::min<std::uint64_t>(d.words[kCounterWords + d.slot.rounds], cap);
+      const std::uint64_t left = std::min<std::uint64_t>(d.words[kCounterWords + d.slot.rounds], cap);
+      unfinished += left;
       if (most > deferred_capacity_) grow_deferred(most);
+      // The rounds later frames dispatch: twice what recent frames needed
+      // (all they had, when calls were left), decaying by one a frame, at
+      // least one, at most late_resume_rounds: an empty dispatch is nearly
+      // free on a GPU but not on llvmpipe.
+      const std::uint32_t wanted = 2 * (left > 0 ? d.slot.rounds : r.resume_rounds);
+      late_rounds_ = std::min(options_.late_resume_rounds, std::max({wanted, late_rounds_ - (late_rounds_ > 1 ? 1u : 0u), 1u}));
     }
     r.counters.fragments += unfinished;
     r.counters.failed_iter += unfinished;
@@ -744,6 +759,11 @@ std::vector<std::uint32_t> GlFrameDriver::read_counters_from(std::vector<std::ui
   report.slot_writes.reset();
   if (options_.module.count_writes) report.slot_writes = tally[HABUFFER_COUNTER_SLOT_WRITES];
   report.off_screen = tally[HABUFFER_COUNTER_OFF_SCREEN];
+  // Calls a lossless attempt counted after its first failure without
+  // inserting them (habuffer_stop_at_failure): failed_iter of that attempt.
+  report.skipped = stop_at_failure_ ? tally[HABUFFER_COUNTER_COUNTED] : 0;
+  report.counters.fragments += report.skipped;
+  report.counters.failed_iter += report.skipped;
   return words;  // the technique reads its own words (GlTechnique::gathered)
 }
 

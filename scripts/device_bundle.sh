@@ -3,7 +3,7 @@
 # large to carry) and gathers what a machine without our packages needs to
 # run the GPU path into .dev/ (git-ignored through .git/info/exclude):
 #   .dev/bin/   habuffer (no image files), habuffer_gl_tests,
-#               habuffer_render_tests, habuffer_bench
+#               habuffer_render_tests, habuffer_bench, habuffer_adaptive_jumps
 #   .dev/lib/   the shared libraries they load beyond the C/C++ runtime
 #               (oneTBB, libepoxy, assimp and its codecs, Google Benchmark)
 #   .dev/models the assimp-testmodels files the named scenes read
@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh device >/dev/null
 rm -rf .dev && mkdir -p .dev/bin .dev/lib .dev/models
-bins=(habuffer habuffer_gl_tests habuffer_render_tests habuffer_bench)
+bins=(habuffer habuffer_gl_tests habuffer_render_tests habuffer_bench habuffer_adaptive_jumps)
 for b in "${bins[@]}"; do strip -o ".dev/bin/$b" "build-device/bin/$b"; done
 # Every library ldd resolves, except the C/C++ runtime and the GL loaders
 # (the device machine has the runtime; the loaders come from .gl/).

@@ -36,7 +36,7 @@ case "${1:-}" in
   --dry-run) mode=dry; shift ;;
 esac
 out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
-all_steps=info,gl-tests,spatial,shadows,gather,harness,model,msaa,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+all_steps=info,adaptive,gl-tests,spatial,shadows,gather,harness,model,msaa,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
 steps=${2:-$all_steps}
 budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
@@ -85,13 +85,15 @@ sharded() {
 
 # Sizes, repeats and filters: the real run, or toys for --smoke.
 if [[ $mode == smoke ]]; then
-  sizes=64x64 repeats=1 sides='256' model_size=64x64 gtest_filter='GlBookkeeping.*:GlFrame.*:Render.Planes*'
+  sizes=64x64 repeats=1 sides='256' model_size=64x64 gtest_filter='GlBookkeeping.*:GlFrame.*:GlAdaptive.*:Render.Planes*'
+  adaptive_sides='32'
   render_size=96x96 msaa_size=64x64 bench_time=0.05 bench_reps=1 log2n='18' l64=emulated64  # llvmpipe has no native64
   fig2_size=64x64 light_size=128x128
   spatial_gpu_filter='BM_GlSpatial/image/'
   spatial_cpu_filter='BM_Spatial/image/build/ours-load-0.80/threads-2'
 else
   sizes=512x512,1024x1024 repeats=3 sides='512|1024' model_size=1024x1024 gtest_filter='*'
+  adaptive_sides='64 256'
   render_size=2048x2048 msaa_size=512x512 bench_time=0.2 bench_reps=3 log2n='18|24' l64=native64
   fig2_size=1024x1024 light_size=2048x2048
   spatial_gpu_filter='BM_GlSpatial/[a-z]+/'
@@ -108,6 +110,15 @@ if want info; then
   step 60 info habuffer info
 fi
 # Every GL test in the default mode (native64 on NVIDIA).
+# Issue 45: jumps and drops of depth complexity through the frame driver,
+# per readback mode (lossy frames, gathers at the jump, the jump frame
+# against a normal one, frames to give memory back, a steady frame's cost
+# Immediate against Deferred: the CPU-GPU overlap a GPU allows).
+if want adaptive; then
+  for side in ${adaptive_sides}; do
+    step 60 "adaptive-$side" bash -c "habuffer_adaptive_jumps --size $side --repeats $repeats > adaptive-$side.md"
+  done
+fi
 want gl-tests && sharded 4 120 gl-tests habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
 # Issue 22: the spatial hash on the GPU (build, hits and misses per second at
 # loads 0.8 and 0.99 on the sparse image and the voxel shell, GPU time of the

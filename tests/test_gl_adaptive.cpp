@@ -235,6 +235,11 @@ TEST(GlAdaptive, AnyJumpIsLosslessInOneRegatherAndADropGivesMemoryBackAtTheNextF
       EXPECT_TRUE(jump.lossless());
       ASSERT_EQ(jump.attempts.size(), 2u);
       EXPECT_EQ(jump.attempts[1].sized_for, deep.size()) << "every fragment the failed gather received";
+      // The failed gather stopped inserting at its first failure: every
+      // later call counted (failed_iter of that attempt), none lost in the end.
+      EXPECT_EQ(jump.attempts[0].counters.fragments, deep.size());
+      EXPECT_GT(jump.attempts[0].counters.failed_iter, deep.size() / 2);
+      EXPECT_EQ(jump.skipped, 0u);
       EXPECT_EQ(jump.table, policy.grown(jump.attempts[0].table, screen, deep.size()));
       EXPECT_EQ(gpu.read_table(), test::table_words(test::cpu_twin(gpu, deep)));
       const gl::FrameReport steady = inserter.insert(layers_of(screen, 40, 3));
@@ -338,6 +343,23 @@ TEST(GlAdaptive, RequestRecountSizesTheNextFrameFromItsOwnCount) {
   EXPECT_EQ(r.table, ResizePolicy{}.initial_table(screen, 30u * screen.area()));
   gl::GlHaBuffer given(test::config(screen, screen, Layout::L64, 8), test::random_offsets(2), gl::AtomicMode::Emulated64);
   EXPECT_THROW(given.request_recount(), std::invalid_argument);
+}
+
+// A table the host sets is not undone by a count of a frame before it.
+TEST(GlAdaptive, ATableTheHostSetsIsNotResizedByAnEarlierFramesCount) {
+  gl_context();
+  const Extent screen{16, 16};
+  gl::GlHaBuffer gpu(test::config(screen, {}, Layout::L64, 8), test::random_offsets(2), gl::AtomicMode::Emulated64);
+  gl::ComputeInserter inserter(gpu);
+  (void)inserter.insert(layers_of(screen, 1, 1));
+  gpu.resize({200, 200});  // load 0.0064 for the last frame's count: that count must not shrink it
+  const gl::FrameReport r = inserter.insert(layers_of(screen, 1, 2));
+  EXPECT_FALSE(r.sized_by.has_value());
+  EXPECT_FALSE(r.resized);
+  EXPECT_EQ(r.table, (Extent{200, 200}));
+  const gl::FrameReport next = inserter.insert(layers_of(screen, 1, 3));
+  ASSERT_TRUE(next.sized_by.has_value());
+  EXPECT_TRUE(next.resized) << "its own frames' counts adapt it (an automatic table)";
 }
 
 TEST(GlAdaptive, BudgetsStopLosslessGrowthAndSaySo) {

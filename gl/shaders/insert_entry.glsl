@@ -43,7 +43,16 @@ uint habuffer_insert(uvec2 pixel, float depth, uint coverage, uint rgba) {
     // Counted before the call can be cut short (HABUFFER_COUNTER_CALLS).
     if (habuffer_gather_phase == HABUFFER_PHASE_INSERT) atomicAdd(ha_counters[HABUFFER_COUNTER_CALLS], 1u);
 #endif
+    // A lossless attempt that will be gathered again: after its first
+    // failure the calls are only counted (HABUFFER_COUNTER_FAILED_ONCE). A
+    // stale read of the flag inserts a call more, which is harmless.
+    if (habuffer_stop_at_failure != 0u && ha_counters[HABUFFER_COUNTER_FAILED_ONCE] != 0u) {
+      ha_counter_add(pixel, HABUFFER_COUNTER_COUNTED, 1u);
+      return HABUFFER_UNCOUNTED;
+    }
     outcome = HABUFFER_TECHNIQUE_CALL(pixel, depth, coverage, rgba);
+    if (habuffer_stop_at_failure != 0u && (outcome == HABUFFER_FAILED_AGE || outcome == HABUFFER_FAILED_ITER))
+      ha_counters[HABUFFER_COUNTER_FAILED_ONCE] = 1u;
   } else {
     // Counted once per frame: not in a pass that inserts nothing (the k-buffer's fill pass).
     if (habuffer_gather_phase != 0u) return HABUFFER_UNCOUNTED;

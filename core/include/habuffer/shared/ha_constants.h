@@ -119,6 +119,14 @@
 // budget can end a call without an outcome: llvmpipe), so the driver counts
 // such calls failed_iter without asking its host for a call count.
 #define HABUFFER_COUNTER_CALLS (HABUFFER_COUNTER_NODES + 6u)
+// Set when an insert call of a gather with habuffer_stop_at_failure failed
+// (lossless mode's attempt that will be gathered again into the table sized
+// for its count): the calls after it are counted in the striped
+// HABUFFER_COUNTER_COUNTED (unused outside a counting gather) and not
+// inserted, so a jump's failed gather costs about a counting gather, not a
+// gather into an overfull table; the driver counts them failed_iter of that
+// attempt (FrameReport::skipped).
+#define HABUFFER_COUNTER_FAILED_ONCE (HABUFFER_COUNTER_NODES + 7u)
 #define HABUFFER_COUNTER_WORDS (HABUFFER_COUNTER_NODES + HABUFFER_COUNTER_STRIDE)
 // The GPU path's append buffers (capture, deferred calls) start with this
 // many words: the append count, then padding to 16 bytes.

@@ -39,7 +39,7 @@ HABUFFER_PARAMS_BEGIN
   HABUFFER_PARAM_FLOAT(habuffer_light_d)
   HABUFFER_PARAM_UINT(habuffer_module_id)           // the frame driver's module fingerprint (HABUFFER_MODULE_ID of its module_source)
   HABUFFER_PARAM_UINT(habuffer_coverage_bits)        // every technique: C, the samples of a multisampled screen (0: one)
-  HABUFFER_PARAM_UINT(ha_unused_0)                  // std140 rounds the block to 16 bytes
-  HABUFFER_PARAM_UINT(ha_unused_1)
+  HABUFFER_PARAM_UINT(habuffer_stop_at_failure)     // HA-buffer: 1: a lossless attempt to be gathered again stops inserting at its first failure (HABUFFER_COUNTER_FAILED_ONCE)
+  HABUFFER_PARAM_UINT(ha_unused_1)                  // std140 rounds the block to 16 bytes
   HABUFFER_PARAM_UINT(ha_unused_2)
 HABUFFER_PARAMS_END

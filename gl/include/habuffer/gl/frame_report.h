@@ -88,10 +88,12 @@ struct GlFrameOptions {
   /// the resume pass, round after round while any remain, at most this many
   /// rounds; only calls still cut short after the last round count failed_iter.
   std::uint32_t resume_rounds = 256;
-  /// Readback::Deferred: the resume rounds every frame dispatches without
+  /// Readback::Deferred: the most resume rounds a frame dispatches without
   /// reading a count (each round reads its calls' count on the GPU; a round
-  /// with none is an empty dispatch). Calls still cut short after them count
-  /// failed_iter in the frame's late report.
+  /// with none is an empty dispatch). The driver dispatches twice the rounds
+  /// recent frames needed (all of these, when calls were left), at least
+  /// one; calls still cut short after the last count failed_iter in the
+  /// frame's late report.
   std::uint32_t late_resume_rounds = 8;
   /// First capacity of the two deferred-call buffers (40 bytes a call); grows
   /// (and the frame gathers again) on overflow.
@@ -227,6 +229,11 @@ struct FrameReport {
   /// (also in counters.invalid): fragments lost, for instance drawn by a
   /// host whose window grew beyond the screen it configured (resize_screen()).
   std::uint64_t off_screen = 0;
+  /// Calls of the final gather counted but not inserted after its first
+  /// failure: an HA-buffer's lossless attempt that a regather was to follow
+  /// stops inserting there (it only needs its count), and the calls after
+  /// count failed_iter of that attempt (0 when the frame ended lossless).
+  std::uint64_t skipped = 0;
   /// Whether the final gather lost nothing: no failures in its counters and
   /// no fragment off the screen.
   [[nodiscard]] bool lossless() const { return counters.failures() == 0 && off_screen == 0; }

@@ -175,8 +175,13 @@ class GlFrameDriver {
  protected:
   /// Writes the parameter block (the frame's fields and the technique's).
   void write_params() const;
-  /// The host sized the container itself (GlHaBuffer::resize): no counting gather.
-  void sized_by_host() { needs_count_ = false; }
+  /// The host sized the container itself (GlHaBuffer::resize): no counting
+  /// gather, and no count of a frame before decides the next size.
+  void sized_by_host() {
+    needs_count_ = false;
+    latest_count_.reset();
+    sizing_floor_ = frames_;
+  }
 
  private:
   struct Gpu;
@@ -252,6 +257,8 @@ class GlFrameDriver {
   std::uint32_t gather_phase_ = 0;  ///< the parameter habuffer_gather_phase (HABUFFER_PHASE_*)
   std::optional<SizingCount> latest_count_;  ///< the latest complete frame's count, not yet decided from
   std::uint64_t sizing_floor_ = 0;
+  bool stop_at_failure_ = false;
+  std::uint32_t late_rounds_ = 0;  ///< Readback::Deferred: resume rounds the next frame dispatches  ///< the parameter habuffer_stop_at_failure of the attempt being gathered
   std::vector<FrameReport> held_reports_;  ///< deferred reports read by resize_screen, for the next frame()  ///< counts of frames before this one are not sized by (a resize_screen since)
   std::unique_ptr<Gpu> gpu_;
 };
