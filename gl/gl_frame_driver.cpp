@@ -508,16 +508,8 @@ void GlFrameDriver::run_deferred_gather(const std::function<void()>& gather, Fra
         late.copy(gpu_->deferred[0].id(), 0, kCounterWords, 4);
         int in = 0;
         for (std::uint32_t r = 0; r < rounds; ++r) {
-          const int out = 1 - in;
-          zero_range(gpu_->deferred[out].id(), 0, kAppendHeaderBytes);
-          glUseProgram(gpu_->resume->id());
-          gpu_->deferred[in].bind_storage(bindings().stream);
-          gpu_->deferred[out].bind_storage(bindings().deferred);
-          gpu_->resume->set("ha_resume_count", static_cast<unsigned>(deferred_capacity_));
-          dispatch_grid(deferred_capacity_, 64);
-          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-          late.copy(gpu_->deferred[out].id(), 0, kCounterWords + 1 + r, 4);
-          in = out;
+          in = dispatch_resume_round(in, deferred_capacity_);  // the round reads its count on the GPU
+          late.copy(gpu_->deferred[in].id(), 0, kCounterWords + 1 + r, 4);
         }
         slot.rounds = rounds;
       }
@@ -700,6 +692,18 @@ void GlFrameDriver::count_ended_by_driver(std::uint64_t made, FrameReport& repor
   report.cut_short += ended_by_driver;
 }
 
+int GlFrameDriver::dispatch_resume_round(int in, std::uint64_t count) {
+  const int out = 1 - in;
+  zero_range(gpu_->deferred[out].id(), 0, kAppendHeaderBytes);
+  glUseProgram(gpu_->resume->id());
+  gpu_->deferred[in].bind_storage(bindings().stream);
+  gpu_->deferred[out].bind_storage(bindings().deferred);
+  gpu_->resume->set("ha_resume_count", static_cast<unsigned>(count));
+  dispatch_grid(count, 64);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  return out;
+}
+
 std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
   report.deferred = 0;
   report.resume_rounds = 0;
@@ -719,14 +723,7 @@ std::uint64_t GlFrameDriver::resume_deferred(FrameReport& report) {
   PassClock clock(gpu_->gather_timer, clock_mode(options_));
   while (count > 0 && report.resume_rounds < options_.resume_rounds) {
     report.deferred += count;
-    const int out = 1 - in;
-    zero_range(gpu_->deferred[out].id(), 0, kAppendHeaderBytes);
-    glUseProgram(gpu_->resume->id());
-    gpu_->deferred[in].bind_storage(bindings().stream);
-    gpu_->deferred[out].bind_storage(bindings().deferred);
-    gpu_->resume->set("ha_resume_count", static_cast<unsigned>(count));
-    dispatch_grid(count, 64);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    const int out = dispatch_resume_round(in, count);
     ++report.resume_rounds;
     count = read_deferred_count(out);
     in = out;

@@ -20,30 +20,36 @@
 
 namespace habuffer::gl {
 
+// The timestamps of a frame in flight (LateReadback::Mark).
+inline constexpr int kLateMarks = 4;
+
+// A frame in flight: what was known at submission, and its GPU copies.
+struct LateSlot {
+  FrameReport report;              // the submitted frame's report (sizes, sizing, index)
+  std::uint64_t capacity = 0;      // the container's records at the gather
+  std::uint64_t deferred_capacity = 0;  // the deferred-call buffer's capacity at the gather
+  std::uint32_t rounds = 0;        // resume rounds recorded (their counts follow the counters)
+  bool sorted = false;             // the Sort passes ran
+  double submit_ms = 0.0;          // wall time of the submission
+  GlStorage words;                 // counter words, then the deferral counts
+  GLuint queries[kLateMarks] = {0, 0, 0, 0};
+  GLsync fence = nullptr;
+  MadeOn made_on;
+};
+// A slot read back: its words and GPU times.
+struct LateDone {
+  LateSlot slot;
+  std::vector<std::uint32_t> words;
+  double gpu_ms[kLateMarks - 1] = {0, 0, 0};  // reset, gather (resume rounds in it), sort
+};
+
 class LateReadback {
  public:
-  // Where a frame stands when its timestamps are taken.
-  enum Mark : int { FrameBegin = 0, GatherBegin = 1, GatherEnd = 2, FrameEnd = 3, kMarks = 4 };
+  using Slot = LateSlot;
+  using Done = LateDone;
 
-  // A frame in flight: what was known at submission, and its GPU copies.
-  struct Slot {
-    FrameReport report;              // the submitted frame's report (sizes, sizing, index)
-    std::uint64_t capacity = 0;      // the container's records at the gather
-    std::uint64_t deferred_capacity = 0;  // the deferred-call buffer's capacity at the gather
-    std::uint32_t rounds = 0;        // resume rounds recorded (their counts follow the counters)
-    bool sorted = false;             // the Sort passes ran
-    double submit_ms = 0.0;          // wall time of the submission
-    GlStorage words;                 // counter words, then the deferral counts
-    GLuint queries[kMarks] = {0, 0, 0, 0};
-    GLsync fence = nullptr;
-    MadeOn made_on;
-  };
-  // A slot read back: its words and GPU times.
-  struct Done {
-    Slot slot;
-    std::vector<std::uint32_t> words;
-    double gpu_ms[kMarks - 1] = {0, 0, 0};  // reset, gather (resume rounds in it), sort
-  };
+  // Where a frame stands when its timestamps are taken.
+  enum Mark : int { FrameBegin = 0, GatherBegin = 1, GatherEnd = 2, FrameEnd = 3, kMarks = kLateMarks };
 
   LateReadback() = default;
   ~LateReadback();

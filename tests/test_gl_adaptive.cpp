@@ -26,19 +26,8 @@ using test::gl_context;
 
 std::vector<gl::AtomicMode> modes() { return gl::runnable_atomic_modes(gl::query_gl_info()); }
 
-// `layers` full-screen layers of distinct depths (each pixel's depths in a
-// scrambled order), as a host's scene whose depth complexity jumps.
 std::vector<Fragment> layers_of(Extent screen, int layers, std::uint32_t seed) {
-  std::vector<Fragment> f;
-  for (int l = 0; l < layers; ++l)
-    for (std::uint32_t y = 0; y < screen.y; ++y)
-      for (std::uint32_t x = 0; x < screen.x; ++x) {
-        const std::uint32_t h = (x * 73856093u) ^ (y * 19349663u) ^ (static_cast<std::uint32_t>(l) * 83492791u) ^ seed;
-        // 7 l + x + y mod layers: a permutation of the layers at each pixel (7 is prime to any count used).
-        const std::uint32_t layer = (7u * static_cast<std::uint32_t>(l) + x + y + seed) % static_cast<std::uint32_t>(layers);
-        f.push_back({x, y, (static_cast<float>(layer) + 0.5f) / static_cast<float>(layers), h | 0x80u});
-      }
-  return f;
+  return test::full_screen_layers(screen, layers, seed);
 }
 
 // --- the calls that make the CPU wait for the GPU, intercepted through

@@ -179,21 +179,6 @@ TEST(ResizePolicy, RulesAreSpelledCountAndStep) {
   }
 }
 
-// `layers` full-screen layers of distinct depths on `screen`, each pixel's
-// depths shuffled by `seed`.
-std::vector<Fragment> full_screen_layers(Extent screen, int layers, std::uint32_t seed) {
-  std::vector<Fragment> f;
-  for (int l = 0; l < layers; ++l)
-    for (std::uint32_t y = 0; y < screen.y; ++y)
-      for (std::uint32_t x = 0; x < screen.x; ++x) {
-        const std::uint32_t h = (x * 73856093u) ^ (y * 19349663u) ^ (static_cast<std::uint32_t>(l) * 83492791u) ^ seed;
-        f.push_back({x, y, (static_cast<float>(l) + 0.25f + 0.5f * static_cast<float>(h % 1000) / 1000.0f) /
-                               static_cast<float>(layers),
-                     h | 0xffu});
-      }
-  return f;
-}
-
 // The jumps of a host whose depth complexity leaps in one frame, on the CPU
 // path's kept frames (as render's and Python's): lossless in at most two
 // attempts, the regather sized by the failed attempt's own count.
@@ -205,8 +190,8 @@ TEST(Lossless, AnyJumpIsLosslessInAtMostOneRegatherSizedByTheFailedAttemptsCount
     TechniqueConfig c = ha_technique_config(test::config(screen, {}, Layout::L64, 8));
     c.buffer.table = policy.initial_table(screen, std::max<std::uint64_t>(1, from * screen.area()));
     TechniqueFrames frames(OffsetSource{}, InsertOptions{}, policy, 16);
-    (void)frames.build(c, full_screen_layers(screen, from, 1));
-    const std::vector<Fragment> deep = full_screen_layers(screen, 40, 2);
+    (void)frames.build(c, test::full_screen_layers(screen, from, 1));
+    const std::vector<Fragment> deep = test::full_screen_layers(screen, 40, 2);
     const TechniqueBuild& b = frames.build(c, deep);
     EXPECT_TRUE(b.lossless());
     ASSERT_EQ(b.attempts.size(), 2u);
@@ -218,7 +203,7 @@ TEST(Lossless, AnyJumpIsLosslessInAtMostOneRegatherSizedByTheFailedAttemptsCount
     EXPECT_EQ(test::traversed_lists(*b.buffer), test::exact_lists(deep, c.buffer.record_layout()));
     // The step rule takes many attempts for the same jump.
     TechniqueFrames stepped(OffsetSource{}, InsertOptions{}, kStep, 6);
-    (void)stepped.build(c, full_screen_layers(screen, from, 1));
+    (void)stepped.build(c, test::full_screen_layers(screen, from, 1));
     EXPECT_FALSE(stepped.build(c, deep).lossless()) << "six steps of a quarter do not reach 40 layers";
   }
 }
@@ -228,7 +213,7 @@ TEST(Lossless, APoolJumpIsLosslessInOneRegatherToo) {
   TechniqueConfig c = ha_technique_config(test::config(screen, {}, Layout::L64, 8));
   c.technique = Technique::Lists;
   c.pool_capacity = 64;
-  const std::vector<Fragment> deep = full_screen_layers(screen, 40, 3);
+  const std::vector<Fragment> deep = test::full_screen_layers(screen, 40, 3);
   const TechniqueBuild b = build_technique(c, OffsetSource{}, deep, {}, ResizePolicy{}, 16);
   EXPECT_TRUE(b.lossless());
   ASSERT_EQ(b.attempts.size(), 2u);

@@ -220,6 +220,10 @@ class GlFrameDriver {
   /// the calls still deferred after the last round; none are run when the
   /// gather deferred more than the buffer holds (deferred_overflow_).
   std::uint64_t resume_deferred(FrameReport& report);
+  /// One resume round over the calls deferred in buffer `in` (at most
+  /// `count`; the pass reads the buffer's own count too), deferring again
+  /// into the other buffer, whose index it returns.
+  int dispatch_resume_round(int in, std::uint64_t count);
   PassTiming run_resolve(glm::vec3 background, unsigned background_texture, bool over);
   void run_gather(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
                   FrameReport& report);
