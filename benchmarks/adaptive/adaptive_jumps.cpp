@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
   const std::vector<Scenario> scenarios{
       {"0 -> 40", {0, 40, 40, 40, 40, 40, 40}, 1},
       {"1 -> 40", {1, 1, 40, 40, 40, 40, 40, 40}, 2},
-      {"40 -> 1", {40, 40, 1, 1, 1, 1, 1, 1, 1, 1}, 2},
+      {"40 -> 1", {40, 40, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1}, 2},
   };
   std::printf("screen %ux%u, %s, automatic table; medians of %d runs per row (frame times)\n\n", side, side,
               hb::gl::to_string(mode()).c_str(), repeats);
