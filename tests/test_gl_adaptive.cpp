@@ -248,6 +248,28 @@ TEST(GlAdaptive, AnyJumpIsLosslessInOneRegatherAndADropGivesMemoryBackAtTheNextF
   }
 }
 
+// One gather per frame (max_attempts 1, Immediate): the jump's frame loses
+// fragments, counted, and the next frame, sized from that frame's count in
+// one decision, loses none.
+TEST(GlAdaptive, WithOneGatherPerFrameAJumpIsLossyForItsOwnFrameOnly) {
+  gl_context();
+  const Extent screen{32, 32};
+  gl::GlFrameOptions o;
+  o.max_attempts = 1;
+  gl::GlHaBuffer gpu(test::config(screen, {}, Layout::L64, 8), test::random_offsets(9), gl::AtomicMode::Emulated64, o);
+  gl::ComputeInserter inserter(gpu);
+  (void)inserter.insert(layers_of(screen, 1, 1));
+  const gl::FrameReport jump = inserter.insert(layers_of(screen, 40, 2));
+  EXPECT_FALSE(jump.lossless());
+  EXPECT_EQ(jump.counters.fragments, 40u * screen.area()) << "every loss counted";
+  const gl::FrameReport next = inserter.insert(layers_of(screen, 40, 3));
+  ASSERT_TRUE(next.sized_by.has_value());
+  EXPECT_EQ(next.sized_by->records, 40u * screen.area()) << "judged by what it received, not what it stored";
+  EXPECT_TRUE(next.resized);
+  EXPECT_TRUE(next.lossless());
+  EXPECT_FALSE(inserter.insert(layers_of(screen, 40, 4)).resized) << "mid-band: no second decision";
+}
+
 // The same jump with Readback::Deferred: the jump's frames lose fragments
 // (counted, reported late) only until their count arrives; the first frame
 // sized by it is lossless, and no decision ever reads a partial count.
