@@ -190,6 +190,30 @@ TEST_F(AtomicOutput, ASignalMidWriteRemovesTheTemporaryAndExitsWith128PlusTheSig
   }
 }
 
+// A committed (or dropped) file frees its slot in the signal handler's
+// registry (issue 46, part 8): after more files than the registry has
+// slots, a file mid-write is still removed by a signal.
+TEST_F(AtomicOutput, CommittedFilesFreeTheirSignalSlotsSoALaterTemporaryIsStillRemoved) {
+  const std::string target = old_;
+  const fs::path dir = dir_;
+  const int status = in_child([&] {
+    remove_partial_outputs_on_signals();
+    for (int i = 0; i < 600; ++i) {  // more than the registry's 256 slots, committed and dropped
+      AtomicFile f((dir / ("done" + std::to_string(i % 3) + ".csv")).string());
+      f.write("x");
+      if (i % 2 == 0) f.commit();
+    }
+    AtomicFile f(target);
+    f.write("partial");
+    ::raise(SIGTERM);
+    ::_exit(1);
+  });
+  EXPECT_EQ(status, 128 + SIGTERM);
+  EXPECT_EQ(read(old_), "earlier contents\n");
+  for (const std::string& name : others())
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << "a temporary left behind: " << name;
+}
+
 TEST_F(AtomicOutput, ADirectoryOrAnEmptyNameIsRefusedNamingIt) {
   EXPECT_THROW(AtomicFile(dir_.string()), DataError);
   EXPECT_THROW(AtomicFile(""), DataError);

@@ -96,6 +96,23 @@ TEST(MeshImport, ACubeMissingAFaceIsNotClosedAndSaysHowManyEdgesAreOpen) {
   EXPECT_NE(solid_problem(c).find("4 edges belong to one triangle only"), std::string::npos);
 }
 
+// Two triangles that run a shared edge the same way (a face flipped) are
+// not a consistently oriented surface (issue 46, part 8): the edge counts
+// non-manifold, the mesh is no solid.
+TEST(MeshImport, TwoTrianglesRunningAnEdgeTheSameWayAreNotManifold) {
+  Mesh tetrahedron;
+  tetrahedron.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  tetrahedron.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};  // outward
+  ASSERT_TRUE(check_solid(tetrahedron).closed());
+  EXPECT_GT(check_solid(tetrahedron).volume, 0.0);
+  std::swap(tetrahedron.indices[1], tetrahedron.indices[2]);  // flip one face: its edges run like their neighbours'
+  const SolidCheck c = check_solid(tetrahedron);
+  EXPECT_FALSE(c.closed());
+  EXPECT_EQ(c.boundary_edges, 0u);
+  EXPECT_EQ(c.non_manifold_edges, 3u);
+  EXPECT_NE(solid_problem(c), "");
+}
+
 TEST(MeshImport, ASingleTriangleAndAFlatPillowAreNoSolids) {
   Mesh triangle;
   triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

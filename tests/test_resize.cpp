@@ -304,6 +304,47 @@ TEST(Lossless, TheRuleOfEveryPathGrowsUnlessAPixelIsDeeperThanAnyTableHolds) {
   EXPECT_EQ(lossless_attempts(lists, f, 5).attempts, 5u) << "no AMAX limits the lists";
 }
 
+// The rule's boundary (issue 46, part 8): AMAX + 1 distinct records at a
+// pixel are beyond every table, AMAX are not (an off-by-one would let
+// lossless mode grow uselessly, or refuse a pixel a table holds).
+TEST(Lossless, APixelOfAmaxPlusOneRecordsIsBeyondEveryTableAndOneOfAmaxIsNot) {
+  for (const std::uint32_t age_bits : {4u, 6u}) {
+    const RecordLayout layout(Layout::L64, age_bits);
+    const int amax = static_cast<int>(layout.max_age());
+    SCOPED_TRACE("AMAX " + std::to_string(amax));
+    const TechniqueConfig c = ha_technique_config(test::config({2, 2}, {2, 2}, Layout::L64, age_bits));
+    const AttemptLimit beyond = lossless_attempts(c, one_deep_pixel(1, 1, amax + 1), 8);
+    EXPECT_EQ(beyond.attempts, 1u);
+    ASSERT_TRUE(beyond.too_deep.has_value());
+    EXPECT_EQ(beyond.too_deep->records, static_cast<std::uint64_t>(amax + 1));
+    const AttemptLimit within = lossless_attempts(c, one_deep_pixel(1, 1, amax), 8);
+    EXPECT_EQ(within.attempts, 8u);
+    EXPECT_FALSE(within.too_deep.has_value());
+    // And a build of AMAX records at one pixel does end lossless by growing.
+    const TechniqueBuild b = build_technique(c, OffsetSource{}, one_deep_pixel(1, 1, amax), {}, ResizePolicy{}, 8);
+    EXPECT_TRUE(b.lossless());
+  }
+}
+
+// An automatic pool's guaranteed second attempt (issue 46, part 8): paged
+// lists take whole pages, so a pool sized for the fragments at grow_at use
+// drops; the automatic pool is gathered again at once even with one attempt
+// asked for, and holds every fragment.
+TEST(Lossless, AnAutomaticPoolIsGatheredAgainAtOnceEvenWithOneAttempt) {
+  const Extent screen{16, 16};
+  std::vector<Fragment> f;  // one fragment a pixel: a page a fragment
+  for (std::uint32_t y = 0; y < screen.y; ++y)
+    for (std::uint32_t x = 0; x < screen.x; ++x) f.push_back({x, y, 0.5f, 7});
+  TechniqueConfig c = test::technique_config(Technique::PagedLists, screen, Layout::L64, 8);
+  c.pool_capacity = 0;  // automatic
+  const TechniqueBuild b = build_technique(c, OffsetSource{}, f, {}, ResizePolicy{}, 1);
+  ASSERT_EQ(b.attempts.size(), 2u);
+  EXPECT_GT(b.attempts[0].counters.dropped_pool, 0u);
+  EXPECT_EQ(b.attempts[0].capacity, ResizePolicy{}.automatic(f.size()));
+  EXPECT_TRUE(b.lossless());
+  EXPECT_EQ(b.counters.stored(), f.size());
+}
+
 TEST(Lossless, ALossyEndWhereGrowingCannotHelpThrowsADataErrorNamingThePixelAgeBitsAndMaxAttempts) {
   const std::vector<Fragment> f = one_deep_pixel(1, 0, 20);
   const TechniqueBuild b =
