@@ -25,16 +25,12 @@ Extent scaled(Extent table, double area_factor) {
 // refused: a sizing decision names what it wants, the container's limits
 // what it gets.
 Extent counted_table(Extent screen, std::uint64_t records, double load) {
-  const double most = static_cast<double>(UINT32_MAX);
-  const double wanted = std::max(static_cast<double>(records) / load, static_cast<double>(screen.area()));
-  if (wanted <= most * 0.999) {
-    try {
-      return table_for_load(screen, records, load);
-    } catch (const std::invalid_argument&) {
-      // rounding up crossed the cap: fall through to the capped table
-    }
+  try {
+    return table_for_load(screen, records, load);
+  } catch (const std::invalid_argument&) {
+    // beyond 2^32 - 1 slots: the largest table of the screen's aspect below it
   }
-  const double s = std::sqrt(most * 0.999 / static_cast<double>(screen.area()));
+  const double s = std::sqrt(static_cast<double>(UINT32_MAX) * 0.999 / static_cast<double>(screen.area()));
   return {std::max<std::uint32_t>(screen.x, static_cast<std::uint32_t>(std::floor(screen.x * s))),
           std::max<std::uint32_t>(screen.y, static_cast<std::uint32_t>(std::floor(screen.y * s)))};
 }

@@ -85,6 +85,8 @@ std::string TechniqueConfig::limit() const {
   return {};
 }
 
+std::uint64_t GrowthNeed::count_for(Technique t) const { return uses_pool(t) ? nodes_requested : records; }
+
 TechniqueConfig TechniqueConfig::grown(const ResizePolicy& policy, const GrowthNeed& need) const {
   return descriptor(technique).grown(*this, policy, need);
 }

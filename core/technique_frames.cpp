@@ -9,13 +9,11 @@
 namespace habuffer {
 namespace {
 
-// The lossless attempt after `buffer` dropped fragments, sized by what the
-// attempt counted (every fragment it received has an outcome).
-TechniqueConfig next_attempt(const TechniqueConfig& c, const FragmentBuffer& buffer, const Counters& counters,
-                             const ResizePolicy& policy) {
+// What an attempt into `buffer` asked for: every fragment it received has an outcome.
+GrowthNeed attempt_need(const FragmentBuffer& buffer, const Counters& counters) {
   GrowthNeed need = buffer.growth_need();
   need.records = counters.records_needed();
-  return c.grown(policy, need);
+  return need;
 }
 
 // Whether `buffer` is the container make_fragment_buffer would make for `c`
@@ -77,8 +75,10 @@ const TechniqueBuild& TechniqueFrames::build(const TechniqueConfig& config, std:
       b->too_deep = std::move(limit.too_deep);
       if (b->attempts.size() >= attempts) break;
     }
-    const TechniqueConfig next = next_attempt(c, *b->buffer, b->counters, policy_);
-    sized_for = uses_pool(c.technique) ? b->buffer->growth_need().nodes_requested : b->counters.records_needed();
+    // The lossless attempt after a drop, sized by what this one counted.
+    const GrowthNeed need = attempt_need(*b->buffer, b->counters);
+    const TechniqueConfig next = c.grown(policy_, need);
+    sized_for = need.count_for(c.technique);
     if (!next.limit().empty()) {  // no larger buffer can be built: the last attempt's result, marked
       b->growth_limited = true;
       break;

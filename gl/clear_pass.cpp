@@ -41,7 +41,8 @@ ClearPass::~ClearPass() {
   glDeleteFramebuffers(1, &framebuffer_);
 }
 
-ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, ClockMode clock, unsigned result_buffer) {
+ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, ClockMode clock, unsigned result_buffer,
+                                 bool count) {
   GLint max_w = 0, max_h = 0, viewport[2] = {};
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_w);
   glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_h);
@@ -71,7 +72,7 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
   if (atomic) {
     atomic_count_.zero();
     bind_at(GL_SHADER_STORAGE_BUFFER, stream_point_, atomic_count_.id());  // the caller's guard restores the point
-  } else {
+  } else if (count) {
     glBeginQuery(GL_SAMPLES_PASSED, query_);
   }
   for (std::uint32_t y = 0; y < table.y; y += th) {
@@ -81,23 +82,23 @@ ClearPass::Result ClearPass::run(Extent table, std::uint32_t tile, bool writes, 
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }
   }
-  if (!atomic) glEndQuery(GL_SAMPLES_PASSED);
+  if (!atomic && count) glEndQuery(GL_SAMPLES_PASSED);
   // Later passes and read-backs see the zeroed slots (and the atomic count).
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   std::uint64_t stored = 0;
-  if (atomic) {
+  if (count && atomic) {
     // Tables have at most 2^32 - 1 slots: the low word holds the count, the high word stays 0.
     if (result_buffer != 0)
       glCopyNamedBufferSubData(atomic_count_.id(), result_buffer, 0, 0, sizeof(GLuint64));
     else
       glGetNamedBufferSubData(atomic_count_.id(), 0, sizeof stored, &stored);
-  } else if (result_buffer != 0) {
+  } else if (count && result_buffer != 0) {
     // The GPU writes the result when it has it; nobody waits (the caller's
     // guard restores the host's query-buffer binding).
     glBindBuffer(GL_QUERY_BUFFER, result_buffer);
     glGetQueryObjectui64v(query_, GL_QUERY_RESULT, nullptr);
     glBindBuffer(GL_QUERY_BUFFER, 0);
-  } else {
+  } else if (count) {
     stored = query_result(query_);
   }
   const auto [wall, gpu] = pass_clock.stop();

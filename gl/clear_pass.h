@@ -36,7 +36,9 @@ class ClearPass {
   // writes false: count only. finish: wait for the pass before stopping the clock.
   // result_buffer non-zero: the count is written there (8 bytes at offset 0)
   // when the GPU has it, without waiting, and Result::stored is 0.
-  Result run(Extent table, std::uint32_t tile, bool writes, ClockMode clock, unsigned result_buffer = 0);
+  // count false: no occlusion query at all (a count nobody reads); Result::stored is 0.
+  Result run(Extent table, std::uint32_t tile, bool writes, ClockMode clock, unsigned result_buffer = 0,
+             bool count = true);
   // Bytes of the buffers it allocated (the atomic route's count).
   [[nodiscard]] std::uint64_t bytes() const { return atomic_count_.bytes(); }
 

@@ -91,6 +91,10 @@ std::string_view to_string(Readback readback) {
   return readback == Readback::Deferred ? "deferred" : "immediate";
 }
 
+GrowthNeed growth_need(const FrameReport& report) {
+  return {report.nodes_requested, report.most_arrived, report.counters.records_needed()};
+}
+
 GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFrameOptions& options)
     : technique_(checked(std::move(technique))),
       options_(options),
@@ -212,16 +216,16 @@ std::vector<FrameReport> GlFrameDriver::finish_reports() {
 void GlFrameDriver::note_count(const FrameReport& report) {
   if (report.index < sizing_floor_) return;
   if (latest_count_ && latest_count_->frame > report.index) return;
-  latest_count_ = SizingCount{report.index, report.counters.records_needed(), report.nodes_requested};
+  const GrowthNeed need = growth_need(report);
+  latest_count_ = SizingCount{report.index, need.records, need.nodes_requested};
 }
 
 bool GlFrameDriver::within_budget(const FrameReport& report, std::uint64_t start_capacity, double elapsed_ms) const {
   if (options_.attempt_budget_ms > 0.0 && elapsed_ms >= options_.attempt_budget_ms) return false;
   if (options_.growth_budget > 0.0) {
-    // The next size, as ResizePolicy sizes a table or pool for the count.
-    const std::uint64_t need = uses_pool(technique_->technique()) ? report.nodes_requested
-                                                                   : report.counters.records_needed();
-    const std::uint64_t next = std::max(technique_->capacity() + 1, options_.policy.counted_capacity(need));
+    // The capacity the policy grows to for this count (ResizePolicy::grown, its record form).
+    const std::uint64_t next =
+        options_.policy.grown(technique_->capacity(), growth_need(report).count_for(technique_->technique()));
     if (static_cast<double>(next) > options_.growth_budget * static_cast<double>(start_capacity)) return false;
   }
   return true;
@@ -468,7 +472,7 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
       break;
     }
     // Lossless mode: the same frame again, sized for what this gather counted.
-    sized_for = uses_pool(technique_->technique()) ? report.nodes_requested : report.counters.records_needed();
+    sized_for = growth_need(report).count_for(technique_->technique());
     if (!technique_->grow(report, options_)) {
       report.growth_limited = true;
       break;
@@ -511,7 +515,7 @@ void GlFrameDriver::run_deferred_gather(const std::function<void()>& gather, Fra
           in = dispatch_resume_round(in, deferred_capacity_);  // the round reads its count on the GPU
           late.copy(gpu_->deferred[in].id(), 0, kCounterWords + 1 + r, 4);
         }
-        slot.rounds = rounds;
+        slot.frame.rounds = rounds;
       }
       late.mark(LateReadback::GatherEnd);
       sorted_ = !options_.capture_only && has_passes(GlPassStage::Sort);
@@ -527,13 +531,14 @@ void GlFrameDriver::run_deferred_gather(const std::function<void()>& gather, Fra
     report.complete = false;
     report.capacity = technique_->capacity();
     report.table = technique_->table_extent();
-    slot.report = report;
-    slot.report.completed.clear();
-    slot.capacity = report.capacity;
-    slot.deferred_capacity = deferred_capacity_;
-    slot.sorted = sorted_;
-    slot.submit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    report.gather.wall_ms = slot.submit_ms;
+    LateFrame& frame = slot.frame;
+    frame.report = report;
+    frame.report.completed.clear();
+    frame.capacity = report.capacity;
+    frame.deferred_capacity = deferred_capacity_;
+    frame.sorted = sorted_;
+    frame.submit_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    report.gather.wall_ms = frame.submit_ms;
     late.end();
   } catch (...) {
     late.abandon();
@@ -544,33 +549,34 @@ void GlFrameDriver::run_deferred_gather(const std::function<void()>& gather, Fra
 std::vector<FrameReport> GlFrameDriver::collect_late(bool wait) {
   std::vector<FrameReport> out;
   for (LateReadback::Done& d : gpu_->late.collect(wait)) {
-    FrameReport r = std::move(d.slot.report);
+    FrameReport r = std::move(d.frame.report);
     r.complete = true;
-    sorted_ = d.slot.sorted;
+    sorted_ = d.frame.sorted;
     (void)read_counters_from(d.words, r);
     // The resume rounds' counts: calls beyond a buffer's capacity lost their
     // carried state, calls left after the last round stayed cut short; both
     // end as failed_iter (SPEC invariant 1), and the buffer grows for later frames.
     std::uint64_t unfinished = 0;
     if (technique_->defers_calls()) {
-      const std::uint64_t cap = d.slot.deferred_capacity;
+      const std::uint64_t cap = d.frame.deferred_capacity;
       std::uint64_t most = 0;
-      for (std::uint32_t k = 0; k <= d.slot.rounds; ++k) {
+      for (std::uint32_t k = 0; k <= d.frame.rounds; ++k) {
         const std::uint64_t h = d.words[kCounterWords + k];
         most = std::max(most, h);
         if (h > cap) unfinished += h - cap;
-        if (k < d.slot.rounds) r.deferred += std::min(h, cap);
+        if (k < d.frame.rounds) r.deferred += std::min(h, cap);
         if (k > 0 && h > 0) r.resume_rounds = k;
       }
-      const std::uint64_t left = std::min<std::uint64_t>(d.words[kCounterWords + d.slot.rounds], cap);
+      const std::uint64_t left = std::min<std::uint64_t>(d.words[kCounterWords + d.frame.rounds], cap);
       unfinished += left;
       if (most > deferred_capacity_) grow_deferred(most);
       // The rounds later frames dispatch: twice what recent frames needed
       // (all they had, when calls were left), decaying by one a frame, at
       // least one, at most late_resume_rounds: an empty dispatch is nearly
       // free on a GPU but not on llvmpipe.
-      const std::uint32_t wanted = 2 * (left > 0 ? d.slot.rounds : r.resume_rounds);
-      late_rounds_ = std::min(options_.late_resume_rounds, std::max({wanted, late_rounds_ - (late_rounds_ > 1 ? 1u : 0u), 1u}));
+      const std::uint32_t wanted = 2 * (left > 0 ? d.frame.rounds : r.resume_rounds);
+      const std::uint32_t decayed = late_rounds_ > 1 ? late_rounds_ - 1 : 1;
+      late_rounds_ = std::min(options_.late_resume_rounds, std::max(wanted, decayed));
     }
     r.counters.fragments += unfinished;
     r.counters.failed_iter += unfinished;
@@ -579,11 +585,11 @@ std::vector<FrameReport> GlFrameDriver::collect_late(bool wait) {
     const Extent table = r.table;
     technique_->gathered(d.words, r);
     r.table = table;  // the table it was gathered into, not the current one
-    r.capacity = d.slot.capacity;
+    r.capacity = d.frame.capacity;
     r.reset = {0.0, d.gpu_ms[0]};
-    r.gather = {d.slot.submit_ms, d.gpu_ms[1]};
+    r.gather = {d.frame.submit_ms, d.gpu_ms[1]};
     r.sort = {0.0, d.gpu_ms[2]};
-    r.attempts = {BuildAttempt{r.table, r.counters, r.capacity, 0, d.slot.submit_ms}};
+    r.attempts = {BuildAttempt{r.table, r.counters, r.capacity, 0, d.frame.submit_ms}};
     note_count(r);
     out.push_back(std::move(r));
   }

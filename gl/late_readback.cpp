@@ -32,11 +32,7 @@ LateReadback::Slot& LateReadback::begin(std::uint64_t words) {
   }
   Slot& s = *current_;
   if (s.words.bytes() < words * 4) s.words = GlStorage(words * 4);
-  s.report = FrameReport{};
-  s.rounds = 0;
-  s.sorted = false;
-  s.capacity = s.deferred_capacity = 0;
-  s.submit_ms = 0.0;
+  s.frame = LateFrame{};
   return s;
 }
 
@@ -73,7 +69,7 @@ std::vector<LateReadback::Done> LateReadback::collect(bool wait, double timeout_
       while (status == GL_TIMEOUT_EXPIRED && std::chrono::steady_clock::now() < deadline)
         status = glClientWaitSync(s.fence, GL_SYNC_FLUSH_COMMANDS_BIT, 10'000'000);  // 10 ms
       if (status == GL_TIMEOUT_EXPIRED)
-        throw GlError("frame " + std::to_string(s.report.index) + "'s readback fence did not signal in " +
+        throw GlError("frame " + std::to_string(s.frame.report.index) + "'s readback fence did not signal in " +
                       std::to_string(static_cast<long>(timeout_ms)) + " ms");
     }
     if (status == GL_WAIT_FAILED) throw GlError("glClientWaitSync failed on a frame's readback fence");
@@ -85,12 +81,7 @@ std::vector<LateReadback::Done> LateReadback::collect(bool wait, double timeout_
     for (int m = 0; m + 1 < kMarks; ++m) d.gpu_ms[m] = t[m + 1] > t[m] ? static_cast<double>(t[m + 1] - t[m]) * 1e-6 : 0.0;
     glDeleteSync(s.fence);
     s.fence = nullptr;
-    d.slot.report = std::move(s.report);
-    d.slot.capacity = s.capacity;
-    d.slot.deferred_capacity = s.deferred_capacity;
-    d.slot.rounds = s.rounds;
-    d.slot.sorted = s.sorted;
-    d.slot.submit_ms = s.submit_ms;
+    d.frame = std::move(s.frame);
     free_.push_back(std::move(s));
     pending_.pop_front();
     done.push_back(std::move(d));

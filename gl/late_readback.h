@@ -23,22 +23,26 @@ namespace habuffer::gl {
 // The timestamps of a frame in flight (LateReadback::Mark).
 inline constexpr int kLateMarks = 4;
 
-// A frame in flight: what was known at submission, and its GPU copies.
-struct LateSlot {
+// What was known of a frame when it was submitted.
+struct LateFrame {
   FrameReport report;              // the submitted frame's report (sizes, sizing, index)
   std::uint64_t capacity = 0;      // the container's records at the gather
   std::uint64_t deferred_capacity = 0;  // the deferred-call buffer's capacity at the gather
   std::uint32_t rounds = 0;        // resume rounds recorded (their counts follow the counters)
   bool sorted = false;             // the Sort passes ran
   double submit_ms = 0.0;          // wall time of the submission
+};
+// A frame in flight: what was known of it, and its GPU copies (reused).
+struct LateSlot {
+  LateFrame frame;
   GlStorage words;                 // counter words, then the deferral counts
   GLuint queries[kLateMarks] = {0, 0, 0, 0};
   GLsync fence = nullptr;
   MadeOn made_on;
 };
-// A slot read back: its words and GPU times.
+// A frame read back: what was known of it, its words and GPU times.
 struct LateDone {
-  LateSlot slot;
+  LateFrame frame;
   std::vector<std::uint32_t> words;
   double gpu_ms[kLateMarks - 1] = {0, 0, 0};  // reset, gather (resume rounds in it), sort
 };
@@ -56,7 +60,8 @@ class LateReadback {
   LateReadback(const LateReadback&) = delete;
   LateReadback& operator=(const LateReadback&) = delete;
 
-  // A slot for the next frame, with room for `words` words (reused when it fits).
+  // A slot for the next frame, with room for `words` words (reused when it
+  // fits); the caller fills its `frame` before end().
   Slot& begin(std::uint64_t words);
   // The current slot's timestamp `mark`.
   void mark(Mark mark);

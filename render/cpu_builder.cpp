@@ -59,9 +59,10 @@ const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, Fra
     fs.table = table->table();
     fs.max_age = table->max_age().max();
   }
-  // The use SPEC 8's rule sizes the next frame by: records asked for (stored + failed), or nodes asked for.
-  if (uses_table(config_.technique)) previous_use_ = b.counters.records_needed();
-  if (uses_pool(config_.technique)) previous_use_ = b.buffer->growth_need().nodes_requested;
+  // The use SPEC 8's rule sizes the next frame by: records asked for (stored + failed), or a pool's nodes.
+  GrowthNeed need = b.buffer->growth_need();
+  need.records = b.counters.records_needed();
+  previous_use_ = need.count_for(config_.technique);
   return b;
 }
 

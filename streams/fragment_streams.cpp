@@ -114,4 +114,21 @@ std::string to_string(StreamKind kind) {
   return "?";
 }
 
+std::vector<Fragment> layered_stream(Extent screen, std::uint32_t layers, std::uint32_t seed) {
+  if (screen.area() == 0) throw std::invalid_argument("layered stream: empty screen " + screen.str());
+  if (std::uint64_t{layers} * screen.area() > (std::uint64_t{1} << 31))
+    throw std::invalid_argument("layered stream: " + std::to_string(layers) + " layers of " + screen.str() +
+                                " exceed 2^31 fragments");
+  std::vector<Fragment> f;
+  f.reserve(std::uint64_t{layers} * screen.area());
+  for (std::uint32_t l = 0; l < layers; ++l)
+    for (std::uint32_t y = 0; y < screen.y; ++y)
+      for (std::uint32_t x = 0; x < screen.x; ++x) {
+        const std::uint32_t k = (l + x + y + seed) % layers;
+        const std::uint32_t rgba = (x * 73856093u) ^ (y * 19349663u) ^ (l * 83492791u) ^ seed;
+        f.push_back({x, y, (static_cast<float>(k) + 0.5f) / static_cast<float>(layers), rgba | 0x80u});
+      }
+  return f;
+}
+
 }  // namespace habuffer

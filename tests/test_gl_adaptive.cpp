@@ -26,12 +26,12 @@ using test::gl_context;
 
 std::vector<gl::AtomicMode> modes() { return gl::runnable_atomic_modes(gl::query_gl_info()); }
 
-std::vector<Fragment> layers_of(Extent screen, int layers, std::uint32_t seed) {
-  return test::full_screen_layers(screen, layers, seed);
+std::vector<Fragment> layers_of(Extent screen, std::uint32_t layers, std::uint32_t seed) {
+  return layered_stream(screen, layers, seed);
 }
 
 // --- the calls that make the CPU wait for the GPU, intercepted through
-// libepoxy's dispatch pointers (each re-installed after epoxy resolves it).
+// libepoxy's dispatch pointers.
 struct SyncLog {
   int finishes = 0;          // glFinish
   int waits = 0;             // glClientWaitSync with a timeout (a wait)
@@ -61,14 +61,15 @@ void count_read() { (g_log.fence_signalled ? g_log.fenced_reads : g_log.unfenced
 HB_HOOK(glFinish, (), (), ++g_log.finishes)
 HB_HOOK(glGetNamedBufferSubData, (GLuint b, GLintptr o, GLsizeiptr n, void* d), (b, o, n, d), count_read())
 HB_HOOK(glGetBufferSubData, (GLenum t, GLintptr o, GLsizeiptr n, void* d), (t, o, n, d), count_read())
-HB_HOOK(glGetQueryObjectui64v, (GLuint q, GLenum p, GLuint64* v), (q, p, v),
-        if (p != GL_QUERY_RESULT_AVAILABLE && !query_to_buffer()) count_read())
-HB_HOOK(glGetQueryObjectuiv, (GLuint q, GLenum p, GLuint* v), (q, p, v),
-        if (p != GL_QUERY_RESULT_AVAILABLE && !query_to_buffer()) count_read())
-HB_HOOK(glGetQueryObjectiv, (GLuint q, GLenum p, GLint* v), (q, p, v),
-        if (p != GL_QUERY_RESULT_AVAILABLE && !query_to_buffer()) count_read())
-HB_HOOK(glGetQueryObjecti64v, (GLuint q, GLenum p, GLint64* v), (q, p, v),
-        if (p != GL_QUERY_RESULT_AVAILABLE && !query_to_buffer()) count_read())
+// A query result read into client memory (not into a bound query buffer,
+// not the non-blocking availability) waits for the query.
+void count_query_read(GLenum pname) {
+  if (pname != GL_QUERY_RESULT_AVAILABLE && !query_to_buffer()) count_read();
+}
+HB_HOOK(glGetQueryObjectui64v, (GLuint q, GLenum p, GLuint64* v), (q, p, v), count_query_read(p))
+HB_HOOK(glGetQueryObjectuiv, (GLuint q, GLenum p, GLuint* v), (q, p, v), count_query_read(p))
+HB_HOOK(glGetQueryObjectiv, (GLuint q, GLenum p, GLint* v), (q, p, v), count_query_read(p))
+HB_HOOK(glGetQueryObjecti64v, (GLuint q, GLenum p, GLint64* v), (q, p, v), count_query_read(p))
 decltype(epoxy_glMapNamedBufferRange) g_real_glMapNamedBufferRange = nullptr;
 void* EPOXY_CALLSPEC hook_glMapNamedBufferRange(GLuint b, GLintptr o, GLsizeiptr n, GLbitfield a) {
   count_read();
@@ -85,37 +86,32 @@ GLenum EPOXY_CALLSPEC hook_glClientWaitSync(GLsync s, GLbitfield f, GLuint64 tim
   return r;
 }
 
+// Every hooked function, once.
+#define HB_HOOKED(X)                                                                                   \
+  X(glFinish) X(glGetNamedBufferSubData) X(glGetBufferSubData) X(glGetQueryObjectui64v) X(glGetQueryObjectuiv) \
+  X(glGetQueryObjectiv) X(glGetQueryObjecti64v) X(glMapNamedBufferRange) X(glClientWaitSync)
+
+// Points libepoxy's `pointer` at `hook`, keeping what it was in `saved` and
+// the real function (from EGL, never libepoxy's lazy resolver) in `real`.
+template <class F>
+void install(F& saved, F& real, F& pointer, F hook, const char* name) {
+  saved = pointer;
+  real = reinterpret_cast<F>(eglGetProcAddress(name));
+  if (!real) throw std::runtime_error(std::string("eglGetProcAddress(") + name + ") returned nothing");
+  pointer = hook;
+}
+
 // Installs the hooks for one scope and takes them out after.
 class SyncCalls {
  public:
   SyncCalls() {
     g_log = {};
-#define HB_INSTALL(name)                                                                    \
-  saved_##name = epoxy_##name;                                                              \
-  g_real_##name = reinterpret_cast<decltype(epoxy_##name)>(eglGetProcAddress(#name));      \
-  if (!g_real_##name) throw std::runtime_error("eglGetProcAddress(" #name ") returned nothing"); \
-  epoxy_##name = hook_##name
-    HB_INSTALL(glFinish);
-    HB_INSTALL(glGetNamedBufferSubData);
-    HB_INSTALL(glGetBufferSubData);
-    HB_INSTALL(glGetQueryObjectui64v);
-    HB_INSTALL(glGetQueryObjectuiv);
-    HB_INSTALL(glGetQueryObjectiv);
-    HB_INSTALL(glGetQueryObjecti64v);
-    HB_INSTALL(glMapNamedBufferRange);
-    HB_INSTALL(glClientWaitSync);
+#define HB_INSTALL(name) install(saved_##name, g_real_##name, epoxy_##name, hook_##name, #name);
+    HB_HOOKED(HB_INSTALL)
   }
   ~SyncCalls() {
-#define HB_REMOVE(name) epoxy_##name = saved_##name
-    HB_REMOVE(glFinish);
-    HB_REMOVE(glGetNamedBufferSubData);
-    HB_REMOVE(glGetBufferSubData);
-    HB_REMOVE(glGetQueryObjectui64v);
-    HB_REMOVE(glGetQueryObjectuiv);
-    HB_REMOVE(glGetQueryObjectiv);
-    HB_REMOVE(glGetQueryObjecti64v);
-    HB_REMOVE(glMapNamedBufferRange);
-    HB_REMOVE(glClientWaitSync);
+#define HB_REMOVE(name) epoxy_##name = saved_##name;
+    HB_HOOKED(HB_REMOVE)
   }
   SyncCalls(const SyncCalls&) = delete;
   SyncCalls& operator=(const SyncCalls&) = delete;
@@ -125,15 +121,8 @@ class SyncCalls {
 
  private:
   // libepoxy's pointers as they were, put back afterwards.
-  decltype(epoxy_glFinish) saved_glFinish = nullptr;
-  decltype(epoxy_glGetNamedBufferSubData) saved_glGetNamedBufferSubData = nullptr;
-  decltype(epoxy_glGetBufferSubData) saved_glGetBufferSubData = nullptr;
-  decltype(epoxy_glGetQueryObjectui64v) saved_glGetQueryObjectui64v = nullptr;
-  decltype(epoxy_glGetQueryObjectuiv) saved_glGetQueryObjectuiv = nullptr;
-  decltype(epoxy_glGetQueryObjectiv) saved_glGetQueryObjectiv = nullptr;
-  decltype(epoxy_glGetQueryObjecti64v) saved_glGetQueryObjecti64v = nullptr;
-  decltype(epoxy_glMapNamedBufferRange) saved_glMapNamedBufferRange = nullptr;
-  decltype(epoxy_glClientWaitSync) saved_glClientWaitSync = nullptr;
+#define HB_SAVED(name) decltype(epoxy_##name) saved_##name = nullptr;
+  HB_HOOKED(HB_SAVED)
 };
 
 gl::GlFrameOptions deferred() {

@@ -190,8 +190,8 @@ TEST(Lossless, AnyJumpIsLosslessInAtMostOneRegatherSizedByTheFailedAttemptsCount
     TechniqueConfig c = ha_technique_config(test::config(screen, {}, Layout::L64, 8));
     c.buffer.table = policy.initial_table(screen, std::max<std::uint64_t>(1, from * screen.area()));
     TechniqueFrames frames(OffsetSource{}, InsertOptions{}, policy, 16);
-    (void)frames.build(c, test::full_screen_layers(screen, from, 1));
-    const std::vector<Fragment> deep = test::full_screen_layers(screen, 40, 2);
+    (void)frames.build(c, layered_stream(screen, from, 1));
+    const std::vector<Fragment> deep = layered_stream(screen, 40, 2);
     const TechniqueBuild& b = frames.build(c, deep);
     EXPECT_TRUE(b.lossless());
     ASSERT_EQ(b.attempts.size(), 2u);
@@ -203,7 +203,7 @@ TEST(Lossless, AnyJumpIsLosslessInAtMostOneRegatherSizedByTheFailedAttemptsCount
     EXPECT_EQ(test::traversed_lists(*b.buffer), test::exact_lists(deep, c.buffer.record_layout()));
     // The step rule takes many attempts for the same jump.
     TechniqueFrames stepped(OffsetSource{}, InsertOptions{}, kStep, 6);
-    (void)stepped.build(c, test::full_screen_layers(screen, from, 1));
+    (void)stepped.build(c, layered_stream(screen, from, 1));
     EXPECT_FALSE(stepped.build(c, deep).lossless()) << "six steps of a quarter do not reach 40 layers";
   }
 }
@@ -213,7 +213,7 @@ TEST(Lossless, APoolJumpIsLosslessInOneRegatherToo) {
   TechniqueConfig c = ha_technique_config(test::config(screen, {}, Layout::L64, 8));
   c.technique = Technique::Lists;
   c.pool_capacity = 64;
-  const std::vector<Fragment> deep = test::full_screen_layers(screen, 40, 3);
+  const std::vector<Fragment> deep = layered_stream(screen, 40, 3);
   const TechniqueBuild b = build_technique(c, OffsetSource{}, deep, {}, ResizePolicy{}, 16);
   EXPECT_TRUE(b.lossless());
   ASSERT_EQ(b.attempts.size(), 2u);

@@ -114,22 +114,6 @@ inline std::vector<std::uint64_t> table_words(const HaBuffer& b) {
   return t;
 }
 
-// `layers` full-screen layers of distinct depths, as a scene whose depth
-// complexity jumps: layer l of pixel (x, y) at depth ((7 l + x + y + seed)
-// mod layers + 0.5) / layers (a permutation of the layers at each pixel: 7
-// is prime to every count the tests use), in layer-major order.
-inline std::vector<Fragment> full_screen_layers(Extent screen, int layers, std::uint32_t seed) {
-  std::vector<Fragment> f;
-  for (int l = 0; l < layers; ++l)
-    for (std::uint32_t y = 0; y < screen.y; ++y)
-      for (std::uint32_t x = 0; x < screen.x; ++x) {
-        const std::uint32_t h = (x * 73856093u) ^ (y * 19349663u) ^ (static_cast<std::uint32_t>(l) * 83492791u) ^ seed;
-        const std::uint32_t layer = (7u * static_cast<std::uint32_t>(l) + x + y + seed) % static_cast<std::uint32_t>(layers);
-        f.push_back({x, y, (static_cast<float>(layer) + 0.5f) / static_cast<float>(layers), h | 0x80u});
-      }
-  return f;
-}
-
 inline std::vector<Fragment> shuffled(std::vector<Fragment> v, std::uint64_t seed) {
   SplitMix64 rng(seed);
   for (std::size_t i = v.size(); i > 1; --i) std::swap(v[i - 1], v[rng.below(i)]);

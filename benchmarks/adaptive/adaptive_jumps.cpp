@@ -8,8 +8,9 @@
 // back after a drop; and the cost of a steady frame in each mode.
 //
 // Usage: habuffer_adaptive_jumps [--size N] [--repeats R] [--late-rounds N]
-// Built against the library's public headers only (so the same file
-// measures an older build: compile it with HABUFFER_ADAPTIVE_OLD_API).
+// (docs/performance.md's "before" figures came from this file as of commit
+// 59ad1ca, built against the commit before issue 45 with its
+// HABUFFER_ADAPTIVE_OLD_API switch.)
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "habuffer/fragment_streams.h"
 #include "habuffer/gl/compute_inserter.h"
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
@@ -28,20 +30,6 @@ namespace hb = habuffer;
 namespace {
 
 std::uint32_t g_late_rounds = 8;  // --late-rounds: GlFrameOptions::late_resume_rounds
-
-// `layers` full-screen layers of distinct depths, each pixel's in a
-// scrambled order (7 l + x + y mod layers: 7 is prime to the counts used).
-std::vector<hb::Fragment> layers_of(hb::Extent screen, int layers, std::uint32_t seed) {
-  std::vector<hb::Fragment> f;
-  f.reserve(static_cast<std::size_t>(layers) * screen.area());
-  for (int l = 0; l < layers; ++l)
-    for (std::uint32_t y = 0; y < screen.y; ++y)
-      for (std::uint32_t x = 0; x < screen.x; ++x) {
-        const std::uint32_t layer = (7u * static_cast<std::uint32_t>(l) + x + y + seed) % static_cast<std::uint32_t>(layers);
-        f.push_back({x, y, (static_cast<float>(layer) + 0.5f) / static_cast<float>(layers), 0x80808080u ^ seed});
-      }
-  return f;
-}
 
 // native64 where the GPU has 64-bit atomics, else emulated64 (llvmpipe).
 hb::gl::AtomicMode mode() {
@@ -66,12 +54,8 @@ struct FrameFigures {
 // frame's complete figures (Deferred: gathered from the late reports).
 std::vector<FrameFigures> run(hb::Extent screen, const std::vector<int>& script, bool deferred) {
   hb::gl::GlFrameOptions o;
-#ifndef HABUFFER_ADAPTIVE_OLD_API
   if (deferred) o.readback = hb::gl::Readback::Deferred;
   o.late_resume_rounds = g_late_rounds;
-#else
-  (void)deferred;
-#endif
   hb::BufferConfig c;
   c.screen = screen;  // table unset: automatic
   hb::gl::GlHaBuffer gpu(c, hb::OffsetSource{}, mode(), o);
@@ -84,21 +68,16 @@ std::vector<FrameFigures> run(hb::Extent screen, const std::vector<int>& script,
     f.capacity = r.capacity;
   };
   for (std::size_t k = 0; k < script.size(); ++k) {
-    const std::vector<hb::Fragment> frags = layers_of(screen, script[k], static_cast<std::uint32_t>(k));
+    const std::vector<hb::Fragment> frags =
+        hb::layered_stream(screen, static_cast<std::uint32_t>(script[k]), static_cast<std::uint32_t>(k));
     inserter.upload(frags);
     const auto t0 = std::chrono::steady_clock::now();
     const hb::gl::FrameReport r = gpu.frame([&] { inserter.dispatch(); }, [&] { return std::uint64_t{frags.size()}; });
     out[k].ms = ms_since(t0);
-#ifndef HABUFFER_ADAPTIVE_OLD_API
     for (const hb::gl::FrameReport& done : r.completed) take(done);
     if (r.complete) take(r);
-#else
-    take(r);
-#endif
   }
-#ifndef HABUFFER_ADAPTIVE_OLD_API
   for (const hb::gl::FrameReport& done : gpu.finish_reports()) take(done);
-#endif
   return out;
 }
 
@@ -108,7 +87,7 @@ struct Scenario {
   std::size_t jump;  // the frame where the depth complexity changes
 };
 
-void report(const char* mode, const Scenario& s, const std::vector<FrameFigures>& f, hb::Extent screen) {
+void report(const char* mode, const Scenario& s, const std::vector<FrameFigures>& f) {
   std::uint64_t lossy = 0, lost = 0;
   for (std::size_t k = s.jump; k < f.size(); ++k) {
     lossy += f[k].lost > 0;
@@ -126,7 +105,6 @@ void report(const char* mode, const Scenario& s, const std::vector<FrameFigures>
   std::printf("| %s | %s | %llu | %llu | %llu | %.1f | %.1f | %.1fx | %zu |\n", s.name, mode,
               static_cast<unsigned long long>(lossy), static_cast<unsigned long long>(lost),
               static_cast<unsigned long long>(f[s.jump].gathers), f[s.jump].ms, normal, f[s.jump].ms / normal, settle);
-  (void)screen;
 }
 
 }  // namespace
@@ -161,11 +139,7 @@ int main(int argc, char** argv) {
   std::printf("| scenario | readback | frames lossy | fragments lost | gathers at the change | change frame ms | "
               "normal frame ms | ratio | frames to settle |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const Scenario& s : scenarios) {
-#ifndef HABUFFER_ADAPTIVE_OLD_API
     const std::vector<bool> modes{false, true};
-#else
-    const std::vector<bool> modes{false};
-#endif
     for (const bool deferred : modes) {
       std::vector<std::vector<FrameFigures>> runs;
       for (int r = 0; r < repeats; ++r) runs.push_back(run(screen, s.script, deferred));
@@ -176,7 +150,7 @@ int main(int argc, char** argv) {
         std::sort(t.begin(), t.end());
         median[k].ms = t[t.size() / 2];
       }
-      report(deferred ? "deferred" : "immediate (default)", s, median, screen);
+      report(deferred ? "deferred" : "immediate (default)", s, median);
     }
   }
   // A steady frame in each mode, interleaved: 8 layers, 12 frames, the
@@ -190,9 +164,6 @@ int main(int argc, char** argv) {
       double m = 0;
       for (std::size_t k = 2; k < f.size(); ++k) m += f[k].ms / static_cast<double>(f.size() - 2);
       (deferred ? def : imm).push_back(m);
-#ifdef HABUFFER_ADAPTIVE_OLD_API
-      break;
-#endif
     }
   }
   std::sort(imm.begin(), imm.end());

@@ -81,6 +81,10 @@ struct GrowthNeed {
   /// Records the attempt asked to keep: stored plus failed
   /// (Counters::records_needed); the HA-buffer's table is sized for them.
   std::uint64_t records = 0;
+  /// The count `t`'s container is sized by (lossless growth, adaptive
+  /// sizing, BuildAttempt::sized_for): a pool technique's nodes asked for,
+  /// any other's records.
+  [[nodiscard]] std::uint64_t count_for(Technique t) const;
 };
 
 /// Which technique, and the parameters only some techniques read: declared

@@ -42,6 +42,14 @@ struct StreamOptions {
 std::vector<Fragment> make_stream(Extent screen, const StreamOptions& options);
 
 
+/// `layers` full-screen layers of distinct depths on `screen`, layer-major:
+/// every pixel receives exactly `layers` fragments, its depths (k + 0.5) /
+/// layers in the order k = (l + x + y + seed) mod layers (a rotation per
+/// pixel), colours hashed from the seed: a scene whose depth complexity is
+/// exactly `layers` (jumps and drops of adaptive sizing). Throws
+/// std::invalid_argument for an empty screen or beyond 2^31 fragments.
+std::vector<Fragment> layered_stream(Extent screen, std::uint32_t layers, std::uint32_t seed);
+
 /// "random", "coherent", "stacked" or "hot"; throws std::invalid_argument otherwise.
 StreamKind parse_stream_kind(const std::string& name);
 /// The name parse_stream_kind reads.

@@ -50,6 +50,12 @@ enum class Readback : std::uint8_t {
 /// "deferred" or "immediate".
 std::string_view to_string(Readback readback);
 
+struct FrameReport;
+/// What `report`'s last gather asked for (its records needed, the lists'
+/// nodes, the arrays' deepest pixel): what lossless growth and adaptive
+/// sizing size the container by.
+GrowthNeed growth_need(const FrameReport& report);
+
 struct GlFrameOptions {
   /// Resize by `policy` from the previous frame's count (SPEC 8): the
   /// HA-buffer's table, the linked lists' node pool (fixed arrays keep K).

@@ -82,7 +82,7 @@ void GlFixedArrays::gathered(std::span<const std::uint32_t> counter_words, Frame
 
 bool GlFixedArrays::grow(const FrameReport& report, const GlFrameOptions& options) {
   // K as large as the deepest pixel: the regather keeps every fragment.
-  const TechniqueConfig next = config_.grown(options.policy, GrowthNeed{.most_arrived = report.most_arrived});
+  const TechniqueConfig next = config_.grown(options.policy, growth_need(report));
   if (!next.limit().empty() ||
       std::uint64_t{next.layers} * screen().area() * sizeof(glm::uvec2) > max_storage_bytes())
     return false;

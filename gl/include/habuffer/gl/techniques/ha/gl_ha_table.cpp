@@ -210,16 +210,19 @@ void GlHaTable::clear(GlPassContext& context) {
   FrameReport& report = context.report;
   // The count the previous frame's clear pass left in the query buffer (the
   // GPU wrote it a frame ago: reading it does not stall), then this frame's
-  // clear pass, whose count will be read next frame.
-  if (pending_count_table_ && context.options.readback == Readback::Immediate) {
+  // clear pass, whose count will be read next frame. Informative (sizing
+  // reads the outcome counters): a Deferred readback, which reads nothing
+  // back at once, clears without counting.
+  const bool count = context.options.readback == Readback::Immediate;
+  if (pending_count_table_ && count) {
     report.counted_stored = gpu_->count.read<std::uint64_t>(1)[0];
     report.counted_table = *pending_count_table_;
   }
   const ClearPass::Result r =
-      gpu_->clear->run(config_.table, clear_tile_, true, clock_mode(context.options), gpu_->count.id());
+      gpu_->clear->run(config_.table, clear_tile_, true, clock_mode(context.options), gpu_->count.id(), count);
   report.clear = {r.wall_ms, r.gpu_ms};
   check_gl_errors("the clear pass");
-  pending_count_table_ = config_.table;
+  if (count) pending_count_table_ = config_.table;
   report.cleared = true;
   holds_frame_ = false;
 }
@@ -254,7 +257,7 @@ void GlHaTable::gathered(std::span<const std::uint32_t>, FrameReport& report) { 
 bool GlHaTable::grow(const FrameReport& report, const GlFrameOptions& options) {
   // Every fragment the gather received has an outcome: the table for what it
   // asked to keep, at the middle of the band (one regather for any jump).
-  const Extent grown = options.policy.grown(config_.table, config_.screen, report.counters.records_needed());
+  const Extent grown = options.policy.grown(config_.table, config_.screen, growth_need(report).records);
   if (!table_limit(grown).empty()) return false;
   allocate_table(grown);
   return true;

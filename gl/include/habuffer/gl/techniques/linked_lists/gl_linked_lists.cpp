@@ -170,7 +170,7 @@ void GlLinkedLists::gathered(std::span<const std::uint32_t> counter_words, Frame
 
 bool GlLinkedLists::grow(const FrameReport& report, const GlFrameOptions& options) {
   // The counter counted every node asked for: a pool of that size holds the frame.
-  const std::uint64_t next = config_.grown(options.policy, GrowthNeed{.nodes_requested = report.nodes_requested}).pool_capacity;
+  const std::uint64_t next = config_.grown(options.policy, growth_need(report)).pool_capacity;
   if (!pool_limit(next).empty()) return false;
   allocate_pool(next);
   return true;
