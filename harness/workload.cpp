@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "habuffer/interchange.h"
+#include "habuffer/list_text.h"
 #include "habuffer/number_text.h"
 #include "habuffer/record_layout.h"
 
@@ -22,18 +23,20 @@ WorkloadSpec parse_workload_spec(const std::string& word) {
   WorkloadSpec w;
   w.word = word;
   const auto refuse = [&](const std::string& why) { throw std::invalid_argument("scene '" + word + "': " + why); };
-  std::istringstream in(word);
-  std::string part;
-  std::getline(in, w.scene, ':');
+  // The word's parts at each unescaped ':' (habuffer/list_text.h: a file
+  // named "a:b.obj" is "a\:b.obj").
+  const std::vector<std::string> parts = split_list(word, ':');
+  w.scene = parts.front();
   if (w.scene.empty()) refuse("no scene name");
   if (ends_with(w.scene, ".csv")) {
-    if (w.scene.size() != word.size()) refuse("a fragment file takes no options (they are the scenes')");
-    w.fragments = word;
+    if (parts.size() > 1) refuse("a fragment file takes no options (they are the scenes')");
+    w.fragments = w.scene;
     w.scene.clear();
     return w;
   }
-  if (word.back() == ':') refuse("empty option after ':'");
-  while (std::getline(in, part, ':')) {
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    if (part.empty()) refuse("empty option after ':'");
     const std::size_t eq = part.find('=');
     if (eq == std::string::npos) refuse("'" + part + "' is not KEY=VALUE");
     const std::string key = part.substr(0, eq), value = part.substr(eq + 1);
@@ -57,7 +60,7 @@ WorkloadSpec parse_workload_spec(const std::string& word) {
 
 std::string WorkloadSpec::input_file() const {
   if (!fragments.empty()) return fragments;
-  return is_scene_name(scene) ? std::string() : scene;
+  return scene_input_file(scene);
 }
 
 Workload::Workload(const WorkloadSpec& spec, Extent size) : spec_(spec), size_(size) {

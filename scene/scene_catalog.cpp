@@ -108,6 +108,12 @@ bool is_scene_name(const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+std::string scene_input_file(const std::string& name_or_path) {
+  if (const auto it = named_meshes().find(name_or_path); it != named_meshes().end())
+    return assimp_models_root() + "/" + it->second;
+  return is_scene_name(name_or_path) ? std::string() : name_or_path;
+}
+
 namespace {
 
 Scene make_scene_meshes(const std::string& name_or_path, const SceneOptions& o) {
@@ -117,7 +123,7 @@ Scene make_scene_meshes(const std::string& name_or_path, const SceneOptions& o) 
     throw SceneError("count " + std::to_string(o.count) + " is above " + std::to_string(kMaxSceneCount));
   if (!(o.spread >= 0.0f && o.spread <= 1.0f)) throw SceneError("--spread " + std::to_string(o.spread) + " is not in [0, 1]");
   if (const auto it = named_meshes().find(name_or_path); it != named_meshes().end()) {
-    const std::string path = assimp_models_root() + "/" + it->second;
+    const std::string path = scene_input_file(name_or_path);
     if (!std::filesystem::exists(path))
       throw SceneError("scene '" + name_or_path + "' needs " + path +
                        " (Debian package assimp-testmodels; ./scripts/setup.sh installs it)");

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <exception>
 
+#include "habuffer/list_text.h"
 #include "habuffer/number_text.h"
 #include "habuffer/printable.h"
 
@@ -61,6 +62,10 @@ std::string CommandSpec::help() const {
   for (const OptionSpec& o : options)
     s += help_row("  --" + o.name + (o.value.empty() ? "" : " " + o.value),
                    o.help + (o.fallback.empty() ? "" : " (default " + o.fallback + ")"));
+  // The list rule (habuffer/list_text.h), said wherever an option takes a list.
+  const bool lists = std::any_of(options.begin(), options.end(),
+                                 [](const OptionSpec& o) { return o.value.find(',') != std::string::npos; });
+  if (lists) s += "  Lists are split at commas (scene words at ':' too); a file name holding one writes it \\, or \\:.\n";
   return s + notes;
 }
 
@@ -264,16 +269,11 @@ float Args::f32(const std::string& name, float fallback) const {
 
 std::vector<std::string> Args::list(const std::string& name, const std::string& fallback) const {
   const std::string text = str(name, fallback);
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    items.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (items.back().empty())
+  std::vector<std::string> items = split_list(text, ',');
+  for (const std::string& item : items)
+    if (item.empty())
       throw UsageError("option --" + name + ": " + (text.empty() ? std::string("empty list") : "empty item in " + excerpt(text)));
-    if (comma == std::string::npos) return items;
-    start = comma + 1;
-  }
+  return items;
 }
 
 void Args::refuse_unless(bool applies, std::initializer_list<const char*> names, const std::string& why) const {

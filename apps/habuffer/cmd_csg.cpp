@@ -18,6 +18,7 @@
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/json_writer.h"
+#include "habuffer/list_text.h"
 #include "habuffer/mesh_loader.h"
 #include "habuffer/number_text.h"
 #include "habuffer/printable.h"
@@ -141,9 +142,7 @@ std::pair<Scene, std::vector<std::string>> parse_solids(const std::string& text)
   Scene scene;
   scene.name = "csg";
   std::vector<std::string> names;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ';')) {
+  for (std::string item : split_list(text, ';')) {  // the rule solid_files reads the files by
     const auto first = item.find_first_not_of(" \t"), last = item.find_last_not_of(" \t");
     if (first == std::string::npos) continue;
     item = item.substr(first, last - first + 1);

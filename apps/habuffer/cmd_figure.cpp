@@ -58,16 +58,15 @@ std::vector<Extent> figure_sizes(const Args& args, harness::FigureSettings& s, c
 }
 
 // --scene, one scene word, checked by `check`.
-harness::WorkloadSpec one_scene(const Args& args, const char* figure, void (*check)(const harness::WorkloadSpec&)) {
-  const std::vector<harness::WorkloadSpec> scene = parse_scenes(args, "scene");
-  if (scene.size() != 1) throw UsageError(std::string("--scene takes one scene for ") + figure);
-  usage_errors("", [&] { check(scene[0]); });
-  return scene[0];
+harness::WorkloadSpec one_scene(const Args& args, void (*check)(const harness::WorkloadSpec&)) {
+  const harness::WorkloadSpec scene = parse_scene(args, "scene");
+  usage_errors("", [&] { check(scene); });
+  return scene;
 }
 
 harness::ResultTable run_fig2(FigureRun& r) {
   figure_sizes(r.args, r.s, "fig2");
-  const harness::WorkloadSpec scene = one_scene(r.args, "fig2", harness::check_fig2_scene);
+  const harness::WorkloadSpec scene = one_scene(r.args, harness::check_fig2_scene);
   std::vector<float> opacities;
   SceneOptions probe;  // each opacity by the scene option's rule
   for (const std::string& o : r.args.list("opacities")) {
@@ -81,7 +80,7 @@ harness::ResultTable run_fig2(FigureRun& r) {
 
 harness::ResultTable run_fig8(FigureRun& r) {
   figure_sizes(r.args, r.s, "fig8");
-  const harness::WorkloadSpec scene = one_scene(r.args, "fig8", harness::check_fig8_scene);
+  const harness::WorkloadSpec scene = one_scene(r.args, harness::check_fig8_scene);
   const std::uint32_t frames = r.args.u32_in("frames", 2, 100000);
   const double load = usage_errors("load", [&] { return parse_load_factor(r.args.str("load")); });
   r.outputs = parse_outputs(r.args);
@@ -133,9 +132,8 @@ harness::ResultTable run_shadows(FigureRun& r) {
   r.args.refuse_unless(false, {"path", "tau"},
                        "on figure shadows (the light pass runs on gl; its other light buffers are built on the cpu)");
   figure_sizes(r.args, r.s, "shadows");
-  const std::vector<harness::WorkloadSpec> scene = parse_scenes(r.args, "scene");
-  if (scene.size() != 1) throw UsageError("--scene takes one scene for figure shadows");
-  if (!scene[0].fragments.empty())
+  const harness::WorkloadSpec scene = parse_scene(r.args, "scene");
+  if (!scene.fragments.empty())
     throw UsageError("option --scene: the shadow frontier lights a scene, not a fragment file");
   harness::ShadowFrontierSettings f;
   f.size = r.s.size;
@@ -146,7 +144,7 @@ harness::ResultTable run_shadows(FigureRun& r) {
   f.on_progress = r.s.on_progress;
   r.outputs = parse_outputs(r.args);
   const auto context = context_for(true, "figure");
-  return harness::run_shadow_frontier(scene[0], f);
+  return harness::run_shadow_frontier(scene, f);
 }
 
 // A comma list of counts in 1..most (--grids, --cylinders).
@@ -218,11 +216,11 @@ const std::vector<Figure>& figures() {
   static const std::vector<Figure> list{
       {"fig2", "  seed 000 Fig. 2: early cull vs opacity; stored fragments, gather time and fill rate with and\n"
                "  without cull (opacity 1 inserted); frame time and fragments with and without translucent shadows\n",
-       {{"scene", "S", "hairball", "the scene", reads_in(scene_word_files, "{}")}, {"opacities", "A,..", "0.125,0.25,0.5,1", "the opacities"}},
+       {{"scene", "S", "hairball", "the scene", reads_in(scene_word_file, "{}")}, {"opacities", "A,..", "0.125,0.25,0.5,1", "the opacities"}},
        run_fig2},
       {"fig8", "  seed 000 Fig. 8: quads pulled together over N frames into a table fixed at load L; time and max\n"
                "  age per frame, with and without cull\n",
-       {{"scene", "S", "quads:count=64", "the scene", reads_in(scene_word_files, "{}")},
+       {{"scene", "S", "quads:count=64", "the scene", reads_in(scene_word_file, "{}")},
         {"frames", "N", "16", "frames"},
         {"load", "L", "0.64", "the fixed table's load of the first frame"}},
        run_fig8},
@@ -244,7 +242,7 @@ const std::vector<Figure>& figures() {
        run_frontier},
       {"shadows", "  the shadow frontier: light buffers (ha exact and culled, k-buffer, opacity shadow maps) from one\n"
                   "  light pass, RMSE of T against the ray-traced reference vs memory vs build time\n",
-       {{"scene", "S", "hairball", "the scene", reads_in(scene_word_files, "{}")},
+       {{"scene", "S", "hairball", "the scene", reads_in(scene_word_file, "{}")},
         {"light-size", "WxH", "512x512", "the light map"},
         {"receivers", "N", "0", "receivers checked, every k-th (0: all)"}},
        run_shadows},

@@ -15,7 +15,7 @@ const CommandSpec& plan_spec() {
   static const CommandSpec spec{
       "plan (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [OPTIONS]",
       std::vector<OptionSpec>{
-          {"scene", "NAME|FILE", "", "the scene, with options", reads_in(scene_word_files, "{}")},
+          {"scene", "NAME|FILE", "", "the scene, with options", reads_in(scene_word_file, "{}")},
           {"fragments", "F.csv", "", "a fragment file instead", reads()},
           {"target-psnr", "DB", "", "recommend the cheapest configuration that meets it (default: lossless)"},
           {"memory-budget", "B", "",

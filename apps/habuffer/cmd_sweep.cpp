@@ -14,7 +14,7 @@ const CommandSpec& sweep_spec() {
   static const CommandSpec spec{
       "sweep (--scene NAME|FILE | --fragments F.csv) --out F.json[,F.csv] [OPTIONS]",
       std::vector<OptionSpec>{
-          {"scene", "NAME|FILE", "", "the scene, with options (planes:order=front:count=32, hairball:opacity=0.25)", reads_in(scene_word_files, "{}")},
+          {"scene", "NAME|FILE", "", "the scene, with options (planes:order=front:count=32, hairball:opacity=0.25)", reads_in(scene_word_file, "{}")},
           {"fragments", "F.csv", "", "a fragment file instead (CPU path)", reads()},
           {"technique", "T", "ha", "one technique word, NAME[:cull=TAU][:sat][:age=A][:occ][:words=D] (habuffer "
                                    "bench --help): the load sets its size"},

@@ -32,7 +32,7 @@ const CommandSpec& voxelize_spec() {
   static const CommandSpec spec{
       "voxelize --mesh FILE|NAME --out GRID [--grid N] [--axis x|y|z|all] [--stats S.json] [OPTIONS]",
       {{"mesh", "FILE|NAME", "",
-        "a closed mesh file, a catalog scene (engine, wuson, spider, ...) or a solid: sphere, torus, box", reads_in(mesh_files, "{}")},
+        "a closed mesh file, a catalog scene (engine, wuson, spider, ...) or a solid: sphere, torus, box", reads_in(mesh_file, "{}")},
        {"grid", "N", "128", "voxels per side, the grid fitted to the mesh's bounding box"},
        {"axis", "x|y|z|all", "z", "the views' axis; all: three-axis voting (for meshes that are not watertight)"},
        {"out", "GRID", "", "the grid file (HAVOXEL1: header, then N^3 bits; habuffer/render/voxelizer.h)", writes_creating_parents()},

@@ -1,20 +1,15 @@
 #include "file_values.h"
 
-#include <sstream>
+#include <utility>
 
 #include "habuffer/harness/workload.h"
+#include "habuffer/list_text.h"
 #include "habuffer/scene_catalog.h"
 
 namespace habuffer::cli {
 namespace {
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  std::string item;
-  while (std::getline(in, item, separator)) out.push_back(item);
-  return out;
-}
+std::vector<std::string> split(const std::string& text, char separator) { return split_list(text, separator); }
 
 std::string trimmed(const std::string& s) {
   const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
@@ -33,26 +28,36 @@ std::vector<std::string> listed_files(const std::string& value) {
 }
 
 std::vector<std::string> scene_file(const std::string& value) {
-  if (value.empty() || is_scene_name(value)) return {};
-  return {value};
+  if (value.empty()) return {};
+  if (std::string file = scene_input_file(value); !file.empty()) return {file};
+  return {};
+}
+
+std::vector<std::string> mesh_file(const std::string& value) {
+  if (value.empty() || is_solid_name(value)) return {};
+  return scene_file(value);
+}
+
+std::vector<std::string> scene_word_file(const std::string& value) {
+  try {
+    if (std::string file = harness::parse_workload_spec(value).input_file(); !file.empty()) return {file};
+  } catch (const std::invalid_argument&) {
+    // the command's own parse refuses the word
+  }
+  return {};
 }
 
 std::vector<std::string> scene_word_files(const std::string& value) {
   std::vector<std::string> out;
-  for (const std::string& word : listed_files(value)) {
-    try {
-      if (const std::string file = harness::parse_workload_spec(word).input_file(); !file.empty()) out.push_back(file);
-    } catch (const std::invalid_argument&) {
-      // the command's own parse refuses the word
-    }
-  }
+  for (const std::string& word : listed_files(value))
+    for (std::string& file : scene_word_file(word)) out.push_back(std::move(file));
   return out;
 }
 
 std::vector<std::string> mesh_files(const std::string& value) {
   std::vector<std::string> out;
   for (const std::string& m : listed_files(value))
-    if (!is_solid_name(m) && !is_scene_name(m)) out.push_back(m);
+    for (std::string& file : mesh_file(m)) out.push_back(std::move(file));
   return out;
 }
 

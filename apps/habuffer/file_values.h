@@ -10,14 +10,23 @@
 
 namespace habuffer::cli {
 
-/// A comma-separated list of files ("F.json,F.csv").
+/// A comma-separated list of files ("F.json,F.csv"; "a\,b.csv" is one file,
+/// habuffer/list_text.h).
 std::vector<std::string> listed_files(const std::string& value);
-/// One scene: a catalog name names no file, anything else is a mesh file.
+/// One scene, the value whole (commas and all): a catalog mesh names the
+/// model file it resolves to, a procedural scene none, anything else is a
+/// mesh file (habuffer::scene_input_file).
 std::vector<std::string> scene_file(const std::string& value);
+/// One mesh, the value whole: sphere, torus and box name no file; otherwise
+/// as scene_file.
+std::vector<std::string> mesh_file(const std::string& value);
+/// One harness scene word, the value whole ("my,mesh.obj:opacity=0.5"): its
+/// mesh or fragment file, or a catalog name's model file.
+std::vector<std::string> scene_word_file(const std::string& value);
 /// Harness scene words, comma-separated ("engine,my.obj:opacity=0.5,frags.csv"):
 /// each word's mesh or fragment file.
 std::vector<std::string> scene_word_files(const std::string& value);
-/// Meshes, comma-separated: sphere, torus, box and catalog scenes name no file.
+/// Meshes, comma-separated, each as mesh_file.
 std::vector<std::string> mesh_files(const std::string& value);
 /// csg's solids, "NAME=SPEC;...": each SPEC that is not a primitive (box:, sphere:, cylinder:, torus:).
 std::vector<std::string> solid_files(const std::string& value);

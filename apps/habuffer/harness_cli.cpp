@@ -93,6 +93,14 @@ std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std
   return parse_words(args, name, harness::parse_technique_spec);
 }
 
+harness::WorkloadSpec parse_scene(const Args& args, const std::string& name) {
+  try {
+    return harness::parse_workload_spec(args.str(name));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError("--" + name + ": " + e.what());
+  }
+}
+
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name) {
   return parse_words(args, name, harness::parse_workload_spec);
 }

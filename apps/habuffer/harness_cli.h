@@ -43,6 +43,9 @@ std::vector<Extent> parse_sizes(const Args& args);
 std::vector<harness::TechniqueSpec> parse_techniques(const Args& args, const std::string& name);
 /// Option `name`'s scene words (harness/workload.h), its declared default when absent; UsageError naming the
 /// option for a bad word or none.
+/// Option `name` as one scene word, the value whole (a file name's commas
+/// are its own); UsageError "--NAME: ..." for a bad word.
+harness::WorkloadSpec parse_scene(const Args& args, const std::string& name);
 std::vector<harness::WorkloadSpec> parse_scenes(const Args& args, const std::string& name);
 /// A harness command's files, checked together before any work (one rule
 /// for every command): --out F.json[,F.csv] and, where the command has it,

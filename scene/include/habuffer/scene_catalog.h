@@ -37,6 +37,11 @@ std::string assimp_models_root();
 std::vector<std::string> scene_names();
 /// Whether `name` is one of scene_names() (not a mesh file).
 bool is_scene_name(const std::string& name);
+/// The file scene `name_or_path` reads: a catalog mesh's model file under
+/// assimp_models_root() (engine, wuson, spider), the path itself for a mesh
+/// file, empty for a procedural scene. A command declares it as an input, so
+/// that no output replaces a model a scene name resolved to.
+std::string scene_input_file(const std::string& name_or_path);
 /// The scene options, declared once for `habuffer render`'s flags and the
 /// harness's scene words ("planes:count=32:order=front"): each option's key
 /// in words, its flag, the scenes that use it (make_scene ignores it for

@@ -13,7 +13,9 @@
 /// is rasterized with (issue 37: "engine:samples=4" is engine antialiased,
 /// every technique run with coverage masks and scored against the
 /// per-sample reference). A word ending in .csv is a fragment stream and
-/// takes no keys.
+/// takes no keys. A file name holding the separators is written with them
+/// escaped: "my\:mesh.obj:opacity=0.5", "a\,b.csv" in a comma list
+/// (habuffer/list_text.h, the one rule of every list).
 #pragma once
 
 #include <cstdint>
@@ -38,8 +40,9 @@ struct WorkloadSpec {
   std::string word;       ///< as given
   std::set<std::string> keys;  ///< the option keys the word gave ("count", ...)
   std::uint32_t samples = 1;   ///< samples per pixel (the word's samples=S; 1 by default)
-  /// The file the workload reads (a fragment CSV or a mesh file), or empty
-  /// for a named scene: the harness checks it against the outputs.
+  /// The file the workload reads (a fragment CSV, a mesh file, or the model
+  /// a catalog name resolves to), or empty for a procedural scene: the
+  /// harness checks it against the outputs.
   [[nodiscard]] std::string input_file() const;
 };
 
