@@ -15,6 +15,6 @@ namespace {
 bool has_vdb_support() { return false; }
 std::string vdb_support() { return "none (built without OpenVDB)"; }
 void save_voxel_vdb(const std::string& path, const VoxelGrid&, const std::string&) { refuse(path); }
-VoxelGrid load_voxel_vdb(const std::string& path) { refuse(path); }
+SparseVoxels parse_vdb_bytes(const std::string&, const std::string& path) { refuse(path); }
 
 }  // namespace habuffer

@@ -6,6 +6,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -56,6 +57,17 @@ glm::uvec3 voxel_of(std::uint32_t i, std::uint32_t j, std::uint32_t k, VoxelAxis
 Bounds grid_box(const Scene& scene, const VoxelizeSettings& s) {
   const Bounds b = scene.bounds();
   if (b.empty()) throw SceneError("scene '" + scene.name + "' has no vertices to voxelize");
+  // A flat mesh encloses nothing, and a grid of a flat box has cells of no
+  // size that no grid file can place: refused before any work or file.
+  const glm::vec3 size = b.hi - b.lo;
+  if (!s.box && !(size.x > 0.0f && size.y > 0.0f && size.z > 0.0f)) {
+    const char* axis = !(size.x > 0.0f) ? "x" : !(size.y > 0.0f) ? "y" : "z";
+    char sides[96];
+    std::snprintf(sides, sizeof sides, "%g x %g x %g", static_cast<double>(size.x), static_cast<double>(size.y),
+                  static_cast<double>(size.z));
+    throw SceneError("mesh '" + scene.name + "' is flat along " + axis + " (its bounding box is " + sides +
+                     "): it encloses no volume to voxelize");
+  }
   if (!s.box) return b;
   if (glm::any(glm::lessThan(b.lo, s.box->lo)) || glm::any(glm::greaterThan(b.hi, s.box->hi)))
     throw std::invalid_argument("voxelize: the grid's box must hold the whole scene (crossings outside it decide "
@@ -279,7 +291,10 @@ void save_voxel_nrrd(const std::string& path, const VoxelGrid& grid, const std::
 VoxelGrid load_voxel_grid(const std::string& path) {
   // The largest grid file: side 4096, 4096^3 bits.
   constexpr std::uint64_t kMaxGridBytes = kGridHeader + (std::uint64_t{4096} * 4096 * 4096 / 64) * 8;
-  const std::string bytes = read_file_bounded(path, "voxel grid", kMaxGridBytes);
+  return parse_voxel_grid(read_file_bounded(path, "voxel grid", kMaxGridBytes), path);
+}
+
+VoxelGrid parse_voxel_grid(const std::string& bytes, const std::string& path) {
   if (bytes.size() < kGridHeader || bytes.compare(0, 8, kGridMagic, 8) != 0)
     throw DataError(path + ": not a voxel grid (no HAVOXEL1 header)");
   const auto n = take_le<std::uint32_t>(bytes, 8);

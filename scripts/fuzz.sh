@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-30}
 ./scripts/build.sh fuzz
-for target in csv insert ply spatial_table; do
+for target in csv insert ply spatial_table voxel_file; do
   work=$(mktemp -d)
   cp tests/fuzz/corpus/"$target"/* "$work"/
   echo "fuzz_$target: ${seconds}s"

@@ -2,9 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
+#include "habuffer/fenced_call.h"
 #include "habuffer/interchange.h"
 #include "habuffer/json_writer.h"
 #include "test_support.h"
@@ -112,6 +116,69 @@ TEST(Json, WritesNestedValuesWithCommasAndEscapes) {
   j.begin_object().field("a", std::uint64_t{1}).field("s", "q\"\\\n").key("v").begin_array();
   j.value(1.5).value(std::nan("")).end_array().field("b", true).end_object();
   EXPECT_EQ(j.str(), R"({"a":1,"s":"q\"\\\u000a","v":[1.5,null],"b":true})");
+}
+
+}  // namespace
+}  // namespace habuffer
+
+namespace habuffer {
+namespace {
+
+// habuffer/fenced_call.h: what a third-party reader does in its child comes
+// back as its result or as one DataError, never as the end of this process.
+TEST(FencedCall, AResultComesBackWholeAndAnExceptionAsItsMessage) {
+  const std::string big(3u << 20, 'x');  // more than a pipe's buffer
+  EXPECT_EQ(fenced_call("r", [&] { return big; }), big);
+  EXPECT_EQ(fenced_call("r", [] { return std::string(); }), "");
+  try {
+    (void)fenced_call("r", []() -> std::string { throw DataError("f.vdb: bad header"); });
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_STREQ(e.what(), "f.vdb: bad header");
+  }
+}
+
+TEST(FencedCall, AnAbortOrASegfaultInTheChildIsOneDataErrorNamingTheReaderAndTheSignal) {
+  for (const int sig : {SIGABRT, SIGSEGV}) {
+    try {
+      (void)fenced_call("f.vdb: OpenVDB's reader", [sig]() -> std::string {
+        std::fputs("malloc(): invalid size (unsorted)\n", stderr);  // not ours to show
+        std::raise(sig);
+        return "unreachable";
+      });
+      FAIL() << "no error";
+    } catch (const DataError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("f.vdb: OpenVDB's reader crashed on it (SIG", 0), 0u) << what;
+      EXPECT_NE(what.find(sig == SIGABRT ? "SIGABRT" : "SIGSEGV"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(FencedCall, MemoryAndCpuBeyondTheLimitsStopTheChildNotTheMachine) {
+  FenceLimits limits;
+  limits.memory_bytes = 64u << 20;
+  try {
+    (void)fenced_call("r", [] {
+      std::vector<char> huge(std::size_t{1} << 33);  // 8 GiB asked by a corrupt count
+      huge[12345] = 1;
+      return std::string(1, huge[12345]);
+    }, limits);
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("64 MiB"), std::string::npos) << e.what();
+  }
+  limits.cpu_seconds = 1;
+  try {
+    (void)fenced_call("r", [] {
+      volatile std::uint64_t spin = 0;
+      for (;;) spin = spin + 1;  // a reader that loops
+      return std::string();
+    }, limits);
+    FAIL() << "no error";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("CPU time"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -229,24 +229,28 @@ struct BuildKeys {
   std::optional<Domain> natural;
 };
 
-BuildKeys voxel_keys(const std::string& path) {
-  const VoxelGrid g = load_voxel_file(path);
+// A voxel file's solid voxels as keys. The file is read sparse (OpenVDB's
+// tiles and blocks, habuffer/render/voxel_vdb.h) and its voxels counted, then
+// the keys and the table they need checked against the machine, before any
+// voxel is expanded: a 1024^3 tile in a 500-byte file is refused (or built)
+// from its count, not after 2^30 voxels were made.
+BuildKeys voxel_keys(const Args& args, const spatial::SpatialHashConfig& c, const std::string& path) {
+  const SparseVoxels v = read_voxel_file(path);
   BuildKeys k;
-  k.natural = Domain{g.n, g.n, g.n};
-  // Every solid voxel becomes a key: counted and checked before the keys are made (a full 4096^3 grid is 2^36).
-  std::uint64_t solid = 0;
-  for (const std::uint64_t w : g.words) solid += static_cast<std::uint64_t>(std::popcount(w));
+  k.natural = Domain{v.n, v.n, v.n};
+  const std::uint64_t solid = v.count();
   try {
     check_fits_in_memory(path + ": " + std::to_string(solid) + " solid voxels as keys",
                          saturating_product(solid, sizeof(glm::uvec3)));
   } catch (const std::invalid_argument& e) {
     throw DataError(e.what());
   }
+  if (solid == 0) return k;
+  spatial::SpatialHashConfig sized = c;
+  sized.domain = args.has("domain") ? parse_domain(args.str("domain")) : *k.natural;
+  check_build_size(args, sized, solid);
   k.keys.reserve(solid);
-  for (std::uint32_t z = 0; z < g.n; ++z)
-    for (std::uint32_t y = 0; y < g.n; ++y)
-      for (std::uint32_t x = 0; x < g.n; ++x)
-        if (g.solid(x, y, z)) k.keys.emplace_back(x, y, z);
+  v.for_each([&](std::uint32_t x, std::uint32_t y, std::uint32_t z) { k.keys.emplace_back(x, y, z); });
   return k;
 }
 
@@ -266,13 +270,13 @@ BuildKeys image_keys(const Args& args) {
   return k;
 }
 
-BuildKeys read_build_keys(const Args& args, std::uint64_t seed) {
+BuildKeys read_build_keys(const Args& args, const spatial::SpatialHashConfig& c) {
   if (args.has("keys")) {
     spatial::KeyFile f = spatial::read_keys_csv(args.required("keys"));
     return {std::move(f.keys), std::move(f.values), std::nullopt};
   }
-  if (args.has("key-set")) return {spatial::make_keys(parse_key_set(args, "key-set", seed)), {}, std::nullopt};
-  if (args.has("voxels")) return voxel_keys(args.required("voxels"));
+  if (args.has("key-set")) return {spatial::make_keys(parse_key_set(args, "key-set", c.seed)), {}, std::nullopt};
+  if (args.has("voxels")) return voxel_keys(args, c, args.required("voxels"));
   return image_keys(args);
 }
 
@@ -297,7 +301,7 @@ int run_build(const std::vector<std::string>& argv) {
   args.refuse_unless(args.has("image"), {"background"}, "without --image");
 
   spatial::SpatialHashConfig c = parse_build_config(args);
-  const BuildKeys k = read_build_keys(args, c.seed);
+  const BuildKeys k = read_build_keys(args, c);
   c.domain = args.has("domain") ? parse_domain(args.str("domain")) : k.natural ? *k.natural : spatial::domain_of(k.keys);
   if (k.keys.empty()) throw DataError("hash build: no keys (nothing to store)");
   if (args.has("keys")) check_rows(args.required("keys"), k.keys, spatial::FoldedDomain(c.domain));

@@ -32,6 +32,43 @@ expect files 2 "is the same file as --meshes" -- figure voxels --meshes sphere,s
 unset HABUFFER_ASSIMP_MODELS
 unchanged files models/OBJ/spider.obj "$sum"
 
-for cls in files; do echo "class $cls: ${tried[$cls]:-0} cases"; done
+# --- 2. Voxel files: corrupt VDB files fenced, FIFOs and pipes read once -------
+if "$bin" info 2>/dev/null | grep -q "OpenVDB [0-9]"; then
+  expect vdb 0 "" -- voxelize --mesh sphere --grid 12 --out s.grid --vdb s.vdb --quiet
+  for i in $(seq 0 24); do
+    /usr/bin/python3 - "$i" <<'PY'
+import random, sys
+rng = random.Random(int(sys.argv[1]))
+b = bytearray(open("s.vdb", "rb").read())
+for _ in range(rng.randint(1, 4)):
+    b[rng.randrange(len(b))] = rng.randrange(256)
+open("c.vdb", "wb").write(b)
+PY
+    "$bin" hash build --voxels c.vdb --out c.tab --quiet >out.txt 2>err.txt
+    code=$?
+    if [[ $code -gt 1 || $(wc -l <err.txt) -gt 1 ]] || { [[ $code -eq 1 ]] && ! grep -q "c.vdb" err.txt; }; then
+      bad vdb "corrupt file $i: exit $code: $(head -c 300 err.txt)"
+    else
+      ok vdb
+    fi
+  done
+  for f in s.vdb s.grid; do
+    rm -f fifo && mkfifo fifo
+    (cat $f >fifo &)
+    timeout 60 "$bin" hash build --voxels fifo --out fifo.tab --quiet 2>err.txt
+    code=$?
+    "$bin" hash build --voxels $f --out file.tab --quiet
+    [[ $code -eq 0 ]] && cmp -s fifo.tab file.tab && ok vdb || bad vdb "$f through a FIFO: exit $code $(cat err.txt)"
+    cat $f | "$bin" hash build --voxels /dev/stdin --out pipe.tab --quiet 2>err.txt
+    cmp -s pipe.tab file.tab && ok vdb || bad vdb "$f through a pipe: $(cat err.txt)"
+  done
+fi
+
+# A flat mesh encloses nothing: refused before any file is written.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n' >flat.obj
+expect vdb 1 "is flat along z" -- voxelize --mesh flat.obj --out flat.grid --vdb flat.vdb --nrrd flat.nrrd --stats flat.json
+[[ -z $(ls flat.grid flat.vdb flat.nrrd flat.json 2>/dev/null) ]] && ok vdb || bad vdb "a refused flat mesh left outputs"
+
+for cls in files vdb; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli trial 5: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

@@ -116,6 +116,8 @@ void save_voxel_nrrd(const std::string& path, const VoxelGrid& grid, const std::
 /// Reads a grid file; throws DataError naming the path and what is wrong
 /// (magic, N outside 1..4096, a size that does not match, a bad box).
 VoxelGrid load_voxel_grid(const std::string& path);
+/// The same for a file's bytes already read (`path` names them in messages).
+VoxelGrid parse_voxel_grid(const std::string& bytes, const std::string& path);
 
 /// The exact reference: each column's ray along the axis through its centre
 /// intersected with every triangle in double, a voxel solid iff an odd
