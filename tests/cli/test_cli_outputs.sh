@@ -204,7 +204,10 @@ expect values 2 "solid name 'A-B'" -- csg --solids "A-B=sphere:0,0,0,1" --expr A
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >tri.obj
 expect values 1 "is not closed" -- csg --solids "A=tri.obj" --expr A --stats s.json
 expect values 1 "float32 cannot hold" -- csg --solids "A=sphere:1e17,0,0,1" --expr A --stats s.json
-expect values 0 "not watertight" -- voxelize --mesh tri.obj --grid 4 --out g.bin --quiet
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' >open.obj
+expect values 0 "not watertight" -- voxelize --mesh open.obj --grid 4 --out g.bin --quiet
+expect values 1 "encloses no volume" -- voxelize --mesh tri.obj --grid 4 --out flat.bin --quiet
+[[ ! -e flat.bin ]] && ok values || bad values "voxelize of a flat mesh wrote its grid"
 
 for cls in signal write race replace files values losses progress; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli outputs: $pass passed, $fail failed"
