@@ -63,6 +63,18 @@ class CMakeBuild(build_ext):
         require_tool("cmake", "cmake")
         require_tool("ninja", "ninja-build")
         build_dir = self.cmake_build_dir()
+        if os.path.exists(build_dir) and not os.path.isdir(build_dir):
+            sys.exit("setup.py: the CMake build folder %s is a file, not a folder (HABUFFER_CMAKE_BUILD_DIR or "
+                     "build-pip/): move it or name another" % build_dir)
+        try:
+            extra = shlex.split(os.environ.get("HABUFFER_CMAKE_ARGS", ""))
+        except ValueError as e:
+            sys.exit("setup.py: HABUFFER_CMAKE_ARGS %r cannot be split as a shell would: %s"
+                     % (os.environ.get("HABUFFER_CMAKE_ARGS", "")[:200], e))
+        bad = [a for a in extra if not a.startswith("-")]
+        if bad:
+            sys.exit("setup.py: HABUFFER_CMAKE_ARGS: %r is not a CMake option (they start with -, e.g. "
+                     "-DHABUFFER_WITH_TBB=OFF)" % bad[0][:200])
         configure = [
             "cmake", "-S", SOURCE_DIR, "-B", build_dir, "-G", "Ninja",
             "-DCMAKE_BUILD_TYPE=Release",
@@ -76,10 +88,14 @@ class CMakeBuild(build_ext):
             "-DHABUFFER_BUILD_TESTS=OFF",
             "-DHABUFFER_BUILD_BENCHMARKS=OFF",
             "-DHABUFFER_INSTALL=OFF",
-        ] + shlex.split(os.environ.get("HABUFFER_CMAKE_ARGS", ""))
+        ] + extra
         self.announce("habuffer: " + " ".join(map(shlex.quote, configure)), level=2)
-        subprocess.run(configure, check=True)
-        subprocess.run(["cmake", "--build", build_dir, "--target", ext.target], check=True)
+        # A failed step says which, once: CMake printed its reasons above.
+        if subprocess.run(configure).returncode != 0:
+            sys.exit("setup.py: CMake's configure step failed (its messages are above)%s"
+                     % ("; HABUFFER_CMAKE_ARGS was %r" % " ".join(extra)[:200] if extra else ""))
+        if subprocess.run(["cmake", "--build", build_dir, "--target", ext.target]).returncode != 0:
+            sys.exit("setup.py: the CMake build of %s failed (its messages are above)" % ext.target)
         self.copy_package(build_dir, ext)
 
     def copy_package(self, build_dir, ext):
@@ -98,6 +114,8 @@ class CMakeBuild(build_ext):
 
 # setuptools' own build folder, away from the CMake presets' build/ (egg_info
 # needs it to exist before it runs).
+if os.path.exists(os.path.join(SOURCE_DIR, "build-pip")) and not os.path.isdir(os.path.join(SOURCE_DIR, "build-pip")):
+    sys.exit("setup.py: %s is a file, not setuptools' build folder: move it" % os.path.join(SOURCE_DIR, "build-pip"))
 os.makedirs(os.path.join(SOURCE_DIR, "build-pip"), exist_ok=True)
 
 setup(

@@ -44,6 +44,15 @@ bool TechniqueDescriptor::takes(std::string_view option) const {
   return std::find(options.begin(), options.end(), option) != options.end();
 }
 
+std::string loss_hint(Technique t) {
+  const TechniqueDescriptor& d = descriptor(t);
+  std::string hint(d.lossless_hint);
+  if (!hint.empty() && d.stores_lists && !d.overflow_keeps_nearest)
+    hint += "; which fragments drop depends on their arrival order, so lossy lists differ between paths, thread "
+            "counts and insert orders";
+  return hint;
+}
+
 const TechniqueDescriptor& descriptor(Technique t) {
   const auto i = static_cast<std::size_t>(t);
   if (i >= kTechniqueCount) throw std::invalid_argument("technique " + std::to_string(i) + " is not registered");

@@ -114,6 +114,7 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
   if (!options_.max_attempts)
     options_.max_attempts = needs_count_ && !deferred ? GlFrameOptions::kAutomaticAttempts : 1u;
   if (*options_.max_attempts == 0) throw std::invalid_argument("at least one gather attempt is needed");
+  made_attempts_ = *options_.max_attempts;
   if (deferred && *options_.max_attempts > 1)
     throw std::invalid_argument("max_attempts " + std::to_string(*options_.max_attempts) +
                                 " regathers a frame that lost fragments, which needs that frame's count at once: "
@@ -385,7 +386,8 @@ void check_depth_convention(DepthConvention convention) {
 
 }  // namespace
 
-FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls) {
+FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls,
+                                const GrowthCheck& may_grow) {
   technique_->check_context("frame");
   check_depth_convention(options_.depth);
   if (technique_->samples() > 1 && glIsEnabled(GL_SAMPLE_SHADING))
@@ -428,7 +430,7 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
     // first failure: it only needs to count (the HA-buffer's table, whose
     // overfull probes are the costly ones).
     stop_at_failure_ = uses_table(technique_->technique()) && !options_.capture_only &&
-                       report.attempts.size() + 1 < allowed;
+                       report.attempts.size() + 1 < allowed && !report.growth_refused;
     run_gather(gather, calls, report);
     if (options_.capture && report.captured > capture_capacity_) {
       // A gather is deterministic in what it rasterizes, so one regather suffices;
@@ -460,7 +462,7 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
     }
     report.attempts.push_back({report.table, report.counters, technique_->capacity(), sized_for, ms_since(attempt_t0)});
     attempt_t0 = std::chrono::steady_clock::now();
-    if (report.counters.failures() == 0 || report.attempts.size() >= allowed) break;
+    if (report.counters.failures() == 0 || report.attempts.size() >= allowed || report.growth_refused) break;
     // Failures that are all calls cut short (contention or the driver, not
     // the technique's size): the same buffers, emptied, again.
     if (report.counters.failures() <= report.cut_short) {
@@ -470,6 +472,14 @@ FrameReport GlFrameDriver::frame(const std::function<void()>& gather, const std:
     if (!within_budget(report, start_capacity, ms_since(frame_t0))) {
       report.budget_stopped = true;
       break;
+    }
+    if (may_grow && !may_grow(report)) {
+      // No growth: the frame keeps this container. A gather that stopped
+      // inserting at its first failure runs once more, inserting every call.
+      report.growth_refused = true;
+      if (!stop_at_failure_) break;
+      technique_->reset();
+      continue;
     }
     // Lossless mode: the same frame again, sized for what this gather counted.
     sized_for = growth_need(report).count_for(technique_->technique());

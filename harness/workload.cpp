@@ -19,6 +19,14 @@ bool ends_with(const std::string& s, const std::string& tail) {
 
 }  // namespace
 
+WorkloadSpec fragment_workload(const std::string& path) {
+  if (path.empty()) throw std::invalid_argument("an empty fragment file name");
+  WorkloadSpec w;
+  w.word = path;
+  w.fragments = path;
+  return w;
+}
+
 WorkloadSpec parse_workload_spec(const std::string& word) {
   WorkloadSpec w;
   w.word = word;

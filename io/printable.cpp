@@ -1,5 +1,7 @@
 #include "habuffer/printable.h"
 
+#include <algorithm>
+
 namespace habuffer {
 namespace {
 
@@ -40,6 +42,46 @@ std::string excerpt(std::string_view text, std::size_t max_bytes) {
     out.append(full_length(text));
   }
   return out;
+}
+
+std::string error_line(std::string_view what, std::size_t max_bytes) {
+  std::string line;
+  line.reserve(what.size());
+  bool space = false;
+  for (const char c : what) {
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f') {
+      space = !line.empty();
+      continue;
+    }
+    if (space) line.push_back(' ');
+    space = false;
+    line.push_back(c);
+  }
+  // Text already quoted by excerpt() stays as it is (no second escaping of
+  // its backslashes); a control byte left anywhere escapes the whole line.
+  const bool control = std::any_of(line.begin(), line.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) == 0x7f;
+  });
+  if (control) return printable(line, max_bytes);
+  if (line.size() <= max_bytes) return line;
+  return line.substr(0, max_bytes) + "..." + full_length(line);
+}
+
+std::string filesystem_message(const std::filesystem::filesystem_error& e) {
+  std::string_view what = e.what();
+  constexpr std::string_view kPrefix = "filesystem error: ";
+  if (what.substr(0, kPrefix.size()) == kPrefix) what.remove_prefix(kPrefix.size());
+  // libstdc++ appends " [path1]" and " [path2]": the operation and reason come before.
+  if (!e.path1().empty())
+    if (const std::size_t at = what.find(" [" + e.path1().string() + "]"); at != std::string_view::npos)
+      what = what.substr(0, at);
+  std::string m = error_line(what, 200);
+  if (!e.path1().empty()) {
+    m += " (" + excerpt(e.path1().string(), 80);
+    if (!e.path2().empty()) m += ", " + excerpt(e.path2().string(), 80);
+    m += ")";
+  }
+  return m;
 }
 
 }  // namespace habuffer

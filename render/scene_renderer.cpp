@@ -9,6 +9,7 @@
 
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/gl_technique.h"
 #include "habuffer/gl/glsl_sources.h"
 #include "record_gather.h"
 #include "render_shaders.h"
@@ -109,6 +110,7 @@ SceneRenderer::SceneRenderer(const Scene& scene, Extent screen, const gl::GlFram
       technique_framebuffer_(buffer.technique().gather_framebuffer()),
       samples_(buffer.technique().samples()) {
   check_screen_fits(screen, "screen");  // the textures and renderbuffer below; before any GL object is made
+  gl::check_samples_fit(samples_);      // the multisampled images below, exactly that many samples
   if (samples_ > 1 && shadows)
     throw gl::GlError("translucent shadows are not drawn on a multisampled screen (" + std::to_string(samples_) +
                       " samples): render with one sample per pixel for shadows");

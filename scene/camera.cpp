@@ -99,10 +99,10 @@ void fit_depth_range(const Scene& scene, Camera& camera) {
 }
 
 Camera frame_scene(const Scene& scene, const CameraParams& params, Extent screen) {
-  if (!(params.fov > 1.0f && params.fov < 179.0f))
+  if (!(params.fov > kMinFov && params.fov < kMaxFov))
     throw SceneError("--fov " + std::to_string(params.fov) + " is not in (1, 179) degrees");
   if (!std::isfinite(params.yaw)) throw SceneError("--yaw is not a finite angle");
-  if (!(std::abs(params.pitch) <= 90.0f))
+  if (!(std::abs(params.pitch) <= kMaxPitch))
     throw SceneError("--pitch " + std::to_string(params.pitch) + " is not in [-90, 90] degrees");
   if (screen.area() == 0) throw SceneError("screen " + screen.str() + " has no pixels");
   const Bounds b = scene.bounds();

@@ -11,6 +11,7 @@
 #include "habuffer/fenced_call.h"
 #include "habuffer/interchange.h"
 #include "habuffer/json_writer.h"
+#include "habuffer/printable.h"
 #include "test_support.h"
 
 namespace habuffer {
@@ -179,6 +180,31 @@ TEST(FencedCall, MemoryAndCpuBeyondTheLimitsStopTheChildNotTheMachine) {
   } catch (const DataError& e) {
     EXPECT_NE(std::string(e.what()).find("CPU time"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace habuffer
+
+namespace habuffer {
+namespace {
+
+TEST(ErrorLine, PaddingNewlinesAndTabsBecomeOneSpaceAndALongMessageIsCut) {
+  EXPECT_EQ(error_line("  bad value\n\tin   'x.csv'" + std::string(500, ' ') + "line 3  "), "bad value in 'x.csv' line 3");
+  const std::string line = error_line("error: " + std::string(4096, 'q'));
+  EXPECT_LE(line.size(), 640u) << line;
+  EXPECT_NE(line.find("(4103 bytes)"), std::string::npos) << "a cut message says how long it was: " << line;
+  EXPECT_EQ(error_line("bell\x07here"), "bell\\x07here");
+}
+
+TEST(ErrorLine, AFilesystemErrorNamesItsReasonAndAnExcerptOfEachPath) {
+  const std::string name = "out/" + std::string(300, 'n') + ".png";
+  const std::filesystem::filesystem_error e("cannot create directories", name,
+                                            std::make_error_code(std::errc::filename_too_long));
+  const std::string m = filesystem_message(e);
+  EXPECT_LT(m.size(), 200u) << m;
+  EXPECT_NE(m.find("cannot create directories"), std::string::npos) << m;
+  EXPECT_NE(m.find("(308 bytes)"), std::string::npos) << m;
+  EXPECT_EQ(m.find(std::string(100, 'n')), std::string::npos) << "the name is quoted whole: " << m;
 }
 
 }  // namespace

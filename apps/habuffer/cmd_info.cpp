@@ -13,6 +13,7 @@
 #include "habuffer/gl/egl_context.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_info.h"
+#include "habuffer/gl/gl_technique.h"
 
 namespace habuffer::cli {
 
@@ -53,6 +54,11 @@ int run_info(const std::vector<std::string>& argv) {
                 info.int64_types ? "yes" : "no", info.atomic_int64 ? "yes" : "no");
     std::printf("    limits: SSBO %lld MiB, framebuffer %dx%d, compute work groups x %d\n", info.max_ssbo_bytes >> 20,
                 info.max_framebuffer_width, info.max_framebuffer_height, info.max_compute_work_groups_x);
+    const gl::MultisampleLimits ms = gl::multisample_limits();
+    std::string counts = "1";
+    for (std::uint32_t c : ms.counts) counts += ", " + std::to_string(c);
+    std::printf("    multisampling (--samples): %s (float images; at most %d by %s)\n", counts.c_str(), ms.largest,
+                ms.limited_by.c_str());
     const long long max_slots = std::min<long long>(info.max_ssbo_bytes, 0xFFFFFFFFll * 4);
     std::printf("    largest table: L64 %lld slots, L32 %lld slots (one shader-storage buffer, 32-bit slot indices)\n",
                 std::min<long long>(max_slots / 8, 0xFFFFFFFFll), std::min<long long>(max_slots / 4, 0xFFFFFFFFll));

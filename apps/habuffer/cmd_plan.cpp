@@ -58,8 +58,8 @@ int run_plan(const std::vector<std::string>& argv) {
     s.loads.push_back(usage_errors("loads", [&] { return parse_load_factor(l); }));
   const std::vector<Extent> sizes = parse_sizes(args);
   if (sizes.size() != 1) throw UsageError("--size takes one WxH");
-  const harness::WorkloadSpec w =
-      harness::parse_workload_spec(args.has("fragments") ? args.required("fragments") : args.required("scene"));
+  const harness::WorkloadSpec w = args.has("fragments") ? harness::fragment_workload(args.required("fragments"))
+                                                         : harness::parse_workload_spec(args.required("scene"));
   const std::vector<std::string> outputs = parse_outputs(args).out;
   const auto context = context_for(w.fragments.empty(), "plan");
   const harness::Workload workload(w, sizes[0]);

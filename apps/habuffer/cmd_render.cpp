@@ -326,6 +326,7 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
                             frames + " after up to " + std::to_string(s.max_attempts) + " attempts per frame" +
                                 (!too_deep.empty()      ? ": " + too_deep
                                  : r.growth_limited     ? " (the technique's buffers reached this OpenGL's limits)"
+                                 : s.max_attempts == 1  ? "; one attempt grows nothing: allow more --max-attempts"
                                  : uses_table(s.technique) ? "; more --age-bits fits deeper pixels" : ""));
     return 1;
   }

@@ -15,7 +15,7 @@ namespace habuffer::cli {
 // lost_fragments and loss_summary are the library's (habuffer/counters.h).
 
 /// What keeps a technique's dropped fragments (its descriptor's hint).
-inline std::string lossless_hint(Technique t) { return std::string(descriptor(t).lossless_hint); }
+inline std::string lossless_hint(Technique t) { return loss_hint(t); }
 
 /// Prints "habuffer COMMAND: warning: SUMMARY[CONTEXT][; HINT]" when anything
 /// was lost; the hint only when fragments failed (not culled or invalid).

@@ -1,6 +1,7 @@
 // habuffer: command-line front end of the HA-buffer library.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,17 +35,8 @@ constexpr const char* kUsage =
     "  hash         the coherent hash as a spatial hash table: build from keys, query, stats, image\n"
     "Run 'habuffer COMMAND --help' for a command's options.\n";
 
-// One short printable line whatever a library put in its message: text with
-// control bytes or of more than 4 KiB is escaped and cut.
-std::string one_line(const char* what) {
-  const std::string_view m(what);
-  for (const char c : m)
-    if (static_cast<unsigned char>(c) < 0x20) return habuffer::printable(m, 4096);
-  return m.size() > 4096 ? habuffer::printable(m, 4096) : std::string(m);
-}
-
 void report(const std::string& name, const char* what) {
-  std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), one_line(what).c_str());
+  std::fprintf(stderr, "habuffer %s: %s\n", name.c_str(), habuffer::error_line(what).c_str());
 }
 
 }  // namespace
@@ -76,6 +68,9 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "habuffer %s: out of memory\n", name.c_str());
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    report(name, habuffer::filesystem_message(e).c_str());
     return 1;
   } catch (const std::exception& e) {
     report(name, e.what());

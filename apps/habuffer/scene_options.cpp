@@ -59,9 +59,9 @@ SceneOptions parse_scene_options(const Args& args) {
 void check_camera_args(const Args& args) {
   if (!std::isfinite(static_cast<float>(args.real("yaw", 0.0))))
     throw UsageError("option --yaw: must be a finite angle in degrees");
-  if (!(std::abs(args.real("pitch", 0.0)) <= 90.0)) throw UsageError("option --pitch: must be in [-90, 90] degrees");
+  if (!(std::abs(args.real("pitch", 0.0)) <= kMaxPitch)) throw UsageError("option --pitch: must be in [-90, 90] degrees");
   const double fov = args.real("fov");
-  if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov: must be in (1, 179) degrees");
+  if (!(fov > kMinFov && fov < kMaxFov)) throw UsageError("option --fov: must be in (1, 179) degrees");
 }
 
 void make_opaque(const std::vector<std::string>& indices, Scene& scene) {

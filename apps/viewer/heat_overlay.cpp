@@ -20,7 +20,7 @@ HeatOverlay::~HeatOverlay() {
 }
 
 void HeatOverlay::draw(unsigned buffer, std::uint32_t first, std::uint32_t stride, Extent screen, double full,
-                       Extent viewport) {
+                       ViewRect viewport) {
   program_.set("v_screen", screen.x, screen.y);
   program_.set("v_first", first);
   program_.set("v_stride", stride);
@@ -28,7 +28,7 @@ void HeatOverlay::draw(unsigned buffer, std::uint32_t first, std::uint32_t strid
   program_.set("v_alpha", 0.6f);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
-  glViewport(0, 0, static_cast<GLsizei>(viewport.x), static_cast<GLsizei>(viewport.y));
+  glViewport(viewport.x, viewport.y, static_cast<GLsizei>(viewport.size.x), static_cast<GLsizei>(viewport.size.y));
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glUseProgram(program_.id());
@@ -40,7 +40,7 @@ void HeatOverlay::draw(unsigned buffer, std::uint32_t first, std::uint32_t strid
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
 }
 
-void HeatOverlay::draw(const std::vector<std::uint32_t>& values, Extent screen, double full, Extent viewport) {
+void HeatOverlay::draw(const std::vector<std::uint32_t>& values, Extent screen, double full, ViewRect viewport) {
   if (values.size() != upload_words_) {
     gl::delete_buffer(upload_);
     upload_ = gl::create_buffer(std::max<std::uint64_t>(values.size(), 1) * sizeof(std::uint32_t));

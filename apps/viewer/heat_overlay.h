@@ -12,6 +12,12 @@
 
 namespace habuffer::view {
 
+/// A rectangle of the window's framebuffer (pixels from the bottom left).
+struct ViewRect {
+  int x = 0, y = 0;
+  Extent size;
+};
+
 class HeatOverlay {
  public:
   HeatOverlay();
@@ -21,10 +27,11 @@ class HeatOverlay {
 
   /// Word `first + stride * pixel` of `buffer` for each pixel of `screen`,
   /// coloured on a ramp that reaches red at `full`, over the bound
-  /// framebuffer's viewport (0, 0, `viewport`), at 60 % opacity; pixels of value 0 are left alone.
-  void draw(unsigned buffer, std::uint32_t first, std::uint32_t stride, Extent screen, double full, Extent viewport);
+  /// framebuffer's `viewport` (where the scene image was drawn), at 60 %
+  /// opacity; pixels of value 0 are left alone.
+  void draw(unsigned buffer, std::uint32_t first, std::uint32_t stride, Extent screen, double full, ViewRect viewport);
   /// The same for values held on the CPU (uploaded into a buffer of its own).
-  void draw(const std::vector<std::uint32_t>& values, Extent screen, double full, Extent viewport);
+  void draw(const std::vector<std::uint32_t>& values, Extent screen, double full, ViewRect viewport);
 
  private:
   gl::ShaderProgram program_;

@@ -12,6 +12,14 @@
 #include "habuffer/techniques/ha/ha_buffer.h"
 
 namespace habuffer::view {
+namespace {
+
+bool same_view(const Camera& a, const Camera& b) {
+  return a.view == b.view && a.projection == b.projection && a.near_plane == b.near_plane &&
+         a.far_plane == b.far_plane;
+}
+
+}  // namespace
 
 OitSession::OitSession(const GpuMeshes& meshes, TechniqueConfig config, OffsetSource offsets, SessionOptions options)
     : meshes_(meshes), config_(std::move(config)), offsets_(std::move(offsets)), options_(options) {
@@ -36,7 +44,12 @@ std::unique_ptr<gl::GlFrameDriver> OitSession::make_driver(const TechniqueConfig
 std::unique_ptr<ViewPasses> OitSession::make_passes(const gl::GlFrameDriver& driver, const TechniqueConfig& config) const {
   if (light_ != nullptr && config.buffer.samples > 1)
     throw std::invalid_argument("translucent shadows are drawn with one sample a pixel: set --samples 1 first");
-  return std::make_unique<ViewPasses>(meshes_, driver, light_ != nullptr ? &light_->bindings() : nullptr, count_pixels_);
+  return std::make_unique<ViewPasses>(meshes_, driver, light_ != nullptr ? &light_->bindings() : nullptr,
+                                      count_pixels_ || guards_depth(driver, config));
+}
+
+bool OitSession::guards_depth(const gl::GlFrameDriver& driver, const TechniqueConfig& config) {
+  return uses_table(config.technique) && config.buffer.early_cull_tau <= 0.0f && driver.made_attempts() > 1;
 }
 
 void OitSession::count_pixels(bool on) {
@@ -74,6 +87,7 @@ std::string OitSession::reconfigure(TechniqueConfig config) {
     passes_ = std::move(passes);  // the old passes go before the old driver they compiled from
     driver_ = std::move(driver);
     config_ = std::move(config);
+    deep_view_.reset();
     return {};
   } catch (const std::invalid_argument& e) {
     return e.what();
@@ -90,6 +104,8 @@ void OitSession::resize(Extent screen) {
     std::unique_ptr<ViewPasses> passes = make_passes(*driver_, config_);
     passes_ = std::move(passes);
     config_.buffer.screen = screen;
+    driver_->restore_attempts();
+    deep_view_.reset();
   } catch (...) {
     driver_->resize_screen(before);  // back to the screen the running passes have
     throw;
@@ -101,7 +117,34 @@ FrameFigures OitSession::run_frame(gl::GlFrameDriver& driver, ViewPasses& passes
   const auto start = std::chrono::steady_clock::now();
   if (light_ != nullptr) light_->bind();  // the lookup's buffers and block, at points of their own
   passes.draw_opaque(camera, background);
-  const gl::FrameReport r = driver.frame([&] { passes.gather(camera); }, [&] { return passes.calls(); });
+  // A regather would grow the table: not for a pixel deeper than AMAX,
+  // which no table holds (the failed gather's counts are still in the passes).
+  // Once found, the same view of the running driver gathers once (render's
+  // limit_attempts(1)); a new view may grow again, and its counts say whether.
+  std::optional<PixelDepth> too_deep;
+  gl::GrowthCheck may_grow;
+  const bool guarded = passes.counts_pixels() && guards_depth(driver, config_);
+  const bool running = &driver == driver_.get();
+  if (guarded) {
+    if (running && deep_view_ && !same_view(*deep_view_, camera)) {
+      driver.restore_attempts();
+      deep_view_.reset();
+    }
+    may_grow = [&](const gl::FrameReport&) {
+      too_deep = pixel_counted_beyond(passes.read_pixel_fragments(), passes.screen(),
+                                      config_.buffer.record_layout().max_age());
+      return !too_deep;
+    };
+  }
+  const gl::FrameReport r = driver.frame([&] { passes.gather(camera); }, [&] { return passes.calls(); }, may_grow);
+  if (running && guarded) {
+    if (deep_view_ && r.counters.failed_age > 0) too_deep = deep_pixel_;  // the view's pixel, counted when found
+    if (too_deep && !deep_view_) {
+      driver.limit_attempts(1);
+      deep_view_ = camera;
+      deep_pixel_ = too_deep;
+    }
+  }
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, passes.image_framebuffer());
   const gl::PassTiming resolve = driver.resolve(background, passes.opaque_colour());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
@@ -111,6 +154,8 @@ FrameFigures OitSession::run_frame(gl::GlFrameDriver& driver, ViewPasses& passes
   f.capacity = r.capacity;
   f.table = r.table;
   f.attempts = static_cast<std::uint32_t>(r.attempts.size());
+  f.too_deep = too_deep;
+  f.growth_limited = r.growth_limited;
   f.max_age = driver.technique().read_largest_max_age();
   f.memory_bytes = driver.memory_bytes() - driver.capture_bytes();
   f.clear_ms = r.clear.gpu_ms + r.reset.gpu_ms;

@@ -18,6 +18,7 @@
 #include "gpu_meshes.h"
 #include "habuffer/gl/gl_frame_driver.h"
 #include "habuffer/lossless_build.h"
+#include "habuffer/pixel_depth.h"
 #include "habuffer/render/image.h"
 #include "habuffer/technique.h"
 #include "shadow_light.h"
@@ -37,6 +38,10 @@ struct FrameFigures {
   /// Per pass, GPU time (ms): clear, count, gather, sort, resolve.
   double clear_ms = 0, count_ms = 0, gather_ms = 0, sort_ms = 0, resolve_ms = 0;
   double frame_ms = 0;           ///< wall clock of the whole frame (ms)
+  /// A pixel deeper than AMAX the gather counted, when it stopped lossless
+  /// growth (no table holds it; render's rule): the frame kept its table, lossy.
+  std::optional<PixelDepth> too_deep;
+  bool growth_limited = false;   ///< lossless growth reached this OpenGL's limits
   [[nodiscard]] double load() const {
     return capacity == 0 ? 0.0 : static_cast<double>(counters.stored()) / static_cast<double>(capacity);
   }
@@ -85,6 +90,12 @@ class OitSession {
   /// Max age per pixel of the last frame (HA-buffer: read back), else empty.
   [[nodiscard]] std::vector<std::uint32_t> max_age_per_pixel() const;
 
+  /// Whether frames may regather into a grown HA-buffer table (automatic
+  /// sizing or --lossless, no early cull): the gather then counts each
+  /// pixel's fragments, and a frame with a pixel deeper than AMAX grows
+  /// nothing (FrameFigures::too_deep), as render's frames do.
+  [[nodiscard]] bool guards_depth() const { return guards_depth(*driver_, config_); }
+
   [[nodiscard]] const ViewPasses& passes() const { return *passes_; }
   [[nodiscard]] ViewPasses& passes() { return *passes_; }
   [[nodiscard]] const gl::GlFrameDriver& driver() const { return *driver_; }
@@ -93,6 +104,7 @@ class OitSession {
   std::unique_ptr<gl::GlFrameDriver> make_driver(const TechniqueConfig& config, bool capture) const;
   std::unique_ptr<ViewPasses> make_passes(const gl::GlFrameDriver& driver, const TechniqueConfig& config) const;
   FrameFigures run_frame(gl::GlFrameDriver& driver, ViewPasses& passes, const Camera& camera, glm::vec3 background);
+  static bool guards_depth(const gl::GlFrameDriver& driver, const TechniqueConfig& config);
 
   const GpuMeshes& meshes_;
   TechniqueConfig config_;
@@ -102,6 +114,10 @@ class OitSession {
   std::unique_ptr<ViewPasses> passes_;
   ShadowLight* light_ = nullptr;  // owned by the run
   bool count_pixels_ = false;
+  /// The running driver's last view with a pixel deeper than AMAX (its
+  /// attempts limited to 1 while the view stays) and that pixel.
+  std::optional<Camera> deep_view_;
+  std::optional<PixelDepth> deep_pixel_;
 };
 
 }  // namespace habuffer::view

@@ -166,6 +166,10 @@ ViewSettings parse_view_settings(const Args& args) {
                      std::to_string(s.frames));
   s.psnr = args.has("psnr");
   s.shadows = args.has("shadows");
+  // render's heat-map rule: ages and early cull are the HA-buffer's.
+  if ((s.overlay == Overlay::Age || s.overlay == Overlay::Culled) && !uses_table(s.technique.technique))
+    throw UsageError("option --overlay " + args.str("overlay") + ": the HA-buffer's (ages, early cull), not technique " +
+                     to_string(s.technique.technique) + "'s");
   if (s.overlay == Overlay::Shadow && !s.shadows)
     throw UsageError("option --overlay shadow: the light's transmittance needs --shadows");
   args.refuse_unless(s.shadows, {"light-dir", "light-size"}, "without --shadows");

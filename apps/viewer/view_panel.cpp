@@ -11,6 +11,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "habuffer/option_rules.h"
+#include "habuffer/pixel_depth.h"
 #include "habuffer/technique_descriptor.h"
 #include "technique_edit.h"
 
@@ -94,7 +95,7 @@ void shadow_controls(PanelState& state, const ShadowLight* light, PanelRequest& 
               static_cast<unsigned long long>(l.stored), l.attempts, l.build_ms);
 }
 
-void figures_table(const FrameFigures& f, const PanelState& state) {
+void figures_table(const FrameFigures& f, const PanelState& state, const TechniqueConfig& config) {
   const Counters& c = f.counters;
   ImGui::Text("fragments %llu  stored %llu", static_cast<unsigned long long>(c.fragments),
               static_cast<unsigned long long>(c.stored()));
@@ -105,6 +106,8 @@ void figures_table(const FrameFigures& f, const PanelState& state) {
                        static_cast<unsigned long long>(c.failures()), static_cast<unsigned long long>(c.culled));
   else
     ImGui::Text("failures 0  culled %llu", static_cast<unsigned long long>(c.culled));
+  if (f.too_deep)  // growth stopped: render's rule, said where the user looks
+    ImGui::TextWrapped("%s", too_deep_message(*f.too_deep, config.buffer.age_bits).c_str());
   ImGui::Text("memory %.2f MiB  attempts %u", static_cast<double>(f.memory_bytes) / (1024.0 * 1024.0), f.attempts);
   ImGui::Text("GPU ms: clear %.2f count %.2f gather %.2f sort %.2f resolve %.2f", f.clear_ms, f.count_ms, f.gather_ms,
               f.sort_ms, f.resolve_ms);
@@ -140,20 +143,40 @@ PanelRequest draw_panel(PanelState& state, const TechniqueConfig& config, const 
   PanelRequest request;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.85f);
-  ImGui::Begin("habuffer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  technique_combo(config, request);
-  option_fields(state, config, request);
-  load_control(state, config, figures, request);
-  shadow_controls(state, light, request);
-  int o = static_cast<int>(overlay);
-  ImGui::Combo("overlay", &o, "none\0depth complexity\0culled\0max age\0light T (shadows)\0");
-  overlay = static_cast<Overlay>(o);
-  if (ImGui::Button("PSNR vs exact (P)")) request.psnr = true;
-  if (!state.refusal.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", state.refusal.c_str());
-  ImGui::Separator();
-  figures_table(figures, state);
+  // Collapsible by its title bar: collapsed, it covers only that bar.
+  const bool open = ImGui::Begin("habuffer", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  if (open) {
+    technique_combo(config, request);
+    option_fields(state, config, request);
+    load_control(state, config, figures, request);
+    shadow_controls(state, light, request);
+    int o = static_cast<int>(overlay);
+    ImGui::Combo("overlay", &o, "none\0depth complexity\0culled\0max age\0light T (shadows)\0");
+    overlay = static_cast<Overlay>(o);
+    const std::string unshown = overlay_unshown(overlay, config, light);
+    if (!unshown.empty()) ImGui::TextColored(ImVec4(1, 0.8f, 0.3f, 1), "%s", unshown.c_str());
+    if (ImGui::Button("PSNR vs exact (P)")) request.psnr = true;
+    if (!state.refusal.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", state.refusal.c_str());
+    ImGui::Separator();
+    figures_table(figures, state, config);
+  }
+  const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
+  state.covers_from = open ? ImGui::GetWindowPos().x * scale : 0.0f;
+  state.covers_to = open ? (ImGui::GetWindowPos().x + ImGui::GetWindowSize().x) * scale : 0.0f;
   ImGui::End();
   return request;
+}
+
+std::string overlay_unshown(Overlay overlay, const TechniqueConfig& config, const ShadowLight* light) {
+  const std::string technique = to_string(config.technique);
+  if (overlay == Overlay::Age && !uses_table(config.technique))
+    return "max age is the HA-buffer's: technique " + technique + " has no ages to show";
+  if (overlay == Overlay::Culled && !uses_table(config.technique))
+    return "culled is the HA-buffer's early cull: technique " + technique + " culls nothing";
+  if (overlay == Overlay::Culled && config.buffer.early_cull_tau <= 0.0f)
+    return "culled shows early cull: it is off (--early-cull-tau)";
+  if (overlay == Overlay::Shadow && light == nullptr) return "light T needs shadows on";
+  return {};
 }
 
 }  // namespace habuffer::view

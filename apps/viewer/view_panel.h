@@ -30,6 +30,10 @@ struct PanelState {
   /// The light's direction as the sliders hold it (degrees): azimuth around
   /// the vertical, elevation below the horizon (light_direction()).
   float light_azimuth = 0.0f, light_elevation = 60.0f;
+  /// The columns of the window's framebuffer the panel covered last frame
+  /// ([covers_from, covers_to) pixels; empty when collapsed): the scene is
+  /// framed in the part it leaves free.
+  float covers_from = 0.0f, covers_to = 0.0f;
 };
 
 /// The direction the light sliders describe.
@@ -44,6 +48,11 @@ struct PanelRequest {
   std::optional<bool> shadows;            ///< shadows switched on or off
   std::optional<glm::vec3> light;         ///< the light turned (shadows on)
 };
+
+/// Why `overlay` shows nothing for `config` (`light`: the shadows' light, or
+/// nullptr), as the panel says it; empty when it shows something. The
+/// command line refuses the same cases for the starting technique.
+std::string overlay_unshown(Overlay overlay, const TechniqueConfig& config, const ShadowLight* light);
 
 /// Draws the panel for the running `config` and `figures` (`light`: the
 /// shadows' light, or nullptr); `overlay` is edited in place.

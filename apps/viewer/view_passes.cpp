@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "habuffer/gl/gl_buffer.h"
@@ -13,6 +14,12 @@
 
 namespace habuffer::view {
 namespace {
+
+std::string hex(unsigned value) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%04X", value);
+  return text;
+}
 
 std::string gather_header(const gl::GlFrameDriver& driver, bool count_pixels) {
   for (unsigned p : driver.bindings().storage_points())
@@ -48,9 +55,10 @@ unsigned framebuffer(std::initializer_list<unsigned> colours, unsigned depth, co
   }
   if (depth != 0) glNamedFramebufferTexture(f, GL_DEPTH_ATTACHMENT, depth, 0);
   glNamedFramebufferDrawBuffers(f, static_cast<GLsizei>(draw.size()), draw.data());
-  if (glCheckNamedFramebufferStatus(f, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+  const GLenum status = glCheckNamedFramebufferStatus(f, GL_DRAW_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
     glDeleteFramebuffers(1, &f);
-    throw gl::GlError(std::string("habuffer-view: the ") + what + " framebuffer is not complete");
+    throw gl::GlError(std::string("the ") + what + " framebuffer is not complete (status 0x" + hex(status) + ")");
   }
   return f;
 }
@@ -73,7 +81,7 @@ std::string gather_source(const gl::GlFrameDriver& driver, const gl::GlLightBind
 GLsizei read_bytes(Extent screen, std::uint64_t bytes_per_pixel) {
   const std::uint64_t bytes = screen.area() * bytes_per_pixel;
   if (bytes > static_cast<std::uint64_t>(INT32_MAX))
-    throw gl::GlError("habuffer-view: the " + screen.str() + " image (" + std::to_string(bytes) +
+    throw gl::GlError("the " + screen.str() + " image (" + std::to_string(bytes) +
                       " bytes) is beyond one read-back of 2 GiB");
   return static_cast<GLsizei>(bytes);
 }
@@ -93,7 +101,8 @@ ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver,
       technique_framebuffer_(driver.technique().gather_framebuffer()),
       opaque_program_(gl::ShaderProgram::graphics(kSceneVertex, opaque_source(driver, shadows), "habuffer-view opaque pass")),
       gather_program_(gl::ShaderProgram::graphics(kSceneVertex, gather_source(driver, shadows, count_pixels),
-                                                  "habuffer-view gather")) {
+                                                  "habuffer-view gather")),
+      count_pixels_(count_pixels) {
   // The images one by one: a throw part way deletes those made (release).
   try {
     make_images(driver, shadows);
@@ -105,6 +114,7 @@ ViewPasses::ViewPasses(const GpuMeshes& meshes, const gl::GlFrameDriver& driver,
 
 void ViewPasses::make_images(const gl::GlFrameDriver& driver, const gl::GlLightBindings* shadows) {
   gl::check_viewport_fits(screen_);
+  gl::check_samples_fit(samples_);
   colour_ = texture(GL_TEXTURE_2D, GL_RGBA32F, screen_, 1);
   t_ = texture(GL_TEXTURE_2D, GL_R32F, screen_, 1);
   if (samples_ > 1) {
@@ -213,6 +223,15 @@ std::vector<std::uint32_t> ViewPasses::transmittance_map(const Camera& camera) {
 std::uint64_t ViewPasses::calls() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   return gl::read_words(counts_, 1).at(0);
+}
+
+std::vector<std::uint32_t> ViewPasses::read_pixel_fragments() const {
+  if (!count_pixels_) return {};
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const std::vector<std::uint32_t> words = gl::read_words(counts_, 1 + 2 * screen_.area());
+  std::vector<std::uint32_t> out(screen_.area());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = words[1 + 2 * i];
+  return out;
 }
 
 Image ViewPasses::read_image() const {

@@ -56,6 +56,10 @@ class ViewPasses {
   /// The counts buffer: word 0 the calls (where the driver asks for them),
   /// then two words a pixel, fragments and culled (with count_pixels; zero otherwise).
   [[nodiscard]] unsigned counts_buffer() const { return counts_; }
+  /// Fragments per pixel of the last gather (row-major, row 0 at the bottom),
+  /// where the passes count pixels; empty otherwise.
+  [[nodiscard]] std::vector<std::uint32_t> read_pixel_fragments() const;
+  [[nodiscard]] bool counts_pixels() const { return count_pixels_; }
   /// The scene image, row 0 at the bottom.
   [[nodiscard]] Image read_image() const;
   /// The opaque colour per pixel (the backgrounds of the exact reference).
@@ -78,6 +82,7 @@ class ViewPasses {
   unsigned colour_ = 0, t_ = 0, depth_ = 0, opaque_framebuffer_ = 0;  // per pixel
   unsigned ms_colour_ = 0, ms_t_ = 0, ms_depth_ = 0, resolved_framebuffer_ = 0;  // per sample (samples above 1)
   unsigned gather_framebuffer_ = 0, image_ = 0, image_framebuffer_ = 0, counts_ = 0;
+  bool count_pixels_ = false;
 };
 
 }  // namespace habuffer::view

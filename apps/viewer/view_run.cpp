@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "habuffer/counters.h"
 #include "habuffer/json_writer.h"
+#include "habuffer/pixel_depth.h"
 #include "habuffer/render/image.h"
 #include "habuffer/technique_descriptor.h"
 #include "heat_overlay.h"
@@ -107,6 +109,9 @@ struct RunTally {
   /// after the warm-up (a technique's own buffers differ from another's).
   std::map<std::string, std::pair<LiveObjects, LiveObjects>> objects;
   std::string first_refusal;
+  Counters total;                       ///< every frame's final gather, summed
+  std::optional<PixelDepth> too_deep;   ///< the latest pixel deeper than AMAX that stopped growth
+  bool growth_limited = false;
 };
 
 class ViewRun {
@@ -146,6 +151,9 @@ class ViewRun {
       handle_input(window_.poll());
       follow_window();
       const FrameFigures f = draw_frame(last);
+      tally_.total += f.counters;
+      if (f.too_deep) tally_.too_deep = f.too_deep;
+      tally_.growth_limited = tally_.growth_limited || f.growth_limited;
       if (!s_.report.empty()) rows_.push_back({to_string(session_.config().technique), session_.driver().screen().str(), f});
       if (frame == warm_frame) tally_.warm_rss = resident_kib();
       if (!s_.report.empty() && frame >= warm_frame) {
@@ -156,11 +164,41 @@ class ViewRun {
       if (last) finish(f);
       window_.swap();
     }
-    if (tally_.refused > 0) std::fprintf(stderr, "habuffer-view: %llu scripted switches refused; the first: %s\n",
-                                         static_cast<unsigned long long>(tally_.refused), tally_.first_refusal.c_str());
+    if (tally_.refused > 0)
+      std::fprintf(stderr, "habuffer-view: %llu scripted %s refused; the first: %s\n",
+                   static_cast<unsigned long long>(tally_.refused), tally_.refused == 1 ? "change" : "changes",
+                   tally_.first_refusal.c_str());
     if (tally_.gl_errors > 0)
       std::fprintf(stderr, "habuffer-view: %llu GL errors\n", static_cast<unsigned long long>(tally_.gl_errors));
-    return tally_.refused == 0 && tally_.gl_errors == 0 ? 0 : 1;
+    const bool lossless_failed = s_.frames > 0 && report_losses();
+    return tally_.refused == 0 && tally_.gl_errors == 0 && !lossless_failed ? 0 : 1;
+  }
+
+  // A scripted run's losses on stderr, as render says them (SPEC invariant
+  // 1): a warning, or with --lossless the failure it is (returns true).
+  bool report_losses() const {
+    const Counters& total = tally_.total;
+    if (lost_fragments(total) == 0) return false;
+    const std::string frames = s_.frames == 1 ? "" : " over " + std::to_string(s_.frames) + " frames";
+    const Technique t = session_.config().technique;
+    const std::string too_deep =
+        tally_.too_deep ? too_deep_message(*tally_.too_deep, session_.config().buffer.age_bits) : "";
+    if (s_.lossless && total.failures() > 0) {
+      std::fprintf(stderr, "habuffer-view: lossless mode: %s%s after up to %u attempts per frame%s\n",
+                   loss_summary(total).c_str(), frames.c_str(), s_.max_attempts,
+                   (!too_deep.empty()          ? ": " + too_deep
+                    : tally_.growth_limited    ? std::string(" (the technique's buffers reached this OpenGL's limits)")
+                    : s_.max_attempts == 1     ? std::string("; one attempt grows nothing: allow more --max-attempts")
+                    : uses_table(t)            ? std::string("; more --age-bits fits deeper pixels")
+                                               : std::string())
+                       .c_str());
+      return true;
+    }
+    std::string line = "habuffer-view: warning: " + loss_summary(total) + frames;
+    const std::string hint = too_deep.empty() ? loss_hint(t) : too_deep;
+    if (total.failures() > 0 && !hint.empty()) line += "; " + hint;
+    std::fprintf(stderr, "%s\n", line.c_str());
+    return false;
   }
 
  private:
@@ -179,9 +217,13 @@ class ViewRun {
   }
 
   void handle_input(const InputEvents& e) {
-    camera_.yaw += static_cast<float>(e.drag_x) * 0.3f;
-    camera_.pitch = std::clamp(camera_.pitch - static_cast<float>(e.drag_y) * 0.3f, -89.0f, 89.0f);
-    camera_.fov = std::clamp(camera_.fov * std::pow(0.9f, static_cast<float>(e.scroll)), 5.0f, 120.0f);
+    // The camera changes only by input, within frame_scene's range (render's):
+    // a --pitch 90 or --fov 150 given on the command line stays as given.
+    if (e.drag_x != 0) camera_.yaw = std::remainder(camera_.yaw + static_cast<float>(e.drag_x) * 0.3f, 360.0f);
+    if (e.drag_y != 0)
+      camera_.pitch = std::clamp(camera_.pitch - static_cast<float>(e.drag_y) * 0.3f, -kMaxPitch, kMaxPitch);
+    if (e.scroll != 0)
+      camera_.fov = std::clamp(camera_.fov * std::pow(0.9f, static_cast<float>(e.scroll)), kMinFov + 1.0f, kMaxFov - 1.0f);
     if (e.next_overlay) overlay_ = next_overlay(overlay_);
     if (e.toggle_gui) gui_ = !gui_;
     if (e.next_technique) apply(with_technique(session_.config(), next_technique(session_.config().technique)), false);
@@ -258,13 +300,22 @@ class ViewRun {
       panel_.psnr = session_.reference_psnr(camera, s_.background);
       psnr_requested_ = false;
     }
-    // The scene image into the window, then the overlay and the panel over it.
+    // The scene image into the part of the window the panel leaves free,
+    // then the overlay over it and the panel beside it.
     const Extent window = window_.framebuffer();
+    const Placement place = scene_placement(screen, window);
+    const ViewRect& rect = place.image;
+    const float clear[4] = {s_.background.r, s_.background.g, s_.background.b, 1.0f};
+    glClearNamedFramebufferfv(0, GL_COLOR, 0, clear);
+    glEnable(GL_SCISSOR_TEST);  // the blit and the overlay stay in the free columns
+    glScissor(place.clip.x, place.clip.y, static_cast<GLsizei>(place.clip.size.x), static_cast<GLsizei>(place.clip.size.y));
+    const bool scaled = rect.size != screen;
     glBlitNamedFramebuffer(session_.passes().image_framebuffer(), 0, 0, 0, static_cast<GLint>(screen.x),
-                           static_cast<GLint>(screen.y), 0, 0, static_cast<GLint>(window.x), static_cast<GLint>(window.y),
-                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+                           static_cast<GLint>(screen.y), rect.x, rect.y, rect.x + static_cast<GLint>(rect.size.x),
+                           rect.y + static_cast<GLint>(rect.size.y), GL_COLOR_BUFFER_BIT, scaled ? GL_LINEAR : GL_NEAREST);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    draw_overlay(f, camera, screen, window);
+    draw_overlay(f, camera, screen, rect);
+    glDisable(GL_SCISSOR_TEST);
     if (gui_) {
       window_.begin_gui();
       const PanelRequest request = draw_panel(panel_, session_.config(), f, light_.get(), overlay_);
@@ -278,7 +329,44 @@ class ViewRun {
     return f;
   }
 
-  void draw_overlay(const FrameFigures& f, const Camera& camera, Extent screen, Extent window) {
+  // Where the scene image goes: centred on the widest run of columns the
+  // panel left free last frame (the whole window without a panel), scaled so
+  // that the square frame_scene fits the scene's bounds in (the screen's
+  // narrower side, centred) fits that run, never enlarged; what overflows
+  // the run is clipped (`clip`). The image itself (the screenshot) stays
+  // the view at the screen's size.
+  struct Placement {
+    ViewRect image, clip;
+  };
+  [[nodiscard]] Placement scene_placement(Extent screen, Extent window) const {
+    double from = 0.0, width = window.x;
+    if (gui_ && panel_.covers_to > panel_.covers_from) {
+      const double left = std::clamp<double>(panel_.covers_from, 0.0, window.x);
+      const double right = std::clamp<double>(panel_.covers_to, 0.0, window.x);
+      if (left >= window.x - right) {
+        width = left;
+      } else {
+        from = right;
+        width = window.x - right;
+      }
+      if (width < window.x / 4.0) {  // a panel over most of the window: the scene under it
+        from = 0.0;
+        width = window.x;
+      }
+    }
+    const double side = std::min(screen.x, screen.y);
+    const double scale = std::min({1.0, width / side, static_cast<double>(window.y) / screen.y});
+    Placement p;
+    p.image.size = {std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(screen.x * scale))),
+                    std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(screen.y * scale)))};
+    p.image.x = static_cast<int>(std::lround(from + (width - p.image.size.x) / 2.0));
+    p.image.y = static_cast<int>(std::lround((window.y - static_cast<double>(p.image.size.y)) / 2.0));
+    p.clip.x = static_cast<int>(from);
+    p.clip.size = {static_cast<std::uint32_t>(width), window.y};
+    return p;
+  }
+
+  void draw_overlay(const FrameFigures& f, const Camera& camera, Extent screen, ViewRect window) {
     switch (overlay_) {
       case Overlay::Depth:
       case Overlay::Culled: {
@@ -316,6 +404,8 @@ class ViewRun {
         .field("failures", f.counters.failures())
         .field("load", f.load())
         .field("max_age", f.max_age)
+        .field("attempts", static_cast<std::uint64_t>(f.attempts))
+        .field("table", f.table.str())
         .field("memory_bytes", f.memory_bytes)
         .field("gather_gpu_ms", f.gather_ms)
         .field("resolve_gpu_ms", f.resolve_ms)

@@ -1,6 +1,6 @@
 # Type hints of the habuffer package (the extension habuffer._habuffer and
 # the pure-Python helpers of __init__.py).
-from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, Literal, NamedTuple, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -34,7 +34,8 @@ class Buffer:
                  layout: Union[int, str] = 64, offsets: str = "random", seed: int = 1,
                  offset_list: Optional[npt.ArrayLike] = None, **options: Any) -> None: ...
     def insert(self, xy: npt.ArrayLike, depth: npt.ArrayLike, rgba: Optional[npt.ArrayLike] = None, *,
-               threads: int = 1, mode: str = "auto", order: str = "auto") -> dict[str, int]: ...
+               coverage: Optional[npt.ArrayLike] = None, threads: int = 1, mode: str = "auto",
+               order: str = "auto") -> dict[str, int]: ...
     def insert_fragments(self, fragments: np.ndarray, *, threads: int = 1, mode: str = "auto",
                          order: str = "auto") -> dict[str, int]: ...
     def lists(self) -> Lists: ...
@@ -66,7 +67,8 @@ class Buffer:
 
 def HaBuffer(screen: Size, **kwargs: Any) -> Buffer: ...
 
-def build(xy: npt.ArrayLike, depth: npt.ArrayLike, rgba: Optional[npt.ArrayLike] = None, *, technique: str = "ha",
+def build(xy: npt.ArrayLike, depth: npt.ArrayLike, rgba: Optional[npt.ArrayLike] = None, *,
+          coverage: Optional[npt.ArrayLike] = None, technique: str = "ha",
           screen: Size, table: Optional[Size] = None, layout: Union[int, str] = 64, offsets: str = "random",
           seed: int = 1, offset_list: Optional[npt.ArrayLike] = None, path: str = "cpu", lossless: bool = False,
           max_attempts: int = 16, threads: int = 1, mode: str = "auto", order: str = "auto",
@@ -74,7 +76,13 @@ def build(xy: npt.ArrayLike, depth: npt.ArrayLike, rgba: Optional[npt.ArrayLike]
 
 def techniques() -> list[dict[str, Any]]: ...
 def offsets(table: Size, count: int, generator: str = "random", seed: int = 1) -> ArrayU32: ...
+@overload
 def read_fragments(path: str, screen: Size) -> Tuple[ArrayU32, ArrayF32, ArrayU32]: ...
+@overload
+def read_fragments(path: str, screen: Size, *, coverage: Literal[False]) -> Tuple[ArrayU32, ArrayF32, ArrayU32]: ...
+@overload
+def read_fragments(path: str, screen: Size, *,
+                   coverage: Literal[True]) -> Tuple[ArrayU32, ArrayF32, ArrayU32, ArrayU32]: ...
 def gl_info() -> dict[str, str]: ...
 
 def age_experiment(*, screen: Size = (128, 128), table: Optional[Size] = None,

@@ -75,22 +75,26 @@ template py::array_t<float, py::array::forcecast> checked_array<float>(py::handl
 template py::array_t<double, py::array::forcecast> checked_array<double>(py::handle, const char*, int, py::ssize_t);
 
 std::vector<Fragment> fragments_from(py::handle xy_obj, py::handle depth_obj, py::handle rgba_obj,
-                                     std::uint32_t threads) {
+                                     std::uint32_t threads, py::handle coverage_obj) {
   const auto xy = checked_array<std::uint32_t>(xy_obj, "xy", 2, 2);
   const auto depth = checked_array<float>(depth_obj, "depth", 1);
   const bool has_rgba = !rgba_obj.is_none();
-  py::array_t<std::uint32_t, py::array::forcecast> rgba;
+  const bool has_coverage = !coverage_obj.is_none();
+  py::array_t<std::uint32_t, py::array::forcecast> rgba, coverage;
   if (has_rgba) rgba = checked_array<std::uint32_t>(rgba_obj, "rgba", 1);
+  if (has_coverage) coverage = checked_array<std::uint32_t>(coverage_obj, "coverage", 1);
   const py::ssize_t n = xy.shape(0);
-  if (depth.shape(0) != n || (has_rgba && rgba.shape(0) != n))
-    throw py::value_error("xy, depth and rgba must hold one row per fragment: got " + std::to_string(n) + ", " +
-                          std::to_string(depth.shape(0)) +
-                          (has_rgba ? " and " + std::to_string(rgba.shape(0)) : std::string(" and None")));
+  if (depth.shape(0) != n || (has_rgba && rgba.shape(0) != n) || (has_coverage && coverage.shape(0) != n))
+    throw py::value_error("xy, depth, rgba and coverage must hold one row per fragment: got " + std::to_string(n) +
+                          ", " + std::to_string(depth.shape(0)) + ", " +
+                          (has_rgba ? std::to_string(rgba.shape(0)) : std::string("None")) + " and " +
+                          (has_coverage ? std::to_string(coverage.shape(0)) : std::string("None")));
   std::vector<Fragment> out(static_cast<std::size_t>(n));
   const auto p = xy.unchecked<2>();
   const auto d = depth.unchecked<1>();
-  std::optional<py::detail::unchecked_reference<std::uint32_t, 1>> c;
+  std::optional<py::detail::unchecked_reference<std::uint32_t, 1>> c, m;
   if (has_rgba) c.emplace(rgba.unchecked<1>());
+  if (has_coverage) m.emplace(coverage.unchecked<1>());
   // The copy reads the arrays only (their owners are held by the caller), in
   // as many chunks as the insert's threads, so it stays a small part of it.
   const std::uint32_t tasks = resolve_threads(threads, static_cast<std::uint64_t>(n));
@@ -99,7 +103,7 @@ std::vector<Fragment> fragments_from(py::handle xy_obj, py::handle depth_obj, py
     fork_join(tasks, [&](std::uint32_t t) {
       const py::ssize_t begin = n * t / tasks, end = n * (t + 1) / tasks;
       for (py::ssize_t i = begin; i < end; ++i)
-        out[static_cast<std::size_t>(i)] = Fragment{p(i, 0), p(i, 1), d(i), c ? (*c)(i) : 0u};
+        out[static_cast<std::size_t>(i)] = Fragment{p(i, 0), p(i, 1), d(i), c ? (*c)(i) : 0u, m ? (*m)(i) : 0u};
     });
   });
   return out;

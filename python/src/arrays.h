@@ -53,7 +53,9 @@ py::array_t<T> readonly_view(const T* data, py::ssize_t rows, py::ssize_t cols, 
 /// The fragments of xy (N x 2 uint32), depth (N float32) and rgba (N uint32,
 /// or None: 0), copied on `threads` threads (0: the default count for N).
 /// Sizes that differ raise ValueError naming them.
-std::vector<Fragment> fragments_from(py::handle xy, py::handle depth, py::handle rgba, std::uint32_t threads = 1);
+/// With `coverage` (None: 0, the whole pixel), each fragment's sample mask.
+std::vector<Fragment> fragments_from(py::handle xy, py::handle depth, py::handle rgba, std::uint32_t threads = 1,
+                                     py::handle coverage = py::none());
 
 /// numpy's dtype of Fragment: [('x', '<u4'), ('y', '<u4'), ('depth', '<f4'), ('rgba', '<u4')].
 py::dtype fragment_dtype();

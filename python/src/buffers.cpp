@@ -196,7 +196,7 @@ py::dict attempt_dict(const BuildAttempt& a) {
   return d;
 }
 
-std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, const ConfigArgs& a,
+std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, py::handle coverage, const ConfigArgs& a,
                               const std::string& path, bool lossless, const IntArg& max_attempts_obj,
                               const IntArg& threads_obj, const std::string& mode, const std::string& order,
                               const py::kwargs& options) {
@@ -205,7 +205,7 @@ std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, 
   const TechniqueConfig config = technique_config_from(a, options);
   const OffsetSource offsets = offset_source_from(a);
   const InsertOptions insert = insert_options(threads, mode, order);
-  const std::vector<Fragment> fragments = fragments_from(xy, depth, rgba, threads);
+  const std::vector<Fragment> fragments = fragments_from(xy, depth, rgba, threads, coverage);
   const std::uint32_t attempts = lossless ? max_attempts : 1;
   TechniqueBuild built;
   py::dict report;
@@ -255,11 +255,11 @@ std::unique_ptr<Buffer> make_buffer(const std::string& technique, py::object scr
   return std::make_unique<Buffer>(make_fragment_buffer(c, offset_source_from(a)));
 }
 
-py::dict insert_arrays(Buffer& self, py::handle xy, py::handle depth, py::handle rgba, const IntArg& threads_obj,
-                       const std::string& mode, const std::string& order) {
+py::dict insert_arrays(Buffer& self, py::handle xy, py::handle depth, py::handle rgba, py::handle coverage,
+                       const IntArg& threads_obj, const std::string& mode, const std::string& order) {
   const std::uint32_t threads = threads_arg(threads_obj);
   const InsertOptions options = insert_options(threads, mode, order);
-  const std::vector<Fragment> f = fragments_from(xy, depth, rgba, threads);
+  const std::vector<Fragment> f = fragments_from(xy, depth, rgba, threads, coverage);
   return self.insert(f, options);
 }
 
@@ -287,7 +287,8 @@ py::object lists_csr(const Buffer& self) {
 
 constexpr const char* kInsertDoc =
     "Inserts fragments: xy (N, 2) uint32 pixels, depth (N,) float32 in [0, 1], rgba (N,) uint32 "
-    "(R<<24|G<<16|B<<8|A; None: 0). Any strides. The GIL is released: calls from several Python threads overlap "
+    "(R<<24|G<<16|B<<8|A; None: 0), coverage (N,) uint32 sample masks (bit s: sample s; None or 0: the whole "
+    "pixel; read where samples is above 1). Any strides. The GIL is released: calls from several Python threads overlap "
     "as the library allows. threads: the call's own threads (0: the default count); mode: auto, serial, atomic or "
     "owner; order: auto, arrival or pixel. Returns the call's counters (dict).";
 
@@ -305,8 +306,9 @@ void bind_buffers(py::module_& m) {
            py::arg("layout") = 64, py::arg("offsets") = "random", py::arg("seed") = 1,
            py::arg("offset_list") = py::none())
       .def("insert", &insert_arrays,
-          py::arg("xy"), py::arg("depth"), py::arg("rgba") = py::none(), py::kw_only(), py::arg("threads") = 1,
-          py::arg("mode") = "auto", py::arg("order") = "auto", kInsertDoc)
+          py::arg("xy"), py::arg("depth"), py::arg("rgba") = py::none(), py::kw_only(),
+          py::arg("coverage") = py::none(), py::arg("threads") = 1, py::arg("mode") = "auto",
+          py::arg("order") = "auto", kInsertDoc)
       .def("insert_fragments", &insert_in_place,
           py::arg("fragments"), py::kw_only(), py::arg("threads") = 1, py::arg("mode") = "auto",
           py::arg("order") = "auto",
@@ -371,15 +373,16 @@ void bind_buffers(py::module_& m) {
 
   m.def(
       "build",
-      [](py::handle xy, py::handle depth, py::handle rgba, const std::string& technique, py::object screen,
-         py::object table, py::object layout, const std::string& offsets, const IntArg& seed, py::object offset_list,
-         const std::string& path, bool lossless, const IntArg& max_attempts, const IntArg& threads,
-         const std::string& mode, const std::string& order, const py::kwargs& options) {
+      [](py::handle xy, py::handle depth, py::handle rgba, py::handle coverage, const std::string& technique,
+         py::object screen, py::object table, py::object layout, const std::string& offsets, const IntArg& seed,
+         py::object offset_list, const std::string& path, bool lossless, const IntArg& max_attempts,
+         const IntArg& threads, const std::string& mode, const std::string& order, const py::kwargs& options) {
         const ConfigArgs a{technique, std::move(screen), std::move(table), std::move(layout), offsets, seed_arg(seed),
                            std::move(offset_list)};
-        return build(xy, depth, rgba, a, path, lossless, max_attempts, threads, mode, order, options);
+        return build(xy, depth, rgba, coverage, a, path, lossless, max_attempts, threads, mode, order, options);
       },
-      py::arg("xy"), py::arg("depth"), py::arg("rgba") = py::none(), py::kw_only(), py::arg("technique") = "ha",
+      py::arg("xy"), py::arg("depth"), py::arg("rgba") = py::none(), py::kw_only(), py::arg("coverage") = py::none(),
+      py::arg("technique") = "ha",
       py::arg("screen"), py::arg("table") = py::none(), py::arg("layout") = 64, py::arg("offsets") = "random",
       py::arg("seed") = 1, py::arg("offset_list") = py::none(), py::arg("path") = "cpu", py::arg("lossless") = false,
       py::arg("max_attempts") = 16, py::arg("threads") = 1, py::arg("mode") = "auto", py::arg("order") = "auto",

@@ -9,6 +9,7 @@
 #include "bindings.h"
 #include "habuffer/interchange.h"
 #include "habuffer/offset_sequence.h"
+#include "habuffer/printable.h"
 #include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_options.h"
 
@@ -241,21 +242,33 @@ void bind_config(py::module_& m) {
       "The first `count` offsets (SPEC 3) for a table of (W, H): a (count, 2) uint32 array.");
   m.def(
       "read_fragments",
-      [](const std::string& path, py::handle screen) {
+      [](const std::string& path, py::handle screen, bool with_coverage) {
         const std::vector<Fragment> f = read_fragments(path, extent_arg(screen, "screen"));
-        std::vector<std::uint32_t> xy, rgba;
+        std::vector<std::uint32_t> xy, rgba, coverage;
         std::vector<float> depth;
         xy.reserve(2 * f.size());
-        for (const Fragment& g : f) {
+        for (std::size_t i = 0; i < f.size(); ++i) {
+          const Fragment& g = f[i];
+          // A mask never dropped silently: a stream that carries them is read with them.
+          if (g.coverage != 0 && !with_coverage)
+            throw py::value_error(printable(path) + ": fragment " + std::to_string(i + 1) +
+                                  " carries a coverage mask (" + std::to_string(g.coverage) +
+                                  "): read it with coverage=True and pass coverage= to build or insert");
           xy.insert(xy.end(), {g.x, g.y});
           depth.push_back(g.depth);
           rgba.push_back(g.rgba);
+          coverage.push_back(g.coverage);
         }
-        return py::make_tuple(owned_array(std::move(xy)).reshape({static_cast<py::ssize_t>(f.size()), py::ssize_t{2}}),
-                              owned_array(std::move(depth)), owned_array(std::move(rgba)));
+        py::array xy_array = owned_array(std::move(xy)).reshape({static_cast<py::ssize_t>(f.size()), py::ssize_t{2}});
+        if (with_coverage)
+          return py::make_tuple(xy_array, owned_array(std::move(depth)), owned_array(std::move(rgba)),
+                                owned_array(std::move(coverage)));
+        return py::make_tuple(xy_array, owned_array(std::move(depth)), owned_array(std::move(rgba)));
       },
-      py::arg("path"), py::arg("screen"),
-      "A fragment CSV (x,y,depth,rgba) as (xy, depth, rgba) arrays, parsed as habuffer build-lists parses it.");
+      py::arg("path"), py::arg("screen"), py::kw_only(), py::arg("coverage") = false,
+      "A fragment CSV (x,y,depth,rgba[,coverage]) as (xy, depth, rgba) arrays, parsed as habuffer build-lists "
+      "parses it; with coverage=True (xy, depth, rgba, coverage), the sample masks for build or insert's "
+      "coverage= (a stream holding masks read without it raises ValueError: nothing is dropped silently).");
   m.attr("FRAGMENT_DTYPE") = fragment_dtype();
 }
 

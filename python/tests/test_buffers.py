@@ -415,3 +415,28 @@ def test_a_jump_of_depth_complexity_is_lossless_in_one_regather_sized_by_the_fai
         assert attempts[1]["counters"]["failures"] == 0
         tx, ty = attempts[1]["table"]
         assert 0.5 <= w * h * layers / (tx * ty) <= 0.55, (path, attempts[1]["table"])
+
+
+def test_a_stream_with_coverage_masks_builds_as_build_lists_builds_it_and_is_never_read_without_them(cli, workdir):
+    d = os.path.join(workdir, "coverage")
+    os.makedirs(d, exist_ok=True)
+    screen = (16, 12)
+    xy, depth, rgba = small_stream(1500, screen, seed=11)
+    masks = np.random.default_rng(5).integers(0, 64, len(depth), dtype=np.uint32)  # 0: the whole pixel; 16: none of 4
+    frags = os.path.join(d, "frags.csv")
+    with open(frags, "w") as f:
+        f.write("x,y,depth,rgba,coverage\n")
+        for (x, y), t, c, m in zip(xy, depth, rgba, masks):
+            f.write("%d,%d,%r,0x%08x,0x%02x\n" % (x, y, float(t), c, m))
+    cli("build-lists", "--in", frags, "--out", os.path.join(d, "cli.csv"), "--screen", "16x12", "--samples", 4,
+        "--table", "24x18", "--threads", 1)
+    with pytest.raises(ValueError, match="coverage=True"):
+        hb.read_fragments(frags, screen)
+    xy2, depth2, rgba2, coverage = hb.read_fragments(frags, screen, coverage=True)
+    assert (coverage == masks).all()
+    buf = hb.build(xy2, depth2, rgba2, coverage=coverage, screen=screen, table=(24, 18), samples=4)
+    buf.write_lists(os.path.join(d, "py.csv"))
+    with open(os.path.join(d, "cli.csv"), "rb") as a, open(os.path.join(d, "py.csv"), "rb") as b:
+        assert a.read() == b.read()
+    whole = hb.build(xy2, depth2, rgba2, screen=screen, table=(24, 18), samples=4)
+    assert whole.counters["invalid"] == 0 and buf.counters["invalid"] > 0  # masks naming none of the 4 samples

@@ -1,10 +1,12 @@
 """The package's surface: the type stub lists exactly what the module
 exports (functions, classes, their public methods), and every call has a
-docstring."""
+docstring; pip settings that cannot work are refused in one line."""
 
 import ast
 import os
 import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -114,3 +116,20 @@ def test_a_target_psnr_that_is_not_a_finite_number_of_decibels_above_0_is_refuse
     for target in (-1.0, 0.0, float("inf"), float("nan")):
         with pytest.raises(ValueError, match="^target_psnr: .* is not a finite PSNR above 0 dB$"):
             hb.plan("planes", target_psnr=target)
+
+
+@pytest.mark.parametrize("env, named", [
+    ({"HABUFFER_CMAKE_ARGS": '"-DHABUFFER_WITH_TBB=OFF'}, "HABUFFER_CMAKE_ARGS"),
+    ({"HABUFFER_CMAKE_ARGS": "WITH_TBB=OFF"}, "HABUFFER_CMAKE_ARGS"),
+    ({"HABUFFER_CMAKE_BUILD_DIR": "FILE"}, "is a file"),
+])
+def test_pip_settings_that_cannot_work_are_one_line_without_a_traceback(env, named, workdir):
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    a_file = os.path.join(workdir, "a-file")
+    open(a_file, "w").close()
+    env = {k: (a_file if v == "FILE" else v) for k, v in env.items()}
+    r = subprocess.run([sys.executable, "setup.py", "-q", "build_ext"], cwd=root, capture_output=True, text=True,
+                       env=dict(os.environ, **env), timeout=300)
+    assert r.returncode != 0
+    assert "Traceback" not in r.stderr, r.stderr
+    assert named in r.stderr, r.stderr

@@ -14,10 +14,20 @@ in vec3 v_eye;
 in vec3 v_world;
 #endif
 
+// v over its largest component's magnitude (zero stays zero): the same
+// direction at any scale, so that products of two stay far from float's
+// overflow (a mesh at 1e17) and underflow (at 1e-9).
+vec3 r_scale_free(vec3 v) {
+  float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+  return m > 0.0 ? v / m : v;
+}
+
 // The face normal from screen-space derivatives, lit from the eye (either
-// side of a face: transparent surfaces show both).
+// side of a face: transparent surfaces show both). The derivatives are
+// brought to unit scale first: the shading of a mesh is the same at any
+// size (habuffer render of a mesh scaled 1e-17..1e17 equals the unit mesh's).
 vec3 r_shaded_colour() {
-  vec3 n = cross(dFdx(v_eye), dFdy(v_eye));
+  vec3 n = cross(r_scale_free(dFdx(v_eye)), r_scale_free(dFdy(v_eye)));
   float len = length(n);
   float facing = len > 0.0 ? abs(n.z) / len : 1.0;
   vec3 lit = r_colour * (0.35 + 0.65 * facing);

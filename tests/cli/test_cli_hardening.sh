@@ -100,7 +100,7 @@ expect losses 0 "failed_age" -- render --scene planes --count 40 --size 16x16 --
 expect losses 0 "culled (early cull)" -- render --scene planes --size 16x16 --early-cull 0.5 --out p.png --quiet
 expect losses 0 "culled (early cull)" -- build-lists --in deep.csv --out l.csv --screen 4x4 --table 64x64 --early-cull 0.9
 printf 'x,y,depth,rgba\n0,0,nan,1\n0,0,1.5,1\n0,0,0.5,1\n' >invalid.csv
-expect losses 0 "2 of 3 fragments not stored: invalid (depth NaN or outside [0, 1]) 2" -- build-lists --in invalid.csv --out l.csv --screen 1x1
+expect losses 0 "2 of 3 fragments not stored: invalid (depth NaN or outside [0, 1], or a coverage mask naming none of the samples) 2" -- build-lists --in invalid.csv --out l.csv --screen 1x1
 expect losses 0 "failed_age" -- demo --screen 8x8 --fragments 3000 --table 8x8 --age-bits 4 --stream random
 printf 'v 0 0 0\nv 1e20 0 0\nv 0 1e20 0\nf 1 2 3\n' >far.obj
 expect losses 1 "leaves no usable depth range in float32" -- render --scene far.obj --size 16x16 --out f.png

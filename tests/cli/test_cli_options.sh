@@ -45,7 +45,7 @@ expect read 0 "" -- techniques --markdown
 expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --slot-writes --quiet
 # Issue 37: multisampled records on both paths, and the refusals in context.
 expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 4 --path cpu --error --quiet
-expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 2 --technique lists --quiet
+expect read 0 "" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 4 --technique lists --quiet
 expect read 0 "" -- build-lists --in f.csv --out ls.csv --screen 16x16 --samples 4 --technique sorted-lists
 expect read 2 "option --samples: 3 is not a power of two in 1..8" -- build-lists --in f.csv --out l.csv --screen 16x16 --samples 3
 expect read 2 "wboit stores none" -- render --scene quads --count 4 --size 16x16 --out r.png --samples 4 --technique wboit --quiet

@@ -11,6 +11,9 @@ checks:
   switches     100 technique switches and 20 resizes: no GL error, no GL object
                left behind (per technique), resident memory flat (under 16 MiB growth)
   usage        bad command lines: one line naming the option, exit 2; a bad scene exit 1
+  losses       render's loss rules: a pixel deeper than AMAX grows no table (a warning naming
+               --age-bits; --lossless exits 1), a lossy fixed table warned about on stderr,
+               a file-size limit on --screenshot a write error with no temporary left
 """
 
 import argparse
@@ -35,20 +38,25 @@ class Checks:
     def path(self, name):
         return os.path.join(self.work, name)
 
-    def windowed(self, *args):
-        """habuffer-view under a fresh Xvfb server; skips when there is no window."""
+    def windowed(self, *args, want=0, limit_bytes=None):
+        """habuffer-view under a fresh Xvfb server; skips when there is no window.
+        With limit_bytes, the run's file-size limit (RLIMIT_FSIZE)."""
         if shutil.which("xvfb-run") is None:
             print("SKIP: xvfb-run not found (Debian xvfb; scripts/setup.sh installs it)")
             sys.exit(SKIP)
-        cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", self.view, *map(str, args)]
+        limit = [] if limit_bytes is None else ["prlimit", "--fsize=%d" % limit_bytes, "--"]  # the viewer's alone
+        cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", *limit, self.view, *map(str, args)]
         r = run(cmd)
         if r.returncode != 0 and "Xvfb failed to start" in r.stderr:
             r = run(cmd)  # another server took the display number xvfb-run chose: once more
+        if r.returncode == 5 and "problem while cleaning up temporary directory" in r.stderr:
+            r = run(cmd)  # xvfb-run's own clean-up failed, hiding the viewer's exit status: once more
         if r.returncode != 0 and ("no window system" in r.stderr or "no OpenGL 4.5 core window" in r.stderr):
             print("SKIP: " + r.stderr.strip())
             sys.exit(SKIP)
-        if r.returncode != 0:
-            raise SystemExit("habuffer-view %s failed (%d): %s" % (" ".join(map(str, args)), r.returncode, r.stderr))
+        if r.returncode != want:
+            raise SystemExit("habuffer-view %s exited %d (want %d): %s"
+                             % (" ".join(map(str, args)), r.returncode, want, r.stderr))
         return r
 
     def render(self, out, *args):
@@ -72,7 +80,8 @@ class Checks:
         views = [("engine", ["--technique", "ha", "--yaw", "40", "--pitch", "15"], "200x150"),
                  ("hairball", ["--technique", "sorted-lists", "--samples", "4"], "160x128"),
                  ("quads", ["--technique", "kbuffer", "--layers", "4"], "96x96"),
-                 ("engine", ["--technique", "lists", "--shadows", "--light-size", "256x256"], "200x150")]
+                 ("engine", ["--technique", "lists", "--shadows", "--light-size", "256x256"], "200x150"),
+                 ("engine", ["--technique", "ha", "--pitch", "90", "--fov", "150"], "96x72")]
         for k, (scene, options, size) in enumerate(views):
             shot, image = self.path("%d_%s_view.png" % (k, scene)), self.path("%d_%s_render.png" % (k, scene))
             self.windowed("--scene", scene, "--size", size, "--frames", 2, "--screenshot", shot, *options)
@@ -120,6 +129,35 @@ class Checks:
         if problems:
             raise SystemExit("switches: " + "; ".join(problems))
 
+    def losses(self):
+        deep = ["--scene", "planes", "--count", "260", "--size", "32x24", "--frames", "2", "--no-gui"]
+        report = self.path("deep.json")
+        r = self.windowed(*deep, "--report", report)
+        with open(report) as f:
+            frames = json.load(f)["per_frame"]
+        if "warning" not in r.stderr or "--age-bits 9" not in r.stderr:
+            raise SystemExit("losses: a pixel of 260 fragments (AMAX 255) was not warned about: %r" % r.stderr)
+        if frames[1]["attempts"] != 1 or frames[0]["table"] != frames[1]["table"]:
+            raise SystemExit("losses: tables %s grew for a pixel no table holds (attempts %s)"
+                             % ([f["table"] for f in frames], [f["attempts"] for f in frames]))
+        print("losses: deeper than AMAX: " + r.stderr.strip().splitlines()[-1])
+        r = self.windowed(*deep, "--lossless", want=1)
+        if "lossless mode" not in r.stderr or "--age-bits 9" not in r.stderr:
+            raise SystemExit("losses: --lossless with a pixel deeper than AMAX said %r" % r.stderr)
+        r = self.windowed("--scene", "hairball", "--size", "64x64", "--table", "64x64", "--frames", "1", "--no-gui")
+        if "warning" not in r.stderr or "not stored" not in r.stderr:
+            raise SystemExit("losses: a lossy fixed table was not warned about: %r" % r.stderr)
+        print("losses: fixed table: " + r.stderr.strip().splitlines()[-1])
+        shot = self.path("limited.png")
+        if os.path.exists(shot):
+            os.remove(shot)  # an earlier run's
+        r = self.windowed("--scene", "engine", "--size", "96x72", "--frames", "1", "--no-gui", "--screenshot", shot,
+                          want=1, limit_bytes=256)
+        left = [n for n in os.listdir(self.work) if n.startswith(".limited")]
+        if "File too large" not in r.stderr or os.path.exists(shot) or left:
+            raise SystemExit("losses: a file-size limit on --screenshot: %r, temporaries %s" % (r.stderr, left))
+        print("losses: file-size limit: " + r.stderr.strip().splitlines()[-1])
+
     def usage(self):
         cases = [(["--scene", "engine", "--screenshot", self.path("x.png")], 2, "--screenshot"),
                  (["--scene", "engine", "--frames", "2", "--resize", "1:0x5"], 2, "--resize"),
@@ -132,6 +170,9 @@ class Checks:
                  (["--scene", "engine", "--overlay", "shadow"], 2, "--overlay shadow"),
                  (["--scene", "engine", "--shadows", "--samples", "4"], 2, "--samples"),
                  (["--scene", "engine", "--shadows", "--light-dir", "0,0,0"], 2, "--light-dir"),
+                 (["--scene", "engine", "--technique", "lists", "--overlay", "age"], 2, "--overlay age"),
+                 (["--scene", "engine", "--pitch", "91"], 2, "--pitch"),
+                 (["--scene", "engine", "--fov", "179"], 2, "--fov"),
                  (["--scene", self.path("missing.obj"), "--frames", "1"], 1, "missing.obj")]
         for args, code, named in cases:
             r = run([self.view, *args])
@@ -144,7 +185,7 @@ class Checks:
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("check", choices=["screenshot", "resize", "switches", "usage"])
+    ap.add_argument("check", choices=["screenshot", "resize", "switches", "usage", "losses"])
     ap.add_argument("--view", required=True)
     ap.add_argument("--habuffer", required=True)
     ap.add_argument("--workdir", required=True)

@@ -85,7 +85,8 @@ struct CounterField {
 /// Every outcome counter but `fragments` (their sum) and the stored outcome,
 /// in the order of the result tables' columns.
 inline constexpr CounterField kCounterFields[] = {
-    {"invalid", &Counters::invalid, HABUFFER_INVALID, CounterKind::Invalid, "depth NaN or outside [0, 1]"},
+    {"invalid", &Counters::invalid, HABUFFER_INVALID, CounterKind::Invalid,
+     "depth NaN or outside [0, 1], or a coverage mask naming none of the samples"},
     {"duplicates", &Counters::duplicates, HABUFFER_DUPLICATE, CounterKind::Merged, ""},
     {"culled", &Counters::culled, HABUFFER_CULLED, CounterKind::Hidden, "early cull"},
     {"saturated_rejected", &Counters::saturated_rejected, HABUFFER_SATURATED, CounterKind::Hidden,

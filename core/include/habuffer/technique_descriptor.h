@@ -115,6 +115,14 @@ std::vector<ReportField> technique_report_fields(const TechniqueConfig& config, 
 
 /// The descriptor of `t` (every enumerator has one).
 const TechniqueDescriptor& descriptor(Technique t);
+
+/// What a loss warning ends with for technique `t` (empty where it drops
+/// nothing): its lossless_hint and, where which fragments drop depends on
+/// the order they arrive in (every technique that stores lists but keeps
+/// the K nearest), that the lossy lists then differ between paths, thread
+/// counts and insert orders: only a lossless result is bit-identical across
+/// them (docs/spec-notes.md, "Which results are bit-identical").
+std::string loss_hint(Technique t);
 /// Every descriptor, in technique_list.h's order.
 std::span<const TechniqueDescriptor* const> technique_registry();
 /// The descriptor named `name`; nullptr for anything else.

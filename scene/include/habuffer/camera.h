@@ -13,6 +13,12 @@
 
 namespace habuffer {
 
+/// The camera's range, one rule for render, csg and the viewer: pitch in
+/// [-kMaxPitch, kMaxPitch], fov in the open interval (kMinFov, kMaxFov) degrees.
+inline constexpr float kMaxPitch = 90.0f;
+inline constexpr float kMinFov = 1.0f;
+inline constexpr float kMaxFov = 179.0f;
+
 /// Where `habuffer render` looks from (--yaw, --pitch, --fov).
 struct CameraParams {
   float yaw = 30.0f;    ///< degrees around the vertical axis

@@ -221,6 +221,10 @@ struct FrameReport {
   std::uint32_t deferred_regathers = 0;  ///< gathers repeated because the deferred-call buffer overflowed
   bool resize_limited = false;      ///< adaptive sizing wanted a table beyond this context's limits
   bool growth_limited = false;      ///< lossless mode stopped: the next table would exceed the limits
+  /// Lossless mode stopped because the host's GrowthCheck said growing
+  /// cannot help (a pixel deeper than any table holds); the gather's losses
+  /// are counted as always.
+  bool growth_refused = false;
   std::uint32_t capture_regathers = 0;  ///< gathers repeated because the capture buffer overflowed
   std::uint64_t captured = 0;           ///< fragments in the capture buffer
   PassTiming clear;   ///< the clear pass (zero on the first frame)

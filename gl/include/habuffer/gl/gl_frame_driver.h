@@ -35,6 +35,9 @@
 
 namespace habuffer::gl {
 
+/// Whether a lossless regather may grow the container (GlFrameDriver::frame).
+using GrowthCheck = std::function<bool(const FrameReport& failed)>;
+
 /// Runs frames of one technique's container on the GPU (see the file comment);
 /// GlHaBuffer is the HA-buffer's.
 class GlFrameDriver {
@@ -72,6 +75,12 @@ class GlFrameDriver {
   void limit_attempts(std::uint32_t attempts) {
     options_.max_attempts = std::max(1u, std::min(*options_.max_attempts, attempts));
   }
+  /// Undoes limit_attempts: the attempts the driver was made with (a host
+  /// whose view changed, so growth may help again).
+  void restore_attempts() { options_.max_attempts = made_attempts_; }
+  /// The attempts per frame the driver was made with (options().max_attempts
+  /// before any limit_attempts).
+  [[nodiscard]] std::uint32_t made_attempts() const { return made_attempts_; }
 
   /// Whether the next frame() begins with a counting gather: the container
   /// is sized automatically (GlTechnique::sized_automatically) and has not
@@ -148,7 +157,15 @@ class GlFrameDriver {
   /// `completed`, the reports of earlier frames whose outcome arrived; a
   /// deferred frame's GL errors and refused calls (another driver's module,
   /// a framebuffer of other samples) throw from the frame() that reads them.
-  FrameReport frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls = {});
+  ///
+  /// `may_grow`, optional, is asked before each lossless regather would grow
+  /// the container, with the failed gather's report (its counters; the
+  /// host's own per-pixel counts of that gather are still in its buffers):
+  /// false keeps that gather, lossy, with FrameReport::growth_refused. A
+  /// host that counts its fragments per pixel saves growing a table for a
+  /// pixel deeper than AMAX, which no table holds (pixel_counted_beyond).
+  FrameReport frame(const std::function<void()>& gather, const std::function<std::uint64_t()>& calls = {},
+                    const GrowthCheck& may_grow = {});
 
   /// Composites every screen pixel over `background` into the framebuffer
   /// bound at the call, at viewport (0, 0, screen), replacing its colour:
@@ -250,6 +267,7 @@ class GlFrameDriver {
 
   std::unique_ptr<GlTechnique> technique_;
   GlFrameOptions options_;
+  std::uint32_t made_attempts_ = 1;  // options_.max_attempts as resolved by the constructor
   std::uint64_t capture_capacity_ = 0;
   std::uint64_t deferred_capacity_ = 0;
   std::uint64_t deferred_overflow_ = 0;  ///< calls the last gather deferred, when more than the buffer held

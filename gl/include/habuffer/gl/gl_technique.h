@@ -234,5 +234,25 @@ std::uint64_t max_storage_bytes();
 /// Throws GlError unless `screen` fits this context's largest viewport
 /// (GL_MAX_VIEWPORT_DIMS; the message names both).
 void check_viewport_fits(Extent screen);
+/// What this context's multisampled images hold.
+struct MultisampleLimits {
+  /// The smallest of GL_MAX_SAMPLES, GL_MAX_COLOR_TEXTURE_SAMPLES,
+  /// GL_MAX_DEPTH_TEXTURE_SAMPLES and GL_MAX_FRAMEBUFFER_SAMPLES, and its name.
+  int largest = 0;
+  std::string limited_by;
+  /// The counts above 1 that the float formats of a host's passes (RGBA32F,
+  /// R32F, DEPTH_COMPONENT32F multisampled textures) all hold exactly
+  /// (GL_SAMPLES), ascending, none beyond `largest`.
+  std::vector<std::uint32_t> counts;
+};
+MultisampleLimits multisample_limits();
+/// Throws GlError unless this context's multisampled images hold exactly
+/// `samples` samples a pixel (1 always fits): within MultisampleLimits'
+/// largest and among its counts (an implementation may round a count up, so
+/// a rasterizer's masks would name samples the buffer has no bits for).
+/// One line naming --samples, the count and the limit, before any image is
+/// made: habuffer render and habuffer-view call it; a host with images of
+/// its own may.
+void check_samples_fit(std::uint32_t samples);
 
 }  // namespace habuffer::gl

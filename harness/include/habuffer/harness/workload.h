@@ -48,6 +48,9 @@ struct WorkloadSpec {
 
 /// Parses one scene word. Throws std::invalid_argument naming the word and key.
 WorkloadSpec parse_workload_spec(const std::string& word);
+/// A fragment file named by an option that takes one (plan --fragments):
+/// the whole value is the file, whatever its extension or characters.
+WorkloadSpec fragment_workload(const std::string& path);
 
 /// The fragments of a workload's view and their exact composite: what every
 /// render is measured against.
