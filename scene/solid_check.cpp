@@ -1,8 +1,11 @@
 #include "habuffer/solid_check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
+
+#include <glm/common.hpp>
 
 #include "habuffer/polygon_triangulation.h"
 
@@ -60,13 +63,26 @@ SolidCheck check_solid(const Mesh& mesh) {
     else if (count.first != 1 || count.second != 1) ++c.non_manifold_edges;
   }
   c.volume = triangles_volume(mesh.positions, mesh.indices);
+  if (c.degenerate > 0 && !mesh.positions.empty()) {
+    glm::dvec3 lo(mesh.positions.front()), hi = lo;
+    double largest = 0.0;
+    for (const glm::vec3& p : mesh.positions) {
+      lo = glm::min(lo, glm::dvec3(p));
+      hi = glm::max(hi, glm::dvec3(p));
+      largest = std::max({largest, std::abs(double{p.x}), std::abs(double{p.y}), std::abs(double{p.z})});
+    }
+    const glm::dvec3 extent = hi - lo;
+    c.float32_limited = std::max({extent.x, extent.y, extent.z}) < std::ldexp(largest, -16);
+  }
   return c;
 }
 
 std::string solid_problem(const SolidCheck& check) {
   if (!check.closed() && check.degenerate > 0)
-    return "has " + std::to_string(check.degenerate) +
-           " triangles collapsed to a line or a point (float32 cannot hold its size at its position)";
+    return "has " + std::to_string(check.degenerate) + " triangles collapsed to a line or a point " +
+           (check.float32_limited ? std::string("(float32 cannot hold its size at its position)")
+                                  : std::string("(faces that repeat a corner: the file's own, two of its vertices at "
+                                                "one point)"));
   if (check.boundary_edges > 0)
     return "is not closed: " + std::to_string(check.boundary_edges) + " edges belong to one triangle only (holes)";
   if (check.non_manifold_edges > 0)

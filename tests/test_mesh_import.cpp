@@ -113,6 +113,24 @@ TEST(MeshImport, TwoTrianglesRunningAnEdgeTheSameWayAreNotManifold) {
   EXPECT_NE(solid_problem(c), "");
 }
 
+// Collapsed triangles are float32's doing only where the mesh is tiny for
+// its position; a unit prism pinched by its own faces blames the faces.
+TEST(MeshImport, CollapsedTrianglesBlameFloat32OnlyWhereItCannotHoldTheMeshsSize) {
+  Mesh pinched;  // three faces of a tetrahedron (open) and a fourth whose corners 3 and 4 are one point
+  pinched.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 1}};
+  pinched.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 3, 4};
+  const SolidCheck unit = check_solid(pinched);
+  ASSERT_GT(unit.degenerate, 0u);
+  ASSERT_FALSE(unit.closed());
+  EXPECT_FALSE(unit.float32_limited);
+  EXPECT_NE(solid_problem(unit).find("repeat a corner"), std::string::npos) << solid_problem(unit);
+  Mesh far = pinched;  // 2^-20 across at 1: below float32's 2^-16 of its position
+  for (glm::vec3& p : far.positions) p = p * std::ldexp(1.0f, -20) + glm::vec3(1.0f, 0.0f, 0.0f);
+  const SolidCheck f = check_solid(far);
+  EXPECT_TRUE(f.float32_limited);
+  EXPECT_NE(solid_problem(f).find("float32 cannot hold"), std::string::npos) << solid_problem(f);
+}
+
 TEST(MeshImport, ASingleTriangleAndAFlatPillowAreNoSolids) {
   Mesh triangle;
   triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

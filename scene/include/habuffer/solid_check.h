@@ -21,6 +21,10 @@ struct SolidCheck {
   std::uint64_t non_manifold_edges = 0;  ///< edges of three or more triangles, or of two running it the same way
   std::uint64_t degenerate = 0;          ///< triangles with two corners at one point (ignored)
   double volume = 0.0;                   ///< the signed volume of its triangles
+  /// Whether float32 can be why triangles collapsed: the mesh's extent is
+  /// below 2^-16 of its largest coordinate, where float32 keeps fewer than
+  /// 8 bits across it. Otherwise the file's own faces repeat a corner.
+  bool float32_limited = false;
   /// Closed, manifold and consistently oriented.
   [[nodiscard]] bool closed() const { return boundary_edges == 0 && non_manifold_edges == 0; }
 };
