@@ -288,7 +288,7 @@ class ViewRun {
   void refuse_screen(Extent fb, const std::string& why) {
     refused_screen_ = fb;
     panel_.refusal = "window " + fb.str() + ": " + why;
-    if (s_.frames > 0) ++tally_.refused;
+    if (s_.frames > 0 && tally_.refused++ == 0) tally_.first_refusal = panel_.refusal;
   }
 
   FrameFigures draw_frame(bool last) {

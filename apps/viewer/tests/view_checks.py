@@ -101,6 +101,11 @@ class Checks:
         image = self.path("resized_render.png")
         self.render(image, "--scene", "engine", "--size", "200x136")
         self.expect_equal("engine after two resizes", shot, image)
+        # A window beyond this OpenGL's viewport: refused, the refusal said in full.
+        r = self.windowed("--scene", "engine", "--size", "64x48", "--frames", 3, "--resize", "1:17000x48", "--no-gui",
+                          want=1)
+        if "1 scripted change refused; the first: window 17000x48: " not in r.stderr:
+            raise SystemExit("resize: a refused window size said %r" % r.stderr)
 
     def switches(self):
         report = self.path("switches.json")
