@@ -506,7 +506,7 @@ def describe(case, ms):
 def main(argv=None):
     ap = argparse.ArgumentParser(
         description="Cross-check habuffer build-lists against the Python "
-                    "model of SPEC.md.")
+                    "model of docs/specification.md.")
     ap.add_argument("--habuffer", required=True,
                     help="path to the habuffer executable")
     ap.add_argument("--cases", type=int, default=60)

@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Independent serial reference model of the HA-buffer specification.
 
-Written from /work/shared/SPEC.md alone (plus the paper for the early-cull
-details the spec defers to); it shares no code with the C++ implementation.
+Written from the specification alone (docs/specification.md, then the
+project's founding brief of the same text; plus the paper, seed 000, for
+the early-cull details the spec defers to); it shares no code with the C++ implementation.
 Standard library only.
 
-Sections of SPEC.md implemented here:
+Sections of the specification implemented here:
   2  records L64 / L32, depth code with t rounded to float32 first
   3  probing h_a(p) = ((p.x + O[a-1].x) mod Hx, (p.y + O[a-1].y) mod Hy)
   5  max-age table M

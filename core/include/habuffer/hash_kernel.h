@@ -15,9 +15,8 @@
 /// files, with a prelude per atomic mode in place of this class. The CPU and GPU
 /// paths therefore cannot drift apart: SPEC 9 demands that they build the same
 /// table bit for bit, and the tests check it. The rest of this comment says why
-/// the algorithm has the shape it has; the SPEC (../shared/SPEC.md beside the
-/// repository) is the contract and docs/spec-notes.md records the choices it
-/// leaves open.
+/// the algorithm has the shape it has; the SPEC (docs/specification.md) is the
+/// contract and docs/spec-notes.md records the choices it leaves open.
 ///
 /// Record layout (SPEC 2)
 /// ----------------------
