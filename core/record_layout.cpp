@@ -66,9 +66,6 @@ bool RecordLayout::depth_valid(float t) { return RecordCodec<std::uint64_t>(HABU
 std::uint32_t RecordLayout::depth_code(float t) const {
   return RecordCodec<std::uint64_t>(age_bits_, coverage_bits()).ha_depth_code(t);
 }
-std::uint32_t RecordLayout::fragment_coverage(std::uint32_t coverage) const {
-  return RecordCodec<std::uint64_t>(age_bits_, coverage_bits()).ha_fragment_coverage(coverage);
-}
 bool RecordLayout::covers_sample(std::uint32_t coverage) const {
   return RecordCodec<std::uint64_t>(age_bits_, coverage_bits()).ha_covers_sample(coverage);
 }

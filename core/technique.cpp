@@ -23,7 +23,6 @@ std::vector<Technique> all_techniques() {
 
 bool stores_lists(Technique t) { return descriptor(t).stores_lists; }
 bool exact_technique(Technique t) { return descriptor(t).exact; }
-bool has_early_cull(Technique t) { return descriptor(t).early_cull; }
 bool uses_pool(Technique t) { return descriptor(t).capacity == CapacityKind::PoolNodes; }
 bool uses_layers(Technique t) { return descriptor(t).capacity == CapacityKind::PixelLayers; }
 bool uses_table(Technique t) { return descriptor(t).capacity == CapacityKind::TableSlots; }

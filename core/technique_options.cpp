@@ -181,10 +181,6 @@ std::string option_default_text(const TechniqueOption& o) {
   return o.get == nullptr ? std::string() : option_value_text(o, o.get(TechniqueConfig{}));
 }
 
-std::string option_usage(const TechniqueOption& o) {
-  return "--" + std::string(o.flag) + " " + std::string(o.value_name);
-}
-
 std::string knob_usage(const TechniqueOption& o) {
   return o.kind == OptionKind::Switch ? std::string(o.knob) : std::string(o.knob) + "=" + std::string(o.value_name);
 }

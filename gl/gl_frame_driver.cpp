@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "compute_grid.h"
-#include "gl_params.h"
+#include "habuffer/gl/gl_technique.h"
 #include "gl_state_guard.h"
 #include "gpu_timer.h"
 #include "late_readback.h"

@@ -35,8 +35,6 @@ const GlTechniqueDescriptor& gl_descriptor(Technique t) {
   return *registry()[i];
 }
 
-std::span<const GlTechniqueDescriptor* const> gl_technique_registry() { return registry(); }
-
 std::string join_parts(std::initializer_list<const char*> parts) {
   std::string s;
   for (const char* part : parts) {

@@ -161,7 +161,7 @@
 ///   may assume NaN never happens; the patterns are those of 1.0f and -0.0f
 ///   (asserted below).
 /// - ha_params.h declares the GPU's std140 parameter block once for C++ and
-///   GLSL; gl/gl_params.h asserts its uvec2 offsets and its size.
+///   GLSL; habuffer/technique_params.h asserts its uvec2 offsets and its size.
 #pragma once
 
 #include <atomic>

@@ -72,9 +72,6 @@ class RecordLayout {
   /// code(t) of SPEC 2 for a valid depth t (larger is nearer), in the code
   /// field's high D bits (its coverage bits 0).
   [[nodiscard]] std::uint32_t depth_code(float t) const;
-  /// The coverage mask a fragment's coverage word gives: 0 (no mask) is
-  /// every sample, bits beyond S are dropped; 0 when not multisampled.
-  [[nodiscard]] std::uint32_t fragment_coverage(std::uint32_t coverage) const;
   /// Whether a fragment of this coverage word is stored: always when not
   /// multisampled, else when its mask names one of the S samples (otherwise it is invalid).
   [[nodiscard]] bool covers_sample(std::uint32_t coverage) const;

@@ -58,7 +58,6 @@ std::string technique_names();
 /// from its descriptor (technique_descriptor.h).
 bool stores_lists(Technique t);     ///< per-pixel lists one can read (not the blended baselines)
 bool exact_technique(Technique t);  ///< lists equal the HA-buffer's when nothing is dropped or culled
-bool has_early_cull(Technique t);   ///< --early-cull applies (ha, sorted-lists)
 bool uses_pool(Technique t);        ///< its capacity is a node pool (CapacityKind::PoolNodes)
 bool uses_layers(Technique t);      ///< its capacity is K layers per pixel (CapacityKind::PixelLayers)
 bool uses_table(Technique t);       ///< its capacity is a hash table of slots (ha)

@@ -89,8 +89,6 @@ bool option_on(const TechniqueOption& option, const TechniqueConfig& config);
 std::string option_value_text(const TechniqueOption& option, const OptionValue& value);
 /// Its default, a default TechniqueConfig's value as text; "" for Load.
 std::string option_default_text(const TechniqueOption& option);
-/// "--layers K": the option as a usage line writes it.
-std::string option_usage(const TechniqueOption& option);
 /// "k=K", "occ": the knob as a technique word writes it.
 std::string knob_usage(const TechniqueOption& option);
 /// "arrays, kbuffer": the techniques whose words take the knob (by

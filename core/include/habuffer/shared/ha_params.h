@@ -2,9 +2,10 @@
 /// The GPU path's parameter block, declared once for C++ and GLSL (as
 /// nvpro-samples' common.h does): the reader defines HABUFFER_PARAMS_BEGIN,
 /// HABUFFER_PARAMS_END and HABUFFER_PARAM_UINT / HABUFFER_PARAM_FLOAT / HABUFFER_PARAM_UVEC2 before
-/// including it (gl/gl_params.h: a C++ struct; prelude assembly: a std140
-/// uniform block, whose members are GLSL globals). Keep every uvec2 at an
-/// offset that is a multiple of 8 (std140); gl_params.h checks the offsets.
+/// including it (habuffer/technique_params.h: the C++ struct ParamBlock, which
+/// the GL path uploads as GlParams; prelude assembly: a std140 uniform block,
+/// whose members are GLSL globals). Keep every uvec2 at an offset that is a
+/// multiple of 8 (std140); technique_params.h checks the offsets and size.
 // No include guard: an X-macro list, expanded once per reader.
 
 HABUFFER_PARAMS_BEGIN

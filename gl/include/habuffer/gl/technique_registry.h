@@ -39,8 +39,6 @@ struct GlTechniqueDescriptor {
 
 /// The GPU descriptor of `t` (every enumerator has one).
 const GlTechniqueDescriptor& gl_descriptor(Technique t);
-/// Every GPU descriptor, in technique_list.h's order.
-std::span<const GlTechniqueDescriptor* const> gl_technique_registry();
 
 /// "a\nb\n": each part followed by a newline, as the module joins them.
 std::string join_parts(std::initializer_list<const char*> parts);

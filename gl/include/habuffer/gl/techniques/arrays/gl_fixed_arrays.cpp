@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "gl_params.h"
+#include "habuffer/gl/gl_technique.h"
 #include "habuffer/techniques/arrays/fixed_arrays.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"

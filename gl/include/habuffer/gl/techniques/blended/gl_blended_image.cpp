@@ -2,7 +2,7 @@
 
 #include <epoxy/gl.h>
 
-#include "gl_params.h"
+#include "habuffer/gl/gl_technique.h"
 #include "gl_state_guard.h"
 #include "pixel_store.h"
 #include "habuffer/techniques/blended/blended_image.h"

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "clear_pass.h"
-#include "gl_params.h"
+#include "habuffer/gl/gl_technique.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"

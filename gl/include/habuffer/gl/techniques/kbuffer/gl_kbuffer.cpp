@@ -4,7 +4,7 @@
 
 #include <utility>
 
-#include "gl_params.h"
+#include "habuffer/gl/gl_technique.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
