@@ -8,7 +8,7 @@
 #include <cmath>
 #include <tuple>
 
-#include "../core/pixel_order.h"  // the thread partition (a private header)
+#include "pixel_order.h"  // the thread partition (core's private header, through the include path)
 #include "test_support.h"
 
 namespace habuffer {
