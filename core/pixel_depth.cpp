@@ -54,6 +54,10 @@ std::optional<std::uint32_t> age_bits_for(std::uint64_t records) {
   return std::nullopt;
 }
 
+bool counted_depth_bounds_growth(Technique t, const BufferConfig& c) {
+  return uses_table(t) && c.early_cull_tau <= 0.0f;
+}
+
 std::string too_deep_message(const PixelDepth& d, std::uint32_t age_bits, OptionSpelling spelling) {
   std::string m = "pixel (" + std::to_string(d.pixel.x) + ", " + std::to_string(d.pixel.y) + ") has " +
                   std::to_string(d.records) + (d.distinct ? " distinct fragments" : " fragments (duplicates included)") + ", more than AMAX = 2^" + std::to_string(age_bits) +

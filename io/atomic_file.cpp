@@ -2,6 +2,7 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -250,6 +251,17 @@ void AtomicFile::copy_staged_into_target() {
   if (error != 0) fail("write failed", error);
 }
 
+void AtomicFile::check_staged_size() {
+  // A library writing by name may ignore a write the file-size limit cut
+  // (SIGXFSZ ignored: OpenImageIO's PNG writer reports success).
+  struct stat st {};
+  struct rlimit limit {};
+  if (access_ == Access::ByName && !staging_.empty() && ::stat(staging_.c_str(), &st) == 0 &&
+      ::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+      static_cast<rlim_t>(st.st_size) >= limit.rlim_cur)
+    fail("write failed (the file-size limit is " + std::to_string(limit.rlim_cur) + " bytes)", EFBIG);
+}
+
 void AtomicFile::commit() {
   if (done_) throw std::logic_error("AtomicFile::commit on " + path_ + ": already done");
   if (access_ == Access::ByName && in_place_) {
@@ -260,6 +272,7 @@ void AtomicFile::commit() {
   if (access_ == Access::ByName) {
     fd_ = ::open(staging_.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) fail("cannot reopen the temporary file", errno);
+    check_staged_size();
   }
   // fsync before the rename: otherwise a crash can leave the new name on
   // an empty file. Devices and pipes (in place) need none.

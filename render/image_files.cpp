@@ -14,8 +14,6 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
-#include <sys/resource.h>
-#include <sys/stat.h>
 
 #include "habuffer/atomic_file.h"
 #include "habuffer/csv.h"
@@ -100,21 +98,15 @@ void check_image_extension(const std::string& path) {
 }
 
 // OpenImageIO's writers can ignore a failed write (a PNG cut short by a
-// full disk or a file-size limit still reports success): the staged file is
-// read back whole before it takes the output's name.
+// full disk still reports success): the staged file is read back whole
+// before it takes the output's name. A file-size limit is AtomicFile's
+// check, for every output written by name.
 void check_written_whole(const std::string& path, const std::string& staged, const OIIO::ImageSpec& spec) {
   const auto fail = [&](const std::string& why) {
     throw ImageError("image '" + path + "' cannot be written: " + why +
                      "; a full disk or a file-size limit stops a write midway");
   };
-  // A file that reached the file-size limit was cut there (SIGXFSZ ignored).
-  struct stat st {};
-  struct rlimit limit {};
-  if (::stat(staged.c_str(), &st) == 0 && ::getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
-      static_cast<rlim_t>(st.st_size) >= limit.rlim_cur)
-    fail(std::string(std::strerror(EFBIG)) + " (the file-size limit is " + std::to_string(limit.rlim_cur) + " bytes)");
-  // Else read back whole. ImageInput, not ImageBuf: nothing of the staged
-  // name stays in the image cache.
+  // ImageInput, not ImageBuf: nothing of the staged name stays in the image cache.
   std::string why;
   if (auto in = OIIO::ImageInput::open(staged)) {
     const OIIO::ImageSpec& got = in->spec();
@@ -149,6 +141,7 @@ void write_atomically(const std::string& path, const OIIO::ImageBuf& buf) {
       if (why.empty()) why = "OpenImageIO could not write " + write_format(path) + " to " + printable(out.staging_path());
       throw ImageError("image '" + path + "' cannot be written: " + why);
     }
+    out.check_staged_size();  // before the read-back: a cut PNG is a file-size limit's
     check_written_whole(path, out.staging_path(), buf.spec());
     out.commit();
   } catch (const DataError& e) {

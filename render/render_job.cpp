@@ -60,7 +60,7 @@ namespace {
 // pixel with more fragments than AMAX (without early cull, which could cull
 // them) fails an HA-buffer at any table size unless they are duplicates.
 bool age_limit_applies(const RenderSettings& s) {
-  return s.path == RenderPath::Gl && uses_table(s.technique) && s.config.early_cull_tau <= 0.0f;
+  return s.path == RenderPath::Gl && counted_depth_bounds_growth(s.technique, s.config);
 }
 std::optional<PixelDepth> pixel_beyond_amax(const RenderSettings& s, std::span<const std::uint32_t> counts) {
   return pixel_counted_beyond(counts, s.config.screen, s.config.record_layout().max_age());

@@ -64,15 +64,12 @@ SolidCheck check_solid(const Mesh& mesh) {
   }
   c.volume = triangles_volume(mesh.positions, mesh.indices);
   if (c.degenerate > 0 && !mesh.positions.empty()) {
-    glm::dvec3 lo(mesh.positions.front()), hi = lo;
-    double largest = 0.0;
-    for (const glm::vec3& p : mesh.positions) {
-      lo = glm::min(lo, glm::dvec3(p));
-      hi = glm::max(hi, glm::dvec3(p));
-      largest = std::max({largest, std::abs(double{p.x}), std::abs(double{p.y}), std::abs(double{p.z})});
-    }
-    const glm::dvec3 extent = hi - lo;
-    c.float32_limited = std::max({extent.x, extent.y, extent.z}) < std::ldexp(largest, -16);
+    Bounds box;
+    for (const glm::vec3& p : mesh.positions) box.add(p);
+    const glm::dvec3 extent = glm::dvec3(box.hi) - glm::dvec3(box.lo);
+    const glm::dvec3 largest = glm::max(glm::abs(glm::dvec3(box.lo)), glm::abs(glm::dvec3(box.hi)));
+    c.float32_limited = std::max({extent.x, extent.y, extent.z}) <
+                        std::ldexp(std::max({largest.x, largest.y, largest.z}), -16);
   }
   return c;
 }

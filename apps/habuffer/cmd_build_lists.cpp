@@ -87,7 +87,7 @@ BuildReport write_build_outputs(const Args& args, const std::string& in, const s
 int report_build_losses(const HashOptions& options, const TechniqueConfig& config, std::span<const Fragment> fragments,
                         const TechniqueBuild& result) {
   if (options.lossless && !result.lossless()) {
-    report_lossless_failure("build-lists", result.counters,
+    report_lossless_failure("habuffer build-lists", result.counters,
                             lossless_failure_reason(result, fragments, options.max_attempts));
     return 1;
   }
@@ -95,10 +95,10 @@ int report_build_losses(const HashOptions& options, const TechniqueConfig& confi
   // One attempt and age failures: no loop looked, look now for the warning.
   if (!too_deep && result.counters.failed_age > 0) too_deep = pixel_beyond_every_table(config, fragments);
   if (too_deep) {
-    warn_losses("build-lists", result.counters, "", too_deep_message(*too_deep, options.config.age_bits));
+    warn_losses("habuffer build-lists", result.counters, "", too_deep_message(*too_deep, options.config.age_bits));
     return 0;
   }
-  warn_losses("build-lists", result.counters, "", lossless_hint(options.technique.technique));
+  warn_losses("habuffer build-lists", result.counters, "", lossless_hint(options.technique.technique));
   return 0;
 }
 

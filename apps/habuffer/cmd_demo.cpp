@@ -141,7 +141,7 @@ int run_demo(const std::vector<std::string>& argv) {
   const BuildReport report = summarize(b.many->buffer, b.many->counters);
   const bool identical = options.config.early_cull_tau > 0.0f || same_tables(b.one->buffer, b.many->buffer);
   print_demo(options, so, fragments.size(), b, report, identical);
-  warn_losses("demo", report.counters, "", "a larger --table (or lower --load) or more --age-bits keeps them");
+  warn_losses("habuffer demo", report.counters, "", "a larger --table (or lower --load) or more --age-bits keeps them");
   if (args.has("lists")) write_lists(args.required("lists"), b.many->buffer);
   if (args.has("stats")) {
     JsonWriter json;

@@ -322,15 +322,12 @@ int report_render_losses(const RenderSettings& s, const RenderResult& r) {
   // say which pixel and what age bits would hold it.
   const std::string too_deep = r.too_deep ? too_deep_message(*r.too_deep, s.config.age_bits) : "";
   if (s.lossless && total.failures() > 0) {
-    report_lossless_failure("render", total,
+    report_lossless_failure("habuffer render", total,
                             frames + " after up to " + std::to_string(s.max_attempts) + " attempts per frame" +
-                                (!too_deep.empty()      ? ": " + too_deep
-                                 : r.growth_limited     ? " (the technique's buffers reached this OpenGL's limits)"
-                                 : s.max_attempts == 1  ? "; one attempt grows nothing: allow more --max-attempts"
-                                 : uses_table(s.technique) ? "; more --age-bits fits deeper pixels" : ""));
+                                lossless_failure_reason(too_deep, r.growth_limited, s.max_attempts, s.technique));
     return 1;
   }
-  warn_losses("render", total, frames, too_deep.empty() ? lossless_hint(s.technique) : too_deep);
+  warn_losses("habuffer render", total, frames, too_deep.empty() ? lossless_hint(s.technique) : too_deep);
   return 0;
 }
 

@@ -49,7 +49,7 @@ std::unique_ptr<ViewPasses> OitSession::make_passes(const gl::GlFrameDriver& dri
 }
 
 bool OitSession::guards_depth(const gl::GlFrameDriver& driver, const TechniqueConfig& config) {
-  return uses_table(config.technique) && config.buffer.early_cull_tau <= 0.0f && driver.made_attempts() > 1;
+  return counted_depth_bounds_growth(config.technique, config.buffer) && driver.made_attempts() > 1;
 }
 
 void OitSession::count_pixels(bool on) {

@@ -18,6 +18,7 @@
 #include "habuffer/render/image.h"
 #include "habuffer/technique_descriptor.h"
 #include "heat_overlay.h"
+#include "loss_report.h"
 #include "oit_session.h"
 #include "scene_options.h"
 #include "habuffer/gl/gl_error.h"
@@ -178,26 +179,18 @@ class ViewRun {
   // 1): a warning, or with --lossless the failure it is (returns true).
   bool report_losses() const {
     const Counters& total = tally_.total;
-    if (lost_fragments(total) == 0) return false;
+    if (lost_fragments(total) == 0) return false;  // warn_losses says nothing then either
     const std::string frames = s_.frames == 1 ? "" : " over " + std::to_string(s_.frames) + " frames";
     const Technique t = session_.config().technique;
     const std::string too_deep =
         tally_.too_deep ? too_deep_message(*tally_.too_deep, session_.config().buffer.age_bits) : "";
     if (s_.lossless && total.failures() > 0) {
-      std::fprintf(stderr, "habuffer-view: lossless mode: %s%s after up to %u attempts per frame%s\n",
-                   loss_summary(total).c_str(), frames.c_str(), s_.max_attempts,
-                   (!too_deep.empty()          ? ": " + too_deep
-                    : tally_.growth_limited    ? std::string(" (the technique's buffers reached this OpenGL's limits)")
-                    : s_.max_attempts == 1     ? std::string("; one attempt grows nothing: allow more --max-attempts")
-                    : uses_table(t)            ? std::string("; more --age-bits fits deeper pixels")
-                                               : std::string())
-                       .c_str());
+      cli::report_lossless_failure("habuffer-view", total,
+                                   frames + " after up to " + std::to_string(s_.max_attempts) + " attempts per frame" +
+                                       cli::lossless_failure_reason(too_deep, tally_.growth_limited, s_.max_attempts, t));
       return true;
     }
-    std::string line = "habuffer-view: warning: " + loss_summary(total) + frames;
-    const std::string hint = too_deep.empty() ? loss_hint(t) : too_deep;
-    if (total.failures() > 0 && !hint.empty()) line += "; " + hint;
-    std::fprintf(stderr, "%s\n", line.c_str());
+    cli::warn_losses("habuffer-view", total, frames, too_deep.empty() ? cli::lossless_hint(t) : too_deep);
     return false;
   }
 

@@ -17,9 +17,11 @@
 #include <glm/vec2.hpp>
 
 #include "habuffer/extent.h"
+#include "habuffer/buffer_config.h"
 #include "habuffer/fragment.h"
 #include "habuffer/option_spelling.h"
 #include "habuffer/record_layout.h"
+#include "habuffer/technique.h"
 
 namespace habuffer {
 
@@ -44,6 +46,13 @@ std::optional<PixelDepth> pixel_deeper_than(std::span<const Fragment> fragments,
 /// nothing otherwise. Its `distinct` is false: duplicates are counted too.
 std::optional<PixelDepth> pixel_counted_beyond(std::span<const std::uint32_t> counts, Extent screen,
                                                std::uint64_t limit);
+
+/// Whether a count per pixel beyond AMAX (pixel_counted_beyond) means no
+/// container of technique `t` under `c` can hold that pixel, so growing for
+/// it is useless: a table (uses_table) without early cull, which could cull
+/// some of those fragments. render's and habuffer-view's rule for stopping
+/// lossless growth on the GPU path.
+bool counted_depth_bounds_growth(Technique t, const BufferConfig& c);
 
 /// The age bits whose AMAX holds `records` records per pixel, or nothing
 /// when even HABUFFER_MAX_AGE_BITS cannot.

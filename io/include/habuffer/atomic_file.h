@@ -53,6 +53,12 @@ class AtomicFile {
   /// ByName only: the temporary file to write, which keeps the target's
   /// extension (file formats are chosen by it). Valid until commit().
   [[nodiscard]] const std::string& staging_path() const { return staging_; }
+  /// ByName only: throws DataError ("PATH: write failed (the file-size
+  /// limit is N bytes): File too large") when the staged file reached the
+  /// process's file-size limit, which cut it there whatever the writing
+  /// library said. commit() checks it; a caller that reads the staged file
+  /// back first checks it before.
+  void check_staged_size();
   /// Flushes, fsyncs and renames the temporary file over the target (or,
   /// for a non-regular target, copies what was staged into it). Throws
   /// DataError naming the reason; the target is then unchanged.
