@@ -139,6 +139,22 @@ TEST(FencedCall, AResultComesBackWholeAndAnExceptionAsItsMessage) {
   }
 }
 
+// Under AddressSanitizer the child's faults go through ASan's own handlers
+// (the asan preset's abort_on_error=1 turns a SIGSEGV into a SIGABRT, and its
+// allocator aborts where it would throw bad_alloc): the child is still one
+// DataError naming the reader, but which signal or limit it names is ASan's.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitizerHandlesFaults = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitizerHandlesFaults = true;
+#else
+constexpr bool kSanitizerHandlesFaults = false;
+#endif
+#else
+constexpr bool kSanitizerHandlesFaults = false;
+#endif
+
 TEST(FencedCall, AnAbortOrASegfaultInTheChildIsOneDataErrorNamingTheReaderAndTheSignal) {
   for (const int sig : {SIGABRT, SIGSEGV}) {
     try {
@@ -151,7 +167,9 @@ TEST(FencedCall, AnAbortOrASegfaultInTheChildIsOneDataErrorNamingTheReaderAndThe
     } catch (const DataError& e) {
       const std::string what = e.what();
       EXPECT_EQ(what.rfind("f.vdb: OpenVDB's reader crashed on it (SIG", 0), 0u) << what;
-      EXPECT_NE(what.find(sig == SIGABRT ? "SIGABRT" : "SIGSEGV"), std::string::npos) << what;
+      if (!kSanitizerHandlesFaults) {
+        EXPECT_NE(what.find(sig == SIGABRT ? "SIGABRT" : "SIGSEGV"), std::string::npos) << what;
+      }
     }
   }
 }
@@ -167,7 +185,12 @@ TEST(FencedCall, MemoryAndCpuBeyondTheLimitsStopTheChildNotTheMachine) {
     }, limits);
     FAIL() << "no error";
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("64 MiB"), std::string::npos) << e.what();
+    const std::string what = e.what();
+    if (kSanitizerHandlesFaults) {
+      EXPECT_EQ(what.rfind("r crashed on it (SIG", 0), 0u) << what;
+    } else {
+      EXPECT_NE(what.find("64 MiB"), std::string::npos) << what;
+    }
   }
   limits.cpu_seconds = 1;
   try {
