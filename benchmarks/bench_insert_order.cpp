@@ -1,7 +1,7 @@
 // The HA-buffer's two insertion orders (issue 26) on one stream, interleaved
 // by google-benchmark's --benchmark_enable_random_interleaving: arrival order
 // (each fragment probes from age 1) and pixel order (bucketed by pixel,
-// nearest first, jump-started; core/pixel_order.h), on 2^20 fragments over
+// nearest first, jump-started; techniques/ha/cpu/src/pixel_order.h), on 2^20 fragments over
 // 1024x1024 (about one per pixel, the core issue's stream), 512x512 (4) and
 // 256x256 (16, the depth of engine); pixel
 // order 2 interleaves pixels (latency hiding). Tables of 2^20 fragments at

@@ -32,3 +32,74 @@ function(habuffer_add_executable name)
   add_executable(${name} ${ARGN})
   target_link_libraries(${name} PRIVATE habuffer_options)
 endfunction()
+
+# A part: one concern of an umbrella library (habuffer::core, habuffer::gl),
+# a folder holding
+#   include/   its public headers (installed with the umbrella),
+#   internal/  headers the project's other parts may include, never installed,
+#   src/       its sources and private headers.
+# An OBJECT library (INTERFACE when it has no sources) that sees only its own
+# folders and those of its DEPS: an include of a part it did not declare does
+# not compile. The umbrella links every part of its name (habuffer_umbrella)
+# and so holds their objects; docs/architecture.md draws the graph and
+# scripts/check_layers.py checks every include runs down its order.
+#
+#   habuffer_add_part(NAME OF core|gl [DIR folder] [SOURCES...] [DEPS...] [PRIVATE_DEPS...])
+#
+# DIR (default: the current folder) is the part's folder; SOURCES are
+# relative to it.
+function(habuffer_add_part name)
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "OF;DIR" "SOURCES;DEPS;PRIVATE_DEPS")
+  set(dir ${CMAKE_CURRENT_SOURCE_DIR})
+  if(ARG_DIR)
+    set(dir ${CMAKE_CURRENT_SOURCE_DIR}/${ARG_DIR})
+    set(sources)
+    foreach(f IN LISTS ARG_SOURCES)
+      if(IS_ABSOLUTE ${f})
+        list(APPEND sources ${f})
+      else()
+        list(APPEND sources ${dir}/${f})
+      endif()
+    endforeach()
+    set(ARG_SOURCES ${sources})
+  endif()
+  if(ARG_SOURCES)
+    add_library(${name} OBJECT ${ARG_SOURCES})
+    set(scope PUBLIC)
+    target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:habuffer_options> ${ARG_PRIVATE_DEPS})
+    if(BUILD_SHARED_LIBS)
+      set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    endif()
+    if(IS_DIRECTORY ${dir}/src)
+      target_include_directories(${name} PRIVATE ${dir}/src)
+    endif()
+  else()
+    add_library(${name} INTERFACE)
+    set(scope INTERFACE)
+  endif()
+  foreach(sub include internal)
+    if(IS_DIRECTORY ${dir}/${sub})
+      target_include_directories(${name} ${scope} $<BUILD_INTERFACE:${dir}/${sub}>)
+    endif()
+  endforeach()
+  target_link_libraries(${name} ${scope} ${ARG_DEPS})
+  target_compile_features(${name} ${scope} cxx_std_20)
+  set_property(GLOBAL APPEND PROPERTY HABUFFER_PARTS_${ARG_OF} ${name})
+  if(IS_DIRECTORY ${dir}/include)
+    set_property(GLOBAL APPEND PROPERTY HABUFFER_PUBLIC_INCLUDES_${ARG_OF} ${dir}/include)
+  endif()
+endfunction()
+
+# The umbrella `name` links every part declared OF `of`, at the end of
+# configuration (parts come from core/, gl/ and each technique's folder).
+function(habuffer_umbrella name of)
+  cmake_language(EVAL CODE "
+    cmake_language(DEFER DIRECTORY [[${PROJECT_SOURCE_DIR}]] CALL _habuffer_link_parts [[${name}]] [[${of}]])")
+endfunction()
+
+function(_habuffer_link_parts name of)
+  get_property(parts GLOBAL PROPERTY HABUFFER_PARTS_${of})
+  foreach(p IN LISTS parts)
+    target_link_libraries(${name} PUBLIC $<BUILD_INTERFACE:${p}>)
+  endforeach()
+endfunction()

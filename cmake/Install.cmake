@@ -17,10 +17,18 @@ install(TARGETS ${_habuffer_targets} EXPORT habufferTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # The technique folders keep their sources beside their headers: not installed.
-install(DIRECTORY common/include/ offsets/include/ core/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.cpp" EXCLUDE)
+# The public headers: every part's include/ folder (internal/ and src/ stay
+# behind), the parts of habuffer::core first.
+get_property(_habuffer_core_includes GLOBAL PROPERTY HABUFFER_PUBLIC_INCLUDES_core)
+foreach(_dir common/include offsets/include ${_habuffer_core_includes})
+  install(DIRECTORY ${_dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endforeach()
 install(FILES LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR})  # MIT; named by the CMake and pkg-config packages
 if(HABUFFER_WITH_GL)
-  install(DIRECTORY gl/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "*.cpp" EXCLUDE)
+  get_property(_habuffer_gl_includes GLOBAL PROPERTY HABUFFER_PUBLIC_INCLUDES_gl)
+  foreach(_dir IN LISTS _habuffer_gl_includes)
+    install(DIRECTORY ${_dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endforeach()
   install(DIRECTORY ${HABUFFER_GLSL_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/habuffer/glsl PATTERN stamp EXCLUDE)
 endif()
 

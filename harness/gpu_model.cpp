@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "habuffer/max_age_table.h"
+#include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_params.h"
 #include "traced_kernels.h"
 
@@ -162,32 +164,37 @@ GpuTraffic model_kbuffer(const TechniqueConfig& c, std::span<const Fragment> fra
 
 }  // namespace
 
-bool gpu_model_covers(Technique t) {
-  return t == Technique::Ha || t == Technique::Lists || t == Technique::SortedLists || t == Technique::Arrays ||
-         t == Technique::KBuffer;
-}
+bool gpu_model_covers(Technique t) { return descriptor(t).traced_kernel != TracedKernel::None; }
 
 GpuTraffic model_gpu_frame(const TechniqueConfig& c, const OffsetSource& offsets, std::span<const Fragment> fragments) {
-  if (!gpu_model_covers(c.technique))
+  if (!gpu_model_covers(c.technique)) {
+    std::string modelled;
+    for (const TechniqueDescriptor* d : technique_registry())
+      if (d->traced_kernel != TracedKernel::None) modelled += (modelled.empty() ? "" : ", ") + std::string(d->name);
     throw std::invalid_argument("the GPU traffic model has no traced kernel for technique " + to_string(c.technique) +
-                                " (it models ha, lists, sorted-lists, arrays and kbuffer)");
+                                " (it models " + modelled + ")");
+  }
   // Fragments off the screen are counted and never reach the technique (habuffer_insert).
   std::vector<Fragment> on_screen;
   on_screen.reserve(fragments.size());
   for (const Fragment& f : fragments)
     if (f.x < c.buffer.screen.x && f.y < c.buffer.screen.y) on_screen.push_back(f);
-  switch (c.technique) {
-    case Technique::Ha:
+  // The descriptor says which kernel to trace; no technique is named here.
+  switch (descriptor(c.technique).traced_kernel) {
+    case TracedKernel::HashTable:
       return c.buffer.layout == Layout::L64 ? model_ha<std::uint64_t>(c, offsets, on_screen)
                                             : model_ha<std::uint32_t>(c, offsets, on_screen);
-    case Technique::Arrays:
+    case TracedKernel::PixelLayers:
       return model_arrays(c, on_screen);
-    case Technique::KBuffer:
+    case TracedKernel::KBuffer:
       return c.buffer.layout == Layout::L64 ? model_kbuffer<std::uint64_t>(c, on_screen)
                                             : model_kbuffer<std::uint32_t>(c, on_screen);
-    default:
+    case TracedKernel::NodeLists:
       return model_lists(c, on_screen);
+    case TracedKernel::None:
+      break;
   }
+  throw std::logic_error("unreachable: gpu_model_covers checked the traced kernel");
 }
 
 GpuCostModel GpuCostModel::h100() {

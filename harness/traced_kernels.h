@@ -1,7 +1,7 @@
 // The techniques' shared GLSL compiled a third time, over host arrays whose
 // every access is recorded into a WarpRecorder (habuffer/harness/warp_traffic.h)
 // at the address and with the kind the GPU path's environment gives it
-// (gl/shaders/ha_env.glsl, gl/include/habuffer/gl/techniques/*/ *_env.glsl):
+// (gl/glsl/shaders/ha_env.glsl, techniques/*/gl/glsl/ *_env.glsl):
 // the GPU traffic model runs the techniques' real insert, sort and composite
 // code, not a re-implementation. Serial (one lane at a time), so plain loads
 // and stores stand for the GPU's atomics; the kernels of hash_kernel.h and
@@ -35,7 +35,7 @@ enum Site : std::uint16_t {
 };
 
 /// What every traced environment shares: the recorder and the outcome tally
-/// of gl/shaders/entry_common.glsl (one reduction per call, striped by pixel).
+/// of gl/glsl/shaders/entry_common.glsl (one reduction per call, striped by pixel).
 class Tracer {
  public:
   explicit Tracer(WarpRecorder& r) : rec_(&r) {}
@@ -173,7 +173,7 @@ class HashKernel : public SaturationTracer {
 #pragma pop_macro("HABUFFER_SLOT_READ_FIRST")
 
 /// Linked lists, sorted after the gather or while inserting
-/// (techniques/linked_lists/ha_lists.glsl, ha_sorted_lists.glsl), over the
+/// (techniques/linked_lists/lists.glsl, sorted_lists.glsl), over the
 /// GPU's buffers (lists_env.glsl): heads, 8-byte entries, 4-byte links, and
 /// the node counter, one word of the counters buffer.
 class ListsKernel : public KernelUniforms, public SaturationTracer {
@@ -231,9 +231,9 @@ class ListsKernel : public KernelUniforms, public SaturationTracer {
 #include "habuffer/shared/ha_record.glsl"
 #include "habuffer/shared/ha_blend.glsl"
 #include "habuffer/shared/ha_entries.glsl"
-#include "habuffer/techniques/linked_lists/ha_lists.glsl"
+#include "habuffer/techniques/linked_lists/lists.glsl"
 #include "habuffer/shared/ha_saturation.glsl"
-#include "habuffer/techniques/linked_lists/ha_sorted_lists.glsl"
+#include "habuffer/techniques/linked_lists/sorted_lists.glsl"
 
  private:
   std::uint32_t* heads_;
@@ -242,7 +242,7 @@ class ListsKernel : public KernelUniforms, public SaturationTracer {
   std::uint32_t nodes_ = 0;  // the node counter
 };
 
-/// Fixed per-pixel arrays (techniques/arrays/ha_arrays.glsl) over the GPU's
+/// Fixed per-pixel arrays (techniques/arrays/arrays.glsl) over the GPU's
 /// buffers (arrays_env.glsl): a count per pixel, K layer-major entries.
 class ArraysKernel : public KernelUniforms, public Tracer {
  public:
@@ -275,14 +275,14 @@ class ArraysKernel : public KernelUniforms, public Tracer {
 #include "habuffer/shared/ha_record.glsl"
 #include "habuffer/shared/ha_blend.glsl"
 #include "habuffer/shared/ha_entries.glsl"
-#include "habuffer/techniques/arrays/ha_arrays.glsl"
+#include "habuffer/techniques/arrays/arrays.glsl"
 
  private:
   std::uint32_t* counts_;
   glm::uvec2* layers_;
 };
 
-/// The k-buffer (techniques/kbuffer/ha_kbuffer.glsl) over `Word` slots, K
+/// The k-buffer (techniques/kbuffer/kbuffer.glsl) over `Word` slots, K
 /// per pixel, layer-major, with the occupancy map and limits of
 /// kbuffer_env.glsl (its or: a load, then an atomicOr when a bit is missing).
 template <class Word>
@@ -327,7 +327,7 @@ class KBufferKernel : public KernelUniforms, public Tracer {
 #include "habuffer/shared/ha_record.glsl"
 #include "habuffer/shared/ha_carry.glsl"
 #include "habuffer/shared/ha_blend.glsl"
-#include "habuffer/techniques/kbuffer/ha_kbuffer.glsl"
+#include "habuffer/techniques/kbuffer/kbuffer.glsl"
 
  private:
   Word* slots_;

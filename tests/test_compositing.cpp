@@ -58,7 +58,7 @@ TEST(Compositing, Float32AgreesWithDoubleReferenceOverDeepLists) {
 }
 
 // The CPU composites a row's pixels as a wavefront, kWavefrontPixels of them
-// age by age (core/wavefront_composite.h): each pixel must still blend its own
+// age by age (techniques/ha/cpu/src/wavefront_composite.h): each pixel must still blend its own
 // records in its own order, so every pixel equals the one-pixel walk of
 // shared/ha_traverse.glsl bit for bit: widths that are no multiple of the
 // wavefront, tables that wrap, pixels whose walks stop at different ages,

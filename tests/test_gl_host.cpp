@@ -14,6 +14,7 @@
 
 #include "gl_test_support.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/host_glsl_files.h"
 
 namespace habuffer {
 namespace {

@@ -18,6 +18,7 @@
 #include <glm/vec4.hpp>
 
 #include "gl_test_support.h"
+#include "habuffer/gl/host_glsl_files.h"
 #include "habuffer/gl.h"  // the one include has the spatial hash on the GPU too
 #include "habuffer/key_streams.h"
 

@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_support.h"
+#include "habuffer/gl/host_glsl_files.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/shadow_lookup.h"
 #include "habuffer/transmittance.h"

@@ -1,4 +1,4 @@
-// Pixel-ordered insertion (issue 26, core/pixel_order.h): the HA-buffer's CPU
+// Pixel-ordered insertion (issue 26, techniques/ha/cpu/src/pixel_order.h): the HA-buffer's CPU
 // path may bucket a batch by pixel, nearest first, and start each record one
 // age past where its pixel's previous record was first written. SPEC 9 says
 // the table cannot tell: these tests hold it to that, and to honest counts
@@ -61,7 +61,7 @@ InsertOptions ordered(InsertOrder order, std::uint32_t threads = 1, InsertStep s
 }
 
 // The jump start's two probe steps: the specialised one (the default) and
-// the shared GLSL step it must equal (core/jump_start_lanes.h).
+// the shared GLSL step it must equal (techniques/ha/cpu/src/jump_start_lanes.h).
 const InsertStep kSteps[] = {InsertStep::Specialised, InsertStep::Shared};
 
 std::string to_text(InsertStep step) { return step == InsertStep::Shared ? "shared step" : "specialised step"; }

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "habuffer/techniques/blended/blended_image.h"
-#include "habuffer/techniques/blended/blended_kernel.h"
+#include "habuffer/techniques/blended/detail/blended_kernel.h"
 #include "habuffer/techniques/kbuffer/kbuffer.h"
 #include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/lossless_build.h"

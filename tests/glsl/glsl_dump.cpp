@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/host_glsl_files.h"
 #include "habuffer/render/scene_renderer.h"
 
 int main(int argc, char** argv) {

@@ -170,7 +170,7 @@ baseline='#include <algorithm>
 #include <glm/vec4.hpp>'
 macros() { c++ -std=c++20 -dM -E -I"$prefix/include" -x c++ - | awk '{print $2}' | sed 's/(.*//' | sort -u; }
 echo "$baseline" | macros >"$work/macros_baseline.txt"
-printf '%s\n#include <habuffer/habuffer.h>\n#include <habuffer/gl.h>\n#include <habuffer/hash_kernel.h>\n#include <habuffer/techniques/linked_lists/lists_kernel.h>\n#include <habuffer/techniques/arrays/arrays_kernel.h>\n#include <habuffer/techniques/kbuffer/kbuffer_kernel.h>\n#include <habuffer/techniques/blended/blended_kernel.h>\n' "$baseline" |
+printf '%s\n#include <habuffer/habuffer.h>\n#include <habuffer/gl.h>\n#include <habuffer/hash_kernel.h>\n#include <habuffer/techniques/linked_lists/detail/lists_kernel.h>\n#include <habuffer/techniques/arrays/detail/arrays_kernel.h>\n#include <habuffer/techniques/kbuffer/detail/kbuffer_kernel.h>\n#include <habuffer/techniques/blended/detail/blended_kernel.h>\n' "$baseline" |
   macros >"$work/macros_ours.txt"
 comm -13 "$work/macros_baseline.txt" "$work/macros_ours.txt" | grep -v '^HABUFFER_' | grep -v '^_' >"$work/leaked.txt" || true
 [ ! -s "$work/leaked.txt" ] || { cat "$work/leaked.txt"; fail "macros outside HABUFFER_* leak from the headers"; }

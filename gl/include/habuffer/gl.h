@@ -25,5 +25,6 @@
 #include "habuffer/gl/techniques/linked_lists/gl_linked_lists.h"
 #include "habuffer/gl/gl_technique.h"
 #include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/host_glsl_files.h"
 #include "habuffer/gl/light_mapping.h"
 #include "habuffer/gl/shadow_lookup.h"

@@ -1,0 +1,7 @@
+/// @file
+/// Forwarding header, kept for one release: the kernel is an implementation
+/// detail of the technique and lives in detail/ (issue 47). Include the
+/// technique's container header, or habuffer/techniques/arrays/detail/arrays_kernel.h.
+#pragma once
+
+#include "habuffer/techniques/arrays/detail/arrays_kernel.h"
