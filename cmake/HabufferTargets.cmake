@@ -1,5 +1,5 @@
 # The project's targets, made one way. Every library and executable of the
-# project links habuffer_options: its warnings and its floating-point rule
+# project links habuffer_build_flags: its warnings and its floating-point rule
 # -ffp-contract=off, on which the CPU path's bit identity with the GPU path
 # rests (no fused multiply-add in one and not the other). A target made with
 # these functions cannot lose them; the test build.fp_contract checks every
@@ -18,10 +18,10 @@ function(habuffer_add_library name)
     add_library(${name} INTERFACE ${ARG_UNPARSED_ARGUMENTS})
   elseif(ARG_STATIC)
     add_library(${name} STATIC ${ARG_UNPARSED_ARGUMENTS})
-    target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:habuffer_options>)
+    target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:habuffer_build_flags>)
   else()
     add_library(${name} ${ARG_UNPARSED_ARGUMENTS})
-    target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:habuffer_options>)
+    target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:habuffer_build_flags>)
   endif()
   if(ARG_ALIAS)
     add_library(${ARG_ALIAS} ALIAS ${name})
@@ -30,7 +30,7 @@ endfunction()
 
 function(habuffer_add_executable name)
   add_executable(${name} ${ARGN})
-  target_link_libraries(${name} PRIVATE habuffer_options)
+  target_link_libraries(${name} PRIVATE habuffer_build_flags)
 endfunction()
 
 # A part: one concern of an umbrella library (habuffer::core, habuffer::gl),
@@ -66,7 +66,7 @@ function(habuffer_add_part name)
   if(ARG_SOURCES)
     add_library(${name} OBJECT ${ARG_SOURCES})
     set(scope PUBLIC)
-    target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:habuffer_options> ${ARG_PRIVATE_DEPS})
+    target_link_libraries(${name} PRIVATE $<BUILD_INTERFACE:habuffer_build_flags> ${ARG_PRIVATE_DEPS})
     if(BUILD_SHARED_LIBS)
       set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
     endif()

@@ -81,7 +81,7 @@ GpuTraffic model_lists(const TechniqueConfig& c, std::span<const Fragment> fragm
   const KernelUniforms u = kernel_uniforms(sized);
   std::vector<std::uint32_t> heads(pixels, 0u), next(sized.pool_capacity, 0u), saturation(pixels, 0u);
   std::vector<glm::uvec2> entries(sized.pool_capacity);
-  const bool sorted = c.technique == Technique::SortedLists;
+  const bool sorted = descriptor(c.technique).sorted_on_insert;
   GpuTraffic t;
   WarpRecorder rec;
   traced::ListsKernel k(u, heads.data(), entries.data(), next.data(), saturation.data(), rec);

@@ -55,7 +55,7 @@ const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, Fra
   config_.buffer.table = held.buffer.table;
   config_.pool_capacity = held.pool_capacity;
   config_.layers = held.layers;
-  if (const HaBuffer* table = b.buffer->hash_table()) {
+  if (const HaBuffer* table = as_hash_table(*b.buffer)) {
     fs.table = table->table();
     fs.max_age = table->max_age().max();
   }
@@ -83,7 +83,7 @@ std::vector<std::uint32_t> culled_per_pixel(const HaBuffer& like, std::span<cons
 
 void finish_cpu_result(const RenderSettings& settings, TechniqueBuild last, RenderResult& result) {
   if (settings.per_pixel_culled) {
-    if (const HaBuffer* table = last.buffer->hash_table())
+    if (const HaBuffer* table = as_hash_table(*last.buffer))
       result.pixel_culled = culled_per_pixel(*table, result.fragments);
     else
       result.pixel_culled.assign(settings.config.screen.area(), 0);  // no early cull: nothing culled

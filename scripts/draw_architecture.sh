@@ -15,7 +15,7 @@ set(GRAPHVIZ_GRAPH_NAME "habuffer")
 set(GRAPHVIZ_EXTERNAL_LIBS FALSE)
 set(GRAPHVIZ_GENERATE_PER_TARGET FALSE)
 set(GRAPHVIZ_GENERATE_DEPENDERS FALSE)
-set(GRAPHVIZ_IGNORE_TARGETS "^habuffer_options$;^habuffer_write_glsl$;^habuffer_glsl_dump$;_tests$;^habuffer_bench;^habuffer_adaptive_jumps$;^habuffer_csg_peers$;^fuzz_")
+set(GRAPHVIZ_IGNORE_TARGETS "^habuffer_build_flags$;^habuffer_write_glsl$;^habuffer_glsl_dump$;_tests$;^habuffer_bench;^habuffer_adaptive_jumps$;^habuffer_csg_peers$;^fuzz_")
 CMAKE
 cmake -S . -B "$work" -G Ninja -DHABUFFER_BUILD_TESTS=OFF -DHABUFFER_BUILD_BENCHMARKS=OFF -DHABUFFER_INSTALL=OFF \
       -DHABUFFER_WITH_PYTHON=OFF --graphviz="$work/habuffer.dot" >"$work/configure.log" ||

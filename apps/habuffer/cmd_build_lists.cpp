@@ -5,10 +5,11 @@
 #include "commands.h"
 #include "file_values.h"
 #include "gl_build.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/interchange.h"
 #include "hash_options.h"
-#include "technique_options.h"
+#include "technique_flags.h"
 #include "loss_report.h"
 #include "report_json.h"
 
@@ -62,7 +63,7 @@ TechniqueBuild build_lists(const HashOptions& options, const TechniqueConfig& co
 BuildReport write_build_outputs(const Args& args, const std::string& in, const std::string& out,
                                 const HashOptions& options, const TechniqueBuild& result, const BuildTiming& timing) {
   write_lists(out, *result.buffer);
-  if (const HaBuffer* ha = result.buffer->hash_table()) {
+  if (const HaBuffer* ha = as_hash_table(*result.buffer)) {
     if (args.has("dump-table")) write_table(args.required("dump-table"), *ha);
     if (args.has("dump-max-age")) write_max_age(args.required("dump-max-age"), *ha);
   }

@@ -7,7 +7,7 @@
 #include "file_values.h"
 #include "habuffer/interchange.h"
 #include "habuffer/buffer_config.h"
-#include "technique_options.h"
+#include "technique_flags.h"
 
 namespace habuffer::cli {
 

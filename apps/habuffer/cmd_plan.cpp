@@ -7,7 +7,7 @@
 #include "habuffer/option_rules.h"
 #include "habuffer/progress.h"
 #include "harness_cli.h"
-#include "technique_options.h"
+#include "technique_flags.h"
 #include "habuffer/harness/plan.h"
 
 namespace habuffer::cli {

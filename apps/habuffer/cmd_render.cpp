@@ -27,7 +27,7 @@
 #include "loss_report.h"
 #include "render_report.h"
 #include "scene_options.h"
-#include "technique_options.h"
+#include "technique_flags.h"
 
 namespace habuffer::cli {
 

@@ -9,7 +9,7 @@
 #include "habuffer/memory_budget.h"
 #include "commands.h"
 #include "file_values.h"
-#include "technique_options.h"
+#include "technique_flags.h"
 #include "habuffer/age_experiment.h"
 #include "habuffer/experiment_columns.h"
 #include "habuffer/key_experiment.h"

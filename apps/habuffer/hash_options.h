@@ -13,7 +13,7 @@
 #include "cli_args.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/lossless_build.h"
-#include "technique_options.h"
+#include "technique_flags.h"
 
 namespace habuffer::cli {
 
@@ -37,7 +37,7 @@ TechniqueConfig technique_config(const HashOptions& options);
 
 /// The declarations of options several commands take, each declared once
 /// (its value, default and help), picked by name: the build options above,
-/// --technique and the technique option table's rows (technique_options.h),
+/// --technique and the technique option table's rows (habuffer/technique_options.h),
 /// --threads, --insert-order. A command whose default differs (--path,
 /// --table, --screen, --size) declares its own, saying why in its help.
 /// std::logic_error for a name not shared.

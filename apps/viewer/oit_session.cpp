@@ -185,7 +185,7 @@ double OitSession::reference_psnr(const Camera& camera, glm::vec3 background) {
 
 std::vector<std::uint32_t> OitSession::max_age_per_pixel() const {
   const std::unique_ptr<FragmentBuffer> back = driver_->technique().read_back();
-  const HaBuffer* ha = back ? back->hash_table() : nullptr;
+  const HaBuffer* ha = back ? as_hash_table(*back) : nullptr;
   return ha != nullptr ? habuffer::max_age_per_pixel(*ha) : std::vector<std::uint32_t>{};
 }
 

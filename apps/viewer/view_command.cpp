@@ -7,7 +7,7 @@
 #include "habuffer/render/image.h"
 #include "hash_options.h"
 #include "scene_options.h"
-#include "technique_options.h"
+#include "technique_flags.h"
 
 namespace habuffer::view {
 

@@ -16,6 +16,7 @@
 #include "bindings.h"
 #include "config.h"
 #include "gl_context.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/build_report.h"
 #include "habuffer/interchange.h"
 #include "habuffer/lossless_build.h"
@@ -55,7 +56,7 @@ class Buffer {
 
   FragmentBuffer& get() const { return *buffer_; }
   const HaBuffer& hash_table(const char* what) const {
-    const HaBuffer* ha = buffer_->hash_table();
+    const HaBuffer* ha = as_hash_table(*buffer_);
     if (!ha)
       throw py::type_error(std::string(what) + ": technique " + to_string(buffer_->technique()) +
                            " has no hash table (only ha)");

@@ -2,7 +2,7 @@
 """Every file the build compiles carries -ffp-contract=off (issue 47, part 5).
 
 The CPU path agrees with the GPU path bit for bit only when neither fuses a
-multiply and an add the other does not. The flag comes with habuffer_options,
+multiply and an add the other does not. The flag comes with habuffer_build_flags,
 which habuffer_add_library and habuffer_add_executable always link
 (cmake/HabufferTargets.cmake); a target made any other way without it shows
 here as the files it compiles.

@@ -19,7 +19,7 @@ BuildResult build(const BufferConfig& config, const OffsetSource& offsets, std::
 }
 
 BuildResult ha_build_result(TechniqueBuild b) {
-  if (!b.buffer || b.buffer->hash_table() != b.buffer.get())
+  if (!b.buffer || as_hash_table(*b.buffer) == nullptr)
     throw std::invalid_argument("a build of technique " +
                                 (b.buffer ? to_string(b.buffer->technique()) : std::string("(none)")) +
                                 " is not an HA-buffer's");

@@ -83,7 +83,7 @@ TechniqueBuild build_technique(const TechniqueConfig& config, const OffsetSource
                                std::span<const Fragment> fragments, const InsertOptions& options,
                                const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1);
 
-/// An HA-buffer's build (whose container's hash_table() is itself) as the
+/// An HA-buffer's build (whose container as_hash_table() finds) as the
 /// HA-buffer's BuildResult; throws std::invalid_argument naming the technique
 /// for a build of another.
 BuildResult ha_build_result(TechniqueBuild build);

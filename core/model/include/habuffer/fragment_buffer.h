@@ -205,10 +205,6 @@ class FragmentBuffer {
   /// The order the last insert() call ran in (Arrival before any, and for
   /// containers that do not order batches).
   [[nodiscard]] virtual InsertOrder last_insert_order() const { return InsertOrder::Arrival; }
-  /// The coherent hash table the container stores its records in, for what
-  /// only such a table has (ages, the max-age table, slot dumps); nullptr
-  /// when it has none. The HA-buffer returns itself.
-  [[nodiscard]] virtual const HaBuffer* hash_table() const { return nullptr; }
   /// Fills what build_report.h's summarize() measures on the container
   /// itself: records held and load by default; the HA-buffer adds its ages.
   virtual void measure(BuildReport& report) const;

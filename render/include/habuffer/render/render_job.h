@@ -123,7 +123,7 @@ struct RenderResult {
   std::uint64_t memory_bytes = 0;
   std::uint64_t memory_model_bytes = 0;        ///< the technique's storage by formula (memory_model.h), bytes
   /// The HA-buffer's last table, or nullptr for other techniques.
-  [[nodiscard]] const HaBuffer* ha_buffer() const { return buffer ? buffer->hash_table() : nullptr; }
+  [[nodiscard]] const HaBuffer* ha_buffer() const { return buffer ? as_hash_table(*buffer) : nullptr; }
   /// Where it ran: "gl native32 on llvmpipe ...", "cpu, fragments rasterized by gl (...)", "cpu" (a stream).
   std::string device;
   bool growth_limited = false;  ///< the context could not hold the table the first frame or lossless mode wanted

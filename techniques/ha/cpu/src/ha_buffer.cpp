@@ -12,6 +12,7 @@
 
 
 #include "habuffer/build_report.h"
+#include "habuffer/technique_descriptor.h"
 #include "habuffer/cache_sizes.h"
 #include "habuffer/hash_kernel.h"
 #include "habuffer/slot_storage.h"
@@ -447,6 +448,11 @@ std::vector<std::uint32_t> max_age_per_pixel(const HaBuffer& buffer) {
       for (const ListEntry& e : list) deepest = std::max(deepest, e.age);
     }
   return ages;
+}
+
+const HaBuffer* as_hash_table(const FragmentBuffer& buffer) {
+  if (descriptor(buffer.technique()).capacity != CapacityKind::TableSlots) return nullptr;
+  return &dynamic_cast<const HaBuffer&>(buffer);
 }
 
 }  // namespace habuffer

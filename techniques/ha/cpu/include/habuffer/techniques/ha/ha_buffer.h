@@ -60,8 +60,6 @@ class HaBuffer final : public FragmentBuffer {
                                          const InsertOptions& options) const override;
   /// FragmentBuffer interface: the order the last insert() ran in.
   [[nodiscard]] InsertOrder last_insert_order() const override;
-  /// FragmentBuffer interface: this table.
-  [[nodiscard]] const HaBuffer* hash_table() const override { return this; }
   /// FragmentBuffer interface: records, load, ages and the max-age table's largest cell.
   void measure(BuildReport& report) const override;
   /// FragmentBuffer interface: "table WxH".
@@ -145,5 +143,13 @@ class HaBuffer final : public FragmentBuffer {
 /// Per pixel, row-major, the age of its deepest record (ages start at 1, so
 /// 0 where the pixel holds none): the max-age heat maps of `render` and habuffer-view.
 std::vector<std::uint32_t> max_age_per_pixel(const HaBuffer& buffer);
+
+/// The coherent hash table `buffer` stores its records in, for what only such
+/// a table has (ages, the max-age table, slot dumps), or nullptr. A capability
+/// its technique's descriptor states (CapacityKind::TableSlots: its capacity
+/// is a hash table's slots), not a hook of FragmentBuffer's: the generic
+/// interface names no technique. Throws std::bad_cast should a container
+/// whose descriptor says so not be an HaBuffer.
+[[nodiscard]] const HaBuffer* as_hash_table(const FragmentBuffer& buffer);
 
 }  // namespace habuffer

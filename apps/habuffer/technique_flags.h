@@ -1,7 +1,8 @@
 /// @file
-/// The options that pick a technique (--technique NAME and the option table's
-/// rows, habuffer/technique_options.h), shared by render and build-lists, and
-/// the refusal of options that the chosen technique would ignore.
+/// The CLI's technique flags: the options that pick a technique (--technique
+/// NAME and the rows of the library's option table,
+/// habuffer/technique_options.h), shared by render and build-lists, and the
+/// refusal of options that the chosen technique would ignore.
 #pragma once
 
 #include <cstdint>

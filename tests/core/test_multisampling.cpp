@@ -191,7 +191,7 @@ TEST(Multisampling, TheHaBuffersOnePixelCompositeIsThePerPixelResolveAndItRefuse
   const TechniqueBuild b =
       build_technique(config_of(Technique::Ha, screen, 4, frags.size()), OffsetSource{}, frags, InsertOptions{},
                       ResizePolicy{}, 32);
-  const HaBuffer& ha = *b.buffer->hash_table();
+  const HaBuffer& ha = *as_hash_table(*b.buffer);
   const glm::vec3 background(0.3f, 0.6f, 0.9f);
   const std::vector<glm::vec4> image = ha.composite_image(background, 1);
   for (std::uint32_t y = 0; y < screen.y; ++y)

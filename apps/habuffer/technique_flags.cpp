@@ -1,4 +1,4 @@
-#include "technique_options.h"
+#include "technique_flags.h"
 
 #include <algorithm>
 #include <stdexcept>
