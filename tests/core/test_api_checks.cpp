@@ -339,7 +339,8 @@ TEST(ArgumentChecks, PerPixelCallsOfEveryContainerRefusePixelsOffTheScreenNaming
     const auto b = make_fragment_buffer(c, OffsetSource{});
     b->insert(frags);
     std::vector<ListEntry> list{{1, 2, 3}};
-    for (const auto& [x, y] : {std::pair{4u, 0u}, std::pair{0u, 4u}, std::pair{UINT32_MAX, UINT32_MAX}}) {
+    for (const auto& pixel : {std::pair{4u, 0u}, std::pair{0u, 4u}, std::pair{UINT32_MAX, UINT32_MAX}}) {
+      const std::uint32_t x = pixel.first, y = pixel.second;  // copies: clang before 16 cannot capture a structured binding
       expect_refused<std::out_of_range>([&] { b->list(x, y, list); },
                                         {"pixel (" + std::to_string(x) + "," + std::to_string(y) + ")", "screen 4x4"});
     }
