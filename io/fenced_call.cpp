@@ -16,6 +16,10 @@
 #include "habuffer/data_error.h"
 #include "habuffer/memory_budget.h"
 
+// A sanitizer runtime's (ASan, UBSan, TSan): absent (null) in a build
+// without one.
+extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
+
 namespace habuffer {
 namespace {
 
@@ -36,6 +40,14 @@ bool write_all(int fd, const char* data, std::size_t size) {
 [[noreturn]] void run_child(const std::string& what, int fd, const std::function<std::string()>& work,
                             const FenceLimits& limits) {
   for (const int s : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) std::signal(s, SIG_DFL);
+  // A fault or a limit ends the child as the kernel ends it, whatever the
+  // parent installed: a host's crash reporter (or libFuzzer's, or a
+  // sanitizer's) would otherwise report the reader's crash as its own, write
+  // files, or catch RLIMIT_CPU's SIGXCPU and keep the child running.
+  for (const int s : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGXCPU, SIGXFSZ}) std::signal(s, SIG_DFL);
+  // The same for a sanitizer's death callback (libFuzzer writes its input as
+  // a crash file there): where a sanitizer runtime is linked, none is left.
+  if (__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
   // What the third-party code prints as it dies (glibc's "malloc(): invalid
   // size") is not ours to show: the parent says it in one line.
   if (const int null = ::open("/dev/null", O_WRONLY); null >= 0) {
