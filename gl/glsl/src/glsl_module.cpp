@@ -175,10 +175,6 @@ std::string sort_compute(Technique technique, AtomicMode mode, const GlBindings&
 
 std::string full_screen_vertex() { return std::string("#version 450 core\n") + kFullScreenVertex; }
 
-std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings) {
-  return ha_module(mode, bindings, ShaderStage::Fragment) + kClearPassFragment;
-}
-
 std::string resolve_fragment(Technique technique, AtomicMode mode, const GlBindings& bindings) {
   return resolve_fragment(technique, mode, bindings, 1, SampleResolve::Pixel);
 }

@@ -2,6 +2,15 @@
 #include "habuffer/gl/techniques/ha/gl_ha_table.h"
 #include "habuffer/gl/module_variant.h"
 #include "habuffer/gl/technique_registry.h"
+#include "ha_glsl.h"
+
+namespace habuffer::gl {
+
+std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings) {
+  return ha_module(mode, bindings, ShaderStage::Fragment) + kClearPassFragment;
+}
+
+}  // namespace habuffer::gl
 
 namespace habuffer::gl::techniques::ha {
 namespace {

@@ -1,5 +1,6 @@
 // The k-buffer on the GPU: its module parts, container and the occupancy
 // map's count pass and resume pass.
+#include "ha_glsl.h"
 #include "kbuffer_glsl.h"
 #include "habuffer/gl/techniques/kbuffer/gl_kbuffer.h"
 #include "habuffer/gl/glsl_sources.h"

@@ -31,17 +31,14 @@ extern const char* const kPointStreamVertex;    ///< gl/glsl/shaders/point_strea
 extern const char* const kPointStreamFragment;  ///< gl/glsl/shaders/point_stream.frag.glsl: their insert
 extern const char* const kGlslEnv;              ///< gl/glsl/shaders/glsl_env.glsl: GLSL spellings for the shared sources
 extern const char* const kEntryCommon;          ///< gl/glsl/shaders/entry_common.glsl: outcome tallies and capture
-extern const char* const kHaEnv;                ///< gl/glsl/shaders/ha_env.glsl: the HA-buffer's environment
 extern const char* const kSortedEnv;            ///< gl/glsl/shaders/sorted_env.glsl: the private array of the sort
 extern const char* const kInsertEntry;          ///< gl/glsl/shaders/insert_entry.glsl: every technique's insertion entry
 extern const char* const kSortCompute;          ///< gl/glsl/shaders/sort.comp.glsl: the sort pass
 extern const char* const kPreludeNative;        ///< gl/glsl/shaders/prelude_native.glsl: atomic modes native32 and native64
 extern const char* const kPreludeEmulated64;    ///< gl/glsl/shaders/prelude_emulated64.glsl: atomic mode emulated64
-extern const char* const kHaEntry;              ///< gl/glsl/shaders/ha_entry.glsl: the HA-buffer's insert call and deferral
 extern const char* const kInsertStreamCompute;  ///< gl/glsl/shaders/insert_stream.comp.glsl: the compute entry
 extern const char* const kResumeCompute;        ///< gl/glsl/shaders/resume.comp.glsl: the resume pass
 extern const char* const kFullScreenVertex;     ///< gl/glsl/shaders/clear_pass.vert.glsl: one triangle covering the viewport
-extern const char* const kClearPassFragment;    ///< gl/glsl/shaders/clear_pass.frag.glsl: the clear pass
 extern const char* const kLightEnv;             ///< gl/glsl/shaders/light_env.glsl: a light buffer's environment (translucent shadows)
 extern const char* const kLightLookup;          ///< gl/glsl/shaders/light_lookup.glsl: habuffer_shadow_transmittance
 extern const char* const kResolveFragment;      ///< gl/glsl/shaders/resolve.frag.glsl: the resolve pass
@@ -102,8 +99,6 @@ std::vector<ShaderSource> library_shaders(AtomicMode mode, const GlBindings& bin
 /// The full-screen passes' shaders: one vertex shader, and the clear pass's
 /// and resolve pass's fragment shaders (the module plus their own code).
 std::string full_screen_vertex();
-/// The clear pass's fragment shader (the HA-buffer's module plus its code).
-std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings);
 /// The HA-buffer's resolve pass fragment shader.
 std::string resolve_fragment(AtomicMode mode, const GlBindings& bindings);
 /// The same for any technique.

@@ -15,7 +15,7 @@
 
 #include "habuffer/buffer_config.h"
 #include "habuffer/gl/gl_technique.h"
-#include "habuffer/lossless_build.h"  // OffsetSource
+#include "habuffer/offset_source.h"
 #include "habuffer/offset_sequence.h"
 
 namespace habuffer::gl {
@@ -112,5 +112,8 @@ class GlHaTable final : public GlTechnique {
   std::optional<Extent> pending_count_table_;  ///< the table a count in the query buffer was measured in
   std::unique_ptr<Gpu> gpu_;
 };
+
+/// The clear pass's fragment shader (the HA-buffer's module plus its code).
+std::string clear_pass_fragment(AtomicMode mode, const GlBindings& bindings);
 
 }  // namespace habuffer::gl

@@ -8,6 +8,7 @@
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/techniques/ha/gl_ha_table.h"
 
 namespace habuffer::gl {
 namespace {
