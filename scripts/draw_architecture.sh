@@ -3,7 +3,7 @@
 # libraries, their parts (habuffer_add_part) and what each declares it uses
 # (cmake --graphviz, then Graphviz's dot; Debian graphviz). External
 # packages, the compile-flag target and the tools are left out.
-# Usage: scripts/draw_architecture.sh [OUT.svg]  (HABUFFER_DOT_COPY=FILE also keeps the DOT graph)
+# Usage: scripts/draw_architecture.sh [OUT.svg]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-docs/architecture.svg}
@@ -23,6 +23,5 @@ cmake -S . -B "$work" -G Ninja -DHABUFFER_BUILD_TESTS=OFF -DHABUFFER_BUILD_BENCH
 # Top to bottom as docs/architecture.md's order runs: users above what they use.
 sed -i 's/^digraph "habuffer" {/digraph "habuffer" {\n  rankdir = BT; node [fontsize = 10]; ranksep = 0.35;/' "$work/habuffer.dot"
 dot -Tsvg "$work/habuffer.dot" -o "$out.tmp"
-[ -z "${HABUFFER_DOT_COPY:-}" ] || cp "$work/habuffer.dot" "$HABUFFER_DOT_COPY"
 mv "$out.tmp" "$out"
 echo "wrote $out ($(grep -c '<g id="node' "$out") targets)"
