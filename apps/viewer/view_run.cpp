@@ -101,11 +101,11 @@ Overlay next_overlay(Overlay o) { return static_cast<Overlay>((static_cast<int>(
 struct FrameRow {
   std::string technique, screen;
   FrameFigures figures;
+  std::uint64_t rss_kib = 0;  ///< resident memory after the frame
 };
 
 struct RunTally {
   std::uint64_t switches = 0, refused = 0, resizes = 0, gl_errors = 0;
-  std::optional<std::uint64_t> warm_rss;
   /// Per technique, the live GL objects the first and the last time it ran
   /// after the warm-up (a technique's own buffers differ from another's).
   std::map<std::string, std::pair<LiveObjects, LiveObjects>> objects;
@@ -155,8 +155,7 @@ class ViewRun {
       tally_.total += f.counters;
       if (f.too_deep) tally_.too_deep = f.too_deep;
       tally_.growth_limited = tally_.growth_limited || f.growth_limited;
-      if (!s_.report.empty()) rows_.push_back({to_string(session_.config().technique), session_.driver().screen().str(), f});
-      if (frame == warm_frame) tally_.warm_rss = resident_kib();
+      if (!s_.report.empty()) rows_.push_back({to_string(session_.config().technique), session_.driver().screen().str(), f, resident_kib()});
       if (!s_.report.empty() && frame >= warm_frame) {
         const LiveObjects live = live_objects();
         const auto [it, first] = tally_.objects.try_emplace(to_string(session_.config().technique), live, live);
@@ -403,6 +402,7 @@ class ViewRun {
         .field("gather_gpu_ms", f.gather_ms)
         .field("resolve_gpu_ms", f.resolve_ms)
         .field("frame_ms", f.frame_ms)
+        .field("rss_kib", row.rss_kib)
         .end_object();
   }
 
@@ -429,7 +429,6 @@ class ViewRun {
       j.value(std::isinf(*panel_.psnr) ? std::string("inf") : std::to_string(*panel_.psnr));
     else
       j.value(std::string("not measured"));
-    j.key("rss_kib").begin_object().field("warm", tally_.warm_rss.value_or(0)).field("end", resident_kib()).end_object();
     j.key("gl_objects").begin_object();
     for (const auto& [technique, seen] : tally_.objects) {
       j.key(technique).begin_object().key("first");
