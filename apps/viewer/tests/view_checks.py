@@ -9,8 +9,8 @@ checks:
                translucent shadows included
   resize       a window resized mid-run renders the new size, equal to render's
   switches     100 technique switches and 20 resizes: no GL error, no GL object
-               left behind (per technique), resident memory flat (floor and peak over 16 frames
-               grow under 16 MiB)
+               left behind (per technique), resident memory flat (the highest of 16 frames
+               grows under 16 MiB)
   usage        bad command lines: one line naming the option, exit 2; a bad scene exit 1
   losses       render's loss rules: a pixel deeper than AMAX grows no table (a warning naming
                --age-bits; --lossless exits 1), a lossy fixed table warned about on stderr,
@@ -128,17 +128,19 @@ class Checks:
             if seen["first"] != seen["last"]:
                 problems.append("%s: live GL objects %s, later %s" % (technique, seen["first"], seen["last"]))
         # Resident memory is two-level from frame to frame (a technique's buffers are host
-        # memory on llvmpipe, freed at each switch, the allocator keeping some), so one frame
-        # against another says nothing; a leak raises both the floor and the peaks. Compared:
-        # the lowest and the highest of 16 frames (two rounds of the eight techniques) after
-        # the warm-up, against the same of the last 16.
+        # memory on llvmpipe, freed at each switch; whether the allocator gives them back
+        # to the system depends on timing), so neither one frame nor the lowest of several
+        # says anything: under load the lowest was 24 MiB apart with no leak. The highest
+        # of 16 frames (two rounds of the eight techniques, every technique's buffers live
+        # once) is steady, and a leak raises it with every switch: compared after the
+        # warm-up and at the end.
         rss = [row["rss_kib"] for row in r["per_frame"]]
         warm, end = rss[20:36], rss[-16:]
-        floor, peak = min(end) - min(warm), max(end) - max(warm)
-        print("switches: resident memory %d..%d KiB after the warm-up, %d..%d at the end (floor %+d, peak %+d)"
-              % (min(warm), max(warm), min(end), max(end), floor, peak))
-        if floor > 16 * 1024 or peak > 16 * 1024:
-            problems.append("resident memory grew by %d KiB (floor), %d KiB (peak)" % (floor, peak))
+        peak = max(end) - max(warm)
+        print("switches: resident memory at most %d KiB after the warm-up, %d at the end (%+d; lowest %d, %d)"
+              % (max(warm), max(end), peak, min(warm), min(end)))
+        if peak > 16 * 1024:
+            problems.append("resident memory grew by %d KiB (the highest of 16 frames)" % peak)
         if problems:
             raise SystemExit("switches: " + "; ".join(problems))
 
