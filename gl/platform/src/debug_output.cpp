@@ -15,11 +15,7 @@ namespace {
 struct DebugState {
   std::mutex mutex;
   LogSink sink = [](const std::string& m) { std::fprintf(stderr, "habuffer gl: %s\n", m.c_str()); };
-#ifdef NDEBUG
-  bool raise = false;
-#else
-  bool raise = true;
-#endif
+  bool raise = HABUFFER_GL_DEBUG;
   std::vector<std::string> errors;
   std::set<std::string> noted;  // warnings already passed to the sink (their text and id)
 };

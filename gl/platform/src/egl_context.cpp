@@ -109,7 +109,7 @@ EglContext::EglContext(std::optional<int> device) {
   }
   const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-#ifndef NDEBUG
+#if HABUFFER_GL_DEBUG
                                EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE,
 #endif
                                EGL_NONE};

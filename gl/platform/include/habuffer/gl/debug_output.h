@@ -18,8 +18,9 @@ using LogSink = std::function<void(const std::string& message)>;
 /// Replaces the sink (default: stderr, prefixed "habuffer gl: "); an empty sink
 /// drops the messages.
 void set_log_sink(LogSink sink);
-/// Whether check_gl_errors() throws (default: on in debug builds, off with
-/// NDEBUG); errors are collected either way.
+/// Whether check_gl_errors() throws (default: on where the library was built
+/// with HABUFFER_GL_DEBUG, as Debug builds and the asan preset are, off
+/// otherwise); errors are collected either way.
 void set_throw_on_gl_error(bool enabled);
 
 /// Passes a message of the library's own (a warning) to the sink, once per
