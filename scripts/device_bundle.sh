@@ -3,7 +3,8 @@
 # large to carry) and gathers what a machine without our packages needs to
 # run the GPU path into .dev/ (git-ignored through .git/info/exclude):
 #   .dev/bin/   habuffer (no image files), habuffer_gl_tests,
-#               habuffer_render_tests, habuffer_bench, habuffer_adaptive_jumps
+#               habuffer_render_tests, habuffer_bench, habuffer_adaptive_jumps,
+#               habuffer_vk_tests (where the Vulkan path is built)
 #   .dev/lib/   the shared libraries they load beyond the C/C++ runtime
 #               (oneTBB, libepoxy, assimp and its codecs, Google Benchmark)
 #   .dev/models the assimp-testmodels files the named scenes read
@@ -15,6 +16,9 @@ cd "$(dirname "$0")/.."
 ./scripts/build.sh device >/dev/null
 rm -rf .dev && mkdir -p .dev/bin .dev/lib .dev/models
 bins=(habuffer habuffer_gl_tests habuffer_render_tests habuffer_bench habuffer_adaptive_jumps)
+# The Vulkan tests where the build has the Vulkan path; the Vulkan loader
+# (libvulkan.so.1) is carried with the other libraries, NVIDIA's ICD is the machine's.
+[ -x build-device/bin/habuffer_vk_tests ] && bins+=(habuffer_vk_tests)
 for b in "${bins[@]}"; do strip -o ".dev/bin/$b" "build-device/bin/$b"; done
 # Every library ldd resolves, except the C/C++ runtime and the GL loaders
 # (the device machine has the runtime; the loaders come from .gl/).

@@ -11,7 +11,7 @@
 # and 1024, hairball at three loads, BM_Technique beside `habuffer bench`),
 # issue 36's GPU traffic model beside the measurement (`bench --model gpu`
 # on the GL path, then scripts/gpu_model_check.py: Spearman per scene, HA /
-# lists measured and predicted), issue 37's multisampled renders (each technique
+# lists measured and predicted), issue 48's Vulkan tests and lists, issue 37's multisampled renders (each technique
 # of lists at 1 and 4 samples on engine and hairball), then the older checks as time allows (GL tests in emulated64, the scene
 # tests, renders' stats, issue 11's whole technique table).
 #
@@ -36,7 +36,7 @@ case "${1:-}" in
   --dry-run) mode=dry; shift ;;
 esac
 out=${1:?usage: scripts/gpu_checks.sh [--smoke|--dry-run] OUTDIR [STEPS]}
-all_steps=info,adaptive,gl-tests,spatial,shadows,gather,harness,model,msaa,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
+all_steps=info,adaptive,gl-tests,vk,spatial,shadows,gather,harness,model,msaa,captured,insert,loads,technique,gl-tests-emulated64,render-tests,render,techniques-all
 steps=${2:-$all_steps}
 budget=${GPU_CHECKS_BUDGET_S:-540}
 mkdir -p "$out"
@@ -120,6 +120,21 @@ if want adaptive; then
   done
 fi
 want gl-tests && sharded 4 120 gl-tests habuffer_gl_tests --gtest_brief=1 --gtest_filter="$gtest_filter"
+# Issue 48: the Vulkan path on the machine's driver (NVIDIA's ICD, the
+# bundle's loader): its tests without the validation layer (not installed
+# there), and build-lists at load 0.8 of a 1024x1024 table against the
+# CPU's and the GL path's lists.
+if want vk && [ -x "$(command -v habuffer_vk_tests)" ]; then
+  vk_side=1024
+  [ "$mode" = smoke ] && vk_side=64
+  step 90 vk-tests env HABUFFER_VK_VALIDATION=0 habuffer_vk_tests --gtest_brief=1
+  step 120 vk-lists bash -c "s=${vk_side}x${vk_side}; habuffer generate --screen \$s --out vk-frags.csv --load 0.8 --seed 7 &&
+    habuffer build-lists --in vk-frags.csv --out vk-cpu.csv --screen \$s --stats vk-cpu-stats.json &&
+    habuffer build-lists --in vk-frags.csv --out vk-gpu.csv --screen \$s --path vk --stats vk-stats.json &&
+    habuffer build-lists --in vk-frags.csv --out vk-gl.csv --screen \$s --path gl --stats vk-gl-stats.json &&
+    cmp vk-cpu.csv vk-gpu.csv && cmp vk-cpu.csv vk-gl.csv && echo 'vk lists equal the cpu and gl lists' &&
+    rm -f vk-frags.csv vk-cpu.csv vk-gpu.csv vk-gl.csv"
+fi
 # Issue 22: the spatial hash on the GPU (build, hits and misses per second at
 # loads 0.8 and 0.99 on the sparse image and the voxel shell, GPU time of the
 # passes), beside the CPU's rates on the same keys.

@@ -17,6 +17,7 @@ packages=(
   python3-setuptools python3-pip python3-venv
   libglfw3-dev libimgui-dev xvfb xauth
   libopenvdb-dev libopencsg-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-dev spirv-tools
 )
 
 missing=()

@@ -196,6 +196,25 @@ std::string Args::str(const std::string& name) const {
   return str(name, fallback);
 }
 
+std::string Args::choice(const std::string& name) const {
+  const OptionSpec* o = spec_ != nullptr ? spec_->find(name) : nullptr;
+  if (o == nullptr || o->value.find('|') == std::string::npos)
+    throw std::logic_error("option --" + name + " declares no alternatives");
+  const std::string value = str(name);
+  std::vector<std::string> alternatives;
+  for (std::size_t start = 0;;) {
+    const std::size_t bar = o->value.find('|', start);
+    alternatives.push_back(o->value.substr(start, bar - start));
+    if (bar == std::string::npos) break;
+    start = bar + 1;
+  }
+  if (std::find(alternatives.begin(), alternatives.end(), value) != alternatives.end()) return value;
+  std::string said;
+  for (std::size_t i = 0; i < alternatives.size(); ++i)
+    said += (i == 0 ? "" : i + 1 == alternatives.size() ? " or " : ", ") + alternatives[i];
+  throw UsageError("option --" + name + ": '" + value + "' is not " + said);
+}
+
 std::uint64_t Args::u64_in(const std::string& name, std::uint64_t min, std::uint64_t max) const {
   const std::string text = str(name);
   return usage_errors(name, [&] { return parse_unsigned(text, min, max); });

@@ -161,6 +161,9 @@ class Args {
   /// The value of `name`, or its declared default (CommandSpec; "" when it
   /// has none). std::logic_error for a name the command did not declare.
   [[nodiscard]] std::string str(const std::string& name) const;
+  /// str(name), one of the alternatives its declaration names ("cpu|gl|vk"):
+  /// UsageError "option --NAME: 'x' is not cpu, gl or vk" for anything else.
+  [[nodiscard]] std::string choice(const std::string& name) const;
   /// str(name) as an unsigned integer in [min, max]; UsageError "option --NAME: ..." for bad text.
   [[nodiscard]] std::uint64_t u64_in(const std::string& name, std::uint64_t min = 0,
                                      std::uint64_t max = UINT64_MAX) const;

@@ -5,6 +5,9 @@
 #include "commands.h"
 #include "file_values.h"
 #include "gl_build.h"
+#ifdef HABUFFER_WITH_VK
+#include "vk_build.h"
+#endif
 #include "habuffer/techniques/ha/ha_buffer.h"
 #include "habuffer/file_roles.h"
 #include "habuffer/interchange.h"
@@ -14,6 +17,14 @@
 #include "report_json.h"
 
 namespace habuffer::cli {
+namespace {
+#ifdef HABUFFER_WITH_VK
+constexpr const char* kBuildPaths = "cpu|gl|vk";
+#else
+constexpr const char* kBuildPaths = "cpu|gl";
+#endif
+}  // namespace
+
 const CommandSpec& build_lists_spec() {
   static const CommandSpec spec{
       "build-lists --in FRAGS.csv --out LISTS.csv --screen WxH [OPTIONS]",
@@ -24,8 +35,9 @@ const CommandSpec& build_lists_spec() {
           {"stats", "STATS.json", "", "the build's counters, sizes and times", writes()},
           {"dump-table", "TABLE.csv", "", "the HA-buffer's table, slot by slot", writes()},
           {"dump-max-age", "MAXAGE.csv", "", "the HA-buffer's max-age table", writes()},
-          {"path", "cpu|gl", "cpu", "where the lists are built: cpu here (a fragment file's reference build), gl in "
-                                    "render (which rasterizes)"},
+          {"path", kBuildPaths, "cpu",
+           "where the lists are built: cpu here (a fragment file's reference build), gl (OpenGL 4.5) or vk (Vulkan, "
+           "where built; the HA-buffer so far) through the GPU's compute entry"},
           {"table", "WxH", "",
            "the HA-buffer's table (default: the screen; render's auto sizes it from a counting pass)"}} +
           shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +
@@ -51,6 +63,9 @@ TechniqueBuild build_lists(const HashOptions& options, const TechniqueConfig& co
                            std::span<const Fragment> fragments, BuildTiming& timing) {
   timing.threads = resolve_threads(options.insert.threads);
   if (options.gl) return build_on_gl(options, fragments, timing);
+#ifdef HABUFFER_WITH_VK
+  if (options.vk) return build_on_vk(options, fragments, timing);
+#endif
   const auto t0 = std::chrono::steady_clock::now();
   TechniqueBuild built =
       build_technique(config, options.offsets, fragments, options.insert, options.policy, options.max_attempts);

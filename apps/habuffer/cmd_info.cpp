@@ -14,6 +14,14 @@
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_info.h"
 #include "habuffer/gl/gl_technique.h"
+#ifdef HABUFFER_WITH_VK
+#include <optional>
+
+#include "habuffer/vk/vulkan_context.h"
+#include "habuffer/vk/vulkan_error.h"
+#include "habuffer/vk/vulkan_info.h"
+#include "habuffer/vk/vulkan_registry.h"
+#endif
 
 namespace habuffer::cli {
 
@@ -21,6 +29,70 @@ const CommandSpec& info_spec() {
   static const CommandSpec spec{"info", {}, "  Version, build type, techniques and the paths this machine offers.\n"};
   return spec;
 }
+
+namespace {
+
+#ifdef HABUFFER_WITH_VK
+// Atomic modes of `info`'s device: those it runs, and the one L64 gets.
+std::string vulkan_modes(const vk::VulkanInfo& info) {
+  std::string modes;
+  for (AtomicMode m : vk::runnable_atomic_modes(info)) modes += (modes.empty() ? "" : ", ") + to_string(m);
+  std::string l64;
+  try {
+    const auto mode = vk::chosen_atomic_mode(info, Layout::L64);
+    l64 = mode ? to_string(*mode) : "none (no shaderInt64)";
+    if (mode && atomic_mode_override()) l64 += " (forced by HABUFFER_ATOMIC_MODE)";
+  } catch (const vk::VulkanError& e) {
+    l64 = std::string("refused: ") + e.what();
+  }
+  return "atomic modes runnable: " + modes + "; chosen: L32 -> native32, L64 -> " + l64;
+}
+#endif
+
+// The Vulkan devices, which one the path uses (HABUFFER_VK_DEVICE), what
+// each offers; or why there is none.
+void print_vulkan() {
+#ifdef HABUFFER_WITH_VK
+  try {
+    const std::vector<vk::VulkanInfo> devices = vk::list_devices();
+    std::optional<std::uint32_t> used;
+    std::string why_none;
+    try {
+      vk::ContextOptions options;
+      options.validation = false;  // only which device: no layer needed
+      used = vk::VulkanContext(options).info().index;
+    } catch (const vk::VulkanError& e) {
+      why_none = e.what();
+    }
+    std::printf("  vk: %s (techniques: %s; build-lists --path vk)\n",
+                used ? ("device " + std::to_string(*used) + " used, chosen by " + vk::DeviceChoice::from_environment().str() +
+                        " (HABUFFER_VK_DEVICE)").c_str()
+                     : ("unavailable: " + why_none).c_str(),
+                vk::vulkan_technique_names().c_str());
+    for (const vk::VulkanInfo& d : devices) {
+      std::printf("    %u: %s (%s), Vulkan %s, driver %s%s\n", d.index, d.name.c_str(), d.type.c_str(),
+                  d.api_version.c_str(), d.driver.c_str(), used && *used == d.index ? " [used]" : "");
+      if (!d.unusable.empty()) {
+        std::printf("      unusable: %s\n", d.unusable.c_str());
+        continue;
+      }
+      std::printf("      shaderInt64: %s; shaderBufferInt64Atomics: %s; fragmentStoresAndAtomics: %s; timestamps: %s\n",
+                  d.shader_int64 ? "yes" : "no", d.buffer_int64_atomics ? "yes" : "no",
+                  d.fragment_stores ? "yes" : "no", d.timestamps ? "yes" : "no");
+      std::printf("      limits: storage binding %llu MiB, compute work groups x %u, framebuffer %ux%u\n",
+                  static_cast<unsigned long long>(d.max_storage_range >> 20), d.max_work_groups_x,
+                  d.max_framebuffer_width, d.max_framebuffer_height);
+      std::printf("      %s\n", vulkan_modes(d).c_str());
+    }
+  } catch (const vk::VulkanError& e) {
+    std::printf("  vk: unavailable: %s\n", e.what());
+  }
+#else
+  std::printf("  vk: not built (HABUFFER_WITH_VULKAN: Debian libvulkan-dev and glslang-dev)\n");
+#endif
+}
+
+}  // namespace
 
 int run_info(const std::vector<std::string>& argv) {
   if (print_help(argv, info_spec())) return 0;
@@ -76,6 +148,7 @@ int run_info(const std::vector<std::string>& argv) {
   } catch (const gl::GlError& e) {
     std::printf("  gl: unavailable: %s\n", e.what());
   }
+  print_vulkan();
   return 0;
 }
 

@@ -109,10 +109,11 @@ HashOptions parse_hash_options(const Args& args, bool techniques) {
   o.max_attempts = o.lossless ? args.u32_in("max-attempts", 1, 1000) : 1;
   if (!o.lossless && args.has("max-attempts")) throw UsageError("option --max-attempts needs --lossless");
 
-  const std::string path = args.str("path");
-  if (path != "cpu" && path != "gl") throw UsageError("option --path: '" + path + "' is not cpu or gl");
+  const std::string path = args.choice("path");  // the alternatives the command declares
   o.gl = path == "gl";
-  args.refuse_unless(!o.gl, {"threads", "insert-mode", "insert-order"}, "with --path gl (the GPU inserts)");
+  o.vk = path == "vk";
+  args.refuse_unless(!o.gl && !o.vk, {"threads", "insert-mode", "insert-order"},
+                     "with --path " + path + " (the GPU inserts)");
 
   o.offsets_name = args.str("offsets");
   o.offsets = parse_offset_source(args, c);

@@ -27,6 +27,7 @@ struct HashOptions {
   std::uint32_t max_attempts = 1;  ///< > 1 in lossless mode
   bool lossless = false;  ///< --lossless
   bool gl = false;  ///< --path gl
+  bool vk = false;  ///< --path vk (where the command offers it)
   TechniqueOptions technique;  ///< ha unless the command takes --technique
 };
 

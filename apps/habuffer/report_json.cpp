@@ -32,7 +32,7 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
                        const std::vector<BuildAttempt>& attempts, const BuildReport& report, const BuildTiming& timing) {
   const Counters& c = report.counters;
   const Technique technique = buffer.technique();
-  json.field("path", options.gl ? "gl" : "cpu").field("technique", to_string(technique));
+  json.field("path", options.gl ? "gl" : options.vk ? "vk" : "cpu").field("technique", to_string(technique));
   json.field("layout", to_string(options.config.layout));
   json.field("age_bits", options.config.age_bits).field("samples", options.config.samples);
   json.field("block", options.config.block);
@@ -56,6 +56,9 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
   json.field("build_ms", timing.build_ms);
   json.field("fragments_per_second", timing.build_ms > 0 ? static_cast<double>(c.fragments) / timing.build_ms * 1e3 : 0.0);
   json.field("threads", timing.threads).field("insert_order", timing.insert_order).field("lossless", options.lossless);
+  if (!timing.vk_atomic_mode.empty())
+    json.field("vk_atomic_mode", timing.vk_atomic_mode).field("vk_device", timing.vk_device)
+        .field("vk_deferred", timing.vk_deferred).field("vk_resume_rounds", timing.vk_resume_rounds);
   if (!timing.gl_atomic_mode.empty())
     json.field("gl_atomic_mode", timing.gl_atomic_mode).field("gl_renderer", timing.gl_renderer)
         .field("gl_deferred", timing.gl_deferred).field("gl_resume_rounds", timing.gl_resume_rounds)

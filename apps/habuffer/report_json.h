@@ -21,6 +21,10 @@ struct BuildTiming {
   std::uint64_t gl_deferred = 0;         ///< insert calls cut short and resumed (summed over rounds)
   std::uint32_t gl_resume_rounds = 0;      ///< --path gl: passes that resumed deferred calls
   std::uint32_t gl_cut_short_retries = 0;  ///< --path gl: gathers retried because calls were cut short
+  std::string vk_atomic_mode;  ///< --path vk: the mode that ran, and the device
+  std::string vk_device;       ///< --path vk: the device's name
+  std::uint64_t vk_deferred = 0;        ///< --path vk: insert calls cut short and resumed
+  std::uint32_t vk_resume_rounds = 0;   ///< --path vk: resume passes
 };
 
 /// "key": [x, y], the stats files' form of a size.

@@ -107,7 +107,7 @@ else
 fi
 expect 2 "option --iter-limit" -- build-lists --in good.csv --out l.csv --screen 2x2 --iter-limit 300000000
 grep -q '"path":"gl"' s_gl.json && pass=$((pass + 1)) || { echo "FAIL: gl stats path"; fail=$((fail + 1)); }
-expect 2 "option --path: 'gpu' is not cpu or gl" -- build-lists --in good.csv --out l.csv --screen 2x2 --path gpu
+expect 2 "option --path: 'gpu' is not cpu" -- build-lists --in good.csv --out l.csv --screen 2x2 --path gpu
 # render: a real scene's image, stats and heat maps; one clear line for bad input.
 ASAN_OPTIONS=detect_leaks=0 expect 0 "" -- render --scene engine --size 96x64 --out r_engine.png --stats r_engine.json \
   --heatmap depth:r_depth.png,age:r_age.png,culled:r_culled.png --reference r_ref.png --frames 2

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gl_test_support.h"
+#include "gpu_fixtures.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/glsl_sources.h"
@@ -227,16 +228,7 @@ TEST(Gl, EveryAtomicModeBuildsTheCpuTableBitForBit) {
   for (gl::AtomicMode mode : gl::runnable_atomic_modes(gl::query_gl_info())) {
     const Layout layout = mode == gl::AtomicMode::Native32 ? Layout::L32 : Layout::L64;
     SCOPED_TRACE(gl::to_string(mode));
-    struct Case {
-      Extent screen, table;
-      std::uint32_t age_bits;
-      StreamKind kind;
-      double load;
-    };
-    for (const Case& k : {Case{{32, 24}, {32, 24}, 8, StreamKind::Coherent, 0.8},
-                          Case{{40, 30}, {57, 41}, 4, StreamKind::Random, 0.6},
-                          Case{{64, 64}, {80, 64}, 8, StreamKind::Random, 0.9},
-                          Case{{16, 48}, {16, 48}, 4, StreamKind::Coherent, 1.1}}) {
+    for (const test::TableCase& k : test::gpu_table_cases()) {  // the Vulkan twin's cases too
       SCOPED_TRACE(k.screen.str() + " in " + k.table.str());
       const BufferConfig c = test::config(k.screen, k.table, layout, k.age_bits, 8);
       auto f = test::stream(k.screen, k.kind, static_cast<std::uint64_t>(k.load * static_cast<double>(k.table.area())), 4);

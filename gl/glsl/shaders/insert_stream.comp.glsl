@@ -5,7 +5,13 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = HABUFFER_BINDING_STREAM) readonly buffer HaStream { HaFragment ha_stream[]; };
+// Its count: a uniform on OpenGL, a push constant on Vulkan (whose GLSL
+// defines VULKAN, GL_KHR_vulkan_glsl), the one entry of both paths.
+#ifdef VULKAN
+layout(push_constant) uniform HaStreamCount { uint ha_stream_count; };
+#else
 uniform uint ha_stream_count;
+#endif
 
 void main() {
   uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;

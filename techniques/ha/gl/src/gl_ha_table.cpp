@@ -13,6 +13,7 @@
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/techniques/ha/ha_buffer.h"
+#include "habuffer/techniques/ha/ha_param_block.h"
 
 namespace habuffer::gl {
 
@@ -44,7 +45,7 @@ BufferConfig validated(BufferConfig c) {
 
 // Cells of the max-age table of `c`'s screen (GlError beyond 32-bit cell indices).
 std::uint32_t max_age_cells(const BufferConfig& c) {
-  const std::uint64_t cells = std::uint64_t{(c.screen.x - 1) / c.block + 1} * std::uint64_t{(c.screen.y - 1) / c.block + 1};
+  const std::uint64_t cells = ha_max_age_cells(c);
   if (cells > UINT32_MAX) throw GlError("max-age table of " + std::to_string(cells) + " cells is too large");
   return static_cast<std::uint32_t>(cells);
 }
@@ -110,17 +111,7 @@ void GlHaTable::allocate_table(Extent table, bool new_offsets) {
   pending_count_table_.reset();  // a count in flight belongs to a table no longer in use
 }
 
-void GlHaTable::write_params(GlParams& p) const {
-  p.ha_table_size[0] = config_.table.x;
-  p.ha_table_size[1] = config_.table.y;
-  p.habuffer_age_bits = config_.age_bits;
-  p.habuffer_coverage_bits = config_.record_layout().coverage_bits();
-  p.ha_block = config_.block;
-  p.ha_max_age_cells_x = (config_.screen.x - 1) / config_.block + 1;
-  p.habuffer_iter_limit = config_.iter_limit;
-  p.habuffer_cull_tau = config_.early_cull_tau;
-  p.habuffer_saturation = config_.saturation ? 1u : 0u;
-}
+void GlHaTable::write_params(GlParams& p) const { write_ha_params(config_, p); }
 
 void GlHaTable::bind() const {
   const GlBindings& b = bindings();

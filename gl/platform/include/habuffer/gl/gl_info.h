@@ -7,19 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "habuffer/atomic_mode.h"
 #include "habuffer/record_layout.h"
 
 namespace habuffer::gl {
 
-/// How the GPU path raises slots by atomicMax; it fixes the record layout.
-enum class AtomicMode {
-  Native32,    ///< L32 records, atomicMax on uint
-  Native64,    ///< L64 records, atomicMax on uint64_t (GL_NV_shader_atomic_int64)
-  Emulated64,  ///< L64 records on drivers without 64-bit atomics (per-slot lock from 32-bit atomics)
-};
-
-/// "native32", "native64" or "emulated64".
-std::string to_string(AtomicMode mode);
+/// The atomic modes are every GPU path's (habuffer/atomic_mode.h).
+using habuffer::AtomicMode;
+using habuffer::to_string;
 
 /// What query_gl_info() read from the current context.
 struct GlInfo {
@@ -44,23 +39,17 @@ struct GlInfo {
 /// Needs a current OpenGL 4.5 core context.
 GlInfo query_gl_info();
 
+/// What the context offers the atomic modes, in OpenGL's words.
+AtomicSupport atomic_support(const GlInfo& info);
 /// Modes this build can run on this context, in order of preference.
 std::vector<AtomicMode> runnable_atomic_modes(const GlInfo& info);
 
-/// The mode named by the environment variable HABUFFER_ATOMIC_MODE (native32,
-/// native64 or emulated64), for tests and benchmarks that compare modes on one
-/// GPU (emulated64 forced on a GPU with 64-bit atomics); none when unset.
-/// Throws GlError naming the variable for any other value.
+/// atomic_mode_override() (habuffer/atomic_mode.h), its error a GlError.
 std::optional<AtomicMode> atomic_mode_override();
 
-/// The mode the library runs a layout in: the override when it holds the
-/// layout (native32 for L32; native64 or emulated64 for L64); else L32
-/// native32, L64 native64 where the driver has 64-bit atomics, else
-/// emulated64; none without 64-bit types. Throws GlError when the override
-/// cannot run here or cannot hold the layout (native32 forced for L64),
-/// naming the variable, the mode and the layout; a 64-bit mode forced beside
-/// L32 (whose one mode is native32) is warned about once (log_once), never
-/// replaced silently.
+/// The mode the library runs a layout in on this context: every path's rule
+/// (habuffer::chosen_atomic_mode), its errors GlError, its warning through
+/// log_once.
 std::optional<AtomicMode> chosen_atomic_mode(const GlInfo& info, Layout layout);
 
 }  // namespace habuffer::gl

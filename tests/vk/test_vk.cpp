@@ -1,0 +1,268 @@
+// The Vulkan path (issue 48) on the machine's Vulkan device (lavapipe here,
+// with the Khronos validation layer watching: a validation message fails the
+// call that caused it). The HA-buffer's builds from the GL tests' fixtures
+// (gpu_fixtures.h), bit for bit with the CPU path.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu_fixtures.h"
+#include "habuffer/lossless_build.h"
+#include "habuffer/techniques/ha/ha_buffer.h"
+#include "habuffer/vk.h"
+#include "test_support.h"
+
+namespace habuffer {
+namespace {
+
+// Skips a test where the machine has no usable Vulkan device (the library's
+// message says why); every Vulkan test's first line.
+#define REQUIRE_VULKAN()                                                         \
+  do {                                                                           \
+    if (const std::string why = vulkan_missing(); !why.empty()) GTEST_SKIP() << why; \
+  } while (0)
+
+std::string vulkan_missing() {
+  try {
+    for (const vk::VulkanInfo& d : vk::list_devices())
+      if (d.unusable.empty()) return {};
+    return "no usable Vulkan device";
+  } catch (const vk::VulkanError& e) {
+    return e.what();
+  }
+}
+
+// One context a process, validation on: devices are costly to make.
+const vk::VulkanContext& context() {
+  static const vk::VulkanContext c([] {
+    vk::ContextOptions o;
+    o.device = {};
+    // On unless HABUFFER_VK_VALIDATION says otherwise (the lent GPU machine
+    // has no layer: scripts/gpu_checks.sh sets 0).
+    o.validation = std::getenv("HABUFFER_VK_VALIDATION") == nullptr || vk::ContextOptions::validation_from_environment();
+    return o;
+  }());
+  return c;
+}
+
+// HABUFFER_ATOMIC_MODE set for one scope, restored after.
+class ForcedMode {
+ public:
+  explicit ForcedMode(const char* mode) {
+    if (const char* was = std::getenv("HABUFFER_ATOMIC_MODE")) before_ = was;
+    setenv("HABUFFER_ATOMIC_MODE", mode, 1);
+  }
+  ~ForcedMode() {
+    if (before_)
+      setenv("HABUFFER_ATOMIC_MODE", before_->c_str(), 1);
+    else
+      unsetenv("HABUFFER_ATOMIC_MODE");
+  }
+  ForcedMode(const ForcedMode&) = delete;
+  ForcedMode& operator=(const ForcedMode&) = delete;
+
+ private:
+  std::optional<std::string> before_;
+};
+
+template <typename F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Vulkan, AHeadlessDeviceIsChosenWithTheFeaturesTheLibraryReads) {
+  REQUIRE_VULKAN();
+  const vk::VulkanInfo& info = context().info();
+  EXPECT_FALSE(info.name.empty());
+  EXPECT_GE(info.api, VK_API_VERSION_1_2);
+  EXPECT_TRUE(info.fragment_stores);
+  EXPECT_GT(info.max_storage_range, 0u);
+  const auto modes = vk::runnable_atomic_modes(info);
+  ASSERT_FALSE(modes.empty());
+  EXPECT_EQ(modes.front(), AtomicMode::Native32);
+  // lavapipe has 64-bit buffer atomics: the paper's L64 record runs native64
+  // here, which the GL path on llvmpipe can only emulate.
+  if (info.software && info.buffer_int64_atomics) {
+    EXPECT_EQ(vk::chosen_atomic_mode(info, Layout::L64), AtomicMode::Native64);
+  }
+}
+
+TEST(Vulkan, ADeviceChoiceThatMatchesNoneIsRefusedNamingTheDevicesThereAre) {
+  REQUIRE_VULKAN();
+  vk::ContextOptions by_index;
+  by_index.device.index = 97;
+  by_index.validation = false;
+  const std::string e1 = error_of([&] { vk::VulkanContext c(by_index); });
+  EXPECT_NE(e1.find("device 97"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("0: "), std::string::npos) << e1;
+  vk::ContextOptions by_name;
+  by_name.device.name = "no such device anywhere";
+  by_name.validation = false;
+  const std::string e2 = error_of([&] { vk::VulkanContext c(by_name); });
+  EXPECT_NE(e2.find("matches none"), std::string::npos) << e2;
+  // A part of the first device's name, in another case, finds it.
+  vk::ContextOptions found;
+  const std::string name = vk::list_devices().front().name;
+  found.device.name = name.substr(0, 4);
+  for (char& ch : found.device.name) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  found.validation = false;
+  EXPECT_EQ(vk::VulkanContext(found).info().name.substr(0, 4), name.substr(0, 4));
+}
+
+TEST(Vulkan, EnvironmentSettingsAreReadOrRefusedInOneLine) {
+  setenv("HABUFFER_VK_VALIDATION", "yes", 1);
+  const std::string e = error_of([] { (void)vk::ContextOptions::validation_from_environment(); });
+  unsetenv("HABUFFER_VK_VALIDATION");
+  EXPECT_NE(e.find("HABUFFER_VK_VALIDATION='yes' is not 0 or 1"), std::string::npos) << e;
+  setenv("HABUFFER_VK_DEVICE", "3", 1);
+  EXPECT_EQ(vk::DeviceChoice::from_environment().index, 3u);
+  setenv("HABUFFER_VK_DEVICE", "llvmpipe", 1);
+  EXPECT_EQ(vk::DeviceChoice::from_environment().name, "llvmpipe");
+  unsetenv("HABUFFER_VK_DEVICE");
+  EXPECT_EQ(vk::DeviceChoice::from_environment().str(), "the first usable device");
+}
+
+TEST(Vulkan, AValidationMessageFailsTheSubmissionThatCausedIt) {
+  REQUIRE_VULKAN();
+  const vk::VulkanBuffer buffer(context(), 64);
+  // A fill at an offset that is not a multiple of 4 breaks a valid-usage rule.
+  const std::string e = error_of([&] {
+    context().submit_and_wait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer.handle(), 2, 8, 0u); },
+                              "a bad fill");
+  });
+  EXPECT_NE(e.find("a bad fill: validation error"), std::string::npos) << e;
+  // The messages were taken: the next submission is clean.
+  context().submit_and_wait([&](VkCommandBuffer cmd) { buffer.record_zero(cmd); }, "a good fill");
+}
+
+TEST(Vulkan, SharedGlslCompilesToSpirvForEveryTechniqueInTheRunnableModes) {
+  REQUIRE_VULKAN();
+  for (AtomicMode mode : vk::runnable_atomic_modes(context().info()))
+    for (Technique t : all_techniques()) {
+      if (!stores_lists(t)) continue;  // the blended baselines' entry draws points (not on Vulkan yet)
+      SCOPED_TRACE(to_string(t) + " " + to_string(mode));
+      const auto spirv = vk::compile_to_spirv(vk::vulkan_insert_stream_compute(t, mode), vk::SpirvStage::Compute,
+                                              to_string(t) + " insert");
+      ASSERT_GT(spirv.size(), 5u);
+      EXPECT_EQ(spirv[0], 0x07230203u);  // SPIR-V's magic number
+    }
+  const std::string e = error_of([] {
+    (void)vk::compile_to_spirv("#version 450\nvoid main() { undeclared_name = 1; }\n", vk::SpirvStage::Compute, "bad");
+  });
+  EXPECT_NE(e.find("bad does not compile for Vulkan"), std::string::npos) << e;
+  EXPECT_NE(e.find("undeclared_name"), std::string::npos) << e;
+}
+
+TEST(Vulkan, EveryRunnableModeBuildsTheCpuTableBitForBit) {
+  REQUIRE_VULKAN();
+  for (AtomicMode mode : vk::runnable_atomic_modes(context().info())) {
+    const Layout layout = mode == AtomicMode::Native32 ? Layout::L32 : Layout::L64;
+    SCOPED_TRACE(to_string(mode));
+    for (const test::TableCase& k : test::gpu_table_cases()) {  // the GL test's cases
+      SCOPED_TRACE(k.screen.str() + " in " + k.table.str());
+      TechniqueConfig c;
+      c.technique = Technique::Ha;
+      c.buffer = test::config(k.screen, k.table, layout, k.age_bits, 8);
+      auto f = test::stream(k.screen, k.kind, static_cast<std::uint64_t>(k.load * static_cast<double>(k.table.area())), 4);
+      f[f.size() / 3].depth = std::numeric_limits<float>::quiet_NaN();
+      const OffsetSource offsets = test::seeded_random_offsets(9);
+      vk::VulkanBuildInfo info;
+      const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, offsets, f, {}, 1, &info);
+      EXPECT_EQ(info.atomic_mode, to_string(mode));
+      HaBuffer cpu(c.buffer, offsets.make(c.buffer.table, c.buffer.record_layout().max_age()));
+      const Counters nc = cpu.insert(f);
+      const auto* table = dynamic_cast<const HaBuffer*>(gpu.buffer.get());
+      ASSERT_NE(table, nullptr);
+      for (std::uint64_t s = 0; s < cpu.slot_count(); ++s) ASSERT_EQ(table->slot(s), cpu.slot(s)) << "slot " << s;
+      EXPECT_EQ(table->max_age().ages(), cpu.max_age().ages());
+      EXPECT_EQ(gpu.counters.stored(), nc.stored());
+      EXPECT_EQ(gpu.counters.invalid, nc.invalid);
+      EXPECT_EQ(gpu.counters.fragments, nc.fragments);
+      if (nc.failures() + gpu.counters.failures() == 0) {
+        EXPECT_EQ(gpu.counters, nc);
+      }
+      // The comparison bites: other offsets give another table.
+      const TechniqueBuild other = vk::build_technique_on_vulkan(context(), c, test::seeded_random_offsets(10), f);
+      bool differs = false;
+      for (std::uint64_t s = 0; s < cpu.slot_count() && !differs; ++s)
+        differs = dynamic_cast<const HaBuffer&>(*other.buffer).slot(s) != cpu.slot(s);
+      EXPECT_TRUE(differs);
+    }
+  }
+}
+
+TEST(Vulkan, LosslessModeGrowsTheTableAsTheCpuDoesAndEndsWithItsLists) {
+  REQUIRE_VULKAN();
+  for (std::uint64_t seed : {3u, 4u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    TechniqueConfig c;
+    c.technique = Technique::Ha;
+    c.buffer = test::config({48, 40}, {48, 40});
+    const auto f = test::stream(c.buffer.screen, StreamKind::Coherent, 48 * 40 * 2, seed);  // twice the table
+    const OffsetSource offsets = test::seeded_random_offsets(seed);
+    const TechniqueBuild cpu = build_technique(c, offsets, f, {}, {}, 6);
+    const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, offsets, f, {}, 6);
+    ASSERT_TRUE(cpu.lossless());
+    ASSERT_TRUE(gpu.lossless());
+    ASSERT_EQ(gpu.attempts.size(), cpu.attempts.size());
+    EXPECT_GT(gpu.attempts.size(), 1u);
+    for (std::size_t a = 0; a < cpu.attempts.size(); ++a) {
+      EXPECT_EQ(gpu.attempts[a].table, cpu.attempts[a].table) << "attempt " << a;
+      EXPECT_EQ(gpu.attempts[a].counters.stored(), cpu.attempts[a].counters.stored()) << "attempt " << a;
+    }
+    EXPECT_EQ(test::traversed_lists(*gpu.buffer), test::traversed_lists(*cpu.buffer));
+  }
+}
+
+TEST(Vulkan, MisuseThroughTheApiIsRefusedInOneLine) {
+  REQUIRE_VULKAN();
+  TechniqueConfig c;
+  c.technique = Technique::Ha;
+  c.buffer = test::config({16, 16}, {16, 16});
+  const auto f = test::stream(c.buffer.screen, StreamKind::Random, 100, 1);
+  // A technique without a Vulkan part yet, named with those that have one.
+  TechniqueConfig lists = c;
+  lists.technique = Technique::Lists;
+  const std::string e1 = error_of([&] { vk::build_technique_on_vulkan(context(), lists, {}, f); });
+  EXPECT_NE(e1.find("does not run lists yet (it runs ha)"), std::string::npos) << e1;
+  // A fragment off the screen, named.
+  auto off = f;
+  off[7].x = 16;
+  const std::string e2 = error_of([&] { vk::build_technique_on_vulkan(context(), c, {}, off); });
+  EXPECT_NE(e2.find("fragment 7"), std::string::npos) << e2;
+  // emulated64 is refused with the reason, never run to wrong counts.
+  {
+    const ForcedMode forced("emulated64");
+    const std::string e3 = error_of([&] { vk::build_technique_on_vulkan(context(), c, {}, f); });
+    EXPECT_NE(e3.find("does not run emulated64 yet"), std::string::npos) << e3;
+  }
+  {
+    const ForcedMode forced("native32");
+    const std::string e4 = error_of([&] { vk::build_technique_on_vulkan(context(), c, {}, f); });
+    EXPECT_NE(e4.find("does not fit layout L64"), std::string::npos) << e4;
+  }
+  // No attempts, a pipeline with a binding left unbound.
+  EXPECT_NE(error_of([&] { vk::build_technique_on_vulkan(context(), c, {}, f, {}, 0); }).find("at least one"),
+            std::string::npos);
+  const auto spirv = vk::compile_to_spirv(vk::vulkan_insert_stream_compute(Technique::Ha, AtomicMode::Native32),
+                                          vk::SpirvStage::Compute, "insert");
+  vk::ComputePipeline pipeline(context(), spirv, "insert");
+  const vk::VulkanBuffer one(context(), 64);
+  const std::vector<vk::BoundBuffer> some{{0, &one}, {1, &one}};
+  const std::string e5 = error_of([&] {
+    context().submit_and_wait([&](VkCommandBuffer cmd) { pipeline.record(cmd, some, 1, 1); }, "unbound");
+  });
+  EXPECT_NE(e5.find("insert: binding 2 left unbound"), std::string::npos) << e5;
+}
+
+}  // namespace
+}  // namespace habuffer

@@ -1,0 +1,40 @@
+/// @file
+/// A fragment stream built into a technique's container on a Vulkan device
+/// through the compute entry every path shares (the fragments in a buffer,
+/// one insert call each, in stream order chunk by chunk), calls cut short
+/// (emulated64) resumed round by round, lossless mode's regathers by every
+/// path's rule, and the container read back into the CPU's: the Vulkan twin
+/// of build_technique and build_technique_on_gl.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "habuffer/fragment.h"
+#include "habuffer/lossless_build.h"
+#include "habuffer/vk/vulkan_context.h"
+
+namespace habuffer::vk {
+
+/// How a Vulkan build ran.
+struct VulkanBuildInfo {
+  double build_ms = 0.0;         ///< every attempt's gather, resume rounds and read-back
+  std::string atomic_mode;       ///< native32, native64, emulated64
+  std::string device;            ///< the device's name
+  std::uint64_t deferred = 0;    ///< insert calls cut short and resumed (emulated64), all attempts
+  std::uint32_t resume_rounds = 0;  ///< resume passes, all attempts
+};
+
+/// `fragments` built on the context's device as build_technique builds them
+/// on the CPU (an unset table is the screen; the automatic pool is the
+/// CPU's), at most `max_attempts` attempts in lossless mode. Throws
+/// std::out_of_range naming a fragment off the screen, VulkanError for a
+/// technique the path does not run, a mode the device cannot run, or a
+/// validation message.
+TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
+                                         const OffsetSource& offsets, std::span<const Fragment> fragments,
+                                         const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1,
+                                         VulkanBuildInfo* info = nullptr);
+
+}  // namespace habuffer::vk

@@ -1,0 +1,277 @@
+#include "habuffer/vk/vulkan_build.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "habuffer/shared/ha_constants.h"
+#include "habuffer/technique_params.h"
+#include "habuffer/vk/compute_pipeline.h"
+#include "habuffer/vk/spirv_compiler.h"
+#include "habuffer/vk/vulkan_buffer.h"
+#include "habuffer/vk/vulkan_error.h"
+#include "habuffer/vk/vulkan_glsl.h"
+#include "habuffer/vk/vulkan_registry.h"
+
+namespace habuffer::vk {
+namespace {
+
+constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
+constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
+constexpr std::uint64_t kDeferredCallBytes = 40;  // std430 HaDeferred of ha_entry.glsl (hash_kernel.h checks it)
+constexpr std::uint32_t kMaxResumeRounds = 1u << 16;
+constexpr std::uint32_t kMaxOverflowRegathers = 8;
+static_assert(sizeof(Fragment) == 20, "the stream is the std430 HaFragment of entry_common.glsl");
+
+// The module variant the OpenGL path resolves for the same mode and kind of
+// device (ModuleVariant::resolved): reads first where an atomic is dear.
+std::string variant_defines(AtomicMode mode, const VulkanInfo& info) {
+  gl::ModuleVariant v;
+  v.slot_read_first = mode == AtomicMode::Emulated64;
+  v.max_age_read_first = info.software;
+  return v.defines();
+}
+
+// Each counter summed over the stripes (entry_common.glsl's ha_counter_add).
+Counters tally_counters(const std::vector<std::uint32_t>& words) {
+  if (const std::uint32_t foreign = words[HABUFFER_COUNTER_FOREIGN]; foreign > 0)
+    throw VulkanError(std::to_string(foreign) + " insert calls came from another module than the build's");
+  std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> tally{};
+  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
+    for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
+  Counters c;
+  c.add_tally(tally.data());
+  c.merge_duplicates(tally[HABUFFER_COUNTER_MERGED]);
+  return c;
+}
+
+// What an attempt asked for: every fragment it received has an outcome
+// (TechniqueFrames' rule on the CPU).
+GrowthNeed attempt_need(const FragmentBuffer& buffer, const Counters& counters) {
+  GrowthNeed need = buffer.growth_need();
+  need.records = counters.records_needed();
+  return need;
+}
+
+// The pipelines and frame buffers of one build: the stream in chunks of at
+// most one storage binding, the counters, the deferred calls' ping-pong.
+class StreamGather {
+ public:
+  StreamGather(const VulkanContext& context, Technique technique, AtomicMode mode, std::span<const Fragment> fragments)
+      : context_(context),
+        params_(context, sizeof(ParamBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
+        counters_(context, kCounterWords * 4),
+        capture_(context, kAppendHeaderBytes + sizeof(Fragment)),
+        insert_(make_pipeline(vulkan_insert_stream_compute(technique, mode, variant_defines(mode, context.info())),
+                              to_string(technique) + " insert (Vulkan, " + to_string(mode) + ")")),
+        stream_size_(fragments.size()) {
+    const std::uint64_t per_chunk =
+        std::max<std::uint64_t>(1, std::min<std::uint64_t>(context.info().max_storage_range / sizeof(Fragment),
+                                                           std::uint64_t{1} << 26));
+    for (std::uint64_t first = 0; first < fragments.size() || first == 0;) {
+      const std::uint64_t n = std::min<std::uint64_t>(per_chunk, fragments.size() - first);
+      Chunk c{VulkanBuffer(context, std::max<std::uint64_t>(n, 1) * sizeof(Fragment)), n};
+      c.buffer.upload(fragments.data() + first, n * sizeof(Fragment));
+      chunks_.push_back(std::move(c));
+      first += n;
+      if (fragments.empty()) break;
+    }
+    if (mode == AtomicMode::Emulated64) {
+      const std::string name = to_string(technique) + " resume (Vulkan, " + to_string(mode) + ")";
+      resume_ = std::make_unique<ComputePipeline>(
+          context, compute_spirv(vulkan_resume_compute(technique, mode, variant_defines(mode, context.info())), name),
+          name);
+    }
+    grow_deferred(1u << 12);
+  }
+
+  // One gather of the whole stream into `t` (cleared first), its calls cut
+  // short resumed: the attempt's counters.
+  Counters gather(VulkanTechnique& t, VulkanBuildInfo& info) {
+    for (std::uint32_t regather = 0;; ++regather) {
+      write_params(t);
+      insert_.begin_recording();
+      context_.submit_and_wait(
+          [&](VkCommandBuffer cmd) {
+            t.record_clear(cmd);
+            counters_.record_zero(cmd);
+            capture_.record_zero(cmd);
+            deferred_[0].record_zero(cmd);
+            record_full_barrier(cmd);
+            for (const Chunk& c : chunks_) {
+              insert_.record(cmd, bindings(t, c.buffer, deferred_[0]), static_cast<std::uint32_t>(c.count), c.count);
+              record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
+            }
+          },
+          "the Vulkan gather");
+      if (!t.defers_calls() || resume_all(t, info)) break;
+      if (regather + 1 >= kMaxOverflowRegathers)
+        throw VulkanError("insert calls cut short overflowed the deferred-call buffer " +
+                          std::to_string(kMaxOverflowRegathers) + " times (capacity " + std::to_string(capacity_) + ")");
+    }
+    Counters c = tally_counters(counters_.read<std::uint32_t>(kCounterWords));
+    // Calls the driver ended without an outcome (a loop budget): counted as
+    // failed at the iteration limit, as the OpenGL path does.
+    if (c.fragments > stream_size_)
+      throw VulkanError("the gather counted " + std::to_string(c.fragments) + " insert calls, " +
+                        std::to_string(stream_size_) + " were made");
+    const std::uint64_t ended = stream_size_ - c.fragments;
+    c.fragments += ended;
+    c.failed_iter += ended;
+    return c;
+  }
+
+ private:
+  struct Chunk {
+    VulkanBuffer buffer;
+    std::uint64_t count = 0;
+  };
+
+  ComputePipeline make_pipeline(const std::string& source, const std::string& name) const {
+    return ComputePipeline(context_, compute_spirv(source, name), name);
+  }
+  static std::vector<std::uint32_t> compute_spirv(const std::string& source, const std::string& name) {
+    return compile_to_spirv(source, SpirvStage::Compute, name);
+  }
+
+  void write_params(const VulkanTechnique& t) {
+    ParamBlock p;
+    p.habuffer_lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;
+    p.habuffer_screen_size[0] = t.config().buffer.screen.x;
+    p.habuffer_screen_size[1] = t.config().buffer.screen.y;
+    p.habuffer_deferred_capacity = static_cast<std::uint32_t>(capacity_);
+    t.write_params(p);
+    params_.upload(&p, sizeof p);
+  }
+
+  void grow_deferred(std::uint64_t needed) {
+    capacity_ = std::min<std::uint64_t>(std::max(needed, capacity_ * 2), UINT32_MAX);
+    const std::uint64_t bytes = kAppendHeaderBytes + capacity_ * kDeferredCallBytes;
+    if (bytes > context_.info().max_storage_range)
+      throw VulkanError(std::to_string(needed) + " insert calls cut short exceed " + context_.info().name +
+                        "'s storage range");
+    for (VulkanBuffer& b : deferred_) b = VulkanBuffer(context_, bytes);
+  }
+
+  std::vector<BoundBuffer> bindings(const VulkanTechnique& t, const VulkanBuffer& stream,
+                                    const VulkanBuffer& deferred) const {
+    const gl::GlBindings b = vulkan_bindings();
+    std::vector<BoundBuffer> out = t.buffers();
+    // A technique's own points it leaves free (fewer than three buffers), and
+    // the locks and saturation image it has none of, get the capture buffer:
+    // bound, never written (the module reads them only where it has them).
+    for (unsigned point = 1; point <= ComputePipeline::kStorageBindings; ++point)
+      if (std::none_of(out.begin(), out.end(), [&](const BoundBuffer& x) { return x.binding == point; }) &&
+          point != b.counters && point != b.capture && point != b.stream && point != b.deferred)
+        out.push_back({point, &capture_});
+    out.push_back({b.params, &params_});
+    out.push_back({b.counters, &counters_});
+    out.push_back({b.capture, &capture_});
+    out.push_back({b.stream, &stream});
+    out.push_back({b.deferred, &deferred});
+    return out;
+  }
+
+  // Resume rounds until no call is cut short; false when a round's calls
+  // overflowed a buffer (the deferred buffers grown: gather again).
+  bool resume_all(VulkanTechnique& t, VulkanBuildInfo& info) {
+    std::size_t in = 0;
+    std::uint64_t pending = deferred_[0].read<std::uint32_t>(1)[0];
+    for (std::uint32_t round = 0; pending > 0; ++round) {
+      if (pending > capacity_) {
+        grow_deferred(pending);
+        return false;
+      }
+      if (round >= kMaxResumeRounds)
+        throw VulkanError(std::to_string(pending) + " insert calls still cut short after " +
+                          std::to_string(kMaxResumeRounds) + " resume rounds");
+      info.deferred += pending;
+      ++info.resume_rounds;
+      const std::size_t out = 1 - in;
+      resume_->begin_recording();
+      context_.submit_and_wait(
+          [&](VkCommandBuffer cmd) {
+            vkCmdFillBuffer(cmd, deferred_[out].handle(), 0, kAppendHeaderBytes, 0u);
+            record_full_barrier(cmd);
+            resume_->record(cmd, bindings(t, deferred_[in], deferred_[out]), static_cast<std::uint32_t>(pending),
+                            pending);
+            record_full_barrier(cmd);
+          },
+          "a Vulkan resume round");
+      pending = deferred_[out].read<std::uint32_t>(1)[0];
+      in = out;
+    }
+    return true;
+  }
+
+  const VulkanContext& context_;
+  VulkanBuffer params_, counters_, capture_;
+  ComputePipeline insert_;
+  std::unique_ptr<ComputePipeline> resume_;
+  std::vector<Chunk> chunks_;
+  std::array<VulkanBuffer, 2> deferred_;
+  std::uint64_t capacity_ = 0;
+  std::uint64_t stream_size_ = 0;
+};
+
+}  // namespace
+
+TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
+                                         const OffsetSource& offsets, std::span<const Fragment> fragments,
+                                         const ResizePolicy& policy, std::uint32_t max_attempts,
+                                         VulkanBuildInfo* info) {
+  if (max_attempts == 0) throw std::invalid_argument("at least one build attempt is needed");
+  policy.validate();
+  if (!runs_on_vulkan(config.technique))
+    throw VulkanError("the Vulkan path does not run " + to_string(config.technique) + " yet (it runs " +
+                      vulkan_technique_names() + ")");
+  check_on_screen(fragments, config.buffer.screen);
+  const std::optional<AtomicMode> mode = chosen_atomic_mode(context.info(), config.buffer.layout);
+  if (!mode)
+    throw VulkanError("--layout 64 on Vulkan: " + context.info().name + " has no 64-bit shader integers (shaderInt64)");
+  VulkanBuildInfo local;
+  VulkanBuildInfo& out = info ? *info : local;
+  out = {};
+  out.atomic_mode = to_string(*mode);
+  out.device = context.info().name;
+  const auto t0 = std::chrono::steady_clock::now();
+  // Lossless mode's rule of every path, asked before the first gather as
+  // the OpenGL path does; the CPU's table for an unset one and its automatic pool.
+  AttemptLimit limit = lossless_attempts(config, fragments, max_attempts);
+  TechniqueConfig c = config;
+  c.buffer.table = config.buffer.table_or_screen();
+  const bool automatic_pool = uses_pool(c.technique) && c.pool_capacity == 0;
+  if (automatic_pool) c.pool_capacity = policy.automatic(fragments.size());
+  c.validate();  // the configuration's own message (std::invalid_argument) before any device work
+  const std::uint32_t attempts = automatic_pool ? std::max<std::uint32_t>(limit.attempts, 2) : limit.attempts;
+  StreamGather gather(context, c.technique, *mode, fragments);
+  TechniqueBuild b;
+  std::uint64_t sized_for = 0;
+  for (;;) {
+    const auto a0 = std::chrono::steady_clock::now();
+    const std::unique_ptr<VulkanTechnique> t = make_vulkan_technique(context, c, offsets, *mode);
+    const Counters counters = gather.gather(*t, out);
+    b.buffer = t->read_back();
+    b.counters = counters;
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a0).count();
+    b.attempts.push_back({uses_table(c.technique) ? c.buffer.table : Extent{}, counters, t->capacity(), sized_for, ms});
+    if (counters.failures() == 0 || b.attempts.size() >= attempts) break;
+    const GrowthNeed need = attempt_need(*b.buffer, counters);
+    const TechniqueConfig next = c.grown(policy, need);
+    sized_for = need.count_for(c.technique);
+    if (!next.limit().empty()) {
+      b.growth_limited = true;
+      break;
+    }
+    c = next;
+  }
+  // The too-deep pixel only where the first gather failed, as on the CPU.
+  if (b.attempts.front().counters.failures() > 0) b.too_deep = std::move(limit.too_deep);
+  out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return b;
+}
+
+}  // namespace habuffer::vk

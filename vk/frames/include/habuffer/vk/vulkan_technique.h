@@ -1,0 +1,60 @@
+/// @file
+/// A technique's Vulkan part (techniques/NAME/vk): the buffers of one
+/// container on a device, its parameters, what a gather starts from, and
+/// the read-back into the CPU container of the same configuration, so a
+/// Vulkan build is compared with the CPU's record for record.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <vulkan/vulkan_core.h>
+
+#include "habuffer/atomic_mode.h"
+#include "habuffer/fragment_buffer.h"
+#include "habuffer/technique.h"
+#include "habuffer/technique_params.h"
+#include "habuffer/vk/compute_pipeline.h"
+#include "habuffer/vk/vulkan_context.h"
+
+namespace habuffer::vk {
+
+/// One container of a technique on a Vulkan device (its configuration
+/// fixed: lossless growth makes a new one).
+class VulkanTechnique {
+ public:
+  virtual ~VulkanTechnique() = default;
+  VulkanTechnique(const VulkanTechnique&) = delete;
+  VulkanTechnique& operator=(const VulkanTechnique&) = delete;
+
+  [[nodiscard]] const TechniqueConfig& config() const { return config_; }
+  [[nodiscard]] AtomicMode mode() const { return mode_; }
+  /// Whether insert calls may be cut short and resumed (emulated64's locks).
+  [[nodiscard]] virtual bool defers_calls() const { return false; }
+
+  /// Its fields of the parameter block (the frame writes the frame's).
+  virtual void write_params(ParamBlock& p) const = 0;
+  /// Its buffers at their points of vulkan_bindings(): its own (1-3), its
+  /// locks and saturation image where it has them.
+  [[nodiscard]] virtual std::vector<BoundBuffer> buffers() const = 0;
+  /// Records what empties the container before a gather.
+  virtual void record_clear(VkCommandBuffer cmd) const = 0;
+  /// Records it could hold.
+  [[nodiscard]] virtual std::uint64_t capacity() const = 0;
+  /// The CPU container of the same configuration holding what the device's does.
+  [[nodiscard]] virtual std::unique_ptr<FragmentBuffer> read_back() const = 0;
+
+ protected:
+  VulkanTechnique(const VulkanContext& context, TechniqueConfig config, AtomicMode mode)
+      : context_(context), config_(std::move(config)), mode_(mode) {}
+  const VulkanContext& context_;
+  TechniqueConfig config_;
+  AtomicMode mode_;
+};
+
+/// Throws VulkanError unless `mode` holds `layout`'s records and the
+/// context's device can run it (naming the feature it lacks).
+void check_atomic_mode(const VulkanContext& context, AtomicMode mode, Layout layout);
+
+}  // namespace habuffer::vk

@@ -1,0 +1,40 @@
+/// @file
+/// The shared GLSL assembled for Vulkan: the same module text the OpenGL
+/// path compiles (gl/glsl: the shared sources, the technique's parts, the
+/// entries, which declare their counts as push constants where VULKAN is
+/// defined), with Vulkan's #extension lines and binding points. Needs no
+/// context of either API.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "habuffer/atomic_mode.h"
+#include "habuffer/gl/gl_bindings.h"
+#include "habuffer/gl/glsl_sources.h"
+#include "habuffer/gl/module_variant.h"
+#include "habuffer/technique.h"
+
+namespace habuffer::vk {
+
+/// The Vulkan path's binding points, all in descriptor set 0: the parameter
+/// block at 0 (a uniform buffer), every storage buffer from 1 (each
+/// technique's own at 1-3, the shared ones at 4-9).
+gl::GlBindings vulkan_bindings();
+
+/// The #extension lines `mode` needs on Vulkan ("" for native32; native64:
+/// GL_EXT_shader_atomic_int64, which SPIR-V's Int64Atomics capability needs).
+std::string vulkan_module_extensions(AtomicMode mode);
+
+/// A complete module for Vulkan: #version, the mode's extensions, `header`
+/// (defines: the variant's, a host's), then the module body of every path.
+std::string vulkan_technique_module(Technique technique, AtomicMode mode, gl::ShaderStage stage,
+                                    std::string_view header = {});
+
+/// The compute entry (a fragment stream in a buffer, its count a push
+/// constant) of `technique`'s module with `variant_defines`.
+std::string vulkan_insert_stream_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
+/// The resume pass (deferred insert calls, their count a push constant).
+std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
+
+}  // namespace habuffer::vk

@@ -1,0 +1,34 @@
+#include "habuffer/vk/vulkan_glsl.h"
+
+namespace habuffer::vk {
+
+gl::GlBindings vulkan_bindings() { return gl::GlBindings::from_base(1, 0); }
+
+std::string vulkan_module_extensions(AtomicMode mode) {
+  switch (mode) {
+    case AtomicMode::Native32: return "";
+    case AtomicMode::Native64:
+      return "#extension GL_ARB_gpu_shader_int64 : require\n#extension GL_EXT_shader_atomic_int64 : require\n";
+    case AtomicMode::Emulated64: return "#extension GL_ARB_gpu_shader_int64 : require\n";
+  }
+  return "";
+}
+
+std::string vulkan_technique_module(Technique technique, AtomicMode mode, gl::ShaderStage stage,
+                                    std::string_view header) {
+  std::string s = "#version 450 core\n" + vulkan_module_extensions(mode);
+  s += header;
+  if (!header.empty() && header.back() != '\n') s += '\n';
+  return s + gl::technique_module_body(technique, mode, vulkan_bindings(), stage);
+}
+
+std::string vulkan_insert_stream_compute(Technique technique, AtomicMode mode, std::string_view variant_defines) {
+  return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) +
+         gl::kInsertStreamCompute;
+}
+
+std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines) {
+  return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) + gl::kResumeCompute;
+}
+
+}  // namespace habuffer::vk

@@ -1,0 +1,16 @@
+/// @file
+/// The Vulkan path in one include: the headless context and what its device
+/// offers, the shared GLSL compiled to SPIR-V, compute pipelines, the
+/// techniques it runs and the stream build.
+#pragma once
+
+#include "habuffer/vk/compute_pipeline.h"
+#include "habuffer/vk/spirv_compiler.h"
+#include "habuffer/vk/vulkan_buffer.h"
+#include "habuffer/vk/vulkan_build.h"
+#include "habuffer/vk/vulkan_context.h"
+#include "habuffer/vk/vulkan_error.h"
+#include "habuffer/vk/vulkan_glsl.h"
+#include "habuffer/vk/vulkan_info.h"
+#include "habuffer/vk/vulkan_registry.h"
+#include "habuffer/vk/vulkan_technique.h"

@@ -1,0 +1,36 @@
+#include "habuffer/vk/vulkan_error.h"
+
+namespace habuffer::vk {
+
+std::string result_name(VkResult result) {
+  switch (result) {
+#define HABUFFER_RESULT(name) \
+  case name: return #name;
+    HABUFFER_RESULT(VK_SUCCESS)
+    HABUFFER_RESULT(VK_NOT_READY)
+    HABUFFER_RESULT(VK_TIMEOUT)
+    HABUFFER_RESULT(VK_INCOMPLETE)
+    HABUFFER_RESULT(VK_ERROR_OUT_OF_HOST_MEMORY)
+    HABUFFER_RESULT(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+    HABUFFER_RESULT(VK_ERROR_INITIALIZATION_FAILED)
+    HABUFFER_RESULT(VK_ERROR_DEVICE_LOST)
+    HABUFFER_RESULT(VK_ERROR_MEMORY_MAP_FAILED)
+    HABUFFER_RESULT(VK_ERROR_LAYER_NOT_PRESENT)
+    HABUFFER_RESULT(VK_ERROR_EXTENSION_NOT_PRESENT)
+    HABUFFER_RESULT(VK_ERROR_FEATURE_NOT_PRESENT)
+    HABUFFER_RESULT(VK_ERROR_INCOMPATIBLE_DRIVER)
+    HABUFFER_RESULT(VK_ERROR_TOO_MANY_OBJECTS)
+    HABUFFER_RESULT(VK_ERROR_FORMAT_NOT_SUPPORTED)
+    HABUFFER_RESULT(VK_ERROR_FRAGMENTED_POOL)
+    HABUFFER_RESULT(VK_ERROR_OUT_OF_POOL_MEMORY)
+    HABUFFER_RESULT(VK_ERROR_INVALID_SHADER_NV)
+#undef HABUFFER_RESULT
+    default: return "VkResult " + std::to_string(static_cast<int>(result));
+  }
+}
+
+void check(VkResult result, const char* what) {
+  if (result != VK_SUCCESS) throw VulkanError(std::string(what) + ": " + result_name(result));
+}
+
+}  // namespace habuffer::vk
