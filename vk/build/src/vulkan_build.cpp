@@ -60,25 +60,14 @@ GrowthNeed attempt_need(const FragmentBuffer& buffer, const Counters& counters) 
 // most one storage binding, the counters, the deferred calls' ping-pong.
 class StreamGather {
  public:
-  StreamGather(const VulkanContext& context, Technique technique, AtomicMode mode, std::span<const Fragment> fragments)
+  // The pipelines (compiled here) and the frame's own buffers.
+  StreamGather(const VulkanContext& context, Technique technique, AtomicMode mode)
       : context_(context),
         params_(context, sizeof(ParamBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
         counters_(context, kCounterWords * 4),
         capture_(context, kAppendHeaderBytes + sizeof(Fragment)),
         insert_(make_pipeline(vulkan_insert_stream_compute(technique, mode, variant_defines(mode, context.info())),
-                              to_string(technique) + " insert (Vulkan, " + to_string(mode) + ")")),
-        stream_size_(fragments.size()) {
-    const std::uint64_t per_chunk =
-        std::max<std::uint64_t>(1, std::min<std::uint64_t>(context.info().max_storage_range / sizeof(Fragment),
-                                                           std::uint64_t{1} << 26));
-    for (std::uint64_t first = 0; first < fragments.size() || first == 0;) {
-      const std::uint64_t n = std::min<std::uint64_t>(per_chunk, fragments.size() - first);
-      Chunk c{VulkanBuffer(context, std::max<std::uint64_t>(n, 1) * sizeof(Fragment)), n};
-      c.buffer.upload(fragments.data() + first, n * sizeof(Fragment));
-      chunks_.push_back(std::move(c));
-      first += n;
-      if (fragments.empty()) break;
-    }
+                              to_string(technique) + " insert (Vulkan, " + to_string(mode) + ")")) {
     if (mode == AtomicMode::Emulated64) {
       const std::string name = to_string(technique) + " resume (Vulkan, " + to_string(mode) + ")";
       resume_ = std::make_unique<ComputePipeline>(
@@ -86,6 +75,23 @@ class StreamGather {
           name);
     }
     grow_deferred(1u << 12);
+  }
+
+  // The stream, in chunks of at most one storage binding (kept for every attempt).
+  void upload(std::span<const Fragment> fragments) {
+    chunks_.clear();
+    stream_size_ = fragments.size();
+    const std::uint64_t per_chunk =
+        std::max<std::uint64_t>(1, std::min<std::uint64_t>(context_.info().max_storage_range / sizeof(Fragment),
+                                                           std::uint64_t{1} << 26));
+    for (std::uint64_t first = 0; first < fragments.size() || first == 0;) {
+      const std::uint64_t n = std::min<std::uint64_t>(per_chunk, fragments.size() - first);
+      Chunk c{VulkanBuffer(context_, std::max<std::uint64_t>(n, 1) * sizeof(Fragment)), n};
+      c.buffer.upload(fragments.data() + first, n * sizeof(Fragment));
+      chunks_.push_back(std::move(c));
+      first += n;
+      if (fragments.empty()) break;
+    }
   }
 
   // One gather of the whole stream into `t` (cleared first), its calls cut
@@ -237,7 +243,6 @@ TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const Tec
   out = {};
   out.atomic_mode = to_string(*mode);
   out.device = context.info().name;
-  const auto t0 = std::chrono::steady_clock::now();
   // Lossless mode's rule of every path, asked before the first gather as
   // the OpenGL path does; the CPU's table for an unset one and its automatic pool.
   AttemptLimit limit = lossless_attempts(config, fragments, max_attempts);
@@ -247,7 +252,11 @@ TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const Tec
   if (automatic_pool) c.pool_capacity = policy.automatic(fragments.size());
   c.validate();  // the configuration's own message (std::invalid_argument) before any device work
   const std::uint32_t attempts = automatic_pool ? std::max<std::uint32_t>(limit.attempts, 2) : limit.attempts;
-  StreamGather gather(context, c.technique, *mode, fragments);
+  StreamGather gather(context, c.technique, *mode);
+  // Timed as the GL path times its build: the upload, every attempt's
+  // gather and read-back; not the device's creation or the compilation.
+  const auto t0 = std::chrono::steady_clock::now();
+  gather.upload(fragments);
   TechniqueBuild b;
   std::uint64_t sized_for = 0;
   for (;;) {
