@@ -19,7 +19,7 @@ namespace habuffer::vk {
 
 /// How a Vulkan build ran.
 struct VulkanBuildInfo {
-  double build_ms = 0.0;         ///< the upload, every attempt's gather, resume rounds and read-back (not compilation)
+  double build_ms = 0.0;  ///< the upload and every attempt's gather, resume rounds and counters (GL's span)
   std::string atomic_mode;       ///< native32, native64, emulated64
   std::string device;            ///< the device's name
   std::uint64_t deferred = 0;    ///< insert calls cut short and resumed (emulated64), all attempts
