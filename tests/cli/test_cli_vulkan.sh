@@ -44,23 +44,26 @@ same 131x77 "--load 0.6 --stream random --seed 12" -- --table 160x90 --age-bits 
 same 50x40 "--load 2.5 --seed 13" -- --lossless --max-attempts 6
 same 50x40 "--load 2.5 --seed 13" -- --lossless --max-attempts 6 --layout 32
 same 64x64 "--fragments 3000 --seed 14 --min-side 1 --max-side 3" -- --block 4 --offsets farthest
+same 96x64 "--load 1.7 --seed 15" -- --technique lists
+same 96x64 "--load 1.7 --seed 15" -- --technique lists --layout 32
+same 96x64 "--load 1.7 --seed 15" -- --technique lists --pool 3000 --lossless --max-attempts 4
 # The last build was L64: native64 where the device has 64-bit buffer atomics (lavapipe does).
 if grep -q "shaderBufferInt64Atomics: yes" info.txt; then
   grep -q '"vk_atomic_mode":"native64"' vk.json && ok modes || bad modes "L64 did not run native64: $(cat vk.json)"
 fi
 
 # --- Misuse, one line each ---------------------------------------------------
-expect usage 2 "option --threads has no effect with --path vk" -- build-lists --in f.csv --out x.csv --screen 64x64 \
+expect usage 2 "option --threads has no effect with --path vk" -- build-lists --in f.csv --out x.csv --screen 96x64 \
   --path vk --threads 2
-expect usage 2 "option --path: 'metal' is not cpu, gl or vk" -- build-lists --in f.csv --out x.csv --screen 64x64 \
+expect usage 2 "option --path: 'metal' is not cpu, gl or vk" -- build-lists --in f.csv --out x.csv --screen 96x64 \
   --path metal
 expect usage 2 "option --path: 'vk' is not cpu or gl" -- demo --path vk
-expect data 1 "does not run lists yet (it runs ha)" -- build-lists --in f.csv --out x.csv --screen 64x64 --path vk \
-  --technique lists
+expect data 1 "does not run arrays yet (it runs ha, lists)" -- build-lists --in f.csv --out x.csv \
+  --screen 96x64 --path vk --technique arrays
 HABUFFER_VK_DEVICE=97 expect data 1 "device 97 (HABUFFER_VK_DEVICE) is not among the Vulkan devices" -- \
-  build-lists --in f.csv --out x.csv --screen 64x64 --path vk
+  build-lists --in f.csv --out x.csv --screen 96x64 --path vk
 HABUFFER_ATOMIC_MODE=emulated64 expect data 1 "does not run emulated64 yet" -- \
-  build-lists --in f.csv --out x.csv --screen 64x64 --path vk
+  build-lists --in f.csv --out x.csv --screen 96x64 --path vk
 [[ ! -e x.csv ]] && ok outputs || bad outputs "a refused build left x.csv"
 
 for cls in info lists modes usage data outputs; do echo "class $cls: ${tried[$cls]:-0} cases"; done

@@ -118,7 +118,13 @@ class StreamGather {
         throw VulkanError("insert calls cut short overflowed the deferred-call buffer " +
                           std::to_string(kMaxOverflowRegathers) + " times (capacity " + std::to_string(capacity_) + ")");
     }
-    Counters c = tally_counters(counters_.read<std::uint32_t>(kCounterWords));
+    if (t.sorts_after_gather()) sort(t);
+    const std::vector<std::uint32_t> words = counters_.read<std::uint32_t>(kCounterWords);
+    Counters c = tally_counters(words);
+    if (t.sorts_after_gather() && words_sorted(words) != t.config().buffer.screen.area())
+      throw VulkanError("the driver ended " + std::to_string(t.config().buffer.screen.area() - words_sorted(words)) +
+                        " per-pixel sorts early (its loop budget): the lists are too long for this driver's sort pass");
+    t.gathered(words);
     // Calls the driver ended without an outcome (a loop budget): counted as
     // failed at the iteration limit, as the OpenGL path does.
     if (c.fragments > stream_size_)
@@ -181,6 +187,32 @@ class StreamGather {
     return out;
   }
 
+  // The sort pass over the screen (its pipeline made at the first use).
+  void sort(const VulkanTechnique& t) {
+    if (!sort_) {
+      const std::string name = to_string(t.config().technique) + " sort (Vulkan, " + to_string(t.mode()) + ")";
+      sort_ = std::make_unique<ComputePipeline>(
+          context_,
+          compute_spirv(vulkan_sort_compute(t.config().technique, t.mode(), variant_defines(t.mode(), context_.info())),
+                        name),
+          name);
+    }
+    sort_->begin_recording();
+    context_.submit_and_wait(
+        [&](VkCommandBuffer cmd) {
+          sort_->record_screen(cmd, bindings(t, chunks_.front().buffer, deferred_[0]), t.config().buffer.screen);
+          record_full_barrier(cmd);
+        },
+        "the Vulkan sort pass");
+  }
+
+  static std::uint64_t words_sorted(const std::vector<std::uint32_t>& words) {
+    std::uint64_t n = 0;
+    for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
+      n += words[stripe * HABUFFER_COUNTER_STRIDE + HABUFFER_COUNTER_SORT_DONE];
+    return n;
+  }
+
   // Resume rounds until no call is cut short; false when a round's calls
   // overflowed a buffer (the deferred buffers grown: gather again).
   bool resume_all(VulkanTechnique& t, VulkanBuildInfo& info) {
@@ -216,7 +248,7 @@ class StreamGather {
   const VulkanContext& context_;
   VulkanBuffer params_, counters_, capture_;
   ComputePipeline insert_;
-  std::unique_ptr<ComputePipeline> resume_;
+  std::unique_ptr<ComputePipeline> resume_, sort_;
   std::vector<Chunk> chunks_;
   std::array<VulkanBuffer, 2> deferred_;
   std::uint64_t capacity_ = 0;

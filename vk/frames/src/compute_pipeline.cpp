@@ -109,8 +109,7 @@ VkDescriptorSet ComputePipeline::allocate_set() {
   }
 }
 
-void ComputePipeline::record(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, std::uint32_t count,
-                             std::uint64_t invocations) {
+void ComputePipeline::bind(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, std::uint32_t count) {
   std::array<const VulkanBuffer*, kBindings> at{};
   for (const BoundBuffer& b : buffers) {
     if (b.binding >= kBindings || b.buffer == nullptr || !*b.buffer)
@@ -135,6 +134,16 @@ void ComputePipeline::record(VkCommandBuffer cmd, std::span<const BoundBuffer> b
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
   vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof count, &count);
+}
+
+void ComputePipeline::record_screen(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, Extent screen) {
+  bind(cmd, buffers, 0);
+  vkCmdDispatch(cmd, (screen.x + 7) / 8, (screen.y + 7) / 8, 1);
+}
+
+void ComputePipeline::record(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, std::uint32_t count,
+                             std::uint64_t invocations) {
+  bind(cmd, buffers, count);
   // A 2D grid of groups, as the GL path's (compute_grid.h): x within the
   // device's limit, the rows above it.
   const std::uint64_t groups = (invocations + kGroupSize - 1) / kGroupSize;

@@ -1,8 +1,11 @@
 #include "habuffer/vk/vulkan_technique.h"
 
+#include "habuffer/technique_descriptor.h"
 #include "habuffer/vk/vulkan_error.h"
 
 namespace habuffer::vk {
+
+bool VulkanTechnique::sorts_after_gather() const { return !descriptor(config_.technique).sorted_on_insert; }
 
 void check_atomic_mode(const VulkanContext& context, AtomicMode mode, Layout layout) {
   if ((mode == AtomicMode::Native32) != (layout == Layout::L32))

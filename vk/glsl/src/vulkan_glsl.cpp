@@ -1,5 +1,9 @@
 #include "habuffer/vk/vulkan_glsl.h"
 
+#include <stdexcept>
+
+#include "habuffer/technique_descriptor.h"
+
 namespace habuffer::vk {
 
 gl::GlBindings vulkan_bindings() { return gl::GlBindings::from_base(1, 0); }
@@ -25,6 +29,12 @@ std::string vulkan_technique_module(Technique technique, AtomicMode mode, gl::Sh
 std::string vulkan_insert_stream_compute(Technique technique, AtomicMode mode, std::string_view variant_defines) {
   return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) +
          gl::kInsertStreamCompute;
+}
+
+std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::string_view variant_defines) {
+  if (descriptor(technique).sorted_on_insert)
+    throw std::invalid_argument("technique " + to_string(technique) + " is sorted by insertion: it has no sort pass");
+  return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) + gl::kSortCompute;
 }
 
 std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines) {

@@ -81,6 +81,10 @@ VulkanBuffer::VulkanBuffer(const VulkanContext& context, std::uint64_t bytes, Vk
               usage | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                   VK_BUFFER_USAGE_TRANSFER_DST_BIT,
               false, buffer_, memory_);
+  // Zeroed, as the GL path's buffers are: a container's never-written words
+  // (the pool's nodes beyond the ones used) read back as zero, not as what
+  // the memory held before.
+  context.submit_and_wait([&](VkCommandBuffer cmd) { record_zero(cmd); }, "zeroing a new buffer");
 }
 
 VulkanBuffer::~VulkanBuffer() { release(); }

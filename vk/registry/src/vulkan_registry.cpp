@@ -1,12 +1,16 @@
 #include "habuffer/vk/vulkan_registry.h"
 
 #include "habuffer/vk/techniques/ha/vulkan_ha_table.h"
+#include "habuffer/vk/techniques/linked_lists/vulkan_linked_lists.h"
 #include "habuffer/vk/vulkan_error.h"
 
 namespace habuffer::vk {
 namespace {
 
-// One line a technique: its Vulkan part's maker.
+// One line a technique: its Vulkan part's maker. sorted-lists has a Vulkan
+// part (VulkanLinkedLists) but no line yet: on lavapipe its insertion, a
+// compare-and-swap retry loop like emulated64's lock, stored records whose
+// calls counted no outcome (docs/spec-notes.md, "Issue 48").
 using Maker = std::unique_ptr<VulkanTechnique> (*)(const VulkanContext&, const TechniqueConfig&, const OffsetSource&,
                                                    AtomicMode);
 struct Entry {
@@ -17,6 +21,9 @@ constexpr Entry kEntries[] = {
     {Technique::Ha,
      [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource& o, AtomicMode m)
          -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanHaTable>(c, t, o, m); }},
+    {Technique::Lists,
+     [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
+         -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanLinkedLists>(c, t, m); }},
 };
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include "habuffer/extent.h"
 #include "habuffer/vk/vulkan_buffer.h"
 #include "habuffer/vk/vulkan_context.h"
 
@@ -50,9 +51,14 @@ class ComputePipeline {
   /// unbound.
   void record(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, std::uint32_t count,
               std::uint64_t invocations);
+  /// The same over a screen, one invocation per pixel in 8x8 work groups
+  /// (the sort pass's local size).
+  void record_screen(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, Extent screen);
 
  private:
   VkDescriptorSet allocate_set();
+  // Binds the pipeline, a set of `buffers` and the push constant.
+  void bind(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, std::uint32_t count);
   const VulkanContext& context_;
   std::string name_;
   VkShaderModule module_ = VK_NULL_HANDLE;

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <vulkan/vulkan_core.h>
@@ -33,6 +34,12 @@ class VulkanTechnique {
   /// Whether insert calls may be cut short and resumed (emulated64's locks).
   [[nodiscard]] virtual bool defers_calls() const { return false; }
 
+  /// Whether a sort pass follows the gather (the technique's descriptor:
+  /// not sorted on insert).
+  [[nodiscard]] bool sorts_after_gather() const;
+  /// Reads what it needs of a gather's counter words (the pool techniques:
+  /// the nodes asked for), before read_back.
+  virtual void gathered(std::span<const std::uint32_t> counter_words) { (void)counter_words; }
   /// Its fields of the parameter block (the frame writes the frame's).
   virtual void write_params(ParamBlock& p) const = 0;
   /// Its buffers at their points of vulkan_bindings(): its own (1-3), its

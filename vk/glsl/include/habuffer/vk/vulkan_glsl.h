@@ -34,6 +34,10 @@ std::string vulkan_technique_module(Technique technique, AtomicMode mode, gl::Sh
 /// The compute entry (a fragment stream in a buffer, its count a push
 /// constant) of `technique`'s module with `variant_defines`.
 std::string vulkan_insert_stream_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
+/// The sort pass of a technique that sorts after the gather (one
+/// invocation per pixel, 8x8 groups); std::invalid_argument for one sorted
+/// by insertion.
+std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
 /// The resume pass (deferred insert calls, their count a push constant).
 std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
 

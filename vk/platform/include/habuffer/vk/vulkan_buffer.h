@@ -18,7 +18,7 @@ namespace habuffer::vk {
 class VulkanBuffer {
  public:
   VulkanBuffer() = default;
-  /// `bytes` (at least 4; rounded up to 4) of device memory; `usage` adds to
+  /// `bytes` (at least 4; rounded up to 4) of device memory, zeroed; `usage` adds to
   /// storage, transfer source and destination. Throws VulkanError naming the
   /// size when the device has no memory for it or it exceeds
   /// maxStorageBufferRange.
