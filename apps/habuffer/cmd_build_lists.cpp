@@ -37,7 +37,7 @@ const CommandSpec& build_lists_spec() {
           {"dump-max-age", "MAXAGE.csv", "", "the HA-buffer's max-age table", writes()},
           {"path", kBuildPaths, "cpu",
            "where the lists are built: cpu here (a fragment file's reference build), gl (OpenGL 4.5) or vk (Vulkan, "
-           "where built; the HA-buffer so far) through the GPU's compute entry"},
+           "where built; ha and lists so far) through the GPU's compute entry"},
           {"table", "WxH", "",
            "the HA-buffer's table (default: the screen; render's auto sizes it from a counting pass)"}} +
           shared_options({"technique"}) + technique_option_specs(false) + technique_option_specs(true) +

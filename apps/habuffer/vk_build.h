@@ -14,9 +14,9 @@
 
 namespace habuffer::cli {
 
-/// The technique of `options` on Vulkan. Sets timing.build_ms (every
-/// attempt's gather, resume rounds and read-back; not the device's creation
-/// or the shaders' compilation) and the vk fields of `timing`. Throws
+/// The technique of `options` on Vulkan. Sets timing.build_ms (the upload
+/// and every attempt's gather with its counters, as the GL path's; not the
+/// device, the compilation or the read-back) and the vk fields of `timing`. Throws
 /// DataError when no usable Vulkan device, technique or mode is found.
 TechniqueBuild build_on_vk(const HashOptions& options, std::span<const Fragment> fragments, BuildTiming& timing);
 

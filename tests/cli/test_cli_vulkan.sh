@@ -9,7 +9,10 @@ bin=$1
 dir=$2
 # shellcheck source=cli_common.sh
 source "$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/cli_common.sh"  # enters a fresh $dir
-export HABUFFER_VK_VALIDATION=1
+# The validation layer where it is installed (scripts/setup.sh installs it).
+for d in /usr/share/vulkan/explicit_layer.d /etc/vulkan/explicit_layer.d; do
+  [[ -e $d/VkLayer_khronos_validation.json ]] && export HABUFFER_VK_VALIDATION=1
+done
 
 "$bin" info >info.txt 2>&1
 if grep -q "^  vk: not built\|^  vk: unavailable" info.txt; then

@@ -135,6 +135,8 @@ class Checks:
         # once) is steady, and a leak raises it with every switch: compared after the
         # warm-up and at the end.
         rss = [row["rss_kib"] for row in r["per_frame"]]
+        if len(rss) != 101:  # the warm-up ends at frame 20 (view_run.cpp: frames / 5)
+            raise SystemExit("switches: %d frames reported, not 101" % len(rss))
         warm, end = rss[20:36], rss[-16:]
         peak = max(end) - max(warm)
         print("switches: resident memory at most %d KiB after the warm-up, %d at the end (%+d; lowest %d, %d)"

@@ -5,9 +5,11 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "habuffer/shared/ha_constants.h"
+#include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_params.h"
 #include "habuffer/vk/compute_pipeline.h"
 #include "habuffer/vk/spirv_compiler.h"
@@ -68,13 +70,23 @@ class StreamGather {
         capture_(context, kAppendHeaderBytes + sizeof(Fragment)),
         insert_(make_pipeline(vulkan_insert_stream_compute(technique, mode, variant_defines(mode, context.info())),
                               to_string(technique) + " insert (Vulkan, " + to_string(mode) + ")")) {
+    if (!descriptor(technique).sorted_on_insert) {
+      const std::string name = to_string(technique) + " sort (Vulkan, " + to_string(mode) + ")";
+      sort_ = std::make_unique<ComputePipeline>(
+          context, compute_spirv(vulkan_sort_compute(technique, mode, variant_defines(mode, context.info())), name),
+          name);
+    }
     if (mode == AtomicMode::Emulated64) {
       const std::string name = to_string(technique) + " resume (Vulkan, " + to_string(mode) + ")";
       resume_ = std::make_unique<ComputePipeline>(
           context, compute_spirv(vulkan_resume_compute(technique, mode, variant_defines(mode, context.info())), name),
           name);
+      grow_deferred(1u << 12);
+    } else {
+      // No call is deferred in a native mode: a header whose count a call
+      // the driver cuts short may raise (capacity 0: nothing stored).
+      deferred_[0] = VulkanBuffer(context, kAppendHeaderBytes);
     }
-    grow_deferred(1u << 12);
   }
 
   // The stream, in chunks of at most one storage binding (kept for every attempt).
@@ -133,6 +145,7 @@ class StreamGather {
     const std::uint64_t ended = stream_size_ - c.fragments;
     c.fragments += ended;
     c.failed_iter += ended;
+    info.ended_by_driver += ended;
     return c;
   }
 
@@ -187,16 +200,9 @@ class StreamGather {
     return out;
   }
 
-  // The sort pass over the screen (its pipeline made at the first use).
+  // The sort pass over the screen (its pipeline made with the others).
   void sort(const VulkanTechnique& t) {
-    if (!sort_) {
-      const std::string name = to_string(t.config().technique) + " sort (Vulkan, " + to_string(t.mode()) + ")";
-      sort_ = std::make_unique<ComputePipeline>(
-          context_,
-          compute_spirv(vulkan_sort_compute(t.config().technique, t.mode(), variant_defines(t.mode(), context_.info())),
-                        name),
-          name);
-    }
+    if (!sort_) throw std::logic_error("a sort pass for " + to_string(t.config().technique) + ", made without one");
     sort_->begin_recording();
     context_.submit_and_wait(
         [&](VkCommandBuffer cmd) {

@@ -42,7 +42,13 @@ void make_buffer(const VulkanContext& c, std::uint64_t bytes, VkBufferUsageFlags
     buffer = VK_NULL_HANDLE;
     throw VulkanError("allocating " + std::to_string(bytes) + " bytes on " + c.info().name + ": " + result_name(r));
   }
-  vkBindBufferMemory(c.device(), buffer, memory, 0);
+  if (const VkResult bound = vkBindBufferMemory(c.device(), buffer, memory, 0); bound != VK_SUCCESS) {
+    vkFreeMemory(c.device(), memory, nullptr);
+    vkDestroyBuffer(c.device(), buffer, nullptr);
+    memory = VK_NULL_HANDLE;
+    buffer = VK_NULL_HANDLE;
+    throw VulkanError("binding " + std::to_string(bytes) + " bytes of memory to a buffer: " + result_name(bound));
+  }
 }
 
 // A host-visible buffer for one copy, gone with its scope.
@@ -84,7 +90,12 @@ VulkanBuffer::VulkanBuffer(const VulkanContext& context, std::uint64_t bytes, Vk
   // Zeroed, as the GL path's buffers are: a container's never-written words
   // (the pool's nodes beyond the ones used) read back as zero, not as what
   // the memory held before.
-  context.submit_and_wait([&](VkCommandBuffer cmd) { record_zero(cmd); }, "zeroing a new buffer");
+  try {
+    context.submit_and_wait([&](VkCommandBuffer cmd) { record_zero(cmd); }, "zeroing a new buffer");
+  } catch (...) {
+    release();  // the destructor does not run for a constructor that throws
+    throw;
+  }
 }
 
 VulkanBuffer::~VulkanBuffer() { release(); }
@@ -122,6 +133,7 @@ void VulkanBuffer::upload(const void* data, std::uint64_t bytes) {
   std::memcpy(staging.mapped, data, bytes);
   context_->submit_and_wait(
       [&](VkCommandBuffer cmd) {
+        record_full_barrier(cmd);  // after the buffer's earlier writes (its zeroing, a gather)
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, staging.buffer, buffer_, 1, &region);
       },
@@ -139,6 +151,13 @@ std::vector<std::uint8_t> VulkanBuffer::read_bytes(std::uint64_t bytes) const {
         record_full_barrier(cmd);
         const VkBufferCopy region{0, 0, bytes};
         vkCmdCopyBuffer(cmd, buffer_, staging.buffer, 1, &region);
+        // The copy's writes made visible to the host's read after the fence.
+        VkMemoryBarrier to_host{};
+        to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+        to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr,
+                             0, nullptr);
       },
       "reading a buffer back");
   std::memcpy(out.data(), staging.mapped, bytes);
@@ -151,8 +170,8 @@ void record_full_barrier(VkCommandBuffer cmd) {
   VkMemoryBarrier barrier{};
   barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
-                          VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT |
+                          VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
   const VkPipelineStageFlags stages = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
   vkCmdPipelineBarrier(cmd, stages, stages, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }

@@ -123,6 +123,8 @@ bool ContextOptions::validation_from_environment() {
   throw VulkanError("HABUFFER_VK_VALIDATION='" + std::string(env) + "' is not 0 or 1");
 }
 
+bool validation_layer_available() { return layer_present(kValidationLayer); }
+
 std::vector<VulkanInfo> list_devices() {
   const VkInstance instance = make_instance(false, nullptr);
   std::vector<VulkanInfo> infos;
@@ -165,8 +167,13 @@ struct VulkanContext::State {
   }
 
   static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   VkDebugUtilsMessageTypeFlagsEXT type,
                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    // The loader's general warnings (a stray ICD manifest) are not the
+    // library's errors; its general errors, and every validation or
+    // performance message, are.
+    if (type == VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT && severity < VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT)
+      return VK_FALSE;
     auto* s = static_cast<State*>(user);
     const char* level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
     const std::lock_guard lock(s->mutex);
@@ -288,6 +295,7 @@ void VulkanContext::submit_and_wait(const std::function<void(VkCommandBuffer)>& 
     check(vkBeginCommandBuffer(cmd, &bi), what);
     record(cmd);
     check(vkEndCommandBuffer(cmd), what);
+    check_messages(what);  // commands the layer refused never reach the driver
     VkFenceCreateInfo fi{};
     fi.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     check(vkCreateFence(s.device, &fi, nullptr, &fence), what);

@@ -24,6 +24,9 @@ struct VulkanBuildInfo {
   std::string device;            ///< the device's name
   std::uint64_t deferred = 0;    ///< insert calls cut short and resumed (emulated64), all attempts
   std::uint32_t resume_rounds = 0;  ///< resume passes, all attempts
+  /// Insert calls the driver ended without an outcome (a loop budget),
+  /// counted failed_iter as on GL; all attempts.
+  std::uint64_t ended_by_driver = 0;
 };
 
 /// `fragments` built on the context's device as build_technique builds them

@@ -42,6 +42,9 @@ struct ContextOptions {
   static bool validation_from_environment();
 };
 
+/// Whether the Khronos validation layer is installed (Debian vulkan-validationlayers).
+bool validation_layer_available();
+
 /// Every physical device the loader lists, each with why it cannot be used
 /// (VulkanInfo::unusable); throws VulkanError without a loader or an ICD.
 std::vector<VulkanInfo> list_devices();
