@@ -90,6 +90,25 @@ function(habuffer_add_part name)
   endif()
 endfunction()
 
+# A path's library (core, gl, vk): the parts in the folders PARTS of the
+# calling folder (added here), the library `name` as habuffer::`of`, its
+# one-include header folder include/ above every part, and every part
+# declared OF `of` linked in (habuffer_umbrella). The caller adds the
+# library's own dependencies.
+function(habuffer_path_library name)
+  cmake_parse_arguments(PARSE_ARGV 1 ARG "" "OF" "PARTS")
+  foreach(part IN LISTS ARG_PARTS)
+    add_subdirectory(${part})
+  endforeach()
+  habuffer_add_library(${name} ALIAS habuffer::${ARG_OF})
+  set_target_properties(${name} PROPERTIES EXPORT_NAME ${ARG_OF})
+  target_compile_features(${name} PUBLIC cxx_std_20)
+  target_include_directories(${name} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+                                            $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  set_property(GLOBAL APPEND PROPERTY HABUFFER_PUBLIC_INCLUDES_${ARG_OF} ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  habuffer_umbrella(${name} ${ARG_OF})
+endfunction()
+
 # The umbrella `name` links every part declared OF `of`, at the end of
 # configuration (parts come from core/, gl/ and each technique's folder).
 function(habuffer_umbrella name of)

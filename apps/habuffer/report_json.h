@@ -23,8 +23,7 @@ struct BuildTiming {
   std::uint32_t gl_cut_short_retries = 0;  ///< --path gl: gathers retried because calls were cut short
   std::string vk_atomic_mode;  ///< --path vk: the mode that ran, and the device
   std::string vk_device;       ///< --path vk: the device's name
-  std::uint64_t vk_deferred = 0;        ///< --path vk: insert calls cut short and resumed
-  std::uint32_t vk_resume_rounds = 0;   ///< --path vk: resume passes
+  std::uint64_t vk_ended_by_driver = 0;  ///< --path vk: insert calls the driver ended without an outcome
 };
 
 /// "key": [x, y], the stats files' form of a size.

@@ -19,8 +19,7 @@ TechniqueBuild build_on_vk(const HashOptions& options, std::span<const Fragment>
     timing.build_ms = info.build_ms;
     timing.vk_atomic_mode = info.atomic_mode;
     timing.vk_device = info.device;
-    timing.vk_deferred = info.deferred;
-    timing.vk_resume_rounds = info.resume_rounds;
+    timing.vk_ended_by_driver = info.ended_by_driver;
     return built;
   } catch (const vk::VulkanError& e) {
     throw DataError(std::string("--path vk: ") + e.what());

@@ -1,5 +1,7 @@
 #include "habuffer/technique_frames.h"
 
+#include "habuffer/attempt_need.h"
+
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -9,13 +11,6 @@
 namespace habuffer {
 namespace {
 
-// What an attempt into `buffer` asked for: every fragment it received has an outcome.
-GrowthNeed attempt_need(const FragmentBuffer& buffer, const Counters& counters) {
-  GrowthNeed need = buffer.growth_need();
-  need.records = counters.records_needed();
-  return need;
-}
-
 // Whether `buffer` is the container make_fragment_buffer would make for `c`
 // (the offsets come from one source, so the configuration says it all).
 bool made_for(const FragmentBuffer& buffer, const TechniqueConfig& c) {
@@ -23,6 +18,12 @@ bool made_for(const FragmentBuffer& buffer, const TechniqueConfig& c) {
 }
 
 }  // namespace
+
+GrowthNeed attempt_need(const FragmentBuffer& buffer, const Counters& counters) {
+  GrowthNeed need = buffer.growth_need();
+  need.records = counters.records_needed();
+  return need;
+}
 
 TechniqueFrames::TechniqueFrames(OffsetSource offsets, InsertOptions options, ResizePolicy policy,
                                  std::uint32_t max_attempts)

@@ -1,3 +1,4 @@
+#include "habuffer/gpu_tally.h"
 #include "habuffer/gl/gl_frame_driver.h"
 
 #include <cstddef>
@@ -28,7 +29,6 @@ namespace habuffer::gl {
 namespace {
 
 constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
-static_assert(HABUFFER_GPU_COUNTER_COUNT <= HABUFFER_COUNTER_STRIDE, "a stripe's counters fit its cache line");
 constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
 constexpr std::uint64_t kDeferredCallBytes = 40;  // std430 HaDeferred of ha_entry.glsl
 static_assert(sizeof(Fragment) == 20 && offsetof(Fragment, coverage) == 16,
@@ -59,14 +59,6 @@ std::uint32_t fingerprint(const std::string& text) {
   std::uint32_t h = 2166136261u;
   for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
   return h == 0 ? 1u : h;
-}
-
-// Each counter summed over the stripes (entry_common.glsl's ha_counter_add).
-std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> stripe_tally(const std::vector<std::uint32_t>& words) {
-  std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> tally{};
-  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
-    for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
-  return tally;
 }
 
 std::unique_ptr<GlTechnique> checked(std::unique_ptr<GlTechnique> t) {

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "habuffer/attempt_need.h"
+#include "habuffer/gpu_tally.h"
 #include "habuffer/shared/ha_constants.h"
 #include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_params.h"
@@ -23,9 +25,6 @@ namespace {
 
 constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
 constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
-constexpr std::uint64_t kDeferredCallBytes = 40;  // std430 HaDeferred of ha_entry.glsl (hash_kernel.h checks it)
-constexpr std::uint32_t kMaxResumeRounds = 1u << 16;
-constexpr std::uint32_t kMaxOverflowRegathers = 8;
 static_assert(sizeof(Fragment) == 20, "the stream is the std430 HaFragment of entry_common.glsl");
 
 // The module variant the OpenGL path resolves for the same mode and kind of
@@ -37,29 +36,19 @@ std::string variant_defines(AtomicMode mode, const VulkanInfo& info) {
   return v.defines();
 }
 
-// Each counter summed over the stripes (entry_common.glsl's ha_counter_add).
+// The attempt's counters from its striped tallies.
 Counters tally_counters(const std::vector<std::uint32_t>& words) {
   if (const std::uint32_t foreign = words[HABUFFER_COUNTER_FOREIGN]; foreign > 0)
     throw VulkanError(std::to_string(foreign) + " insert calls came from another module than the build's");
-  std::array<std::uint64_t, HABUFFER_GPU_COUNTER_COUNT> tally{};
-  for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
-    for (std::uint32_t k = 0; k < HABUFFER_GPU_COUNTER_COUNT; ++k) tally[k] += words[stripe * HABUFFER_COUNTER_STRIDE + k];
+  const auto tally = stripe_tally(words);
   Counters c;
   c.add_tally(tally.data());
   c.merge_duplicates(tally[HABUFFER_COUNTER_MERGED]);
   return c;
 }
 
-// What an attempt asked for: every fragment it received has an outcome
-// (TechniqueFrames' rule on the CPU).
-GrowthNeed attempt_need(const FragmentBuffer& buffer, const Counters& counters) {
-  GrowthNeed need = buffer.growth_need();
-  need.records = counters.records_needed();
-  return need;
-}
-
 // The pipelines and frame buffers of one build: the stream in chunks of at
-// most one storage binding, the counters, the deferred calls' ping-pong.
+// most one storage binding, the counters, the deferred calls' header.
 class StreamGather {
  public:
   // The pipelines (compiled here) and the frame's own buffers.
@@ -76,17 +65,11 @@ class StreamGather {
           context, compute_spirv(vulkan_sort_compute(technique, mode, variant_defines(mode, context.info())), name),
           name);
     }
-    if (mode == AtomicMode::Emulated64) {
-      const std::string name = to_string(technique) + " resume (Vulkan, " + to_string(mode) + ")";
-      resume_ = std::make_unique<ComputePipeline>(
-          context, compute_spirv(vulkan_resume_compute(technique, mode, variant_defines(mode, context.info())), name),
-          name);
-      grow_deferred(1u << 12);
-    } else {
-      // No call is deferred in a native mode: a header whose count a call
-      // the driver cuts short may raise (capacity 0: nothing stored).
-      deferred_[0] = VulkanBuffer(context, kAppendHeaderBytes);
-    }
+    // Every mode the Vulkan path runs is native: no call is deferred (the
+    // resume pass waits for emulated64, refused by check_atomic_mode). A
+    // call the driver cuts short raises the header's count only (capacity
+    // 0: nothing stored) and is counted as ended by the driver.
+    deferred_ = VulkanBuffer(context, kAppendHeaderBytes);
   }
 
   // The stream, in chunks of at most one storage binding (kept for every attempt).
@@ -106,35 +89,30 @@ class StreamGather {
     }
   }
 
-  // One gather of the whole stream into `t` (cleared first), its calls cut
-  // short resumed: the attempt's counters.
+  // One gather of the whole stream into `t` (cleared first), sorted where
+  // the technique sorts after it: the attempt's counters.
   Counters gather(VulkanTechnique& t, VulkanBuildInfo& info) {
-    for (std::uint32_t regather = 0;; ++regather) {
-      write_params(t);
-      insert_.begin_recording();
-      context_.submit_and_wait(
-          [&](VkCommandBuffer cmd) {
-            t.record_clear(cmd);
-            counters_.record_zero(cmd);
-            capture_.record_zero(cmd);
-            deferred_[0].record_zero(cmd);
-            record_full_barrier(cmd);
-            for (const Chunk& c : chunks_) {
-              insert_.record(cmd, bindings(t, c.buffer, deferred_[0]), static_cast<std::uint32_t>(c.count), c.count);
-              record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
-            }
-          },
-          "the Vulkan gather");
-      if (!t.defers_calls() || resume_all(t, info)) break;
-      if (regather + 1 >= kMaxOverflowRegathers)
-        throw VulkanError("insert calls cut short overflowed the deferred-call buffer " +
-                          std::to_string(kMaxOverflowRegathers) + " times (capacity " + std::to_string(capacity_) + ")");
-    }
+    write_params(t);
+    insert_.begin_recording();
+    context_.submit_and_wait(
+        [&](VkCommandBuffer cmd) {
+          t.record_clear(cmd);
+          counters_.record_zero(cmd);
+          capture_.record_zero(cmd);
+          deferred_.record_zero(cmd);
+          record_full_barrier(cmd);
+          for (const Chunk& c : chunks_) {
+            insert_.record(cmd, bindings(t, c.buffer, deferred_), static_cast<std::uint32_t>(c.count), c.count);
+            record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
+          }
+        },
+        "the Vulkan gather");
     if (t.sorts_after_gather()) sort(t);
     const std::vector<std::uint32_t> words = counters_.read<std::uint32_t>(kCounterWords);
     Counters c = tally_counters(words);
-    if (t.sorts_after_gather() && words_sorted(words) != t.config().buffer.screen.area())
-      throw VulkanError("the driver ended " + std::to_string(t.config().buffer.screen.area() - words_sorted(words)) +
+    const std::uint64_t sorted = stripe_tally(words)[HABUFFER_COUNTER_SORT_DONE];
+    if (t.sorts_after_gather() && sorted != t.config().buffer.screen.area())
+      throw VulkanError("the driver ended " + std::to_string(t.config().buffer.screen.area() - sorted) +
                         " per-pixel sorts early (its loop budget): the lists are too long for this driver's sort pass");
     t.gathered(words);
     // Calls the driver ended without an outcome (a loop budget): counted as
@@ -167,18 +145,8 @@ class StreamGather {
     p.habuffer_lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;
     p.habuffer_screen_size[0] = t.config().buffer.screen.x;
     p.habuffer_screen_size[1] = t.config().buffer.screen.y;
-    p.habuffer_deferred_capacity = static_cast<std::uint32_t>(capacity_);
     t.write_params(p);
     params_.upload(&p, sizeof p);
-  }
-
-  void grow_deferred(std::uint64_t needed) {
-    capacity_ = std::min<std::uint64_t>(std::max(needed, capacity_ * 2), UINT32_MAX);
-    const std::uint64_t bytes = kAppendHeaderBytes + capacity_ * kDeferredCallBytes;
-    if (bytes > context_.info().max_storage_range)
-      throw VulkanError(std::to_string(needed) + " insert calls cut short exceed " + context_.info().name +
-                        "'s storage range");
-    for (VulkanBuffer& b : deferred_) b = VulkanBuffer(context_, bytes);
   }
 
   std::vector<BoundBuffer> bindings(const VulkanTechnique& t, const VulkanBuffer& stream,
@@ -206,58 +174,18 @@ class StreamGather {
     sort_->begin_recording();
     context_.submit_and_wait(
         [&](VkCommandBuffer cmd) {
-          sort_->record_screen(cmd, bindings(t, chunks_.front().buffer, deferred_[0]), t.config().buffer.screen);
+          sort_->record_screen(cmd, bindings(t, chunks_.front().buffer, deferred_), t.config().buffer.screen);
           record_full_barrier(cmd);
         },
         "the Vulkan sort pass");
   }
 
-  static std::uint64_t words_sorted(const std::vector<std::uint32_t>& words) {
-    std::uint64_t n = 0;
-    for (std::uint32_t stripe = 0; stripe < HABUFFER_COUNTER_STRIPES; ++stripe)
-      n += words[stripe * HABUFFER_COUNTER_STRIDE + HABUFFER_COUNTER_SORT_DONE];
-    return n;
-  }
-
-  // Resume rounds until no call is cut short; false when a round's calls
-  // overflowed a buffer (the deferred buffers grown: gather again).
-  bool resume_all(VulkanTechnique& t, VulkanBuildInfo& info) {
-    std::size_t in = 0;
-    std::uint64_t pending = deferred_[0].read<std::uint32_t>(1)[0];
-    for (std::uint32_t round = 0; pending > 0; ++round) {
-      if (pending > capacity_) {
-        grow_deferred(pending);
-        return false;
-      }
-      if (round >= kMaxResumeRounds)
-        throw VulkanError(std::to_string(pending) + " insert calls still cut short after " +
-                          std::to_string(kMaxResumeRounds) + " resume rounds");
-      info.deferred += pending;
-      ++info.resume_rounds;
-      const std::size_t out = 1 - in;
-      resume_->begin_recording();
-      context_.submit_and_wait(
-          [&](VkCommandBuffer cmd) {
-            vkCmdFillBuffer(cmd, deferred_[out].handle(), 0, kAppendHeaderBytes, 0u);
-            record_full_barrier(cmd);
-            resume_->record(cmd, bindings(t, deferred_[in], deferred_[out]), static_cast<std::uint32_t>(pending),
-                            pending);
-            record_full_barrier(cmd);
-          },
-          "a Vulkan resume round");
-      pending = deferred_[out].read<std::uint32_t>(1)[0];
-      in = out;
-    }
-    return true;
-  }
-
   const VulkanContext& context_;
   VulkanBuffer params_, counters_, capture_;
   ComputePipeline insert_;
-  std::unique_ptr<ComputePipeline> resume_, sort_;
+  std::unique_ptr<ComputePipeline> sort_;
   std::vector<Chunk> chunks_;
-  std::array<VulkanBuffer, 2> deferred_;
-  std::uint64_t capacity_ = 0;
+  VulkanBuffer deferred_;
   std::uint64_t stream_size_ = 0;
 };
 

@@ -37,8 +37,5 @@ std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::strin
   return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) + gl::kSortCompute;
 }
 
-std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines) {
-  return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) + gl::kResumeCompute;
-}
 
 }  // namespace habuffer::vk

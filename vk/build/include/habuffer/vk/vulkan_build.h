@@ -1,9 +1,8 @@
 /// @file
 /// A fragment stream built into a technique's container on a Vulkan device
 /// through the compute entry every path shares (the fragments in a buffer,
-/// one insert call each, in stream order chunk by chunk), calls cut short
-/// (emulated64) resumed round by round, lossless mode's regathers by every
-/// path's rule, and the container read back into the CPU's: the Vulkan twin
+/// one insert call each, in stream order chunk by chunk), the sort pass where
+/// the technique has one, lossless mode's regathers by every path's rule, and the container read back into the CPU's: the Vulkan twin
 /// of build_technique and build_technique_on_gl.
 #pragma once
 
@@ -19,11 +18,9 @@ namespace habuffer::vk {
 
 /// How a Vulkan build ran.
 struct VulkanBuildInfo {
-  double build_ms = 0.0;  ///< the upload and every attempt's gather, resume rounds and counters (GL's span)
+  double build_ms = 0.0;  ///< the upload and every attempt's gather, sort pass and counters (GL's span)
   std::string atomic_mode;       ///< native32, native64, emulated64
   std::string device;            ///< the device's name
-  std::uint64_t deferred = 0;    ///< insert calls cut short and resumed (emulated64), all attempts
-  std::uint32_t resume_rounds = 0;  ///< resume passes, all attempts
   /// Insert calls the driver ended without an outcome (a loop budget),
   /// counted failed_iter as on GL; all attempts.
   std::uint64_t ended_by_driver = 0;

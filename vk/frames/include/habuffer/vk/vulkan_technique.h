@@ -31,8 +31,6 @@ class VulkanTechnique {
 
   [[nodiscard]] const TechniqueConfig& config() const { return config_; }
   [[nodiscard]] AtomicMode mode() const { return mode_; }
-  /// Whether insert calls may be cut short and resumed (emulated64's locks).
-  [[nodiscard]] virtual bool defers_calls() const { return false; }
 
   /// Whether a sort pass follows the gather (the technique's descriptor:
   /// not sorted on insert).
@@ -43,7 +41,7 @@ class VulkanTechnique {
   /// Its fields of the parameter block (the frame writes the frame's).
   virtual void write_params(ParamBlock& p) const = 0;
   /// Its buffers at their points of vulkan_bindings(): its own (1-3), its
-  /// locks and saturation image where it has them.
+  /// saturation image where it has one.
   [[nodiscard]] virtual std::vector<BoundBuffer> buffers() const = 0;
   /// Records what empties the container before a gather.
   virtual void record_clear(VkCommandBuffer cmd) const = 0;

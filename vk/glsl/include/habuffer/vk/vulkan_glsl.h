@@ -38,7 +38,5 @@ std::string vulkan_insert_stream_compute(Technique technique, AtomicMode mode, s
 /// invocation per pixel, 8x8 groups); std::invalid_argument for one sorted
 /// by insertion.
 std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
-/// The resume pass (deferred insert calls, their count a push constant).
-std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
 
 }  // namespace habuffer::vk
