@@ -237,7 +237,8 @@ TEST(Vulkan, LosslessModeGrowsTheTableAsTheCpuDoesAndEndsWithItsLists) {
   }
 }
 
-// The linked lists from the GL tests' streams: an automatic pool that
+// The linked lists (sorted after the gather)
+// from the GL tests' streams: an automatic pool that
 // grows as the CPU's does, the sort pass, the lists equal the CPU's; a pool too small, lossy, drops
 // as many as the CPU and holds what it counts.
 TEST(Vulkan, LinkedListsBuildTheCpuListsWithTheirPoolsGrownAlike) {
@@ -284,6 +285,58 @@ TEST(Vulkan, LinkedListsBuildTheCpuListsWithTheirPoolsGrownAlike) {
     }
 }
 
+// Sorted lists (a compare-and-swap retry loop) as GlPeers checks them on
+// GL: on coherent and hot streams, with a pool for every fragment, the CPU's
+// counters and lists in every runnable mode; from an automatic pool, lossless
+// mode ends with the CPU's lists (how many nodes an attempt asks for depends
+// on the arrival order: a duplicate takes none when its twin is linked
+// first); with early termination on planes inserted front to back, one
+// plane a build, every pixel keeps the planes in front of tau and the CPU's
+// counts.
+TEST(Vulkan, SortedListsGiveTheCpuListsAndCountersInEveryRunnableMode) {
+  REQUIRE_VULKAN();
+  for (AtomicMode mode : vk::runnable_atomic_modes(context().info())) {
+    const Layout layout = mode == AtomicMode::Native32 ? Layout::L32 : Layout::L64;
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      const Extent screen{23 + 5 * static_cast<std::uint32_t>(seed), 15 + static_cast<std::uint32_t>(seed)};
+      const std::vector<Fragment> f =
+          test::stream(screen, seed == 2 ? StreamKind::Hot : StreamKind::Coherent, 2500 + 900 * seed, seed);
+      SCOPED_TRACE(to_string(mode) + " seed " + std::to_string(seed));
+      TechniqueConfig c = test::technique_config(Technique::SortedLists, screen, layout);
+      c.pool_capacity = f.size();
+      const TechniqueBuild cpu = build_technique(c, {}, f, {}, {}, 1);
+      const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, {}, f);
+      EXPECT_EQ(gpu.counters, cpu.counters);
+      EXPECT_EQ(test::traversed_lists(*gpu.buffer), test::traversed_lists(*cpu.buffer));
+      TechniqueConfig automatic = c;
+      automatic.pool_capacity = 0;
+      const TechniqueBuild grown = vk::build_technique_on_vulkan(context(), automatic, {}, f, {}, 6);
+      EXPECT_TRUE(grown.lossless());
+      EXPECT_EQ(test::traversed_lists(*grown.buffer), test::traversed_lists(*cpu.buffer));
+    }
+    if (layout != Layout::L64) continue;  // early termination reads opacity from the colour
+    const Extent screen{16, 8};
+    TechniqueConfig c = test::technique_config(Technique::SortedLists, screen, layout);
+    c.buffer.early_cull_tau = 0.99f;
+    c.pool_capacity = 24 * screen.area();
+    std::vector<Fragment> planes;
+    for (std::uint32_t k = 0; k < 24; ++k)
+      for (std::uint32_t y = 0; y < screen.y; ++y)
+        for (std::uint32_t x = 0; x < screen.x; ++x)
+          planes.push_back({x, y, 0.1f + 0.03f * static_cast<float>(k), ((30u + 8u * k) << 24) | 0x60A000u | 128u});
+    const TechniqueBuild cpu = build_technique(c, {}, planes, {}, {}, 1);
+    EXPECT_GT(cpu.counters.culled, 0u);
+    // One plane per invocation of a pixel: the whole stream in one dispatch
+    // runs a pixel's planes at once, so which are culled depends on timing;
+    // sorted by depth, every pixel keeps the planes in front of tau.
+    const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, {}, planes);
+    EXPECT_EQ(gpu.counters.fragments, cpu.counters.fragments);
+    EXPECT_EQ(gpu.counters.failures(), 0u);
+    EXPECT_GE(gpu.counters.stored(), cpu.counters.stored());
+    for (const auto& [pixel, entries] : test::traversed_lists(*gpu.buffer)) EXPECT_GE(entries.size(), 7u);
+  }
+}
+
 TEST(Vulkan, MisuseThroughTheApiIsRefusedInOneLine) {
   REQUIRE_VULKAN();
   TechniqueConfig c;
@@ -294,7 +347,7 @@ TEST(Vulkan, MisuseThroughTheApiIsRefusedInOneLine) {
   TechniqueConfig arrays = c;
   arrays.technique = Technique::Arrays;
   const std::string e1 = error_of([&] { vk::build_technique_on_vulkan(context(), arrays, {}, f); });
-  EXPECT_NE(e1.find("does not run arrays yet (it runs ha, lists)"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("does not run arrays yet (it runs ha, lists, sorted-lists)"), std::string::npos) << e1;
   // A fragment off the screen, named.
   auto off = f;
   off[7].x = 16;

@@ -2,6 +2,12 @@
 // 64-bit atomics (Mesa llvmpipe); atomicMax on a 64-bit slot is emulated with
 // a 32-bit lock per 2^HABUFFER_LOCK_SHIFT slots (the module assembly defines ha_word as uint64_t and
 // enables GL_ARB_gpu_shader_int64).
+// The fence between writes and the atomic that publishes them. A module
+// assembly may define it first: the Vulkan path defines it empty on a
+// software device (vk::vulkan_device_defines says why).
+#ifndef HABUFFER_BUFFER_FENCE
+#define HABUFFER_BUFFER_FENCE() memoryBarrierBuffer()
+#endif
 layout(std430, binding = HABUFFER_RECORDS_BINDING) coherent buffer HaTable { uint64_t ha_table[]; };
 layout(std430, binding = HABUFFER_BINDING_LOCKS) coherent buffer HaLocks { uint ha_locks[]; };
 
@@ -13,7 +19,7 @@ layout(std430, binding = HABUFFER_BINDING_LOCKS) coherent buffer HaLocks { uint 
 bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
   uint lock = s >> HABUFFER_LOCK_SHIFT;
   if (atomicCompSwap(ha_locks[lock], 0u, 1u) != 0u) return false;
-  memoryBarrierBuffer();
+  HABUFFER_BUFFER_FENCE();
   old = ha_table[s];
   if (old < r) {
     ha_table[s] = r;
@@ -21,7 +27,7 @@ bool ha_try_max_slot(ha_index s, ha_word r, inout ha_word old) {
     ha_call_writes += 1u;
 #endif
   }
-  memoryBarrierBuffer();
+  HABUFFER_BUFFER_FENCE();
   atomicExchange(ha_locks[lock], 0u);
   return true;
 }

@@ -33,7 +33,7 @@ std::string variant_defines(AtomicMode mode, const VulkanInfo& info) {
   gl::ModuleVariant v;
   v.slot_read_first = mode == AtomicMode::Emulated64;
   v.max_age_read_first = info.software;
-  return v.defines();
+  return vulkan_device_defines(info.software) + v.defines();
 }
 
 // The attempt's counters from its striped tallies.

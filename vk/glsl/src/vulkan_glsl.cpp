@@ -18,6 +18,10 @@ std::string vulkan_module_extensions(AtomicMode mode) {
   return "";
 }
 
+std::string vulkan_device_defines(bool software_device) {
+  return software_device ? "#define HABUFFER_BUFFER_FENCE()\n" : "";
+}
+
 std::string vulkan_technique_module(Technique technique, AtomicMode mode, gl::ShaderStage stage,
                                     std::string_view header) {
   std::string s = "#version 450 core\n" + vulkan_module_extensions(mode);

@@ -8,8 +8,8 @@
 namespace habuffer::vk {
 
 const char* const kEmulated64Refusal =
-    "the Vulkan path does not run emulated64 yet: its per-slot locks lost insert calls on lavapipe (records written, "
-    "outcomes not counted; docs/spec-notes.md, \"Issue 48\"): use native64 (shaderBufferInt64Atomics) or layout 32";
+    "the Vulkan path does not run emulated64 yet: it has no resume pass for the calls its per-slot locks cut short "
+    "(docs/spec-notes.md, \"Issue 48\"): use native64 (shaderBufferInt64Atomics) or layout 32";
 
 namespace {
 

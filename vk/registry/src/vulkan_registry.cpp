@@ -7,10 +7,7 @@
 namespace habuffer::vk {
 namespace {
 
-// One line a technique: its Vulkan part's maker. sorted-lists has a Vulkan
-// part (VulkanLinkedLists) but no line yet: on lavapipe its insertion, a
-// compare-and-swap retry loop like emulated64's lock, stored records whose
-// calls counted no outcome (docs/spec-notes.md, "Issue 48").
+// One line a technique: its Vulkan part's maker.
 using Maker = std::unique_ptr<VulkanTechnique> (*)(const VulkanContext&, const TechniqueConfig&, const OffsetSource&,
                                                    AtomicMode);
 struct Entry {
@@ -22,6 +19,9 @@ constexpr Entry kEntries[] = {
      [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource& o, AtomicMode m)
          -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanHaTable>(c, t, o, m); }},
     {Technique::Lists,
+     [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
+         -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanLinkedLists>(c, t, m); }},
+    {Technique::SortedLists,
      [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
          -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanLinkedLists>(c, t, m); }},
 };

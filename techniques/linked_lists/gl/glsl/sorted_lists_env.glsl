@@ -4,9 +4,15 @@
 // invocations wrote in the same gather. A node's entry and link are
 // written, then a buffer barrier, then the compare-and-swap that links it,
 // so whoever reads the link reads them too.
+// The fence between writes and the atomic that publishes them. A module
+// assembly may define it first: the Vulkan path defines it empty on a
+// software device (vk::vulkan_device_defines says why).
+#ifndef HABUFFER_BUFFER_FENCE
+#define HABUFFER_BUFFER_FENCE() memoryBarrierBuffer()
+#endif
 uint sl_load_link(uint pixel, uint where) { return where == 0u ? ha_heads[pixel] : ha_links[where - 1u]; }
 uint sl_swap_link(uint pixel, uint where, uint expected, uint link) {
-  memoryBarrierBuffer();
+  HABUFFER_BUFFER_FENCE();
   if (where == 0u) return atomicCompSwap(ha_heads[pixel], expected, link);
   return atomicCompSwap(ha_links[where - 1u], expected, link);
 }

@@ -26,6 +26,15 @@ gl::GlBindings vulkan_bindings();
 /// GL_EXT_shader_atomic_int64, which SPIR-V's Int64Atomics capability needs).
 std::string vulkan_module_extensions(AtomicMode mode);
 
+/// The defines a module needs on a kind of device, before any other header
+/// text: on a software device (lavapipe), HABUFFER_BUFFER_FENCE() defined
+/// empty. Lavapipe ends the lanes of a divergent branch that meets a memory
+/// barrier (seen as calls without an outcome: sorted lists' links and
+/// emulated64's lock publish their writes inside such branches), and its
+/// atomics, sequentially consistent operations on host memory, already
+/// order the writes before them. "" on any other device.
+std::string vulkan_device_defines(bool software_device);
+
 /// A complete module for Vulkan: #version, the mode's extensions, `header`
 /// (defines: the variant's, a host's), then the module body of every path.
 std::string vulkan_technique_module(Technique technique, AtomicMode mode, gl::ShaderStage stage,

@@ -14,7 +14,7 @@ namespace habuffer::vk {
 
 /// Whether `t` has a Vulkan part.
 bool runs_on_vulkan(Technique t);
-/// The techniques that do, comma-separated ("ha, lists").
+/// The techniques that do, comma-separated ("ha, lists, sorted-lists").
 std::string vulkan_technique_names();
 
 /// A container of `config` on the context's device in `mode`. Throws
