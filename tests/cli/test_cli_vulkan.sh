@@ -51,6 +51,9 @@ same 96x64 "--load 1.7 --seed 15" -- --technique lists
 same 96x64 "--load 1.7 --seed 15" -- --technique lists --layout 32
 same 96x64 "--load 1.7 --seed 15" -- --technique lists --pool 3000 --lossless --max-attempts 4
 same 70x50 "--load 2 --stream random --seed 17" -- --technique sorted-lists --layout 32
+same 96x64 "--load 2 --seed 21" -- --technique kbuffer --layers 4
+same 96x64 "--load 2 --seed 21" -- --technique kbuffer --layers 4 --occupancy on --occupancy-words 1 --layout 32
+same 80x60 "--load 2.5 --seed 22" -- --technique kbuffer --layers 2 --occupancy on --lossless --max-attempts 5
 same 96x64 "--load 3 --seed 16" -- --technique sorted-lists
 # The last build was L64: native64 where the device has 64-bit buffer atomics (lavapipe does).
 if grep -q "shaderBufferInt64Atomics: yes" info.txt; then
@@ -63,7 +66,7 @@ expect usage 2 "option --threads has no effect with --path vk" -- build-lists --
 expect usage 2 "option --path: 'metal' is not cpu, gl or vk" -- build-lists --in f.csv --out x.csv --screen 96x64 \
   --path metal
 expect usage 2 "option --path: 'vk' is not cpu or gl" -- demo --path vk
-expect data 1 "does not run arrays yet (it runs ha, lists, sorted-lists)" -- build-lists --in f.csv --out x.csv \
+expect data 1 "does not run arrays yet (it runs ha, lists, sorted-lists, kbuffer)" -- build-lists --in f.csv --out x.csv \
   --screen 96x64 --path vk --technique arrays
 HABUFFER_VK_DEVICE=97 expect data 1 "device 97 (HABUFFER_VK_DEVICE) is not among the Vulkan devices" -- \
   build-lists --in f.csv --out x.csv --screen 96x64 --path vk

@@ -337,6 +337,44 @@ TEST(Vulkan, SortedListsGiveTheCpuListsAndCountersInEveryRunnableMode) {
   }
 }
 
+// The k-buffer as GlPeers checks it on GL: K of 1 and 4, with and without
+// its occupancy map (the fill gather, the count pass, the insert gather),
+// the CPU's counters and lists in every runnable mode; lossless mode grows
+// K as the CPU does.
+TEST(Vulkan, TheKBufferGivesTheCpuListsAndCountersWithAndWithoutItsOccupancyMap) {
+  REQUIRE_VULKAN();
+  for (AtomicMode mode : vk::runnable_atomic_modes(context().info())) {
+    const Layout layout = mode == AtomicMode::Native32 ? Layout::L32 : Layout::L64;
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const Extent screen{23 + 5 * static_cast<std::uint32_t>(seed), 15};
+      const std::vector<Fragment> f =
+          test::stream(screen, seed == 2 ? StreamKind::Hot : StreamKind::Coherent, 2500 + 500 * seed, seed);
+      for (std::uint32_t k : {1u, 4u})
+        for (bool occupancy : {false, true}) {
+          SCOPED_TRACE(to_string(mode) + " seed " + std::to_string(seed) + " k " + std::to_string(k) + " occupancy " +
+                       std::to_string(occupancy));
+          TechniqueConfig c = test::technique_config(Technique::KBuffer, screen, layout);
+          c.layers = k;
+          c.occupancy = occupancy;
+          c.occupancy_words = 2;
+          const TechniqueBuild cpu = build_technique(c, {}, f, {}, {}, 1);
+          const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, {}, f);
+          EXPECT_GT(cpu.counters.dropped_layers + cpu.counters.occupancy_rejected, 0u);
+          EXPECT_EQ(gpu.counters, cpu.counters);
+          EXPECT_EQ(test::traversed_lists(*gpu.buffer), test::traversed_lists(*cpu.buffer));
+          if (k != 1 || occupancy) continue;
+          const TechniqueBuild grown_cpu = build_technique(c, {}, f, {}, {}, 8);
+          const TechniqueBuild grown_gpu = vk::build_technique_on_vulkan(context(), c, {}, f, {}, 8);
+          ASSERT_EQ(grown_gpu.attempts.size(), grown_cpu.attempts.size());
+          EXPECT_EQ(grown_gpu.lossless(), grown_cpu.lossless());
+          EXPECT_EQ(grown_gpu.counters, grown_cpu.counters);
+          EXPECT_EQ(grown_gpu.attempts.back().capacity, grown_cpu.attempts.back().capacity);
+          EXPECT_EQ(test::traversed_lists(*grown_gpu.buffer), test::traversed_lists(*grown_cpu.buffer));
+        }
+    }
+  }
+}
+
 TEST(Vulkan, MisuseThroughTheApiIsRefusedInOneLine) {
   REQUIRE_VULKAN();
   TechniqueConfig c;
@@ -347,7 +385,7 @@ TEST(Vulkan, MisuseThroughTheApiIsRefusedInOneLine) {
   TechniqueConfig arrays = c;
   arrays.technique = Technique::Arrays;
   const std::string e1 = error_of([&] { vk::build_technique_on_vulkan(context(), arrays, {}, f); });
-  EXPECT_NE(e1.find("does not run arrays yet (it runs ha, lists, sorted-lists)"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("does not run arrays yet (it runs ha, lists, sorted-lists, kbuffer)"), std::string::npos) << e1;
   // A fragment off the screen, named.
   auto off = f;
   off[7].x = 16;

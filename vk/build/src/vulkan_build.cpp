@@ -92,21 +92,31 @@ class StreamGather {
   // One gather of the whole stream into `t` (cleared first), sorted where
   // the technique sorts after it: the attempt's counters.
   Counters gather(VulkanTechnique& t, VulkanBuildInfo& info) {
-    write_params(t);
-    insert_.begin_recording();
-    context_.submit_and_wait(
-        [&](VkCommandBuffer cmd) {
-          t.record_clear(cmd);
-          counters_.record_zero(cmd);
-          capture_.record_zero(cmd);
-          deferred_.record_zero(cmd);
-          record_full_barrier(cmd);
-          for (const Chunk& c : chunks_) {
-            insert_.record(cmd, bindings(t, c.buffer, deferred_), static_cast<std::uint32_t>(c.count), c.count);
-            record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
-          }
-        },
-        "the Vulkan gather");
+    // A technique that fills first (the k-buffer's occupancy map) gathers
+    // the stream twice, its own passes between: as the OpenGL frame does.
+    const bool fills = t.fills_before_insert();
+    for (const std::uint32_t phase : {HABUFFER_PHASE_FILL, HABUFFER_PHASE_INSERT}) {
+      if (phase == HABUFFER_PHASE_FILL && !fills) continue;
+      write_params(t, phase);
+      insert_.begin_recording();
+      const bool first = phase == HABUFFER_PHASE_FILL || !fills;
+      context_.submit_and_wait(
+          [&](VkCommandBuffer cmd) {
+            if (first) {
+              t.record_clear(cmd);
+              counters_.record_zero(cmd);
+              capture_.record_zero(cmd);
+              deferred_.record_zero(cmd);
+              record_full_barrier(cmd);
+            }
+            for (const Chunk& c : chunks_) {
+              insert_.record(cmd, bindings(t, c.buffer, deferred_), static_cast<std::uint32_t>(c.count), c.count);
+              record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
+            }
+            if (phase == HABUFFER_PHASE_FILL) t.record_fill_passes(cmd, bindings(t, chunks_.front().buffer, deferred_));
+          },
+          phase == HABUFFER_PHASE_FILL ? "the Vulkan fill gather" : "the Vulkan gather");
+    }
     if (t.sorts_after_gather()) sort(t);
     const std::vector<std::uint32_t> words = counters_.read<std::uint32_t>(kCounterWords);
     Counters c = tally_counters(words);
@@ -140,8 +150,9 @@ class StreamGather {
     return compile_to_spirv(source, SpirvStage::Compute, name);
   }
 
-  void write_params(const VulkanTechnique& t) {
+  void write_params(const VulkanTechnique& t, std::uint32_t gather_phase) {
     ParamBlock p;
+    p.habuffer_gather_phase = gather_phase;
     p.habuffer_lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;
     p.habuffer_screen_size[0] = t.config().buffer.screen.x;
     p.habuffer_screen_size[1] = t.config().buffer.screen.y;

@@ -1,6 +1,7 @@
 #include "habuffer/vk/vulkan_registry.h"
 
 #include "habuffer/vk/techniques/ha/vulkan_ha_table.h"
+#include "habuffer/vk/techniques/kbuffer/vulkan_kbuffer.h"
 #include "habuffer/vk/techniques/linked_lists/vulkan_linked_lists.h"
 #include "habuffer/vk/vulkan_error.h"
 
@@ -24,6 +25,9 @@ constexpr Entry kEntries[] = {
     {Technique::SortedLists,
      [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
          -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanLinkedLists>(c, t, m); }},
+    {Technique::KBuffer,
+     [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
+         -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanKBuffer>(c, t, m); }},
 };
 
 }  // namespace

@@ -45,6 +45,18 @@ class VulkanTechnique {
   [[nodiscard]] virtual std::vector<BoundBuffer> buffers() const = 0;
   /// Records what empties the container before a gather.
   virtual void record_clear(VkCommandBuffer cmd) const = 0;
+  /// Whether a gather runs twice: first a fill gather (the parameter
+  /// block's gather phase HABUFFER_PHASE_FILL: nothing inserted or counted),
+  /// then record_fill_passes, then the insert gather (the k-buffer with its
+  /// occupancy map). False: one insert gather.
+  [[nodiscard]] virtual bool fills_before_insert() const { return false; }
+  /// Records the passes between the fill gather and the insert gather, with
+  /// the frame's buffers bound as the gather's are (`frame_bindings`), and
+  /// the barrier after them.
+  virtual void record_fill_passes(VkCommandBuffer cmd, std::span<const BoundBuffer> frame_bindings) const {
+    (void)cmd;
+    (void)frame_bindings;
+  }
   /// Records it could hold.
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;
   /// The CPU container of the same configuration holding what the device's does.

@@ -1,7 +1,7 @@
 /// @file
 /// The techniques the Vulkan path runs, each by its Vulkan part
-/// (techniques/NAME/vk). So far the HA-buffer and lists; the others are
-/// refused by name (issue 48 adds them one by one).
+/// (techniques/NAME/vk). So far the HA-buffer, lists, sorted lists and the
+/// k-buffer; the others are refused by name (issue 48 adds them one by one).
 #pragma once
 
 #include <memory>
@@ -14,7 +14,7 @@ namespace habuffer::vk {
 
 /// Whether `t` has a Vulkan part.
 bool runs_on_vulkan(Technique t);
-/// The techniques that do, comma-separated ("ha, lists, sorted-lists").
+/// The techniques that do, comma-separated ("ha, lists, sorted-lists, kbuffer").
 std::string vulkan_technique_names();
 
 /// A container of `config` on the context's device in `mode`. Throws

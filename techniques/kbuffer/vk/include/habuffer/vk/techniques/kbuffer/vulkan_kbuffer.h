@@ -1,0 +1,37 @@
+/// @file
+/// The k-buffer on a Vulkan device: its K layers of slots per pixel (L64 or
+/// L32 records, kept sorted by the insertion), and with the occupancy map
+/// its map and per-pixel limits, found by the count pass between the fill
+/// gather and the insert gather; read back into the CPU's KBuffer.
+#pragma once
+
+#include <memory>
+
+#include "habuffer/vk/compute_pipeline.h"
+#include "habuffer/vk/vulkan_buffer.h"
+#include "habuffer/vk/vulkan_technique.h"
+
+namespace habuffer::vk {
+
+/// One k-buffer of fixed layers on a device (lossless growth makes a new one).
+class VulkanKBuffer final : public VulkanTechnique {
+ public:
+  /// Throws std::invalid_argument for a configuration the CPU would refuse,
+  /// VulkanError for a mode the device cannot run or layers beyond its
+  /// storage range (naming the sizes).
+  VulkanKBuffer(const VulkanContext& context, const TechniqueConfig& config, AtomicMode mode);
+
+  void write_params(ParamBlock& p) const override;
+  [[nodiscard]] std::vector<BoundBuffer> buffers() const override;
+  void record_clear(VkCommandBuffer cmd) const override;
+  [[nodiscard]] bool fills_before_insert() const override { return count_ != nullptr; }
+  void record_fill_passes(VkCommandBuffer cmd, std::span<const BoundBuffer> frame_bindings) const override;
+  [[nodiscard]] std::uint64_t capacity() const override;
+  [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
+
+ private:
+  VulkanBuffer slots_, occupancy_, limits_, saturation_;
+  std::unique_ptr<ComputePipeline> count_;  ///< the count pass, with the occupancy map only
+};
+
+}  // namespace habuffer::vk
