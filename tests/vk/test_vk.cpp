@@ -375,6 +375,52 @@ TEST(Vulkan, TheKBufferGivesTheCpuListsAndCountersWithAndWithoutItsOccupancyMap)
   }
 }
 
+// SPEC 7 on Vulkan: the resolve pass composites each technique's lists over
+// per-pixel backgrounds into the CPU's composite_image, float for float,
+// on a multisampled screen too; backgrounds of the wrong count are refused
+// naming both sizes.
+TEST(Vulkan, TheResolvePassGivesTheCpuImageBitForBitForEveryTechniqueItRuns) {
+  REQUIRE_VULKAN();
+  const AtomicMode mode = vk::runnable_atomic_modes(context().info()).back();
+  const Layout layout = mode == AtomicMode::Native32 ? Layout::L32 : Layout::L64;
+  for (std::uint32_t samples : {1u, 4u})
+    for (Technique t : {Technique::Ha, Technique::Lists, Technique::SortedLists, Technique::KBuffer}) {
+      if (samples > 1 && t == Technique::KBuffer) continue;  // multisampled screens are the lists' (refuse_samples)
+      SCOPED_TRACE(to_string(t) + " samples " + std::to_string(samples));
+      const Extent screen{37, 21};
+      TechniqueConfig c = test::technique_config(t, screen, layout);
+      c.buffer.samples = samples;
+      if (t == Technique::KBuffer) c.layers = 4;
+      std::vector<Fragment> f = test::stream(screen, StreamKind::Coherent, 3000, 9);
+      if (samples > 1)
+        for (std::size_t i = 0; i < f.size(); ++i) f[i].coverage = 1u + static_cast<std::uint32_t>(i % 15);
+      std::vector<glm::vec3> backgrounds(screen.area());
+      for (std::size_t i = 0; i < backgrounds.size(); ++i)
+        backgrounds[i] = glm::vec3(static_cast<float>(i % 7) / 7.0f, 0.25f, static_cast<float>(i % 3) / 3.0f);
+      const TechniqueBuild cpu = build_technique(c, {}, f, {}, {}, 4);
+      vk::VulkanResolve resolve;
+      resolve.backgrounds = backgrounds;
+      const TechniqueBuild gpu = vk::build_and_resolve_on_vulkan(context(), c, {}, f, resolve, {}, 4);
+      EXPECT_EQ(gpu.counters, cpu.counters);
+      const std::vector<glm::vec4> want = cpu.buffer->composite_image(backgrounds, 1);
+      ASSERT_EQ(resolve.image.size(), want.size());
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < want.size(); ++i) differ += resolve.image[i] != want[i];
+      EXPECT_EQ(differ, 0u) << "of " << want.size() << " pixels";
+      EXPECT_GT(resolve.resolve_ms, 0.0);
+    }
+  TechniqueConfig c = test::technique_config(Technique::Ha, Extent{8, 8}, layout);
+  const std::vector<glm::vec3> few(10);
+  vk::VulkanResolve bad;
+  bad.backgrounds = few;
+  try {
+    (void)vk::build_and_resolve_on_vulkan(context(), c, {}, {}, bad);
+    ADD_FAILURE() << "backgrounds of the wrong count were taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("screen 8x8 (64), given 10"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Vulkan, MisuseThroughTheApiIsRefusedInOneLine) {
   REQUIRE_VULKAN();
   TechniqueConfig c;

@@ -137,6 +137,34 @@ class StreamGather {
     return c;
   }
 
+  // `t`'s image over `backgrounds` (one per pixel): the resolve pass, in
+  // place in an image buffer bound at the stream's point.
+  std::vector<glm::vec4> resolve(const VulkanTechnique& t, std::span<const glm::vec3> backgrounds) {
+    const TechniqueConfig& c = t.config();
+    if (!resolve_) {
+      const std::string name = to_string(c.technique) + " resolve (Vulkan, " + to_string(t.mode()) + ")";
+      resolve_ = std::make_unique<ComputePipeline>(
+          context_,
+          compute_spirv(vulkan_resolve_compute(c.technique, t.mode(), c.buffer.samples,
+                                               variant_defines(t.mode(), context_.info())),
+                        name),
+          name);
+    }
+    std::vector<glm::vec4> image(backgrounds.size());
+    for (std::size_t i = 0; i < backgrounds.size(); ++i) image[i] = glm::vec4(backgrounds[i], 0.0f);
+    VulkanBuffer target(context_, std::max<std::uint64_t>(image.size(), 1) * sizeof(glm::vec4));
+    target.upload(image.data(), image.size() * sizeof(glm::vec4));
+    write_params(t, HABUFFER_PHASE_INSERT);
+    resolve_->begin_recording();
+    context_.submit_and_wait(
+        [&](VkCommandBuffer cmd) {
+          resolve_->record_screen(cmd, bindings(t, target, deferred_), c.buffer.screen);
+          record_full_barrier(cmd);
+        },
+        "the Vulkan resolve pass");
+    return target.read<glm::vec4>(image.size());
+  }
+
  private:
   struct Chunk {
     VulkanBuffer buffer;
@@ -195,6 +223,7 @@ class StreamGather {
   VulkanBuffer params_, counters_, capture_;
   ComputePipeline insert_;
   std::unique_ptr<ComputePipeline> sort_;
+  std::unique_ptr<ComputePipeline> resolve_;  // made when first asked for
   std::vector<Chunk> chunks_;
   VulkanBuffer deferred_;
   std::uint64_t stream_size_ = 0;
@@ -202,10 +231,12 @@ class StreamGather {
 
 }  // namespace
 
-TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
-                                         const OffsetSource& offsets, std::span<const Fragment> fragments,
-                                         const ResizePolicy& policy, std::uint32_t max_attempts,
-                                         VulkanBuildInfo* info) {
+namespace {
+
+// The build of both entry points, its last container resolved where `resolve` is given.
+TechniqueBuild run_build(const VulkanContext& context, const TechniqueConfig& config, const OffsetSource& offsets,
+                         std::span<const Fragment> fragments, const ResizePolicy& policy, std::uint32_t max_attempts,
+                         VulkanBuildInfo* info, VulkanResolve* resolve) {
   if (max_attempts == 0) throw std::invalid_argument("at least one build attempt is needed");
   policy.validate();
   if (!runs_on_vulkan(config.technique))
@@ -238,9 +269,11 @@ TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const Tec
   double timed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   TechniqueBuild b;
   std::uint64_t sized_for = 0;
+  std::unique_ptr<VulkanTechnique> t;
   for (;;) {
     const auto a0 = std::chrono::steady_clock::now();
-    const std::unique_ptr<VulkanTechnique> t = make_vulkan_technique(context, c, offsets, *mode);
+    t.reset();  // the last attempt's buffers go before the next one's are made
+    t = make_vulkan_technique(context, c, offsets, *mode);
     const auto g0 = std::chrono::steady_clock::now();
     const Counters counters = gather.gather(*t, out);
     timed_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();
@@ -261,7 +294,33 @@ TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const Tec
   // The too-deep pixel only where the first gather failed, as on the CPU.
   if (b.attempts.front().counters.failures() > 0) b.too_deep = std::move(limit.too_deep);
   out.build_ms = timed_ms;
+  if (resolve) {
+    const auto r0 = std::chrono::steady_clock::now();
+    resolve->image = gather.resolve(*t, resolve->backgrounds);
+    resolve->resolve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+  }
   return b;
+}
+
+}  // namespace
+
+TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
+                                         const OffsetSource& offsets, std::span<const Fragment> fragments,
+                                         const ResizePolicy& policy, std::uint32_t max_attempts,
+                                         VulkanBuildInfo* info) {
+  return run_build(context, config, offsets, fragments, policy, max_attempts, info, nullptr);
+}
+
+TechniqueBuild build_and_resolve_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
+                                           const OffsetSource& offsets, std::span<const Fragment> fragments,
+                                           VulkanResolve& resolve, const ResizePolicy& policy,
+                                           std::uint32_t max_attempts, VulkanBuildInfo* info) {
+  const std::uint64_t pixels = config.buffer.screen.area();
+  if (resolve.backgrounds.size() != pixels)
+    throw std::invalid_argument("the resolve needs one background colour per pixel of screen " +
+                                config.buffer.screen.str() + " (" + std::to_string(pixels) + "), given " +
+                                std::to_string(resolve.backgrounds.size()));
+  return run_build(context, config, offsets, fragments, policy, max_attempts, info, &resolve);
 }
 
 }  // namespace habuffer::vk

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "habuffer/technique_descriptor.h"
+#include "vulkan_glsl_sources.h"
 
 namespace habuffer::vk {
 
@@ -41,5 +42,14 @@ std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::strin
   return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) + gl::kSortCompute;
 }
 
+std::string vulkan_resolve_compute(Technique technique, AtomicMode mode, std::uint32_t samples,
+                                   std::string_view variant_defines) {
+  // The defines of the OpenGL path's per-pixel resolve (gl::resolve_fragment).
+  std::string header(variant_defines);
+  if (!header.empty() && header.back() != '\n') header += '\n';
+  header += "#define HABUFFER_RESOLVE_PASS\n";
+  if (samples > 1) header += "#define HABUFFER_RESOLVE_PIXEL\n";
+  return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, header) + kResolveCompute;
+}
 
 }  // namespace habuffer::vk

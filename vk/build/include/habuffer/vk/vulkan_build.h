@@ -9,6 +9,10 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "habuffer/fragment.h"
 #include "habuffer/lossless_build.h"
@@ -36,5 +40,23 @@ TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const Tec
                                          const OffsetSource& offsets, std::span<const Fragment> fragments,
                                          const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1,
                                          VulkanBuildInfo* info = nullptr);
+
+/// A build's image (SPEC 7), resolved on the device after its last attempt
+/// by the technique's composite (the shared GLSL the OpenGL path's resolve
+/// pass runs).
+struct VulkanResolve {
+  std::span<const glm::vec3> backgrounds;  ///< in: screen.area() colours, row 0 at the bottom
+  std::vector<glm::vec4> image;            ///< out: each pixel's list composited over its background
+  double resolve_ms = 0.0;                 ///< out: the upload, the pass and the read-back
+};
+
+/// build_technique_on_vulkan, then the last attempt's container resolved
+/// into `resolve.image` on the device. Throws std::invalid_argument when
+/// `resolve.backgrounds` does not hold one colour per pixel (naming both
+/// sizes), before any device work.
+TechniqueBuild build_and_resolve_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
+                                           const OffsetSource& offsets, std::span<const Fragment> fragments,
+                                           VulkanResolve& resolve, const ResizePolicy& policy = {},
+                                           std::uint32_t max_attempts = 1, VulkanBuildInfo* info = nullptr);
 
 }  // namespace habuffer::vk

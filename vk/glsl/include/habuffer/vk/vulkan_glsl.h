@@ -6,6 +6,7 @@
 /// context of either API.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -47,5 +48,13 @@ std::string vulkan_insert_stream_compute(Technique technique, AtomicMode mode, s
 /// invocation per pixel, 8x8 groups); std::invalid_argument for one sorted
 /// by insertion.
 std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
+
+/// The resolve pass (SPEC 7) of `technique` on a screen of `samples`
+/// samples (a multisampled pixel resolved per pixel, as the CPU's
+/// composite_image): one invocation per pixel in 8x8 groups composites its
+/// list over its background, in place in a buffer of RGBA floats at the
+/// stream's binding point (row 0 at the bottom; rgb the background on entry).
+std::string vulkan_resolve_compute(Technique technique, AtomicMode mode, std::uint32_t samples,
+                                   std::string_view variant_defines = {});
 
 }  // namespace habuffer::vk
