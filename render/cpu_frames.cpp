@@ -3,7 +3,7 @@
 // capture, and the image is composited on the CPU over the opaque pass.
 #include <chrono>
 
-#include "cpu_builder.h"
+#include "frame_builder.h"
 #include "frame_path.h"
 #include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/gl/gl_info.h"
@@ -56,15 +56,17 @@ class CpuFrames final : public FramePath {
  private:
   const RenderSettings& settings_;
   gl::GlHaBuffer capture_;
-  CpuBuilder builder_;
+  CpuFrameBuilder builder_;
 };
 
 }  // namespace
 
 std::unique_ptr<FramePath> make_gpu_frames(const RenderSettings& settings, gl::AtomicMode mode);
+std::unique_ptr<FramePath> make_vulkan_frames(const RenderSettings& settings, gl::AtomicMode mode);
 
 std::unique_ptr<FramePath> make_frame_path(const RenderSettings& settings, gl::AtomicMode mode) {
   if (settings.path == RenderPath::Cpu) return std::make_unique<CpuFrames>(settings, mode);
+  if (settings.path == RenderPath::Vk) return make_vulkan_frames(settings, mode);
   return make_gpu_frames(settings, mode);
 }
 

@@ -1,7 +1,8 @@
 /// @file
 /// How `habuffer render` turns a gathered frame into an image, one class per
-/// path: GpuFrames (the technique's buffers on the GPU, resolved there) and
-/// CpuFrames (the GPU only captures; the technique runs on the CPU). The job
+/// path: GpuFrames (the technique's buffers on the GPU, resolved there),
+/// CpuFrames (the GPU only captures; the technique runs on the CPU) and
+/// VulkanFrames (GL captures; built and resolved on a Vulkan device). The job
 /// (render_job.cpp) draws and gathers the same way for both, so the paths
 /// differ only behind this interface. Private to the render library.
 #pragma once
@@ -32,8 +33,8 @@ class FramePath {
   virtual void finish(SceneRenderer& renderer, RenderResult& result) = 0;
 };
 
-/// The path `settings.path` asks for (GpuFrames for RenderPath::Gl, CpuFrames for RenderPath::Cpu), its GL
-/// side in atomic mode `mode`.
+/// The path `settings.path` asks for (GpuFrames for RenderPath::Gl, CpuFrames for RenderPath::Cpu,
+/// VulkanFrames for RenderPath::Vk), its GL side in atomic mode `mode`.
 std::unique_ptr<FramePath> make_frame_path(const RenderSettings& settings, gl::AtomicMode mode);
 
 }  // namespace habuffer

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cpu_builder.h"
+#include "frame_builder.h"
 #include "frame_path.h"
 #include "habuffer/gl/gl_error.h"
 #include "habuffer/gl/gl_info.h"

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "cpu_builder.h"
+#include "frame_builder.h"
 #include "frame_path.h"
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_error.h"
@@ -187,7 +187,7 @@ RenderResult render_fragments(std::span<const Fragment> fragments, const RenderS
   validate(s);
   if (s.shadows) throw std::invalid_argument("--shadows needs a scene: a recorded stream has no world positions to light");
   RenderResult result;
-  CpuBuilder builder(s);
+  CpuFrameBuilder builder(s);
   builder.size_for(fragments.size());
   result.backgrounds.assign(s.config.screen.area(), s.background);
   // Every frame the same stream (a stream has one view), on the kept container.

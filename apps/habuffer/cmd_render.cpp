@@ -30,6 +30,14 @@
 #include "technique_flags.h"
 
 namespace habuffer::cli {
+namespace {
+// The render paths this build has (vk where habuffer::vk is built).
+#ifdef HABUFFER_WITH_VK
+constexpr const char* kRenderPaths = "gl|cpu|vk";
+#else
+constexpr const char* kRenderPaths = "gl|cpu";
+#endif
+}  // namespace
 
 const CommandSpec& render_spec() {
   static const CommandSpec spec{
@@ -41,7 +49,9 @@ const CommandSpec& render_spec() {
           {"out", "IMAGE", "", "the image: PNG, or EXR/HDR/TIFF (float) by extension", writes_creating_parents()},
           {"stats", "STATS.json", "", "counters, sizes, times per frame", writes()},
           {"size", "WxH", "1024x1024", "the image (harness commands default to 256x256: many runs)"},
-          {"path", "gl|cpu", "gl", "gl here (render rasterizes), cpu in build-lists (a fragment file's build)"},
+          {"path", kRenderPaths, "gl",
+           "where the technique runs: gl; cpu or vk (GL rasterizes and captures, the CPU or a Vulkan device builds "
+           "and composites); --fragments renders on cpu"},
           {"table", "WxH|auto", "auto",
            "the HA-buffer's table; auto sizes the first from a counting pass, grows it at once when a frame fails "
            "and adapts between frames (SPEC 8)"},
@@ -198,9 +208,8 @@ RenderSettings parse_settings(const Args& args) {
     throw UsageError("option --samples: translucent shadows are not drawn on a multisampled screen; render them "
                      "with --samples 1");
   s.offsets = parse_offset_source(args, s.config);
-  const std::string path = args.str("path");
-  if (path != "gl" && path != "cpu") throw UsageError("option --path: '" + path + "' is not gl or cpu");
-  s.path = path == "gl" ? RenderPath::Gl : RenderPath::Cpu;
+  const std::string path = args.choice("path");  // the alternatives declared above
+  s.path = path == "gl" ? RenderPath::Gl : path == "vk" ? RenderPath::Vk : RenderPath::Cpu;
   s.lossless = args.has("lossless");
   if (!s.lossless && args.has("max-attempts") && !automatic_size(s))
     throw UsageError("option --max-attempts needs --lossless or an automatic size (--table auto, --pool auto)");
@@ -209,7 +218,7 @@ RenderSettings parse_settings(const Args& args) {
   s.threads = args.u32_in("threads", 0, kMaxThreads);
   s.insert_order = insert_order_option(args);
   args.refuse_unless(s.path == RenderPath::Cpu || args.has("fragments"), {"threads", "insert-order"},
-                     "with --path gl (the GPU inserts and composites)");
+                     "with --path " + path + " (the GPU inserts and composites)");
   args.refuse_unless(descriptor(s.technique).takes("insert-order"), {"insert-order"},
                      "with --technique " + to_string(s.technique) + " (it applies to " +
                          techniques_taking("insert-order") + ")");
@@ -337,7 +346,8 @@ namespace {
 
 // A recorded stream, rendered on the CPU path (the scene options refused).
 RenderResult render_stream(const Args& args, RenderSettings& s, SceneDescription& described) {
-  if (s.path == RenderPath::Gl && args.has("path")) throw UsageError("--fragments renders on the CPU path: drop --path gl");
+  if (s.path != RenderPath::Cpu && args.has("path"))
+    throw UsageError("--fragments renders on the CPU path: drop --path " + args.str("path"));
   for (const char* scene_only : {"frames", "yaw", "pitch", "fov", "opacity", "count", "spread", "order", "scene-seed",
                                  "opaque-meshes"})
     if (args.has(scene_only))

@@ -32,7 +32,14 @@ void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.end_object();
 }
 
-const char* path_name(RenderPath p) { return p == RenderPath::Gl ? "gl" : "cpu"; }
+const char* path_name(RenderPath p) {
+  switch (p) {
+    case RenderPath::Gl: return "gl";
+    case RenderPath::Cpu: return "cpu";
+    case RenderPath::Vk: return "vk";
+  }
+  return "gl";
+}
 
 void write_vec3(JsonWriter& json, std::string_view key, glm::vec3 v) {
   json.key(key).begin_array();

@@ -60,6 +60,33 @@ if grep -q "shaderBufferInt64Atomics: yes" info.txt; then
   grep -q '"vk_atomic_mode":"native64"' vk.json && ok modes || bad modes "L64 did not run native64: $(cat vk.json)"
 fi
 
+# --- render --path vk: the CPU path's image, float for float ------------------
+# GL rasterizes and captures for both; the technique is built and resolved
+# on the Vulkan device against the CPU's build and composite.
+render_same() {  # SCENE TECHNIQUE RENDER-ARGS...
+  local scene=$1 technique=$2
+  shift 2
+  "$bin" render --scene "$scene" --technique "$technique" --path cpu --out cpu.exr "$@" 2>r_cpu.err
+  local c=$?
+  "$bin" render --scene "$scene" --technique "$technique" --path vk --out vk.exr --stats vk_render.json "$@" 2>r_vk.err
+  local v=$?
+  if [[ $c -ne 0 || $v -ne 0 ]]; then
+    bad render "$scene $technique $*: exit cpu $c, vk $v: $(head -c 300 r_vk.err)"
+  elif ! "$bin" compare cpu.exr vk.exr 2>&1 | grep -q "psnr inf"; then
+    bad render "$scene $technique $*: $("$bin" compare cpu.exr vk.exr 2>&1 | head -1)"
+  elif ! grep -q '"path":"vk"' vk_render.json || ! grep -q '"device":"vk ' vk_render.json; then
+    bad render "$scene $technique $*: the stats do not say path vk and its device"
+  else
+    ok render
+  fi
+}
+render_same wuson ha --size 96x72 --frames 2
+render_same wuson lists --size 96x72 --frames 2
+render_same spider sorted-lists --size 80x64 --layout 32
+render_same spider kbuffer --size 80x64 --layers 4 --occupancy on
+render_same hairball ha --size 64x48 --table 64x48 --lossless --max-attempts 6
+render_same quads lists --size 64x48 --samples 4
+
 # --- Misuse, one line each ---------------------------------------------------
 expect usage 2 "option --threads has no effect with --path vk" -- build-lists --in f.csv --out x.csv --screen 96x64 \
   --path vk --threads 2
@@ -73,7 +100,13 @@ HABUFFER_VK_DEVICE=97 expect data 1 "device 97 (HABUFFER_VK_DEVICE) is not among
 HABUFFER_ATOMIC_MODE=emulated64 expect data 1 "does not run emulated64 yet" -- \
   build-lists --in f.csv --out x.csv --screen 96x64 --path vk
 [[ ! -e x.csv ]] && ok outputs || bad outputs "a refused build left x.csv"
+expect usage 2 "option --threads has no effect with --path vk" -- render --scene quads --size 32x32 --out y.png \
+  --path vk --threads 2
+expect usage 2 "--fragments renders on the CPU path: drop --path vk" -- render --fragments f.csv --size 96x64 \
+  --out y.png --path vk
+expect data 1 "does not run arrays yet" -- render --scene quads --size 32x32 --out y.png --path vk --technique arrays
+[[ ! -e y.png ]] && ok outputs || bad outputs "a refused render left y.png"
 
-for cls in info lists modes usage data outputs; do echo "class $cls: ${tried[$cls]:-0} cases"; done
+for cls in info lists modes render usage data outputs; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli vulkan: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

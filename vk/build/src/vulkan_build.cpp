@@ -139,17 +139,23 @@ class StreamGather {
 
   // `t`'s image over `backgrounds` (one per pixel): the resolve pass, in
   // place in an image buffer bound at the stream's point.
+  // Compiles the resolve pass for `t`'s screen (once per sample count).
+  void prepare_resolve(const VulkanTechnique& t) {
+    const TechniqueConfig& c = t.config();
+    if (resolve_ && resolve_samples_ == c.buffer.samples) return;
+    const std::string name = to_string(c.technique) + " resolve (Vulkan, " + to_string(t.mode()) + ")";
+    resolve_ = std::make_unique<ComputePipeline>(
+        context_,
+        compute_spirv(
+            vulkan_resolve_compute(c.technique, t.mode(), c.buffer.samples, variant_defines(t.mode(), context_.info())),
+            name),
+        name);
+    resolve_samples_ = c.buffer.samples;
+  }
+
   std::vector<glm::vec4> resolve(const VulkanTechnique& t, std::span<const glm::vec3> backgrounds) {
     const TechniqueConfig& c = t.config();
-    if (!resolve_) {
-      const std::string name = to_string(c.technique) + " resolve (Vulkan, " + to_string(t.mode()) + ")";
-      resolve_ = std::make_unique<ComputePipeline>(
-          context_,
-          compute_spirv(vulkan_resolve_compute(c.technique, t.mode(), c.buffer.samples,
-                                               variant_defines(t.mode(), context_.info())),
-                        name),
-          name);
-    }
+    prepare_resolve(t);
     std::vector<glm::vec4> image(backgrounds.size());
     for (std::size_t i = 0; i < backgrounds.size(); ++i) image[i] = glm::vec4(backgrounds[i], 0.0f);
     VulkanBuffer target(context_, std::max<std::uint64_t>(image.size(), 1) * sizeof(glm::vec4));
@@ -224,6 +230,7 @@ class StreamGather {
   ComputePipeline insert_;
   std::unique_ptr<ComputePipeline> sort_;
   std::unique_ptr<ComputePipeline> resolve_;  // made when first asked for
+  std::uint32_t resolve_samples_ = 0;         // the screen's samples it was made for
   std::vector<Chunk> chunks_;
   VulkanBuffer deferred_;
   std::uint64_t stream_size_ = 0;
@@ -231,12 +238,23 @@ class StreamGather {
 
 }  // namespace
 
-namespace {
+struct VulkanStreamBuilder::Pipelines {
+  Technique technique;
+  AtomicMode mode;
+  StreamGather gather;
+};
 
-// The build of both entry points, its last container resolved where `resolve` is given.
-TechniqueBuild run_build(const VulkanContext& context, const TechniqueConfig& config, const OffsetSource& offsets,
-                         std::span<const Fragment> fragments, const ResizePolicy& policy, std::uint32_t max_attempts,
-                         VulkanBuildInfo* info, VulkanResolve* resolve) {
+VulkanStreamBuilder::VulkanStreamBuilder(const VulkanContext& context) : context_(context) {}
+VulkanStreamBuilder::~VulkanStreamBuilder() = default;
+
+TechniqueBuild VulkanStreamBuilder::build(const TechniqueConfig& config, const OffsetSource& offsets,
+                                          std::span<const Fragment> fragments, const ResizePolicy& policy,
+                                          std::uint32_t max_attempts, VulkanBuildInfo* info, VulkanResolve* resolve) {
+  const VulkanContext& context = context_;
+  if (resolve && resolve->backgrounds.size() != config.buffer.screen.area())
+    throw std::invalid_argument("the resolve needs one background colour per pixel of screen " +
+                                config.buffer.screen.str() + " (" + std::to_string(config.buffer.screen.area()) +
+                                "), given " + std::to_string(resolve->backgrounds.size()));
   if (max_attempts == 0) throw std::invalid_argument("at least one build attempt is needed");
   policy.validate();
   if (!runs_on_vulkan(config.technique))
@@ -260,7 +278,11 @@ TechniqueBuild run_build(const VulkanContext& context, const TechniqueConfig& co
   if (automatic_pool) c.pool_capacity = policy.automatic(fragments.size());
   c.validate();  // the configuration's own message (std::invalid_argument) before any device work
   const std::uint32_t attempts = automatic_pool ? std::max<std::uint32_t>(limit.attempts, 2) : limit.attempts;
-  StreamGather gather(context, c.technique, *mode);
+  if (!pipelines_ || pipelines_->technique != c.technique || pipelines_->mode != *mode) {
+    pipelines_.reset();
+    pipelines_.reset(new Pipelines{c.technique, *mode, StreamGather(context, c.technique, *mode)});
+  }
+  StreamGather& gather = pipelines_->gather;
   // Timed as the GL path times its build: the upload and every attempt's
   // gather with its counters; not the device's creation, the compilation,
   // the containers' allocation or the read-back into the CPU's container.
@@ -295,6 +317,7 @@ TechniqueBuild run_build(const VulkanContext& context, const TechniqueConfig& co
   if (b.attempts.front().counters.failures() > 0) b.too_deep = std::move(limit.too_deep);
   out.build_ms = timed_ms;
   if (resolve) {
+    gather.prepare_resolve(*t);  // compiled out of the timed span, as the gather's pipelines are
     const auto r0 = std::chrono::steady_clock::now();
     resolve->image = gather.resolve(*t, resolve->backgrounds);
     resolve->resolve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
@@ -302,25 +325,18 @@ TechniqueBuild run_build(const VulkanContext& context, const TechniqueConfig& co
   return b;
 }
 
-}  // namespace
-
 TechniqueBuild build_technique_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
                                          const OffsetSource& offsets, std::span<const Fragment> fragments,
                                          const ResizePolicy& policy, std::uint32_t max_attempts,
                                          VulkanBuildInfo* info) {
-  return run_build(context, config, offsets, fragments, policy, max_attempts, info, nullptr);
+  return VulkanStreamBuilder(context).build(config, offsets, fragments, policy, max_attempts, info);
 }
 
 TechniqueBuild build_and_resolve_on_vulkan(const VulkanContext& context, const TechniqueConfig& config,
                                            const OffsetSource& offsets, std::span<const Fragment> fragments,
                                            VulkanResolve& resolve, const ResizePolicy& policy,
                                            std::uint32_t max_attempts, VulkanBuildInfo* info) {
-  const std::uint64_t pixels = config.buffer.screen.area();
-  if (resolve.backgrounds.size() != pixels)
-    throw std::invalid_argument("the resolve needs one background colour per pixel of screen " +
-                                config.buffer.screen.str() + " (" + std::to_string(pixels) + "), given " +
-                                std::to_string(resolve.backgrounds.size()));
-  return run_build(context, config, offsets, fragments, policy, max_attempts, info, &resolve);
+  return VulkanStreamBuilder(context).build(config, offsets, fragments, policy, max_attempts, info, &resolve);
 }
 
 }  // namespace habuffer::vk

@@ -34,7 +34,8 @@ namespace habuffer {
 /// Where the technique runs.
 enum class RenderPath {
   Gl,   ///< on the GPU: the technique's buffers filled and resolved by GL
-  Cpu   ///< GL rasterizes and captures the fragments; the technique runs on the CPU
+  Cpu,  ///< GL rasterizes and captures the fragments; the technique runs on the CPU
+  Vk    ///< GL rasterizes and captures; the technique is built and resolved on a Vulkan device
 };
 
 /// Everything one render_scene or render_fragments call runs with

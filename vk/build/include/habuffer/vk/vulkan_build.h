@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -48,6 +49,30 @@ struct VulkanResolve {
   std::span<const glm::vec3> backgrounds;  ///< in: screen.area() colours, row 0 at the bottom
   std::vector<glm::vec4> image;            ///< out: each pixel's list composited over its background
   double resolve_ms = 0.0;                 ///< out: the upload, the pass and the read-back
+};
+
+/// Builds streams on one context's device, keeping the pipelines of the
+/// last technique and mode (compiled once, not per build): what a host or
+/// `render` that builds frame after frame holds. Not copyable; the context
+/// must outlive it.
+class VulkanStreamBuilder {
+ public:
+  explicit VulkanStreamBuilder(const VulkanContext& context);
+  ~VulkanStreamBuilder();
+  VulkanStreamBuilder(const VulkanStreamBuilder&) = delete;
+  VulkanStreamBuilder& operator=(const VulkanStreamBuilder&) = delete;
+
+  /// build_technique_on_vulkan's build; with `resolve`, then the last
+  /// attempt's container resolved into resolve->image on the device (its
+  /// backgrounds checked first: std::invalid_argument naming both sizes).
+  TechniqueBuild build(const TechniqueConfig& config, const OffsetSource& offsets, std::span<const Fragment> fragments,
+                       const ResizePolicy& policy = {}, std::uint32_t max_attempts = 1,
+                       VulkanBuildInfo* info = nullptr, VulkanResolve* resolve = nullptr);
+
+ private:
+  struct Pipelines;
+  const VulkanContext& context_;
+  std::unique_ptr<Pipelines> pipelines_;
 };
 
 /// build_technique_on_vulkan, then the last attempt's container resolved

@@ -1,4 +1,4 @@
-#include "cpu_builder.h"
+#include "frame_builder.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,17 +21,18 @@ InsertOptions frame_insert_options(const RenderSettings& s) {
 
 }  // namespace
 
-CpuBuilder::CpuBuilder(const RenderSettings& settings)
-    : settings_(settings),
-      config_(technique_config(settings)),
+FrameBuilder::FrameBuilder(const RenderSettings& settings) : settings_(settings), config_(technique_config(settings)) {}
+
+CpuFrameBuilder::CpuFrameBuilder(const RenderSettings& settings)
+    : FrameBuilder(settings),
       frames_(settings.offsets, frame_insert_options(settings), settings.policy, frame_attempts(settings)) {}
 
-void CpuBuilder::size_for(std::uint64_t fragments) {
+void FrameBuilder::size_for(std::uint64_t fragments) {
   // The GL frame driver sizes its automatic containers by the same rule (TechniqueConfig::sized_for).
   if (automatic_size(settings_)) config_ = config_.sized_for(settings_.policy, fragments);
 }
 
-const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, FrameStats& fs) {
+const TechniqueBuild& FrameBuilder::build(std::span<const Fragment> fragments, FrameStats& fs) {
   if (automatic_size(settings_) && previous_use_) {
     if (uses_table(config_.technique)) {
       const Extent next = settings_.policy.next(config_.buffer.table, settings_.config.screen, *previous_use_);
@@ -44,7 +45,7 @@ const TechniqueBuild& CpuBuilder::build(std::span<const Fragment> fragments, Fra
     }
   }
   const auto t0 = std::chrono::steady_clock::now();
-  const TechniqueBuild& b = frames_.build(config_, fragments);
+  const TechniqueBuild& b = build_frame(config_, fragments);
   fs.gather_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   fs.attempts = static_cast<std::uint32_t>(b.attempts.size());
   fs.counters = b.counters;

@@ -1,0 +1,13 @@
+// A build without the Vulkan path (HABUFFER_WITH_VULKAN off or its
+// packages absent): RenderPath::Vk is refused in one line.
+#include <stdexcept>
+
+#include "frame_path.h"
+
+namespace habuffer {
+
+std::unique_ptr<FramePath> make_vulkan_frames(const RenderSettings&, gl::AtomicMode) {
+  throw std::invalid_argument("this habuffer was built without the Vulkan path (HABUFFER_WITH_VULKAN): render on gl or cpu");
+}
+
+}  // namespace habuffer
