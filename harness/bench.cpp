@@ -42,7 +42,7 @@ ResultRow make_row(const BenchSettings& s, const TechniqueSpec& t, const Case& c
                    const std::optional<GpuTraffic>& traffic) {
   ResultRow row;
   row.set("technique", t.label()).set("scene", c.workload->label()).set("size", c.workload->size().str())
-      .set("path", s.path == RenderPath::Gl ? "gl" : "cpu").set("repeats", s.repeats);
+      .set("path", std::string(to_string(s.path))).set("repeats", s.repeats);
   const Spread g = spread_of(r.gather_ms), v = spread_of(r.resolve_ms), total = spread_of(r.total_ms);
   row.set("gather_ms", g.median).set("gather_ms_min", g.min).set("gather_ms_max", g.max).set("resolve_ms", v.median)
       .set("total_ms", total.median).set("total_ms_min", total.min).set("total_ms_max", total.max)
@@ -78,7 +78,7 @@ void validate_bench(const BenchSettings& s) {
   if (s.sizes.empty()) throw std::invalid_argument("--size is empty");
   if (s.repeats == 0) throw std::invalid_argument("--repeats must be at least 1");
   for (const WorkloadSpec& w : s.scenes) {
-    if (s.path == RenderPath::Gl && !w.fragments.empty())
+    if (s.path != RenderPath::Cpu && !w.fragments.empty())
       throw std::invalid_argument("fragment stream '" + w.word + "' renders on the CPU path only (--path cpu)");
     if (w.samples > 1 && std::none_of(s.techniques.begin(), s.techniques.end(),
                                       [&](const TechniqueSpec& t) { return bench_cell_applies(t, w); }))

@@ -71,7 +71,8 @@ std::vector<TechniqueSpec> frontier_techniques(RenderPath path) {
     words.emplace_back("blend");
   }
   std::vector<TechniqueSpec> out;
-  for (const std::string& w : words) out.push_back(parse_technique_spec(w));
+  for (const std::string& w : words)
+    if (TechniqueSpec t = parse_technique_spec(w); runs_on_path(path, t.technique)) out.push_back(t);
   return out;
 }
 

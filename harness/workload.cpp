@@ -83,7 +83,7 @@ RenderResult Workload::render(RenderSettings s) const {
   s.config.samples = spec_.samples;
   s.orbit = false;  // one fixed view: every frame the same (warm-up frames, then timed ones)
   if (!scene_) {
-    if (s.path == RenderPath::Gl) throw std::invalid_argument("fragment stream '" + spec_.word + "' renders on the CPU path only");
+    if (s.path != RenderPath::Cpu) throw std::invalid_argument("fragment stream '" + spec_.word + "' renders on the CPU path only");
     return render_fragments(stream_, s);
   }
   s.camera = {scene_->default_yaw, scene_->default_pitch, s.camera.fov};

@@ -61,6 +61,15 @@ class CpuFrames final : public FramePath {
 
 }  // namespace
 
+std::string_view to_string(RenderPath path) {
+  switch (path) {
+    case RenderPath::Gl: return "gl";
+    case RenderPath::Cpu: return "cpu";
+    case RenderPath::Vk: return "vk";
+  }
+  return "gl";
+}
+
 std::unique_ptr<FramePath> make_gpu_frames(const RenderSettings& settings, gl::AtomicMode mode);
 std::unique_ptr<FramePath> make_vulkan_frames(const RenderSettings& settings, gl::AtomicMode mode);
 

@@ -13,6 +13,7 @@
 #include "habuffer/gl/techniques/ha/gl_ha_buffer.h"
 #include "habuffer/vk/vulkan_build.h"
 #include "habuffer/vk/vulkan_context.h"
+#include "habuffer/vk/vulkan_registry.h"
 
 namespace habuffer {
 namespace {
@@ -99,6 +100,10 @@ class VulkanFrames final : public FramePath {
 };
 
 }  // namespace
+
+bool runs_on_path(RenderPath path, Technique technique) {
+  return path != RenderPath::Vk || vk::runs_on_vulkan(technique);
+}
 
 std::unique_ptr<FramePath> make_vulkan_frames(const RenderSettings& settings, gl::AtomicMode mode) {
   return std::make_unique<VulkanFrames>(settings, mode);

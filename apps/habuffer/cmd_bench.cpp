@@ -43,7 +43,8 @@ int run_bench(const std::vector<std::string>& argv) {
   s.seed = args.u64_in("seed");
   s.threads = args.u32_in("threads", 0, kMaxThreads);
   s.insert_order = insert_order_option(args);
-  args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"}, "with --path gl (the GPU inserts)");
+  args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"},
+                     "with --path " + std::string(to_string(s.path)) + " (the GPU inserts)");
   s.floors = !args.has("no-floors");
   if (args.has("model")) {
     if (args.str("model") != "gpu") throw UsageError("--model must be gpu, not '" + args.str("model") + "'");

@@ -317,11 +317,15 @@ int run_figure(const std::vector<std::string>& argv) {
   const Args args(rest, spec);
   harness::FigureSettings s;
   s.path = parse_path(args);
+  // The Vulkan path renders scenes (frontier); the other figures build on GL or the CPU.
+  if (s.path == RenderPath::Vk && name != "frontier")
+    throw UsageError("option --path vk: figure " + name + " runs on gl or cpu (vk renders figure frontier)");
   s.repeats = args.u32_in("repeats", 1, 1000);
   s.threads = args.u32_in("threads", 0, kMaxThreads);
   // figure shadows builds its light buffers on the CPU whatever the path.
   if (name != "table1" && name != "shadows")
-    args.refuse_unless(s.path == RenderPath::Cpu, {"threads"}, "with --path gl (the GPU inserts)");
+    args.refuse_unless(s.path == RenderPath::Cpu, {"threads"},
+                       "with --path " + std::string(to_string(s.path)) + " (the GPU inserts)");
   s.tau = usage_errors("tau", [&] { return parse_cull_threshold(args.str("tau")); });
   args.refuse_unless(args.has("picks"), {"targets", "memory-budgets"},
                      "without --picks (the targets and budgets choose the picks)");

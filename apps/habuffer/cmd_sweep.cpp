@@ -36,8 +36,8 @@ int run_sweep(const std::vector<std::string>& argv) {
   if (args.has("scene") == args.has("fragments")) throw UsageError("give exactly one of --scene and --fragments");
   harness::SweepSettings s;
   s.path = args.has("fragments") ? RenderPath::Cpu : parse_path(args);
-  if (args.has("fragments") && args.has("path") && args.str("path", "") == "gl")
-    throw UsageError("--fragments renders on the CPU path: drop --path gl");
+  if (args.has("fragments") && args.has("path") && args.str("path", "") != "cpu")
+    throw UsageError("--fragments renders on the CPU path: drop --path " + args.str("path", ""));
   const std::vector<harness::TechniqueSpec> t = parse_techniques(args, "technique");
   if (t.size() != 1) throw UsageError("--technique takes one technique (bench compares several)");
   s.technique = t[0];
@@ -52,7 +52,8 @@ int run_sweep(const std::vector<std::string>& argv) {
   s.offsets = *offsets;
   s.threads = args.u32_in("threads", 0, kMaxThreads);
   s.insert_order = insert_order_option(args);
-  args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"}, "with --path gl (the GPU inserts)");
+  args.refuse_unless(s.path == RenderPath::Cpu, {"threads", "insert-order"},
+                     "with --path " + std::string(to_string(s.path)) + " (the GPU inserts)");
   const std::vector<Extent> sizes = parse_sizes(args);
   if (sizes.size() != 1) throw UsageError("--size takes one WxH (bench compares several)");
   try {

@@ -18,7 +18,12 @@ std::vector<OptionSpec> harness_options(std::initializer_list<std::string_view> 
   static const std::vector<OptionSpec> own{
       {"out", "F.json[,F.csv]", "", "the table, JSON and/or CSV by extension (required)", writes_in(listed_files, "{}")},
       {"size", "WxH", "256x256", "the image (a harness command renders many times; render's default is 1024x1024)"},
+#ifdef HABUFFER_WITH_VK
+      {"path", "gl|cpu|vk", "gl",
+       "rasterize and insert on the GPU; or GL rasterizes and the CPU or a Vulkan device inserts and composites"},
+#else
       {"path", "gl|cpu", "gl", "rasterize and insert on the GPU, or insert on the CPU"},
+#endif
       {"repeats", "N", "3", "runs of each combination (medians, min and max)"},
       {"quiet", "", "", "no progress bar (shown on stderr on a terminal)"},
   };
@@ -55,9 +60,8 @@ std::vector<double> parse_reals(const Args& args, const std::string& name, doubl
 }
 
 RenderPath parse_path(const Args& args) {
-  const std::string p = args.str("path");
-  if (p != "gl" && p != "cpu") throw UsageError("--path must be gl or cpu, not '" + p + "'");
-  return p == "gl" ? RenderPath::Gl : RenderPath::Cpu;
+  const std::string p = args.choice("path");  // the alternatives harness_options declares
+  return p == "gl" ? RenderPath::Gl : p == "vk" ? RenderPath::Vk : RenderPath::Cpu;
 }
 
 std::vector<Extent> parse_sizes(const Args& args) {

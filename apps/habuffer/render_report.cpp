@@ -32,14 +32,7 @@ void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
   json.end_object();
 }
 
-const char* path_name(RenderPath p) {
-  switch (p) {
-    case RenderPath::Gl: return "gl";
-    case RenderPath::Cpu: return "cpu";
-    case RenderPath::Vk: return "vk";
-  }
-  return "gl";
-}
+std::string_view path_name(RenderPath p) { return to_string(p); }
 
 void write_vec3(JsonWriter& json, std::string_view key, glm::vec3 v) {
   json.key(key).begin_array();

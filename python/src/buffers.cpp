@@ -22,6 +22,12 @@
 #include "habuffer/lossless_build.h"
 #include "habuffer/render/stream_build.h"
 #include "habuffer/technique_descriptor.h"
+#ifdef HABUFFER_WITH_VK
+#include "habuffer/data_error.h"
+#include "habuffer/vk/vulkan_build.h"
+#include "habuffer/vk/vulkan_context.h"
+#include "habuffer/vk/vulkan_error.h"
+#endif
 
 namespace habuffer::python {
 namespace {
@@ -225,8 +231,28 @@ std::unique_ptr<Buffer> build(py::handle xy, py::handle depth, py::handle rgba, 
     report["gl_renderer"] = info.renderer;
     report["gl_atomic_mode"] = info.atomic_mode;
     report["build_ms"] = info.build_ms;
+#ifdef HABUFFER_WITH_VK
+  } else if (path == "vk") {
+    if (threads != 1 || mode != "auto" || order != "auto")
+      throw py::value_error("threads, mode and order are the CPU path's: the GPU inserts (path='vk')");
+    vk::VulkanBuildInfo info;
+    try {
+      py::gil_scoped_release release;
+      const vk::VulkanContext context;  // headless: no GL context needed
+      built = vk::build_technique_on_vulkan(context, config, offsets, fragments, ResizePolicy{}, attempts, &info);
+    } catch (const vk::VulkanError& e) {
+      throw DataError(std::string("path='vk': ") + e.what());
+    }
+    report["vk_device"] = info.device;
+    report["vk_atomic_mode"] = info.atomic_mode;
+    report["build_ms"] = info.build_ms;
+#endif
   } else {
-    throw py::value_error("path: '" + path + "' is not cpu or gl");
+#ifdef HABUFFER_WITH_VK
+    throw py::value_error("path: '" + path + "' is not cpu, gl or vk");
+#else
+    throw py::value_error("path: '" + path + "' is not cpu or gl (this habuffer has no Vulkan path)");
+#endif
   }
   if (lossless) {  // a lossless request that ended lossy: DataError, as the CLI's exit 1
     py::gil_scoped_release release;
@@ -388,7 +414,8 @@ void bind_buffers(py::module_& m) {
       py::arg("seed") = 1, py::arg("offset_list") = py::none(), py::arg("path") = "cpu", py::arg("lossless") = false,
       py::arg("max_attempts") = 16, py::arg("threads") = 1, py::arg("mode") = "auto", py::arg("order") = "auto",
       "A stream built into a new Buffer as habuffer build-lists builds it: on the CPU path or the GPU path "
-      "(path='gl', a headless EGL context; GlError where none can be made), lossless mode growing the container "
+      "(path='gl', a headless EGL context; GlError where none can be made; path='vk', a headless Vulkan device "
+      "where the module has the Vulkan path; DataError where none can be used), lossless mode growing the container "
       "until nothing drops (at most max_attempts; both paths by one rule, which never grows for a pixel deeper "
       "than AMAX, since no table holds it). A lossless build that still drops raises DataError naming the pixel, "
       "AMAX, the attempts and max_attempts (or age_bits where growing cannot help). An automatic pool "

@@ -132,7 +132,12 @@ py::object rows_table(const std::vector<Row>& rows, std::span<const RowColumn<Ro
 RenderPath path_arg(const std::string& p) {
   if (p == "gl") return RenderPath::Gl;
   if (p == "cpu") return RenderPath::Cpu;
-  throw py::value_error("path: '" + p + "' is not gl or cpu");
+#ifdef HABUFFER_WITH_VK
+  if (p == "vk") return RenderPath::Vk;
+  throw py::value_error("path: '" + p + "' is not gl, cpu or vk");
+#else
+  throw py::value_error("path: '" + p + "' is not gl or cpu (this habuffer has no Vulkan path)");
+#endif
 }
 
 InsertOrder order_arg(const std::string& o) {
@@ -168,14 +173,17 @@ std::uint32_t repeats_arg(const IntArg& repeats) { return u32_arg(repeats, "repe
 // The harness calls' shared rules, as the CLI's: repeats in 1..1000, threads on the CPU path only.
 void check_runs(std::uint32_t repeats, RenderPath path, std::uint32_t threads) {
   if (repeats < 1 || repeats > 1000) throw py::value_error("repeats: " + std::to_string(repeats) + " outside 1..1000");
-  if (path == RenderPath::Gl && threads != 0)
-    throw py::value_error("threads: the CPU path's (path='cpu'); with path='gl' the GPU inserts");
+  if (path != RenderPath::Cpu && threads != 0)
+    throw py::value_error("threads: the CPU path's (path='cpu'); with path='" + std::string(to_string(path)) +
+                          "' the GPU inserts");
 }
 
 harness::FigureSettings figure_settings(const std::string& path, py::handle size, const IntArg& repeats,
                                         const IntArg& threads, float tau) {
   harness::FigureSettings f;
   f.path = path_arg(path);
+  if (f.path == RenderPath::Vk)  // as habuffer figure: vk renders frontier
+    throw py::value_error("path: 'vk' runs bench, sweep and frontier; this figure runs on gl or cpu");
   f.repeats = repeats_arg(repeats);
   f.threads = threads_arg(threads);
   check_runs(f.repeats, f.path, f.threads);

@@ -51,3 +51,17 @@ def gl_available():
         return hb.gl_info()
     except hb.GlError as e:
         pytest.skip("no OpenGL context: %s" % e)
+
+
+@pytest.fixture(scope="session")
+def vk_available():
+    """Skips where the module has no Vulkan path (ValueError naming it) or no usable device (DataError)."""
+    import habuffer as hb
+    import numpy as np
+    try:
+        hb.build(np.zeros((1, 2), np.uint32), np.full(1, 0.5, np.float32), screen=(1, 1), path="vk")
+    except ValueError as e:
+        pytest.skip("no Vulkan path: %s" % e)
+    except hb.DataError as e:
+        pytest.skip("no Vulkan device: %s" % e)
+    return True

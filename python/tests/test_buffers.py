@@ -230,6 +230,25 @@ def test_the_gpu_path_builds_the_cpu_paths_lists(gl_available):
         np.testing.assert_array_equal(getattr(cpu.lists(), name), getattr(gpu.lists(), name))
 
 
+def test_the_vulkan_path_builds_the_cpu_paths_lists_for_every_technique_it_runs(vk_available):
+    case = crosscheck.make_case(12)
+    screen = (case["Vx"], case["Vy"])
+    xy, depth, rgba = valid_arrays(case)
+    for technique, options in (("ha", {}), ("lists", {}), ("sorted-lists", {}), ("kbuffer", {"layers": 4})):
+        cpu = hb.build(xy, depth, rgba, screen=screen, technique=technique, lossless=technique != "kbuffer", **options)
+        vk = hb.build(xy, depth, rgba, screen=screen, technique=technique, lossless=technique != "kbuffer",
+                      path="vk", **options)
+        assert vk.build_report["path"] == "vk" and vk.build_report["vk_device"], technique
+        assert vk.build_report["vk_atomic_mode"] in ("native64", "native32"), technique
+        assert vk.counters == cpu.counters, technique
+        for name in ("offsets", "codes", "rgba"):
+            np.testing.assert_array_equal(getattr(cpu.lists(), name), getattr(vk.lists(), name), err_msg=technique)
+    with pytest.raises(ValueError, match="threads, mode and order are the CPU path's"):
+        hb.build(xy, depth, rgba, screen=screen, path="vk", threads=2)
+    with pytest.raises(hb.DataError, match="does not run arrays yet"):
+        hb.build(xy, depth, rgba, screen=screen, path="vk", technique="arrays")
+
+
 def deep_pixel_stream(screen=(8, 8), others=200, seed=5):
     """300 distinct depths at pixel (3, 5), more than AMAX = 255 at the default 8 age bits, and `others`
     fragments in rows 0..2."""

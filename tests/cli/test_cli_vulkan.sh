@@ -87,6 +87,36 @@ render_same spider kbuffer --size 80x64 --layers 4 --occupancy on
 render_same hairball ha --size 64x48 --table 64x48 --lossless --max-attempts 6
 render_same quads lists --size 64x48 --samples 4
 
+# --- bench and figure frontier on vk ------------------------------------------
+# The same rows as the CPU path's where they do not time: stored, failures,
+# the image's psnr against the reference; frontier leaves out what vk does
+# not run.
+cols() {  # FILE: technique,stored,failures,psnr per row
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+           { print $c["technique"] "," $c["stored"] "," $c["failures"] "," $c["psnr"] }' "$1"
+}
+if "$bin" bench --scenes quads,wuson --techniques ha,lists,sorted-lists,kbuffer:k=4:occ --size 48x40 --repeats 1 \
+     --path vk --no-floors --quiet --out bench_vk.csv 2>b.err &&
+   "$bin" bench --scenes quads,wuson --techniques ha,lists,sorted-lists,kbuffer:k=4:occ --size 48x40 --repeats 1 \
+     --path cpu --no-floors --quiet --out bench_cpu.csv 2>>b.err; then
+  if [[ "$(cols bench_vk.csv)" == "$(cols bench_cpu.csv)" ]] && [[ $(grep -c ',vk,' bench_vk.csv) -eq 8 ]]; then
+    ok harness
+  else
+    bad harness "bench --path vk differs from --path cpu: $(diff <(cols bench_vk.csv) <(cols bench_cpu.csv) | head -4)"
+  fi
+else
+  bad harness "bench failed: $(head -c 300 b.err)"
+fi
+if "$bin" figure frontier --scenes quads --size 32x32 --repeats 1 --path vk --quiet --out frontier_vk.csv 2>f.err; then
+  if grep -q '^arrays' frontier_vk.csv || ! grep -q '^sorted-lists,quads,32x32,vk' frontier_vk.csv; then
+    bad harness "figure frontier --path vk: rows $(cut -d, -f1 frontier_vk.csv | tr '\n' ' ')"
+  else
+    ok harness
+  fi
+else
+  bad harness "figure frontier --path vk failed: $(head -c 300 f.err)"
+fi
+
 # --- Misuse, one line each ---------------------------------------------------
 expect usage 2 "option --threads has no effect with --path vk" -- build-lists --in f.csv --out x.csv --screen 96x64 \
   --path vk --threads 2
@@ -106,7 +136,8 @@ expect usage 2 "--fragments renders on the CPU path: drop --path vk" -- render -
   --out y.png --path vk
 expect data 1 "does not run arrays yet" -- render --scene quads --size 32x32 --out y.png --path vk --technique arrays
 [[ ! -e y.png ]] && ok outputs || bad outputs "a refused render left y.png"
+expect usage 2 "option --path vk: figure fig10 runs on gl or cpu" -- figure fig10 --path vk --out z.csv
 
-for cls in info lists modes render usage data outputs; do echo "class $cls: ${tried[$cls]:-0} cases"; done
+for cls in info lists modes render harness usage data outputs; do echo "class $cls: ${tried[$cls]:-0} cases"; done
 echo "cli vulkan: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

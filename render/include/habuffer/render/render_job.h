@@ -38,6 +38,13 @@ enum class RenderPath {
   Vk    ///< GL rasterizes and captures; the technique is built and resolved on a Vulkan device
 };
 
+/// "gl", "cpu" or "vk".
+std::string_view to_string(RenderPath path);
+/// Whether `path` runs `technique` in this build: every technique on gl and
+/// cpu; on vk those with a Vulkan part (false for all where the build has
+/// no Vulkan path).
+bool runs_on_path(RenderPath path, Technique technique);
+
 /// Everything one render_scene or render_fragments call runs with
 /// (validated there: std::invalid_argument). The technique and its own
 /// parameters are the TechniqueChoice base (technique.h): a pool_capacity
