@@ -64,7 +64,7 @@ void print_vulkan() {
     } catch (const vk::VulkanError& e) {
       why_none = e.what();
     }
-    std::printf("  vk: %s (techniques: %s; build-lists --path vk)\n",
+    std::printf("  vk: %s (techniques: %s; build-lists, render, bench, sweep and figure frontier with --path vk)\n",
                 used ? ("device " + std::to_string(*used) + " used, chosen by " + vk::DeviceChoice::from_environment().str() +
                         " (HABUFFER_VK_DEVICE)").c_str()
                      : ("unavailable: " + why_none).c_str(),

@@ -58,7 +58,9 @@ void write_build_stats(JsonWriter& json, const HashOptions& options, const Fragm
   json.field("threads", timing.threads).field("insert_order", timing.insert_order).field("lossless", options.lossless);
   if (!timing.vk_atomic_mode.empty())
     json.field("vk_atomic_mode", timing.vk_atomic_mode).field("vk_device", timing.vk_device)
-        .field("vk_ended_by_driver", timing.vk_ended_by_driver);
+        .field("vk_ended_by_driver", timing.vk_ended_by_driver)
+        .field("vk_deferred", timing.vk_deferred)
+        .field("vk_resume_rounds", timing.vk_resume_rounds);
   if (!timing.gl_atomic_mode.empty())
     json.field("gl_atomic_mode", timing.gl_atomic_mode).field("gl_renderer", timing.gl_renderer)
         .field("gl_deferred", timing.gl_deferred).field("gl_resume_rounds", timing.gl_resume_rounds)

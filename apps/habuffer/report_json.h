@@ -24,6 +24,8 @@ struct BuildTiming {
   std::string vk_atomic_mode;  ///< --path vk: the mode that ran, and the device
   std::string vk_device;       ///< --path vk: the device's name
   std::uint64_t vk_ended_by_driver = 0;  ///< --path vk: insert calls the driver ended without an outcome
+  std::uint64_t vk_deferred = 0;         ///< --path vk: insert calls cut short and resumed (emulated64)
+  std::uint32_t vk_resume_rounds = 0;    ///< --path vk: resume passes
 };
 
 /// "key": [x, y], the stats files' form of a size.

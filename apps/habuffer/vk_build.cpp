@@ -20,6 +20,8 @@ TechniqueBuild build_on_vk(const HashOptions& options, std::span<const Fragment>
     timing.vk_atomic_mode = info.atomic_mode;
     timing.vk_device = info.device;
     timing.vk_ended_by_driver = info.ended_by_driver;
+    timing.vk_deferred = info.deferred;
+    timing.vk_resume_rounds = info.resume_rounds;
     return built;
   } catch (const vk::VulkanError& e) {
     throw DataError(std::string("--path vk: ") + e.what());

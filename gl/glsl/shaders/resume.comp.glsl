@@ -11,8 +11,13 @@ layout(std430, binding = HABUFFER_BINDING_STREAM) readonly buffer HaResumeCalls 
 };
 // The calls to resume: the driver's count (Readback::Immediate) or the
 // buffer's capacity with the count read here from its header, so a round
-// is dispatched without the driver reading the count back (Deferred).
+// is dispatched without the driver reading the count back (Deferred). A
+// uniform on OpenGL, a push constant on Vulkan, as insert_stream.comp.glsl's.
+#ifdef VULKAN
+layout(push_constant) uniform HaResumeCount { uint ha_resume_count; };
+#else
 uniform uint ha_resume_count;
+#endif
 
 void main() {
   uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;

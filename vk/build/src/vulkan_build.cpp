@@ -25,6 +25,9 @@ namespace {
 
 constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
 constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
+constexpr std::uint64_t kDeferredCallBytes = 40;  // std430 HaDeferred of ha_entry.glsl (hash_kernel.h checks it)
+constexpr std::uint32_t kMaxResumeRounds = 1u << 16;
+constexpr std::uint32_t kMaxOverflowRegathers = 8;
 static_assert(sizeof(Fragment) == 20, "the stream is the std430 HaFragment of entry_common.glsl");
 
 // The module variant the OpenGL path resolves for the same mode and kind of
@@ -48,7 +51,7 @@ Counters tally_counters(const std::vector<std::uint32_t>& words) {
 }
 
 // The pipelines and frame buffers of one build: the stream in chunks of at
-// most one storage binding, the counters, the deferred calls' header.
+// most one storage binding, the counters, the deferred calls' ping-pong.
 class StreamGather {
  public:
   // The pipelines (compiled here) and the frame's own buffers.
@@ -65,11 +68,24 @@ class StreamGather {
           context, compute_spirv(vulkan_sort_compute(technique, mode, variant_defines(mode, context.info())), name),
           name);
     }
-    // Every mode the Vulkan path runs is native: no call is deferred (the
-    // resume pass waits for emulated64, refused by check_atomic_mode). A
-    // call the driver cuts short raises the header's count only (capacity
-    // 0: nothing stored) and is counted as ended by the driver.
-    deferred_ = VulkanBuffer(context, kAppendHeaderBytes);
+    // Until a technique that defers calls comes (prepare): a header whose
+    // count a call the driver cuts short may raise (capacity 0: nothing
+    // stored), and which is counted as ended by the driver.
+    deferred_[0] = VulkanBuffer(context, kAppendHeaderBytes);
+  }
+
+  // Before `t`'s first gather, out of the timed span: where its calls may be
+  // cut short and deferred (emulated64's locks), the resume pass and the
+  // deferred calls' buffers.
+  void prepare(const VulkanTechnique& t) {
+    if (!t.defers_calls() || resume_) return;
+    const TechniqueConfig& c = t.config();
+    const std::string name = to_string(c.technique) + " resume (Vulkan, " + to_string(t.mode()) + ")";
+    resume_ = std::make_unique<ComputePipeline>(
+        context_,
+        compute_spirv(vulkan_resume_compute(c.technique, t.mode(), variant_defines(t.mode(), context_.info())), name),
+        name);
+    grow_deferred(1u << 12);
   }
 
   // The stream, in chunks of at most one storage binding (kept for every attempt).
@@ -95,27 +111,37 @@ class StreamGather {
     // A technique that fills first (the k-buffer's occupancy map) gathers
     // the stream twice, its own passes between: as the OpenGL frame does.
     const bool fills = t.fills_before_insert();
-    for (const std::uint32_t phase : {HABUFFER_PHASE_FILL, HABUFFER_PHASE_INSERT}) {
-      if (phase == HABUFFER_PHASE_FILL && !fills) continue;
-      write_params(t, phase);
-      insert_.begin_recording();
-      const bool first = phase == HABUFFER_PHASE_FILL || !fills;
-      context_.submit_and_wait(
-          [&](VkCommandBuffer cmd) {
-            if (first) {
-              t.record_clear(cmd);
-              counters_.record_zero(cmd);
-              capture_.record_zero(cmd);
-              deferred_.record_zero(cmd);
+    for (std::uint32_t regather = 0;; ++regather) {
+      for (const std::uint32_t phase : {HABUFFER_PHASE_FILL, HABUFFER_PHASE_INSERT}) {
+        if (phase == HABUFFER_PHASE_FILL && !fills) continue;
+        write_params(t, phase);
+        insert_.begin_recording();
+        const bool first = phase == HABUFFER_PHASE_FILL || !fills;
+        context_.submit_and_wait(
+            [&](VkCommandBuffer cmd) {
+              if (first) {
+                t.record_clear(cmd);
+                counters_.record_zero(cmd);
+                capture_.record_zero(cmd);
+                record_full_barrier(cmd);
+              }
+              deferred_[0].record_zero(cmd);  // the insert gather's calls cut short, none yet
               record_full_barrier(cmd);
-            }
-            for (const Chunk& c : chunks_) {
-              insert_.record(cmd, bindings(t, c.buffer, deferred_), static_cast<std::uint32_t>(c.count), c.count);
-              record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
-            }
-            if (phase == HABUFFER_PHASE_FILL) t.record_fill_passes(cmd, bindings(t, chunks_.front().buffer, deferred_));
-          },
-          phase == HABUFFER_PHASE_FILL ? "the Vulkan fill gather" : "the Vulkan gather");
+              for (const Chunk& c : chunks_) {
+                insert_.record(cmd, bindings(t, c.buffer, deferred_[0]), static_cast<std::uint32_t>(c.count),
+                               c.count);
+                record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
+              }
+              if (phase == HABUFFER_PHASE_FILL)
+                t.record_fill_passes(cmd, bindings(t, chunks_.front().buffer, deferred_[0]));
+            },
+            phase == HABUFFER_PHASE_FILL ? "the Vulkan fill gather" : "the Vulkan gather");
+      }
+      if (!t.defers_calls() || resume_all(t, info)) break;
+      // More calls were cut short than the deferred buffer holds: grown, and gathered again.
+      if (regather + 1 >= kMaxOverflowRegathers)
+        throw VulkanError("insert calls cut short overflowed the deferred-call buffer " +
+                          std::to_string(kMaxOverflowRegathers) + " times (capacity " + std::to_string(capacity_) + ")");
     }
     if (t.sorts_after_gather()) sort(t);
     const std::vector<std::uint32_t> words = counters_.read<std::uint32_t>(kCounterWords);
@@ -164,7 +190,7 @@ class StreamGather {
     resolve_->begin_recording();
     context_.submit_and_wait(
         [&](VkCommandBuffer cmd) {
-          resolve_->record_screen(cmd, bindings(t, target, deferred_), c.buffer.screen);
+          resolve_->record_screen(cmd, bindings(t, target, deferred_[0]), c.buffer.screen);
           record_full_barrier(cmd);
         },
         "the Vulkan resolve pass");
@@ -187,6 +213,7 @@ class StreamGather {
   void write_params(const VulkanTechnique& t, std::uint32_t gather_phase) {
     ParamBlock p;
     p.habuffer_gather_phase = gather_phase;
+    p.habuffer_deferred_capacity = static_cast<std::uint32_t>(capacity_);
     p.habuffer_lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;
     p.habuffer_screen_size[0] = t.config().buffer.screen.x;
     p.habuffer_screen_size[1] = t.config().buffer.screen.y;
@@ -213,13 +240,56 @@ class StreamGather {
     return out;
   }
 
+  // The deferred calls' buffers, both of `needed` calls at least (doubling).
+  void grow_deferred(std::uint64_t needed) {
+    capacity_ = std::min<std::uint64_t>(std::max(needed, capacity_ * 2), UINT32_MAX);
+    const std::uint64_t bytes = kAppendHeaderBytes + capacity_ * kDeferredCallBytes;
+    if (bytes > context_.info().max_storage_range)
+      throw VulkanError(std::to_string(needed) + " insert calls cut short exceed " + context_.info().name +
+                        "'s storage range (" + std::to_string(context_.info().max_storage_range) + " bytes)");
+    for (VulkanBuffer& b : deferred_) b = VulkanBuffer(context_, bytes);
+  }
+
+  // The resume rounds after a gather: each resumes the calls of one buffer,
+  // those cut short again appended to the other. False when more were cut
+  // short than the buffer holds (grown: the gather must run again).
+  bool resume_all(const VulkanTechnique& t, VulkanBuildInfo& info) {
+    std::size_t in = 0;
+    std::uint64_t pending = deferred_[0].read<std::uint32_t>(1)[0];
+    for (std::uint32_t round = 0; pending > 0; ++round) {
+      if (pending > capacity_) {
+        grow_deferred(pending);
+        return false;
+      }
+      if (round >= kMaxResumeRounds)
+        throw VulkanError(std::to_string(pending) + " insert calls still cut short after " +
+                          std::to_string(kMaxResumeRounds) + " resume rounds");
+      info.deferred += pending;
+      ++info.resume_rounds;
+      const std::size_t out = 1 - in;
+      resume_->begin_recording();
+      context_.submit_and_wait(
+          [&](VkCommandBuffer cmd) {
+            deferred_[out].record_zero(cmd);
+            record_full_barrier(cmd);
+            resume_->record(cmd, bindings(t, deferred_[in], deferred_[out]), static_cast<std::uint32_t>(pending),
+                            pending);
+            record_full_barrier(cmd);
+          },
+          "a Vulkan resume round");
+      pending = deferred_[out].read<std::uint32_t>(1)[0];
+      in = out;
+    }
+    return true;
+  }
+
   // The sort pass over the screen (its pipeline made with the others).
   void sort(const VulkanTechnique& t) {
     if (!sort_) throw std::logic_error("a sort pass for " + to_string(t.config().technique) + ", made without one");
     sort_->begin_recording();
     context_.submit_and_wait(
         [&](VkCommandBuffer cmd) {
-          sort_->record_screen(cmd, bindings(t, chunks_.front().buffer, deferred_), t.config().buffer.screen);
+          sort_->record_screen(cmd, bindings(t, chunks_.front().buffer, deferred_[0]), t.config().buffer.screen);
           record_full_barrier(cmd);
         },
         "the Vulkan sort pass");
@@ -229,10 +299,12 @@ class StreamGather {
   VulkanBuffer params_, counters_, capture_;
   ComputePipeline insert_;
   std::unique_ptr<ComputePipeline> sort_;
+  std::unique_ptr<ComputePipeline> resume_;   // emulated64's
   std::unique_ptr<ComputePipeline> resolve_;  // made when first asked for
   std::uint32_t resolve_samples_ = 0;         // the screen's samples it was made for
   std::vector<Chunk> chunks_;
-  VulkanBuffer deferred_;
+  std::array<VulkanBuffer, 2> deferred_;  // the calls cut short: this round's, the next's
+  std::uint64_t capacity_ = 0;            // calls each holds (0: native modes, a header only)
   std::uint64_t stream_size_ = 0;
 };
 
@@ -296,6 +368,7 @@ TechniqueBuild VulkanStreamBuilder::build(const TechniqueConfig& config, const O
     const auto a0 = std::chrono::steady_clock::now();
     t.reset();  // the last attempt's buffers go before the next one's are made
     t = make_vulkan_technique(context, c, offsets, *mode);
+    gather.prepare(*t);
     const auto g0 = std::chrono::steady_clock::now();
     const Counters counters = gather.gather(*t, out);
     timed_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - g0).count();

@@ -1,11 +1,20 @@
 #include "habuffer/vk/vulkan_technique.h"
 
+#include <algorithm>
+
+#include "habuffer/shared/ha_constants.h"
 #include "habuffer/technique_descriptor.h"
 #include "habuffer/vk/vulkan_error.h"
 
 namespace habuffer::vk {
 
 bool VulkanTechnique::sorts_after_gather() const { return !descriptor(config_.technique).sorted_on_insert; }
+
+std::uint64_t emulated64_lock_bytes(AtomicMode mode, std::uint64_t slots) {
+  if (mode != AtomicMode::Emulated64) return 4;
+  const std::uint64_t per_lock = std::uint64_t{1} << HABUFFER_LOCK_SHIFT;
+  return std::max<std::uint64_t>((slots + per_lock - 1) / per_lock, 1) * 4;
+}
 
 void check_atomic_mode(const VulkanContext& context, AtomicMode mode, Layout layout) {
   if ((mode == AtomicMode::Native32) != (layout == Layout::L32))
@@ -14,7 +23,6 @@ void check_atomic_mode(const VulkanContext& context, AtomicMode mode, Layout lay
   if (mode != AtomicMode::Native32 && !info.shader_int64)
     throw VulkanError("atomic mode " + to_string(mode) + " needs 64-bit shader integers (shaderInt64), which " +
                       info.name + " lacks");
-  if (mode == AtomicMode::Emulated64) throw VulkanError(std::string("atomic mode emulated64: ") + kEmulated64Refusal);
   if (mode == AtomicMode::Native64 && !info.buffer_int64_atomics)
     throw VulkanError("atomic mode native64 needs 64-bit buffer atomics (shaderBufferInt64Atomics), which " +
                       info.name + " lacks");

@@ -42,6 +42,10 @@ std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::strin
   return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) + gl::kSortCompute;
 }
 
+std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines) {
+  return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, variant_defines) + gl::kResumeCompute;
+}
+
 std::string vulkan_resolve_compute(Technique technique, AtomicMode mode, std::uint32_t samples,
                                    std::string_view variant_defines) {
   // The defines of the OpenGL path's per-pixel resolve (gl::resolve_fragment).

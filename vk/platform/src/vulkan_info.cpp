@@ -7,10 +7,6 @@
 
 namespace habuffer::vk {
 
-const char* const kEmulated64Refusal =
-    "the Vulkan path does not run emulated64 yet: it has no resume pass for the calls its per-slot locks cut short "
-    "(docs/spec-notes.md, \"Issue 48\"): use native64 (shaderBufferInt64Atomics) or layout 32";
-
 namespace {
 
 const char* type_name(VkPhysicalDeviceType type) {
@@ -82,9 +78,7 @@ AtomicSupport atomic_support(const VulkanInfo& info) {
 }
 
 std::vector<AtomicMode> runnable_atomic_modes(const VulkanInfo& info) {
-  std::vector<AtomicMode> modes = habuffer::runnable_atomic_modes(atomic_support(info));
-  std::erase(modes, AtomicMode::Emulated64);  // not on Vulkan yet (kEmulated64Refusal)
-  return modes;
+  return habuffer::runnable_atomic_modes(atomic_support(info));
 }
 
 std::optional<AtomicMode> chosen_atomic_mode(const VulkanInfo& info, Layout layout) {
@@ -97,10 +91,6 @@ std::optional<AtomicMode> chosen_atomic_mode(const VulkanInfo& info, Layout layo
   } catch (const std::invalid_argument& e) {
     throw VulkanError(e.what());
   }
-  if (mode == AtomicMode::Emulated64)
-    throw VulkanError("atomic mode emulated64 on " + info.name + " (" +
-                      (atomic_mode_override() ? "forced by HABUFFER_ATOMIC_MODE" : "no shaderBufferInt64Atomics") +
-                      "): " + kEmulated64Refusal);
   return mode;
 }
 

@@ -37,6 +37,7 @@ VulkanHaTable::VulkanHaTable(const VulkanContext& context, const TechniqueConfig
   max_age_ = VulkanBuffer(context, std::uint64_t{cells_} * 4);
   offset_values_ = VulkanBuffer(context, offsets_.size() * sizeof(glm::uvec2));
   offset_values_.upload(offsets_.values().data(), offsets_.size() * sizeof(glm::uvec2));
+  locks_ = VulkanBuffer(context, emulated64_lock_bytes(mode, slots));
   saturation_ = VulkanBuffer(context, buffer_.saturation ? buffer_.screen.area() * 4 : 4);
 }
 
@@ -47,11 +48,12 @@ std::vector<BoundBuffer> VulkanHaTable::buffers() const {
   return {{b.table, &table_},
           {b.max_age, &max_age_},
           {b.offsets, &offset_values_},
+          {b.locks, &locks_},
           {b.saturation, &saturation_}};
 }
 
 void VulkanHaTable::record_clear(VkCommandBuffer cmd) const {
-  for (const VulkanBuffer* b : {&table_, &max_age_, &saturation_}) b->record_zero(cmd);
+  for (const VulkanBuffer* b : {&table_, &max_age_, &locks_, &saturation_}) b->record_zero(cmd);
 }
 
 std::uint64_t VulkanHaTable::capacity() const { return buffer_.table.area(); }

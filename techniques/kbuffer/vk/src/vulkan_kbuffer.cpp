@@ -35,6 +35,7 @@ VulkanKBuffer::VulkanKBuffer(const VulkanContext& context, const TechniqueConfig
   const std::uint64_t pixels = config_.buffer.screen.area();
   slots_ = sized(context, capacity() * config_.buffer.record_layout().word_bytes(),
                  std::to_string(config_.layers) + " k-buffer layers of screen " + config_.buffer.screen.str());
+  locks_ = VulkanBuffer(context, emulated64_lock_bytes(mode, capacity()));
   saturation_ = VulkanBuffer(context, config_.buffer.saturation ? pixels * 4 : 4);
   if (config_.occupancy) {
     occupancy_ = sized(context, pixels * config_.occupancy_words * 4,
@@ -53,7 +54,7 @@ void VulkanKBuffer::write_params(ParamBlock& p) const { write_technique_params(c
 
 std::vector<BoundBuffer> VulkanKBuffer::buffers() const {
   const gl::GlBindings b = vulkan_bindings();
-  std::vector<BoundBuffer> out{{b.slots, &slots_}, {b.saturation, &saturation_}};
+  std::vector<BoundBuffer> out{{b.slots, &slots_}, {b.locks, &locks_}, {b.saturation, &saturation_}};
   if (config_.occupancy) {
     out.push_back({b.occupancy, &occupancy_});
     out.push_back({b.limits, &limits_});
@@ -64,6 +65,7 @@ std::vector<BoundBuffer> VulkanKBuffer::buffers() const {
 void VulkanKBuffer::record_clear(VkCommandBuffer cmd) const {
   // The limits are written by the count pass before the insert gather reads them.
   slots_.record_zero(cmd);
+  locks_.record_zero(cmd);  // every critical section leaves its lock at 0 again; zeroed for a fresh container
   saturation_.record_zero(cmd);
   if (config_.occupancy) occupancy_.record_zero(cmd);
 }

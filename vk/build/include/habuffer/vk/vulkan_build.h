@@ -23,12 +23,14 @@ namespace habuffer::vk {
 
 /// How a Vulkan build ran.
 struct VulkanBuildInfo {
-  double build_ms = 0.0;  ///< the upload and every attempt's gather, sort pass and counters (GL's span)
+  double build_ms = 0.0;  ///< the upload and every attempt's gather, resume rounds, sort pass and counters (GL's span)
   std::string atomic_mode;       ///< native32, native64, emulated64
   std::string device;            ///< the device's name
   /// Insert calls the driver ended without an outcome (a loop budget),
   /// counted failed_iter as on GL; all attempts.
   std::uint64_t ended_by_driver = 0;
+  std::uint64_t deferred = 0;       ///< insert calls cut short and resumed (emulated64), all attempts
+  std::uint32_t resume_rounds = 0;  ///< resume passes, all attempts
 };
 
 /// `fragments` built on the context's device as build_technique builds them

@@ -35,6 +35,9 @@ class VulkanTechnique {
   /// Whether a sort pass follows the gather (the technique's descriptor:
   /// not sorted on insert).
   [[nodiscard]] bool sorts_after_gather() const;
+  /// Whether its insert calls may be cut short and deferred to the resume
+  /// pass (emulated64's locks: the HA-buffer and the k-buffer).
+  [[nodiscard]] virtual bool defers_calls() const { return false; }
   /// Reads what it needs of a gather's counter words (the pool techniques:
   /// the nodes asked for), before read_back.
   virtual void gathered(std::span<const std::uint32_t> counter_words) { (void)counter_words; }
@@ -69,6 +72,11 @@ class VulkanTechnique {
   TechniqueConfig config_;
   AtomicMode mode_;
 };
+
+/// The bytes of emulated64's lock words for `slots` 64-bit slots (one lock
+/// per 2^HABUFFER_LOCK_SHIFT slots); 4 in the native modes (bound, never
+/// read).
+std::uint64_t emulated64_lock_bytes(AtomicMode mode, std::uint64_t slots);
 
 /// Throws VulkanError unless `mode` holds `layout`'s records and the
 /// context's device can run it (naming the feature it lacks).

@@ -48,6 +48,10 @@ std::string vulkan_insert_stream_compute(Technique technique, AtomicMode mode, s
 /// invocation per pixel, 8x8 groups); std::invalid_argument for one sorted
 /// by insertion.
 std::string vulkan_sort_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
+/// The resume pass of emulated64 (the deferred insert calls at the stream's
+/// point, those cut short again appended at the deferred point; their count
+/// a push constant).
+std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::string_view variant_defines = {});
 
 /// The resolve pass (SPEC 7) of `technique` on a screen of `samples`
 /// samples (a multisampled pixel resolved per pixel, as the CPU's

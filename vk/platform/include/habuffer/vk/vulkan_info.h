@@ -43,17 +43,13 @@ struct VulkanInfo {
 /// Reads a physical device's properties and features (index: its place in the list).
 VulkanInfo query_vulkan_info(VkPhysicalDevice device, std::uint32_t index);
 
-/// Why the Vulkan path refuses emulated64 for now (one sentence).
-extern const char* const kEmulated64Refusal;
-
 /// What the device offers the atomic modes, in Vulkan's words.
 AtomicSupport atomic_support(const VulkanInfo& info);
-/// Modes the Vulkan path runs on the device, in order of preference
-/// (emulated64 not yet: kEmulated64Refusal).
+/// Modes the Vulkan path runs on the device, in order of preference (every
+/// path's rule: habuffer::runnable_atomic_modes).
 std::vector<AtomicMode> runnable_atomic_modes(const VulkanInfo& info);
 /// The mode a layout runs in on this device: every path's rule
-/// (habuffer::chosen_atomic_mode), its errors VulkanError; where that rule
-/// gives emulated64, VulkanError saying kEmulated64Refusal.
+/// (habuffer::chosen_atomic_mode), its errors VulkanError.
 std::optional<AtomicMode> chosen_atomic_mode(const VulkanInfo& info, Layout layout);
 
 }  // namespace habuffer::vk

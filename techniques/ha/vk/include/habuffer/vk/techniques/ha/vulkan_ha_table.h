@@ -1,7 +1,7 @@
 /// @file
 /// The HA-buffer on a Vulkan device: the table of records (L64 or L32), the
-/// max-age table, the probe offsets and the saturation image (no locks:
-/// emulated64 is not run on Vulkan yet), read back into the CPU's HaBuffer of the same configuration.
+/// max-age table, the probe offsets, emulated64's locks and the saturation
+/// image, read back into the CPU's HaBuffer of the same configuration.
 #pragma once
 
 #include <memory>
@@ -21,6 +21,7 @@ class VulkanHaTable final : public VulkanTechnique {
   VulkanHaTable(const VulkanContext& context, const TechniqueConfig& config, const OffsetSource& offsets,
                 AtomicMode mode);
 
+  [[nodiscard]] bool defers_calls() const override { return mode_ == AtomicMode::Emulated64; }
   void write_params(ParamBlock& p) const override;
   [[nodiscard]] std::vector<BoundBuffer> buffers() const override;
   void record_clear(VkCommandBuffer cmd) const override;
@@ -31,7 +32,7 @@ class VulkanHaTable final : public VulkanTechnique {
   BufferConfig buffer_;
   OffsetSequence offsets_;
   std::uint32_t cells_ = 0;  ///< max-age cells
-  VulkanBuffer table_, max_age_, offset_values_, saturation_;
+  VulkanBuffer table_, max_age_, offset_values_, locks_, saturation_;
 };
 
 }  // namespace habuffer::vk

@@ -1,6 +1,6 @@
 /// @file
 /// The k-buffer on a Vulkan device: its K layers of slots per pixel (L64 or
-/// L32 records, kept sorted by the insertion), and with the occupancy map
+/// L32 records, kept sorted by the insertion; emulated64's locks), and with the occupancy map
 /// its map and per-pixel limits, found by the count pass between the fill
 /// gather and the insert gather; read back into the CPU's KBuffer.
 #pragma once
@@ -21,6 +21,7 @@ class VulkanKBuffer final : public VulkanTechnique {
   /// storage range (naming the sizes).
   VulkanKBuffer(const VulkanContext& context, const TechniqueConfig& config, AtomicMode mode);
 
+  [[nodiscard]] bool defers_calls() const override { return mode_ == AtomicMode::Emulated64; }
   void write_params(ParamBlock& p) const override;
   [[nodiscard]] std::vector<BoundBuffer> buffers() const override;
   void record_clear(VkCommandBuffer cmd) const override;
@@ -30,7 +31,7 @@ class VulkanKBuffer final : public VulkanTechnique {
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
 
  private:
-  VulkanBuffer slots_, occupancy_, limits_, saturation_;
+  VulkanBuffer slots_, locks_, occupancy_, limits_, saturation_;
   std::unique_ptr<ComputePipeline> count_;  ///< the count pass, with the occupancy map only
 };
 
