@@ -11,22 +11,6 @@
 namespace habuffer {
 namespace {
 
-// A screen-sized HA-buffer that only captures: the CPU path's rasterizer.
-gl::GlFrameOptions capture_options() {
-  gl::GlFrameOptions o;
-  o.capture = true;
-  o.capture_only = true;
-  return o;
-}
-
-BufferConfig capture_config(const RenderSettings& s) {
-  BufferConfig c = s.config;
-  c.table = c.screen;
-  c.early_cull_tau = 0.0f;  // the capture keeps every fragment: the CPU builder culls
-  c.saturation = false;
-  return c;
-}
-
 class CpuFrames final : public FramePath {
  public:
   CpuFrames(const RenderSettings& s, gl::AtomicMode mode)

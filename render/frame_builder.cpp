@@ -82,6 +82,21 @@ std::vector<std::uint32_t> culled_per_pixel(const HaBuffer& like, std::span<cons
 
 }  // namespace
 
+BufferConfig capture_config(const RenderSettings& s) {
+  BufferConfig c = s.config;
+  c.table = c.screen;
+  c.early_cull_tau = 0.0f;  // the capture keeps every fragment: the builder culls
+  c.saturation = false;
+  return c;
+}
+
+gl::GlFrameOptions capture_options() {
+  gl::GlFrameOptions o;
+  o.capture = true;
+  o.capture_only = true;
+  return o;
+}
+
 void finish_cpu_result(const RenderSettings& settings, TechniqueBuild last, RenderResult& result) {
   if (settings.per_pixel_culled) {
     if (const HaBuffer* table = as_hash_table(*last.buffer))

@@ -15,6 +15,7 @@
 
 #include "habuffer/lossless_build.h"
 #include "habuffer/render/render_job.h"
+#include "habuffer/gl/gl_frame_driver.h"
 #include "habuffer/technique_frames.h"
 
 namespace habuffer {
@@ -66,6 +67,12 @@ class CpuFrameBuilder final : public FrameBuilder {
 }  // namespace habuffer
 
 namespace habuffer {
+/// The GL capture the CPU and Vulkan paths rasterize with: a screen-sized
+/// HA-buffer that only captures (no early cull or saturation: the builder
+/// culls), and its frame options.
+BufferConfig capture_config(const RenderSettings& settings);
+gl::GlFrameOptions capture_options();
+
 /// Moves the last frame's build into the result: the lists, the memory
 /// (measured and by formula) and, when asked, the culled fragments per pixel
 /// (the HA-buffer's early cull, replayed serially).

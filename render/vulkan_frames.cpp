@@ -18,23 +18,6 @@
 namespace habuffer {
 namespace {
 
-// A screen-sized HA-buffer that only captures: the Vulkan path's rasterizer
-// (as the CPU path's: the builder culls).
-gl::GlFrameOptions capture_options() {
-  gl::GlFrameOptions o;
-  o.capture = true;
-  o.capture_only = true;
-  return o;
-}
-
-BufferConfig capture_config(const RenderSettings& s) {
-  BufferConfig c = s.config;
-  c.table = c.screen;
-  c.early_cull_tau = 0.0f;
-  c.saturation = false;
-  return c;
-}
-
 // Each frame built and resolved on the device; the backgrounds are the
 // frame's opaque pass, set before each build.
 class VulkanFrameBuilder final : public FrameBuilder {

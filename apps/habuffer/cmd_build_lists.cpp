@@ -13,16 +13,13 @@
 #include "habuffer/interchange.h"
 #include "hash_options.h"
 #include "technique_flags.h"
+#include "vulkan_path.h"
 #include "loss_report.h"
 #include "report_json.h"
 
 namespace habuffer::cli {
 namespace {
-#ifdef HABUFFER_WITH_VK
-constexpr const char* kBuildPaths = "cpu|gl|vk";
-#else
-constexpr const char* kBuildPaths = "cpu|gl";
-#endif
+constexpr const char* kBuildPaths = kHasVulkanPath ? "cpu|gl|vk" : "cpu|gl";
 }  // namespace
 
 const CommandSpec& build_lists_spec() {

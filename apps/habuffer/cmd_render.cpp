@@ -28,15 +28,11 @@
 #include "render_report.h"
 #include "scene_options.h"
 #include "technique_flags.h"
+#include "vulkan_path.h"
 
 namespace habuffer::cli {
 namespace {
-// The render paths this build has (vk where habuffer::vk is built).
-#ifdef HABUFFER_WITH_VK
-constexpr const char* kRenderPaths = "gl|cpu|vk";
-#else
-constexpr const char* kRenderPaths = "gl|cpu";
-#endif
+constexpr const char* kRenderPaths = kHasVulkanPath ? "gl|cpu|vk" : "gl|cpu";
 }  // namespace
 
 const CommandSpec& render_spec() {

@@ -11,6 +11,7 @@
 #include "file_values.h"
 #include "hash_options.h"
 #include "loss_report.h"
+#include "vulkan_path.h"
 
 namespace habuffer::cli {
 
@@ -18,12 +19,10 @@ std::vector<OptionSpec> harness_options(std::initializer_list<std::string_view> 
   static const std::vector<OptionSpec> own{
       {"out", "F.json[,F.csv]", "", "the table, JSON and/or CSV by extension (required)", writes_in(listed_files, "{}")},
       {"size", "WxH", "256x256", "the image (a harness command renders many times; render's default is 1024x1024)"},
-#ifdef HABUFFER_WITH_VK
-      {"path", "gl|cpu|vk", "gl",
-       "rasterize and insert on the GPU; or GL rasterizes and the CPU or a Vulkan device inserts and composites"},
-#else
-      {"path", "gl|cpu", "gl", "rasterize and insert on the GPU, or insert on the CPU"},
-#endif
+      {"path", kHasVulkanPath ? "gl|cpu|vk" : "gl|cpu", "gl",
+       kHasVulkanPath ? "rasterize and insert on the GPU; or GL rasterizes and the CPU or a Vulkan device inserts and "
+                        "composites"
+                      : "rasterize and insert on the GPU, or insert on the CPU"},
       {"repeats", "N", "3", "runs of each combination (medians, min and max)"},
       {"quiet", "", "", "no progress bar (shown on stderr on a terminal)"},
   };
