@@ -77,6 +77,7 @@ void validate_bench(const BenchSettings& s) {
   if (s.techniques.empty()) throw std::invalid_argument("--techniques is empty");
   if (s.sizes.empty()) throw std::invalid_argument("--size is empty");
   if (s.repeats == 0) throw std::invalid_argument("--repeats must be at least 1");
+  for (const TechniqueSpec& t : s.techniques) check_runs_on_path(s.path, t.technique);
   for (const WorkloadSpec& w : s.scenes) {
     if (s.path != RenderPath::Cpu && !w.fragments.empty())
       throw std::invalid_argument("fragment stream '" + w.word + "' renders on the CPU path only (--path cpu)");
@@ -102,7 +103,8 @@ std::vector<Case> make_cases(const BenchSettings& s) {
       c.capture = c.workload->capture();
       cases.push_back(std::move(c));
     }
-  if (s.floors)
+  // No floors on vk: GL's time GL's rasterizer, the CPU's the CPU; neither is the Vulkan device's.
+  if (s.floors && s.path != RenderPath::Vk)
     for (Case& c : cases) c.floors = std::make_unique<FloorMeter>(*c.workload, c.capture, s.path, s.threads);
   return cases;
 }
@@ -191,13 +193,13 @@ void add_bench_notes(ResultTable& table) {
       "(gather: insertion; resolve: sort and composite; total: both); first_frame_ms: the first frame's total";
   table.notes["clear_ms"] =
       "GPU path: the buffers' reset before the gather, timed apart from it; CPU path: 0, the reset (a memset of "
-      "the kept container) is in the gather";
+      "the kept container) is in the gather; Vulkan path: 0, the reset is in its build (gather_ms)";
   table.notes["insert_order"] = "the order the CPU path's HA-buffer inserted in (auto resolved); others: arrival";
   table.notes["psnr"] = "against the exact reference (SPEC 7 in double precision); identical images: inf (null in JSON)";
   table.notes["floors"] =
       "atomic: one atomic add per fragment; blend: unsorted blending; exact (CPU path): bucket by pixel, sort each "
       "pixel, composite from the buckets (the least an exact technique does; bucketing on one thread); measured in "
-      "every round";
+      "every round; none on the Vulkan path (neither floor is its device's)";
 }
 
 void add_model_notes(ResultTable& table) {

@@ -152,6 +152,7 @@ void validate_sweep(const SweepSettings& s) {
     throw std::invalid_argument("technique " + to_string(s.technique.technique) + " has no size to sweep (" +
                                 sized_techniques() + " have)");
   if (s.loads.empty()) throw std::invalid_argument("--loads is empty");
+  check_runs_on_path(s.path, s.technique.technique);
   // The sweep sizes the technique itself; a size in the word would be
   // overridden yet kept in the rows' label.
   if (s.technique.load || s.technique.layers)

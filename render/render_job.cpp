@@ -25,6 +25,7 @@ void validate(const RenderSettings& s) {
   if (s.frames == 0) throw std::invalid_argument("--frames must be at least 1");
   if (s.max_attempts == 0) throw std::invalid_argument("--max-attempts must be at least 1");
   technique_config(s).validate();
+  check_runs_on_path(s.path, s.technique);
   if (s.shadows) s.shadows->validate();
   if (s.shadows && s.config.layout == Layout::L32)
     throw std::invalid_argument("--shadows needs --layout 64: the view's shaders read the light buffer's 64-bit "

@@ -66,6 +66,8 @@ class VulkanFrames final : public FramePath {
     // The build's span is the device's (upload, gathers, sort, counters), the resolve's its own.
     fs.gather_ms = builder_.info().build_ms;
     fs.resolve_ms = builder_.resolved().resolve_ms;
+    fs.deferred = builder_.info().deferred;
+    fs.resume_rounds = builder_.info().resume_rounds;
     result.image = Image{settings_.config.screen, builder_.resolved().image};
     result.fragments = std::move(fragments);
   }
@@ -86,6 +88,12 @@ class VulkanFrames final : public FramePath {
 
 bool runs_on_path(RenderPath path, Technique technique) {
   return path != RenderPath::Vk || vk::runs_on_vulkan(technique);
+}
+
+void check_runs_on_path(RenderPath path, Technique technique) {
+  if (!runs_on_path(path, technique))
+    throw std::invalid_argument("the Vulkan path does not run " + to_string(technique) + " yet (it runs " +
+                                vk::vulkan_technique_names() + ")");
 }
 
 std::unique_ptr<FramePath> make_vulkan_frames(const RenderSettings& settings, gl::AtomicMode mode) {

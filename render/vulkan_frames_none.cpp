@@ -8,6 +8,11 @@ namespace habuffer {
 
 bool runs_on_path(RenderPath path, Technique) { return path != RenderPath::Vk; }
 
+void check_runs_on_path(RenderPath path, Technique) {
+  if (path == RenderPath::Vk)
+    throw std::invalid_argument("this habuffer was built without the Vulkan path (HABUFFER_WITH_VULKAN): use gl or cpu");
+}
+
 std::unique_ptr<FramePath> make_vulkan_frames(const RenderSettings&, gl::AtomicMode) {
   throw std::invalid_argument("this habuffer was built without the Vulkan path (HABUFFER_WITH_VULKAN): render on gl or cpu");
 }

@@ -34,7 +34,7 @@ std::string technique_knob_help();
 /// Option `name`'s comma-separated list of numbers (its declared default when absent), each in [lo, hi];
 /// UsageError otherwise.
 std::vector<double> parse_reals(const Args& args, const std::string& name, double lo = -1e300, double hi = 1e300);
-/// --path gl|cpu (its declared default).
+/// --path gl|cpu|vk (vk where the CLI has the Vulkan path; its declared default).
 RenderPath parse_path(const Args& args);
 /// --size WxH[,WxH...] (its declared default when absent): at least one, each positive.
 std::vector<Extent> parse_sizes(const Args& args);

@@ -19,14 +19,16 @@ JsonWriter& counted(JsonWriter& json, std::string_view key, const std::optional<
   return json.field(key, std::numeric_limits<double>::quiet_NaN());  // the writer's null
 }
 
-void frame(JsonWriter& json, const FrameStats& f, bool gpu) {
+void frame(JsonWriter& json, const FrameStats& f, RenderPath path) {
+  const bool gpu = path == RenderPath::Gl;
   json.begin_object().field("index", f.index).field("yaw", static_cast<double>(f.yaw));
   write_extent(json, "table", f.table);
   json.field("capacity", f.capacity).field("load_factor", f.load_factor).field("resized", f.resized).field("attempts", f.attempts);
   write_counters(json, f.counters);
   json.field("opaque_rejected", f.opaque_rejected).field("max_age", f.max_age).field("resize_limited", f.resize_limited);
   json.field("insert_order", to_string(f.insert_order));
-  if (gpu) counted(json, "slot_writes", f.slot_writes).field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
+  if (gpu) counted(json, "slot_writes", f.slot_writes);
+  if (path != RenderPath::Cpu) json.field("deferred", f.deferred).field("resume_rounds", f.resume_rounds);
   json.field("gather_ms", f.gather_ms).field("resolve_ms", f.resolve_ms).field("frame_ms", f.frame_ms);
   if (gpu) json.field("clear_ms", f.clear_ms);
   json.end_object();
@@ -141,7 +143,7 @@ void write_render_stats(const std::string& path, const RenderSummary& s) {
   }
   if (r.light && set.shadows) light(json, *set.shadows, *r.light, s.outputs->shadow_error);
   json.key("frames").begin_array();
-  for (const FrameStats& f : r.frames) frame(json, f, set.path == RenderPath::Gl);
+  for (const FrameStats& f : r.frames) frame(json, f, set.path);
   json.end_array();
   json.end_object();
   json.save(path);

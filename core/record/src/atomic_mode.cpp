@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "habuffer/shared/ha_constants.h"
+
 namespace habuffer {
 
 std::string to_string(AtomicMode mode) {
@@ -59,6 +61,10 @@ std::optional<AtomicMode> chosen_atomic_mode(const AtomicSupport& support, Layou
   if (support.int64_types && support.atomic_int64) return AtomicMode::Native64;
   if (support.int64_types) return AtomicMode::Emulated64;
   return std::nullopt;
+}
+
+std::uint64_t emulated64_lock_words(std::uint64_t slots) {
+  return (slots + (std::uint64_t{1} << HABUFFER_LOCK_SHIFT) - 1) >> HABUFFER_LOCK_SHIFT;
 }
 
 }  // namespace habuffer

@@ -61,10 +61,6 @@ void check_atomic_mode(AtomicMode mode, Layout layout) {
     throw GlError("atomic mode native64 needs 64-bit shader atomics (GL_NV_shader_atomic_int64)");
 }
 
-std::uint64_t emulated64_lock_words(std::uint64_t slots) {
-  return (slots + (1u << HABUFFER_LOCK_SHIFT) - 1) >> HABUFFER_LOCK_SHIFT;
-}
-
 std::uint64_t max_storage_bytes() {
   GLint64 bytes = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);

@@ -3,8 +3,8 @@
 // a 32-bit lock per 2^HABUFFER_LOCK_SHIFT slots (the module assembly defines ha_word as uint64_t and
 // enables GL_ARB_gpu_shader_int64).
 // The fence between writes and the atomic that publishes them. A module
-// assembly may define it first: the Vulkan path defines it empty on a
-// software device (vk::vulkan_device_defines says why).
+// assembly may define it first: the Vulkan path defines it empty on
+// lavapipe (vk::vulkan_device_defines says why).
 #ifndef HABUFFER_BUFFER_FENCE
 #define HABUFFER_BUFFER_FENCE() memoryBarrierBuffer()
 #endif

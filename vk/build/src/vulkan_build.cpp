@@ -36,7 +36,7 @@ std::string variant_defines(AtomicMode mode, const VulkanInfo& info) {
   gl::ModuleVariant v;
   v.slot_read_first = mode == AtomicMode::Emulated64;
   v.max_age_read_first = info.software;
-  return vulkan_device_defines(info.software) + v.defines();
+  return vulkan_device_defines(info.lavapipe) + v.defines();
 }
 
 // The attempt's counters from its striped tallies.
@@ -182,6 +182,10 @@ class StreamGather {
   std::vector<glm::vec4> resolve(const VulkanTechnique& t, std::span<const glm::vec3> backgrounds) {
     const TechniqueConfig& c = t.config();
     prepare_resolve(t);
+    if (backgrounds.size() * sizeof(glm::vec4) > context_.info().max_storage_range)
+      throw VulkanError("the resolve's image of screen " + c.buffer.screen.str() + " needs " +
+                        std::to_string(backgrounds.size() * sizeof(glm::vec4)) + " bytes, beyond one storage binding of " +
+                        context_.info().name);
     std::vector<glm::vec4> image(backgrounds.size());
     for (std::size_t i = 0; i < backgrounds.size(); ++i) image[i] = glm::vec4(backgrounds[i], 0.0f);
     VulkanBuffer target(context_, std::max<std::uint64_t>(image.size(), 1) * sizeof(glm::vec4));
@@ -241,13 +245,16 @@ class StreamGather {
   }
 
   // The deferred calls' buffers, both of `needed` calls at least (doubling).
+  // The capacity changes only once both buffers hold it (a throw leaves the old ones).
   void grow_deferred(std::uint64_t needed) {
-    capacity_ = std::min<std::uint64_t>(std::max(needed, capacity_ * 2), UINT32_MAX);
-    const std::uint64_t bytes = kAppendHeaderBytes + capacity_ * kDeferredCallBytes;
+    const std::uint64_t capacity = std::min<std::uint64_t>(std::max(needed, capacity_ * 2), UINT32_MAX);
+    const std::uint64_t bytes = kAppendHeaderBytes + capacity * kDeferredCallBytes;
     if (bytes > context_.info().max_storage_range)
       throw VulkanError(std::to_string(needed) + " insert calls cut short exceed " + context_.info().name +
                         "'s storage range (" + std::to_string(context_.info().max_storage_range) + " bytes)");
-    for (VulkanBuffer& b : deferred_) b = VulkanBuffer(context_, bytes);
+    std::array<VulkanBuffer, 2> grown{VulkanBuffer(context_, bytes), VulkanBuffer(context_, bytes)};
+    deferred_ = std::move(grown);
+    capacity_ = capacity;
   }
 
   // The resume rounds after a gather: each resumes the calls of one buffer,

@@ -11,9 +11,7 @@ namespace habuffer::vk {
 bool VulkanTechnique::sorts_after_gather() const { return !descriptor(config_.technique).sorted_on_insert; }
 
 std::uint64_t emulated64_lock_bytes(AtomicMode mode, std::uint64_t slots) {
-  if (mode != AtomicMode::Emulated64) return 4;
-  const std::uint64_t per_lock = std::uint64_t{1} << HABUFFER_LOCK_SHIFT;
-  return std::max<std::uint64_t>((slots + per_lock - 1) / per_lock, 1) * 4;
+  return mode == AtomicMode::Emulated64 ? std::max<std::uint64_t>(emulated64_lock_words(slots), 1) * 4 : 4;
 }
 
 void check_atomic_mode(const VulkanContext& context, AtomicMode mode, Layout layout) {

@@ -19,8 +19,8 @@ std::string vulkan_module_extensions(AtomicMode mode) {
   return "";
 }
 
-std::string vulkan_device_defines(bool software_device) {
-  return software_device ? "#define HABUFFER_BUFFER_FENCE()\n" : "";
+std::string vulkan_device_defines(bool lavapipe) {
+  return lavapipe ? "#define HABUFFER_BUFFER_FENCE()\n" : "";
 }
 
 std::string vulkan_technique_module(Technique technique, AtomicMode mode, gl::ShaderStage stage,

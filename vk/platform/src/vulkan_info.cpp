@@ -64,6 +64,7 @@ VulkanInfo query_vulkan_info(VkPhysicalDevice device, std::uint32_t index) {
   props2.pNext = &p12;
   vkGetPhysicalDeviceProperties2(device, &props2);
   i.driver = p12.driverName;
+  i.lavapipe = p12.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
   if (p12.driverInfo[0] != '\0') {
     i.driver += ' ';
     i.driver.append(p12.driverInfo);

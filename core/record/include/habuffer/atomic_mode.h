@@ -4,6 +4,7 @@
 /// path, so a layout runs the same mode wherever the device allows it.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -42,6 +43,10 @@ std::vector<AtomicMode> runnable_atomic_modes(const AtomicSupport& support);
 /// GPU (emulated64 forced on a GPU with 64-bit atomics); none when unset.
 /// Throws std::invalid_argument naming the variable for any other value.
 std::optional<AtomicMode> atomic_mode_override();
+
+/// Emulated64's lock words for `slots` 64-bit slots: one per
+/// 2^HABUFFER_LOCK_SHIFT (every GPU path's lock buffer).
+std::uint64_t emulated64_lock_words(std::uint64_t slots);
 
 /// The mode a path runs a layout in: the override when it holds the layout
 /// (native32 for L32; native64 or emulated64 for L64); else L32 native32,

@@ -44,6 +44,9 @@ std::string_view to_string(RenderPath path);
 /// cpu; on vk those with a Vulkan part (false for all where the build has
 /// no Vulkan path).
 bool runs_on_path(RenderPath path, Technique technique);
+/// Throws std::invalid_argument unless runs_on_path, naming the techniques
+/// the path runs ("the Vulkan path does not run arrays yet (it runs ...)").
+void check_runs_on_path(RenderPath path, Technique technique);
 
 /// Everything one render_scene or render_fragments call runs with
 /// (validated there: std::invalid_argument). The technique and its own

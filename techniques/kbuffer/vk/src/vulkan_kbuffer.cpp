@@ -44,7 +44,7 @@ VulkanKBuffer::VulkanKBuffer(const VulkanContext& context, const TechniqueConfig
     const std::string name = "k-buffer count pass (Vulkan, " + to_string(mode) + ")";
     const std::string source =
         vulkan_technique_module(Technique::KBuffer, mode, gl::ShaderStage::Compute,
-                                vulkan_device_defines(context.info().software)) +
+                                vulkan_device_defines(context.info().lavapipe)) +
         gl::kKBufferCountCompute;
     count_ = std::make_unique<ComputePipeline>(context, compile_to_spirv(source, SpirvStage::Compute, name), name);
   }

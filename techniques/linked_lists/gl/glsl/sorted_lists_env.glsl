@@ -5,8 +5,8 @@
 // written, then a buffer barrier, then the compare-and-swap that links it,
 // so whoever reads the link reads them too.
 // The fence between writes and the atomic that publishes them. A module
-// assembly may define it first: the Vulkan path defines it empty on a
-// software device (vk::vulkan_device_defines says why).
+// assembly may define it first: the Vulkan path defines it empty on
+// lavapipe (vk::vulkan_device_defines says why).
 #ifndef HABUFFER_BUFFER_FENCE
 #define HABUFFER_BUFFER_FENCE() memoryBarrierBuffer()
 #endif

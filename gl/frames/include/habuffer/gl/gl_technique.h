@@ -223,8 +223,6 @@ std::unique_ptr<GlTechnique> make_gl_technique(const TechniqueConfig& config, co
 /// native64, emulated64: L64) and this context has what the mode needs
 /// (64-bit shader types; native64 also 64-bit atomics).
 void check_atomic_mode(AtomicMode mode, Layout layout);
-/// Emulated64's lock words for `slots` slots: one per 2^HABUFFER_LOCK_SHIFT.
-std::uint64_t emulated64_lock_words(std::uint64_t slots);
 
 /// Throws GlError unless a buffer of `bytes` fits one shader-storage buffer
 /// of this context (the message names `what` and the sizes).

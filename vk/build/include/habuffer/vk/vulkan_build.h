@@ -29,7 +29,9 @@ struct VulkanBuildInfo {
   /// Insert calls the driver ended without an outcome (a loop budget),
   /// counted failed_iter as on GL; all attempts.
   std::uint64_t ended_by_driver = 0;
-  std::uint64_t deferred = 0;       ///< insert calls cut short and resumed (emulated64), all attempts
+  /// Insert calls cut short and resumed (emulated64), all attempts; a
+  /// gather run again after the deferred buffer overflowed counts too.
+  std::uint64_t deferred = 0;
   std::uint32_t resume_rounds = 0;  ///< resume passes, all attempts
 };
 

@@ -28,13 +28,13 @@ gl::GlBindings vulkan_bindings();
 std::string vulkan_module_extensions(AtomicMode mode);
 
 /// The defines a module needs on a kind of device, before any other header
-/// text: on a software device (lavapipe), HABUFFER_BUFFER_FENCE() defined
-/// empty. Lavapipe ends the lanes of a divergent branch that meets a memory
+/// text: on lavapipe (`lavapipe`: VulkanInfo::lavapipe), HABUFFER_BUFFER_FENCE()
+/// defined empty. Lavapipe ends the lanes of a divergent branch that meets a memory
 /// barrier (seen as calls without an outcome: sorted lists' links and
 /// emulated64's lock publish their writes inside such branches), and its
 /// atomics, sequentially consistent operations on host memory, already
 /// order the writes before them. "" on any other device.
-std::string vulkan_device_defines(bool software_device);
+std::string vulkan_device_defines(bool lavapipe);
 
 /// A complete module for Vulkan: #version, the mode's extensions, `header`
 /// (defines: the variant's, a host's), then the module body of every path.

@@ -36,6 +36,10 @@ struct VulkanInfo {
   /// A device that runs shaders on the CPU (VK_PHYSICAL_DEVICE_TYPE_CPU:
   /// lavapipe): its atomics are locked read-modify-writes of cache lines.
   bool software = false;
+  /// Mesa's lavapipe (driverID VK_DRIVER_ID_MESA_LLVMPIPE): its atomics are
+  /// sequentially consistent operations on host memory, and a memory
+  /// barrier in a divergent branch ends the lanes there (vulkan_device_defines).
+  bool lavapipe = false;
   /// Why the library cannot run on it (one line), empty where it can.
   std::string unusable;
 };
