@@ -310,6 +310,11 @@ VoxelGrid parse_voxel_grid(const std::string& bytes, const std::string& path) {
     throw DataError(path + ": the voxel grid's box is empty or not finite");
   VoxelGrid g(n, box);
   for (std::uint64_t w = 0; w < words; ++w) g.words[w] = take_le<std::uint64_t>(bytes, kGridHeader + w * 8);
+  // The last word's bits past voxel n^3 - 1 are padding: set, they would be
+  // voxels outside the grid (found by fuzz_voxel_file).
+  if (const std::uint64_t used = (std::uint64_t{n} * n * n) % 64; used != 0 && (g.words.back() >> used) != 0)
+    throw DataError(path + ": the voxel grid sets padding bits past its " + std::to_string(std::uint64_t{n} * n * n) +
+                    " voxels (side " + std::to_string(n) + ")");
   return g;
 }
 

@@ -13,9 +13,17 @@ for target in "${targets[@]}"; do
   work=$(mktemp -d)
   cp tests/fuzz/corpus/"$target"/* "$work"/
   echo "fuzz_$target: ${seconds}s"
+  # Crash, leak and timeout inputs go to fuzz-artifacts/TARGET/ (the run's
+  # status is the grep's: an input that ended the run fails the script below).
+  mkdir -p fuzz-artifacts/"$target"
   ./build-fuzz/bin/fuzz_"$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
-    "$work" 2>&1 | grep -E "stat::number_of_executed_units|stat::new_units_added|ERROR|SUMMARY|Done" || true
-  # libFuzzer exits non-zero on a crash; rerun the corpus once to turn that into this script's status.
-  ./build-fuzz/bin/fuzz_"$target" -runs=0 "$work" >/dev/null 2>&1
+    -artifact_prefix=fuzz-artifacts/"$target"/ "$work" 2>&1 |
+    grep -E "stat::number_of_executed_units|stat::new_units_added|ERROR|SUMMARY|Done" || true
   rm -rf "$work"
+  if [[ -n $(ls -A fuzz-artifacts/"$target") ]]; then
+    echo "fuzz_$target: inputs that ended the run, kept in fuzz-artifacts/$target/: $(ls fuzz-artifacts/"$target" | tr '\n' ' ')"
+    exit 1
+  fi
+  rmdir fuzz-artifacts/"$target"
 done
+rmdir fuzz-artifacts 2>/dev/null || true

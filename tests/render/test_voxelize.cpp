@@ -242,6 +242,23 @@ TEST_F(VoxelFiles, TheGridFileRoundTripsAndRefusesATruncatedOrForeignFile) {
   std::ofstream(path("x.vox")) << "NRRD0004\n";
   EXPECT_THROW((void)load_voxel_grid(path("x.vox")), std::runtime_error);  // DataError, naming the path
   EXPECT_THROW((void)load_voxel_grid(path("missing.vox")), std::runtime_error);  // DataError, naming the path
+  // A padding bit of the last word set (side 5: 125 voxels in two words):
+  // a voxel outside the grid, refused naming it (fuzz_voxel_file found it).
+  save_voxel_grid(path("g.vox"), g);
+  std::string bytes;
+  {
+    std::ifstream in(path("g.vox"), std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  bytes.back() = static_cast<char>(bytes.back() | 0x80);  // bit 127 of the last little-endian word
+  try {
+    (void)parse_voxel_grid(bytes, "p.vox");
+    ADD_FAILURE() << "a padding bit was taken";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("p.vox: the voxel grid sets padding bits past its 125 voxels"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // Issue 34: the grid loader read a directory into "basic_filebuf::underflow"
