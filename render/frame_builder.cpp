@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "habuffer/fragment_streams.h"
 #include "habuffer/techniques/ha/ha_buffer.h"
@@ -23,6 +25,14 @@ InsertOptions frame_insert_options(const RenderSettings& s) {
 
 FrameBuilder::FrameBuilder(const RenderSettings& settings) : settings_(settings), config_(technique_config(settings)) {}
 
+std::vector<glm::vec4> CpuFrameBuilder::image(FrameStats& fs) {
+  if (last_ == nullptr) throw std::logic_error("CpuFrameBuilder::image before a frame was built");
+  const auto r0 = std::chrono::steady_clock::now();
+  std::vector<glm::vec4> pixels = last_->buffer->composite_image(backgrounds_, settings_.threads);
+  fs.resolve_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count();
+  return pixels;
+}
+
 CpuFrameBuilder::CpuFrameBuilder(const RenderSettings& settings)
     : FrameBuilder(settings),
       frames_(settings.offsets, frame_insert_options(settings), settings.policy, frame_attempts(settings)) {}
@@ -32,7 +42,12 @@ void FrameBuilder::size_for(std::uint64_t fragments) {
   if (automatic_size(settings_)) config_ = config_.sized_for(settings_.policy, fragments);
 }
 
-const TechniqueBuild& FrameBuilder::build(std::span<const Fragment> fragments, FrameStats& fs) {
+const TechniqueBuild& FrameBuilder::build(std::span<const Fragment> fragments, std::span<const glm::vec3> backgrounds,
+                                          FrameStats& fs) {
+  if (backgrounds.size() != settings_.config.screen.area())
+    throw std::invalid_argument("a frame needs one background colour per pixel of screen " +
+                                settings_.config.screen.str() + ", given " + std::to_string(backgrounds.size()));
+  backgrounds_ = backgrounds;
   if (automatic_size(settings_) && previous_use_) {
     if (uses_table(config_.technique)) {
       const Extent next = settings_.policy.next(config_.buffer.table, settings_.config.screen, *previous_use_);

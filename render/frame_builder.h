@@ -12,6 +12,11 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "habuffer/lossless_build.h"
 #include "habuffer/render/render_job.h"
@@ -29,8 +34,15 @@ class FrameBuilder {
   /// Sizes an automatic table or pool for `fragments` (before the first frame).
   void size_for(std::uint64_t fragments);
   /// One frame: inserts (and sorts) `fragments`, filling the frame's counts
-  /// and gather time. The result stays here until the next frame or release().
-  const TechniqueBuild& build(std::span<const Fragment> fragments, FrameStats& fs);
+  /// and gather time; `backgrounds` (one colour per pixel, kept by
+  /// reference until image()) are what the frame is composited over. The
+  /// result stays here until the next frame or release().
+  const TechniqueBuild& build(std::span<const Fragment> fragments, std::span<const glm::vec3> backgrounds,
+                              FrameStats& fs);
+  /// The last frame's image over its backgrounds (SPEC 7); sets fs.resolve_ms.
+  virtual std::vector<glm::vec4> image(FrameStats& fs) = 0;
+  /// Where the frames are built and composited, for RenderResult::device.
+  [[nodiscard]] virtual std::string device() const = 0;
   /// The last frame's result and container.
   virtual TechniqueBuild release() = 0;
 
@@ -41,6 +53,7 @@ class FrameBuilder {
   /// the settings (frame_attempts); the result stays in the subclass.
   virtual const TechniqueBuild& build_frame(const TechniqueConfig& config, std::span<const Fragment> fragments) = 0;
   const RenderSettings& settings_;
+  std::span<const glm::vec3> backgrounds_;  // the frame's, while build_frame and image() run
 
  private:
   TechniqueConfig config_;
@@ -53,14 +66,18 @@ class CpuFrameBuilder final : public FrameBuilder {
  public:
   /// Keeps a reference to `settings`, which must outlive the builder.
   explicit CpuFrameBuilder(const RenderSettings& settings);
+  /// The last build composited on the CPU (FragmentBuffer::composite_image).
+  std::vector<glm::vec4> image(FrameStats& fs) override;
+  [[nodiscard]] std::string device() const override { return "cpu"; }
   /// The last frame's result and container (see TechniqueFrames::release).
   TechniqueBuild release() override { return frames_.release(); }
 
  private:
   const TechniqueBuild& build_frame(const TechniqueConfig& config, std::span<const Fragment> fragments) override {
-    return frames_.build(config, fragments);
+    return *(last_ = &frames_.build(config, fragments));
   }
   TechniqueFrames frames_;
+  const TechniqueBuild* last_ = nullptr;
 };
 
 

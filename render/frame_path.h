@@ -1,8 +1,8 @@
 /// @file
 /// How `habuffer render` turns a gathered frame into an image, one class per
-/// path: GpuFrames (the technique's buffers on the GPU, resolved there),
-/// CpuFrames (the GPU only captures; the technique runs on the CPU) and
-/// VulkanFrames (GL captures; built and resolved on a Vulkan device). The job
+/// path: GpuFrames (the technique's buffers on the GPU, resolved there) and
+/// CapturedFrames (the GPU only captures; a FrameBuilder builds and
+/// composites on the CPU or a Vulkan device). The job
 /// (render_job.cpp) draws and gathers the same way for both, so the paths
 /// differ only behind this interface. Private to the render library.
 #pragma once
@@ -33,8 +33,8 @@ class FramePath {
   virtual void finish(SceneRenderer& renderer, RenderResult& result) = 0;
 };
 
-/// The path `settings.path` asks for (GpuFrames for RenderPath::Gl, CpuFrames for RenderPath::Cpu,
-/// VulkanFrames for RenderPath::Vk), its GL side in atomic mode `mode`.
+/// The path `settings.path` asks for (GpuFrames for RenderPath::Gl; CapturedFrames with the CPU's
+/// or the Vulkan device's FrameBuilder for RenderPath::Cpu and Vk), its GL side in atomic mode `mode`.
 std::unique_ptr<FramePath> make_frame_path(const RenderSettings& settings, gl::AtomicMode mode);
 
 }  // namespace habuffer

@@ -196,12 +196,10 @@ RenderResult render_fragments(std::span<const Fragment> fragments, const RenderS
     FrameStats fs;
     fs.index = k;
     const auto t0 = Clock::now();
-    const TechniqueBuild& b = builder.build(fragments, fs);
+    const TechniqueBuild& b = builder.build(fragments, result.backgrounds, fs);
     result.growth_limited = result.growth_limited || b.growth_limited;
     if (b.too_deep) result.too_deep = b.too_deep;
-    const auto r0 = Clock::now();
-    result.image = Image{s.config.screen, b.buffer->composite_image(result.backgrounds, s.threads)};
-    fs.resolve_ms = ms_since(r0);
+    result.image = Image{s.config.screen, builder.image(fs)};
     finish_stats(fs);
     fs.frame_ms = ms_since(t0);
     result.frames.push_back(fs);

@@ -2,6 +2,7 @@
 // packages absent): RenderPath::Vk is refused in one line.
 #include <stdexcept>
 
+#include "frame_builder.h"
 #include "frame_path.h"
 
 namespace habuffer {
@@ -13,7 +14,7 @@ void check_runs_on_path(RenderPath path, Technique) {
     throw std::invalid_argument("this habuffer was built without the Vulkan path (HABUFFER_WITH_VULKAN): use gl or cpu");
 }
 
-std::unique_ptr<FramePath> make_vulkan_frames(const RenderSettings&, gl::AtomicMode) {
+std::unique_ptr<FrameBuilder> make_vulkan_frame_builder(const RenderSettings&) {
   throw std::invalid_argument("this habuffer was built without the Vulkan path (HABUFFER_WITH_VULKAN): render on gl or cpu");
 }
 

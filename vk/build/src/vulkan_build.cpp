@@ -78,6 +78,12 @@ class StreamGather {
   // cut short and deferred (emulated64's locks), the resume pass and the
   // deferred calls' buffers.
   void prepare(const VulkanTechnique& t) {
+    if (t.fills_before_insert() && !fill_) {
+      const std::string name =
+          to_string(t.config().technique) + " fill pass (Vulkan, " + to_string(t.mode()) + ")";
+      fill_ = std::make_unique<ComputePipeline>(
+          context_, compute_spirv(t.fill_pass_compute(variant_defines(t.mode(), context_.info())), name), name);
+    }
     if (!t.defers_calls() || resume_) return;
     const TechniqueConfig& c = t.config();
     const std::string name = to_string(c.technique) + " resume (Vulkan, " + to_string(t.mode()) + ")";
@@ -132,8 +138,11 @@ class StreamGather {
                                c.count);
                 record_full_barrier(cmd);  // chunks run in stream order: the next sees every write of this one
               }
-              if (phase == HABUFFER_PHASE_FILL)
-                t.record_fill_passes(cmd, bindings(t, chunks_.front().buffer, deferred_[0]));
+              if (phase == HABUFFER_PHASE_FILL) {
+                fill_->begin_recording();  // the submission that used its last set has ended
+                fill_->record_screen(cmd, bindings(t, chunks_.front().buffer, deferred_[0]), t.config().buffer.screen);
+                record_full_barrier(cmd);
+              }
             },
             phase == HABUFFER_PHASE_FILL ? "the Vulkan fill gather" : "the Vulkan gather");
       }
@@ -307,6 +316,7 @@ class StreamGather {
   ComputePipeline insert_;
   std::unique_ptr<ComputePipeline> sort_;
   std::unique_ptr<ComputePipeline> resume_;   // emulated64's
+  std::unique_ptr<ComputePipeline> fill_;     // the pass after a fill gather (the k-buffer's count)
   std::unique_ptr<ComputePipeline> resolve_;  // made when first asked for
   std::uint32_t resolve_samples_ = 0;         // the screen's samples it was made for
   std::vector<Chunk> chunks_;

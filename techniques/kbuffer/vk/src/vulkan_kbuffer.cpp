@@ -4,7 +4,6 @@
 #include <string>
 
 #include "habuffer/techniques/kbuffer/kbuffer.h"
-#include "habuffer/vk/spirv_compiler.h"
 #include "habuffer/vk/vulkan_error.h"
 #include "habuffer/vk/vulkan_glsl.h"
 #include "kbuffer_glsl.h"
@@ -41,12 +40,6 @@ VulkanKBuffer::VulkanKBuffer(const VulkanContext& context, const TechniqueConfig
     occupancy_ = sized(context, pixels * config_.occupancy_words * 4,
                        "an occupancy map of " + std::to_string(config_.occupancy_words) + " words per pixel");
     limits_ = VulkanBuffer(context, pixels * 4);
-    const std::string name = "k-buffer count pass (Vulkan, " + to_string(mode) + ")";
-    const std::string source =
-        vulkan_technique_module(Technique::KBuffer, mode, gl::ShaderStage::Compute,
-                                vulkan_device_defines(context.info().lavapipe)) +
-        gl::kKBufferCountCompute;
-    count_ = std::make_unique<ComputePipeline>(context, compile_to_spirv(source, SpirvStage::Compute, name), name);
   }
 }
 
@@ -70,11 +63,9 @@ void VulkanKBuffer::record_clear(VkCommandBuffer cmd) const {
   if (config_.occupancy) occupancy_.record_zero(cmd);
 }
 
-void VulkanKBuffer::record_fill_passes(VkCommandBuffer cmd, std::span<const BoundBuffer> frame_bindings) const {
-  if (!count_) return;
-  count_->begin_recording();  // the submission that used its last set has ended
-  count_->record_screen(cmd, frame_bindings, config_.buffer.screen);
-  record_full_barrier(cmd);
+std::string VulkanKBuffer::fill_pass_compute(std::string_view defines) const {
+  return vulkan_technique_module(Technique::KBuffer, mode_, gl::ShaderStage::Compute, defines) +
+         gl::kKBufferCountCompute;
 }
 
 std::uint64_t VulkanKBuffer::capacity() const { return std::uint64_t{config_.layers} * config_.buffer.screen.area(); }

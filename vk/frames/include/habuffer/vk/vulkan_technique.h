@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <vulkan/vulkan_core.h>
@@ -50,15 +52,16 @@ class VulkanTechnique {
   virtual void record_clear(VkCommandBuffer cmd) const = 0;
   /// Whether a gather runs twice: first a fill gather (the parameter
   /// block's gather phase HABUFFER_PHASE_FILL: nothing inserted or counted),
-  /// then record_fill_passes, then the insert gather (the k-buffer with its
+  /// then its fill pass (fill_pass_compute), then the insert gather (the k-buffer with its
   /// occupancy map). False: one insert gather.
   [[nodiscard]] virtual bool fills_before_insert() const { return false; }
-  /// Records the passes between the fill gather and the insert gather, with
-  /// the frame's buffers bound as the gather's are (`frame_bindings`), and
-  /// the barrier after them.
-  virtual void record_fill_passes(VkCommandBuffer cmd, std::span<const BoundBuffer> frame_bindings) const {
-    (void)cmd;
-    (void)frame_bindings;
+  /// The compute pass between the fill gather and the insert gather (one
+  /// invocation per pixel, 8x8 groups) as module text with `defines`: the
+  /// builder compiles it once per technique and mode and records it with
+  /// the gather's buffers. Called only where fills_before_insert().
+  [[nodiscard]] virtual std::string fill_pass_compute(std::string_view defines) const {
+    (void)defines;
+    return {};
   }
   /// Records it could hold.
   [[nodiscard]] virtual std::uint64_t capacity() const = 0;

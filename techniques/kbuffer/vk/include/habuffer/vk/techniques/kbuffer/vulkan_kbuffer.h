@@ -25,14 +25,14 @@ class VulkanKBuffer final : public VulkanTechnique {
   void write_params(ParamBlock& p) const override;
   [[nodiscard]] std::vector<BoundBuffer> buffers() const override;
   void record_clear(VkCommandBuffer cmd) const override;
-  [[nodiscard]] bool fills_before_insert() const override { return count_ != nullptr; }
-  void record_fill_passes(VkCommandBuffer cmd, std::span<const BoundBuffer> frame_bindings) const override;
+  [[nodiscard]] bool fills_before_insert() const override { return config_.occupancy; }
+  /// The count pass (kb_count.comp.glsl, the GL part's text).
+  [[nodiscard]] std::string fill_pass_compute(std::string_view defines) const override;
   [[nodiscard]] std::uint64_t capacity() const override;
   [[nodiscard]] std::unique_ptr<FragmentBuffer> read_back() const override;
 
  private:
   VulkanBuffer slots_, locks_, occupancy_, limits_, saturation_;
-  std::unique_ptr<ComputePipeline> count_;  ///< the count pass, with the occupancy map only
 };
 
 }  // namespace habuffer::vk
