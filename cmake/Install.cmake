@@ -1,8 +1,8 @@
 # Install rules: the libraries a host links (habuffer::common, ::offsets, ::core and,
-# with the GL path, ::gl), their headers (the shared C++/GLSL sources
+# with the GL path, ::gl, with the Vulkan path ::vk), their headers (the shared C++/GLSL sources
 # included), the host GLSL files, the CMake package habufferConfig.cmake
-# with its version file, and pkg-config files habuffer-core.pc and
-# habuffer-gl.pc, and the license (MIT).
+# with its version file, and pkg-config files habuffer-core.pc,
+# habuffer-gl.pc and habuffer-vk.pc, and the license (MIT).
 include(CMakePackageConfigHelpers)
 
 set(_habuffer_targets habuffer_common habuffer_offsets habuffer_core)
@@ -10,6 +10,10 @@ set(_habuffer_components offsets core)
 if(HABUFFER_WITH_GL)
   list(APPEND _habuffer_targets habuffer_gl)
   list(APPEND _habuffer_components gl)
+endif()
+if(HABUFFER_VULKAN)
+  list(APPEND _habuffer_targets habuffer_vk)
+  list(APPEND _habuffer_components vk)
 endif()
 get_target_property(_habuffer_type habuffer_core TYPE)
 
@@ -30,6 +34,12 @@ if(HABUFFER_WITH_GL)
     install(DIRECTORY ${_dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   endforeach()
   install(DIRECTORY ${HABUFFER_GLSL_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/habuffer/glsl PATTERN stamp EXCLUDE)
+endif()
+if(HABUFFER_VULKAN)
+  get_property(_habuffer_vk_includes GLOBAL PROPERTY HABUFFER_PUBLIC_INCLUDES_vk)
+  foreach(_dir IN LISTS _habuffer_vk_includes)
+    install(DIRECTORY ${_dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endforeach()
 endif()
 
 set(HABUFFER_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/habuffer)
@@ -70,6 +80,19 @@ set(HABUFFER_PC_CORE_REQUIRES "${_pc_requires_field}: ${_pc_core_requires}")
 set(HABUFFER_PC_GL_REQUIRES "Requires: habuffer-core = ${PROJECT_VERSION}, epoxy")
 configure_file(cmake/habuffer-core.pc.in ${PROJECT_BINARY_DIR}/habuffer-core.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/habuffer-core.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+# The Vulkan path: the loader, and glslang's libraries (its run-time
+# compiler; Debian's glslang.pc leaves out the default resource limits).
+if(HABUFFER_PACKAGE_STATIC)
+  set(HABUFFER_PC_VK_REQUIRES "Requires: habuffer-gl = ${PROJECT_VERSION}, vulkan, glslang, spirv")
+  set(HABUFFER_PC_VK_LIBS "-lhabuffer_vk -lglslang-default-resource-limits")
+else()
+  set(HABUFFER_PC_VK_REQUIRES "Requires: habuffer-gl = ${PROJECT_VERSION}, vulkan\nRequires.private: glslang, spirv")
+  set(HABUFFER_PC_VK_LIBS "-lhabuffer_vk")
+endif()
+if(HABUFFER_VULKAN)
+  configure_file(cmake/habuffer-vk.pc.in ${PROJECT_BINARY_DIR}/habuffer-vk.pc @ONLY)
+  install(FILES ${PROJECT_BINARY_DIR}/habuffer-vk.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+endif()
 if(HABUFFER_WITH_GL)
   configure_file(cmake/habuffer-gl.pc.in ${PROJECT_BINARY_DIR}/habuffer-gl.pc @ONLY)
   install(FILES ${PROJECT_BINARY_DIR}/habuffer-gl.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

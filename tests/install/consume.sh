@@ -13,7 +13,8 @@
 #  - checks that add_subdirectory sets habuffer_GLSL_DIR and leaves the
 #    host's targets that do not link habuffer at C++17;
 #  - builds the CPU example again through pkg-config alone (its Cflags
-#    carry -std=c++20);
+#    carry -std=c++20), and the Vulkan host through habuffer-vk.pc where
+#    the package has the Vulkan path;
 #  - checks the license (MIT) is installed and named by both packages;
 #  - compiles every installed header on its own;
 #  - checks that the installed headers define no macro outside HABUFFER_*;
@@ -41,6 +42,14 @@ cmake --build "$work/examples" >"$work/build.log" 2>&1 || { cat "$work/build.log
 "$work/examples/host_shadows" || fail "host_shadows failed"
 "$work/examples/host_spot_shadows" || fail "host_spot_shadows failed"
 "$work/examples/host_msaa" || fail "host_msaa failed"
+# The Vulkan host, where the installation has the Vulkan path (its own
+# instance and device; the validation layer, where installed, reports nothing).
+has_vk=0
+[ -f "$prefix/include/habuffer/vk.h" ] && has_vk=1
+if [ "$has_vk" = 1 ]; then
+  [ -x "$work/examples/host_vulkan" ] || fail "the package has the Vulkan path but find_package(COMPONENTS vk) built no host_vulkan"
+  "$work/examples/host_vulkan" || fail "host_vulkan failed"
+fi
 
 echo "== a version the package must refuse"
 mkdir -p "$work/too_new"
@@ -88,6 +97,7 @@ project(host LANGUAGES CXX)
 set(CMAKE_CXX_STANDARD 17)
 set(BUILD_SHARED_LIBS ON)
 set(HABUFFER_WITH_TBB OFF CACHE BOOL "")
+set(HABUFFER_WITH_VULKAN OFF CACHE STRING "")  # the installed package builds the Vulkan host above
 add_subdirectory("$source" habuffer)
 if(NOT habuffer_GLSL_DIR)
   message(FATAL_ERROR "add_subdirectory does not set habuffer_GLSL_DIR")
@@ -129,10 +139,18 @@ c++ -O1 "$source/examples/cpu_only/main.cpp" -o "$work/cpu_only_pc" $(pkg-config
 "$work/cpu_only_pc" >/dev/null || fail "cpu_only built through pkg-config failed"
 [ -d "$(pkg-config --variable=glsldir habuffer-gl)" ] || fail "habuffer-gl's glsldir does not exist"
 case "$(pkg-config --variable=glsldir habuffer-gl)" in *//*) fail "habuffer-gl's glsldir holds //";; esac
+if [ "$has_vk" = 1 ]; then
+  # shellcheck disable=SC2046
+  c++ -O1 "$source/examples/host_vulkan/main.cpp" -o "$work/host_vulkan_pc" $(pkg-config --cflags --libs habuffer-vk) ||
+    fail "host_vulkan does not build through pkg-config (habuffer-vk)"
+  "$work/host_vulkan_pc" >/dev/null || fail "host_vulkan built through pkg-config failed"
+fi
 
 echo "== license"
 grep -q "^MIT License" "$prefix/share/doc/habuffer/LICENSE" || fail "the license is not installed in share/doc/habuffer"
-for pc in habuffer-core habuffer-gl; do
+pcs="habuffer-core habuffer-gl"
+[ "$has_vk" = 1 ] && pcs="$pcs habuffer-vk"
+for pc in $pcs; do
   [ "$(pkg-config --variable=license $pc)" = MIT ] || fail "$pc does not name the MIT license"
 done
 

@@ -14,6 +14,7 @@
 #include "habuffer/technique_descriptor.h"
 #include "habuffer/technique_params.h"
 #include "habuffer/vk/compute_pipeline.h"
+#include "habuffer/vk/frame_buffers.h"
 #include "habuffer/vk/spirv_compiler.h"
 #include "habuffer/vk/vulkan_buffer.h"
 #include "habuffer/vk/vulkan_error.h"
@@ -30,26 +31,6 @@ constexpr std::uint32_t kMaxResumeRounds = 1u << 16;
 constexpr std::uint32_t kMaxOverflowRegathers = 8;
 static_assert(sizeof(Fragment) == 20, "the stream is the std430 HaFragment of entry_common.glsl");
 
-// The module variant the OpenGL path resolves for the same mode and kind of
-// device (ModuleVariant::resolved): reads first where an atomic is dear.
-std::string variant_defines(AtomicMode mode, const VulkanInfo& info) {
-  gl::ModuleVariant v;
-  v.slot_read_first = mode == AtomicMode::Emulated64;
-  v.max_age_read_first = info.software;
-  return vulkan_device_defines(info.lavapipe) + v.defines();
-}
-
-// The attempt's counters from its striped tallies.
-Counters tally_counters(const std::vector<std::uint32_t>& words) {
-  if (const std::uint32_t foreign = words[HABUFFER_COUNTER_FOREIGN]; foreign > 0)
-    throw VulkanError(std::to_string(foreign) + " insert calls came from another module than the build's");
-  const auto tally = stripe_tally(words);
-  Counters c;
-  c.add_tally(tally.data());
-  c.merge_duplicates(tally[HABUFFER_COUNTER_MERGED]);
-  return c;
-}
-
 // The pipelines and frame buffers of one build: the stream in chunks of at
 // most one storage binding, the counters, the deferred calls' ping-pong.
 class StreamGather {
@@ -60,12 +41,12 @@ class StreamGather {
         params_(context, sizeof(ParamBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT),
         counters_(context, kCounterWords * 4),
         capture_(context, kAppendHeaderBytes + sizeof(Fragment)),
-        insert_(make_pipeline(vulkan_insert_stream_compute(technique, mode, variant_defines(mode, context.info())),
+        insert_(make_pipeline(vulkan_insert_stream_compute(technique, mode, frame_variant_defines(mode, context.info())),
                               to_string(technique) + " insert (Vulkan, " + to_string(mode) + ")")) {
     if (!descriptor(technique).sorted_on_insert) {
       const std::string name = to_string(technique) + " sort (Vulkan, " + to_string(mode) + ")";
       sort_ = std::make_unique<ComputePipeline>(
-          context, compute_spirv(vulkan_sort_compute(technique, mode, variant_defines(mode, context.info())), name),
+          context, compute_spirv(vulkan_sort_compute(technique, mode, frame_variant_defines(mode, context.info())), name),
           name);
     }
     // Until a technique that defers calls comes (prepare): a header whose
@@ -82,14 +63,14 @@ class StreamGather {
       const std::string name =
           to_string(t.config().technique) + " fill pass (Vulkan, " + to_string(t.mode()) + ")";
       fill_ = std::make_unique<ComputePipeline>(
-          context_, compute_spirv(t.fill_pass_compute(variant_defines(t.mode(), context_.info())), name), name);
+          context_, compute_spirv(t.fill_pass_compute(frame_variant_defines(t.mode(), context_.info())), name), name);
     }
     if (!t.defers_calls() || resume_) return;
     const TechniqueConfig& c = t.config();
     const std::string name = to_string(c.technique) + " resume (Vulkan, " + to_string(t.mode()) + ")";
     resume_ = std::make_unique<ComputePipeline>(
         context_,
-        compute_spirv(vulkan_resume_compute(c.technique, t.mode(), variant_defines(t.mode(), context_.info())), name),
+        compute_spirv(vulkan_resume_compute(c.technique, t.mode(), frame_variant_defines(t.mode(), context_.info())), name),
         name);
     grow_deferred(1u << 12);
   }
@@ -154,7 +135,7 @@ class StreamGather {
     }
     if (t.sorts_after_gather()) sort(t);
     const std::vector<std::uint32_t> words = counters_.read<std::uint32_t>(kCounterWords);
-    Counters c = tally_counters(words);
+    Counters c = counters_from_words(words);
     const std::uint64_t sorted = stripe_tally(words)[HABUFFER_COUNTER_SORT_DONE];
     if (t.sorts_after_gather() && sorted != t.config().buffer.screen.area())
       throw VulkanError("the driver ended " + std::to_string(t.config().buffer.screen.area() - sorted) +
@@ -182,7 +163,7 @@ class StreamGather {
     resolve_ = std::make_unique<ComputePipeline>(
         context_,
         compute_spirv(
-            vulkan_resolve_compute(c.technique, t.mode(), c.buffer.samples, variant_defines(t.mode(), context_.info())),
+            vulkan_resolve_compute(c.technique, t.mode(), c.buffer.samples, frame_variant_defines(t.mode(), context_.info())),
             name),
         name);
     resolve_samples_ = c.buffer.samples;
@@ -236,21 +217,7 @@ class StreamGather {
 
   std::vector<BoundBuffer> bindings(const VulkanTechnique& t, const VulkanBuffer& stream,
                                     const VulkanBuffer& deferred) const {
-    const gl::GlBindings b = vulkan_bindings();
-    std::vector<BoundBuffer> out = t.buffers();
-    // A technique's own points it leaves free (fewer than three buffers), and
-    // the locks and saturation image it has none of, get the capture buffer:
-    // bound, never written (the module reads them only where it has them).
-    for (unsigned point = 1; point <= ComputePipeline::kStorageBindings; ++point)
-      if (std::none_of(out.begin(), out.end(), [&](const BoundBuffer& x) { return x.binding == point; }) &&
-          point != b.counters && point != b.capture && point != b.stream && point != b.deferred)
-        out.push_back({point, &capture_});
-    out.push_back({b.params, &params_});
-    out.push_back({b.counters, &counters_});
-    out.push_back({b.capture, &capture_});
-    out.push_back({b.stream, &stream});
-    out.push_back({b.deferred, &deferred});
-    return out;
+    return frame_bindings(t, FrameBuffers{&params_, &counters_, &capture_, &stream, &deferred});
   }
 
   // The deferred calls' buffers, both of `needed` calls at least (doubling).

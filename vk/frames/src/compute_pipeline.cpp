@@ -14,7 +14,51 @@ constexpr std::uint32_t kSetsPerPool = 64;
 
 }  // namespace
 
-ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const std::uint32_t> spirv, std::string name)
+VkDescriptorSetLayout make_frame_set_layout(const VulkanContext& context, VkShaderStageFlags stages,
+                                           const std::string& what) {
+  std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
+  for (unsigned b = 0; b < kBindings; ++b) {
+    bindings[b].binding = b;
+    bindings[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[b].descriptorCount = 1;
+    bindings[b].stageFlags = stages | VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo li{};
+  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+  li.bindingCount = kBindings;
+  li.pBindings = bindings.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  check(vkCreateDescriptorSetLayout(context.device(), &li, nullptr, &layout), (what + ": the descriptor set layout").c_str());
+  return layout;
+}
+
+void write_frame_set(const VulkanContext& context, VkDescriptorSet set, std::span<const BoundBuffer> buffers,
+                     const std::string& what) {
+  std::array<const VulkanBuffer*, kBindings> at{};
+  for (const BoundBuffer& b : buffers) {
+    if (b.binding >= kBindings || b.buffer == nullptr || !*b.buffer)
+      throw VulkanError(what + ": binding " + std::to_string(b.binding) + " is not a buffer of its layout");
+    at[b.binding] = b.buffer;
+  }
+  for (unsigned b = 0; b < kBindings; ++b)
+    if (at[b] == nullptr) throw VulkanError(what + ": binding " + std::to_string(b) + " left unbound");
+  std::array<VkDescriptorBufferInfo, kBindings> infos{};
+  std::array<VkWriteDescriptorSet, kBindings> writes{};
+  for (unsigned b = 0; b < kBindings; ++b) {
+    infos[b] = {at[b]->handle(), 0, VK_WHOLE_SIZE};
+    writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    writes[b].dstSet = set;
+    writes[b].dstBinding = b;
+    writes[b].descriptorCount = 1;
+    writes[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[b].pBufferInfo = &infos[b];
+  }
+  vkUpdateDescriptorSets(context.device(), kBindings, writes.data(), 0, nullptr);
+}
+
+
+ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const std::uint32_t> spirv, std::string name,
+                                 const PipelineSets& sets)
     : context_(context), name_(std::move(name)) {
   const VkDevice device = context.device();
   // Everything made so far goes with a throw (the destructor does not run).
@@ -27,6 +71,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const s
       if (p->pipeline_) vkDestroyPipeline(d, p->pipeline_, nullptr);
       if (p->layout_) vkDestroyPipelineLayout(d, p->layout_, nullptr);
       if (p->set_layout_) vkDestroyDescriptorSetLayout(d, p->set_layout_, nullptr);
+      if (p->image_set_layout_) vkDestroyDescriptorSetLayout(d, p->image_set_layout_, nullptr);
       if (p->module_) vkDestroyShaderModule(d, p->module_, nullptr);
     }
   } undo{this};
@@ -35,23 +80,27 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, std::span<const s
   mi.codeSize = spirv.size_bytes();
   mi.pCode = spirv.data();
   check(vkCreateShaderModule(device, &mi, nullptr, &module_), (name_ + ": the shader module").c_str());
-  std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
-  for (unsigned b = 0; b < kBindings; ++b) {
-    bindings[b].binding = b;
-    bindings[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    bindings[b].descriptorCount = 1;
-    bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  set_layout_ = make_frame_set_layout(context, sets.frame_set_stages, name_);
+  std::array<VkDescriptorSetLayout, 2> set_layouts{set_layout_, VK_NULL_HANDLE};
+  if (sets.target_image) {
+    VkDescriptorSetLayoutBinding image{};
+    image.binding = 0;
+    image.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    image.descriptorCount = 1;
+    image.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    VkDescriptorSetLayoutCreateInfo ii{};
+    ii.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
+    ii.bindingCount = 1;
+    ii.pBindings = &image;
+    check(vkCreateDescriptorSetLayout(device, &ii, nullptr, &image_set_layout_),
+          (name_ + ": the image's descriptor set layout").c_str());
+    set_layouts[1] = image_set_layout_;
   }
-  VkDescriptorSetLayoutCreateInfo li{};
-  li.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-  li.bindingCount = kBindings;
-  li.pBindings = bindings.data();
-  check(vkCreateDescriptorSetLayout(device, &li, nullptr, &set_layout_), (name_ + ": the descriptor set layout").c_str());
   const VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(std::uint32_t)};
   VkPipelineLayoutCreateInfo pli{};
   pli.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO;
-  pli.setLayoutCount = 1;
-  pli.pSetLayouts = &set_layout_;
+  pli.setLayoutCount = sets.target_image ? 2 : 1;
+  pli.pSetLayouts = set_layouts.data();
   pli.pushConstantRangeCount = 1;
   pli.pPushConstantRanges = &push;
   check(vkCreatePipelineLayout(device, &pli, nullptr, &layout_), (name_ + ": the pipeline layout").c_str());
@@ -73,6 +122,7 @@ ComputePipeline::~ComputePipeline() {
   vkDestroyPipeline(d, pipeline_, nullptr);
   vkDestroyPipelineLayout(d, layout_, nullptr);
   vkDestroyDescriptorSetLayout(d, set_layout_, nullptr);
+  if (image_set_layout_) vkDestroyDescriptorSetLayout(d, image_set_layout_, nullptr);
   vkDestroyShaderModule(d, module_, nullptr);
 }
 
@@ -110,27 +160,10 @@ VkDescriptorSet ComputePipeline::allocate_set() {
 }
 
 void ComputePipeline::bind(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, std::uint32_t count) {
-  std::array<const VulkanBuffer*, kBindings> at{};
-  for (const BoundBuffer& b : buffers) {
-    if (b.binding >= kBindings || b.buffer == nullptr || !*b.buffer)
-      throw VulkanError(name_ + ": binding " + std::to_string(b.binding) + " is not a buffer of its layout");
-    at[b.binding] = b.buffer;
-  }
-  for (unsigned b = 0; b < kBindings; ++b)
-    if (at[b] == nullptr) throw VulkanError(name_ + ": binding " + std::to_string(b) + " left unbound");
+  if (image_set_layout_ != VK_NULL_HANDLE)
+    throw VulkanError(name_ + ": a pipeline with an image set records with record_screen_with");
   const VkDescriptorSet set = allocate_set();
-  std::array<VkDescriptorBufferInfo, kBindings> infos{};
-  std::array<VkWriteDescriptorSet, kBindings> writes{};
-  for (unsigned b = 0; b < kBindings; ++b) {
-    infos[b] = {at[b]->handle(), 0, VK_WHOLE_SIZE};
-    writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    writes[b].dstSet = set;
-    writes[b].dstBinding = b;
-    writes[b].descriptorCount = 1;
-    writes[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[b].pBufferInfo = &infos[b];
-  }
-  vkUpdateDescriptorSets(context_.device(), kBindings, writes.data(), 0, nullptr);
+  write_frame_set(context_, set, buffers, name_);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set, 0, nullptr);
   vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof count, &count);
@@ -138,6 +171,20 @@ void ComputePipeline::bind(VkCommandBuffer cmd, std::span<const BoundBuffer> buf
 
 void ComputePipeline::record_screen(VkCommandBuffer cmd, std::span<const BoundBuffer> buffers, Extent screen) {
   bind(cmd, buffers, 0);
+  vkCmdDispatch(cmd, (screen.x + 7) / 8, (screen.y + 7) / 8, 1);
+}
+
+void ComputePipeline::record_screen_with(VkCommandBuffer cmd, std::span<const VkDescriptorSet> sets,
+                                         Extent screen) const {
+  const std::size_t want = image_set_layout_ != VK_NULL_HANDLE ? 2 : 1;
+  if (sets.size() != want)
+    throw VulkanError(name_ + ": " + std::to_string(want) + " descriptor sets are bound, " +
+                      std::to_string(sets.size()) + " given");
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, static_cast<std::uint32_t>(sets.size()),
+                          sets.data(), 0, nullptr);
+  const std::uint32_t count = 0;
+  vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof count, &count);
   vkCmdDispatch(cmd, (screen.x + 7) / 8, (screen.y + 7) / 8, 1);
 }
 

@@ -56,4 +56,15 @@ std::string vulkan_resolve_compute(Technique technique, AtomicMode mode, std::ui
   return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, header) + kResolveCompute;
 }
 
+std::string vulkan_resolve_image_compute(Technique technique, AtomicMode mode, std::string_view image_format,
+                                         std::string_view variant_defines) {
+  if (image_format != "rgba8" && image_format != "rgba16f" && image_format != "rgba32f")
+    throw std::invalid_argument("the resolve writes rgba8, rgba16f or rgba32f images, not \"" +
+                                std::string(image_format) + "\"");
+  std::string header(variant_defines);
+  if (!header.empty() && header.back() != '\n') header += '\n';
+  header += "#define HABUFFER_RESOLVE_PASS\n#define HABUFFER_TARGET_FORMAT " + std::string(image_format) + "\n";
+  return vulkan_technique_module(technique, mode, gl::ShaderStage::Compute, header) + kResolveImageCompute;
+}
+
 }  // namespace habuffer::vk

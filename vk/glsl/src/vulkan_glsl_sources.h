@@ -5,6 +5,7 @@
 
 namespace habuffer::vk {
 
-extern const char* const kResolveCompute;  ///< vk/glsl/shaders/resolve.comp.glsl: the resolve pass
+extern const char* const kResolveCompute;       ///< vk/glsl/shaders/resolve.comp.glsl: the resolve pass
+extern const char* const kResolveImageCompute;  ///< vk/glsl/shaders/resolve_image.comp.glsl: into a host's image
 
 }  // namespace habuffer::vk

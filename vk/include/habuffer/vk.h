@@ -5,11 +5,13 @@
 #pragma once
 
 #include "habuffer/vk/compute_pipeline.h"
+#include "habuffer/vk/frame_buffers.h"
 #include "habuffer/vk/spirv_compiler.h"
 #include "habuffer/vk/vulkan_buffer.h"
 #include "habuffer/vk/vulkan_build.h"
 #include "habuffer/vk/vulkan_context.h"
 #include "habuffer/vk/vulkan_error.h"
+#include "habuffer/vk/vulkan_frame_driver.h"
 #include "habuffer/vk/vulkan_glsl.h"
 #include "habuffer/vk/vulkan_info.h"
 #include "habuffer/vk/vulkan_registry.h"

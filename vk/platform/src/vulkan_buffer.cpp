@@ -51,31 +51,6 @@ void make_buffer(const VulkanContext& c, std::uint64_t bytes, VkBufferUsageFlags
   }
 }
 
-// A host-visible buffer for one copy, gone with its scope.
-struct Staging {
-  const VulkanContext& c;
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* mapped = nullptr;
-  Staging(const VulkanContext& context, std::uint64_t bytes) : c(context) {
-    make_buffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true, buffer, memory);
-    const VkResult r = vkMapMemory(c.device(), memory, 0, VK_WHOLE_SIZE, 0, &mapped);
-    if (r != VK_SUCCESS) {
-      release();
-      throw VulkanError("mapping a staging buffer: " + result_name(r));
-    }
-  }
-  ~Staging() { release(); }
-  Staging(const Staging&) = delete;
-  Staging& operator=(const Staging&) = delete;
-  void release() {
-    if (memory != VK_NULL_HANDLE) vkFreeMemory(c.device(), memory, nullptr);
-    if (buffer != VK_NULL_HANDLE) vkDestroyBuffer(c.device(), buffer, nullptr);
-    memory = VK_NULL_HANDLE;
-    buffer = VK_NULL_HANDLE;
-  }
-};
-
 }  // namespace
 
 VulkanBuffer::VulkanBuffer(const VulkanContext& context, std::uint64_t bytes, VkBufferUsageFlags usage)
@@ -129,13 +104,13 @@ void VulkanBuffer::upload(const void* data, std::uint64_t bytes) {
   if (bytes == 0) return;
   if (bytes > bytes_)
     throw VulkanError("uploading " + std::to_string(bytes) + " bytes into a buffer of " + std::to_string(bytes_));
-  Staging staging(*context_, bytes);
-  std::memcpy(staging.mapped, data, bytes);
+  const MappedBuffer staging(*context_, bytes);
+  std::memcpy(staging.data(), data, bytes);
   context_->submit_and_wait(
       [&](VkCommandBuffer cmd) {
         record_full_barrier(cmd);  // after the buffer's earlier writes (its zeroing, a gather)
         const VkBufferCopy region{0, 0, bytes};
-        vkCmdCopyBuffer(cmd, staging.buffer, buffer_, 1, &region);
+        vkCmdCopyBuffer(cmd, staging.handle(), buffer_, 1, &region);
       },
       "uploading a buffer");
 }
@@ -145,12 +120,12 @@ std::vector<std::uint8_t> VulkanBuffer::read_bytes(std::uint64_t bytes) const {
   if (bytes == 0) return out;
   if (bytes > bytes_)
     throw VulkanError("reading " + std::to_string(bytes) + " bytes from a buffer of " + std::to_string(bytes_));
-  Staging staging(*context_, bytes);
+  const MappedBuffer staging(*context_, bytes);
   context_->submit_and_wait(
       [&](VkCommandBuffer cmd) {
         record_full_barrier(cmd);
         const VkBufferCopy region{0, 0, bytes};
-        vkCmdCopyBuffer(cmd, buffer_, staging.buffer, 1, &region);
+        vkCmdCopyBuffer(cmd, buffer_, staging.handle(), 1, &region);
         // The copy's writes made visible to the host's read after the fence.
         VkMemoryBarrier to_host{};
         to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
@@ -160,8 +135,48 @@ std::vector<std::uint8_t> VulkanBuffer::read_bytes(std::uint64_t bytes) const {
                              0, nullptr);
       },
       "reading a buffer back");
-  std::memcpy(out.data(), staging.mapped, bytes);
+  std::memcpy(out.data(), staging.data(), bytes);
   return out;
+}
+
+MappedBuffer::MappedBuffer(const VulkanContext& context, std::uint64_t bytes, VkBufferUsageFlags usage)
+    : context_(&context), bytes_(std::max<std::uint64_t>(4, bytes)) {
+  make_buffer(context, bytes_, usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, true,
+              buffer_, memory_);
+  if (const VkResult r = vkMapMemory(context.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_); r != VK_SUCCESS) {
+    release();
+    throw VulkanError("mapping a host-visible buffer of " + std::to_string(bytes_) + " bytes: " + result_name(r));
+  }
+}
+
+MappedBuffer::~MappedBuffer() { release(); }
+
+MappedBuffer::MappedBuffer(MappedBuffer&& other) noexcept
+    : context_(other.context_),
+      buffer_(std::exchange(other.buffer_, VK_NULL_HANDLE)),
+      memory_(std::exchange(other.memory_, VK_NULL_HANDLE)),
+      mapped_(std::exchange(other.mapped_, nullptr)),
+      bytes_(std::exchange(other.bytes_, 0)) {}
+
+MappedBuffer& MappedBuffer::operator=(MappedBuffer&& other) noexcept {
+  if (this != &other) {
+    release();
+    context_ = other.context_;
+    buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
+    memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
+    mapped_ = std::exchange(other.mapped_, nullptr);
+    bytes_ = std::exchange(other.bytes_, 0);
+  }
+  return *this;
+}
+
+void MappedBuffer::release() {
+  if (context_ == nullptr) return;
+  if (memory_ != VK_NULL_HANDLE) vkFreeMemory(context_->device(), memory_, nullptr);  // unmaps it too
+  if (buffer_ != VK_NULL_HANDLE) vkDestroyBuffer(context_->device(), buffer_, nullptr);
+  memory_ = VK_NULL_HANDLE;
+  buffer_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
 }
 
 void VulkanBuffer::record_zero(VkCommandBuffer cmd) const { vkCmdFillBuffer(cmd, buffer_, 0, VK_WHOLE_SIZE, 0u); }

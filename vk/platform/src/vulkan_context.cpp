@@ -149,6 +149,7 @@ struct VulkanContext::State {
   std::uint32_t family = 0;
   VulkanInfo info;
   bool validation = false;
+  bool adopted = false;  // the instance and device are a host's: never destroyed here
   mutable std::mutex mutex;
   mutable std::vector<std::string> messages;
 
@@ -156,8 +157,9 @@ struct VulkanContext::State {
     if (device != VK_NULL_HANDLE) {
       vkDeviceWaitIdle(device);
       if (pool != VK_NULL_HANDLE) vkDestroyCommandPool(device, pool, nullptr);
-      vkDestroyDevice(device, nullptr);
+      if (!adopted) vkDestroyDevice(device, nullptr);
     }
+    if (adopted) return;
     if (messenger != VK_NULL_HANDLE) {
       auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
           vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
@@ -261,6 +263,47 @@ VulkanContext::VulkanContext(const ContextOptions& options) : s_(std::make_uniqu
   pool.queueFamilyIndex = s.family;
   check(vkCreateCommandPool(s.device, &pool, nullptr, &s.pool), "creating a command pool");
   check_messages("creating the Vulkan device");
+}
+
+VulkanContext::VulkanContext(const HostDevice& host) : s_(std::make_unique<State>()) {
+  State& s = *s_;
+  if (host.instance == VK_NULL_HANDLE || host.physical_device == VK_NULL_HANDLE || host.device == VK_NULL_HANDLE ||
+      host.queue == VK_NULL_HANDLE)
+    throw VulkanError("HostDevice: the instance, physical device, device and queue must all be given");
+  std::uint32_t index = 0;
+  const auto devices = physical_devices(host.instance);
+  for (std::uint32_t i = 0; i < devices.size(); ++i)
+    if (devices[i] == host.physical_device) index = i;
+  s.info = query_vulkan_info(host.physical_device, index);
+  if (s.info.api < VK_API_VERSION_1_2)
+    throw VulkanError("the host's device " + s.info.name + " is Vulkan " + s.info.api_version +
+                      " (the library needs 1.2)");
+  std::uint32_t families = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &families, nullptr);
+  std::vector<VkQueueFamilyProperties> props(families);
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physical_device, &families, props.data());
+  const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  if (host.queue_family >= families || (props[host.queue_family].queueFlags & need) != need)
+    throw VulkanError("HostDevice: queue family " + std::to_string(host.queue_family) + " of " + s.info.name +
+                      " does not run both graphics and compute");
+  if (!host.fragment_stores_and_atomics)
+    throw VulkanError("the host's device was made without fragmentStoresAndAtomics, which a gather's fragment "
+                      "shaders need to write buffers: enable it at vkCreateDevice");
+  // What the host enabled, not what the device offers, decides the modes.
+  s.info.shader_int64 = s.info.shader_int64 && host.shader_int64;
+  s.info.buffer_int64_atomics = s.info.buffer_int64_atomics && host.buffer_int64_atomics && s.info.shader_int64;
+  s.info.unusable.clear();
+  s.instance = host.instance;
+  s.physical = host.physical_device;
+  s.device = host.device;
+  s.queue = host.queue;
+  s.family = host.queue_family;
+  s.adopted = true;
+  VkCommandPoolCreateInfo pool{};
+  pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+  pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+  pool.queueFamilyIndex = s.family;
+  check(vkCreateCommandPool(s.device, &pool, nullptr, &s.pool), "creating a command pool on the host's device");
 }
 
 VulkanContext::~VulkanContext() = default;

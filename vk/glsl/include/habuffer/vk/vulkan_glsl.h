@@ -61,4 +61,12 @@ std::string vulkan_resume_compute(Technique technique, AtomicMode mode, std::str
 std::string vulkan_resolve_compute(Technique technique, AtomicMode mode, std::uint32_t samples,
                                    std::string_view variant_defines = {});
 
+/// The resolve pass into a host's storage image (set 1, binding 0) of
+/// format qualifier `image_format` ("rgba8", "rgba16f", "rgba32f"): each
+/// pixel's list composited over the image's texel, in place (colour C + T *
+/// texel, alpha (1 - T) + T * texel alpha); texel (x, y) is pixel (x, y).
+/// One sample a pixel. std::invalid_argument for another qualifier.
+std::string vulkan_resolve_image_compute(Technique technique, AtomicMode mode, std::string_view image_format,
+                                         std::string_view variant_defines = {});
+
 }  // namespace habuffer::vk

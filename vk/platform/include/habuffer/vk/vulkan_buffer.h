@@ -59,6 +59,37 @@ class VulkanBuffer {
   std::uint64_t bytes_ = 0;
 };
 
+/// A host-visible, coherent buffer, mapped for its whole life: what the
+/// device copies into for the host to read without a wait (a frame's
+/// counters, read once its event is set). Movable, not copyable.
+class MappedBuffer {
+ public:
+  MappedBuffer() = default;
+  /// `bytes` (at least 4) with `usage` (transfer destination and source
+  /// added). Throws VulkanError naming the size when the device has no
+  /// memory for it.
+  MappedBuffer(const VulkanContext& context, std::uint64_t bytes, VkBufferUsageFlags usage = 0);
+  ~MappedBuffer();
+  MappedBuffer(MappedBuffer&& other) noexcept;
+  MappedBuffer& operator=(MappedBuffer&& other) noexcept;
+  MappedBuffer(const MappedBuffer&) = delete;
+  MappedBuffer& operator=(const MappedBuffer&) = delete;
+
+  [[nodiscard]] VkBuffer handle() const { return buffer_; }
+  [[nodiscard]] std::uint64_t bytes() const { return bytes_; }
+  /// The mapped memory (coherent: the device's writes before a host
+  /// barrier and a completed signal are seen here).
+  [[nodiscard]] void* data() const { return mapped_; }
+
+ private:
+  void release();
+  const VulkanContext* context_ = nullptr;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  void* mapped_ = nullptr;
+  std::uint64_t bytes_ = 0;
+};
+
 /// Records a barrier after which every shader and transfer read and write
 /// sees every earlier one (compute and transfer; the library's passes).
 void record_full_barrier(VkCommandBuffer cmd);

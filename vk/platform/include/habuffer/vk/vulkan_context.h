@@ -49,6 +49,25 @@ bool validation_layer_available();
 /// (VulkanInfo::unusable); throws VulkanError without a loader or an ICD.
 std::vector<VulkanInfo> list_devices();
 
+/// A host's own Vulkan device, for a context that adopts it (a Vulkan
+/// engine embedding the library): the handles the host made, which the
+/// context uses and never destroys, and the features the host enabled at
+/// vkCreateDevice (Vulkan cannot be asked afterwards).
+struct HostDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  /// A queue of `queue_family`, which must run graphics and compute. The
+  /// context submits on it only in its waits (a buffer made or read, the
+  /// counting gather of an automatic container's first frame): the host
+  /// must not submit to it from another thread meanwhile.
+  VkQueue queue = VK_NULL_HANDLE;
+  std::uint32_t queue_family = 0;
+  bool shader_int64 = false;                 ///< VkPhysicalDeviceFeatures::shaderInt64 enabled
+  bool buffer_int64_atomics = false;         ///< VkPhysicalDeviceVulkan12Features::shaderBufferInt64Atomics enabled
+  bool fragment_stores_and_atomics = false;  ///< VkPhysicalDeviceFeatures::fragmentStoresAndAtomics enabled (needed)
+};
+
 /// The instance, the chosen device and its queue. Not copyable; destroys
 /// everything it made.
 class VulkanContext {
@@ -58,6 +77,13 @@ class VulkanContext {
   /// without what the library needs (naming the feature), the validation
   /// layer asked for but missing.
   explicit VulkanContext(const ContextOptions& options = {});
+  /// Adopts a host's device: info() is its device's, with the features the
+  /// host did not enable taken away (so the atomic modes follow what it
+  /// enabled). Throws VulkanError in one line for a null handle, a queue
+  /// family without graphics and compute, a device below Vulkan 1.2 or
+  /// without fragmentStoresAndAtomics enabled. Validation is the host's
+  /// (its own messenger): validation() is false and check_messages finds none.
+  explicit VulkanContext(const HostDevice& host);
   ~VulkanContext();
   VulkanContext(const VulkanContext&) = delete;
   VulkanContext& operator=(const VulkanContext&) = delete;
