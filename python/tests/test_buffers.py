@@ -234,10 +234,11 @@ def test_the_vulkan_path_builds_the_cpu_paths_lists_for_every_technique_it_runs(
     case = crosscheck.make_case(12)
     screen = (case["Vx"], case["Vy"])
     xy, depth, rgba = valid_arrays(case)
-    for technique, options in (("ha", {}), ("lists", {}), ("sorted-lists", {}), ("kbuffer", {"layers": 4})):
-        cpu = hb.build(xy, depth, rgba, screen=screen, technique=technique, lossless=technique != "kbuffer", **options)
-        vk = hb.build(xy, depth, rgba, screen=screen, technique=technique, lossless=technique != "kbuffer",
-                      path="vk", **options)
+    for technique, options in (("ha", {}), ("lists", {}), ("sorted-lists", {}), ("arrays", {"layers": 3}),
+                               ("kbuffer", {"layers": 4}), ("paged-lists", {})):
+        lossless = technique not in ("kbuffer", "arrays")
+        cpu = hb.build(xy, depth, rgba, screen=screen, technique=technique, lossless=lossless, **options)
+        vk = hb.build(xy, depth, rgba, screen=screen, technique=technique, lossless=lossless, path="vk", **options)
         assert vk.build_report["path"] == "vk" and vk.build_report["vk_device"], technique
         assert vk.build_report["vk_atomic_mode"] in ("native64", "native32", "emulated64"), technique
         assert vk.counters == cpu.counters, technique
@@ -245,8 +246,8 @@ def test_the_vulkan_path_builds_the_cpu_paths_lists_for_every_technique_it_runs(
             np.testing.assert_array_equal(getattr(cpu.lists(), name), getattr(vk.lists(), name), err_msg=technique)
     with pytest.raises(ValueError, match="threads, mode and order are the CPU path's"):
         hb.build(xy, depth, rgba, screen=screen, path="vk", threads=2)
-    with pytest.raises(hb.DataError, match="does not run arrays yet"):
-        hb.build(xy, depth, rgba, screen=screen, path="vk", technique="arrays")
+    with pytest.raises(hb.DataError, match="does not run wboit yet"):
+        hb.build(xy, depth, rgba, screen=screen, path="vk", technique="wboit")
 
 
 def deep_pixel_stream(screen=(8, 8), others=200, seed=5):

@@ -55,6 +55,10 @@ same 96x64 "--load 2 --seed 21" -- --technique kbuffer --layers 4
 same 96x64 "--load 2 --seed 21" -- --technique kbuffer --layers 4 --occupancy on --occupancy-words 1 --layout 32
 same 80x60 "--load 2.5 --seed 22" -- --technique kbuffer --layers 2 --occupancy on --lossless --max-attempts 5
 same 96x64 "--load 3 --seed 16" -- --technique sorted-lists
+same 96x64 "--load 2 --seed 23" -- --technique arrays --layers 24
+same 80x60 "--load 2.5 --seed 24" -- --technique arrays --layers 2 --lossless --max-attempts 4
+same 96x64 "--load 2 --seed 25" -- --technique paged-lists
+same 96x64 "--load 2 --seed 26" -- --technique paged-lists --pool 2000 --lossless --max-attempts 4
 # The last build was L64: native64 where the device has 64-bit buffer atomics (lavapipe does).
 if grep -q "shaderBufferInt64Atomics: yes" info.txt; then
   grep -q '"vk_atomic_mode":"native64"' vk.json && ok modes || bad modes "L64 did not run native64: $(cat vk.json)"
@@ -99,6 +103,8 @@ render_same spider sorted-lists --size 80x64 --layout 32
 render_same spider kbuffer --size 80x64 --layers 4 --occupancy on
 render_same hairball ha --size 64x48 --table 64x48 --lossless --max-attempts 6
 render_same quads lists --size 64x48 --samples 4
+render_same wuson arrays --size 80x64 --layers 4 --lossless --max-attempts 4  # K grown: no pixel keeps an arrival-order subset
+render_same quads paged-lists --size 64x48 --samples 4
 HABUFFER_ATOMIC_MODE=emulated64 render_same spider ha --size 80x64 --frames 2
 grep -q '"device":"vk emulated64' vk_render.json && ok modes || bad modes "render did not run emulated64"
 
@@ -123,7 +129,8 @@ else
   bad harness "bench failed: $(head -c 300 b.err)"
 fi
 if "$bin" figure frontier --scenes quads --size 32x32 --repeats 1 --path vk --quiet --out frontier_vk.csv 2>f.err; then
-  if grep -q '^arrays' frontier_vk.csv || ! grep -q '^sorted-lists,quads,32x32,vk' frontier_vk.csv; then
+  if grep -qE '^(wboit|blend)' frontier_vk.csv || ! grep -q '^sorted-lists,quads,32x32,vk' frontier_vk.csv ||
+     ! grep -q '^arrays:k=4,quads,32x32,vk' frontier_vk.csv; then
     bad harness "figure frontier --path vk: rows $(cut -d, -f1 frontier_vk.csv | tr '\n' ' ')"
   else
     ok harness
@@ -138,8 +145,6 @@ expect usage 2 "option --threads has no effect with --path vk" -- build-lists --
 expect usage 2 "option --path: 'metal' is not cpu, gl or vk" -- build-lists --in f.csv --out x.csv --screen 96x64 \
   --path metal
 expect usage 2 "option --path: 'vk' is not cpu or gl" -- demo --path vk
-expect data 1 "does not run arrays yet (it runs ha, lists, sorted-lists, kbuffer)" -- build-lists --in f.csv --out x.csv \
-  --screen 96x64 --path vk --technique arrays
 HABUFFER_VK_DEVICE=97 expect data 1 "device 97 (HABUFFER_VK_DEVICE) is not among the Vulkan devices" -- \
   build-lists --in f.csv --out x.csv --screen 96x64 --path vk
 HABUFFER_ATOMIC_MODE=native128 expect data 1 "HABUFFER_ATOMIC_MODE='native128' is not native32, native64" -- \
@@ -149,7 +154,8 @@ expect usage 2 "option --threads has no effect with --path vk" -- render --scene
   --path vk --threads 2
 expect usage 2 "--fragments renders on the CPU path: drop --path vk" -- render --fragments f.csv --size 96x64 \
   --out y.png --path vk
-expect data 1 "does not run arrays yet" -- render --scene quads --size 32x32 --out y.png --path vk --technique arrays
+expect data 1 "does not run blend yet (it runs ha, lists, sorted-lists, arrays, kbuffer, paged-lists)" -- \
+  render --scene quads --size 32x32 --out y.png --path vk --technique blend
 [[ ! -e y.png ]] && ok outputs || bad outputs "a refused render left y.png"
 expect usage 2 "option --path vk: figure fig10 runs on gl or cpu" -- figure fig10 --path vk --out z.csv
 

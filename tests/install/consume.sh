@@ -89,6 +89,20 @@ cmake -S "$work/core_only" -B "$work/core_only/build" -G Ninja -DCMAKE_PREFIX_PA
 cmake --build "$work/core_only/build" >>"$work/core_only.log" 2>&1 || { tail -40 "$work/core_only.log"; fail "COMPONENTS core: build failed"; }
 "$work/core_only/build/cpu_only" >/dev/null || fail "COMPONENTS core: cpu_only failed"
 
+if [ "$has_vk" = 1 ]; then
+  echo "== COMPONENTS core vk (the GL path's dependencies come with vk)"
+  mkdir -p "$work/vk_only"
+  cat >"$work/vk_only/CMakeLists.txt" <<CMAKE
+cmake_minimum_required(VERSION 3.22)
+project(vk_only LANGUAGES CXX)
+find_package(habuffer 0.1 CONFIG REQUIRED COMPONENTS core vk)
+add_executable(host_vulkan "$source/examples/host_vulkan/main.cpp")
+target_link_libraries(host_vulkan PRIVATE habuffer::vk)
+CMAKE
+  cmake -S "$work/vk_only" -B "$work/vk_only/build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" >"$work/vk_only.log" 2>&1 ||
+    { cat "$work/vk_only.log"; fail "COMPONENTS core vk: configuring failed"; }
+fi
+
 echo "== add_subdirectory into a C++17 host project (shared libraries, std::thread instead of oneTBB)"
 mkdir -p "$work/subdir"
 cat >"$work/subdir/CMakeLists.txt" <<CMAKE

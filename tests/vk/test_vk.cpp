@@ -318,6 +318,62 @@ TEST(Vulkan, TheKBufferGivesTheCpuListsAndCountersWithAndWithoutItsOccupancyMap)
   }
 }
 
+// Fixed arrays and paged lists as the GL tests check them (test_gl_peers,
+// test_gl_paged_lists): the CPU's counters and lists in every runnable
+// mode, K too small and a pool too small included; lossless mode grows K
+// and the pool as the CPU does.
+TEST(Vulkan, FixedArraysAndPagedListsGiveTheCpuListsAndCountersInEveryRunnableMode) {
+  REQUIRE_VULKAN();
+  for (AtomicMode mode : vk::runnable_atomic_modes(context().info())) {
+    const ScopedEnv forced("HABUFFER_ATOMIC_MODE", std::string(to_string(mode)).c_str());
+    const Layout layout = mode == AtomicMode::Native32 ? Layout::L32 : Layout::L64;
+    for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+      const Extent screen{21 + 6 * static_cast<std::uint32_t>(seed), 13 + static_cast<std::uint32_t>(seed)};
+      const std::vector<Fragment> f =
+          test::stream(screen, seed == 2 ? StreamKind::Hot : StreamKind::Coherent, 2000 + 800 * seed, seed);
+      for (std::uint32_t k : {2u, 16u}) {
+        SCOPED_TRACE(to_string(mode) + " arrays seed " + std::to_string(seed) + " k " + std::to_string(k));
+        TechniqueConfig c = test::technique_config(Technique::Arrays, screen, layout);
+        c.layers = k;
+        const TechniqueBuild cpu = build_technique(c, {}, f, {}, {}, 1);
+        const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, {}, f);
+        EXPECT_EQ(gpu.counters, cpu.counters);
+        // A full pixel keeps its first K arrivals, and the device's arrival
+        // order is not the stream's: the lists are the CPU's where no pixel overflowed.
+        if (cpu.counters.failures() == 0) {
+          EXPECT_EQ(test::traversed_lists(*gpu.buffer), test::traversed_lists(*cpu.buffer));
+        }
+        if (k != 2) continue;
+        EXPECT_GT(cpu.counters.failures(), 0u);  // K of 2 drops fragments: lossless mode grows K
+        const TechniqueBuild grown_cpu = build_technique(c, {}, f, {}, {}, 4);
+        const TechniqueBuild grown_gpu = vk::build_technique_on_vulkan(context(), c, {}, f, {}, 4);
+        ASSERT_EQ(grown_gpu.attempts.size(), grown_cpu.attempts.size());
+        EXPECT_TRUE(grown_gpu.lossless());
+        EXPECT_EQ(grown_gpu.attempts.back().capacity, grown_cpu.attempts.back().capacity);
+        EXPECT_EQ(test::traversed_lists(*grown_gpu.buffer), test::traversed_lists(*grown_cpu.buffer));
+      }
+      for (std::uint64_t pool : {std::uint64_t{0}, std::uint64_t{f.size() / 3}, std::uint64_t{4 * f.size()}}) {
+        SCOPED_TRACE(to_string(mode) + " paged-lists seed " + std::to_string(seed) + " pool " + std::to_string(pool));
+        TechniqueConfig c = test::technique_config(Technique::PagedLists, screen, layout);
+        c.pool_capacity = pool;
+        const TechniqueBuild cpu = build_technique(c, {}, f, {}, {}, 4);
+        const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, {}, f, {}, 4);
+        EXPECT_TRUE(gpu.lossless());
+        EXPECT_EQ(test::traversed_lists(*gpu.buffer), test::traversed_lists(*cpu.buffer));
+        // Racing calls of one pixel can each take a page when its page is
+        // full, one of them linked (the device's wasted pages): on the hot
+        // stream the device asks for more nodes, so a pool sized for the
+        // stream can take one more attempt and grow further. On the
+        // coherent stream the attempts, counters and pools are the CPU's.
+        if (seed != 1) continue;
+        ASSERT_EQ(gpu.attempts.size(), cpu.attempts.size());
+        EXPECT_EQ(gpu.counters, cpu.counters);
+        EXPECT_EQ(gpu.attempts.back().capacity, cpu.attempts.back().capacity);
+      }
+    }
+  }
+}
+
 // SPEC 7 on Vulkan: the resolve pass composites each technique's lists over
 // per-pixel backgrounds into the CPU's composite_image, float for float,
 // on a multisampled screen too; backgrounds of the wrong count are refused
@@ -328,8 +384,10 @@ TEST(Vulkan, TheResolvePassGivesTheCpuImageBitForBitForEveryTechniqueItRuns) {
   const ScopedEnv forced("HABUFFER_ATOMIC_MODE", std::string(to_string(mode)).c_str());
   const Layout layout = mode == AtomicMode::Native32 ? Layout::L32 : Layout::L64;
   for (std::uint32_t samples : {1u, 4u})
-    for (Technique t : {Technique::Ha, Technique::Lists, Technique::SortedLists, Technique::KBuffer}) {
-      if (samples > 1 && t == Technique::KBuffer) continue;  // multisampled screens are the lists' (refuse_samples)
+    for (Technique t : {Technique::Ha, Technique::Lists, Technique::SortedLists, Technique::Arrays, Technique::KBuffer,
+                        Technique::PagedLists}) {
+      if (samples > 1 && (t == Technique::KBuffer || t == Technique::Arrays))
+        continue;  // multisampled screens are the lists' and the HA-buffer's (refuse_samples)
       SCOPED_TRACE(to_string(mode) + " " + to_string(t) + " samples " + std::to_string(samples));
       const Extent screen{37, 21};
       TechniqueConfig c = test::technique_config(t, screen, layout);
@@ -373,10 +431,12 @@ TEST(Vulkan, MisuseThroughTheApiIsRefusedInOneLine) {
   c.buffer = test::config({16, 16}, {16, 16});
   const auto f = test::stream(c.buffer.screen, StreamKind::Random, 100, 1);
   // A technique without a Vulkan part yet, named with those that have one.
-  TechniqueConfig arrays = c;
-  arrays.technique = Technique::Arrays;
-  const std::string e1 = error_of([&] { vk::build_technique_on_vulkan(context(), arrays, {}, f); });
-  EXPECT_NE(e1.find("does not run arrays yet (it runs ha, lists, sorted-lists, kbuffer)"), std::string::npos) << e1;
+  TechniqueConfig wboit = c;
+  wboit.technique = Technique::Wboit;
+  const std::string e1 = error_of([&] { vk::build_technique_on_vulkan(context(), wboit, {}, f); });
+  EXPECT_NE(e1.find("does not run wboit yet (it runs ha, lists, sorted-lists, arrays, kbuffer, paged-lists)"),
+            std::string::npos)
+      << e1;
   // A fragment off the screen, named.
   auto off = f;
   off[7].x = 16;

@@ -26,7 +26,6 @@ namespace habuffer::vk {
 namespace {
 
 constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
-constexpr std::uint32_t kImageSetsPerFrame = 16;
 
 // The timestamps of a frame's slot.
 enum Query : std::uint32_t { kFrameStart, kCleared, kGathered, kSorted, kResolveStart, kResolveEnd, kQueries };
@@ -79,6 +78,29 @@ void barrier_after_shaders(VkCommandBuffer cmd) {
                  kShaderUse | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
 }
 
+// Sets `event` once every earlier command has run, with the counters'
+// copy made visible to the host: by the event's own dependency where the
+// device has synchronization2, else by a host barrier before it.
+void record_host_event(const VulkanContext& context, VkCommandBuffer cmd, VkEvent event) {
+  if (context.info().synchronization2) {
+    VkMemoryBarrier2 to_host{};
+    to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
+    to_host.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    VkDependencyInfo dependency{};
+    dependency.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &to_host;
+    vkCmdSetEvent2(cmd, event, &dependency);
+    return;
+  }
+  memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                 VK_ACCESS_HOST_READ_BIT);
+  vkCmdSetEvent(cmd, event, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
+}
+
 // One container of the technique and its descriptor set (set 0 of every
 // pipeline of the frame, the host's gather's included).
 struct Container {
@@ -96,11 +118,12 @@ struct Container {
 };
 
 // A frame recorded, until its report is read: the read-back of its
-// counters, the event its command buffer sets after the copy, its
-// timestamps, the image sets of its resolves and the container it used.
+// counters, the events its command buffers set (after the copy, after its
+// resolve), its timestamps, its resolve's image set and the container it used.
 struct Slot {
   const VulkanContext& context;
-  VkEvent event = VK_NULL_HANDLE;
+  VkEvent event = VK_NULL_HANDLE;           // set after the counters' copy (every earlier command done)
+  VkEvent resolved_event = VK_NULL_HANDLE;  // set after its resolve
   MappedBuffer readback;
   VkQueryPool queries = VK_NULL_HANDLE;
   VkDescriptorPool image_sets = VK_NULL_HANDLE;
@@ -116,6 +139,7 @@ struct Slot {
       VkEventCreateInfo ei{};
       ei.sType = VK_STRUCTURE_TYPE_EVENT_CREATE_INFO;
       check(vkCreateEvent(d, &ei, nullptr, &event), "creating a frame's event");
+      check(vkCreateEvent(d, &ei, nullptr, &resolved_event), "creating a frame's resolve event");
       if (timestamps) {
         VkQueryPoolCreateInfo qi{};
         qi.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
@@ -123,10 +147,10 @@ struct Slot {
         qi.queryCount = kQueries;
         check(vkCreateQueryPool(d, &qi, nullptr, &queries), "creating a frame's timestamp queries");
       }
-      const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kImageSetsPerFrame};
+      const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1};
       VkDescriptorPoolCreateInfo pi{};
       pi.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-      pi.maxSets = kImageSetsPerFrame;
+      pi.maxSets = 1;
       pi.poolSizeCount = 1;
       pi.pPoolSizes = &size;
       check(vkCreateDescriptorPool(d, &pi, nullptr, &image_sets), "creating a frame's image descriptor pool");
@@ -144,9 +168,10 @@ struct Slot {
     if (image_sets != VK_NULL_HANDLE) vkDestroyDescriptorPool(d, image_sets, nullptr);
     if (queries != VK_NULL_HANDLE) vkDestroyQueryPool(d, queries, nullptr);
     if (event != VK_NULL_HANDLE) vkDestroyEvent(d, event, nullptr);
+    if (resolved_event != VK_NULL_HANDLE) vkDestroyEvent(d, resolved_event, nullptr);
     image_sets = VK_NULL_HANDLE;
     queries = VK_NULL_HANDLE;
-    event = VK_NULL_HANDLE;
+    event = resolved_event = VK_NULL_HANDLE;
   }
 
   void timestamp(VkCommandBuffer cmd, Query q, VkPipelineStageFlagBits stage) const {
@@ -186,6 +211,14 @@ struct VulkanFrameDriver::State {
   std::shared_ptr<Container> current;
   std::shared_ptr<Container> last_recorded;  // the container of the last recorded frame
   Slot* last_slot = nullptr;
+  // The latest completed frame's slot and container, kept one frame more:
+  // its command buffer may still run the host's commands after its event
+  // (the frame after it sets its event only once every earlier command is done).
+  Slot* latest_completed = nullptr;
+  std::shared_ptr<Container> completed_hold;
+  // What a frame's report says of its sizing, kept for the next frame when
+  // recording it threw after the container was sized.
+  VulkanFrameReport carried;
   std::vector<std::unique_ptr<Slot>> slots;
   std::deque<Slot*> in_flight;  // oldest first
   std::vector<VulkanFrameReport> held;
@@ -293,6 +326,9 @@ struct VulkanFrameDriver::State {
   // The automatic container for `fragments` (TechniqueConfig::sized_for);
   // counts of frames recorded before decide nothing.
   void size_for(std::uint64_t fragments) {
+    if (fragments > UINT32_MAX)
+      throw VulkanError("a frame of " + std::to_string(fragments) +
+                        " fragments overflows the GPU path's 32-bit counters: draw fewer fragments per frame");
     TechniqueConfig wanted = given;
     wanted.buffer.screen = current->technique->config().buffer.screen;
     try {
@@ -330,24 +366,29 @@ struct VulkanFrameDriver::State {
     }
     report.resized = true;
     report.sized_by_frame = frame;
+    sizing_floor = frames;  // frames gathered into the old container size nothing more
   }
 
   Slot& acquire_slot() {
+    if (in_flight.size() >= options.max_frames_in_flight)
+      throw VulkanError(std::to_string(in_flight.size()) + " frames recorded have no report yet (max_frames_in_flight " +
+                        std::to_string(options.max_frames_in_flight) +
+                        "): submit them and read their reports (collect_reports) before recording more");
     for (const auto& s : slots)
-      if (!s->busy) return *s;
-    if (slots.size() < options.max_frames_in_flight) {
-      slots.push_back(std::make_unique<Slot>(context, options.timestamps && context.info().timestamps));
-      return *slots.back();
-    }
-    throw VulkanError(std::to_string(in_flight.size()) + " frames recorded have no report yet (max_frames_in_flight " +
-                      std::to_string(options.max_frames_in_flight) +
-                      "): submit them and read their reports (collect_reports) before recording more");
+      if (!s->busy && s.get() != latest_completed) return *s;
+    slots.push_back(std::make_unique<Slot>(context, options.timestamps && context.info().timestamps));
+    return *slots.back();
   }
 
   [[nodiscard]] bool ready(const Slot& s) const {
     if (vkGetEventStatus(context.device(), s.event) != VK_EVENT_SET) return false;
-    if (!s.resolved || s.queries == VK_NULL_HANDLE) return true;
-    return s.read_timestamps()[kResolveEnd].second;
+    if (s.resolved && vkGetEventStatus(context.device(), s.resolved_event) != VK_EVENT_SET) return false;
+    if (s.queries == VK_NULL_HANDLE) return true;
+    // Timestamps written at the bottom of the pipe may land after the event.
+    const auto t = s.read_timestamps();
+    for (Query q : {kFrameStart, kCleared, kGathered, kSorted})
+      if (!t[q].second) return false;
+    return !s.resolved || (t[kResolveStart].second && t[kResolveEnd].second);
   }
 
   // The report of a slot whose commands have run.
@@ -356,7 +397,9 @@ struct VulkanFrameDriver::State {
     const auto* mapped = static_cast<const std::uint32_t*>(s.readback.data());
     const std::vector<std::uint32_t> words(mapped, mapped + kCounterWords);
     s.busy = false;
+    latest_completed = &s;
     std::shared_ptr<Container> container = std::move(s.container);
+    completed_hold = container;
     r.counters = counters_from_words(words);
     const auto tally = stripe_tally(words);
     const Extent screen = r.config.buffer.screen;
@@ -391,29 +434,27 @@ struct VulkanFrameDriver::State {
     return r;
   }
 
-  std::vector<VulkanFrameReport> collect_ready() {
-    std::vector<VulkanFrameReport> out;
+  // The reports of frames that have run, oldest first, into `held` (a
+  // report that throws, a frame refused, leaves those before it there).
+  void collect_ready() {
     while (!in_flight.empty() && ready(*in_flight.front())) {
       Slot* s = in_flight.front();
       in_flight.pop_front();
-      out.push_back(complete(*s));
+      held.push_back(complete(*s));
     }
-    return out;
   }
 
-  std::vector<VulkanFrameReport> wait_all(std::uint64_t timeout_ms) {
-    std::vector<VulkanFrameReport> out = std::exchange(held, {});
+  // Every frame in flight waited for (at most timeout_ms in all), into `held`.
+  void wait_all(std::uint64_t timeout_ms) {
     const auto t0 = std::chrono::steady_clock::now();
     for (;;) {
-      for (VulkanFrameReport& r : collect_ready()) out.push_back(std::move(r));
-      if (in_flight.empty()) return out;
+      collect_ready();
+      if (in_flight.empty()) return;
       const auto waited = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
-      if (static_cast<std::uint64_t>(waited.count()) >= timeout_ms) {
-        held = std::move(out);  // read already: kept for the next collect
+      if (static_cast<std::uint64_t>(waited.count()) >= timeout_ms)
         throw VulkanError(std::to_string(in_flight.size()) + " frames recorded (the oldest frame " +
                           std::to_string(in_flight.front()->report.index) + ") had not run after " +
                           std::to_string(timeout_ms) + " ms: a frame recorded but never submitted never does");
-      }
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   }
@@ -487,16 +528,24 @@ VulkanFrameDriver::VulkanFrameDriver(const VulkanContext& context, const Techniq
 }
 
 VulkanFrameDriver::~VulkanFrameDriver() {
-  try {
-    (void)s_->wait_all(10000);
-  } catch (...) {
-    // Frames never submitted: nothing of theirs runs after this.
+  // Every frame in flight waited for (10 s in all; a frame refused, or never
+  // submitted, ends its wait), then the queue: the host's command buffers
+  // may still hold commands after a frame's last event that use our objects.
+  State& s = *s_;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!s.in_flight.empty() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(10)) {
+    try {
+      s.wait_all(10000);
+    } catch (...) {
+      // A refused frame's error has nowhere to go here; the wait goes on.
+    }
   }
+  vkQueueWaitIdle(s.context.queue());
 }
 
 AtomicMode VulkanFrameDriver::mode() const { return s_->mode; }
 Extent VulkanFrameDriver::screen() const { return s_->current->technique->config().buffer.screen; }
-const TechniqueConfig& VulkanFrameDriver::config() const { return s_->current->technique->config(); }
+TechniqueConfig VulkanFrameDriver::config() const { return s_->current->technique->config(); }
 const VulkanFrameOptions& VulkanFrameDriver::options() const { return s_->options; }
 VkDescriptorSetLayout VulkanFrameDriver::set_layout() const { return s_->set_layout; }
 std::size_t VulkanFrameDriver::frames_in_flight() const { return s_->in_flight.size(); }
@@ -536,55 +585,66 @@ void VulkanFrameDriver::record_frame(VkCommandBuffer cmd, const Gather& gather) 
   if (cmd == VK_NULL_HANDLE) throw std::invalid_argument("record_frame: no command buffer given");
   if (!gather) throw std::invalid_argument("record_frame: no gather given");
   if (s.gather_cmd != VK_NULL_HANDLE) throw VulkanError("record_frame inside a gather");
-  for (VulkanFrameReport& r : s.collect_ready()) s.held.push_back(std::move(r));
-  VulkanFrameReport report;
+  s.collect_ready();
+  Slot& slot = s.acquire_slot();  // before any sizing: a refusal here changes nothing
+  // This frame's sizing (and what an earlier frame that threw had sized).
+  VulkanFrameReport report = std::exchange(s.carried, {});
   report.index = s.frames;
-  if (s.needs_count)
+  if (s.needs_count) {
     s.count_and_size(gather, report);
-  else if (s.sized_for_fragments)
+  } else if (s.sized_for_fragments) {
     report.resized = true;  // size_for since the last frame
-  else
+  } else {
     s.adapt(report);
-  report.counted_fragments = std::exchange(s.sized_for_fragments, std::nullopt);
-  Slot& slot = s.acquire_slot();
-  check(vkResetEvent(s.context.device(), slot.event), "resetting a frame's event");
-  check(vkResetDescriptorPool(s.context.device(), slot.image_sets, 0), "resetting a frame's image sets");
-  const Container& c = *s.current;
-  const VulkanTechnique& t = *c.technique;
-  if (slot.queries != VK_NULL_HANDLE) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueries);
-  slot.timestamp(cmd, kFrameStart, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
-  barrier_before_transfer(cmd);
-  s.write_params(cmd, t.fills_before_insert() ? HABUFFER_PHASE_FILL : HABUFFER_PHASE_INSERT);
-  t.record_clear(cmd);
-  s.counters.record_zero(cmd);
-  barrier_before_shaders(cmd);
-  slot.timestamp(cmd, kCleared, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
-  const std::array<VkDescriptorSet, 1> sets{c.set};
-  if (t.fills_before_insert()) {
-    // The k-buffer's occupancy map: a gather that inserts nothing, its count pass, then the insert gather.
+  }
+  if (s.sized_for_fragments) report.counted_fragments = std::exchange(s.sized_for_fragments, std::nullopt);
+  try {
+    check(vkResetEvent(s.context.device(), slot.event), "resetting a frame's event");
+    check(vkResetEvent(s.context.device(), slot.resolved_event), "resetting a frame's resolve event");
+    check(vkResetDescriptorPool(s.context.device(), slot.image_sets, 0), "resetting a frame's image set");
+    const Container& c = *s.current;
+    const VulkanTechnique& t = *c.technique;
+    if (slot.queries != VK_NULL_HANDLE) vkCmdResetQueryPool(cmd, slot.queries, 0, kQueries);
+    slot.timestamp(cmd, kFrameStart, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
+    barrier_before_transfer(cmd);
+    s.write_params(cmd, t.fills_before_insert() ? HABUFFER_PHASE_FILL : HABUFFER_PHASE_INSERT);
+    t.record_clear(cmd);
+    s.counters.record_zero(cmd);
+    barrier_before_shaders(cmd);
+    slot.timestamp(cmd, kCleared, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+    const std::array<VkDescriptorSet, 1> sets{c.set};
+    if (t.fills_before_insert()) {
+      // The k-buffer's occupancy map: a gather that inserts nothing, its count pass, then the insert gather.
+      s.run_gather(cmd, gather);
+      barrier_after_shaders(cmd);
+      s.fill->record_screen_with(cmd, sets, t.config().buffer.screen);
+      barrier_after_shaders(cmd);
+      s.write_params(cmd, HABUFFER_PHASE_INSERT);
+      barrier_before_shaders(cmd);
+    }
     s.run_gather(cmd, gather);
     barrier_after_shaders(cmd);
-    s.fill->record_screen_with(cmd, sets, t.config().buffer.screen);
-    barrier_after_shaders(cmd);
-    s.write_params(cmd, HABUFFER_PHASE_INSERT);
-    barrier_before_shaders(cmd);
+    slot.timestamp(cmd, kGathered, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+    slot.sorted = t.sorts_after_gather();
+    if (slot.sorted) {
+      s.sort->record_screen_with(cmd, sets, t.config().buffer.screen);
+      barrier_after_shaders(cmd);
+    }
+    slot.timestamp(cmd, kSorted, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
+    const VkBufferCopy region{0, 0, kCounterWords * 4};
+    vkCmdCopyBuffer(cmd, s.counters.handle(), slot.readback.handle(), 1, &region);
+    record_host_event(s.context, cmd, slot.event);
+    report.config = t.config();
+    report.capacity = t.capacity();
+  } catch (...) {
+    // The host discards this command buffer; the next frame's report says
+    // how its container was sized.
+    s.carried.resized = report.resized;
+    s.carried.sized_by_frame = report.sized_by_frame;
+    s.carried.counted_fragments = report.counted_fragments;
+    s.carried.resize_limited = report.resize_limited;
+    throw;
   }
-  s.run_gather(cmd, gather);
-  barrier_after_shaders(cmd);
-  slot.timestamp(cmd, kGathered, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
-  slot.sorted = t.sorts_after_gather();
-  if (slot.sorted) {
-    s.sort->record_screen_with(cmd, sets, t.config().buffer.screen);
-    barrier_after_shaders(cmd);
-  }
-  slot.timestamp(cmd, kSorted, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
-  const VkBufferCopy region{0, 0, kCounterWords * 4};
-  vkCmdCopyBuffer(cmd, s.counters.handle(), slot.readback.handle(), 1, &region);
-  memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                 VK_ACCESS_HOST_READ_BIT);
-  vkCmdSetEvent(cmd, slot.event, VK_PIPELINE_STAGE_TRANSFER_BIT);
-  report.config = t.config();
-  report.capacity = t.capacity();
   slot.report = report;
   slot.container = s.current;
   slot.resolved = false;
@@ -617,10 +677,13 @@ void VulkanFrameDriver::record_resolve(VkCommandBuffer cmd, const HostImage& tar
                                 "the lists are composited over, would be lost");
   ComputePipeline& pipeline = s.resolve_pipeline(qualifier);
   Slot* slot = s.last_slot != nullptr && s.last_slot->busy ? s.last_slot : nullptr;
-  VkDescriptorPool pool = slot != nullptr ? slot->image_sets : VK_NULL_HANDLE;
-  if (pool == VK_NULL_HANDLE)
+  if (slot == nullptr)
     throw VulkanError("record_resolve: the last frame's report was read already: resolve a frame before its report "
                       "is collected (record_frame, record_resolve, submit, then collect_reports)");
+  if (slot->resolved)
+    throw std::logic_error("record_resolve: frame " + std::to_string(slot->report.index) +
+                           " was resolved already (one resolve a frame)");
+  VkDescriptorPool pool = slot->image_sets;
   VkDescriptorSetLayout image_layout = pipeline.image_set_layout();
   VkDescriptorSetAllocateInfo ai{};
   ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -628,9 +691,7 @@ void VulkanFrameDriver::record_resolve(VkCommandBuffer cmd, const HostImage& tar
   ai.descriptorSetCount = 1;
   ai.pSetLayouts = &image_layout;
   VkDescriptorSet image_set = VK_NULL_HANDLE;
-  if (const VkResult r = vkAllocateDescriptorSets(s.context.device(), &ai, &image_set); r != VK_SUCCESS)
-    throw VulkanError("record_resolve: more than " + std::to_string(kImageSetsPerFrame) +
-                      " resolves of one frame (" + result_name(r) + ")");
+  check(vkAllocateDescriptorSets(s.context.device(), &ai, &image_set), "record_resolve: the image's descriptor set");
   const VkDescriptorImageInfo info{VK_NULL_HANDLE, target.view, VK_IMAGE_LAYOUT_GENERAL};
   VkWriteDescriptorSet write{};
   write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
@@ -669,18 +730,31 @@ void VulkanFrameDriver::record_resolve(VkCommandBuffer cmd, const HostImage& tar
   back.newLayout = target.layout;
   vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0,
                        nullptr, 1, &back);
+  vkCmdSetEvent(cmd, slot->resolved_event, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);  // the frame's report waits for it
   slot->resolved = true;
 }
 
 std::vector<VulkanFrameReport> VulkanFrameDriver::collect_reports() {
   State& s = *s_;
-  std::vector<VulkanFrameReport> out = std::exchange(s.held, {});
-  for (VulkanFrameReport& r : s.collect_ready()) out.push_back(std::move(r));
-  return out;
+  s.collect_ready();  // a refused frame throws; the reports before it stay for the next call
+  return std::exchange(s.held, {});
 }
 
 std::vector<VulkanFrameReport> VulkanFrameDriver::finish_reports(std::uint64_t timeout_ms) {
-  return s_->wait_all(timeout_ms);
+  State& s = *s_;
+  s.wait_all(timeout_ms);
+  return std::exchange(s.held, {});
+}
+
+void VulkanFrameDriver::forget_frames_in_flight() {
+  State& s = *s_;
+  s.collect_ready();
+  for (Slot* slot : s.in_flight) {
+    slot->busy = false;
+    slot->container.reset();
+  }
+  s.in_flight.clear();
+  s.last_slot = nullptr;
 }
 
 std::unique_ptr<FragmentBuffer> VulkanFrameDriver::read_back() const {
@@ -695,12 +769,12 @@ std::unique_ptr<FragmentBuffer> VulkanFrameDriver::read_back() const {
 void VulkanFrameDriver::resize_screen(Extent screen) {
   State& s = *s_;
   if (screen.area() == 0) throw std::invalid_argument("resize_screen: a screen of at least 1x1 is needed, given " + screen.str());
+  if (screen == s.current->technique->config().buffer.screen) return;  // nothing changed: nothing counted again
   TechniqueConfig next = s.given;
   next.buffer.screen = screen;
   next = s.placeholder(next);
   next.validate();  // nothing changes when the configuration's rules refuse it
-  std::vector<VulkanFrameReport> done = s.wait_all(10000);
-  s.held = std::move(done);
+  s.wait_all(10000);  // their reports kept for collect_reports
   s.current = s.make_container(next);
   s.given.buffer.screen = screen;
   s.needs_count = s.automatic && s.options.count_first_frame;

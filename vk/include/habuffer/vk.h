@@ -1,7 +1,8 @@
 /// @file
-/// The Vulkan path in one include: the headless context and what its device
-/// offers, the shared GLSL compiled to SPIR-V, compute pipelines, the
-/// techniques it runs and the stream build.
+/// The Vulkan path in one include: the headless context (or a host's device
+/// adopted) and what its device offers, the shared GLSL compiled to SPIR-V,
+/// compute pipelines, the techniques it runs, the stream build and the frame
+/// driver that records into a host's command buffers.
 #pragma once
 
 #include "habuffer/vk/compute_pipeline.h"

@@ -27,13 +27,14 @@ bool layer_present(const char* name) {
   return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-// An instance of Vulkan 1.2 with nothing enabled but, optionally, validation.
+// An instance of Vulkan 1.3 (its devices used at their own version, 1.2 at least) with nothing enabled but,
+// optionally, validation.
 VkInstance make_instance(bool validation, void* messenger_info) {
   VkApplicationInfo app{};
   app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
   app.pApplicationName = "habuffer";
   app.pEngineName = "habuffer";
-  app.apiVersion = VK_API_VERSION_1_2;
+  app.apiVersion = VK_API_VERSION_1_3;  // the most it uses: 1.3 (synchronization2) where the device has it, else 1.2
   const char* layers[] = {kValidationLayer};
   const char* extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
   VkInstanceCreateInfo ci{};
@@ -155,7 +156,12 @@ struct VulkanContext::State {
 
   ~State() {
     if (device != VK_NULL_HANDLE) {
-      vkDeviceWaitIdle(device);
+      // A host's device: only the queue this context submits to, not the
+      // host's other queues (which its other threads may be using).
+      if (adopted)
+        vkQueueWaitIdle(queue);
+      else
+        vkDeviceWaitIdle(device);
       if (pool != VK_NULL_HANDLE) vkDestroyCommandPool(device, pool, nullptr);
       if (!adopted) vkDestroyDevice(device, nullptr);
     }
@@ -236,9 +242,13 @@ VulkanContext::VulkanContext(const ContextOptions& options) : s_(std::make_uniqu
   s.family = *universal_family(s.physical);
 
   // The features the library uses, each only where the device has it.
+  VkPhysicalDeviceVulkan13Features v13{};
+  v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+  v13.synchronization2 = VK_TRUE;
   VkPhysicalDeviceVulkan12Features v12{};
   v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
   v12.shaderBufferInt64Atomics = s.info.buffer_int64_atomics ? VK_TRUE : VK_FALSE;
+  if (s.info.synchronization2) v12.pNext = &v13;
   VkPhysicalDeviceFeatures2 features{};
   features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
   features.pNext = &v12;
@@ -270,11 +280,12 @@ VulkanContext::VulkanContext(const HostDevice& host) : s_(std::make_unique<State
   if (host.instance == VK_NULL_HANDLE || host.physical_device == VK_NULL_HANDLE || host.device == VK_NULL_HANDLE ||
       host.queue == VK_NULL_HANDLE)
     throw VulkanError("HostDevice: the instance, physical device, device and queue must all be given");
-  std::uint32_t index = 0;
   const auto devices = physical_devices(host.instance);
-  for (std::uint32_t i = 0; i < devices.size(); ++i)
-    if (devices[i] == host.physical_device) index = i;
-  s.info = query_vulkan_info(host.physical_device, index);
+  const auto found = std::find(devices.begin(), devices.end(), host.physical_device);
+  if (found == devices.end())
+    throw VulkanError("HostDevice: the physical device is not one of the instance's " +
+                      std::to_string(devices.size()) + " devices");
+  s.info = query_vulkan_info(host.physical_device, static_cast<std::uint32_t>(found - devices.begin()));
   if (s.info.api < VK_API_VERSION_1_2)
     throw VulkanError("the host's device " + s.info.name + " is Vulkan " + s.info.api_version +
                       " (the library needs 1.2)");
@@ -292,6 +303,7 @@ VulkanContext::VulkanContext(const HostDevice& host) : s_(std::make_unique<State
   // What the host enabled, not what the device offers, decides the modes.
   s.info.shader_int64 = s.info.shader_int64 && host.shader_int64;
   s.info.buffer_int64_atomics = s.info.buffer_int64_atomics && host.buffer_int64_atomics && s.info.shader_int64;
+  s.info.synchronization2 = s.info.synchronization2 && host.synchronization2;
   s.info.unusable.clear();
   s.instance = host.instance;
   s.physical = host.physical_device;
@@ -349,12 +361,12 @@ void VulkanContext::submit_and_wait(const std::function<void(VkCommandBuffer)>& 
     check(vkQueueSubmit(s.queue, 1, &si, fence), what);
     const VkResult r = vkWaitForFences(s.device, 1, &fence, VK_TRUE, timeout_ms * 1000000ull);
     if (r == VK_TIMEOUT) {
-      vkDeviceWaitIdle(s.device);  // the buffers it uses outlive it
+      vkQueueWaitIdle(s.queue);  // the buffers it uses outlive it (only this queue: a host's others are its own)
       throw VulkanError(std::string(what) + ": not done after " + std::to_string(timeout_ms / 1000) + " s");
     }
     check(r, what);
   } catch (...) {
-    if (cmd != VK_NULL_HANDLE) vkDeviceWaitIdle(s.device);
+    if (cmd != VK_NULL_HANDLE) vkQueueWaitIdle(s.queue);
     release();
     throw;
   }

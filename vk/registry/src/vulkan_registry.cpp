@@ -1,8 +1,10 @@
 #include "habuffer/vk/vulkan_registry.h"
 
+#include "habuffer/vk/techniques/arrays/vulkan_fixed_arrays.h"
 #include "habuffer/vk/techniques/ha/vulkan_ha_table.h"
 #include "habuffer/vk/techniques/kbuffer/vulkan_kbuffer.h"
 #include "habuffer/vk/techniques/linked_lists/vulkan_linked_lists.h"
+#include "habuffer/vk/techniques/paged_lists/vulkan_paged_lists.h"
 #include "habuffer/vk/vulkan_error.h"
 
 namespace habuffer::vk {
@@ -25,9 +27,15 @@ constexpr Entry kEntries[] = {
     {Technique::SortedLists,
      [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
          -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanLinkedLists>(c, t, m); }},
+    {Technique::Arrays,
+     [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
+         -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanFixedArrays>(c, t, m); }},
     {Technique::KBuffer,
      [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
          -> std::unique_ptr<VulkanTechnique> { return std::make_unique<VulkanKBuffer>(c, t, m); }},
+    {Technique::PagedLists,
+     [](const VulkanContext& c, const TechniqueConfig& t, const OffsetSource&, AtomicMode m)
+         -> std::unique_ptr<VulkanTechnique> { return make_vulkan_paged_lists(c, t, m); }},
 };
 
 }  // namespace

@@ -10,9 +10,21 @@
 namespace habuffer::vk {
 namespace {
 
-TechniqueConfig checked(const TechniqueConfig& c) {
-  if (c.technique != Technique::Lists && c.technique != Technique::SortedLists)
-    throw std::invalid_argument("VulkanLinkedLists holds lists or sorted-lists, not " + to_string(c.technique));
+std::unique_ptr<FragmentBuffer> import_lists(const TechniqueConfig& config, std::span<const std::uint32_t> heads,
+                                             std::span<const glm::uvec2> entries, std::span<const std::uint32_t> links,
+                                             std::uint64_t requested) {
+  auto lists = std::make_unique<LinkedLists>(config);
+  lists->import_state(heads, entries, links, requested);
+  return lists;
+}
+
+constexpr VulkanNodeListKind kListsKind{Technique::Lists, import_lists};
+constexpr VulkanNodeListKind kSortedListsKind{Technique::SortedLists, import_lists};
+
+TechniqueConfig checked(const TechniqueConfig& c, const VulkanNodeListKind& kind) {
+  if (c.technique != kind.technique)
+    throw std::invalid_argument("this Vulkan node-list container holds " + to_string(kind.technique) + ", not " +
+                                to_string(c.technique));
   c.validate();
   return c;
 }
@@ -20,7 +32,12 @@ TechniqueConfig checked(const TechniqueConfig& c) {
 }  // namespace
 
 VulkanLinkedLists::VulkanLinkedLists(const VulkanContext& context, const TechniqueConfig& config, AtomicMode mode)
-    : VulkanTechnique(context, checked(config), mode) {
+    : VulkanLinkedLists(context, config, config.technique == Technique::SortedLists ? kSortedListsKind : kListsKind,
+                        mode) {}
+
+VulkanLinkedLists::VulkanLinkedLists(const VulkanContext& context, const TechniqueConfig& config,
+                                     const VulkanNodeListKind& kind, AtomicMode mode)
+    : VulkanTechnique(context, checked(config, kind), mode), kind_(kind) {
   check_atomic_mode(context, mode, config_.buffer.layout);
   const std::uint64_t pixels = config_.buffer.screen.area();
   heads_ = VulkanBuffer(context, pixels * 4);
@@ -50,10 +67,8 @@ void VulkanLinkedLists::gathered(std::span<const std::uint32_t> counter_words) {
 
 std::unique_ptr<FragmentBuffer> VulkanLinkedLists::read_back() const {
   const std::uint64_t pixels = config_.buffer.screen.area();
-  auto lists = std::make_unique<LinkedLists>(config_);
-  lists->import_state(heads_.read<std::uint32_t>(pixels), nodes_.read<glm::uvec2>(config_.pool_capacity),
+  return kind_.import(config_, heads_.read<std::uint32_t>(pixels), nodes_.read<glm::uvec2>(config_.pool_capacity),
                       links_.read<std::uint32_t>(config_.pool_capacity), requested_);
-  return lists;
 }
 
 }  // namespace habuffer::vk

@@ -14,8 +14,10 @@
 ///   3. a barrier (fragment writes before compute and transfer), the sort
 ///      pass where the technique sorts after the gather;
 ///   4. the counters copied into the frame's read-back slot and the slot's
-///      event set: the frame's report arrives in collect_reports() once the
-///      host's submission has run, without any wait;
+///      event set (after every earlier command; the copy made visible to
+///      the host by the event's dependency with synchronization2, else by a
+///      host barrier): the frame's report arrives in collect_reports() once
+///      the host's submission has run, without any wait;
 ///   5. timestamps around each step, where the queue family has them.
 ///
 /// record_resolve() then composites every pixel's list over the host's
@@ -30,7 +32,8 @@
 /// (ResizePolicy's band, 80/30 by default; a frame that dropped records
 /// grows the next one to hold all it was asked to keep, any jump in one
 /// step), the old container kept until every frame recorded with it has
-/// run. An automatic container (no table, no pool) starts at the screen's
+/// run and one frame more (the frame after it sets its event only once all
+/// earlier commands, the host's too, are done). An automatic container (no table, no pool) starts at the screen's
 /// table or the policy's pool for one fragment a pixel, and is sized by its
 /// first frame's report; or before its first frame by size_for() (a host
 /// that counted its fragments), or by a counting gather
@@ -137,7 +140,11 @@ class VulkanFrameDriver {
   /// multisampled screen: each one line, before any device work.
   VulkanFrameDriver(const VulkanContext& context, const TechniqueConfig& config, const OffsetSource& offsets,
                     const VulkanFrameOptions& options = {});
-  /// Waits (bounded) for the frames still in flight, then frees everything.
+  /// Waits (10 s at most) for the frames still in flight, then for the
+  /// context's queue (the host's command buffers may hold commands after a
+  /// frame's last event that use the driver's objects), then frees
+  /// everything. The host must not submit to that queue from another thread
+  /// meanwhile.
   ~VulkanFrameDriver();
   VulkanFrameDriver(const VulkanFrameDriver&) = delete;
   VulkanFrameDriver& operator=(const VulkanFrameDriver&) = delete;
@@ -145,7 +152,7 @@ class VulkanFrameDriver {
   [[nodiscard]] AtomicMode mode() const;
   [[nodiscard]] Extent screen() const;
   /// The configuration of the container the next frame gathers into.
-  [[nodiscard]] const TechniqueConfig& config() const;
+  [[nodiscard]] TechniqueConfig config() const;
   [[nodiscard]] const VulkanFrameOptions& options() const;
 
   /// The GLSL module for the host's fragment shaders (Vulkan GLSL 450: the
@@ -184,13 +191,17 @@ class VulkanFrameDriver {
 
   /// Records the resolve of the last recorded frame into `target` (its size
   /// the screen's, its format one of HostImage's) in `cmd`, after that
-  /// frame's commands (the same command buffer or a later submission).
-  /// Throws std::invalid_argument naming the format, size or layout, and
-  /// std::logic_error before any frame.
+  /// frame's commands (the same command buffer or a later submission), then
+  /// sets the frame's second event: its report waits for the resolve too.
+  /// One resolve a frame. Throws std::invalid_argument naming the format,
+  /// size or layout, std::logic_error before any frame or for a second
+  /// resolve, VulkanError once the frame's report was read.
   void record_resolve(VkCommandBuffer cmd, const HostImage& target);
 
   /// The reports of frames whose submissions have run (oldest first), read
-  /// without a wait; each once.
+  /// without a wait; each once. A frame whose calls came from another
+  /// driver's module throws VulkanError; the reports before it stay for the
+  /// next call.
   std::vector<VulkanFrameReport> collect_reports();
   /// The same for every frame recorded, waiting for each (at most
   /// `timeout_ms` in all, then VulkanError naming the frames left: a frame
@@ -198,6 +209,12 @@ class VulkanFrameDriver {
   std::vector<VulkanFrameReport> finish_reports(std::uint64_t timeout_ms = 10000);
   /// Frames recorded whose reports have not been read.
   [[nodiscard]] std::size_t frames_in_flight() const;
+  /// For a host that will not submit command buffers it recorded frames
+  /// into (a swapchain out of date): after it made sure none of them is
+  /// pending (its queue idle), the frames in flight whose reports have not
+  /// arrived are forgotten (their reports never come); those that ran are
+  /// kept for collect_reports.
+  void forget_frames_in_flight();
 
   /// The last frame's container read back into the CPU's (after
   /// finish_reports: VulkanError while frames are in flight).

@@ -1,7 +1,8 @@
 /// @file
 /// The techniques the Vulkan path runs, each by its Vulkan part
-/// (techniques/NAME/vk). So far the HA-buffer, lists, sorted lists and the
-/// k-buffer; the others are refused by name (issue 48 adds them one by one).
+/// (techniques/NAME/vk): the HA-buffer, lists, sorted lists, fixed arrays,
+/// the k-buffer and paged lists. The blended baselines (wboit, blend), which
+/// blend in a framebuffer, are refused by name.
 #pragma once
 
 #include <memory>
@@ -14,7 +15,7 @@ namespace habuffer::vk {
 
 /// Whether `t` has a Vulkan part.
 bool runs_on_vulkan(Technique t);
-/// The techniques that do, comma-separated ("ha, lists, sorted-lists, kbuffer").
+/// The techniques that do, comma-separated ("ha, lists, sorted-lists, arrays, kbuffer, paged-lists").
 std::string vulkan_technique_names();
 
 /// A container of `config` on the context's device in `mode`. Throws
