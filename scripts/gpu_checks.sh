@@ -11,7 +11,7 @@
 # and 1024, hairball at three loads, BM_Technique beside `habuffer bench`),
 # issue 36's GPU traffic model beside the measurement (`bench --model gpu`
 # on the GL path, then scripts/gpu_model_check.py: Spearman per scene, HA /
-# lists measured and predicted), issue 48's Vulkan tests, lists and renders (vk against cpu, gl's times beside), issue 37's multisampled renders (each technique
+# lists measured and predicted), issue 48's Vulkan tests (the host frame driver's included), lists and renders (vk against cpu, gl's times beside), issue 37's multisampled renders (each technique
 # of lists at 1 and 4 samples on engine and hairball), then the older checks as time allows (GL tests in emulated64, the scene
 # tests, renders' stats, issue 11's whole technique table).
 #
@@ -138,7 +138,7 @@ if want vk && [ -x "$(command -v habuffer_vk_tests)" ]; then
   # on the engine for the four techniques the Vulkan path runs.
   vk_size=512x512
   [ "$mode" = smoke ] && vk_size=64x64
-  step 150 vk-render bash -c "for t in ha lists sorted-lists kbuffer; do
+  step 150 vk-render bash -c "for t in ha lists sorted-lists kbuffer paged-lists; do
       habuffer render --scene engine --size $vk_size --technique \$t --frames 3 --path cpu --out vk-r-cpu.exr --stats vk-render-cpu-\$t.json &&
       habuffer render --scene engine --size $vk_size --technique \$t --frames 3 --path vk --out vk-r-vk.exr --stats vk-render-vk-\$t.json &&
       habuffer render --scene engine --size $vk_size --technique \$t --frames 3 --path gl --out vk-r-gl.exr --stats vk-render-gl-\$t.json &&

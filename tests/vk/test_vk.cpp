@@ -358,17 +358,16 @@ TEST(Vulkan, FixedArraysAndPagedListsGiveTheCpuListsAndCountersInEveryRunnableMo
         c.pool_capacity = pool;
         const TechniqueBuild cpu = build_technique(c, {}, f, {}, {}, 4);
         const TechniqueBuild gpu = vk::build_technique_on_vulkan(context(), c, {}, f, {}, 4);
-        EXPECT_TRUE(gpu.lossless());
-        EXPECT_EQ(test::traversed_lists(*gpu.buffer), test::traversed_lists(*cpu.buffer));
         // Racing calls of one pixel can each take a page when its page is
-        // full, one of them linked (the device's wasted pages): on the hot
-        // stream the device asks for more nodes, so a pool sized for the
-        // stream can take one more attempt and grow further. On the
-        // coherent stream the attempts, counters and pools are the CPU's.
-        if (seed != 1) continue;
-        ASSERT_EQ(gpu.attempts.size(), cpu.attempts.size());
+        // full, one of them linked (the device's wasted pages, counted in
+        // the nodes asked for): the device's pool may take another attempt
+        // and grow further than the CPU's, by how the calls raced. The
+        // lossless result is the CPU's.
+        EXPECT_TRUE(gpu.lossless());
+        EXPECT_TRUE(cpu.lossless());
         EXPECT_EQ(gpu.counters, cpu.counters);
-        EXPECT_EQ(gpu.attempts.back().capacity, cpu.attempts.back().capacity);
+        EXPECT_GE(gpu.attempts.back().capacity, cpu.attempts.back().capacity);
+        EXPECT_EQ(test::traversed_lists(*gpu.buffer), test::traversed_lists(*cpu.buffer));
       }
     }
   }
