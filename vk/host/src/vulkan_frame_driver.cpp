@@ -78,24 +78,10 @@ void barrier_after_shaders(VkCommandBuffer cmd) {
                  kShaderUse | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
 }
 
-// Sets `event` once every earlier command has run, with the counters'
-// copy made visible to the host: by the event's own dependency where the
-// device has synchronization2, else by a host barrier before it.
-void record_host_event(const VulkanContext& context, VkCommandBuffer cmd, VkEvent event) {
-  if (context.info().synchronization2) {
-    VkMemoryBarrier2 to_host{};
-    to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2;
-    to_host.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    VkDependencyInfo dependency{};
-    dependency.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &to_host;
-    vkCmdSetEvent2(cmd, event, &dependency);
-    return;
-  }
+// Sets `event` once every earlier command has run, after a barrier that
+// makes the counters' copy available to the host (the host reads the
+// mapped, coherent slot once it sees the event set).
+void record_host_event(VkCommandBuffer cmd, VkEvent event) {
   memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                  VK_ACCESS_HOST_READ_BIT);
   vkCmdSetEvent(cmd, event, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT);
@@ -219,6 +205,7 @@ struct VulkanFrameDriver::State {
   // What a frame's report says of its sizing, kept for the next frame when
   // recording it threw after the container was sized.
   VulkanFrameReport carried;
+  bool forgotten = false;  // the last frame recorded was forgotten (forget_frames_in_flight)
   std::vector<std::unique_ptr<Slot>> slots;
   std::deque<Slot*> in_flight;  // oldest first
   std::vector<VulkanFrameReport> held;
@@ -339,6 +326,7 @@ struct VulkanFrameDriver::State {
                         " fragments: " + e.what());
     }
     sized_for_fragments = fragments;
+    carried = {};  // a container sized before this one is gone
     needs_count = false;
     latest.reset();
     sizing_floor = frames;
@@ -533,9 +521,11 @@ VulkanFrameDriver::~VulkanFrameDriver() {
   // may still hold commands after a frame's last event that use our objects.
   State& s = *s_;
   const auto t0 = std::chrono::steady_clock::now();
-  while (!s.in_flight.empty() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(10)) {
+  const auto limit = std::chrono::seconds(10);
+  while (!s.in_flight.empty() && std::chrono::steady_clock::now() - t0 < limit) {
     try {
-      s.wait_all(10000);
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(limit - (std::chrono::steady_clock::now() - t0));
+      s.wait_all(static_cast<std::uint64_t>(std::max<std::int64_t>(left.count(), 1)));
     } catch (...) {
       // A refused frame's error has nowhere to go here; the wait goes on.
     }
@@ -590,15 +580,15 @@ void VulkanFrameDriver::record_frame(VkCommandBuffer cmd, const Gather& gather) 
   // This frame's sizing (and what an earlier frame that threw had sized).
   VulkanFrameReport report = std::exchange(s.carried, {});
   report.index = s.frames;
-  if (s.needs_count) {
-    s.count_and_size(gather, report);
-  } else if (s.sized_for_fragments) {
-    report.resized = true;  // size_for since the last frame
-  } else {
-    s.adapt(report);
-  }
-  if (s.sized_for_fragments) report.counted_fragments = std::exchange(s.sized_for_fragments, std::nullopt);
   try {
+    if (s.needs_count) {
+      s.count_and_size(gather, report);
+    } else if (s.sized_for_fragments) {
+      report.resized = true;  // size_for since the last frame
+    } else {
+      s.adapt(report);
+    }
+    if (s.sized_for_fragments) report.counted_fragments = std::exchange(s.sized_for_fragments, std::nullopt);
     check(vkResetEvent(s.context.device(), slot.event), "resetting a frame's event");
     check(vkResetEvent(s.context.device(), slot.resolved_event), "resetting a frame's resolve event");
     check(vkResetDescriptorPool(s.context.device(), slot.image_sets, 0), "resetting a frame's image set");
@@ -633,7 +623,7 @@ void VulkanFrameDriver::record_frame(VkCommandBuffer cmd, const Gather& gather) 
     slot.timestamp(cmd, kSorted, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT);
     const VkBufferCopy region{0, 0, kCounterWords * 4};
     vkCmdCopyBuffer(cmd, s.counters.handle(), slot.readback.handle(), 1, &region);
-    record_host_event(s.context, cmd, slot.event);
+    record_host_event(cmd, slot.event);
     report.config = t.config();
     report.capacity = t.capacity();
   } catch (...) {
@@ -651,6 +641,7 @@ void VulkanFrameDriver::record_frame(VkCommandBuffer cmd, const Gather& gather) 
   slot.busy = true;
   s.in_flight.push_back(&slot);
   s.last_slot = &slot;
+  s.forgotten = false;
   s.last_recorded = s.current;
   ++s.frames;
 }
@@ -677,6 +668,8 @@ void VulkanFrameDriver::record_resolve(VkCommandBuffer cmd, const HostImage& tar
                                 "the lists are composited over, would be lost");
   ComputePipeline& pipeline = s.resolve_pipeline(qualifier);
   Slot* slot = s.last_slot != nullptr && s.last_slot->busy ? s.last_slot : nullptr;
+  if (slot == nullptr && s.forgotten)
+    throw VulkanError("record_resolve: the last frame was forgotten (forget_frames_in_flight): record a frame first");
   if (slot == nullptr)
     throw VulkanError("record_resolve: the last frame's report was read already: resolve a frame before its report "
                       "is collected (record_frame, record_resolve, submit, then collect_reports)");
@@ -749,12 +742,20 @@ std::vector<VulkanFrameReport> VulkanFrameDriver::finish_reports(std::uint64_t t
 void VulkanFrameDriver::forget_frames_in_flight() {
   State& s = *s_;
   s.collect_ready();
+  // The next report says how its container was sized, where a forgotten frame sized it.
   for (Slot* slot : s.in_flight) {
+    if (slot->report.resized && !s.carried.resized) {
+      s.carried.resized = true;
+      s.carried.sized_by_frame = slot->report.sized_by_frame;
+      s.carried.counted_fragments = slot->report.counted_fragments;
+    }
+    s.carried.resize_limited = s.carried.resize_limited || slot->report.resize_limited;
     slot->busy = false;
     slot->container.reset();
   }
   s.in_flight.clear();
   s.last_slot = nullptr;
+  s.forgotten = true;
 }
 
 std::unique_ptr<FragmentBuffer> VulkanFrameDriver::read_back() const {
@@ -779,6 +780,7 @@ void VulkanFrameDriver::resize_screen(Extent screen) {
   s.given.buffer.screen = screen;
   s.needs_count = s.automatic && s.options.count_first_frame;
   s.sized_for_fragments.reset();
+  s.carried = {};  // what frames before the resize had sized is gone with their container
   s.latest.reset();
   s.sizing_floor = s.frames;
 }

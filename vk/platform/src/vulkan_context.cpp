@@ -27,14 +27,13 @@ bool layer_present(const char* name) {
   return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-// An instance of Vulkan 1.3 (its devices used at their own version, 1.2 at least) with nothing enabled but,
-// optionally, validation.
+// An instance of Vulkan 1.2 with nothing enabled but, optionally, validation.
 VkInstance make_instance(bool validation, void* messenger_info) {
   VkApplicationInfo app{};
   app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
   app.pApplicationName = "habuffer";
   app.pEngineName = "habuffer";
-  app.apiVersion = VK_API_VERSION_1_3;  // the most it uses: 1.3 (synchronization2) where the device has it, else 1.2
+  app.apiVersion = VK_API_VERSION_1_2;
   const char* layers[] = {kValidationLayer};
   const char* extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
   VkInstanceCreateInfo ci{};
@@ -242,13 +241,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) : s_(std::make_uniqu
   s.family = *universal_family(s.physical);
 
   // The features the library uses, each only where the device has it.
-  VkPhysicalDeviceVulkan13Features v13{};
-  v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
-  v13.synchronization2 = VK_TRUE;
   VkPhysicalDeviceVulkan12Features v12{};
   v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
   v12.shaderBufferInt64Atomics = s.info.buffer_int64_atomics ? VK_TRUE : VK_FALSE;
-  if (s.info.synchronization2) v12.pNext = &v13;
   VkPhysicalDeviceFeatures2 features{};
   features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
   features.pNext = &v12;
@@ -303,7 +298,6 @@ VulkanContext::VulkanContext(const HostDevice& host) : s_(std::make_unique<State
   // What the host enabled, not what the device offers, decides the modes.
   s.info.shader_int64 = s.info.shader_int64 && host.shader_int64;
   s.info.buffer_int64_atomics = s.info.buffer_int64_atomics && host.buffer_int64_atomics && s.info.shader_int64;
-  s.info.synchronization2 = s.info.synchronization2 && host.synchronization2;
   s.info.unusable.clear();
   s.instance = host.instance;
   s.physical = host.physical_device;

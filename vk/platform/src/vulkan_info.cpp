@@ -48,16 +48,12 @@ VulkanInfo query_vulkan_info(VkPhysicalDevice device, std::uint32_t index) {
     i.unusable = "Vulkan " + i.api_version + " (the library needs 1.2)";
     return i;
   }
-  VkPhysicalDeviceVulkan13Features v13{};
-  v13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
   VkPhysicalDeviceVulkan12Features v12{};
   v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
-  if (props.apiVersion >= VK_API_VERSION_1_3) v12.pNext = &v13;
   VkPhysicalDeviceFeatures2 features{};
   features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
   features.pNext = &v12;
   vkGetPhysicalDeviceFeatures2(device, &features);
-  i.synchronization2 = v13.synchronization2 == VK_TRUE;
   i.shader_int64 = features.features.shaderInt64 == VK_TRUE;
   i.buffer_int64_atomics = i.shader_int64 && v12.shaderBufferInt64Atomics == VK_TRUE;
   i.fragment_stores = features.features.fragmentStoresAndAtomics == VK_TRUE;

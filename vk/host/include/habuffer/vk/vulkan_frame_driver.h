@@ -13,11 +13,11 @@
 ///      occupancy map) has it called twice, its count pass between;
 ///   3. a barrier (fragment writes before compute and transfer), the sort
 ///      pass where the technique sorts after the gather;
-///   4. the counters copied into the frame's read-back slot and the slot's
-///      event set (after every earlier command; the copy made visible to
-///      the host by the event's dependency with synchronization2, else by a
-///      host barrier): the frame's report arrives in collect_reports() once
-///      the host's submission has run, without any wait;
+///   4. the counters copied into the frame's read-back slot, a barrier that
+///      makes the copy available to the host, and the slot's event set
+///      (after every earlier command): the frame's report arrives in
+///      collect_reports() once the host's submission has run, without any
+///      wait;
 ///   5. timestamps around each step, where the queue family has them.
 ///
 /// record_resolve() then composites every pixel's list over the host's

@@ -66,10 +66,6 @@ struct HostDevice {
   bool shader_int64 = false;                 ///< VkPhysicalDeviceFeatures::shaderInt64 enabled
   bool buffer_int64_atomics = false;         ///< VkPhysicalDeviceVulkan12Features::shaderBufferInt64Atomics enabled
   bool fragment_stores_and_atomics = false;  ///< VkPhysicalDeviceFeatures::fragmentStoresAndAtomics enabled (needed)
-  /// VkPhysicalDeviceVulkan13Features::synchronization2 enabled: a frame's
-  /// counters reach the host through its event's own dependency
-  /// (vkCmdSetEvent2); without it, a host barrier before the event.
-  bool synchronization2 = false;
 };
 
 /// The instance, the chosen device and its queue. Not copyable; destroys

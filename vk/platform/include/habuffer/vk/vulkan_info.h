@@ -27,9 +27,6 @@ struct VulkanInfo {
   bool buffer_int64_atomics = false;   ///< shaderBufferInt64Atomics (Vulkan 1.2)
   bool fragment_stores = false;        ///< fragmentStoresAndAtomics
   bool timestamps = false;             ///< timestampComputeAndGraphics
-  /// synchronization2 (Vulkan 1.3): a frame's event made visible to the host
-  /// by the event's own dependency (vkCmdSetEvent2)
-  bool synchronization2 = false;
   float timestamp_period_ns = 0.0f;    ///< nanoseconds per timestamp tick
   std::uint64_t max_storage_range = 0;  ///< maxStorageBufferRange (bytes one binding sees)
   std::uint32_t max_work_groups_x = 0;  ///< maxComputeWorkGroupCount[0]
