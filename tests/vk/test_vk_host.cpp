@@ -779,6 +779,23 @@ TEST(VulkanHost, MisuseOfTheFrameDriverIsRefusedInOneLine) {
   limited_host.end_and_submit(b);
   EXPECT_EQ(limited.finish_reports().size(), 2u);
 
+  // A frame whose command buffer the host drops (a swapchain out of date):
+  // forgotten, nothing waits for it, the next frame runs.
+  {
+    VkCommandBuffer dropped = limited_host.begin();
+    limited.record_frame(dropped, limited_host.gather(limited));
+    limited_host.discard(dropped);
+    EXPECT_EQ(limited.frames_in_flight(), 1u);
+    limited.forget_frames_in_flight();
+    EXPECT_EQ(limited.frames_in_flight(), 0u);
+    e = refused([&](VkCommandBuffer cmd) { limited.record_resolve(cmd, image); });
+    EXPECT_NE(e.find("forgotten"), std::string::npos) << e;
+    limited_host.submit([&](VkCommandBuffer cmd) { limited.record_frame(cmd, limited_host.gather(limited)); });
+    const std::vector<vk::VulkanFrameReport> after = limited.finish_reports();
+    ASSERT_EQ(after.size(), 1u);
+    EXPECT_EQ(after[0].index, 3u);  // frames 0 and 1 ran, frame 2 was forgotten
+  }
+
   // Calls from another driver's module: the frame's report refuses them.
   const TechniqueConfig lists = test::technique_config(Technique::SortedLists, screen, Layout::L64);
   vk::VulkanFrameDriver other(context(), lists, {});
