@@ -151,6 +151,17 @@ spatial::Domain domain_arg(py::handle obj) {
                          d.size() == 3 ? static_cast<std::uint32_t>(d[2]) : 1u};
 }
 
+RenderPath path_arg(const std::string& p) {
+  if (p == "gl") return RenderPath::Gl;
+  if (p == "cpu") return RenderPath::Cpu;
+#ifdef HABUFFER_WITH_VK
+  if (p == "vk") return RenderPath::Vk;
+  throw py::value_error("path: '" + p + "' is not gl, cpu or vk");
+#else
+  throw py::value_error("path: '" + p + "' is not gl or cpu (this habuffer has no Vulkan path)");
+#endif
+}
+
 OffsetGenerator offsets_arg(const std::string& name) {
   const std::optional<OffsetGenerator> g = parse_offset_generator(name);
   if (!g) throw py::value_error("offsets: expected 'random' or 'farthest', got '" + name + "'");

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "habuffer/lossless_build.h"
+#include "habuffer/render/render_job.h"
 #include "habuffer/spatial/spatial_hash.h"
 #include "habuffer/technique.h"
 
@@ -31,6 +32,9 @@ TechniqueConfig technique_config_from(const ConfigArgs& a, const py::kwargs& opt
 /// (X, Y) or (X, Y, Z) sides in [1, 2^32 - 1] as a spatial hash's domain;
 /// TypeError or ValueError naming `domain` otherwise.
 spatial::Domain domain_arg(py::handle obj);
+/// The path named `path=` ("cpu", "gl", and "vk" where the module has the
+/// Vulkan path): every function's one rule; ValueError naming the others.
+RenderPath path_arg(const std::string& path);
 /// The generator named `name` ("random", "farthest"); ValueError otherwise.
 OffsetGenerator offsets_arg(const std::string& name);
 /// The offsets the configuration's HA-buffer takes.

@@ -129,17 +129,6 @@ py::object rows_table(const std::vector<Row>& rows, std::span<const RowColumn<Ro
   return table;
 }
 
-RenderPath path_arg(const std::string& p) {
-  if (p == "gl") return RenderPath::Gl;
-  if (p == "cpu") return RenderPath::Cpu;
-#ifdef HABUFFER_WITH_VK
-  if (p == "vk") return RenderPath::Vk;
-  throw py::value_error("path: '" + p + "' is not gl, cpu or vk");
-#else
-  throw py::value_error("path: '" + p + "' is not gl or cpu (this habuffer has no Vulkan path)");
-#endif
-}
-
 InsertOrder order_arg(const std::string& o) {
   const std::optional<InsertOrder> parsed = parse_insert_order(o);
   if (!parsed) throw py::value_error("order: '" + o + "' is not auto, arrival or pixel");
