@@ -409,6 +409,18 @@ vk::VulkanFrameReport one_frame(PointHost& host, vk::VulkanFrameDriver& driver, 
   return reports.front();
 }
 
+// A frame of `fragments` resolved into `image` in one command buffer,
+// submitted and waited for; the reports.
+std::vector<vk::VulkanFrameReport> frame_and_resolve(PointHost& host, vk::VulkanFrameDriver& driver,
+                                                     const std::vector<Fragment>& fragments, const vk::HostImage& image) {
+  host.upload(fragments);
+  host.submit([&](VkCommandBuffer cmd) {
+    driver.record_frame(cmd, host.gather(driver));
+    driver.record_resolve(cmd, image);
+  });
+  return driver.finish_reports();
+}
+
 TEST(VulkanHost, AHostsOwnRenderPassGivesTheCpuListsAndCountersForEveryTechniqueTheDriverRuns) {
   REQUIRE_VULKAN();
   for (AtomicMode mode : driver_modes()) {
@@ -477,13 +489,8 @@ TEST(VulkanHost, TheResolveIntoTheHostsImageIsTheCpuCompositeOverItBitForBit) {
       vk::VulkanFrameDriver driver(context(), c, {});
       PointHost host(context(), screen);
       host.make_pipeline(driver);
-      const vk::HostImage image = host.image_with(backgrounds, 0.5f);
-      host.upload(f);
-      host.submit([&](VkCommandBuffer cmd) {
-        driver.record_frame(cmd, host.gather(driver));
-        driver.record_resolve(cmd, image);
-      });
-      const std::vector<vk::VulkanFrameReport> reports = driver.finish_reports();
+      const std::vector<vk::VulkanFrameReport> reports =
+          frame_and_resolve(host, driver, f, host.image_with(backgrounds, 0.5f));
       ASSERT_EQ(reports.size(), 1u);
       if (context().info().timestamps) {
         EXPECT_GT(reports[0].resolve_ms, 0.0);
@@ -511,14 +518,9 @@ TEST(VulkanHost, TheResolveIntoTheHostsImageIsTheCpuCompositeOverItBitForBit) {
   PointHost host(context(), screen);
   host.make_pipeline(driver);
   const std::vector<glm::vec3> backgrounds(screen.area(), glm::vec3(0.25f, 0.5f, 0.75f));
-  const vk::HostImage image = host.image_with(backgrounds, 1.0f);
   const std::vector<Fragment> f = test::stream(screen, StreamKind::Coherent, 600, 4);
-  host.upload(f);
-  host.submit([&](VkCommandBuffer cmd) {
-    driver.record_frame(cmd, host.gather(driver));
-    driver.record_resolve(cmd, image);
-  });
-  const std::vector<vk::VulkanFrameReport> reports = driver.finish_reports();
+  const std::vector<vk::VulkanFrameReport> reports =
+      frame_and_resolve(host, driver, f, host.image_with(backgrounds, 1.0f));
   ASSERT_EQ(reports.size(), 1u);
   EXPECT_EQ(reports[0].gather_ms, 0.0);
   const TechniqueBuild cpu = build_technique(reports[0].config, {}, f, {}, {}, 1);

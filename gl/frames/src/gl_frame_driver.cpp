@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstdio>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -21,6 +20,7 @@
 #include "habuffer/gl/debug_output.h"
 #include "habuffer/gl/gl_buffer.h"
 #include "habuffer/gl/gl_error.h"
+#include "habuffer/gl/module_id.h"
 #include "habuffer/gl/shader_program.h"
 #include "light_params.h"
 #include "resolve_pass.h"
@@ -51,14 +51,6 @@ std::uint64_t grown_append_capacity(std::uint64_t needed, std::uint64_t current,
     throw GlError(std::to_string(needed) + " " + what + " exceed this OpenGL's " + std::to_string(limit) +
                   " per shader-storage buffer");
   return std::min(limit, std::max(needed, current * 2));
-}
-
-// FNV-1a of the module's text, never 0: drivers whose modules are the same
-// text share it (and can share shaders); any difference changes it.
-std::uint32_t fingerprint(const std::string& text) {
-  std::uint32_t h = 2166136261u;
-  for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
-  return h == 0 ? 1u : h;
 }
 
 std::unique_ptr<GlTechnique> checked(std::unique_ptr<GlTechnique> t) {
@@ -95,7 +87,7 @@ GlFrameDriver::GlFrameDriver(std::unique_ptr<GlTechnique> technique, const GlFra
   options_.policy.validate();
   options_.module = options_.module.resolved(mode(), query_gl_info());
   needs_count_ = technique_->sized_automatically();
-  module_id_ = fingerprint(module_text(ShaderStage::Fragment));
+  module_id_ = module_fingerprint(module_text(ShaderStage::Fragment));
   if (!options_.readback) options_.readback = Readback::Immediate;
   const bool deferred = *options_.readback == Readback::Deferred;
   if (deferred && options_.finish_timing.value_or(false))
@@ -152,9 +144,7 @@ std::string GlFrameDriver::module_text(ShaderStage stage, std::string_view heade
 }
 
 std::string GlFrameDriver::module_source(ShaderStage stage, std::string_view header) const {
-  char id[48];
-  std::snprintf(id, sizeof id, "#define HABUFFER_MODULE_ID 0x%08xu\n", module_id_);
-  return module_text(stage, std::string(id) + std::string(header));
+  return module_text(stage, module_id_define(module_id_) + std::string(header));
 }
 
 void GlFrameDriver::check_refused_calls(const std::vector<std::uint32_t>& words) const {

@@ -205,13 +205,8 @@ class StreamGather {
   }
 
   void write_params(const VulkanTechnique& t, std::uint32_t gather_phase) {
-    ParamBlock p;
-    p.habuffer_gather_phase = gather_phase;
+    ParamBlock p = frame_params(t, gather_phase);
     p.habuffer_deferred_capacity = static_cast<std::uint32_t>(capacity_);
-    p.habuffer_lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;
-    p.habuffer_screen_size[0] = t.config().buffer.screen.x;
-    p.habuffer_screen_size[1] = t.config().buffer.screen.y;
-    t.write_params(p);
     params_.upload(&p, sizeof p);
   }
 

@@ -32,6 +32,16 @@ std::vector<BoundBuffer> frame_bindings(const VulkanTechnique& t, const FrameBuf
   return out;
 }
 
+ParamBlock frame_params(const VulkanTechnique& t, std::uint32_t phase) {
+  ParamBlock p;
+  p.habuffer_gather_phase = phase;
+  p.habuffer_lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;
+  p.habuffer_screen_size[0] = t.config().buffer.screen.x;
+  p.habuffer_screen_size[1] = t.config().buffer.screen.y;
+  t.write_params(p);
+  return p;
+}
+
 Counters counters_from_words(std::span<const std::uint32_t> words) {
   if (words.size() < HABUFFER_COUNTER_WORDS)
     throw VulkanError("a gather's counters need " + std::to_string(HABUFFER_COUNTER_WORDS) + " words, " +

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <chrono>
-#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <map>
@@ -10,6 +9,7 @@
 #include <thread>
 #include <utility>
 
+#include "habuffer/gl/module_id.h"
 #include "habuffer/gpu_tally.h"
 #include "habuffer/shared/ha_constants.h"
 #include "habuffer/technique_descriptor.h"
@@ -29,12 +29,6 @@ constexpr std::uint64_t kCounterWords = HABUFFER_COUNTER_WORDS;
 
 // The timestamps of a frame's slot.
 enum Query : std::uint32_t { kFrameStart, kCleared, kGathered, kSorted, kResolveStart, kResolveEnd, kQueries };
-
-std::uint32_t fingerprint(const std::string& text) {
-  std::uint32_t h = 2166136261u;
-  for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
-  return h == 0 ? 1u : h;
-}
 
 // The storage image format qualifier of a host image's format ("" where the resolve cannot write it).
 std::string image_qualifier(VkFormat format) {
@@ -228,7 +222,7 @@ struct VulkanFrameDriver::State {
   [[nodiscard]] TechniqueConfig placeholder(const TechniqueConfig& c) const {
     // An automatic container's size until its count arrives.
     TechniqueConfig p = c;
-    if (uses_table(p.technique) && p.buffer.table.area() == 0) p.buffer.table = p.buffer.screen;
+    if (uses_table(p.technique)) p.buffer.table = p.buffer.table_or_screen();
     if (uses_pool(p.technique) && p.pool_capacity == 0) p.pool_capacity = options.policy.automatic(p.buffer.screen.area());
     return p;
   }
@@ -264,13 +258,8 @@ struct VulkanFrameDriver::State {
   }
 
   void write_params(VkCommandBuffer cmd, std::uint32_t phase) const {
-    ParamBlock p;
-    p.habuffer_gather_phase = phase;
-    p.habuffer_lock_spin_limit = HABUFFER_DEFAULT_LOCK_SPIN_LIMIT;
-    p.habuffer_screen_size[0] = current->technique->config().buffer.screen.x;
-    p.habuffer_screen_size[1] = current->technique->config().buffer.screen.y;
+    ParamBlock p = frame_params(*current->technique, phase);
     p.habuffer_module_id = module_id;
-    current->technique->write_params(p);
     static_assert(sizeof(ParamBlock) % 4 == 0 && sizeof(ParamBlock) <= 65536, "vkCmdUpdateBuffer's limits");
     vkCmdUpdateBuffer(cmd, params.handle(), 0, sizeof p, &p);
   }
@@ -490,7 +479,7 @@ VulkanFrameDriver::VulkanFrameDriver(const VulkanContext& context, const Techniq
   s.defines = frame_variant_defines(s.mode, context.info());
   const TechniqueConfig first = s.placeholder(config);
   first.validate();  // the configuration's own message before any device work
-  s.module_id = fingerprint(s.module_text({}));
+  s.module_id = gl::module_fingerprint(s.module_text({}));
   s.set_layout = make_frame_set_layout(context, VK_SHADER_STAGE_FRAGMENT_BIT, "the frame driver");
   constexpr std::uint64_t kAppendHeaderBytes = HABUFFER_APPEND_HEADER_WORDS * 4;
   s.params = VulkanBuffer(context, sizeof(ParamBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
@@ -541,9 +530,7 @@ VkDescriptorSetLayout VulkanFrameDriver::set_layout() const { return s_->set_lay
 std::size_t VulkanFrameDriver::frames_in_flight() const { return s_->in_flight.size(); }
 
 std::string VulkanFrameDriver::module_source(std::string_view header) const {
-  char id[48];
-  std::snprintf(id, sizeof id, "#define HABUFFER_MODULE_ID 0x%08xu\n", s_->module_id);
-  return s_->module_text(std::string(id) + std::string(header));
+  return s_->module_text(gl::module_id_define(s_->module_id) + std::string(header));
 }
 
 std::vector<std::uint32_t> VulkanFrameDriver::compile_gather_fragment(std::string_view main_source) const {

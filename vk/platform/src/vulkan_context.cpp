@@ -173,6 +173,15 @@ struct VulkanContext::State {
     if (instance != VK_NULL_HANDLE) vkDestroyInstance(instance, nullptr);
   }
 
+  // The pool of submit_and_wait's command buffers, on the queue's family.
+  void make_pool() {
+    VkCommandPoolCreateInfo created{};
+    created.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
+    created.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    created.queueFamilyIndex = family;
+    check(vkCreateCommandPool(device, &created, nullptr, &pool), "creating a command pool");
+  }
+
   static VKAPI_ATTR VkBool32 VKAPI_CALL on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                    VkDebugUtilsMessageTypeFlagsEXT type,
                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
@@ -262,11 +271,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : s_(std::make_uniqu
   dci.pQueueCreateInfos = &queue;
   check(vkCreateDevice(s.physical, &dci, nullptr, &s.device), ("creating a device on " + s.info.name).c_str());
   vkGetDeviceQueue(s.device, s.family, 0, &s.queue);
-  VkCommandPoolCreateInfo pool{};
-  pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pool.queueFamilyIndex = s.family;
-  check(vkCreateCommandPool(s.device, &pool, nullptr, &s.pool), "creating a command pool");
+  s.make_pool();
   check_messages("creating the Vulkan device");
 }
 
@@ -305,11 +310,7 @@ VulkanContext::VulkanContext(const HostDevice& host) : s_(std::make_unique<State
   s.queue = host.queue;
   s.family = host.queue_family;
   s.adopted = true;
-  VkCommandPoolCreateInfo pool{};
-  pool.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
-  pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-  pool.queueFamilyIndex = s.family;
-  check(vkCreateCommandPool(s.device, &pool, nullptr, &s.pool), "creating a command pool on the host's device");
+  s.make_pool();
 }
 
 VulkanContext::~VulkanContext() = default;

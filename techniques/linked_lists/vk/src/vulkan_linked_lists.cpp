@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "habuffer/shared/ha_constants.h"
+#include "habuffer/techniques/linked_lists/import_node_lists.h"
 #include "habuffer/techniques/linked_lists/linked_lists.h"
 #include "habuffer/vk/vulkan_error.h"
 #include "habuffer/vk/vulkan_glsl.h"
@@ -10,16 +11,8 @@
 namespace habuffer::vk {
 namespace {
 
-std::unique_ptr<FragmentBuffer> import_lists(const TechniqueConfig& config, std::span<const std::uint32_t> heads,
-                                             std::span<const glm::uvec2> entries, std::span<const std::uint32_t> links,
-                                             std::uint64_t requested) {
-  auto lists = std::make_unique<LinkedLists>(config);
-  lists->import_state(heads, entries, links, requested);
-  return lists;
-}
-
-constexpr VulkanNodeListKind kListsKind{Technique::Lists, import_lists};
-constexpr VulkanNodeListKind kSortedListsKind{Technique::SortedLists, import_lists};
+constexpr VulkanNodeListKind kListsKind{Technique::Lists, import_node_lists<LinkedLists>};
+constexpr VulkanNodeListKind kSortedListsKind{Technique::SortedLists, import_node_lists<LinkedLists>};
 
 TechniqueConfig checked(const TechniqueConfig& c, const VulkanNodeListKind& kind) {
   if (c.technique != kind.technique)

@@ -37,6 +37,11 @@ struct FrameBuffers {
 /// never written: the module reads a point only where it has its buffer).
 std::vector<BoundBuffer> frame_bindings(const VulkanTechnique& t, const FrameBuffers& frame);
 
+/// The parameter block of a gather of `t` in `phase` (HABUFFER_PHASE_*):
+/// the screen, the lock spin limit and the technique's fields; the caller
+/// adds what is its own (the deferred calls' capacity, a module fingerprint).
+ParamBlock frame_params(const VulkanTechnique& t, std::uint32_t phase);
+
 /// A gather's counters from its counter words (HABUFFER_COUNTER_WORDS of
 /// striped tallies). Throws VulkanError when calls came from another
 /// module than the frame's (HABUFFER_COUNTER_FOREIGN).

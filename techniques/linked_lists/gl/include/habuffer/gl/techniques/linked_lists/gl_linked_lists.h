@@ -27,6 +27,7 @@
 
 #include <glm/vec2.hpp>
 
+#include "habuffer/techniques/linked_lists/import_node_lists.h"  // GlNodeListKind::import
 #include "habuffer/gl/gl_technique.h"
 
 namespace habuffer::gl {
@@ -42,17 +43,6 @@ struct GlNodeListKind {
                                            std::span<const glm::uvec2> entries, std::span<const std::uint32_t> links,
                                            std::uint64_t requested);
 };
-
-/// GlNodeListKind::import for a CPU container `Lists` with import_state
-/// (LinkedLists, PagedLists).
-template <class Lists>
-std::unique_ptr<FragmentBuffer> import_node_lists(const TechniqueConfig& config, std::span<const std::uint32_t> heads,
-                                                  std::span<const glm::uvec2> entries,
-                                                  std::span<const std::uint32_t> links, std::uint64_t requested) {
-  auto lists = std::make_unique<Lists>(config);
-  lists->import_state(heads, entries, links, requested);
-  return lists;
-}
 
 /// The kinds of technique lists (sorted after the gather) and sorted-lists
 /// (kept sorted while inserting): one node per fragment.
